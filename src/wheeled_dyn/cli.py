@@ -1,0 +1,50 @@
+r"""The ``wheeled-dyn`` command: a thin layer over the Python API.
+
+Each feature package contributes its sub-commands through a function
+``add_commands(subparsers)`` listed in :data:`COMMAND_MODULES`; the handler it registers with
+``set_defaults(handler=...)`` receives the parsed arguments and returns an exit code. Errors of
+the project's own type are printed as one line on stderr with exit code 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+from collections.abc import Sequence
+
+from .errors import WheeledDynError
+
+#: Modules that define ``add_commands(subparsers)``, in the order they appear in ``--help``.
+COMMAND_MODULES: tuple[str, ...] = (
+    "wheeled_dyn.models.commands",
+)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="wheeled-dyn",
+        description="Check hand-derived equations of motion of wheeled bodies against Pinocchio.",
+    )
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    for name in COMMAND_MODULES:
+        importlib.import_module(name).add_commands(sub)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    handler = getattr(args, "handler", None)
+    if handler is None:
+        parser.print_help()
+        return 1
+    try:
+        return int(handler(args) or 0)
+    except WheeledDynError as exc:
+        print(f"wheeled-dyn: error: {exc}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())
