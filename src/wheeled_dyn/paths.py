@@ -1,0 +1,34 @@
+r"""Where the shipped files are: URDFs, derivation files, built-in coordinate sets."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+PACKAGE_DIR = Path(__file__).resolve().parent
+DATA_DIR = PACKAGE_DIR / "data"
+
+
+def urdf_dir() -> Path:
+    r"""The folder of shipped URDFs: inside an installed wheel (``wheeled_dyn/_urdf``) or the
+    repository's ``urdf/`` for an editable install."""
+    packaged = PACKAGE_DIR / "_urdf"
+    if packaged.is_dir():
+        return packaged
+    return PACKAGE_DIR.parents[1] / "urdf"
+
+
+def example_robot_data_share() -> Path | None:
+    r"""``<site-packages>/cmeel.prefix/share`` where example-robot-data keeps its robots, or None."""
+    try:
+        import cmeel  # noqa: F401  (installed with example-robot-data)
+        from cmeel import consts
+    except ImportError:
+        return None
+    import site
+    import sysconfig
+    roots = [sysconfig.get_paths()["purelib"], *site.getsitepackages()]
+    for root in roots:
+        share = Path(root) / consts.CMEEL_PREFIX / "share"
+        if (share / "example-robot-data" / "robots").is_dir():
+            return share
+    return None
