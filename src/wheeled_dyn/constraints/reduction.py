@@ -1,0 +1,202 @@
+r"""The equations of motion in a document's coordinates: projection and rolling reduction.
+
+With the model's velocities written :math:`v = S(q)\,\nu` in the document's velocities
+:math:`\nu`, and :math:`\dot v = S\dot\nu + \dot S\nu`, the model's equations
+:math:`A\dot v + C v + Q = B u + J_c^T\lambda` projected on :math:`S` (which removes the
+constraint forces, :math:`J_c S = 0`) give
+
+.. math::
+
+    A_\nu = S^TAS,\qquad C_\nu = S^TCS + S^TA\dot S,\qquad Q_\nu = S^TQ,\qquad B_\nu = S^TB .
+
+:math:`S` comes from the coordinate set (:mod:`wheeled_dyn.coordinates`):
+
+- holonomic map :math:`q = g(q_{doc})`: :math:`S = \partial g/\partial q_{doc}`, and
+  :math:`C_\nu` is then the Christoffel-consistent matrix of the new coordinates;
+- quasi-velocities :math:`\nu = T(q)v` with rolling eliminated: :math:`S` solves
+  :math:`\begin{bmatrix}J_c\\T\end{bmatrix}S = \begin{bmatrix}0\\ \mathbb 1\end{bmatrix}`, and
+  differentiating, :math:`\dot S = -\begin{bmatrix}J_c\\T\end{bmatrix}^{+}
+  \begin{bmatrix}\dot J_c\\ \dot T\end{bmatrix} S`. Here :math:`C_\nu` has the
+  :math:`S^TA\dot S` term that a Christoffel formula applied to quasi-velocities as if they were
+  coordinates misses (Boltzmann–Hamel).
+
+When the constraints are kept (``rolling = "multipliers"``) the document's equations read
+:math:`A_\nu\dot\nu + C_\nu\nu + Q_\nu = B_\nu u + G^T\lambda` with :math:`G = J_c S`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+import pinocchio as pin
+import sympy as sp
+
+from ..coordinates.spec import CoordinateSet, CoordinateSpecError, model_symbols
+from ..dynamics.terms import Terms, check_vector
+from ..models.builder import WheeledModel
+from .rolling import contact_jacobian
+
+#: Largest residual of [J_c; T] S = [0; 1] for the velocities to parametrise the motions.
+PARAMETRISATION_TOL = 1e-9
+
+
+class CoordinateMap:
+    r"""A coordinate set bound to a model: numbers in, document-coordinate terms out.
+
+    Expressions are compiled once (SymPy ``lambdify``); the model's parameters enter as
+    arguments, so the same map serves every parameter set of the same model structure.
+    """
+
+    def __init__(self, wm: WheeledModel, cs: CoordinateSet) -> None:
+        self.wm = wm
+        self.cs = cs
+        self.n = len(cs.positions)
+        params = [sp.Symbol(p, real=True) for p in cs.parameters]
+        self._param_names = cs.parameters
+        doc_q = list(cs.position_symbols())
+        doc_v = list(cs.velocity_symbols())
+        config = sp.Matrix([cs.configuration[c] for c in wm.coordinate_names])
+        self._config = sp.lambdify([doc_q, params], config, "numpy")
+        if cs.kind == "holonomic":
+            S = config.jacobian(doc_q)
+            Sdot = sum((S.diff(s) * ds for s, ds in zip(doc_q, doc_v)), sp.zeros(*S.shape))
+            self._S = sp.lambdify([doc_q, params], S, "numpy")
+            self._Sdot = sp.lambdify([doc_q, doc_v, params], Sdot, "numpy")
+        else:
+            mq, mv = model_symbols(wm.coordinate_names)
+            nu = sp.Matrix([cs.velocity_map[v] for v in cs.velocities])
+            T = nu.jacobian(mv)
+            Tdot = sum((T.diff(s) * ds for s, ds in zip(mq, mv)), sp.zeros(*T.shape))
+            self._T = sp.lambdify([list(mq), params], T, "numpy")
+            self._Tdot = sp.lambdify([list(mq), list(mv), params], Tdot, "numpy")
+            if cs.rolling != "eliminate" and T.shape[0] != T.shape[1]:
+                raise CoordinateSpecError(cs.name, "velocity_map",
+                                          f"{T.shape[0]} velocities for {T.shape[1]} model "
+                                          "velocities: without rolling elimination they must "
+                                          "be as many")
+        if cs.kind == "holonomic" and cs.rolling == "eliminate":
+            raise CoordinateSpecError(cs.name, "rolling", "'eliminate' needs quasi-velocities "
+                                      "(kind = 'quasi'); use 'multipliers' for a holonomic set")
+        self.bind()
+
+    def bind(self, wm: WheeledModel | None = None) -> "CoordinateMap":
+        r"""Use the parameters (R, L, ...) and inertias of ``wm`` (same structure) from now on."""
+        if wm is not None:
+            self.wm = wm
+        self._p = [self.wm.geometry[p] for p in self._param_names]
+        self._data = self.wm.model.createData()
+        self._B = self.wm.input_matrix()
+        return self
+
+    # -- states -------------------------------------------------------------------------
+    def model_configuration(self, q_doc: np.ndarray) -> np.ndarray:
+        r"""The model configuration :math:`q = g(q_{doc})` (representative for quasi sets)."""
+        q_doc = check_vector("q", q_doc, self.n, self.cs.positions)
+        return np.asarray(self._config(q_doc, self._p), dtype=float).reshape(-1)
+
+    def velocity_matrix(self, q: np.ndarray, q_doc: np.ndarray | None = None) -> np.ndarray:
+        r""":math:`S` at model configuration ``q`` (holonomic sets use ``q_doc``)."""
+        if self.cs.kind == "holonomic":
+            return np.asarray(self._S(q_doc, self._p), dtype=float)
+        T = np.asarray(self._T(q, self._p), dtype=float)
+        if self.cs.rolling != "eliminate":
+            return np.linalg.inv(T)
+        J, _ = contact_jacobian(self.wm, q, data=self._data)
+        M = np.vstack([J, T])
+        E = np.vstack([np.zeros((J.shape[0], self.n)), np.eye(self.n)])
+        S = np.linalg.lstsq(M, E, rcond=None)[0]
+        residual = np.abs(M @ S - E).max()
+        if residual > PARAMETRISATION_TOL:
+            raise CoordinateSpecError(self.cs.name, "velocity_map",
+                                      "these velocities do not parametrise the rolling motions "
+                                      f"(residual {residual:.2e} of [J_c; T] S = [0; 1])")
+        return S
+
+    def terms_at(self, q: np.ndarray, nu: np.ndarray, q_doc: np.ndarray | None = None) -> Terms:
+        r"""The terms in document velocities at model configuration ``q`` and velocities
+        :math:`\nu` (``q_doc`` is needed, and enough, for holonomic sets)."""
+        nu = check_vector("velocity", nu, self.n, self.cs.velocities)
+        model, data = self.wm.model, self._data
+        if self.cs.kind == "holonomic":
+            S = np.asarray(self._S(q_doc, self._p), dtype=float)
+            v = S @ nu
+            Sdot = np.asarray(self._Sdot(q_doc, nu, self._p), dtype=float)
+            J = dJ = None
+            if self.cs.rolling == "multipliers":
+                J, _ = contact_jacobian(self.wm, q, data=data)
+        else:
+            T = np.asarray(self._T(q, self._p), dtype=float)
+            if self.cs.rolling == "eliminate":
+                J, _ = contact_jacobian(self.wm, q, data=data)
+                M = np.vstack([J, T])
+                Mp = np.linalg.pinv(M)
+                S = Mp[:, J.shape[0]:]
+                v = S @ nu
+                _, dJ = contact_jacobian(self.wm, q, v, data=data)
+                Tdot = np.asarray(self._Tdot(q, v, self._p), dtype=float)
+                Sdot = -Mp @ np.vstack([dJ, Tdot]) @ S
+            else:
+                S = np.linalg.inv(T)
+                v = S @ nu
+                Tdot = np.asarray(self._Tdot(q, v, self._p), dtype=float)
+                Sdot = -S @ Tdot @ S
+                J = contact_jacobian(self.wm, q, data=data)[0] if self.cs.rolling == "multipliers" else None
+        A = pin.crba(model, data, q)
+        A = np.triu(A) + np.triu(A, 1).T
+        C = pin.computeCoriolisMatrix(model, data, q, v)
+        Q = pin.computeGeneralizedGravity(model, data, q)
+        St = S.T
+        AS = A @ S
+        A_nu = St @ AS
+        C_nu = St @ C @ S + St @ A @ Sdot
+        G = J @ S if (self.cs.rolling == "multipliers" and J is not None) else None
+        return Terms(self.cs.velocities, self.wm.input_names, 0.5 * (A_nu + A_nu.T), C_nu,
+                     St @ Q, St @ self._B, C_nu @ nu, G)
+
+    def terms(self, q_doc: np.ndarray, nu: np.ndarray) -> Terms:
+        r"""The terms at a document state (positions ``q_doc``, velocities ``nu``)."""
+        q_doc = check_vector("q", q_doc, self.n, self.cs.positions)
+        return self.terms_at(self.model_configuration(q_doc), nu, q_doc)
+
+    def state_from(self, values: Mapping[str, float]) -> tuple[np.ndarray, np.ndarray]:
+        r"""(positions, velocities) from a mapping of document names (missing ones are 0);
+        an unknown name raises :class:`UnknownNameError`."""
+        from ..errors import UnknownNameError
+        known = (*self.cs.positions, *self.cs.velocities)
+        for key in values:
+            if key not in known:
+                raise UnknownNameError("state entry", key, known,
+                                       where=f"coordinate set {self.cs.name}")
+        q = np.array([float(values.get(p, 0.0)) for p in self.cs.positions])
+        nu = np.array([float(values.get(v, 0.0)) for v in self.cs.velocities])
+        check_vector("q", q, self.n, self.cs.positions)
+        check_vector("velocity", nu, self.n, self.cs.velocities)
+        return q, nu
+
+
+def multipliers(wm: WheeledModel, q: np.ndarray, v: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    r"""Contact forces :math:`\lambda` and accelerations :math:`\dot v` of the constrained
+    model at a state satisfying :math:`J_c v = 0`, from the full equations
+
+    .. math::
+
+        \begin{bmatrix} A & -J_c^T\\ J_c & 0\end{bmatrix}
+        \begin{bmatrix}\dot v\\ \lambda\end{bmatrix} =
+        \begin{bmatrix} B u - h - Q\\ -\dot J_c v\end{bmatrix}.
+
+    :math:`\lambda` stacks, per wheel, the world x and y ground force on the wheel. Two wheels on
+    one axle share the lateral force in a way rigid-body mechanics does not determine; the
+    minimum-norm solution (equal shares) is returned.
+    """
+    model = wm.model
+    data = model.createData()
+    A = pin.crba(model, data, q)
+    A = np.triu(A) + np.triu(A, 1).T
+    nle = pin.nonLinearEffects(model, data, q, v)
+    J, dJ = contact_jacobian(wm, q, v)
+    m = J.shape[0]
+    K = np.block([[A, -J.T], [J, np.zeros((m, m))]])
+    rhs = np.concatenate([wm.input_matrix() @ u - nle, -dJ @ v])
+    sol = np.linalg.lstsq(K, rhs, rcond=None)[0]
+    return sol[model.nv:], sol[:model.nv]
