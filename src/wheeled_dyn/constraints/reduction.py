@@ -116,6 +116,11 @@ class CoordinateMap:
     def terms_at(self, q: np.ndarray, nu: np.ndarray, q_doc: np.ndarray | None = None) -> Terms:
         r"""The terms in document velocities at model configuration ``q`` and velocities
         :math:`\nu` (``q_doc`` is needed, and enough, for holonomic sets)."""
+        return self.reduce_at(q, nu, q_doc)[0]
+
+    def reduce_at(self, q: np.ndarray, nu: np.ndarray, q_doc: np.ndarray | None = None
+                  ) -> tuple[Terms, np.ndarray, np.ndarray]:
+        r"""(terms, :math:`S`, :math:`v = S\nu`) at model configuration ``q``."""
         nu = check_vector("velocity", nu, self.n, self.cs.velocities)
         model, data = self.wm.model, self._data
         if self.cs.kind == "holonomic":
@@ -151,8 +156,9 @@ class CoordinateMap:
         A_nu = St @ AS
         C_nu = St @ C @ S + St @ A @ Sdot
         G = J @ S if (self.cs.rolling == "multipliers" and J is not None) else None
-        return Terms(self.cs.velocities, self.wm.input_names, 0.5 * (A_nu + A_nu.T), C_nu,
-                     St @ Q, St @ self._B, C_nu @ nu, G)
+        terms = Terms(self.cs.velocities, self.wm.input_names, 0.5 * (A_nu + A_nu.T), C_nu,
+                      St @ Q, St @ self._B, C_nu @ nu, G)
+        return terms, S, v
 
     def terms(self, q_doc: np.ndarray, nu: np.ndarray) -> Terms:
         r"""The terms at a document state (positions ``q_doc``, velocities ``nu``)."""

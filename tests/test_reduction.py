@@ -1,0 +1,169 @@
+"""The equations in document coordinates: rolling reduction, projections, multipliers."""
+
+from __future__ import annotations
+
+import numpy as np
+import pinocchio as pin
+import pytest
+
+from conftest import N_STATES, SEED, random_wip_models
+from wheeled_dyn import (CoordinateMap, WipParameters, builtin_coordinate_set, load_model,
+                         multipliers, simulate)
+from wheeled_dyn.constraints import contact_velocities
+
+#: Tolerance of identities exact to rounding.
+EXACT_TOL = 1e-9
+#: Step and tolerance of central finite differences.
+FD_STEP = 1e-6
+FD_TOL = 1e-6
+#: Largest relative energy drift of a zero-input simulation (issue: 1e-6 over 5 s).
+ENERGY_DRIFT_TOL = 1e-6
+
+QUASI_SETS = [("wip", "seed001"), ("wip", "wheels"), ("tiago", "heading"), ("tiago", "wheels")]
+
+
+def _maps(model_name, coords):
+    models = random_wip_models(2) if model_name == "wip" else [load_model(model_name)]
+    return [CoordinateMap(wm, builtin_coordinate_set(wm, coords)) for wm in models]
+
+
+def _random_state(cmap, rng):
+    q = rng.uniform(-np.pi, np.pi, cmap.wm.nv)   # a full model configuration
+    return q, rng.normal(size=cmap.n)
+
+
+@pytest.mark.parametrize("model_name,coords", QUASI_SETS)
+def test_contact_points_do_not_move(model_name, coords):
+    rng = np.random.default_rng(SEED)
+    for cmap in _maps(model_name, coords):
+        for _ in range(N_STATES):
+            q, nu = _random_state(cmap, rng)
+            _, S, v = cmap.reduce_at(q, nu)
+            vc = contact_velocities(cmap.wm, q, v)
+            assert np.abs(vc).max() < EXACT_TOL * (1 + np.abs(v).max()), vc
+
+
+@pytest.mark.parametrize("model_name,coords", QUASI_SETS)
+def test_reduced_power_identity(model_name, coords):
+    r"""nu^T h_nu = 1/2 nu^T (dA_nu/dt) nu, dA_nu/dt by central differences along the motion."""
+    rng = np.random.default_rng(SEED)
+    for cmap in _maps(model_name, coords):
+        for _ in range(N_STATES):
+            q, nu = _random_state(cmap, rng)
+            terms, S, v = cmap.reduce_at(q, nu)
+            plus = pin.integrate(cmap.wm.model, q, v * FD_STEP)
+            minus = pin.integrate(cmap.wm.model, q, -v * FD_STEP)
+            Adot = (cmap.terms_at(plus, nu).A - cmap.terms_at(minus, nu).A) / (2 * FD_STEP)
+            lhs, rhs = nu @ terms.h, 0.5 * nu @ Adot @ nu
+            assert abs(lhs - rhs) < FD_TOL * (1 + abs(lhs) + np.abs(Adot).max()), (lhs, rhs)
+
+
+@pytest.mark.parametrize("model_name,coords", QUASI_SETS[:2])
+def test_Sdot_is_the_derivative_of_S(model_name, coords):
+    rng = np.random.default_rng(SEED)
+    cmap = _maps(model_name, coords)[0]
+    q, nu = _random_state(cmap, rng)
+    _, S, v = cmap.reduce_at(q, nu)
+    plus = pin.integrate(cmap.wm.model, q, v * FD_STEP)
+    minus = pin.integrate(cmap.wm.model, q, -v * FD_STEP)
+    Sdot_fd = (cmap.velocity_matrix(plus) - cmap.velocity_matrix(minus)) / (2 * FD_STEP)
+    # C_nu - S^T C S = S^T A Sdot  =>  compare the Sdot implied by the reduction
+    from wheeled_dyn import full_terms
+    full = full_terms(cmap.wm, q, v)
+    implied = cmap.terms_at(q, nu).C - S.T @ full.C @ S
+    assert np.allclose(implied, S.T @ full.A @ Sdot_fd, atol=FD_TOL * (1 + np.abs(implied).max()))
+
+
+def test_wip_closed_form_in_seed001_coordinates(rng):
+    r"""The WIP in (dx, dpsi, dphi), derived by hand for a body symmetric about its mid-plane
+    (no products of inertia, d_x = d_z = 0) with motor armature I_a, rolling on flat ground:
+
+    A11 = m_S + 2 m_C + 2 (Iw3 + I_a)/R^2     A13 = -m_S d cos(phi) + 2 I_a / R
+    A22 = I2 cos^2 + (I1 + m_S d^2) sin^2 + 2 Iw2 + 2 L^2 (m_C + (Iw3 + I_a)/R^2)
+    A33 = I3 + m_S d^2 + 2 I_a,   A12 = A23 = 0,   Q3 = -m_S g d sin(phi)
+    h1 = m_S d sin(phi) (dphi^2 + dpsi^2)
+    h2 = 2 (I1 + m_S d^2 - I2) sin cos dpsi dphi - m_S d sin(phi) dx dpsi
+    h3 = -(I1 + m_S d^2 - I2) sin cos dpsi^2
+    B = [[-1/R, -1/R], [L/R, -L/R], [-1, -1]]
+    """
+    p = WipParameters(m_S=55.0, m_C=4.0, R=0.3, L=0.4, d=0.5, g=9.7, I1=7.0, I2=2.0, I3=6.0,
+                      Iw2=0.1, Iw3=0.17, I_a=0.05)
+    cmap = CoordinateMap(load_model("wip", p), builtin_coordinate_set(load_model("wip"), "seed001"))
+    for _ in range(N_STATES):
+        x, psi, phi = rng.uniform(-3, 3, 3)
+        dx, dpsi, dphi = nu = rng.normal(size=3)
+        t = cmap.terms(np.array([x, psi, phi]), nu)
+        s, c = np.sin(phi), np.cos(phi)
+        K = p.I1 + p.m_S * p.d**2 - p.I2
+        A = np.array([
+            [p.m_S + 2 * p.m_C + 2 * (p.Iw3 + p.I_a) / p.R**2, 0, -p.m_S * p.d * c + 2 * p.I_a / p.R],
+            [0, p.I2 * c**2 + (p.I1 + p.m_S * p.d**2) * s**2 + 2 * p.Iw2
+             + 2 * p.L**2 * (p.m_C + (p.Iw3 + p.I_a) / p.R**2), 0],
+            [-p.m_S * p.d * c + 2 * p.I_a / p.R, 0, p.I3 + p.m_S * p.d**2 + 2 * p.I_a]])
+        h = np.array([p.m_S * p.d * s * (dphi**2 + dpsi**2),
+                      2 * K * s * c * dpsi * dphi - p.m_S * p.d * s * dx * dpsi,
+                      -K * s * c * dpsi**2])
+        B = np.array([[-1 / p.R, -1 / p.R], [p.L / p.R, -p.L / p.R], [-1, -1]])
+        assert np.allclose(t.A, A, atol=EXACT_TOL)
+        assert np.allclose(t.h, h, atol=EXACT_TOL)
+        assert np.allclose(t.Q, [0, 0, -p.m_S * p.g * p.d * s], atol=EXACT_TOL)
+        assert np.allclose(t.B, B, atol=EXACT_TOL)
+
+
+def test_holonomic_map_gives_christoffel_C_and_constraint_matrix(rng):
+    r"""In seed 001 section 5's coordinates (a holonomic map), C equals the Christoffel matrix
+    of A_doc(q_doc) by finite differences, and G nu = 0 for rolling motions."""
+    wm = random_wip_models(1)[0]
+    cmap = CoordinateMap(wm, builtin_coordinate_set(wm, "absolute_wheels"))
+    n = cmap.n
+    qd = rng.uniform(-1, 1, n)
+    nu = rng.normal(size=n)
+    A = lambda x: cmap.terms(x, np.zeros(n)).A
+    D = np.empty((n, n, n))
+    for k in range(n):
+        e = np.zeros(n)
+        e[k] = FD_STEP
+        D[:, :, k] = (A(qd + e) - A(qd - e)) / (2 * FD_STEP)
+    c = 0.5 * (D + D.transpose(0, 2, 1) - D.transpose(2, 0, 1))
+    t = cmap.terms(qd, nu)
+    assert np.allclose(t.C, np.einsum("ijk,k->ij", c, nu), atol=FD_TOL * (1 + np.abs(t.C).max()))
+    # a rolling motion: wheels turn, the axle midpoint moves along the heading
+    R, L = wm.geometry["R"], wm.geometry["L"]
+    x0, y0, th_l, th_r, phi = qd
+    psi = R * (th_r - th_l) / (2 * L)
+    dl, dr, dphi = rng.normal(size=3)
+    speed = R * (dl + dr) / 2
+    rolling = np.array([speed * np.cos(psi), speed * np.sin(psi), dl, dr, dphi])
+    G = cmap.terms(qd, rolling).G
+    assert np.abs(G @ rolling).max() < EXACT_TOL
+
+
+def test_multipliers_agree_with_reduced_accelerations(rng):
+    wm = random_wip_models(1)[0]
+    cmap = CoordinateMap(wm, builtin_coordinate_set(wm, "seed001"))
+    q = rng.uniform(-1, 1, wm.nv)
+    nu = rng.normal(size=3)
+    u = rng.normal(size=2)
+    terms, S, v = cmap.reduce_at(q, nu)
+    nudot = np.linalg.solve(terms.A, terms.B @ u - terms.h - terms.Q)
+    lam, vdot = multipliers(wm, q, v, u)
+    # the reduced acceleration, lifted: vdot = S nudot + Sdot nu
+    plus = pin.integrate(wm.model, q, v * FD_STEP)
+    minus = pin.integrate(wm.model, q, -v * FD_STEP)
+    Sdot = (cmap.velocity_matrix(plus) - cmap.velocity_matrix(minus)) / (2 * FD_STEP)
+    assert np.allclose(vdot, S @ nudot + Sdot @ nu, atol=FD_TOL * (1 + np.abs(vdot).max()))
+    # Newton: the horizontal ground forces on the wheels accelerate the centre of mass
+    data = wm.model.createData()
+    pin.centerOfMass(wm.model, data, q, v, vdot)
+    mass = sum(inertia.mass for inertia in wm.model.inertias)
+    total = lam.reshape(-1, 2).sum(axis=0)
+    assert np.allclose(total, mass * data.acom[0][:2], atol=FD_TOL * (1 + np.abs(total).max()))
+
+
+def test_zero_input_simulation_keeps_energy():
+    wm = random_wip_models(1)[0]
+    cmap = CoordinateMap(wm, builtin_coordinate_set(wm, "seed001"))
+    q0 = cmap.model_configuration(np.array([0.0, 0.0, 0.3]))
+    traj = simulate(cmap, q0, np.array([0.5, 0.8, 0.0]), duration=5.0, rate=200.0)
+    assert traj.relative_energy_drift() < ENERGY_DRIFT_TOL
+    assert np.ptp(traj.q[:, wm.index("phi")]) > 0.1      # it did move
