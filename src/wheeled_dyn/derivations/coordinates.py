@@ -1,0 +1,226 @@
+r"""The ``[coordinates]`` table of a derivation file: the document's coordinates and how they
+relate to the model's.
+
+Either a built-in set of the model (``use = "seed001"``), or an inline set:
+
+- ``kind = "holonomic"``: the model's coordinates are functions of the document's,
+  :math:`q_{\text{model}} = f(q_{\text{doc}})` (``configuration``: model coordinate =
+  expression of document positions and symbols); velocities are the time derivatives.
+- ``kind = "quasi"``: some document velocities are not derivatives of coordinates (Kim's
+  :math:`\dot x = \cos\psi\,\dot x_0 + \sin\psi\,\dot y_0`, the heading speed).
+  ``velocity_map`` gives every document velocity as an expression linear in the model
+  velocities, :math:`\nu = T(q)\,\dot q_{\text{model}}`; ``configuration`` gives the model
+  coordinates that are functions of document positions (``psi = "psi"``, ``phi = "-theta"``).
+
+``rolling`` says how the rolling constraints are treated: ``"eliminate"`` (reduced equations,
+:math:`A_\nu = S^{\mathsf T} A S` ...), ``"multipliers"`` (full equations with
+:math:`G^{\mathsf T}\lambda`) or ``"none"``. Names default to ``d<position>`` for velocities
+and ``dd<position>`` for accelerations.
+
+The parser knows the names of the built-in sets in :data:`BUILTIN_COORDINATE_SETS` (it does not
+import the models); a file may ``use`` another set if it also lists ``positions``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from types import MappingProxyType
+from typing import Any
+
+import sympy
+
+from ..errors import DerivationError
+from .expressions import ExpressionError, parse_model_expression, parse_units, scan_names
+from .schema import CoordinateSpec
+
+KINDS: tuple[str, ...] = ("holonomic", "quasi")
+ROLLING: tuple[str, ...] = ("eliminate", "multipliers", "none")
+COORDINATE_KEYS: tuple[str, ...] = ("use", "kind", "positions", "velocities", "accelerations",
+                                    "configuration", "velocity_map", "rolling", "units")
+
+
+@dataclass(frozen=True)
+class BuiltinSet:
+    r"""Names of a model's built-in coordinate set (the model defines the maps)."""
+
+    positions: tuple[str, ...]
+    velocities: tuple[str, ...]
+    kind: str
+    rolling: str
+    units: Mapping[str, str] = field(default_factory=dict)
+
+
+#: model name → set name → names. ``wip``: ``seed001`` (x = distance along the heading,
+#: :math:`\dot x = \cos\psi\,\dot x_0 + \sin\psi\,\dot y_0`; ψ heading; φ pitch; rolling
+#: eliminated), ``wheels`` (wheel angles relative to the body, pitch), ``full`` (all six model
+#: coordinates, rolling kept as multipliers).
+BUILTIN_COORDINATE_SETS: Mapping[str, Mapping[str, BuiltinSet]] = MappingProxyType({
+    "wip": MappingProxyType({
+        "seed001": BuiltinSet(("x", "psi", "phi"), ("dx", "dpsi", "dphi"), "quasi", "eliminate",
+                              {"x": "m", "psi": "rad", "phi": "rad"}),
+        "wheels": BuiltinSet(("theta_l", "theta_r", "phi"), ("dtheta_l", "dtheta_r", "dphi"),
+                             "holonomic", "eliminate",
+                             {"theta_l": "rad", "theta_r": "rad", "phi": "rad"}),
+        "full": BuiltinSet(("x0", "y0", "psi", "phi", "theta_l", "theta_r"),
+                           ("dx0", "dy0", "dpsi", "dphi", "dtheta_l", "dtheta_r"),
+                           "holonomic", "multipliers",
+                           {"x0": "m", "y0": "m", "psi": "rad", "phi": "rad",
+                            "theta_l": "rad", "theta_r": "rad"}),
+    }),
+})
+
+
+@dataclass(frozen=True)
+class CoordinateNames:
+    r"""The names part of ``[coordinates]``, read before any expression is parsed."""
+
+    use: str | None
+    kind: str
+    positions: tuple[str, ...]
+    velocities: tuple[str, ...]
+    accelerations: tuple[str, ...]
+    rolling: str
+    units: Mapping[str, str]
+
+
+def _names_list(path: Path, table: Mapping[str, Any], key: str, line: int | None,
+                n: int | None) -> tuple[str, ...] | None:
+    value = table.get(key)
+    if value is None:
+        return None
+    if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
+        raise DerivationError(path, f"coordinates.{key}", "expected a list of names", line)
+    for name in value:
+        try:
+            scanned = scan_names(name)
+        except ExpressionError as exc:
+            raise DerivationError(path, f"coordinates.{key}", exc.reason, line) from exc
+        if len(scanned) != 1 or scanned[0][0] != name.strip():
+            raise DerivationError(path, f"coordinates.{key}", f"{name!r} is not a name", line)
+    if len(set(value)) != len(value):
+        raise DerivationError(path, f"coordinates.{key}", "a name is listed twice", line)
+    if n is not None and len(value) != n:
+        raise DerivationError(path, f"coordinates.{key}",
+                              f"{len(value)} names for {n} positions", line)
+    return tuple(value)
+
+
+def _choice(path: Path, table: Mapping[str, Any], key: str, allowed: tuple[str, ...],
+            default: str, line: int | None) -> str:
+    value = table.get(key, default)
+    if value not in allowed:
+        raise DerivationError(path, f"coordinates.{key}",
+                              f"{value!r} is not one of {', '.join(allowed)}", line)
+    return value
+
+
+def coordinate_names(path: Path, table: Any, model: str,
+                     line_of: Callable[[str | None], int | None]) -> CoordinateNames:
+    r"""Read the names of ``[coordinates]``; ``line_of(key)`` locates a key for messages."""
+    if not isinstance(table, dict):
+        raise DerivationError(path, "coordinates", "expected a table", line_of(None))
+    for key in table:
+        if key not in COORDINATE_KEYS:
+            raise DerivationError(path, f"coordinates.{key}", "unknown key; valid: "
+                                  + ", ".join(COORDINATE_KEYS), line_of(key))
+    use = table.get("use")
+    positions = _names_list(path, table, "positions", line_of("positions"), None)
+    builtin: BuiltinSet | None = None
+    if use is not None:
+        if not isinstance(use, str):
+            raise DerivationError(path, "coordinates.use", "expected a name", line_of("use"))
+        builtin = BUILTIN_COORDINATE_SETS.get(model, {}).get(use)
+        if builtin is None and positions is None:
+            known = ", ".join(f"{m}:{s}" for m, sets in BUILTIN_COORDINATE_SETS.items()
+                              for s in sets)
+            raise DerivationError(path, "coordinates.use", f"{use!r} is not a built-in "
+                                  f"coordinate set of model {model!r} known to the parser "
+                                  f"({known}); list its positions too", line_of("use"))
+        for key in ("configuration", "velocity_map"):
+            if key in table:
+                raise DerivationError(path, f"coordinates.{key}", "not allowed with 'use' (the "
+                                      "model defines the built-in set's maps)", line_of(key))
+        if builtin is not None and positions is not None and positions != builtin.positions:
+            raise DerivationError(path, "coordinates.positions", f"set {use!r} has positions "
+                                  f"{list(builtin.positions)}", line_of("positions"))
+    elif positions is None:
+        raise DerivationError(path, "coordinates", "give 'use' (a built-in set) or 'positions'",
+                              line_of(None))
+    positions = positions or builtin.positions  # type: ignore[union-attr]
+    n = len(positions)
+    velocities = (_names_list(path, table, "velocities", line_of("velocities"), n)
+                  or (builtin.velocities if builtin else tuple("d" + p for p in positions)))
+    accelerations = (_names_list(path, table, "accelerations", line_of("accelerations"), n)
+                     or tuple("dd" + p for p in positions))
+    kind = _choice(path, table, "kind", KINDS, builtin.kind if builtin else "holonomic",
+                   line_of("kind"))
+    rolling = _choice(path, table, "rolling", ROLLING,
+                      builtin.rolling if builtin else "eliminate", line_of("rolling"))
+    units = dict(builtin.units) if builtin else {}
+    raw_units = table.get("units", {})
+    if not isinstance(raw_units, dict):
+        raise DerivationError(path, "coordinates.units", "expected a table name = units",
+                              line_of("units"))
+    for name, text in raw_units.items():
+        if name not in positions:
+            raise DerivationError(path, f"coordinates.units.{name}", "not a position; "
+                                  f"positions: {', '.join(positions)}", line_of("units"))
+        try:
+            parse_units(str(text))
+        except ExpressionError as exc:
+            raise DerivationError(path, f"coordinates.units.{name}", exc.reason,
+                                  line_of("units")) from exc
+        units[name] = str(text)
+    all_names = [*positions, *velocities, *accelerations]
+    if len(set(all_names)) != len(all_names):
+        raise DerivationError(path, "coordinates", "positions, velocities and accelerations "
+                              "must have distinct names", line_of(None))
+    return CoordinateNames(use, kind, positions, velocities, accelerations, rolling,
+                           MappingProxyType(units))
+
+
+def coordinate_spec(path: Path, table: Mapping[str, Any], names: CoordinateNames,
+                    parse_doc: Callable[[str, str, str], sympy.Expr],
+                    line_of: Callable[[str | None], int | None]) -> CoordinateSpec:
+    r"""Parse the expressions of ``[coordinates]``. ``parse_doc(text, item, key)`` parses a
+    document expression (raising the file's errors)."""
+    configuration: dict[str, sympy.Expr] = {}
+    velocity_map: dict[str, sympy.Expr] = {}
+    if names.use is None:
+        raw_conf = table.get("configuration", {})
+        raw_vel = table.get("velocity_map", {})
+        for key, raw in (("configuration", raw_conf), ("velocity_map", raw_vel)):
+            if not isinstance(raw, dict) or not all(isinstance(v, str) for v in raw.values()):
+                raise DerivationError(path, f"coordinates.{key}",
+                                      "expected a table name = \"expression\"", line_of(key))
+        if not raw_conf:
+            raise DerivationError(path, "coordinates.configuration", "an inline set needs the "
+                                  "model coordinates as expressions of the document's",
+                                  line_of(None))
+        for model_name, text in raw_conf.items():
+            configuration[model_name] = parse_doc(text, f"coordinates.configuration.{model_name}",
+                                                  "configuration")
+        if names.kind == "quasi":
+            missing = [v for v in names.velocities if v not in raw_vel]
+            if missing:
+                raise DerivationError(path, "coordinates.velocity_map", "a quasi-velocity set "
+                                      f"maps every document velocity; missing: {missing}",
+                                      line_of("velocity_map"))
+        elif raw_vel:
+            raise DerivationError(path, "coordinates.velocity_map", "only for kind = \"quasi\"",
+                                  line_of("velocity_map"))
+        for doc_name, text in raw_vel.items():
+            item = f"coordinates.velocity_map.{doc_name}"
+            if doc_name not in names.velocities:
+                raise DerivationError(path, item, "not a document velocity; velocities: "
+                                      + ", ".join(names.velocities), line_of("velocity_map"))
+            try:
+                velocity_map[doc_name] = parse_model_expression(text)
+            except ExpressionError as exc:
+                raise DerivationError(path, item, exc.reason, line_of("velocity_map")) from exc
+    return CoordinateSpec(names.use, names.kind, names.positions, names.velocities,
+                          names.accelerations, MappingProxyType(configuration),
+                          MappingProxyType(velocity_map), names.rolling, names.units,
+                          MappingProxyType(dict(table)))

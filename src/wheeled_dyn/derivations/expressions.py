@@ -1,0 +1,272 @@
+r"""Safe parsing of the expressions written in derivation files.
+
+A derivation file holds expressions in SymPy syntax (``m_s*d*cos(phi)*ddphi``, ``x^2`` is
+accepted for ``x**2``). They are parsed with :func:`sympy.parsing.sympy_parser.parse_expr`, but
+only after a token check that admits
+
+- names from an explicit table (the file's declared symbols, coordinates, velocities, ...),
+  plus the standard functions :data:`STANDARD_FUNCTIONS` and the constant ``pi``;
+- numbers (decimals become exact rationals: ``0.5`` is :math:`\tfrac12`);
+- the operators ``+ - * / ** ^`` and the parentheses and commas of function calls.
+
+Anything else (attribute access, strings, brackets, keywords, ``=``, names starting with ``_``)
+is an :class:`ExpressionError`; an undeclared name is an :class:`UndeclaredNameError` carrying
+the name. Unknown names are errors, never new symbols: a typo in a file is reported, not
+silently turned into a fresh parameter.
+
+Two namespaces exist. The *document* namespace holds what the document writes (its symbols,
+coordinates, velocities, inputs). The *model* namespace (values of ``[symbols]``) holds the
+model's physical parameters as real symbols and Khalil's standard inertial parameters as
+undefined functions of a link name,
+
+.. math::
+
+    \mathrm{XX}(\text{body}),\ \mathrm{MY}(\text{body}),\ \mathrm{ZZ}(\text{wheel\_left}),\ \dots
+
+written with :data:`KHALIL_FUNCTIONS` (real undefined functions) applied to
+``sympy.Symbol(link)``. The model namespace
+is open (any identifier is a parameter) unless the caller passes the valid parameter and link
+names: the parser does not import the models.
+
+Every symbol made here is ``real=True``; fetch them from the :class:`Derivation` rather than
+making new ones (``Symbol("phi")`` without assumptions is a different symbol).
+"""
+
+from __future__ import annotations
+
+import io
+import keyword
+import tokenize
+from collections.abc import Collection, Mapping
+from typing import Union
+
+import sympy
+from sympy.parsing.sympy_parser import auto_number, convert_xor, parse_expr, rationalize
+
+#: Functions every expression may use, by the name it is written with.
+STANDARD_FUNCTIONS: Mapping[str, object] = {
+    "sin": sympy.sin, "cos": sympy.cos, "tan": sympy.tan, "cot": sympy.cot,
+    "sec": sympy.sec, "csc": sympy.csc, "asin": sympy.asin, "acos": sympy.acos,
+    "atan": sympy.atan, "atan2": sympy.atan2, "sinh": sympy.sinh, "cosh": sympy.cosh,
+    "tanh": sympy.tanh, "sqrt": sympy.sqrt, "exp": sympy.exp, "log": sympy.log,
+    "Abs": sympy.Abs, "sign": sympy.sign,
+}
+#: Constants every expression may use.
+CONSTANTS: Mapping[str, sympy.Basic] = {"pi": sympy.pi}
+#: Names a file may not declare (they are functions or constants).
+RESERVED_NAMES: frozenset[str] = frozenset(STANDARD_FUNCTIONS) | frozenset(CONSTANTS)
+
+#: Khalil's standard inertial parameters of a link, in the link frame, as written in value
+#: expressions: ``M(link)`` mass, ``MX MY MZ`` first moments, ``XX XY XZ YY YZ ZZ`` inertia
+#: tensor entries about the link frame origin.
+KHALIL_NAMES: tuple[str, ...] = ("M", "MX", "MY", "MZ", "XX", "XY", "XZ", "YY", "YZ", "ZZ")
+KHALIL_FUNCTIONS: Mapping[str, sympy.FunctionClass] = {n: sympy.Function(n, real=True)
+                                                       for n in KHALIL_NAMES}
+
+#: Unit names accepted in ``units`` (SI base and derived units, radians; ``1`` = dimensionless).
+UNIT_NAMES: tuple[str, ...] = ("kg", "m", "s", "rad", "N", "J", "W", "A", "V", "K", "mol")
+_UNITS: Mapping[str, sympy.Symbol] = {u: sympy.Symbol(u, positive=True) for u in UNIT_NAMES}
+
+_OPERATORS = frozenset({"+", "-", "*", "/", "**", "^", "(", ")", ","})
+_TRANSFORMATIONS = (auto_number, rationalize, convert_xor)
+_GLOBALS: dict[str, object] = {"Integer": sympy.Integer, "Float": sympy.Float,
+                               "Rational": sympy.Rational}
+
+Nested = Union[str, list["Nested"]]
+
+
+class ExpressionError(ValueError):
+    """An expression cannot be parsed; ``reason`` says why (internal: the loader adds the file,
+    the line and the item)."""
+
+    def __init__(self, text: str, reason: str) -> None:
+        self.text = text
+        self.reason = reason
+        super().__init__(f"{reason} in {text!r}")
+
+
+class UndeclaredNameError(ExpressionError):
+    """An expression uses a name that is not declared; ``name`` and ``kind`` say which."""
+
+    def __init__(self, text: str, name: str, kind: str = "symbol") -> None:
+        self.name = name
+        self.kind = kind
+        super().__init__(text, f"undeclared {kind} {name!r}")
+
+
+def real_symbol(name: str) -> sympy.Symbol:
+    r"""The symbol of a document or model name: ``sympy.Symbol(name, real=True)``."""
+    return sympy.Symbol(name, real=True)
+
+
+def _normalise(text: str) -> str:
+    return " ".join(str(text).split())
+
+
+def scan_names(text: str) -> list[tuple[str, bool]]:
+    r"""Check the tokens of ``text`` and return its names in order, each with whether it is
+    called (followed by ``(``). Raises :class:`ExpressionError` for a disallowed token."""
+    src = _normalise(text)
+    if not src:
+        raise ExpressionError(text, "empty expression")
+    try:
+        tokens = [t for t in tokenize.generate_tokens(io.StringIO(src).readline)
+                  if t.type not in (tokenize.NEWLINE, tokenize.NL, tokenize.ENDMARKER)]
+    except (tokenize.TokenError, IndentationError, SyntaxError) as exc:
+        raise ExpressionError(text, f"cannot tokenize ({exc.args[0]})") from exc
+    names: list[tuple[str, bool]] = []
+    for k, tok in enumerate(tokens):
+        if tok.type == tokenize.NAME:
+            if keyword.iskeyword(tok.string) or keyword.issoftkeyword(tok.string):
+                raise ExpressionError(text, f"{tok.string!r} is a Python keyword; rename it")
+            if tok.string.startswith("_"):
+                raise ExpressionError(text, f"names may not start with '_' ({tok.string!r})")
+            called = k + 1 < len(tokens) and tokens[k + 1].string == "("
+            names.append((tok.string, called))
+        elif tok.type == tokenize.NUMBER:
+            if tok.string[-1] in "jJ":
+                raise ExpressionError(text, f"imaginary number {tok.string!r}")
+        elif tok.type == tokenize.OP and tok.string in _OPERATORS:
+            continue
+        elif tok.string == "=":
+            raise ExpressionError(text, "'=' is allowed only once, in an equation")
+        else:
+            raise ExpressionError(text, f"token {tok.string!r} is not allowed")
+    return names
+
+
+def _evaluate(text: str, local: Mapping[str, object]) -> sympy.Expr:
+    try:
+        expr = parse_expr(_normalise(text), local_dict=dict(local), global_dict=dict(_GLOBALS),
+                          transformations=_TRANSFORMATIONS, evaluate=True)
+    except (SyntaxError, TypeError, ValueError, AttributeError, ZeroDivisionError) as exc:
+        raise ExpressionError(text, f"not a valid expression ({exc})") from exc
+    if not isinstance(expr, sympy.Expr):
+        raise ExpressionError(text, f"not a scalar expression (got {type(expr).__name__})")
+    if expr.has(sympy.zoo, sympy.nan, sympy.oo, -sympy.oo):
+        raise ExpressionError(text, "evaluates to infinity or an undefined value")
+    return expr
+
+
+def parse_expression(text: str, names: Mapping[str, sympy.Basic]) -> sympy.Expr:
+    r"""Parse ``text`` in a document namespace ``names`` (name → SymPy object).
+
+    Only ``names``, :data:`STANDARD_FUNCTIONS` and :data:`CONSTANTS` may appear; an undeclared
+    name raises :class:`UndeclaredNameError`, a function call of a non-function name or a bad
+    token :class:`ExpressionError`.
+    """
+    for name, called in scan_names(text):
+        if name in STANDARD_FUNCTIONS:
+            if not called:
+                raise ExpressionError(text, f"{name!r} is a function; write {name}(...)")
+        elif name in names or name in CONSTANTS:
+            if called:
+                raise ExpressionError(text, f"{name!r} is not a function")
+        else:
+            raise UndeclaredNameError(text, name)
+    return _evaluate(text, {**STANDARD_FUNCTIONS, **CONSTANTS, **names})
+
+
+def parse_model_expression(text: str, parameters: Collection[str] | None = None,
+                           links: Collection[str] | None = None) -> sympy.Expr:
+    r"""Parse a value expression in the model namespace.
+
+    Khalil parameters are written ``XX(body)`` (one link name as argument); every other name is
+    a model parameter, a real symbol. With ``parameters``/``links`` given, names outside them
+    raise :class:`UndeclaredNameError` (kind ``"model parameter"``/``"link"``).
+    """
+    scanned = scan_names(text)
+    local: dict[str, object] = {**STANDARD_FUNCTIONS, **CONSTANTS}
+    previous_khalil = False
+    for name, called in scanned:
+        if previous_khalil:          # the argument of M(...), XX(...): a link name
+            previous_khalil = False
+            if called:
+                raise ExpressionError(text, f"the argument of a Khalil parameter must be a link "
+                                            f"name, not a call of {name!r}")
+            if links is not None and name not in links:
+                raise UndeclaredNameError(text, name, "link")
+            local[name] = sympy.Symbol(name)
+            continue
+        if name in STANDARD_FUNCTIONS:
+            if not called:
+                raise ExpressionError(text, f"{name!r} is a function; write {name}(...)")
+        elif name in KHALIL_FUNCTIONS and called:
+            local[name] = KHALIL_FUNCTIONS[name]
+            previous_khalil = True
+        elif name in CONSTANTS:
+            continue
+        else:
+            if called:
+                raise ExpressionError(text, f"{name!r} is not a function; Khalil parameters are "
+                                            f"{', '.join(KHALIL_NAMES)}")
+            if parameters is not None and name not in parameters:
+                raise UndeclaredNameError(text, name, "model parameter")
+            local[name] = real_symbol(name)
+    expr = _evaluate(text, local)
+    for call in expr.atoms(sympy.core.function.AppliedUndef):
+        if len(call.args) != 1 or not isinstance(call.args[0], sympy.Symbol):
+            raise ExpressionError(text, f"{call} must have exactly one link name as argument")
+    return expr
+
+
+def parse_units(text: str) -> sympy.Expr:
+    r"""Parse a units expression such as ``kg*m**2`` or ``N*m/A`` (``1`` = dimensionless) over
+    :data:`UNIT_NAMES`; raises :class:`UndeclaredNameError` (kind ``"unit"``) otherwise."""
+    for name, called in scan_names(text):
+        if name not in _UNITS or called:
+            raise UndeclaredNameError(text, name, "unit")
+    return _evaluate(text, _UNITS)
+
+
+def split_nested(text: str) -> Nested:
+    r"""Split a matrix written as text, ``[[a, b], [c, d]]``, into nested lists of element
+    strings. Commas inside parentheses (``atan2(y, x)``) do not split. A text without brackets
+    is returned as one element."""
+    s = str(text)
+    pos, value = _item(s, _skip(s, 0))
+    pos = _skip(s, pos)
+    if pos != len(s):
+        raise ExpressionError(text, f"unexpected {s[pos:pos + 10]!r} after the matrix")
+    return value
+
+
+def _skip(s: str, i: int) -> int:
+    while i < len(s) and s[i].isspace():
+        i += 1
+    return i
+
+
+def _item(s: str, i: int) -> tuple[int, Nested]:
+    if i < len(s) and s[i] == "[":
+        items: list[Nested] = []
+        i = _skip(s, i + 1)
+        if i < len(s) and s[i] == "]":
+            raise ExpressionError(s, "empty list in a matrix")
+        while True:
+            i, value = _item(s, _skip(s, i))
+            items.append(value)
+            i = _skip(s, i)
+            if i >= len(s):
+                raise ExpressionError(s, "missing ']'")
+            if s[i] == "]":
+                return i + 1, items
+            if s[i] != ",":
+                raise ExpressionError(s, f"expected ',' or ']' at {s[i:i + 10]!r}")
+            i += 1
+    depth, start = 0, i
+    while i < len(s):
+        ch = s[i]
+        if ch == "(":
+            depth += 1
+        elif ch == ")":
+            depth -= 1
+        elif ch == "[":
+            raise ExpressionError(s, "'[' inside a matrix element")
+        elif depth == 0 and ch in ",]":
+            break
+        i += 1
+    element = s[start:i].strip()
+    if not element:
+        raise ExpressionError(s, "empty matrix element")
+    return i, element

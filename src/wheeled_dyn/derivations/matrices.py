@@ -1,0 +1,199 @@
+r"""The ``[matrices]`` table: A, C, Q, B (or Gamma), G, or the equations as written.
+
+Shapes, with n the number of the document's positions and k the number of its inputs:
+
+======== ================= =====================================================
+key      shape             meaning
+======== ================= =====================================================
+A        n×n               inertia matrix, coefficient of the accelerations
+C        n×n               Coriolis/centrifugal matrix, :math:`h = C\dot q`
+Q        n                 gravity vector (left side)
+B        n×k               input matrix, columns in the order of the inputs
+Gamma    n                 generalized forces as printed, linear in the inputs;
+                           the loader derives :math:`B = \partial\Gamma/\partial u`
+G        m×n               constraint matrix (multipliers side)
+======== ================= =====================================================
+
+A matrix is either text in SymPy list syntax (``"[[a, b], [c, d]]"``) or a TOML array of
+arrays of strings or numbers. An element ``"?"`` marks a place the extracted text lost and
+the file does not restore; it becomes ``sympy.nan`` and its label (``C[5,1]``) is recorded.
+Labels are 1-based, as documents number their elements.
+"""
+
+from __future__ import annotations
+
+import re
+from typing import TYPE_CHECKING, Any
+
+import sympy
+
+from .expressions import ExpressionError, split_nested
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .parse import _Loader
+
+#: Keys of ``[matrices]``.
+MATRIX_KEYS: tuple[str, ...] = ("A", "C", "Q", "B", "Gamma", "G", "equations")
+#: An element the text lost.
+MISSING_ELEMENT = "?"
+_LABEL = re.compile(r"^([A-Za-z]+)\[(\d+)(?:,\s*(\d+|:))?\]$")
+_EQUATION_LABEL = re.compile(r"^equation (\d+)$")
+
+
+class MatrixReader:
+    r"""Reads the matrices of one file with the loader's namespace and error reporting."""
+
+    def __init__(self, loader: "_Loader", n: int, inputs: tuple[sympy.Symbol, ...]) -> None:
+        self.ld = loader
+        self.n = n
+        self.inputs = inputs
+        self.missing: list[str] = []
+        self.equations: tuple[sympy.Eq, ...] | None = None
+        self.shapes: dict[str, tuple[int, int]] = {}
+
+    def _nested(self, key: str, raw: Any) -> Any:
+        if isinstance(raw, str):
+            try:
+                return split_nested(raw)
+            except ExpressionError as exc:
+                raise self.ld.fail(key, exc.reason, self.ld.line("matrices", key)) from exc
+        if isinstance(raw, list):
+            return [self._nested(key, r) for r in raw]
+        if isinstance(raw, (int, float)) and not isinstance(raw, bool):
+            return str(raw)
+        raise self.ld.fail(key, f"expected a matrix (text or array), got {raw!r}",
+                           self.ld.line("matrices", key))
+
+    def _element(self, key: str, label: str, text: Any) -> sympy.Expr:
+        if not isinstance(text, str):
+            raise self.ld.fail(label, "expected an element, got a list",
+                               self.ld.line("matrices", key))
+        if text.strip() == MISSING_ELEMENT:
+            self.missing.append(label)
+            return sympy.nan
+        return self.ld.expr(text, label, "matrices", key)
+
+    def _shape_error(self, key: str, got: str, rows: int | None, cols: int) -> Exception:
+        expected = f"{rows if rows is not None else 'm'}×{cols}"
+        names = ", ".join(name for name, kind in self.ld.kinds.items() if kind == "position")
+        return self.ld.fail(key, f"shape {got}, expected {expected} (n = {self.n} positions: "
+                            f"{names}; k = {len(self.inputs)} inputs)",
+                            self.ld.line("matrices", key))
+
+    def grid(self, key: str, raw: Any, rows: int | None, cols: int,
+             vector: bool = False) -> sympy.ImmutableMatrix:
+        r"""Parse ``raw`` as a rows×cols matrix (``rows=None``: any number of rows; ``vector``:
+        an n-vector, written flat or as a column)."""
+        nested = self._nested(key, raw)
+        if isinstance(nested, str):
+            raise self._shape_error(key, "a single element", rows, cols)
+        flat = all(isinstance(x, str) for x in nested)
+        if vector:
+            if flat:
+                nested = [[x] for x in nested]
+            if len(nested) != rows or any(not isinstance(r, list) or len(r) != 1
+                                          for r in nested):
+                raise self._shape_error(key, f"{len(nested)} entries", rows, cols)
+            return sympy.ImmutableMatrix([[self._element(key, f"{key}[{i + 1}]", r[0])]
+                                          for i, r in enumerate(nested)])
+        if flat:
+            if cols == 1 and len(nested) == rows:
+                nested = [[x] for x in nested]
+            elif rows is None and len(nested) == cols:
+                nested = [nested]
+            else:
+                raise self._shape_error(key, f"a flat list of {len(nested)}", rows, cols)
+        if rows is not None and len(nested) != rows:
+            raise self._shape_error(key, f"{len(nested)} rows", rows, cols)
+        out = []
+        for i, row in enumerate(nested):
+            if not isinstance(row, list) or len(row) != cols:
+                got = len(row) if isinstance(row, list) else 1
+                raise self.ld.fail(f"{key}[{i + 1},:]", f"row {i + 1} has {got} elements, "
+                                   f"expected {cols}", self.ld.line("matrices", key))
+            out.append([self._element(key, f"{key}[{i + 1},{j + 1}]", x)
+                        for j, x in enumerate(row)])
+        return sympy.ImmutableMatrix(out)
+
+    def equation(self, text: Any, item: str, table: str, key: str) -> sympy.Eq:
+        r"""Parse ``"lhs = rhs"`` (exactly one ``=``)."""
+        if not isinstance(text, str) or text.count("=") != 1:
+            raise self.ld.fail(item, "expected \"left side = right side\" with one '='",
+                               self.ld.line(table, key, str(text)[:30]))
+        lhs, rhs = text.split("=")
+        return sympy.Eq(self.ld.expr(lhs, item, table, key), self.ld.expr(rhs, item, table, key),
+                        evaluate=False)
+
+    def read(self, table: dict[str, Any]) -> dict[str, sympy.ImmutableMatrix]:
+        r"""All matrices of ``[matrices]`` (and :attr:`equations`), shapes checked."""
+        ld, n, k = self.ld, self.n, len(self.inputs)
+        for key in table:
+            if key not in MATRIX_KEYS:
+                raise ld.fail(f"matrices.{key}", "unknown key; valid: " + ", ".join(MATRIX_KEYS),
+                              ld.line("matrices", key))
+        given = set(table)
+        if "equations" in given and given & {"A", "C", "Q", "B", "Gamma"}:
+            raise ld.fail("matrices", "give either equations or A, C, Q, B/Gamma, not both",
+                          ld.line("matrices"))
+        if "B" in given and "Gamma" in given:
+            raise ld.fail("matrices", "give B or Gamma, not both", ld.line("matrices", "Gamma"))
+        if not given - {"G"}:
+            raise ld.fail("matrices", "no matrices and no equations", ld.line("matrices"))
+        if given & {"B", "Gamma"} and k == 0:
+            raise ld.fail("matrices", "B/Gamma need document inputs (symbols with input = true)",
+                          ld.line("matrices", "B") or ld.line("matrices", "Gamma"))
+        out: dict[str, sympy.ImmutableMatrix] = {}
+        for key in ("A", "C"):
+            if key in table:
+                out[key] = self.grid(key, table[key], n, n)
+        if "Q" in table:
+            out["Q"] = self.grid("Q", table["Q"], n, 1, vector=True)
+        if "B" in table:
+            out["B"] = self.grid("B", table["B"], n, k)
+        if "Gamma" in table:
+            out["B"] = self._input_matrix(self.grid("Gamma", table["Gamma"], n, 1, vector=True))
+        if "G" in table:
+            out["G"] = self.grid("G", table["G"], None, n)
+        if "equations" in table:
+            eqs = table["equations"]
+            if not isinstance(eqs, list):
+                raise ld.fail("equations", "expected a list of \"lhs = rhs\"",
+                              ld.line("matrices", "equations"))
+            if len(eqs) != n:
+                raise ld.fail("equations", f"{len(eqs)} equations for {n} positions",
+                              ld.line("matrices", "equations"))
+            self.equations = tuple(self.equation(t, f"equation {i + 1}", "matrices", "equations")
+                                   for i, t in enumerate(eqs))
+        self.shapes = {key: M.shape for key, M in out.items()}
+        return out
+
+    def _input_matrix(self, gamma: sympy.ImmutableMatrix) -> sympy.ImmutableMatrix:
+        B = gamma.jacobian(sympy.Matrix(self.inputs))
+        for i in range(self.n):
+            rest = sympy.expand(gamma[i] - sum(B[i, j] * u for j, u in enumerate(self.inputs)))
+            if rest != 0 or B[i, :].has(*self.inputs):
+                raise self.ld.fail(f"Gamma[{i + 1}]", "not linear and homogeneous in the "
+                                   f"inputs {', '.join(map(str, self.inputs))}",
+                                   self.ld.line("matrices", "Gamma"))
+        return sympy.ImmutableMatrix(B)
+
+    def check_label(self, label: str, line: int | None) -> None:
+        r"""A ``[reconstructed]`` label that names an element (``A[3,3]``, ``Q[2]``,
+        ``C[5,:]``, ``equation 2``) must exist; other labels are free text."""
+        eq = _EQUATION_LABEL.match(label)
+        if eq:
+            if self.equations is None or not 1 <= int(eq.group(1)) <= len(self.equations):
+                raise self.ld.fail(f"reconstructed.{label}", "no such equation", line)
+            return
+        found = _LABEL.match(label)
+        if not found:
+            return
+        key, i, j = found.group(1), int(found.group(2)), found.group(3)
+        if key == "Gamma":
+            key = "B"
+        if key not in self.shapes:
+            raise self.ld.fail(f"reconstructed.{label}", f"the file gives no matrix {key}", line)
+        rows, cols = self.shapes[key]
+        bad = not 1 <= i <= rows or (j not in (None, ":") and not 1 <= int(j) <= cols)
+        if bad:
+            raise self.ld.fail(f"reconstructed.{label}", f"outside {key} ({rows}×{cols})", line)

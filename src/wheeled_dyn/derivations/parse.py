@@ -1,0 +1,351 @@
+r"""Loading derivation files: :func:`load_derivation`, :func:`load_derivations`,
+:func:`builtin_derivations`.
+
+The loader reads the TOML (``tomllib``), declares every document name (positions, velocities,
+accelerations, ``[symbols]``, ``[assume]``, ``[definitions]``), parses every expression in
+that namespace only (:mod:`.expressions`), expands the definitions, and checks the file's
+internal consistency:
+
+- every name used is declared (else :class:`DerivationNameError`, a
+  :class:`~wheeled_dyn.errors.UnknownNameError` naming the file, line, element and the
+  valid names);
+- shapes fit the n positions: A, C n×n; Q, Gamma n; B n×k (k document inputs); G m×n;
+  n equations; n row scales (else :class:`~wheeled_dyn.errors.DerivationError`);
+- an unparseable element raises :class:`~wheeled_dyn.errors.DerivationError` naming it
+  1-based (``A[2,3]``) with its line.
+
+It does not import the models: whether the value expressions name real parameters of the model
+is checked by the comparison engine, or here when ``parameters``/``links`` are passed.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Collection, Iterable, Mapping
+from pathlib import Path
+from types import MappingProxyType
+from typing import Any
+
+import sympy
+
+from ..errors import DerivationError, InputFileError
+from ..paths import DATA_DIR
+from .coordinates import coordinate_names, coordinate_spec
+from .errors import DerivationNameError
+from .expressions import (RESERVED_NAMES, ExpressionError, UndeclaredNameError,
+                          parse_expression, parse_model_expression, parse_units, real_symbol,
+                          scan_names, split_nested)
+from .matrices import MatrixReader
+from .schema import Derivation, SymbolSpec
+from .source import SourceText, read_toml
+
+TOP_LEVEL_KEYS: tuple[str, ...] = ("title", "model", "source", "coordinates", "inputs",
+                                   "symbols", "assume", "definitions", "rows", "matrices",
+                                   "constraints", "reconstructed")
+SYMBOL_KEYS: tuple[str, ...] = ("value", "units", "meaning", "input", "free", "latex")
+#: Folder of the shipped derivation files, one sub-folder per group.
+BUILTIN_DIR = DATA_DIR / "derivations"
+#: Files in a group folder whose name ends so are comparison tables, not derivations.
+TABLE_SUFFIX = "_table.toml"
+
+
+class _Loader:
+    r"""One file's namespace and error reporting."""
+
+    def __init__(self, path: Path, data: dict[str, Any], src: SourceText,
+                 parameters: Collection[str] | None, links: Collection[str] | None) -> None:
+        self.path, self.data, self.src = path, data, src
+        self.parameters, self.links = parameters, links
+        self.names: dict[str, sympy.Symbol] = {}
+        self.kinds: dict[str, str] = {}
+        self.expansion: dict[sympy.Symbol, sympy.Expr] = {}
+
+    # -- errors and lines ---------------------------------------------------------------
+    def line(self, table: str | None, key: str | None = None,
+             fragment: str | None = None) -> int | None:
+        return self.src.line_of(table, key, fragment)
+
+    def fail(self, item: str, reason: str, line: int | None = None) -> DerivationError:
+        return DerivationError(self.path, item, reason, line)
+
+    def table(self, key: str, required: bool = False) -> dict[str, Any]:
+        value = self.data.get(key)
+        if value is None:
+            if required:
+                raise self.fail(key, "missing table", None)
+            return {}
+        if not isinstance(value, dict):
+            raise self.fail(key, "expected a table", self.line(None, key) or self.line(key))
+        return value
+
+    def text(self, key: str) -> str:
+        value = self.data.get(key)
+        if not isinstance(value, str) or not value.strip():
+            raise self.fail(key, "expected a non-empty string", self.line(None, key))
+        return value
+
+    # -- names ----------------------------------------------------------------------------
+    def declare(self, name: str, kind: str, item: str, line: int | None) -> sympy.Symbol:
+        try:
+            scanned = scan_names(name)
+        except ExpressionError as exc:
+            raise self.fail(item, exc.reason, line) from exc
+        if len(scanned) != 1 or scanned[0][0] != name:
+            raise self.fail(item, f"{name!r} is not a valid name", line)
+        if name in RESERVED_NAMES:
+            raise self.fail(item, f"{name!r} is a standard function or constant", line)
+        if name in self.kinds:
+            raise self.fail(item, f"{name!r} is already declared as a {self.kinds[name]}", line)
+        symbol = real_symbol(name)
+        self.names[name] = symbol
+        self.kinds[name] = kind
+        return symbol
+
+    def expr(self, text: Any, item: str, table: str | None, key: str,
+             names: Mapping[str, sympy.Basic] | None = None, expand: bool = True) -> sympy.Expr:
+        r"""Parse a document expression; errors name the file, the line and ``item``."""
+        names = self.names if names is None else names
+        if isinstance(text, bool) or not isinstance(text, (str, int, float)):
+            raise self.fail(item, f"expected an expression, got {text!r}",
+                            self.line(table, key))
+        source = str(text)
+        try:
+            value = parse_expression(source, names)
+        except UndeclaredNameError as exc:
+            raise DerivationNameError(self.path, item, "symbol", exc.name, names,
+                                      self.line(table, key, exc.name)) from exc
+        except ExpressionError as exc:
+            raise self.fail(item, exc.reason, self.line(table, key, source)) from exc
+        return value.xreplace(self.expansion) if expand and self.expansion else value
+
+    # -- sections -------------------------------------------------------------------------
+    def symbols(self) -> dict[str, SymbolSpec]:
+        specs: dict[str, SymbolSpec] = {}
+        for name, entry in self.table("symbols").items():
+            item, line = f"symbols.{name}", self.line("symbols", name)
+            if isinstance(entry, str):
+                entry = {"value": entry}
+            if not isinstance(entry, dict):
+                raise self.fail(item, "expected \"value\" or { value = ..., units = ... }", line)
+            for key in entry:
+                if key not in SYMBOL_KEYS:
+                    raise self.fail(f"{item}.{key}", "unknown key; valid: "
+                                    + ", ".join(SYMBOL_KEYS), line)
+            is_input, free = entry.get("input", False), entry.get("free", False)
+            if not isinstance(is_input, bool) or not isinstance(free, bool):
+                raise self.fail(item, "'input' and 'free' are true or false", line)
+            has_value = "value" in entry
+            if has_value + is_input + free != 1:
+                raise self.fail(item, "give exactly one of: value = \"...\" (its meaning in the "
+                                "model), input = true, free = true", line)
+            symbol = self.declare(name, "input" if is_input else "symbol", item, line)
+            value = None
+            if has_value:
+                value_text = entry["value"]
+                if not isinstance(value_text, (str, int, float)) or isinstance(value_text, bool):
+                    raise self.fail(f"{item}.value", "expected an expression", line)
+                try:
+                    value = parse_model_expression(str(value_text), self.parameters, self.links)
+                except UndeclaredNameError as exc:
+                    valid = self.links if exc.kind == "link" else self.parameters
+                    raise DerivationNameError(self.path, f"{item}.value", exc.kind, exc.name,
+                                              valid, line) from exc
+                except ExpressionError as exc:
+                    raise self.fail(f"{item}.value", exc.reason, line) from exc
+            units = entry.get("units")
+            if units is not None:
+                try:
+                    parse_units(str(units))
+                except ExpressionError as exc:
+                    raise self.fail(f"{item}.units", exc.reason, line) from exc
+            specs[name] = SymbolSpec(name, symbol, None if value is None else str(entry["value"]),
+                                     None if units is None else str(units),
+                                     entry.get("meaning"), value, is_input, free,
+                                     entry.get("latex"))
+        return specs
+
+    def assume_names(self) -> dict[str, Any]:
+        raw = self.table("assume")
+        texts = {}
+        for name, entry in raw.items():
+            item, line = f"assume.{name}", self.line("assume", name)
+            if isinstance(entry, dict):
+                extra = set(entry) - {"value", "units", "meaning"}
+                if extra or "value" not in entry:
+                    raise self.fail(item, "expected \"value\" or { value = ..., units = ..., "
+                                    "meaning = ... }", line)
+                if entry.get("units") is not None:
+                    try:
+                        parse_units(str(entry["units"]))
+                    except ExpressionError as exc:
+                        raise self.fail(f"{item}.units", exc.reason, line) from exc
+                entry = entry["value"]
+            self.declare(name, "term the model lacks", item, line)
+            texts[name] = entry
+        return texts
+
+    def definitions(self) -> dict[str, sympy.Expr]:
+        raw = self.table("definitions")
+        for name in raw:
+            self.declare(name, "definition", f"definitions.{name}", self.line("definitions", name))
+        parsed = {}
+        for name, entry in raw.items():
+            text = entry.get("value") if isinstance(entry, dict) else entry
+            parsed[name] = self.expr(text, f"definitions.{name}", "definitions", name,
+                                     expand=False)
+        symbols = {self.names[name]: name for name in raw}
+        done: dict[sympy.Symbol, sympy.Expr] = {}
+
+        def expand(name: str, chain: tuple[str, ...]) -> sympy.Expr:
+            symbol = self.names[name]
+            if symbol in done:
+                return done[symbol]
+            if name in chain:
+                raise self.fail(f"definitions.{name}", "circular definition: "
+                                + " -> ".join((*chain, name)), self.line("definitions", name))
+            inner = {s: expand(symbols[s], (*chain, name))
+                     for s in parsed[name].free_symbols if s in symbols}
+            done[symbol] = parsed[name].xreplace(inner)
+            return done[symbol]
+
+        for name in raw:
+            expand(name, ())
+        self.expansion = done
+        return {name: done[self.names[name]] for name in raw}
+
+
+def load_derivation(path: str | Path, *, parameters: Collection[str] | None = None,
+                    links: Collection[str] | None = None) -> Derivation:
+    r"""Load one derivation file (format: ``docs/derivation-format.md``).
+
+    ``parameters`` and ``links``, when given, are the model's valid parameter and link names:
+    value expressions using others raise :class:`DerivationNameError`. Raises
+    :class:`~wheeled_dyn.errors.InputFileError` for a missing file or malformed TOML (with
+    line and column) and :class:`~wheeled_dyn.errors.DerivationError` for content that does
+    not fit.
+    """
+    p = Path(path)
+    data, src = read_toml(p)
+    ld = _Loader(p, data, src, parameters, links)
+    for key in data:
+        if key not in TOP_LEVEL_KEYS:
+            raise ld.fail(key, "unknown key or table; valid: " + ", ".join(TOP_LEVEL_KEYS),
+                          src.line_of(None, key) or src.line_of(key))
+    title, model = ld.text("title"), ld.text("model")
+    source = ld.table("source")
+    if not all(isinstance(v, str) for v in source.values()):
+        raise ld.fail("source", "values are strings", ld.line("source"))
+    coord_table = ld.table("coordinates", required=True)
+    names = coordinate_names(p, coord_table, model,
+                             lambda key: ld.line("coordinates", key))
+    positions = tuple(ld.declare(n, "position", "coordinates.positions",
+                                 ld.line("coordinates", "positions")) for n in names.positions)
+    velocities = tuple(ld.declare(n, "velocity", "coordinates.velocities",
+                                  ld.line("coordinates", "velocities")) for n in names.velocities)
+    accelerations = tuple(ld.declare(n, "acceleration", "coordinates.accelerations",
+                                     ld.line("coordinates", "accelerations"))
+                          for n in names.accelerations)
+    symbols = ld.symbols()
+    assumed_texts = ld.assume_names()
+    definitions = ld.definitions()
+    assumptions = {name: ld.expr(text, f"assume.{name}", "assume", name)
+                   for name, text in assumed_texts.items()}
+    input_symbols = tuple(s.symbol for s in symbols.values() if s.is_input)
+
+    inputs = {}
+    for model_input, text in ld.table("inputs").items():
+        inputs[model_input] = ld.expr(text, f"inputs.{model_input}", "inputs", model_input)
+    used = set().union(*(e.free_symbols for e in inputs.values())) if inputs else set()
+    for u in input_symbols:
+        if u not in used:
+            raise ld.fail("inputs", f"document input {u} drives no model input; map it in "
+                          "[inputs] (model input = expression of document inputs)",
+                          ld.line("inputs") or ld.line("symbols", str(u)))
+
+    n = len(positions)
+    row_scale = None
+    rows = ld.table("rows")
+    if rows:
+        extra = set(rows) - {"scale"}
+        scale = rows.get("scale")
+        if extra or not isinstance(scale, list):
+            raise ld.fail("rows", "expected scale = [\"factor of row 1\", ...]", ld.line("rows"))
+        if len(scale) != n:
+            raise ld.fail("rows.scale", f"{len(scale)} factors for {n} rows",
+                          ld.line("rows", "scale"))
+        row_scale = tuple(ld.expr(t, f"rows.scale[{i + 1}]", "rows", "scale")
+                          for i, t in enumerate(scale))
+
+    reader = MatrixReader(ld, n, input_symbols)
+    matrices = reader.read(ld.table("matrices", required=True))
+
+    constraints = None
+    ctable = ld.table("constraints")
+    if ctable:
+        extra = set(ctable) - {"equations"}
+        if extra or not isinstance(ctable.get("equations"), list):
+            raise ld.fail("constraints", "expected equations = [\"lhs = rhs\", ...]",
+                          ld.line("constraints"))
+        constraints = tuple(reader.equation(t, f"constraint {i + 1}", "constraints", "equations")
+                            for i, t in enumerate(ctable["equations"]))
+
+    reconstructed = ld.table("reconstructed")
+    for label, note in reconstructed.items():
+        if not isinstance(note, str):
+            raise ld.fail(f"reconstructed.{label}", "expected a note (string)",
+                          ld.line("reconstructed", label))
+        reader.check_label(label, ld.line("reconstructed", label))
+
+    spec = coordinate_spec(p, coord_table, names,
+                           lambda text, item, key: ld.expr(text, item, "coordinates", key),
+                           lambda key: ld.line("coordinates", key))
+    return Derivation(
+        path=p, title=title, model=model, source=MappingProxyType(dict(source)),
+        coordinates=spec, inputs=MappingProxyType(inputs), input_symbols=input_symbols,
+        symbols=MappingProxyType(symbols), assumptions=MappingProxyType(assumptions),
+        definitions=MappingProxyType(definitions), row_scale=row_scale,
+        A=matrices.get("A"), C=matrices.get("C"), Q=matrices.get("Q"), B=matrices.get("B"),
+        G=matrices.get("G"), equations=reader.equations, constraints=constraints,
+        missing=tuple(reader.missing), reconstructed=MappingProxyType(dict(reconstructed)),
+        positions=positions, velocities=velocities, accelerations=accelerations,
+        namespace=MappingProxyType(dict(ld.names)))
+
+
+def _files(paths: Iterable[str | Path]) -> list[Path]:
+    files: list[Path] = []
+    for entry in paths:
+        p = Path(entry)
+        if p.is_dir():
+            files.extend(f for f in sorted(p.glob("*.toml")) if not f.name.endswith(TABLE_SUFFIX))
+        else:
+            files.append(p)
+    return files
+
+
+def load_derivations(paths: Iterable[str | Path], *, parameters: Collection[str] | None = None,
+                     links: Collection[str] | None = None) -> list[Derivation]:
+    r"""Load several files; a folder stands for its ``*.toml`` derivation files (sorted,
+    comparison tables ``*_table.toml`` left out)."""
+    return [load_derivation(f, parameters=parameters, links=links) for f in _files(paths)]
+
+
+def builtin_groups() -> list[str]:
+    r"""Names of the groups of shipped derivation files (``seed001``, ...)."""
+    return sorted(d.name for d in BUILTIN_DIR.iterdir() if d.is_dir()) if BUILTIN_DIR.is_dir() else []
+
+
+def builtin_derivations(group: str = "seed001") -> list[Path]:
+    r"""Paths of the shipped derivation files of ``group`` (sorted; tables left out). Raises
+    :class:`~wheeled_dyn.errors.InputFileError` for an unknown group."""
+    folder = BUILTIN_DIR / group
+    if not folder.is_dir():
+        raise InputFileError(folder, f"no built-in derivation group {group!r}; groups: "
+                             + (", ".join(builtin_groups()) or "none"))
+    return _files([folder])
+
+
+def builtin_tables(group: str = "seed001") -> list[Path]:
+    r"""Paths of the shipped comparison tables (``*_table.toml``) of ``group``."""
+    folder = BUILTIN_DIR / group
+    if not folder.is_dir():
+        raise InputFileError(folder, f"no built-in derivation group {group!r}")
+    return sorted(folder.glob("*" + TABLE_SUFFIX))

@@ -1,0 +1,115 @@
+r"""Reading A, h, Q and B off equations of motion written out term by term.
+
+A document often prints its equations as sums (Kim et al.'s eq. (1):
+:math:`3(m_c+m_s)\ddot x - m_s d\cos\phi\,\ddot\phi + m_s d\sin\phi(\dot\phi^2+\dot\psi^2)
+= -(\alpha_3+\beta_3)/R`). With every term moved to the left,
+
+.. math::
+
+    \underbrace{\textstyle\sum_j A_{ij}\,\ddot q_j}_{\text{linear in } \ddot q}
+    + \underbrace{h_i}_{\text{quadratic in } \dot q}
+    + \underbrace{Q_i}_{\text{free of } \dot q,\ \ddot q,\ u}
+    - \underbrace{\textstyle\sum_k B_{ik} u_k}_{\text{linear in } u} = 0 ,
+
+each term of the expanded left side belongs to exactly one of the four groups, and
+:math:`h = C\dot q` for any valid :math:`C`. A term that fits none of them (linear in a
+velocity, like a viscous friction term; a product of an acceleration and a velocity; a
+function of a velocity) is reported by name: the toolkit's form cannot hold it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from pathlib import Path
+from typing import NamedTuple
+
+import sympy
+
+from ..errors import DerivationError
+
+
+class EquationTerms(NamedTuple):
+    r"""The parts of :math:`A\ddot q + h + Q = B u` in the document's coordinates.
+
+    ``A`` n×n, ``h`` n×1 (:math:`C\dot q`), ``Q`` n×1, ``B`` n×k with columns in the order of
+    ``inputs``. In a matrix-form file a part the document does not give is None.
+    """
+
+    A: sympy.ImmutableMatrix | None
+    h: sympy.ImmutableMatrix | None
+    Q: sympy.ImmutableMatrix | None
+    B: sympy.ImmutableMatrix | None
+    inputs: tuple[sympy.Symbol, ...]
+
+
+def _degrees(term: sympy.Expr, group: Sequence[sympy.Symbol]) -> dict[sympy.Symbol, int] | None:
+    r"""Exponents of the symbols of ``group`` in the monomial ``term``; None if ``term`` is not a
+    monomial in them (a symbol inside a function, a negative or symbolic power)."""
+    members = set(group)
+    found: dict[sympy.Symbol, int] = {}
+    for factor in sympy.Mul.make_args(term):
+        base, exp = factor.as_base_exp()
+        if base in members:
+            if not (exp.is_Integer and exp > 0):
+                return None
+            found[base] = found.get(base, 0) + int(exp)
+        elif factor.has(*members):
+            return None
+    return found
+
+
+def split_equation_terms(expressions: Sequence[sympy.Expr],
+                         accelerations: Sequence[sympy.Symbol],
+                         velocities: Sequence[sympy.Symbol],
+                         inputs: Sequence[sympy.Symbol],
+                         path: str | Path = "<equations>") -> EquationTerms:
+    r"""Split each ``expressions[i]`` (left side minus right side of equation i+1) into A, h, Q
+    and B as in the module docstring. Raises :class:`DerivationError` naming ``equation i``,
+    the term and the velocity or input it is linear in when a term fits no group."""
+    n, k = len(expressions), len(inputs)
+    if len(accelerations) != n:
+        raise DerivationError(path, "equations", f"{n} equations for {len(accelerations)} "
+                                                 "coordinates")
+    A = sympy.zeros(n, n)
+    h = sympy.zeros(n, 1)
+    Q = sympy.zeros(n, 1)
+    B = sympy.zeros(n, k)
+    acc_index = {a: j for j, a in enumerate(accelerations)}
+    inp_index = {u: j for j, u in enumerate(inputs)}
+    everything = [*accelerations, *velocities, *inputs]
+    vel_set = set(velocities)
+    for i, expr in enumerate(expressions):
+        item = f"equation {i + 1}"
+        for term in sympy.Add.make_args(sympy.expand(expr)):
+            degrees = _degrees(term, everything)
+            if degrees is None:
+                raise DerivationError(path, item, f"term {term} is not a polynomial in the "
+                                      "accelerations, velocities and inputs")
+            acc = {s: e for s, e in degrees.items() if s in acc_index}
+            vel = {s: e for s, e in degrees.items() if s in vel_set}
+            inp = {s: e for s, e in degrees.items() if s in inp_index}
+            n_acc, n_vel, n_inp = sum(acc.values()), sum(vel.values()), sum(inp.values())
+            if n_acc:
+                if n_acc != 1 or n_vel or n_inp:
+                    raise DerivationError(path, item, f"term {term} is not linear in the "
+                                          "accelerations alone")
+                (a,) = acc
+                A[i, acc_index[a]] += term / a
+            elif n_inp:
+                if n_inp != 1 or n_vel:
+                    raise DerivationError(path, item, f"term {term} is not linear in the "
+                                          "inputs alone")
+                (u,) = inp
+                B[i, inp_index[u]] -= term / u
+            elif n_vel == 2:
+                h[i] += term
+            elif n_vel == 0:
+                Q[i] += term
+            else:
+                names = ", ".join(str(s) for s in vel)
+                what = (f"linear in the velocity {names}" if n_vel == 1
+                        else f"of degree {n_vel} in the velocities ({names})")
+                raise DerivationError(path, item, f"term {term} is {what}: it is neither an "
+                                      "inertia, Coriolis/centrifugal, gravity nor input term")
+    return EquationTerms(sympy.ImmutableMatrix(A), sympy.ImmutableMatrix(h),
+                         sympy.ImmutableMatrix(Q), sympy.ImmutableMatrix(B), tuple(inputs))

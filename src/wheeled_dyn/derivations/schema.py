@@ -1,0 +1,187 @@
+r"""What a derivation file says, as frozen records: :class:`Derivation`, :class:`SymbolSpec`,
+:class:`CoordinateSpec`.
+
+A derivation is a document's equations of motion
+
+.. math::
+
+    A(q)\,\ddot q + C(q,\dot q)\,\dot q + Q(q) = B\,u \;[+\ G^{\mathsf T}\lambda]
+
+in the document's own coordinates and symbols, transcribed as printed (typos included), with
+the declarations needed to relate them to a model of the toolkit: how the document's
+coordinates map to the model's (:class:`CoordinateSpec`), what each document symbol is in the
+model's parameters (:class:`SymbolSpec`), which model input each document input drives.
+Matrices are :class:`sympy.ImmutableMatrix`; elements the extracted text lost and the file
+marks ``"?"`` are ``sympy.nan`` and listed in :attr:`Derivation.missing`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+
+import sympy
+
+from ..errors import DerivationError, UnknownNameError
+from .readoff import EquationTerms, split_equation_terms
+
+
+@dataclass(frozen=True)
+class SymbolSpec:
+    r"""One document symbol.
+
+    ``value`` is its meaning in the model namespace (parsed from ``value_expr_text``; Khalil
+    parameters as ``KHALIL_FUNCTIONS[...](Symbol(link))``), or None for a document input
+    (``is_input``) or a free symbol (``free``: a parameter the model lacks, kept symbolic on
+    both sides, e.g. a motor constant multiplying an input). ``units`` is the text as written
+    (checked by :func:`~wheeled_dyn.derivations.expressions.parse_units`).
+    """
+
+    name: str
+    symbol: sympy.Symbol
+    value_expr_text: str | None
+    units: str | None
+    meaning: str | None
+    value: sympy.Expr | None = None
+    is_input: bool = False
+    free: bool = False
+    latex: str | None = None
+
+
+@dataclass(frozen=True)
+class CoordinateSpec:
+    r"""How the document's coordinates relate to the model's.
+
+    ``use`` names a built-in coordinate set of the model (then ``configuration`` and
+    ``velocity_map`` are empty: the model defines them), or is None for an inline set.
+    ``configuration`` maps a *model* coordinate name to an expression of the document's
+    positions and symbols; ``velocity_map`` (quasi-velocity sets) maps a *document* velocity
+    name to an expression in the model namespace (model coordinates and velocities
+    ``d<coordinate>``), linear in the model velocities. ``rolling`` is ``"eliminate"``,
+    ``"multipliers"`` or ``"none"``. ``raw`` is the TOML table as read.
+    """
+
+    use: str | None
+    kind: str
+    positions: tuple[str, ...]
+    velocities: tuple[str, ...]
+    accelerations: tuple[str, ...]
+    configuration: Mapping[str, sympy.Expr]
+    velocity_map: Mapping[str, sympy.Expr]
+    rolling: str
+    units: Mapping[str, str]
+    raw: Mapping[str, object]
+
+
+@dataclass(frozen=True)
+class Derivation:
+    r"""A parsed derivation file. See ``docs/derivation-format.md`` for every key.
+
+    Matrix form: ``A`` (n×n), ``C`` (n×n), ``Q`` (n×1), ``B`` (n×k, columns in the order of
+    ``input_symbols``; also derived from a ``Gamma`` vector), ``G`` (m×n), each None when the
+    document does not give it. Equation form: ``equations`` (n :class:`sympy.Eq`) and
+    :meth:`read_off`. All expressions are in the document namespace with ``[definitions]``
+    expanded; ``row_scale[i]`` is the factor the document multiplied true row i by.
+    """
+
+    path: Path
+    title: str
+    model: str
+    source: Mapping[str, str]
+    coordinates: CoordinateSpec
+    inputs: Mapping[str, sympy.Expr]
+    input_symbols: tuple[sympy.Symbol, ...]
+    symbols: Mapping[str, SymbolSpec]
+    assumptions: Mapping[str, sympy.Expr]
+    definitions: Mapping[str, sympy.Expr]
+    row_scale: tuple[sympy.Expr, ...] | None
+    A: sympy.ImmutableMatrix | None
+    C: sympy.ImmutableMatrix | None
+    Q: sympy.ImmutableMatrix | None
+    B: sympy.ImmutableMatrix | None
+    G: sympy.ImmutableMatrix | None
+    equations: tuple[sympy.Eq, ...] | None
+    constraints: tuple[sympy.Eq, ...] | None
+    missing: tuple[str, ...]
+    reconstructed: Mapping[str, str]
+    positions: tuple[sympy.Symbol, ...]
+    velocities: tuple[sympy.Symbol, ...]
+    accelerations: tuple[sympy.Symbol, ...]
+    namespace: Mapping[str, sympy.Symbol]
+
+    @property
+    def form(self) -> str:
+        r"""``"equations"`` or ``"matrices"``."""
+        return "equations" if self.equations is not None else "matrices"
+
+    @property
+    def n(self) -> int:
+        r"""Number of the document's coordinates."""
+        return len(self.positions)
+
+    @property
+    def model_values(self) -> dict[sympy.Symbol, sympy.Expr]:
+        r"""Document symbol → its value in the model namespace, for symbols that have one."""
+        return {s.symbol: s.value for s in self.symbols.values() if s.value is not None}
+
+    def symbol(self, name: str) -> sympy.Symbol:
+        r"""The SymPy symbol of a document name (coordinate, velocity, symbol, input ...)."""
+        try:
+            return self.namespace[name]
+        except KeyError:
+            raise UnknownNameError("document name", name, self.namespace,
+                                   where=str(self.path)) from None
+
+    def _assumed(self, expr: sympy.Basic, assume: bool) -> sympy.Basic:
+        if not assume or not self.assumptions:
+            return expr
+        return expr.xreplace({self.namespace[k]: v for k, v in self.assumptions.items()})
+
+    def read_off(self, *, assume: bool = True, unscale: bool = False) -> EquationTerms:
+        r"""A, h = C q̇, Q and B of the document.
+
+        Equation form: read off term by term (:func:`split_equation_terms`); a term linear in
+        a velocity raises :class:`DerivationError` naming it. Matrix form: the matrices as
+        given, ``h = C q̇`` (None where the document gives no C). ``assume=True`` substitutes
+        the ``[assume]`` values (terms the model lacks, usually 0); with ``assume=False`` the
+        assumed names are extra inputs, appended after ``input_symbols``. ``unscale=True``
+        divides row i by ``row_scale[i]``.
+        """
+        inputs = tuple(self.input_symbols)
+        if not assume:
+            inputs += tuple(self.namespace[k] for k in self.assumptions)
+        if self.equations is not None:
+            exprs = [self._assumed(eq.lhs - eq.rhs, assume) for eq in self.equations]
+            terms = split_equation_terms(exprs, self.accelerations, self.velocities, inputs,
+                                         self.path)
+        else:
+            qd = sympy.Matrix(self.velocities)
+            parts = [None if M is None else sympy.ImmutableMatrix(self._assumed(M, assume))
+                     for M in (self.A, None if self.C is None else self.C * qd, self.Q, self.B)]
+            if not assume and parts[3] is not None and self.assumptions:
+                parts[3] = parts[3].row_join(sympy.zeros(self.n, len(self.assumptions)))
+            terms = EquationTerms(*parts, inputs)
+        if unscale and self.row_scale is not None:
+            scale = sympy.diag(*[1 / s for s in self.row_scale])
+            terms = EquationTerms(*[None if M is None else sympy.ImmutableMatrix(scale * M)
+                                    for M in terms[:4]], inputs)
+        return terms
+
+    def constraint_matrix(self) -> sympy.ImmutableMatrix | None:
+        r"""The m×n matrix :math:`G` of the ``[constraints]`` equations :math:`G\dot q = 0`
+        as printed (left side minus right side), or None when the file has none. Raises
+        :class:`DerivationError` if a constraint is not linear and homogeneous in the
+        velocities."""
+        if self.constraints is None:
+            return None
+        rows = []
+        for i, eq in enumerate(self.constraints):
+            expr = sympy.expand(eq.lhs - eq.rhs)
+            row = [expr.coeff(v) for v in self.velocities]
+            rest = sympy.expand(expr - sum(c * v for c, v in zip(row, self.velocities)))
+            if rest != 0 or any(c.has(*self.velocities, *self.accelerations) for c in row):
+                raise DerivationError(self.path, f"constraint {i + 1}",
+                                      "not linear and homogeneous in the velocities")
+            rows.append(row)
+        return sympy.ImmutableMatrix(rows)

@@ -1,0 +1,96 @@
+r"""Reading a TOML file and finding lines in it, so that every error names file:line.
+
+``tomllib`` reports syntax errors as ``"Invalid value (at line 3, column 7)"``; those become
+:class:`~wheeled_dyn.errors.InputFileError` with ``line`` and ``column``. For errors of content
+(an unknown name in ``A[2,3]``) the parsed data has no positions, so :class:`SourceText`
+searches the text: the table header, then the key, then the element's text after the key.
+"""
+
+from __future__ import annotations
+
+import re
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from ..errors import InputFileError
+
+_TOML_POSITION = re.compile(r"\(at line (\d+), column (\d+)\)")
+#: A table header starts in column 0 (as written in every shipped file and the documentation):
+#: ``[name]`` or ``[[name]]``, a dotted key without commas.
+_TABLE_HEADER = re.compile(r"^\[\[?\s*([A-Za-z0-9_.\-\" ]+?)\s*\]\]?\s*(#.*)?$")
+
+
+@dataclass(frozen=True)
+class SourceText:
+    r"""The text of a file, for locating keys and fragments (1-based line numbers)."""
+
+    path: Path
+    text: str
+
+    @property
+    def lines(self) -> list[str]:
+        return self.text.splitlines()
+
+    def _key_line(self, table: str | None, key: str) -> int | None:
+        current: str | None = None
+        key_re = re.compile(r'^\s*(?:"' + re.escape(key) + r'"|\'' + re.escape(key) + r"'|"
+                            + re.escape(key) + r")\s*=")
+        for number, line in enumerate(self.lines, start=1):
+            header = _TABLE_HEADER.match(line)
+            if header:
+                current = header.group(1).strip()
+                continue
+            if (table is None or current == table) and key_re.match(line):
+                return number
+        return None
+
+    def line_of(self, table: str | None, key: str | None = None,
+                fragment: str | None = None) -> int | None:
+        r"""Line of ``key`` in ``[table]`` (``table=None``: top level or anywhere), or of the
+        first occurrence of ``fragment`` from that key on, up to the next table header. None
+        if not found."""
+        lines = self.lines
+        if key is None:
+            for number, line in enumerate(lines, start=1):
+                header = _TABLE_HEADER.match(line)
+                if header and header.group(1).strip() == table:
+                    return number
+            return None
+        start = self._key_line(table, key)
+        if start is None or fragment is None:
+            return start
+        squeezed = "".join(fragment.split())
+        for number in range(start, len(lines) + 1):
+            line = lines[number - 1]
+            if number > start and _TABLE_HEADER.match(line):
+                break
+            if fragment in line or (squeezed and squeezed in "".join(line.split())):
+                return number
+        return start
+
+
+def read_toml(path: str | Path) -> tuple[dict[str, Any], SourceText]:
+    r"""Parse a TOML file. A missing or unreadable file, or a syntax error, raises
+    :class:`InputFileError` (with the line and column tomllib reports)."""
+    p = Path(path)
+    try:
+        text = p.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise InputFileError(p, "file not found") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputFileError(p, f"cannot read the file ({exc})") from exc
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        message = str(exc)
+        found = _TOML_POSITION.search(message)
+        line = column = None
+        if found:
+            line, column = int(found.group(1)), int(found.group(2))
+            message = _TOML_POSITION.sub("", message).strip()
+        elif "end of document" in message:
+            line = len(text.splitlines()) or 1
+        raise InputFileError(p, f"malformed TOML: {message}", line=line, column=column) from exc
+    return data, SourceText(p, text)
