@@ -167,3 +167,20 @@ def test_zero_input_simulation_keeps_energy():
     traj = simulate(cmap, q0, np.array([0.5, 0.8, 0.0]), duration=5.0, rate=200.0)
     assert traj.relative_energy_drift() < ENERGY_DRIFT_TOL
     assert np.ptp(traj.q[:, wm.index("phi")]) > 0.1      # it did move
+
+
+@pytest.mark.parametrize("coords", ["seed001", "wheels", "absolute_wheels", "full"])
+def test_batch_equals_single_state(coords):
+    wm = random_wip_models(1)[0]
+    cmap = CoordinateMap(wm, builtin_coordinate_set(wm, coords))
+    rng = np.random.default_rng(SEED)
+    q, nu = rng.uniform(-2, 2, (7, cmap.n)), rng.normal(size=(7, cmap.n))
+    batch = cmap.terms_batch(q, nu)
+    for i in range(len(q)):
+        single = cmap.terms(q[i], nu[i])
+        for key in ("A", "C", "Q", "B", "h", "G"):
+            a, b = getattr(batch, key), getattr(single, key)
+            if b is None:
+                assert a is None
+            else:
+                assert np.allclose(a[i], b, atol=EXACT_TOL), key

@@ -35,6 +35,7 @@ import sympy as sp
 from ..coordinates.spec import CoordinateSet, CoordinateSpecError, model_symbols
 from ..dynamics.terms import Terms, check_vector
 from ..models.builder import WheeledModel
+from .batch import lambdify_batch, reduce_batch
 from .rolling import contact_jacobian
 
 #: Largest residual of [J_c; T] S = [0; 1] for the velocities to parametrise the motions.
@@ -58,11 +59,14 @@ class CoordinateMap:
         doc_v = list(cs.velocity_symbols())
         config = sp.Matrix([cs.configuration[c] for c in wm.coordinate_names])
         self._config = sp.lambdify([doc_q, params], config, "numpy")
+        self._config_batch = lambdify_batch(config, [*doc_q, *params])
         if cs.kind == "holonomic":
             S = config.jacobian(doc_q)
             Sdot = sum((S.diff(s) * ds for s, ds in zip(doc_q, doc_v)), sp.zeros(*S.shape))
             self._S = sp.lambdify([doc_q, params], S, "numpy")
             self._Sdot = sp.lambdify([doc_q, doc_v, params], Sdot, "numpy")
+            self._S_batch = lambdify_batch(S, [*doc_q, *params])
+            self._Sdot_batch = lambdify_batch(Sdot, [*doc_q, *doc_v, *params])
         else:
             mq, mv = model_symbols(wm.coordinate_names)
             nu = sp.Matrix([cs.velocity_map[v] for v in cs.velocities])
@@ -70,6 +74,8 @@ class CoordinateMap:
             Tdot = sum((T.diff(s) * ds for s, ds in zip(mq, mv)), sp.zeros(*T.shape))
             self._T = sp.lambdify([list(mq), params], T, "numpy")
             self._Tdot = sp.lambdify([list(mq), list(mv), params], Tdot, "numpy")
+            self._T_batch = lambdify_batch(T, [*mq, *params])
+            self._Tdot_batch = lambdify_batch(Tdot, [*mq, *mv, *params])
             if cs.rolling != "eliminate" and T.shape[0] != T.shape[1]:
                 raise CoordinateSpecError(cs.name, "velocity_map",
                                           f"{T.shape[0]} velocities for {T.shape[1]} model "
@@ -159,6 +165,18 @@ class CoordinateMap:
         terms = Terms(self.cs.velocities, self.wm.input_names, 0.5 * (A_nu + A_nu.T), C_nu,
                       St @ Q, St @ self._B, C_nu @ nu, G)
         return terms, S, v
+
+    def terms_batch(self, q_doc: np.ndarray, nu: np.ndarray) -> Terms:
+        r"""The terms at N document states (``q_doc``: N × n positions, ``nu``: N × n
+        velocities), as arrays with a leading axis N; the same numbers as :meth:`terms`."""
+        q_doc = np.atleast_2d(np.asarray(q_doc, dtype=float))
+        nu = np.atleast_2d(np.asarray(nu, dtype=float))
+        for name, arr in (("q", q_doc), ("velocity", nu)):
+            if arr.ndim != 2 or arr.shape[1] != self.n or not np.all(np.isfinite(arr)):
+                from ..errors import StateError
+                raise StateError(name, arr.shape, f"an N x {self.n} array of finite numbers")
+        q = self._config_batch(len(q_doc), *q_doc.T, *self._p)[:, :, 0]
+        return reduce_batch(self, q, nu, q_doc)
 
     def terms(self, q_doc: np.ndarray, nu: np.ndarray) -> Terms:
         r"""The terms at a document state (positions ``q_doc``, velocities ``nu``)."""

@@ -1,0 +1,108 @@
+r"""The reduction of :mod:`.reduction` for many states at once.
+
+Pinocchio is called per state (``crba``, joint Jacobians and their time variation,
+``computeCoriolisMatrix``, ``computeGeneralizedGravity``); everything else — the coordinate
+map's expressions, the pseudo-inverse of :math:`[J_c; T]`, :math:`\dot S` and the projections
+:math:`S^TAS`, :math:`S^TCS + S^TA\dot S`, :math:`S^TQ`, :math:`S^TB` — is done on stacked
+arrays. The result is a :class:`~wheeled_dyn.dynamics.terms.Terms` whose arrays have a leading
+axis of length N.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import pinocchio as pin
+import sympy as sp
+
+from ..dynamics.terms import Terms
+from .rolling import _LWA
+
+
+def lambdify_batch(matrix: sp.Matrix, args: Sequence) -> callable:
+    r"""A function of stacked arguments returning an array (N, rows, cols) of ``matrix``;
+    constant entries are broadcast."""
+    entries = [[sp.lambdify(args, e, "numpy") for e in row] for row in matrix.tolist()]
+    rows, cols = matrix.shape
+
+    def evaluate(n: int, *values) -> np.ndarray:
+        out = np.empty((n, rows, cols))
+        for i in range(rows):
+            for j in range(cols):
+                out[:, i, j] = entries[i][j](*values)
+        return out
+
+    return evaluate
+
+
+def _rolling_rows(wm, raw: np.ndarray) -> np.ndarray:
+    r"""Rows of :math:`J_c` (N × 2·wheels × nv) from the wheels' stacked 6-row Jacobians
+    ``raw`` (N × wheels × 6 × nv): :math:`P(J_{lin} + R[e_z]_\times J_\omega)`."""
+    radius = np.array([w.radius for w in wm.wheels])[None, :, None]
+    lin, ang = raw[:, :, :3], raw[:, :, 3:]
+    x = lin[:, :, 0] - radius * ang[:, :, 1]
+    y = lin[:, :, 1] + radius * ang[:, :, 0]
+    return np.stack([x, y], axis=2).reshape(raw.shape[0], -1, raw.shape[-1])
+
+
+def reduce_batch(cmap, q: np.ndarray, nu: np.ndarray, q_doc: np.ndarray | None = None) -> Terms:
+    r"""Terms in document velocities at N model configurations ``q`` (N × nq) and velocities
+    ``nu`` (N × n); ``q_doc`` (N × n) is needed for holonomic sets."""
+    wm, cs = cmap.wm, cmap.cs
+    model, data = wm.model, cmap._data
+    N, n = nu.shape
+    p = cmap._p
+    w = 2 * len(wm.wheels)
+    need_J = cs.rolling in ("eliminate", "multipliers")
+    A = np.empty((N, model.nv, model.nv))
+    ids = [wheel.joint_id for wheel in wm.wheels]
+    raw = np.empty((N, len(ids), 6, model.nv))
+    crba, jacobians, get_jacobian = pin.crba, pin.computeJointJacobians, pin.getJointJacobian
+    for i in range(N):
+        A[i] = crba(model, data, q[i])
+        if need_J:
+            jacobians(model, data, q[i])
+            for k, jid in enumerate(ids):
+                raw[i, k] = get_jacobian(model, data, jid, _LWA)
+    J = _rolling_rows(wm, raw) if need_J else None
+    A = np.triu(A) + np.swapaxes(np.triu(A, 1), 1, 2)
+    if cs.kind == "holonomic":
+        S = cmap._S_batch(N, *q_doc.T, *p)
+        Sdot = cmap._Sdot_batch(N, *q_doc.T, *nu.T, *p)
+        v = np.einsum("nij,nj->ni", S, nu)
+    else:
+        T = cmap._T_batch(N, *q.T, *p)
+        if cs.rolling == "eliminate":
+            Mp = np.linalg.pinv(np.concatenate([J, T], axis=1))
+            S = Mp[:, :, w:]
+        else:
+            Mp = None
+            S = np.linalg.inv(T)
+        v = np.einsum("nij,nj->ni", S, nu)
+    C = np.empty_like(A)
+    Q = np.empty((N, model.nv))
+    need_dJ = cs.kind == "quasi" and cs.rolling == "eliminate"
+    coriolis, gravity = pin.computeCoriolisMatrix, pin.computeGeneralizedGravity
+    variation, get_variation = pin.computeJointJacobiansTimeVariation, pin.getJointJacobianTimeVariation
+    for i in range(N):
+        C[i] = coriolis(model, data, q[i], v[i])
+        Q[i] = gravity(model, data, q[i])
+        if need_dJ:
+            variation(model, data, q[i], v[i])
+            for k, jid in enumerate(ids):
+                raw[i, k] = get_variation(model, data, jid, _LWA)
+    dJ = _rolling_rows(wm, raw) if need_dJ else None
+    if cs.kind == "quasi":
+        Tdot = cmap._Tdot_batch(N, *q.T, *v.T, *p)
+        if dJ is not None:
+            Sdot = -Mp @ np.concatenate([dJ, Tdot], axis=1) @ S
+        else:
+            Sdot = -S @ Tdot @ S
+    St = np.swapaxes(S, 1, 2)
+    A_nu = St @ A @ S
+    C_nu = St @ C @ S + St @ A @ Sdot
+    G = J @ S if cs.rolling == "multipliers" else None
+    return Terms(cs.velocities, wm.input_names, 0.5 * (A_nu + np.swapaxes(A_nu, 1, 2)), C_nu,
+                 np.einsum("nji,nj->ni", S, Q), St @ cmap._B,
+                 np.einsum("nij,nj->ni", C_nu, nu), G)
