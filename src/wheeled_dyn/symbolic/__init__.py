@@ -11,11 +11,14 @@ from .model import SymbolicModel, symbolic_model
 from .numeric import NumericTerms, lambdify_terms, parameter_vector
 from .parameters import PARAMETER_NAMES, inertial_symbols, numeric_parameters
 from .simplify import canonical_trig, is_zero, polish_trig, simplify_expr, simplify_matrix
+from .transform import ReducedSymbolic, time_derivative, transform
 from .trigpoly import TrigRing
 
 __all__ = [
-    "JointKinematics", "LagrangeTerms", "NumericTerms", "PARAMETER_NAMES", "SymbolicModel",
+    "JointKinematics", "LagrangeTerms", "NumericTerms", "PARAMETER_NAMES", "ReducedSymbolic",
+    "SymbolicModel",
     "TrigRing", "canonical_trig", "energy_terms", "exact_number", "forward_kinematics",
     "inertial_symbols", "is_zero", "lagrange_terms", "lambdify_terms", "numeric_parameters",
     "parameter_vector", "polish_trig", "simplify_expr", "simplify_matrix", "symbolic_model",
+    "time_derivative", "transform",
 ]

@@ -20,6 +20,7 @@ dropped.
 from __future__ import annotations
 
 import importlib
+from functools import lru_cache
 from collections.abc import Iterable, Sequence
 
 import sympy as sp
@@ -31,7 +32,7 @@ _fu = importlib.import_module("sympy.simplify.fu")  # the module, not the functi
 #: Relative size below which a float coefficient is treated as round-off and dropped.
 DEFAULT_CHOP: float = 1e-13
 #: Largest ``count_ops`` of a coefficient for which :func:`polish_trig` tries products to sums.
-TRIG_POLISH_MAX_OPS: int = 200
+TRIG_POLISH_MAX_OPS: int = 80
 
 
 def _chop(terms: list[tuple[tuple[int, ...], sp.Expr]], chop: float) -> list:
@@ -60,6 +61,23 @@ def canonical_trig(expr: sp.Expr, chop: float = DEFAULT_CHOP) -> sp.Expr:
     return sp.Add(*[cf * _monomial(gens, m) for m, cf in _chop(ring.terms(p), chop)])
 
 
+def _has_trig_products(expr: sp.Expr) -> bool:
+    """Whether a term holds a power or a product of sines/cosines of one angle (where the
+    products-to-sums rewrite can shorten)."""
+    for term in sp.Add.make_args(expr):
+        args: list[sp.Expr] = []
+        for f in sp.Mul.make_args(term):
+            base, e = f.as_base_exp()
+            if isinstance(base, (sp.sin, sp.cos)):
+                if e != 1:
+                    return True
+                args.append(base.args[0])
+        if len(args) != len(set(args)):
+            return True
+    return False
+
+
+@lru_cache(maxsize=8192)
 def polish_trig(expr: sp.Expr) -> sp.Expr:
     r"""The shortest (``count_ops``) of a few cheap rewritings of a trigonometric polynomial:
     itself, :math:`\cos^2 \to 1-\sin^2`, sums of products to functions of sums (``fu.TR10i``),
@@ -68,7 +86,7 @@ def polish_trig(expr: sp.Expr) -> sp.Expr:
     if expr.is_number or not expr.has(sp.sin, sp.cos):
         return expr
     cands = [expr, sp.expand(_fu.TR6(expr)), _fu.TR10i(expr)]
-    if sp.count_ops(expr) <= TRIG_POLISH_MAX_OPS:
+    if _has_trig_products(expr) and sp.count_ops(expr) <= TRIG_POLISH_MAX_OPS:
         t8 = _fu.TR8(expr)
         cands += [t8, _fu.TR10i(t8)]
     return min(cands, key=lambda e: (sp.count_ops(e), sp.default_sort_key(e)))
@@ -85,7 +103,9 @@ def collect_terms(ring: TrigRing, p, parameters: Iterable[sp.Symbol] | None = No
                 if g.is_Symbol and not ring.is_trig(i) and g not in inside}
     else:
         pset = set(parameters)
-    is_par = [g in pset for g in gens]
+    # 1/R, sqrt(m) ... count as parameters when their symbols all are
+    is_par = [g in pset or (not g.is_Symbol and bool(g.free_symbols)
+                            and g.free_symbols <= pset) for g in gens]
     groups: dict[tuple[int, ...], list] = {}
     for mon, cf in _chop(ring.terms(p), chop):
         pkey = tuple(k if isp else 0 for k, isp in zip(mon, is_par))

@@ -24,6 +24,8 @@ from fractions import Fraction
 from math import comb
 
 import sympy as sp
+from sympy.polys.constructor import construct_domain
+from sympy.polys.polyutils import parallel_dict_from_expr
 from sympy.polys.rings import PolyElement, PolyRing
 
 
@@ -63,9 +65,10 @@ class TrigRing:
                    ) -> tuple[TrigRing, list[PolyElement]]:
         """The ring of ``exprs`` (plus the symbols ``extra`` as generators) and the elements."""
         exprs = [sp.sympify(e) for e in exprs]
-        exprs = [sp.expand(e, trig=True)
-                 if any(not a.args[0].is_Symbol for a in e.atoms(sp.sin, sp.cos)) else e
-                 for e in exprs]
+        split = {a: sp.expand_trig(a) for e in exprs for a in e.atoms(sp.sin, sp.cos)
+                 if not a.args[0].is_Symbol}  # sin(a + b), cos(2a) -> products
+        if split:
+            exprs = [e.xreplace(split) for e in exprs]
         angles = sorted({a.args[0] for e in exprs for a in e.atoms(sp.sin, sp.cos)},
                         key=sp.default_sort_key)
         fwd, back, dummies = {}, {}, []
@@ -78,21 +81,23 @@ class TrigRing:
         extra = list(extra) + dummies
         anchor = sp.Dummy("one")  # guarantees at least one generator
         try:
-            polys, opt = sp.parallel_poly_from_expr(mapped + extra + [anchor])
+            reps, gens = parallel_dict_from_expr(mapped + extra + [anchor])
         except (sp.PolynomialError, sp.GeneratorsNeeded) as exc:
             raise NotPolynomial(str(exc)) from exc
         trig = set(dummies)
-        for g in opt.gens:
+        for g in gens:
             if g not in trig and g.free_symbols & trig:
                 raise NotPolynomial(f"sine or cosine inside the generator {g}")
-        domain = sp.QQ if opt.domain == sp.ZZ else opt.domain  # angles like q/2 need QQ
-        ring = PolyRing(opt.gens, domain)
-        idx = {g: i for i, g in enumerate(opt.gens)}
+        reps = reps[:len(mapped)]
+        coeffs = [c for r in reps for c in r.values()]
+        domain, converted = construct_domain(coeffs or [sp.Integer(0)], field=True)
+        ring = PolyRing(gens, domain)
+        it = iter(converted)
+        elems = [ring.from_dict({mon: next(it) for mon in r}) for r in reps]
+        idx = {g: i for i, g in enumerate(gens)}
         pairs = {x: (idx[fwd[sp.sin(x)]], idx[fwd[sp.cos(x)]]) for x in angles}
         self = cls(ring, pairs, back)
-        elems = [self.reduce(ring.from_dict(p.rep.to_dict(), orig_domain=opt.domain))
-                 for p in polys[:len(mapped)]]
-        return self, elems
+        return self, [self.reduce(e) for e in elems]
 
     def gen(self, symbol: sp.Symbol) -> PolyElement:
         """The ring element of a generator symbol (given in ``extra`` or met in the exprs)."""
