@@ -262,7 +262,8 @@ def _item(s: str, i: int) -> tuple[int, Nested]:
         elif ch == ")":
             depth -= 1
         elif ch == "[":
-            raise ExpressionError(s, "'[' inside a matrix element")
+            raise ExpressionError(s, "unbalanced '(' in a matrix element" if depth > 0
+                                  else "'[' inside a matrix element")
         elif depth == 0 and ch in ",]":
             break
         i += 1

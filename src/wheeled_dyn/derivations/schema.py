@@ -177,8 +177,8 @@ class Derivation:
             return None
         rows = []
         for i, eq in enumerate(self.constraints):
-            expr = sympy.expand(eq.lhs - eq.rhs)
-            row = [expr.coeff(v) for v in self.velocities]
+            expr = eq.lhs - eq.rhs
+            row = [sympy.diff(expr, v) for v in self.velocities]
             rest = sympy.expand(expr - sum(c * v for c, v in zip(row, self.velocities)))
             if rest != 0 or any(c.has(*self.velocities, *self.accelerations) for c in row):
                 raise DerivationError(self.path, f"constraint {i + 1}",

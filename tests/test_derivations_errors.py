@@ -1,0 +1,213 @@
+r"""Every kind of bad derivation file raises the project's error naming the file, the line, the
+element and the symbol."""
+
+from __future__ import annotations
+
+import pytest
+import sympy
+
+from wheeled_dyn.derivations import DerivationNameError, builtin_derivations, load_derivation
+from wheeled_dyn.errors import DerivationError, InputFileError, UnknownNameError
+
+GOOD = """\
+title = "two coordinates"
+model = "wip"
+
+[coordinates]
+use = "seed001"
+
+[symbols]
+m = { value = "m_S", units = "kg" }
+d = { value = "d", units = "m" }
+g = { value = "g", units = "m/s**2" }
+
+[matrices]
+A = \"\"\"[
+  [m, 0, -m*d*cos(phi)],
+  [0, m*d**2, 0],
+  [-m*d*cos(phi), 0, m*d**2]
+]\"\"\"
+Q = "[0, 0, -m*g*d*sin(phi)]"
+"""
+
+
+def _write(tmp_path, text, name="doc.toml"):
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def _line_of(text, fragment):
+    return next(i for i, line in enumerate(text.splitlines(), start=1) if fragment in line)
+
+
+def test_the_good_file_loads(tmp_path):
+    d = load_derivation(_write(tmp_path, GOOD))
+    assert d.A.shape == (3, 3) and d.Q.shape == (3, 1)
+
+
+def test_missing_file():
+    with pytest.raises(InputFileError, match="file not found"):
+        load_derivation("/nonexistent/derivation.toml")
+
+
+def test_malformed_toml_names_line_and_column(tmp_path):
+    text = GOOD.replace('d = { value = "d", units = "m" }', 'd = { value = "d" units = "m" }')
+    path = _write(tmp_path, text)
+    with pytest.raises(InputFileError) as err:
+        load_derivation(path)
+    assert not isinstance(err.value, DerivationError)
+    assert err.value.path == path
+    assert err.value.line == _line_of(text, 'd = { value = "d" units')
+    assert err.value.column is not None and err.value.column > 1
+    assert f"{path}:{err.value.line}:{err.value.column}" in str(err.value)
+
+
+def test_unknown_symbol_in_a_matrix_element(tmp_path):
+    text = GOOD.replace("[0, m*d**2, 0]", "[0, m*d**2, mass*d]")
+    path = _write(tmp_path, text)
+    with pytest.raises(UnknownNameError) as err:
+        load_derivation(path)
+    e = err.value
+    assert isinstance(e, DerivationNameError)
+    assert e.name == "mass" and e.item == "A[2,3]" and e.path == path
+    assert e.line == _line_of(text, "mass*d")
+    assert "m" in e.valid and "phi" in e.valid and "dphi" in e.valid
+    assert "A[2,3]" in str(e) and str(path) in str(e) and "'mass'" in str(e)
+
+
+def test_unknown_symbol_in_an_equation(tmp_path):
+    text = GOOD.split("[matrices]")[0] + """[matrices]
+equations = [
+  "m*ddx = 0",
+  "m*d**2*ddpsi = 0",
+  "m*d**2*ddphi - m*g*d*sin(phi) + k*dphi = 0",
+]
+"""
+    with pytest.raises(DerivationNameError) as err:
+        load_derivation(_write(tmp_path, text))
+    assert err.value.name == "k" and err.value.item == "equation 3"
+    assert err.value.line == _line_of(text, "k*dphi")
+
+
+def test_unknown_link_or_parameter_when_the_model_names_are_given(tmp_path):
+    path = _write(tmp_path, GOOD.replace('value = "m_S"', 'value = "M(bdy)"'))
+    load_derivation(path)       # the parser alone does not know the model's links
+    with pytest.raises(DerivationNameError) as err:
+        load_derivation(path, links=["body", "wheel_left", "wheel_right"])
+    assert err.value.name == "bdy" and err.value.kind == "link"
+    assert err.value.item == "symbols.m.value"
+    with pytest.raises(DerivationNameError) as err:
+        load_derivation(path, parameters=["m_S", "g"], links=["bdy"])
+    assert err.value.name == "d" and "m_S" in err.value.valid
+
+
+@pytest.mark.parametrize("old, new, item, words", [
+    ("[0, m*d**2, 0],", "[0, m*d**2],", "A[2,:]", "row 2 has 2 elements"),
+    ('Q = "[0, 0, -m*g*d*sin(phi)]"', 'Q = "[0, -m*g*d*sin(phi)]"', "Q", "shape 2 entries"),
+    ("[-m*d*cos(phi), 0, m*d**2]\n]", "[-m*d*cos(phi), 0, m*d**2],\n  [0, 0, 0]\n]", "A",
+     "4 rows, expected 3×3"),
+])
+def test_wrong_shapes(tmp_path, old, new, item, words):
+    text = GOOD.replace(old, new)
+    assert text != GOOD
+    with pytest.raises(DerivationError) as err:
+        load_derivation(_write(tmp_path, text))
+    assert err.value.item == item
+    assert words in str(err.value)
+    assert err.value.line is not None
+
+
+def test_unparseable_element_names_it_and_its_line(tmp_path):
+    text = GOOD.replace("[0, m*d**2, 0]", "[0, m*d**2 +, 0]")
+    with pytest.raises(DerivationError) as err:
+        load_derivation(_write(tmp_path, text))
+    assert err.value.item == "A[2,2]"
+    assert err.value.line == _line_of(text, "m*d**2 +")
+    assert "A[2,2]" in str(err.value)
+
+
+@pytest.mark.parametrize("element", ["__import__('os').system('true')", "m.real",
+                                     "lambda: 1", "'text'", "m[0]"])
+def test_code_is_not_an_expression(tmp_path, element):
+    text = GOOD.replace("[0, m*d**2, 0]", f"[0, {element}, 0]")
+    with pytest.raises(DerivationError) as err:
+        load_derivation(_write(tmp_path, text))
+    assert err.value.item in ("A[2,2]", "A")
+
+
+def test_unknown_keys_and_tables(tmp_path):
+    with pytest.raises(DerivationError, match="symbol: unknown key or table"):
+        load_derivation(_write(tmp_path, GOOD.replace("[symbols]", "[symbol]")))
+    with pytest.raises(DerivationError, match="valid: A, C, Q"):
+        load_derivation(_write(tmp_path, GOOD.replace("Q = ", "Z = ")))
+    with pytest.raises(DerivationError, match="symbols.m.unit"):
+        load_derivation(_write(tmp_path, GOOD.replace('units = "kg"', 'unit = "kg"')))
+
+
+def test_symbol_needs_a_value_or_a_role(tmp_path):
+    with pytest.raises(DerivationError, match="exactly one of"):
+        load_derivation(_write(tmp_path, GOOD.replace('m = { value = "m_S", ', 'm = { ')))
+    with pytest.raises(DerivationError, match="already declared as a position"):
+        load_derivation(_write(tmp_path, GOOD.replace('d = { value', 'phi = { value')))
+    with pytest.raises(DerivationError, match="standard function"):
+        load_derivation(_write(tmp_path, GOOD.replace('d = { value', 'sin = { value')))
+    with pytest.raises(DerivationError, match="units"):
+        load_derivation(_write(tmp_path, GOOD.replace('units = "kg"', 'units = "kilo"')))
+
+
+def test_unknown_coordinate_set(tmp_path):
+    with pytest.raises(DerivationError) as err:
+        load_derivation(_write(tmp_path, GOOD.replace('use = "seed001"', 'use = "polar"')))
+    assert err.value.item == "coordinates.use" and "wip:seed001" in str(err.value)
+
+
+def test_inputs_must_be_mapped(tmp_path):
+    text = GOOD.replace("[symbols]", "[symbols]\ntau = { input = true, units = \"N*m\" }")
+    text = text.replace('Q = "[0, 0, -m*g*d*sin(phi)]"',
+                        'Q = "[0, 0, -m*g*d*sin(phi)]"\nB = "[[1], [0], [1]]"')
+    with pytest.raises(DerivationError, match="drives no model input"):
+        load_derivation(_write(tmp_path, text))
+    mapped = text.replace("[symbols]", "[inputs]\ntau_l = \"tau/2\"\ntau_r = \"tau/2\"\n\n"
+                          "[symbols]")
+    d = load_derivation(_write(tmp_path, mapped))
+    assert d.B.shape == (3, 1) and d.input_symbols == (d.symbol("tau"),)
+
+
+def test_definitions_expand_and_cycles_fail(tmp_path):
+    text = GOOD.replace("[matrices]", "[definitions]\nJ = \"m*d**2\"\nK = \"2*J\"\n\n[matrices]")
+    text = text.replace("[0, m*d**2, 0]", "[0, K/2, 0]")
+    d = load_derivation(_write(tmp_path, text))
+    assert d.A[1, 1] == d.symbol("m") * d.symbol("d") ** 2
+    cyclic = text.replace('J = "m*d**2"', 'J = "K*m"')
+    with pytest.raises(DerivationError, match="circular definition"):
+        load_derivation(_write(tmp_path, cyclic))
+
+
+def test_reconstructed_labels_must_exist(tmp_path):
+    ok = GOOD + '\n[reconstructed]\n"A[3,3]" = "restored"\n'
+    assert load_derivation(_write(tmp_path, ok)).reconstructed == {"A[3,3]": "restored"}
+    with pytest.raises(DerivationError, match="outside A"):
+        load_derivation(_write(tmp_path, ok.replace('"A[3,3]"', '"A[4,1]"')))
+    with pytest.raises(DerivationError, match="no matrix C"):
+        load_derivation(_write(tmp_path, ok.replace('"A[3,3]"', '"C[1,1]"')))
+
+
+def test_missing_elements_are_recorded(tmp_path):
+    d = load_derivation(_write(tmp_path, GOOD.replace("[0, m*d**2, 0]", "[0, ?, 0]")))
+    assert d.missing == ("A[2,2]",)
+    assert d.A[1, 1] is sympy.nan
+
+
+def test_equations_need_one_equals_sign_and_n_rows(tmp_path):
+    head = GOOD.split("[matrices]")[0] + "[matrices]\nequations = [\n"
+    with pytest.raises(DerivationError, match="2 equations for 3 positions"):
+        load_derivation(_write(tmp_path, head + '"m*ddx = 0", "m*ddpsi = 0"]\n'))
+    with pytest.raises(DerivationError) as err:
+        load_derivation(_write(tmp_path, head + '"m*ddx == 0", "m*ddpsi = 0", "ddphi = 0"]\n'))
+    assert err.value.item == "equation 1"
+
+
+def test_builtin_group_unknown():
+    with pytest.raises(InputFileError, match="seed001"):
+        builtin_derivations("nonexistent_group")
