@@ -15,8 +15,8 @@ from .errors import DerivationNameError
 from .expressions import (KHALIL_FUNCTIONS, KHALIL_NAMES, STANDARD_FUNCTIONS,
                           parse_expression, parse_model_expression, parse_units, real_symbol)
 from .matrices import MISSING_ELEMENT
-from .parse import (builtin_derivations, builtin_groups, builtin_tables, load_derivation,
-                    load_derivations)
+from .builtin import builtin_derivations, builtin_groups, builtin_tables, derivation_files
+from .parse import load_derivation, load_derivations
 from .readoff import EquationTerms, split_equation_terms
 from .schema import CoordinateSpec, Derivation, SymbolSpec
 from .table import ComparisonTable, TableEntry, load_comparison_table
@@ -25,7 +25,7 @@ __all__ = [
     "BUILTIN_COORDINATE_SETS", "BuiltinSet", "ComparisonTable", "CoordinateSpec", "Derivation",
     "DerivationNameError", "EquationTerms", "KHALIL_FUNCTIONS", "KHALIL_NAMES",
     "MISSING_ELEMENT", "STANDARD_FUNCTIONS", "SymbolSpec", "TableEntry", "builtin_derivations",
-    "builtin_groups", "builtin_tables", "load_comparison_table", "load_derivation",
+    "builtin_groups", "builtin_tables", "derivation_files", "load_comparison_table", "load_derivation",
     "load_derivations", "parse_expression", "parse_model_expression", "parse_units",
     "real_symbol", "split_equation_terms",
 ]

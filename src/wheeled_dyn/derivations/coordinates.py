@@ -200,6 +200,9 @@ def coordinate_spec(path: Path, table: Mapping[str, Any], names: CoordinateNames
                                   "model coordinates as expressions of the document's",
                                   line_of(None))
         for model_name, text in raw_conf.items():
+            if not model_name.isidentifier():
+                raise DerivationError(path, f"coordinates.configuration.{model_name}",
+                                      "not a model coordinate name", line_of("configuration"))
             configuration[model_name] = parse_doc(text, f"coordinates.configuration.{model_name}",
                                                   "configuration")
         if names.kind == "quasi":

@@ -1,5 +1,4 @@
-r"""Loading derivation files: :func:`load_derivation`, :func:`load_derivations`,
-:func:`builtin_derivations`.
+r"""Loading derivation files: :func:`load_derivation`, :func:`load_derivations`.
 
 The loader reads the TOML (``tomllib``), declares every document name (positions, velocities,
 accelerations, ``[symbols]``, ``[assume]``, ``[definitions]``), parses every expression in
@@ -27,13 +26,13 @@ from typing import Any
 
 import sympy
 
-from ..errors import DerivationError, InputFileError
-from ..paths import DATA_DIR
+from ..errors import DerivationError
+from .builtin import derivation_files
 from .coordinates import coordinate_names, coordinate_spec
 from .errors import DerivationNameError
 from .expressions import (RESERVED_NAMES, ExpressionError, UndeclaredNameError,
                           parse_expression, parse_model_expression, parse_units, real_symbol,
-                          scan_names, split_nested)
+                          scan_names)
 from .matrices import MatrixReader
 from .schema import Derivation, SymbolSpec
 from .source import SourceText, read_toml
@@ -42,10 +41,6 @@ TOP_LEVEL_KEYS: tuple[str, ...] = ("title", "model", "source", "coordinates", "i
                                    "symbols", "assume", "definitions", "rows", "matrices",
                                    "constraints", "reconstructed")
 SYMBOL_KEYS: tuple[str, ...] = ("value", "units", "meaning", "input", "free", "latex")
-#: Folder of the shipped derivation files, one sub-folder per group.
-BUILTIN_DIR = DATA_DIR / "derivations"
-#: Files in a group folder whose name ends so are comparison tables, not derivations.
-TABLE_SUFFIX = "_table.toml"
 
 
 class _Loader:
@@ -253,6 +248,9 @@ def load_derivation(path: str | Path, *, parameters: Collection[str] | None = No
 
     inputs = {}
     for model_input, text in ld.table("inputs").items():
+        if not model_input.isidentifier():
+            raise ld.fail(f"inputs.{model_input}", "not a model input name",
+                          ld.line("inputs", model_input))
         inputs[model_input] = ld.expr(text, f"inputs.{model_input}", "inputs", model_input)
     used = set().union(*(e.free_symbols for e in inputs.values())) if inputs else set()
     for u in input_symbols:
@@ -310,42 +308,8 @@ def load_derivation(path: str | Path, *, parameters: Collection[str] | None = No
         namespace=MappingProxyType(dict(ld.names)))
 
 
-def _files(paths: Iterable[str | Path]) -> list[Path]:
-    files: list[Path] = []
-    for entry in paths:
-        p = Path(entry)
-        if p.is_dir():
-            files.extend(f for f in sorted(p.glob("*.toml")) if not f.name.endswith(TABLE_SUFFIX))
-        else:
-            files.append(p)
-    return files
-
-
 def load_derivations(paths: Iterable[str | Path], *, parameters: Collection[str] | None = None,
                      links: Collection[str] | None = None) -> list[Derivation]:
     r"""Load several files; a folder stands for its ``*.toml`` derivation files (sorted,
     comparison tables ``*_table.toml`` left out)."""
-    return [load_derivation(f, parameters=parameters, links=links) for f in _files(paths)]
-
-
-def builtin_groups() -> list[str]:
-    r"""Names of the groups of shipped derivation files (``seed001``, ...)."""
-    return sorted(d.name for d in BUILTIN_DIR.iterdir() if d.is_dir()) if BUILTIN_DIR.is_dir() else []
-
-
-def builtin_derivations(group: str = "seed001") -> list[Path]:
-    r"""Paths of the shipped derivation files of ``group`` (sorted; tables left out). Raises
-    :class:`~wheeled_dyn.errors.InputFileError` for an unknown group."""
-    folder = BUILTIN_DIR / group
-    if not folder.is_dir():
-        raise InputFileError(folder, f"no built-in derivation group {group!r}; groups: "
-                             + (", ".join(builtin_groups()) or "none"))
-    return _files([folder])
-
-
-def builtin_tables(group: str = "seed001") -> list[Path]:
-    r"""Paths of the shipped comparison tables (``*_table.toml``) of ``group``."""
-    folder = BUILTIN_DIR / group
-    if not folder.is_dir():
-        raise InputFileError(folder, f"no built-in derivation group {group!r}")
-    return sorted(folder.glob("*" + TABLE_SUFFIX))
+    return [load_derivation(f, parameters=parameters, links=links) for f in derivation_files(paths)]
