@@ -168,3 +168,22 @@ def test_seed_table_loads_and_is_self_consistent():
     A = t.matrix("A", "derived")
     eq25 = _by_name()["eq25_lagrange"]
     assert A[2, 2] == t.namespace["ZZ1"] and A.shape == eq25.A.shape
+
+
+def test_value_names_exist_in_the_models():
+    r"""Cross-check against the model code: every value expression of the shipped files names
+    parameters and links the model has (the parser itself does not import the models)."""
+    import dataclasses
+
+    wip_parameters = pytest.importorskip("wheeled_dyn.models.wip_parameters")
+    physical = {f.name for f in dataclasses.fields(wip_parameters.WipParameters)}
+    names = {
+        "wip": (physical | {"R", "L", "g"}, {"body", "wheel_left", "wheel_right"}),
+        "wip_platform": ({"R", "L", "g"}, {"platform", "pendulum", "wheel_left", "wheel_right"}),
+    }
+    paths = builtin_derivations("seed001")
+    for path in paths:
+        model = load_derivation(path).model
+        parameters, links = names[model]
+        d = load_derivation(path, parameters=parameters, links=links)
+        assert d.model == model
