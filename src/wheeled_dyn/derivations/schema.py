@@ -133,10 +133,14 @@ class Derivation:
             raise UnknownNameError("document name", name, self.namespace,
                                    where=str(self.path)) from None
 
-    def _assumed(self, expr: sympy.Basic, assume: bool) -> sympy.Basic:
-        if not assume or not self.assumptions:
+    def apply_assumptions(self, expr: sympy.Basic) -> sympy.Basic:
+        r"""``expr`` with the ``[assume]`` names replaced by their values (usually 0)."""
+        if not self.assumptions:
             return expr
         return expr.xreplace({self.namespace[k]: v for k, v in self.assumptions.items()})
+
+    def _assumed(self, expr: sympy.Basic, assume: bool) -> sympy.Basic:
+        return self.apply_assumptions(expr) if assume else expr
 
     def read_off(self, *, assume: bool = True, unscale: bool = False) -> EquationTerms:
         r"""A, h = C q̇, Q and B of the document.
