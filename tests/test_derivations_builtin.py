@@ -108,6 +108,7 @@ def test_report3_scale_and_assumptions():
     r = d.symbol("r")
     assert d.row_scale == (r, sympy.Integer(1))
     assert set(d.assumptions) == {"tau_f", "F_ext"}
+    assert d.apply_assumptions(d.symbol("tau_f") + d.symbol("F_ext") + 1) == 1
     assert all(v == 0 for v in d.assumptions.values())
     full = d.read_off(assume=False)
     assert [str(u) for u in full.inputs] == ["u", "tau_f", "F_ext"]
