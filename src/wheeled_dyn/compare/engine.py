@@ -1,0 +1,534 @@
+r"""The comparison engine: a document's derivation against the truth, element by element.
+
+For a :class:`~wheeled_dyn.derivations.schema.Derivation`:
+
+1. K random physically consistent parameter sets of its model and N random states each;
+2. the truth in the document's coordinates (:mod:`.evaluate`), the document's numbers;
+3. rows the document multiplied by a constant it did not declare (e.g. Kane's generalised
+   inertia forces :math:`F^* = -(A\ddot q + h)`) are detected and divided out first;
+4. a verdict per element of A, C, Q, B and per velocity product of h (:mod:`.diagnose`),
+   "agrees only if ..." from special parameter families (:mod:`.samples`), the difference
+   between "C differs" (factorisation only, when :math:`C\dot q` agrees) and "the equations
+   differ", units term by term (:mod:`.units`);
+5. checks of the document on its own: A symmetric, and the power identity
+   :math:`\nu^T h = \tfrac12\nu^T\dot A\nu` (gyroscopic forces do no work) — a model that fails
+   it does not conserve energy.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import sympy as sp
+
+from ..constraints.reduction import CoordinateMap
+from ..derivations.schema import Derivation
+from . import closed_form
+from .diagnose import AGREE_TOL, agrees, max_error, nice_number, swap_diagnoses, value_diagnoses
+from .evaluate import (Arrays, DocumentFunctions, derivation_coordinate_set,
+                       document_symbol_values, truth_arrays)
+from .samples import ParameterSet, SpecialCase, parameter_sets, random_states, special_cases
+from .units import DimensionChecker
+
+VERDICTS = ("agrees", "agrees_if", "factorization", "differs")
+#: Smaller grid used to test special parameter families.
+SPECIAL_SAMPLES, SPECIAL_SETS = 40, 2
+#: Candidate undeclared row factors, and how far an element's own ratio may be from one.
+ROW_FACTORS = (1.0, -1.0, 2.0, -2.0, 0.5, -0.5)
+ROW_FACTOR_SPREAD = 0.35
+
+
+@dataclass(frozen=True)
+class ElementRecord:
+    r"""One element's comparison. ``element`` is labelled as documents do (1-based):
+    ``A[2,1]``, ``C[3,2]``, ``Q[3]``, ``B[1,2]``, ``h[1]:dpsi*dpsi``."""
+
+    element: str
+    key: str
+    index: tuple[int, ...]
+    verdict: str
+    diagnoses: tuple[str, ...]
+    document: str
+    document_model: str
+    truth: str | None
+    residual: str | None
+    max_error: float
+    scale: float
+
+    def as_dict(self) -> dict[str, object]:
+        return {"element": self.element, "verdict": self.verdict, "diagnoses": list(self.diagnoses),
+                "document": self.document, "document_model": self.document_model,
+                "truth": self.truth, "residual": self.residual, "max_error": self.max_error,
+                "scale": self.scale}
+
+
+@dataclass(frozen=True)
+class EnergyCheck:
+    r"""The power identity of the document on its own."""
+
+    conserves: bool
+    max_power: float
+    residual: str
+
+    def as_dict(self) -> dict[str, object]:
+        return {"conserves": self.conserves, "max_power": self.max_power, "residual": self.residual}
+
+
+@dataclass(frozen=True)
+class DerivationResult:
+    r"""Everything the reports show of one derivation."""
+
+    path: Path
+    title: str
+    model: str
+    source: Mapping[str, str]
+    coordinates: str
+    velocities: tuple[str, ...]
+    form: str
+    records: tuple[ElementRecord, ...]
+    row_factors: tuple[str | None, ...]
+    energy: EnergyCheck | None
+    asymmetric: tuple[str, ...]
+    constraints: tuple[str, ...]
+    reconstructed: Mapping[str, str]
+    samples: int
+    parameter_sets: int
+    notes: tuple[str, ...] = field(default=())
+
+    def counts(self) -> dict[str, int]:
+        out = {v: 0 for v in VERDICTS}
+        for r in self.records:
+            out[r.verdict] += 1
+        return out
+
+    def typos(self) -> list[ElementRecord]:
+        keys = ("sign:", "factor:", "swap:", "dimension")
+        return [r for r in self.records if r.verdict == "differs"
+                and any(d.startswith(keys) for d in r.diagnoses)]
+
+    def missing(self) -> list[ElementRecord]:
+        typo = {id(r) for r in self.typos()}
+        return [r for r in self.records if r.verdict == "differs" and id(r) not in typo]
+
+    def as_dict(self) -> dict[str, object]:
+        return {"path": str(self.path), "title": self.title, "model": self.model,
+                "source": dict(self.source), "coordinates": self.coordinates,
+                "velocities": list(self.velocities), "form": self.form,
+                "counts": self.counts(), "row_factors": list(self.row_factors),
+                "energy": self.energy.as_dict() if self.energy else None,
+                "asymmetric": list(self.asymmetric), "constraints": list(self.constraints),
+                "reconstructed": dict(self.reconstructed), "samples": self.samples,
+                "parameter_sets": self.parameter_sets, "notes": list(self.notes),
+                "records": [r.as_dict() for r in self.records]}
+
+
+def _text(expr: sp.Expr | None) -> str:
+    return "" if expr is None else sp.sstr(expr)
+
+
+def _label(key: str, index: tuple[int, ...], velocities: Sequence[sp.Symbol]) -> str:
+    if key in ("Q",):
+        return f"Q[{index[0] + 1}]"
+    if key == "h":
+        i, j, k = index
+        return f"h[{i + 1}]:{velocities[j]}*{velocities[k]}"
+    return f"{key}[{index[0] + 1},{index[1] + 1}]"
+
+
+class ComparisonEngine:
+    r"""Compares derivations; caches the truth per (model, coordinate set, parameter family)
+    so derivations sharing coordinates share the work."""
+
+    def __init__(self, samples: int = 1000, param_sets: int = 5, seed: int = 2026) -> None:
+        self.samples = samples
+        self.param_sets = param_sets
+        self.seed = seed
+        self._truth: dict[tuple, tuple[Arrays, list[ParameterSet], np.ndarray, np.ndarray]] = {}
+        self._maps: dict[tuple, CoordinateMap] = {}
+
+    # -- the two sides -------------------------------------------------------------------
+    def _grid(self, d: Derivation, special: tuple[SpecialCase, ...], n_states: int, k: int):
+        key = (d.model, repr(d.coordinates.raw), d.coordinates.use,
+               tuple(c.name for c in special), n_states, k)
+        if key not in self._truth:
+            rng = np.random.default_rng([self.seed, len(special), n_states])
+            sets = parameter_sets(d.model, k, rng, special)
+            cs = derivation_coordinate_set(d, sets[0])
+            mkey = (d.model, repr(cs))
+            if mkey not in self._maps:
+                self._maps[mkey] = CoordinateMap(sets[0].model, cs)
+            cmap = self._maps[mkey]
+            q, nu = random_states(cs_n := len(cs.positions), k * n_states, rng)
+            q, nu = q.reshape(k, n_states, cs_n), nu.reshape(k, n_states, cs_n)
+            bound = []
+            for ps in sets:
+                bound.append(cmap)
+            truth = _truth_for(cmap, sets, q, nu)
+            self._truth[key] = (truth, sets, q, nu, cs.name)
+        return self._truth[key]
+
+    def _document(self, d: Derivation, funcs: DocumentFunctions, sets, q, nu):
+        rng = np.random.default_rng(self.seed + 1)
+        k, n_states, n = q.shape
+        per_set = [document_symbol_values(d, ps, rng) for ps in sets]
+        values = {s: np.repeat([v[s] for v in per_set], n_states) for s in funcs.params}
+        return funcs.evaluate(q.reshape(-1, n), nu.reshape(-1, n), values), per_set
+
+    # -- main ----------------------------------------------------------------------------
+    def compare(self, d: Derivation) -> DerivationResult:
+        terms = d.read_off(assume=True, unscale=True)
+        n = d.n
+        C = d.C
+        if C is not None and d.row_scale is not None:
+            C = sp.ImmutableMatrix(sp.diag(*[1 / s for s in d.row_scale]) * C)
+        if C is not None and d.assumptions:
+            C = sp.ImmutableMatrix(d._assumed(C, True))
+        G = d.G if d.G is not None else d.constraint_matrix()
+        funcs = DocumentFunctions(d, terms.A, C, terms.Q, terms.B, terms.h, G)
+        as_printed = d.read_off(assume=True, unscale=False)
+        printed = {"A": as_printed.A, "Q": as_printed.Q, "B": as_printed.B, "h": as_printed.h,
+                   "C": d.C}
+        truth, sets, q, nu, cs_name = self._grid(d, (), self.samples, self.param_sets)
+        doc, per_set = self._document(d, funcs, sets, q, nu)
+        notes: list[str] = []
+        B_true = _input_map(d, truth, per_set, self.samples, notes)
+        row_factor = _row_factors(doc, truth, B_true, n)
+        _apply_row_factors(doc, row_factor)
+        scales = _row_scales(doc, truth, n)
+        dims = DimensionChecker(d)
+        mapped = closed_form.document_in_model(d)
+        records = []
+        groups = _swap_groups(d)
+        flat_q, flat_nu = q.reshape(-1, n), nu.reshape(-1, n)
+        values = {s: np.repeat([v[s] for v in per_set], self.samples) for s in funcs.params}
+
+        argv = [*flat_q.T, *flat_nu.T, *(values[p] for p in funcs.params)]
+        position = {a: k for k, a in enumerate(funcs.args)}
+
+        def swapped(key, index, a, b):
+            r"""The element with symbol ``a`` read as ``b`` (argument arrays permuted)."""
+            trial = list(argv)
+            trial[position[a]] = argv[position[b]]
+            out = np.broadcast_to(funcs.element_function(key, index)(*trial), (len(flat_q),))
+            c = row_factor[index[0]]
+            return out.astype(float) / (c if c is not None else 1.0)
+
+        arrays: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+        for key, D, T, index, expr in _elements(funcs, doc, truth, B_true, n):
+            i = index[0]
+            scale = scales[i]
+            problems = dims.check(key, index, expr) if key != "h" else []
+            ok = agrees(D, T, scale)
+            diags: list[str] = [f"dimension: {p}" for p in problems]
+            if ok and problems:
+                diags.append("numerically equal here only because the inconsistent term "
+                             "vanishes for this model's parameters")
+            if not ok:
+                diags += value_diagnoses(D, T, scale)
+                if expr is not None and key != "h" and not any(
+                        x.startswith(("sign", "factor", "extra")) for x in diags):
+                    diags += swap_diagnoses(expr, groups, lambda a, b: swapped(key, index, a, b),
+                                            T, scale)
+            verdict = "agrees" if ok and not problems else "differs"
+            records.append(dict(element=_label(key, index, d.velocities), key=key, index=index,
+                                verdict=verdict, diagnoses=diags,
+                                document=_text(_element_expr(printed, key, index, d.velocities)),
+                                document_model=mapped(expr) if expr is not None else "",
+                                truth=None, residual=None, max_error=max_error(D, T),
+                                scale=float(scale)))
+            arrays[id(records[-1])] = (D, T)
+        self._h_swaps(records, arrays)
+        self._factorization(records, n)
+        self._special(d, funcs, records, row_factor)
+        closed_form.annotate(d, records, cs_name)
+        energy = _energy(funcs, doc, row_factor, flat_q, flat_nu, values, d)
+        asym = _asymmetric(doc, scales, n)
+        constraints = _constraints(doc, truth, scales)
+        return DerivationResult(
+            path=d.path, title=d.title, model=d.model, source=d.source, coordinates=cs_name,
+            velocities=tuple(str(v) for v in d.velocities), form=d.form,
+            records=tuple(ElementRecord(**r) for r in records),
+            row_factors=tuple(None if c is None else nice_number(c) for c in row_factor),
+            energy=energy, asymmetric=asym, constraints=constraints,
+            reconstructed=dict(d.reconstructed), samples=self.samples,
+            parameter_sets=self.param_sets, notes=tuple(notes))
+
+    # -- refinements ---------------------------------------------------------------------
+    @staticmethod
+    def _factorization(records: list[dict], n: int) -> None:
+        r"""C elements that differ while every h coefficient of their row agrees differ in
+        factorisation only."""
+        for i in range(n):
+            h_row = [r for r in records if r["key"] == "h" and r["index"][0] == i]
+            if not h_row or any(r["verdict"] != "agrees" for r in h_row):
+                continue
+            for r in records:
+                if r["key"] == "C" and r["index"][0] == i and r["verdict"] == "differs" \
+                        and not any(x.startswith("dimension") for x in r["diagnoses"]):
+                    r["verdict"] = "factorization"
+                    r["diagnoses"] = [f"C q̇ agrees in row {i + 1}: only the factorisation of "
+                                      "C differs, not the equations"]
+
+    def _special(self, d: Derivation, funcs: DocumentFunctions, records: list[dict],
+                 row_factor: Sequence[float | None]) -> None:
+        r"""For elements that differ, the smallest combinations of special parameter families
+        under which they agree."""
+        cases = special_cases(d.model)
+        todo = [r for r in records if r["verdict"] == "differs"
+                and not any(x.startswith(("dimension", "sign", "factor", "swap")) for x in r["diagnoses"])]
+        if not cases or not todo:
+            return
+
+        memo: dict[tuple[str, ...], set] = {}
+
+        def agreeing(combo):
+            key = tuple(c.name for c in combo)
+            if key not in memo:
+                memo[key] = _agreeing(combo)
+            return memo[key]
+
+        def _agreeing(combo):
+            truth, sets, q, nu, _ = self._grid(d, combo, SPECIAL_SAMPLES, SPECIAL_SETS)
+            doc, per_set = self._document(d, funcs, sets, q, nu)
+            B_true = _input_map(d, truth, per_set, SPECIAL_SAMPLES, [])
+            _apply_row_factors(doc, row_factor)
+            scales = _row_scales(doc, truth, d.n)
+            ok = set()
+            for key, D, T, index, _ in _elements(funcs, doc, truth, B_true, d.n):
+                if agrees(D, T, scales[index[0]]):
+                    ok.add((key, index))
+            return ok
+
+        everything = agreeing(tuple(cases))
+        for r in todo:
+            if (r["key"], r["index"]) not in everything:
+                continue
+            # greedy: drop each case that is not needed; what remains is a minimal set
+            needed = list(cases)
+            for case in cases:
+                trial = tuple(c for c in needed if c is not case)
+                if (r["key"], r["index"]) in agreeing(trial):
+                    needed = list(trial)
+            r["verdict"] = "agrees_if"
+            text = " and ".join(c.description for c in needed) if needed else "always"
+            r["diagnoses"] = [f"agrees only if {text}"] + [
+                x for x in r["diagnoses"] if not x.startswith(("missing", "extra"))] + [
+                x for x in r["diagnoses"] if x.startswith(("missing", "extra"))]
+
+    @staticmethod
+    def _h_swaps(records: list[dict], values: dict) -> None:
+        r"""Within a row of h, an extra term equal to a missing one: the document wrote one
+        velocity product for another (e.g. φ̇² where ψ̇² fits)."""
+        for r_extra in records:
+            if r_extra["key"] != "h" or not any(x.startswith("extra") for x in r_extra["diagnoses"]):
+                continue
+            for r_miss in records:
+                if r_miss["key"] != "h" or r_miss["index"][0] != r_extra["index"][0] \
+                        or not any(x.startswith("missing") for x in r_miss["diagnoses"]):
+                    continue
+                D, T = values[id(r_extra)][0], values[id(r_miss)][1]
+                if agrees(D, T, r_extra["scale"]):
+                    a = r_extra["element"].split(":")[1]
+                    b = r_miss["element"].split(":")[1]
+                    r_extra["diagnoses"].append(f"swap: the document's {a} term is the true {b} term")
+                    r_miss["diagnoses"].append(f"swap: written as {a} in the document")
+
+
+def _truth_for(cmap: CoordinateMap, sets, q, nu) -> Arrays:
+    r"""The truth at every parameter set (B in the model's inputs)."""
+    parts = []
+    for k, ps in enumerate(sets):
+        cmap.bind(ps.model)
+        parts.append(truth_arrays([cmap], q[k:k + 1], nu[k:k + 1], None))
+    out = Arrays()
+    for name in ("A", "C", "Q", "B", "h", "H", "G"):
+        vals = [getattr(p, name) for p in parts]
+        setattr(out, name, None if vals[0] is None else np.concatenate(vals))
+    return out
+
+
+def _input_map(d: Derivation, truth: Arrays, per_set, n_states: int, notes: list[str]):
+    r"""The truth's B in the document's inputs: :math:`B\,\partial\tau/\partial u_{doc}`."""
+    if not d.input_symbols or not d.inputs:
+        if d.input_symbols:
+            notes.append("the file maps no model input to the document's inputs: B not compared")
+        return None
+    from ..models.registry import load_model
+    names = load_model(d.model).input_names
+    f = sp.Matrix([d.inputs.get(name, 0) for name in names])
+    P = f.jacobian(sp.Matrix(d.input_symbols))
+    Ps = np.stack([np.array(P.xreplace(v), dtype=float) for v in per_set])
+    Ps = np.repeat(Ps, n_states, axis=0)
+    return truth.B @ Ps
+
+
+def _element_expr(exprs: Mapping[str, object], key: str, index: tuple[int, ...],
+                  velocities: Sequence[sp.Symbol]) -> sp.Expr | None:
+    r"""The expression of one element (for h: the coefficient of a velocity product)."""
+    M = exprs.get(key if key != "h" else "h")
+    if M is None:
+        return None
+    if key == "Q":
+        return M[index[0]]
+    if key == "h":
+        i, j, k = index
+        h = _expanded(M[i])
+        if j == k:
+            return h.coeff(velocities[j], 2)
+        return h.coeff(velocities[j], 1).coeff(velocities[k], 1)
+    return M[index]
+
+
+_EXPANDED: dict[sp.Expr, sp.Expr] = {}
+
+
+def _expanded(expr: sp.Expr) -> sp.Expr:
+    if expr not in _EXPANDED:
+        _EXPANDED[expr] = sp.expand(expr)
+    return _EXPANDED[expr]
+
+
+def _elements(funcs: DocumentFunctions, doc: Arrays, truth: Arrays, B_true, n: int):
+    r"""(key, document values, true values, index, document expression) of every element."""
+    ex, vel = funcs.exprs, funcs.d.velocities
+    if doc.A is not None:
+        for i in range(n):
+            for j in range(n):
+                yield "A", doc.A[:, i, j], truth.A[:, i, j], (i, j), ex["A"][i, j]
+    if doc.C is not None:
+        for i in range(n):
+            for j in range(n):
+                yield "C", doc.C[:, i, j], truth.C[:, i, j], (i, j), ex["C"][i, j]
+    if doc.Q is not None:
+        for i in range(n):
+            yield "Q", doc.Q[:, i], truth.Q[:, i], (i,), ex["Q"][i]
+    if doc.B is not None and B_true is not None:
+        for i in range(n):
+            for j in range(doc.B.shape[2]):
+                yield "B", doc.B[:, i, j], B_true[:, i, j], (i, j), ex["B"][i, j]
+    if doc.H is not None:
+        for i in range(n):
+            for j in range(n):
+                for k in range(j, n):
+                    w = 1.0 if j == k else 2.0
+                    yield ("h", w * doc.H[:, i, j, k], w * truth.H[:, i, j, k], (i, j, k),
+                           _element_expr(ex, "h", (i, j, k), vel))
+
+
+def _row_factors(doc: Arrays, truth: Arrays, B_true, n: int) -> list[float | None]:
+    r"""A constant :math:`c_i` with document row i = :math:`c_i` × true row i that the file did
+    not declare (e.g. −1 for Kane's generalised inertia forces :math:`F^* = -(A\ddot q + h)`).
+
+    Each nonzero element of the row (A's row, Q, B) votes for the candidate of
+    :data:`ROW_FACTORS` nearest its own least-squares ratio (within
+    :data:`ROW_FACTOR_SPREAD`); a candidate other than 1 with a strict majority is the row's
+    factor. Voting keeps a single wrong coefficient (e.g. 3(m_c + m_s)) from scaling a row."""
+    out: list[float | None] = []
+    for i in range(n):
+        votes: list[float | None] = []
+        pairs = []
+        if doc.A is not None:
+            pairs += [(doc.A[:, i, j], truth.A[:, i, j]) for j in range(doc.A.shape[2])]
+        if doc.Q is not None:
+            pairs.append((doc.Q[:, i], truth.Q[:, i]))
+        if doc.B is not None and B_true is not None:
+            pairs += [(doc.B[:, i, j], B_true[:, i, j]) for j in range(doc.B.shape[2])]
+        for D, T in pairs:
+            tt = float(T @ T)
+            if tt <= 0 or float(D @ D) <= 0:
+                continue
+            c = float(D @ T / tt)
+            best = min(ROW_FACTORS, key=lambda f: abs(c - f))
+            votes.append(best if abs(c - best) <= ROW_FACTOR_SPREAD * abs(best) else None)
+        winner = None
+        for f in ROW_FACTORS:
+            if f != 1.0 and votes and sum(v == f for v in votes) * 2 > len(votes):
+                winner = f
+        out.append(winner)
+    return out
+
+
+def _apply_row_factors(doc: Arrays, factors) -> None:
+    for i, c in enumerate(factors):
+        if c is None:
+            continue
+        for name in ("A", "C", "Q", "B", "h", "H"):
+            M = getattr(doc, name)
+            if M is not None:
+                M[:, i] = M[:, i] / c
+
+
+def _row_scales(doc: Arrays, truth: Arrays, n: int) -> np.ndarray:
+    s = np.zeros(n)
+    for arrays in (doc, truth):
+        for name in ("A", "C", "Q", "H"):
+            M = getattr(arrays, name)
+            if M is not None:
+                s = np.maximum(s, np.abs(M.reshape(M.shape[0], n, -1)).max(axis=(0, 2)))
+    return np.where(s > 0, s, 1.0)
+
+
+def _swap_groups(d: Derivation) -> list[list[sp.Symbol]]:
+    by_units: dict[str, list[sp.Symbol]] = {}
+    for spec in d.symbols.values():
+        if not spec.is_input and spec.units:
+            by_units.setdefault(spec.units.replace(" ", ""), []).append(spec.symbol)
+    return [list(d.velocities), list(d.positions), *[g for g in by_units.values() if len(g) > 1]]
+
+
+def _energy(funcs: DocumentFunctions, doc: Arrays, row_factor, q, nu, values, d: Derivation):
+    r"""Power identity of the document on its own (rows divided by their detected factors)."""
+    A, h = funcs.exprs["A"], funcs.exprs["h"]
+    if A is None or h is None:
+        return None
+    scale = sp.diag(*[1 if c is None else sp.nsimplify(1 / c) for c in row_factor])
+    A = scale * sp.Matrix(A)
+    h = scale * sp.Matrix(h)
+    v = sp.Matrix(d.velocities)
+    Adot = sum((A.diff(p) * dp for p, dp in zip(d.positions, d.velocities)), sp.zeros(d.n, d.n))
+    power = (v.T * h)[0] - (v.T * Adot * v)[0] / 2
+    fn = sp.lambdify(funcs.args, power, "numpy")
+    fh = sp.lambdify(funcs.args, (v.T * h)[0], "numpy")
+    argv = [*q.T, *nu.T, *(values[p] for p in funcs.params)]
+    P = np.broadcast_to(fn(*argv), (len(q),))
+    ref = max(float(np.abs(np.broadcast_to(fh(*argv), (len(q),))).max()), 1e-12)
+    conserves = bool(np.abs(P).max() <= AGREE_TOL * ref * 10)
+    residual = "0" if conserves else sp.sstr(sp.factor_terms(sp.trigsimp(sp.expand(power))))
+    return EnergyCheck(conserves, float(np.abs(P).max()), residual)
+
+
+def _asymmetric(doc: Arrays, scales, n: int) -> tuple[str, ...]:
+    if doc.A is None:
+        return ()
+    out = []
+    for i in range(n):
+        for j in range(i + 1, n):
+            if not agrees(doc.A[:, i, j], doc.A[:, j, i], max(scales[i], scales[j])):
+                out.append(f"A[{i + 1},{j + 1}] ≠ A[{j + 1},{i + 1}]")
+    sym = 0.5 * (doc.A + np.swapaxes(doc.A, 1, 2))
+    lowest = np.linalg.eigvalsh(sym)[:, 0] / np.maximum(np.abs(sym).max(axis=(1, 2)), 1e-300)
+    if (lowest <= AGREE_TOL).any():
+        out.append(f"A is not positive definite at {int((lowest <= AGREE_TOL).sum())} of "
+                   f"{len(lowest)} samples (smallest eigenvalue {lowest.min():.2g} × its largest entry)")
+    return tuple(out)
+
+
+def _constraints(doc: Arrays, truth: Arrays, scales) -> tuple[str, ...]:
+    r"""Is each row of the document's G a combination of the true constraint rows?"""
+    if doc.G is None:
+        return ()
+    if truth.G is None:
+        return ("the document keeps constraints the coordinate set eliminates: G not compared",)
+    out = []
+    Gt = truth.G
+    proj = np.linalg.pinv(Gt) @ Gt                      # projector on the true row space
+    for r in range(doc.G.shape[1]):
+        row = doc.G[:, r, :]
+        off = np.einsum("si,sij->sj", row, proj) - row
+        worst = float((np.abs(off).max(axis=1) / np.maximum(np.abs(row).max(axis=1), 1e-12)).max())
+        out.append(f"G row {r + 1}: " + ("a rolling constraint of the model" if worst < 1e-6 else
+                                          f"not a rolling constraint of the model (off by {worst:.2g})"))
+    return tuple(out)

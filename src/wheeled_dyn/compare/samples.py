@@ -1,0 +1,117 @@
+r"""Random, physically consistent parameter sets and the values of a model's parameter names.
+
+A comparison evaluates the document and the truth over K parameter sets × N states. Agreement
+at one set of numbers can hide errors (a product of inertia that happens to be 0 hides every
+term it multiplies), so the sets are random with every product of inertia and centre-of-mass
+offset nonzero. *Special cases* restrict them (e.g. products of inertia zero): an element that
+agrees under a special case only is reported as "agrees only if ...".
+
+The model namespace a derivation's symbols are written in: the physical parameters of the
+model's record (``m_S, d, I1, ...`` for the WIP), the geometric ``R`` (wheel radius), ``L``
+(half track), ``g``, and Khalil's standard parameters of each link, keyed ``XX(body)``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+
+import numpy as np
+import pinocchio as pin
+
+from ..errors import ParameterError
+from ..models.builder import WheeledModel
+from ..models.registry import load_model, model_entry, model_parameters
+from ..models.wip_parameters import WipParameters, random_wip_parameters
+
+
+@dataclass(frozen=True)
+class SpecialCase:
+    r"""A named restriction of the parameters (applied to a random set)."""
+
+    name: str
+    description: str
+    apply: Callable[[WipParameters], WipParameters]
+
+
+WIP_SPECIAL_CASES: tuple[SpecialCase, ...] = (
+    SpecialCase("no_products", "the body's products of inertia are zero (Ixy = Ixz = Iyz = 0)",
+                lambda p: p.replace(Ixy=0.0, Ixz=0.0, Iyz=0.0)),
+    SpecialCase("com_on_axis", "the body's centre of mass is straight above the axle midpoint "
+                "(d_x = d_z = 0)", lambda p: p.replace(d_x=0.0, d_z=0.0)),
+    SpecialCase("disc_wheels", "the wheels are uniform thin discs (Iw3 = m_C R²/2, "
+                "Iw2 = m_C R²/4)", lambda p: p.replace(Iw3=p.m_C * p.R**2 / 2,
+                                                        Iw2=p.m_C * p.R**2 / 4)),
+    SpecialCase("I1_eq_I2", "the body's moments about the forward and vertical axes are equal "
+                "(I1 = I2)", lambda p: p.replace(I2=p.I1)),
+    SpecialCase("no_armature", "the motors add no rotor inertia (I_a = 0)",
+                lambda p: p.replace(I_a=0.0)),
+)
+
+
+@dataclass(frozen=True)
+class ParameterSet:
+    r"""A model with its parameters, and the values of every name of its namespace."""
+
+    model: WheeledModel
+    values: dict[str, float]
+    physical: WipParameters | None = None
+
+
+def namespace_values(wm: WheeledModel, physical: WipParameters | None) -> dict[str, float]:
+    values = model_parameters(wm)
+    if physical is not None:
+        values.update(physical.as_dict())
+    return values
+
+
+def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator) -> WheeledModel:
+    r"""Random, physically consistent inertias (log-Cholesky parameters) for every joint
+    that carries mass; a random gravity."""
+    model = pin.Model(wm.model)
+    for jid in range(1, model.njoints):
+        if model.inertias[jid].mass > 0:
+            base = model.inertias[jid].toDynamicParameters()
+            scale = np.log(max(base[0], 1e-3))
+            theta = rng.normal(size=10) * 0.3
+            theta[0] += 0.5 * scale / 3
+            model.inertias[jid] = pin.Inertia.FromLogCholeskyParameters(
+                pin.LogCholeskyParameters(theta))
+    model.gravity = pin.Motion(np.array([0.0, 0.0, -rng.uniform(5.0, 15.0)]), np.zeros(3))
+    return wm.with_model(model)
+
+
+def parameter_sets(model_name: str, k: int, rng: np.random.Generator,
+                   special: tuple[SpecialCase, ...] = ()) -> list[ParameterSet]:
+    r"""``k`` random parameter sets of the model, restricted by the ``special`` cases."""
+    entry = model_entry(model_name)
+    out: list[ParameterSet] = []
+    if entry.parameters is WipParameters:
+        while len(out) < k:
+            p = random_wip_parameters(rng)
+            try:
+                for case in special:
+                    p = case.apply(p)
+            except ParameterError:
+                continue                      # the restriction made it non-physical: redraw
+            wm = load_model(model_name, p)
+            out.append(ParameterSet(wm, namespace_values(wm, p), p))
+        return out
+    base = load_model(model_name)
+    for _ in range(k):
+        wm = _random_link_inertias(base, rng)
+        out.append(ParameterSet(wm, namespace_values(wm, None)))
+    return out
+
+
+def special_cases(model_name: str) -> tuple[SpecialCase, ...]:
+    return WIP_SPECIAL_CASES if model_entry(model_name).parameters is WipParameters else ()
+
+
+def random_states(n_positions: int, n: int, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
+    r"""``n`` states: positions uniform in [-π, π], velocities standard normal."""
+    return rng.uniform(-np.pi, np.pi, (n, n_positions)), rng.normal(size=(n, n_positions))
+
+
+__all__ = ["ParameterSet", "SpecialCase", "WIP_SPECIAL_CASES", "namespace_values",
+           "parameter_sets", "random_states", "special_cases", "replace"]
