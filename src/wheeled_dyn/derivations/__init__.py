@@ -14,8 +14,8 @@ from .coordinates import BUILTIN_COORDINATE_SETS, BuiltinSet
 from .errors import DerivationNameError
 from .expressions import (KHALIL_FUNCTIONS, KHALIL_NAMES, STANDARD_FUNCTIONS,
                           parse_expression, parse_model_expression, parse_units, real_symbol)
-from .matrices import MISSING_ELEMENT
 from .builtin import builtin_derivations, builtin_groups, builtin_tables, derivation_files
+from .matrices import MISSING_ELEMENT
 from .parse import load_derivation, load_derivations
 from .readoff import EquationTerms, split_equation_terms
 from .schema import CoordinateSpec, Derivation, SymbolSpec
@@ -25,7 +25,7 @@ __all__ = [
     "BUILTIN_COORDINATE_SETS", "BuiltinSet", "ComparisonTable", "CoordinateSpec", "Derivation",
     "DerivationNameError", "EquationTerms", "KHALIL_FUNCTIONS", "KHALIL_NAMES",
     "MISSING_ELEMENT", "STANDARD_FUNCTIONS", "SymbolSpec", "TableEntry", "builtin_derivations",
-    "builtin_groups", "builtin_tables", "derivation_files", "load_comparison_table", "load_derivation",
-    "load_derivations", "parse_expression", "parse_model_expression", "parse_units",
+    "builtin_groups", "builtin_tables", "derivation_files", "load_comparison_table",
+    "load_derivation", "load_derivations", "parse_expression", "parse_model_expression", "parse_units",
     "real_symbol", "split_equation_terms",
 ]
