@@ -22,14 +22,17 @@ the model are made exact where they are simple (:func:`exact_number`).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from fractions import Fraction
 
 import numpy as np
 import pinocchio as pin
 import sympy as sp
 
 from ..errors import ModelError
+from .trigpoly import TrigRing
 
 #: Joint kinds accepted, by Pinocchio short name: (kind, fixed axis or None for "unaligned").
 SUPPORTED_JOINTS: dict[str, tuple[str, tuple[int, int, int] | None]] = {
@@ -44,27 +47,41 @@ SUPPORTED_JOINTS: dict[str, tuple[str, tuple[int, int, int] | None]] = {
 }
 
 
+#: Largest denominator :func:`exact_number` accepts in a fraction or under a square root.
+EXACT_MAX_DENOMINATOR: int = 1000
+
+
+def _fraction(x: float, tolerance: float) -> Fraction | None:
+    f = Fraction(x).limit_denominator(EXACT_MAX_DENOMINATOR)
+    return f if abs(float(f) - x) <= tolerance * max(1.0, abs(x)) else None
+
+
 def exact_number(x: float, tolerance: float = 1e-12) -> sp.Expr:
     r"""A float as a SymPy number, exact where that is no harder to read.
 
-    ``0``, ``±1`` and integers become Integers; otherwise ``sympy.nsimplify(x, tolerance,
-    rational=False)`` is tried (it finds :math:`\sqrt{2}/2`, :math:`\pi/2`, :math:`1/5` ...) and
-    kept only if its text is at most one character longer than the float's shortest decimal
-    text; else the float is kept as a ``Float``.
+    Integers (``0``, ``±1`` ...) become Integers; a fraction :math:`p/q` or a square root
+    :math:`\pm\sqrt{p/q}` (:math:`q \le` :data:`EXACT_MAX_DENOMINATOR`, e.g. :math:`1/5`,
+    :math:`\sqrt{2}/2`) within ``tolerance`` (relative) is used if its text is at most one
+    character longer than the float's shortest decimal text; else the float is kept as a
+    ``Float``. This is what ``sympy.nsimplify(x, tolerance, rational=False)`` finds for such
+    values, without its integer-relation search (slow on the random floats of a URDF).
     """
     x = float(x)
-    if not np.isfinite(x):
+    if not math.isfinite(x):
         raise ModelError("<pinocchio>", None, f"non-finite number {x!r} in the model")
-    r = round(x)
-    if abs(x - r) <= tolerance * max(1.0, abs(x)):
-        return sp.Integer(r)
-    try:
-        cand = sp.nsimplify(x, tolerance=tolerance, rational=False)
-    except (ValueError, TypeError):  # pragma: no cover - nsimplify is robust for finite floats
-        cand = None
-    if cand is not None and cand.is_number and len(str(cand)) <= len(repr(x)) + 1 \
-            and abs(float(cand) - x) <= tolerance * max(1.0, abs(x)):
-        return cand
+    if abs(x - round(x)) <= tolerance * max(1.0, abs(x)):
+        return sp.Integer(round(x))
+    limit = len(repr(x)) + 1
+    f = _fraction(x, tolerance)
+    if f is not None:
+        r = sp.Rational(f.numerator, f.denominator)
+        if len(str(r)) <= limit:
+            return r
+    f2 = _fraction(x * x, tolerance)
+    if f2 is not None:
+        r = sp.sqrt(sp.Rational(f2.numerator, f2.denominator)) * (1 if x > 0 else -1)
+        if len(str(r)) <= limit and abs(float(r) - x) <= tolerance * max(1.0, abs(x)):
+            return r
     return sp.Float(x)
 
 
@@ -134,13 +151,37 @@ class JointKinematics:
     v: sp.Matrix
 
 
-def _expand(m: sp.Matrix) -> sp.Matrix:
-    return m.applyfunc(sp.expand)
+@dataclass(frozen=True)
+class RingKinematics:
+    r"""The same kinematics as ring elements of ``ring`` (canonical trigonometric form):
+    ``frames[j]`` maps ``"R", "p", "R_rel", "p_rel", "omega", "v"`` to nested lists (3×3 as
+    rows); ``extra`` holds the elements of the ``extra_exprs`` given."""
+
+    ring: TrigRing
+    frames: dict[int, dict[str, list]]
+    extra: list
 
 
-def forward_kinematics(model: pin.Model, q: Sequence[sp.Symbol],
-                       qd: Sequence[sp.Symbol]) -> tuple[JointKinematics, ...]:
-    r"""Symbolic placements and frame velocities of joints ``1 .. njoints-1``.
+def _mat(M: list[list], N: list[list], ring: TrigRing) -> list[list]:
+    return [[ring.reduce(sum((M[i][k] * N[k][j] for k in range(3)), ring.ring.zero))
+             for j in range(3)] for i in range(3)]
+
+
+def _matvec(M: list[list], v: list, ring: TrigRing) -> list:
+    return [ring.reduce(sum((M[i][k] * v[k] for k in range(3)), ring.ring.zero))
+            for i in range(3)]
+
+
+def _cross(a: list, b: list) -> list:
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
+def kinematics_in_ring(model: pin.Model, q: Sequence[sp.Symbol], qd: Sequence[sp.Symbol],
+                       extra_exprs: Sequence[sp.Expr] = (),
+                       extra_symbols: Sequence[sp.Symbol] = ()) -> RingKinematics:
+    r"""Placements and frame velocities of joints ``1 .. njoints-1`` computed in one
+    :class:`~.trigpoly.TrigRing` (which also holds ``extra_exprs``, e.g. inertial parameters,
+    and has ``q``, ``qd`` and ``extra_symbols`` among its generators).
 
     ``q[k]``/``qd[k]`` are the symbols of the k-th velocity index (``model.joints[j].idx_v``).
     Raises :class:`ModelError` for joints that are not 1-DoF revolute/prismatic.
@@ -148,28 +189,74 @@ def forward_kinematics(model: pin.Model, q: Sequence[sp.Symbol],
     if len(q) != model.nv or len(qd) != model.nv:
         raise ModelError(getattr(model, "name", "") or "<pinocchio>", None,
                          f"{len(q)} coordinates and {len(qd)} velocities given for nv={model.nv}")
-    zero = sp.zeros(3, 1)
-    world: dict[int, tuple[sp.Matrix, sp.Matrix, sp.Matrix, sp.Matrix]] = {
-        0: (sp.eye(3), zero, zero, zero)}
-    out: list[JointKinematics] = []
+    joints = []
+    flat: list[sp.Expr] = list(extra_exprs)
     for j in range(1, model.njoints):
         kind, a = joint_kind(model, j)
         k = model.joints[j].idx_v
-        parent = model.parents[j]
         place = model.jointPlacements[j]
         Rp, pp = exact_matrix(place.rotation), exact_matrix(place.translation)
+        Rq = rodrigues(a, q[k]) if kind == "revolute" else sp.eye(3)
+        joints.append((j, kind, k))
+        flat += list(a) + list(Rp) + list(pp) + list(Rq)
+    ring, el = TrigRing.from_exprs(flat, extra=tuple(q) + tuple(qd) + tuple(extra_symbols))
+    extra, el = el[:len(extra_exprs)], el[len(extra_exprs):]
+    zero = ring.ring.zero
+    zv = [zero] * 3
+    eye = [[ring.ring.one if i == j else zero for j in range(3)] for i in range(3)]
+    frames: dict[int, dict[str, list]] = {0: {"R": eye, "p": zv, "omega": zv, "v": zv}}
+    for n_j, (j, kind, k) in enumerate(joints):
+        chunk = el[n_j * 24:(n_j + 1) * 24]
+        a, Rp, pp, Rq = chunk[:3], chunk[3:12], chunk[12:15], chunk[15:24]
+        Rp = [Rp[0:3], Rp[3:6], Rp[6:9]]
+        Rq = [Rq[0:3], Rq[3:6], Rq[6:9]]
+        qk, vk = ring.gen(q[k]), ring.gen(qd[k])
         if kind == "revolute":
-            Rx, px = _expand(Rp * rodrigues(a, q[k])), pp
+            Rx, px = _mat(Rp, Rq, ring), list(pp)
         else:
-            Rx, px = Rp, _expand(pp + Rp * a * q[k])
-        R0, p0, w0, v0 = world[parent]
-        Rt = Rx.T
-        omega = _expand(Rt * w0 + (a * qd[k] if kind == "revolute" else zero))
-        v = _expand(Rt * (v0 + w0.cross(px)) + (a * qd[k] if kind == "prismatic" else zero))
-        R, p = _expand(R0 * Rx), _expand(p0 + R0 * px)
-        world[j] = (R, p, omega, v)
-        out.append(JointKinematics(j, model.names[j], parent, kind, a, R, p, Rx, px, omega, v))
+            Rpa = _matvec(Rp, a, ring)
+            Rx, px = Rp, [pp[i] + Rpa[i] * qk for i in range(3)]
+        par = frames[model.parents[j]]
+        Rt = [[Rx[c][r] for c in range(3)] for r in range(3)]
+        omega = _matvec(Rt, par["omega"], ring)
+        lin = [par["v"][i] + w for i, w in enumerate(_cross(par["omega"], px))]
+        v = _matvec(Rt, lin, ring)
+        if kind == "revolute":
+            omega = [omega[i] + a[i] * vk for i in range(3)]
+        else:
+            v = [v[i] + a[i] * vk for i in range(3)]
+        Rpx = _matvec(par["R"], px, ring)
+        frames[j] = {"R": _mat(par["R"], Rx, ring), "p": [par["p"][i] + Rpx[i] for i in range(3)],
+                     "R_rel": Rx, "p_rel": px, "omega": omega, "v": v, "axis": a}
+    del frames[0]
+    return RingKinematics(ring=ring, frames=frames, extra=extra)
+
+
+def joint_kinematics(model: pin.Model, rk: RingKinematics) -> tuple[JointKinematics, ...]:
+    """SymPy records of :func:`kinematics_in_ring`'s frames."""
+    to = rk.ring.to_expr
+    out = []
+    for j, f in rk.frames.items():
+        kind, _ = joint_kind(model, j)
+
+        def m3(rows):
+            return sp.Matrix(3, 3, lambda r, c: to(rows[r][c]))
+
+        def v3(vec):
+            return sp.Matrix([to(x) for x in vec])
+
+        out.append(JointKinematics(j, model.names[j], model.parents[j], kind, v3(f["axis"]),
+                                   m3(f["R"]), v3(f["p"]), m3(f["R_rel"]), v3(f["p_rel"]),
+                                   v3(f["omega"]), v3(f["v"])))
     return tuple(out)
+
+
+def forward_kinematics(model: pin.Model, q: Sequence[sp.Symbol],
+                       qd: Sequence[sp.Symbol]) -> tuple[JointKinematics, ...]:
+    r"""Symbolic placements and frame velocities of joints ``1 .. njoints-1`` (expanded,
+    canonical trigonometric form). ``q[k]``/``qd[k]`` are the symbols of velocity index ``k``.
+    Raises :class:`ModelError` for joints that are not 1-DoF revolute/prismatic."""
+    return joint_kinematics(model, kinematics_in_ring(model, q, qd))
 
 
 def velocity_jacobian(kin: JointKinematics, qd: Sequence[sp.Symbol]) -> sp.Matrix:

@@ -32,11 +32,11 @@ import pinocchio as pin
 import sympy as sp
 
 from ..errors import ModelError
-from .kinematics import JointKinematics, exact_matrix, exact_number, forward_kinematics
+from .kinematics import JointKinematics, exact_matrix, exact_number, joint_kinematics, \
+    kinematics_in_ring
 from .lagrange import lagrange_terms
 from .parameters import kinetic_energy_body, potential_energy_body, resolve_parameters
-from .simplify import collect_terms
-from .trigpoly import TrigRing
+from .simplify import collect_terms, simplify_matrix
 
 
 @dataclass(frozen=True, eq=False)
@@ -84,12 +84,17 @@ class SymbolicModel:
         - \partial_i A_{jk})`; symmetric in ``j, k``."""
         return self.christoffel_symbols
 
-    def C(self, qdot: Sequence[sp.Expr] | None = None) -> sp.Matrix:
+    def C(self, qdot: Sequence[sp.Expr] | None = None, simplify: bool = False) -> sp.Matrix:
         r"""The Christoffel-consistent :math:`C_{ij} = \sum_k c_{i,jk}\,\dot q_k`, with
-        :math:`\dot q` = ``qdot`` (default: the symbols ``qd``)."""
+        :math:`\dot q` = ``qdot`` (default: the symbols ``qd``); ``simplify``: collected by
+        parameter and velocity and polished for reading (:func:`~.simplify.simplify_matrix`)."""
         qdot = self.qd if qdot is None else tuple(qdot)
         c, n = self.christoffel_symbols, self.n
-        return sp.Matrix(n, n, lambda i, j: sp.Add(*[c[i][j][k] * qdot[k] for k in range(n)]))
+        C = sp.Matrix(n, n, lambda i, j: sp.Add(*[c[i][j][k] * qdot[k] for k in range(n)]))
+        if simplify:
+            C = simplify_matrix(C, parameters=self.parameters + tuple(
+                s for s in qdot if isinstance(s, sp.Symbol)))
+        return C
 
     def h(self, qdot: Sequence[sp.Expr] | None = None) -> sp.Matrix:
         r"""Coriolis and centrifugal vector :math:`h = C(q,\dot q)\,\dot q` (quadratic in
@@ -148,35 +153,29 @@ def symbolic_model(model: pin.Model, params: Mapping[int, Sequence] | None = Non
                              f"{len(coords)} coordinate names for nv={model.nv}")
     q = tuple(sp.Symbol(c) for c in coords)
     qd = tuple(sp.Symbol("d" + c) for c in coords)
-    kin = forward_kinematics(model, q, qd)
     pis = resolve_parameters(model, params)
     g = _gravity(model, gravity)
-
     n = model.nv
     arm = [exact_number(a) for a in model.armature]
-    inertial = [s for j in sorted(pis) for x in pis[j] for s in sorted(
-        sp.sympify(x).free_symbols, key=sp.default_sort_key)]
+    flat_pi = [x for j in sorted(pis) for x in pis[j]]
+    inertial = [s for x in flat_pi for s in sorted(x.free_symbols, key=sp.default_sort_key)]
+    rk = kinematics_in_ring(model, q, qd, extra_exprs=list(g) + arm + flat_pi,
+                            extra_symbols=tuple(dict.fromkeys(inertial)))
+    ring = rk.ring
+    gp, armp, pip = rk.extra[:3], rk.extra[3:3 + n], rk.extra[3 + n:]
+    pi_of = {j: pip[10 * i:10 * (i + 1)] for i, j in enumerate(sorted(pis))}
+
     seen: dict[sp.Symbol, None] = dict.fromkeys(inertial)
-    others = set().union(g.free_symbols, *[a.free_symbols for a in arm])
-    for k in kin:
-        others |= k.p.free_symbols | k.v.free_symbols | k.omega.free_symbols
+    others = {s for g_ in ring.symbols() for s in g_.free_symbols}
     for s in sorted(others - set(q) - set(qd) - set(seen), key=sp.default_sort_key):
         seen.setdefault(s, None)
     parameters = tuple(seen)
 
-    # Every number the energies are made of, mapped into one trigonometric ring.
-    flat: list[sp.Expr] = list(g) + arm
-    for k in kin:
-        flat += list(k.v) + list(k.omega) + list(k.R) + list(k.p) + list(pis[k.index])
-    ring, el = TrigRing.from_exprs(flat, extra=q + qd + parameters)
-    gp, el = el[:3], el[3:]
-    armp, el = el[:n], el[n:]
     E = ring.ring.zero
     U = ring.ring.zero
-    for _ in kin:
-        v, w, R, p, pi, el = el[:3], el[3:6], el[6:15], el[15:18], el[18:28], el[28:]
-        E += kinetic_energy_body(pi, v, w)
-        U += potential_energy_body(pi, [R[0:3], R[3:6], R[6:9]], p, gp)
+    for j, f in rk.frames.items():
+        E += kinetic_energy_body(pi_of[j], f["v"], f["omega"])
+        U += potential_energy_body(pi_of[j], f["R"], f["p"], gp)
     for i in range(n):
         E += armp[i] * ring.gen(qd[i]) ** 2 / 2
     t = lagrange_terms(ring, E, U, q, qd)
@@ -203,7 +202,7 @@ def symbolic_model(model: pin.Model, params: Mapping[int, Sequence] | None = Non
                    for i in range(n))
     return SymbolicModel(
         q=q, qd=qd, joint_names=names, params=pis, parameters=parameters, gravity=g,
-        kinematics=kin,
+        kinematics=joint_kinematics(model, rk),
         A=matrix(t.A, simplify) if simplify else A_can,
         Q=sp.Matrix([expr(p, simplify) for p in t.Q]),
         h_vector=sp.Matrix([expr(p, simplify) for p in t.h]),

@@ -31,7 +31,7 @@ _fu = importlib.import_module("sympy.simplify.fu")  # the module, not the functi
 
 #: Relative size below which a float coefficient is treated as round-off and dropped.
 DEFAULT_CHOP: float = 1e-13
-#: Largest ``count_ops`` of a coefficient for which :func:`polish_trig` tries products to sums.
+#: Largest ``count_ops`` of a coefficient that :func:`polish_trig` rewrites.
 TRIG_POLISH_MAX_OPS: int = 80
 
 
@@ -42,7 +42,7 @@ def _chop(terms: list[tuple[tuple[int, ...], sp.Expr]], chop: float) -> list:
     if not floats:
         return terms
     limit = chop * max(floats)
-    return [(m, v) for m, v in terms if not (v.is_Float and abs(float(v)) <= limit)]
+    return [(m, v) for m, v in terms if v != 0 and not (v.is_Float and abs(float(v)) <= limit)]
 
 
 def _monomial(gens: Sequence[sp.Expr], mon: Iterable[int]) -> sp.Expr:
@@ -83,10 +83,11 @@ def polish_trig(expr: sp.Expr) -> sp.Expr:
     itself, :math:`\cos^2 \to 1-\sin^2`, sums of products to functions of sums (``fu.TR10i``),
     products to sums (``fu.TR8``, e.g. :math:`2\sin\phi\cos\phi \to \sin 2\phi`) and both.
     About 5 times faster than ``trigsimp`` on the coefficients met here, and as short."""
-    if expr.is_number or not expr.has(sp.sin, sp.cos):
-        return expr
+    if expr.is_number or not expr.has(sp.sin, sp.cos) or expr.has(sp.Float) \
+            or sp.count_ops(expr) > TRIG_POLISH_MAX_OPS:
+        return expr  # float coefficients (random geometry) rarely combine; not worth it
     cands = [expr, sp.expand(_fu.TR6(expr)), _fu.TR10i(expr)]
-    if _has_trig_products(expr) and sp.count_ops(expr) <= TRIG_POLISH_MAX_OPS:
+    if _has_trig_products(expr):
         t8 = _fu.TR8(expr)
         cands += [t8, _fu.TR10i(t8)]
     return min(cands, key=lambda e: (sp.count_ops(e), sp.default_sort_key(e)))
@@ -157,4 +158,4 @@ def is_zero(expr: sp.Expr, atol: float = 0.0) -> bool:
         ring, (p,) = TrigRing.from_exprs([expr])
     except NotPolynomial:
         return sp.simplify(expr) == 0
-    return all(v.is_Float and abs(float(v)) <= atol for _, v in ring.terms(p))
+    return all(abs(complex(v)) <= atol for _, v in ring.terms(p))

@@ -12,9 +12,11 @@ SymPy ``PolyRing`` (sparse, fast arithmetic) where
   \left(c_x\,\partial_{s_x} P - s_x\,\partial_{c_x} P\right)` (angles :math:`x` linear in
   :math:`q`).
 
-Anything else (denominators like :math:`1/R`, :math:`\sqrt{2}`) becomes a ring generator of its
-own. :meth:`TrigRing.from_exprs` raises :class:`NotPolynomial` when that is impossible
-(a sine inside a denominator, say); callers fall back to ``trigsimp``.
+Anything else that is not a number (denominators like :math:`1/R`) becomes a ring generator
+of its own; numbers are coefficients: exact rationals, algebraic numbers such as
+:math:`\sqrt{2}/2` (an algebraic field), or, as soon as one float occurs, floats (``RR``).
+:meth:`TrigRing.from_exprs` raises :class:`NotPolynomial` when that is impossible (a sine inside
+a denominator, say); callers fall back to ``trigsimp``.
 """
 
 from __future__ import annotations
@@ -79,9 +81,14 @@ class TrigRing:
             dummies += [s, c]
         mapped = [e.xreplace(fwd) for e in exprs]
         extra = list(extra) + dummies
-        anchor = sp.Dummy("one")  # guarantees at least one generator
+        if not extra and not any(e.free_symbols for e in mapped):
+            extra = [sp.Dummy("one")]  # a ring needs at least one generator
         try:
-            reps, gens = parallel_dict_from_expr(mapped + extra + [anchor])
+            reps, gens = parallel_dict_from_expr(mapped + extra)
+            numeric = [g for g in gens if not g.free_symbols]  # sqrt(2), pi: coefficients
+            if numeric:
+                gens = tuple(g for g in gens if g.free_symbols)
+                reps, gens = parallel_dict_from_expr(mapped + extra, gens=gens)
         except (sp.PolynomialError, sp.GeneratorsNeeded) as exc:
             raise NotPolynomial(str(exc)) from exc
         trig = set(dummies)
@@ -89,8 +96,10 @@ class TrigRing:
             if g not in trig and g.free_symbols & trig:
                 raise NotPolynomial(f"sine or cosine inside the generator {g}")
         reps = reps[:len(mapped)]
-        coeffs = [c for r in reps for c in r.values()]
-        domain, converted = construct_domain(coeffs or [sp.Integer(0)], field=True)
+        coeffs = [c for r in reps for c in r.values()] or [sp.Integer(0)]
+        if any(c.has(sp.Float) for c in coeffs):  # floats: all arithmetic in floats (RR)
+            coeffs = [sp.Float(c) for c in coeffs]
+        domain, converted = construct_domain(coeffs, field=True, extension=True)
         ring = PolyRing(gens, domain)
         it = iter(converted)
         elems = [ring.from_dict({mon: next(it) for mon in r}) for r in reps]
