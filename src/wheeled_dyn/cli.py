@@ -18,6 +18,7 @@ from .errors import WheeledDynError
 #: Modules that define ``add_commands(subparsers)``, in the order they appear in ``--help``.
 COMMAND_MODULES: tuple[str, ...] = (
     "wheeled_dyn.models.commands",
+    "wheeled_dyn.compare.commands",
 )
 
 

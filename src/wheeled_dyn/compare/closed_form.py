@@ -27,14 +27,16 @@ def _physical_symbols() -> dict[str, sp.Symbol]:
     return {f.name: sp.Symbol(f.name, real=True) for f in fields(WipParameters)}
 
 
-def document_in_model(d: Derivation) -> Callable[[sp.Expr], str]:
-    r"""A function: document expression → text in the model's parameters."""
+def document_in_model(d: Derivation) -> Callable[[sp.Expr | None], tuple[str, str]]:
+    r"""A function: document expression → (text, LaTeX) in the model's parameters."""
     mapping = {s.symbol: s.value for s in d.symbols.values() if s.value is not None}
     physical = model_entry(d.model).parameters is WipParameters
     std = standard_parameters(_physical_symbols()) if physical else None
     names = _physical_symbols()
 
-    def convert(expr: sp.Expr) -> str:
+    def convert(expr: sp.Expr | None) -> tuple[str, str]:
+        if expr is None:
+            return "", ""
         out = sp.sympify(expr).xreplace(mapping)
         if std is not None:
             calls = {}
@@ -46,7 +48,7 @@ def document_in_model(d: Derivation) -> Callable[[sp.Expr], str]:
             out = out.xreplace({s: names.get(s.name, s) for s in out.free_symbols})
         if sp.count_ops(out) <= SIMPLIFY_LIMIT:
             out = sp.expand(out)
-        return sp.sstr(out)
+        return sp.sstr(out), sp.latex(out)
 
     return convert
 
@@ -68,6 +70,6 @@ def annotate(d: Derivation, records: list[dict], coordinates: str) -> None:
             continue
         r["truth"] = sp.sstr(expr)
         if r["verdict"] != "agrees":
-            doc = sp.sympify(r["document_model"]) if r["document_model"] else sp.Integer(0)
+            doc = sp.sympify(r["document_model"]) if r["document_model"] else sp.Integer(0)  # noqa
             res = sp.trigsimp(sp.expand(expr - doc))
             r["residual"] = sp.sstr(res)

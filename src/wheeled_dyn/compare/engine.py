@@ -57,12 +57,17 @@ class ElementRecord:
     residual: str | None
     max_error: float
     scale: float
+    document_latex: str = ""
+    model_latex: str = ""
+    truth_sample: float = float("nan")      # the truth at the first sample (reference state)
+    document_sample: float = float("nan")
 
     def as_dict(self) -> dict[str, object]:
         return {"element": self.element, "verdict": self.verdict, "diagnoses": list(self.diagnoses),
                 "document": self.document, "document_model": self.document_model,
                 "truth": self.truth, "residual": self.residual, "max_error": self.max_error,
-                "scale": self.scale}
+                "scale": self.scale, "truth_at_reference": self.truth_sample,
+                "document_at_reference": self.document_sample}
 
 
 @dataclass(frozen=True)
@@ -185,7 +190,7 @@ class ComparisonEngine:
         if C is not None and d.row_scale is not None:
             C = sp.ImmutableMatrix(sp.diag(*[1 / s for s in d.row_scale]) * C)
         if C is not None and d.assumptions:
-            C = sp.ImmutableMatrix(d._assumed(C, True))
+            C = sp.ImmutableMatrix(d.apply_assumptions(C))
         G = d.G if d.G is not None else d.constraint_matrix()
         funcs = DocumentFunctions(d, terms.A, C, terms.Q, terms.B, terms.h, G)
         as_printed = d.read_off(assume=True, unscale=False)
@@ -217,8 +222,14 @@ class ComparisonEngine:
             return out.astype(float) / (c if c is not None else 1.0)
 
         arrays: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+        lost = set(d.missing)
         for key, D, T, index, expr in _elements(funcs, doc, truth, B_true, n):
             i = index[0]
+            if _label(key, index, d.velocities) in lost or (expr is not None and expr.has(sp.nan)):
+                if key != "h":
+                    notes.append(f"{_label(key, index, d.velocities)} was lost in the extracted "
+                                 "text: not compared")
+                continue
             scale = scales[i]
             problems = dims.check(key, index, expr) if key != "h" else []
             ok = agrees(D, T, scale)
@@ -235,10 +246,12 @@ class ComparisonEngine:
             verdict = "agrees" if ok and not problems else "differs"
             records.append(dict(element=_label(key, index, d.velocities), key=key, index=index,
                                 verdict=verdict, diagnoses=diags,
-                                document=_text(_element_expr(printed, key, index, d.velocities)),
-                                document_model=mapped(expr) if expr is not None else "",
+                                document=_text(shown := _element_expr(printed, key, index, d.velocities)),
+                                document_latex="" if shown is None else sp.latex(shown),
+                                **dict(zip(("document_model", "model_latex"), mapped(expr))),
                                 truth=None, residual=None, max_error=max_error(D, T),
-                                scale=float(scale)))
+                                scale=float(scale), truth_sample=float(T[0]),
+                                document_sample=float(D[0])))
             arrays[id(records[-1])] = (D, T)
         self._h_swaps(records, arrays)
         self._factorization(records, n)
@@ -422,30 +435,39 @@ def _row_factors(doc: Arrays, truth: Arrays, B_true, n: int) -> list[float | Non
     r"""A constant :math:`c_i` with document row i = :math:`c_i` × true row i that the file did
     not declare (e.g. −1 for Kane's generalised inertia forces :math:`F^* = -(A\ddot q + h)`).
 
-    Each nonzero element of the row (A's row, Q, B) votes for the candidate of
-    :data:`ROW_FACTORS` nearest its own least-squares ratio (within
-    :data:`ROW_FACTOR_SPREAD`); a candidate other than 1 with a strict majority is the row's
-    factor. Voting keeps a single wrong coefficient (e.g. 3(m_c + m_s)) from scaling a row."""
+    Each nonzero element of the row votes for the candidate of :data:`ROW_FACTORS` nearest its
+    own least-squares ratio (within :data:`ROW_FACTOR_SPREAD`); a candidate other than 1 needs
+    a strict majority among A's entries and among all of the row's (A, Q, B). Voting keeps a
+    single wrong coefficient (e.g. 3(m_c + m_s)) from scaling a row."""
     out: list[float | None] = []
     for i in range(n):
-        votes: list[float | None] = []
-        pairs = []
+        a_pairs, other_pairs = [], []
         if doc.A is not None:
-            pairs += [(doc.A[:, i, j], truth.A[:, i, j]) for j in range(doc.A.shape[2])]
+            a_pairs = [(doc.A[:, i, j], truth.A[:, i, j]) for j in range(doc.A.shape[2])]
         if doc.Q is not None:
-            pairs.append((doc.Q[:, i], truth.Q[:, i]))
+            other_pairs.append((doc.Q[:, i], truth.Q[:, i]))
         if doc.B is not None and B_true is not None:
-            pairs += [(doc.B[:, i, j], B_true[:, i, j]) for j in range(doc.B.shape[2])]
-        for D, T in pairs:
-            tt = float(T @ T)
-            if tt <= 0 or float(D @ D) <= 0:
-                continue
-            c = float(D @ T / tt)
-            best = min(ROW_FACTORS, key=lambda f: abs(c - f))
-            votes.append(best if abs(c - best) <= ROW_FACTOR_SPREAD * abs(best) else None)
+            other_pairs += [(doc.B[:, i, j], B_true[:, i, j]) for j in range(doc.B.shape[2])]
+
+        def vote(pairs):
+            votes = []
+            for D, T in pairs:
+                tt = float(T @ T)
+                if tt <= 0 or float(D @ D) <= 0:
+                    continue
+                c = float(D @ T / tt)
+                best = min(ROW_FACTORS, key=lambda f: abs(c - f))
+                votes.append(best if abs(c - best) <= ROW_FACTOR_SPREAD * abs(best) else None)
+            return votes
+
+        # A's entries decide; Q and B only confirm (a wrong input map must not scale a row)
+        votes_a, votes_all = vote(a_pairs), vote(a_pairs + other_pairs)
         winner = None
         for f in ROW_FACTORS:
-            if f != 1.0 and votes and sum(v == f for v in votes) * 2 > len(votes):
+            if f == 1.0 or not votes_a:
+                continue
+            if sum(v == f for v in votes_a) * 2 > len(votes_a) and \
+                    sum(v == f for v in votes_all) * 2 > len(votes_all):
                 winner = f
         out.append(winner)
     return out
@@ -482,7 +504,7 @@ def _swap_groups(d: Derivation) -> list[list[sp.Symbol]]:
 def _energy(funcs: DocumentFunctions, doc: Arrays, row_factor, q, nu, values, d: Derivation):
     r"""Power identity of the document on its own (rows divided by their detected factors)."""
     A, h = funcs.exprs["A"], funcs.exprs["h"]
-    if A is None or h is None:
+    if A is None or h is None or A.has(sp.nan) or h.has(sp.nan):
         return None
     scale = sp.diag(*[1 if c is None else sp.nsimplify(1 / c) for c in row_factor])
     A = scale * sp.Matrix(A)

@@ -49,6 +49,12 @@ WIP_SPECIAL_CASES: tuple[SpecialCase, ...] = (
 )
 
 
+#: Generic models (no physical record): random inertias keeping the URDF's inertial structure.
+URDF_STRUCTURE = SpecialCase(
+    "urdf_structure", "every link's centre of mass and principal axes are as in the URDF "
+    "(coordinates and products of inertia that are zero there stay zero)", lambda p: p)
+
+
 @dataclass(frozen=True)
 class ParameterSet:
     r"""A model with its parameters, and the values of every name of its namespace."""
@@ -65,12 +71,24 @@ def namespace_values(wm: WheeledModel, physical: WipParameters | None) -> dict[s
     return values
 
 
-def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator) -> WheeledModel:
+def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
+                          keep_structure: bool = False) -> WheeledModel:
     r"""Random, physically consistent inertias (log-Cholesky parameters) for every joint
-    that carries mass; a random gravity."""
+    that carries mass; a random gravity. With ``keep_structure`` the URDF's inertias are
+    rescaled instead: mass and each centre-of-mass coordinate by random factors, the principal
+    moments by random factors keeping the triangle inequality, the principal axes unchanged."""
     model = pin.Model(wm.model)
     for jid in range(1, model.njoints):
-        if model.inertias[jid].mass > 0:
+        if model.inertias[jid].mass > 0 and keep_structure:
+            old = model.inertias[jid]
+            eig, axes = np.linalg.eigh(old.inertia)
+            second = 0.5 * (eig.sum() - 2 * eig)           # second moments along the axes
+            second = np.maximum(second, 0.0) * rng.uniform(0.5, 2.0, 3)
+            moments = np.array([second[1] + second[2], second[0] + second[2], second[0] + second[1]])
+            model.inertias[jid] = pin.Inertia(old.mass * rng.uniform(0.5, 2.0),
+                                              old.lever * rng.uniform(0.5, 2.0, 3),
+                                              axes @ np.diag(moments) @ axes.T)
+        elif model.inertias[jid].mass > 0:
             base = model.inertias[jid].toDynamicParameters()
             scale = np.log(max(base[0], 1e-3))
             theta = rng.normal(size=10) * 0.3
@@ -98,14 +116,16 @@ def parameter_sets(model_name: str, k: int, rng: np.random.Generator,
             out.append(ParameterSet(wm, namespace_values(wm, p), p))
         return out
     base = load_model(model_name)
+    keep = URDF_STRUCTURE in special
     for _ in range(k):
-        wm = _random_link_inertias(base, rng)
+        wm = _random_link_inertias(base, rng, keep)
         out.append(ParameterSet(wm, namespace_values(wm, None)))
     return out
 
 
 def special_cases(model_name: str) -> tuple[SpecialCase, ...]:
-    return WIP_SPECIAL_CASES if model_entry(model_name).parameters is WipParameters else ()
+    return WIP_SPECIAL_CASES if model_entry(model_name).parameters is WipParameters \
+        else (URDF_STRUCTURE,)
 
 
 def random_states(n_positions: int, n: int, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
