@@ -34,6 +34,10 @@ def document_in_model(d: Derivation) -> Callable[[sp.Expr | None], tuple[str, st
     std = standard_parameters(_physical_symbols()) if physical else None
     names = _physical_symbols()
 
+    dots = {}
+    for q, v in zip(d.positions, d.velocities):
+        dots[v] = rf"\dot{{{sp.latex(q)}}}"
+
     def convert(expr: sp.Expr | None) -> tuple[str, str]:
         if expr is None:
             return "", ""
@@ -48,7 +52,7 @@ def document_in_model(d: Derivation) -> Callable[[sp.Expr | None], tuple[str, st
             out = out.xreplace({s: names.get(s.name, s) for s in out.free_symbols})
         if sp.count_ops(out) <= SIMPLIFY_LIMIT:
             out = sp.expand(out)
-        return sp.sstr(out), sp.latex(out)
+        return sp.sstr(out), sp.latex(out, symbol_names=dots)
 
     return convert
 

@@ -130,6 +130,16 @@ class DerivationResult:
                 "records": [r.as_dict() for r in self.records]}
 
 
+def _latex_names(d: Derivation) -> dict[sp.Symbol, str]:
+    r"""LaTeX of velocities and accelerations as dotted coordinates (:math:`\dot\psi`)."""
+    out = {}
+    for q, v, a in zip(d.positions, d.velocities, d.accelerations):
+        base = sp.latex(q)
+        out[v] = rf"\dot{{{base}}}"
+        out[a] = rf"\ddot{{{base}}}"
+    return out
+
+
 def _text(expr: sp.Expr | None) -> str:
     return "" if expr is None else sp.sstr(expr)
 
@@ -223,6 +233,7 @@ class ComparisonEngine:
 
         arrays: dict[int, tuple[np.ndarray, np.ndarray]] = {}
         lost = set(d.missing)
+        names = _latex_names(d)
         for key, D, T, index, expr in _elements(funcs, doc, truth, B_true, n):
             i = index[0]
             if _label(key, index, d.velocities) in lost or (expr is not None and expr.has(sp.nan)):
@@ -247,7 +258,7 @@ class ComparisonEngine:
             records.append(dict(element=_label(key, index, d.velocities), key=key, index=index,
                                 verdict=verdict, diagnoses=diags,
                                 document=_text(shown := _element_expr(printed, key, index, d.velocities)),
-                                document_latex="" if shown is None else sp.latex(shown),
+                                document_latex="" if shown is None else sp.latex(shown, symbol_names=names),
                                 **dict(zip(("document_model", "model_latex"), mapped(expr))),
                                 truth=None, residual=None, max_error=max_error(D, T),
                                 scale=float(scale), truth_sample=float(T[0]),
