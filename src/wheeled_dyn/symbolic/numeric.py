@@ -73,7 +73,8 @@ class NumericTerms:
 
 
 def lambdify_terms(sym: HasTerms, names: Sequence[str] | None = None,
-                   parameters: Sequence[sp.Symbol] | None = None) -> NumericTerms:
+                   parameters: Sequence[sp.Symbol] | None = None, cse: bool = False
+                   ) -> NumericTerms:
     r"""NumPy functions of ``sym.terms()`` (default all: ``A, C, Q, h`` and ``B`` if present),
     each of :math:`(q, v, \pi)` with :math:`\pi` ordered as ``parameters``
     (default ``sym.parameters``). Raises :class:`UnknownNameError` for a free symbol that is
@@ -96,7 +97,7 @@ def lambdify_terms(sym: HasTerms, names: Sequence[str] | None = None,
             raise UnknownNameError("symbol", str(sorted(unknown, key=str)[0]),
                                    [str(s) for s in known], where=f"term {name}")
         functions[name] = sp.lambdify([list(q), list(v), list(p)], M.xreplace(rename),
-                                      modules="numpy", cse=True)
+                                      modules="numpy", cse=cse)
         shapes[name] = M.shape
     return NumericTerms(q=tuple(sym.q), velocities=tuple(sym.velocities), parameters=pars,
                         functions=functions, shapes=shapes)

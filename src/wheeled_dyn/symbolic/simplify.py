@@ -32,7 +32,10 @@ _fu = importlib.import_module("sympy.simplify.fu")  # the module, not the functi
 #: Relative size below which a float coefficient is treated as round-off and dropped.
 DEFAULT_CHOP: float = 1e-13
 #: Largest ``count_ops`` of a coefficient that :func:`polish_trig` rewrites.
-TRIG_POLISH_MAX_OPS: int = 80
+TRIG_POLISH_MAX_OPS: int = 60
+#: Largest number of terms of a coefficient that :func:`polish_trig` rewrites (``TR10i`` looks
+#: at pairs of terms).
+TRIG_POLISH_MAX_TERMS: int = 8
 
 
 def _chop(terms: list[tuple[tuple[int, ...], sp.Expr]], chop: float) -> list:
@@ -84,6 +87,7 @@ def polish_trig(expr: sp.Expr) -> sp.Expr:
     products to sums (``fu.TR8``, e.g. :math:`2\sin\phi\cos\phi \to \sin 2\phi`) and both.
     About 5 times faster than ``trigsimp`` on the coefficients met here, and as short."""
     if expr.is_number or not expr.has(sp.sin, sp.cos) or expr.has(sp.Float) \
+            or len(sp.Add.make_args(expr)) > TRIG_POLISH_MAX_TERMS \
             or sp.count_ops(expr) > TRIG_POLISH_MAX_OPS:
         return expr  # float coefficients (random geometry) rarely combine; not worth it
     cands = [expr, sp.expand(_fu.TR6(expr)), _fu.TR10i(expr)]
