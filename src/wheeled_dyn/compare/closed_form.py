@@ -18,10 +18,6 @@ from ..derivations.schema import Derivation
 from ..models.registry import model_entry
 from ..models.wip_parameters import WipParameters, standard_parameters
 
-#: Expressions larger than this (SymPy operation count) are not expanded for display.
-SIMPLIFY_LIMIT = 80
-
-
 def _physical_symbols() -> dict[str, sp.Symbol]:
     from dataclasses import fields
     return {f.name: sp.Symbol(f.name, real=True) for f in fields(WipParameters)}
@@ -50,8 +46,6 @@ def document_in_model(d: Derivation) -> Callable[[sp.Expr | None], tuple[str, st
                     calls[call] = std[link][call.func.__name__]
             out = out.xreplace(calls)
             out = out.xreplace({s: names.get(s.name, s) for s in out.free_symbols})
-        if sp.count_ops(out) <= SIMPLIFY_LIMIT:
-            out = sp.expand(out)
         return sp.sstr(out), sp.latex(out, symbol_names=dots)
 
     return convert

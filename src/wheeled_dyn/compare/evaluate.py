@@ -99,13 +99,16 @@ def document_symbol_values(d: Derivation, ps: ParameterSet, rng: np.random.Gener
 def truth_arrays(cmaps: Sequence[CoordinateMap], q: np.ndarray, nu: np.ndarray,
                  input_maps: Sequence[np.ndarray] | None) -> Arrays:
     r"""Truth for each parameter set's bound map ``cmaps[k]`` at states ``q[k], nu[k]``
-    (K × N × n); ``input_maps[k]`` is :math:`\partial\tau/\partial u_{doc}` (or None)."""
+    (K × N × n); ``input_maps[k]`` is :math:`\partial\tau/\partial u_{doc}` (or None).
+    :math:`H` comes from :math:`C_\nu(e_j)`, which is linear in :math:`\nu`."""
+    from ..constraints.batch import reduce_batch_multi
     parts: dict[str, list[np.ndarray]] = {k: [] for k in "ACQBhHG"}
     for k, cmap in enumerate(cmaps):
-        t = cmap.terms_batch(q[k], nu[k])
-        n = cmap.n
-        gamma = np.stack([cmap.terms_batch(q[k], np.tile(np.eye(n)[j], (len(q[k]), 1))).C
-                          for j in range(n)], axis=3)
+        n, N = cmap.n, len(q[k])
+        qm = cmap._config_batch(N, *q[k].T, *cmap._p)[:, :, 0]
+        units = [np.tile(np.eye(n)[j], (N, 1)) for j in range(n)]
+        t, *basis = reduce_batch_multi(cmap, qm, [nu[k], *units], q[k])
+        gamma = np.stack([b.C for b in basis], axis=3)
         parts["A"].append(t.A)
         parts["C"].append(t.C)
         parts["Q"].append(t.Q)
@@ -117,36 +120,45 @@ def truth_arrays(cmaps: Sequence[CoordinateMap], q: np.ndarray, nu: np.ndarray,
     return Arrays(**{k: (np.concatenate(v) if v else None) for k, v in parts.items()})
 
 
+def _h_tensor(h: sp.MatrixBase, velocities: Sequence[sp.Symbol]) -> sp.Array:
+    r""":math:`H_{i,jk}` with :math:`h_i = \sum_{jk} H_{i,jk}\nu_j\nu_k`, symmetric, from the
+    polynomial coefficients of h in the velocities."""
+    n = len(velocities)
+    H = [[[sp.Integer(0)] * n for _ in range(n)] for _ in range(h.shape[0])]
+    for i in range(h.shape[0]):
+        if h[i] == 0:
+            continue
+        for monomial, coeff in sp.Poly(h[i], *velocities).terms():
+            idx = [j for j, e in enumerate(monomial) for _ in range(e)]
+            if len(idx) != 2:
+                continue                      # read_off has already rejected other degrees
+            j, k = idx
+            if j == k:
+                H[i][j][j] += coeff
+            else:
+                H[i][j][k] += coeff / 2
+                H[i][k][j] += coeff / 2
+    return sp.Array(H)
+
+
 class DocumentFunctions:
-    r"""The document's elements compiled once; evaluated at any samples."""
+    r"""The document's elements compiled once (one ``lambdify`` per matrix); evaluated at any
+    samples."""
 
     def __init__(self, d: Derivation, A, C, Q, B, h, G) -> None:
         self.d = d
         self.params = tuple(s.symbol for s in d.symbols.values() if not s.is_input)
         self.args = [*d.positions, *d.velocities, *self.params]
         self.exprs = {"A": A, "C": C, "Q": Q, "B": B, "h": h, "G": G}
-        if h is not None:
-            H = [[[sp.diff(h[i], a, b) / 2 for b in d.velocities] for a in d.velocities]
-                 for i in range(d.n)]
-            self.exprs["H"] = sp.Array(H)
-        else:
-            self.exprs["H"] = None
+        self.exprs["H"] = None if h is None else _h_tensor(h, d.velocities)
         self._fns = {}
+        self._element_fns: dict[tuple, object] = {}
         for key, M in self.exprs.items():
             if M is None:
                 continue
             arr = sp.Array(M) if not isinstance(M, sp.Array) else M
-            self._fns[key] = (arr.shape, [sp.lambdify(self.args, e, "numpy")
-                                          for e in sp.flatten(arr.tolist())])
-
-    def element_function(self, key: str, index: tuple[int, ...]):
-        r"""The compiled function of one element (for ``h``: of :math:`H_{i,jk}`)."""
-        if key == "h":
-            key = "H"
-        shape, fns = self._fns[key]
-        index = tuple(index) + (0,) * (len(shape) - len(index))
-        flat = int(np.ravel_multi_index(index, shape))
-        return fns[flat]
+            flat = sp.flatten(arr.tolist())
+            self._fns[key] = (arr.shape, flat, sp.lambdify(self.args, flat, "numpy", cse=True))
 
     def evaluate(self, q: np.ndarray, nu: np.ndarray, values: Mapping[sp.Symbol, np.ndarray],
                  substitute: Mapping[sp.Symbol, sp.Symbol] | None = None) -> Arrays:
@@ -155,20 +167,23 @@ class DocumentFunctions:
         S = len(q)
         argv = [*q.T, *nu.T, *(values[p] for p in self.params)]
         out = Arrays()
-        for key, (shape, fns) in self._fns.items():
-            flat = np.empty((S, len(fns)))
-            for j, fn in enumerate(fns):
-                flat[:, j] = fn(*argv)
-            setattr(out, key, flat.reshape((S, *shape)) if len(shape) > 1 or key in "QhB"
-                    else flat.reshape((S, *shape)))
-        if out.Q is not None and out.Q.ndim == 3:
-            out.Q = out.Q[..., 0]
-        if out.h is not None and out.h.ndim == 3:
-            out.h = out.h[..., 0]
+        for key, (shape, flat, fn) in self._fns.items():
+            vals = fn(*argv)
+            arr = np.empty((S, len(flat)))
+            for j, v in enumerate(vals):
+                arr[:, j] = v
+            arr = arr.reshape((S, *shape))
+            if key in ("Q", "h") and arr.ndim == 3:
+                arr = arr[..., 0]
+            setattr(out, key, arr)
         return out
 
-    def element(self, key: str, index: tuple[int, ...]) -> sp.Expr:
-        M = self.exprs[key]
-        if key in ("Q", "h") and len(index) == 1:
-            return M[index[0], 0] if isinstance(M, sp.MatrixBase) else M[index[0]]
-        return M[index]
+    def element_function(self, key: str, index: tuple[int, ...]):
+        r"""The compiled function of one element (for ``h``: of :math:`H_{i,jk}`)."""
+        key = "H" if key == "h" else key
+        shape, flat, _ = self._fns[key]
+        index = tuple(index) + (0,) * (len(shape) - len(index))
+        pos = int(np.ravel_multi_index(index, shape))
+        if (key, pos) not in self._element_fns:
+            self._element_fns[(key, pos)] = sp.lambdify(self.args, flat[pos], "numpy")
+        return self._element_fns[(key, pos)]

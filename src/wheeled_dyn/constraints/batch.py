@@ -49,60 +49,73 @@ def _rolling_rows(wm, raw: np.ndarray) -> np.ndarray:
 def reduce_batch(cmap, q: np.ndarray, nu: np.ndarray, q_doc: np.ndarray | None = None) -> Terms:
     r"""Terms in document velocities at N model configurations ``q`` (N × nq) and velocities
     ``nu`` (N × n); ``q_doc`` (N × n) is needed for holonomic sets."""
+    return reduce_batch_multi(cmap, q, [nu], q_doc)[0]
+
+
+def reduce_batch_multi(cmap, q: np.ndarray, nus: list[np.ndarray],
+                       q_doc: np.ndarray | None = None) -> list[Terms]:
+    r"""As :func:`reduce_batch` for several velocity arrays at the same configurations: what
+    depends on q only (A, Q, J_c, S) is computed once."""
     wm, cs = cmap.wm, cmap.cs
     model, data = wm.model, cmap._data
-    N, n = nu.shape
+    N = q.shape[0]
+    n = nus[0].shape[1]
     p = cmap._p
     w = 2 * len(wm.wheels)
     need_J = cs.rolling in ("eliminate", "multipliers")
     A = np.empty((N, model.nv, model.nv))
+    Q = np.empty((N, model.nv))
     ids = [wheel.joint_id for wheel in wm.wheels]
     raw = np.empty((N, len(ids), 6, model.nv))
-    crba, jacobians, get_jacobian = pin.crba, pin.computeJointJacobians, pin.getJointJacobian
+    crba, gravity = pin.crba, pin.computeGeneralizedGravity
+    jacobians, get_jacobian = pin.computeJointJacobians, pin.getJointJacobian
     for i in range(N):
         A[i] = crba(model, data, q[i])
+        Q[i] = gravity(model, data, q[i])
         if need_J:
             jacobians(model, data, q[i])
             for k, jid in enumerate(ids):
                 raw[i, k] = get_jacobian(model, data, jid, _LWA)
     J = _rolling_rows(wm, raw) if need_J else None
     A = np.triu(A) + np.swapaxes(np.triu(A, 1), 1, 2)
+    Mp = None
     if cs.kind == "holonomic":
         S = cmap._S_batch(N, *q_doc.T, *p)
-        Sdot = cmap._Sdot_batch(N, *q_doc.T, *nu.T, *p)
-        v = np.einsum("nij,nj->ni", S, nu)
     else:
         T = cmap._T_batch(N, *q.T, *p)
         if cs.rolling == "eliminate":
             Mp = np.linalg.pinv(np.concatenate([J, T], axis=1))
             S = Mp[:, :, w:]
         else:
-            Mp = None
             S = np.linalg.inv(T)
-        v = np.einsum("nij,nj->ni", S, nu)
-    C = np.empty_like(A)
-    Q = np.empty((N, model.nv))
-    need_dJ = cs.kind == "quasi" and cs.rolling == "eliminate"
-    coriolis, gravity = pin.computeCoriolisMatrix, pin.computeGeneralizedGravity
-    variation, get_variation = pin.computeJointJacobiansTimeVariation, pin.getJointJacobianTimeVariation
-    for i in range(N):
-        C[i] = coriolis(model, data, q[i], v[i])
-        Q[i] = gravity(model, data, q[i])
-        if need_dJ:
-            variation(model, data, q[i], v[i])
-            for k, jid in enumerate(ids):
-                raw[i, k] = get_variation(model, data, jid, _LWA)
-    dJ = _rolling_rows(wm, raw) if need_dJ else None
-    if cs.kind == "quasi":
-        Tdot = cmap._Tdot_batch(N, *q.T, *v.T, *p)
-        if dJ is not None:
-            Sdot = -Mp @ np.concatenate([dJ, Tdot], axis=1) @ S
-        else:
-            Sdot = -S @ Tdot @ S
     St = np.swapaxes(S, 1, 2)
     A_nu = St @ A @ S
-    C_nu = St @ C @ S + St @ A @ Sdot
+    A_nu = 0.5 * (A_nu + np.swapaxes(A_nu, 1, 2))
+    Q_nu = np.einsum("nji,nj->ni", S, Q)
+    B_nu = St @ cmap._B
     G = J @ S if cs.rolling == "multipliers" else None
-    return Terms(cs.velocities, wm.input_names, 0.5 * (A_nu + np.swapaxes(A_nu, 1, 2)), C_nu,
-                 np.einsum("nji,nj->ni", S, Q), St @ cmap._B,
-                 np.einsum("nij,nj->ni", C_nu, nu), G)
+    need_dJ = cs.kind == "quasi" and cs.rolling == "eliminate"
+    coriolis = pin.computeCoriolisMatrix
+    variation, get_variation = pin.computeJointJacobiansTimeVariation, pin.getJointJacobianTimeVariation
+    out = []
+    for nu in nus:
+        v = np.einsum("nij,nj->ni", S, nu)
+        C = np.empty_like(A)
+        for i in range(N):
+            C[i] = coriolis(model, data, q[i], v[i])
+            if need_dJ:
+                variation(model, data, q[i], v[i])
+                for k, jid in enumerate(ids):
+                    raw[i, k] = get_variation(model, data, jid, _LWA)
+        if cs.kind == "holonomic":
+            Sdot = cmap._Sdot_batch(N, *q_doc.T, *nu.T, *p)
+        else:
+            Tdot = cmap._Tdot_batch(N, *q.T, *v.T, *p)
+            if need_dJ:
+                Sdot = -Mp @ np.concatenate([_rolling_rows(wm, raw), Tdot], axis=1) @ S
+            else:
+                Sdot = -S @ Tdot @ S
+        C_nu = St @ C @ S + St @ A @ Sdot
+        out.append(Terms(cs.velocities, wm.input_names, A_nu, C_nu, Q_nu, B_nu,
+                         np.einsum("nij,nj->ni", C_nu, nu), G))
+    return out

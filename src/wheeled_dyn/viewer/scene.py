@@ -50,6 +50,21 @@ def as_configuration(model: pin.Model, q: Iterable[float] | np.ndarray) -> np.nd
     return arr
 
 
+def _aabb_corners(geometry_object: pin.GeometryObject) -> np.ndarray:
+    r"""The 8 corners (8×3) of a geometry's bounding box in its own frame (coal's local AABB,
+    meshes included), or its origin alone (1×3) for a geometry without one."""
+    geom = geometry_object.geometry
+    try:
+        geom.computeLocalAABB()
+        lo, hi = np.asarray(geom.aabb_local.min_), np.asarray(geom.aabb_local.max_)
+    except (AttributeError, RuntimeError):       # a geometry type coal cannot bound
+        return np.zeros((1, 3))
+    if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):    # planes, half-spaces
+        return np.zeros((1, 3))
+    return np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1])
+                     for z in (lo[2], hi[2])])
+
+
 class ScenePoses:
     r"""The poses of the scene's moving nodes (paths relative to the scene root) as functions
     of q, for a Pinocchio model, its visual model and the joints whose frames are drawn."""
@@ -66,6 +81,7 @@ class ScenePoses:
         self.visual_paths = tuple(f"visuals/{n}" for n in names)
         self.frame_paths = tuple(f"frames/{node_name(model.names[j])}" for j in self.frame_joints)
         self.com_path = "com"
+        self.corners = tuple(_aabb_corners(g) for g in visual_model.geometryObjects)
 
     @property
     def paths(self) -> tuple[str, ...]:
@@ -93,17 +109,18 @@ class ScenePoses:
         return out
 
     def points(self, q: Iterable[float] | np.ndarray) -> np.ndarray:
-        r"""Points (k×3) that should be in view at ``q``: joint origins, geometry origins and the
-        centre of mass."""
+        r"""Points (k×3) that should be in view at ``q``: joint origins, the corners of each
+        geometry's bounding box (or its origin) and the centre of mass."""
         q = as_configuration(self.model, q)
         com = self._update(q)
         pts = [M.translation for M in self.data.oMi[1:]]
-        pts += [M.translation for M in self.visual_data.oMg]
+        for M, corners in zip(self.visual_data.oMg, self.corners):
+            pts.extend(corners @ M.rotation.T + M.translation)
         pts.append(com)
         return np.array(pts, dtype=float).reshape(-1, 3)
 
     def size(self) -> float:
-        r"""A length scale of the model (metres): the spread of :meth:`points` at the neutral
-        configuration, at least 0.1."""
+        r"""A length scale of the model (metres): the largest extent of :meth:`points` at the
+        neutral configuration, at least 0.1."""
         pts = self.points(pin.neutral(self.model))
         return max(0.1, float(np.max(np.ptp(pts, axis=0))))

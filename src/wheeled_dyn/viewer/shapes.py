@@ -107,8 +107,8 @@ def fallback_visual_model(model: pin.Model, wheels: Sequence[WheelLike] = ()) ->
 
 _TRIAD_POSITIONS = np.array([[0, 0, 0], [1, 0, 0], [0, 0, 0], [0, 1, 0], [0, 0, 0], [0, 0, 1]],
                             dtype=np.float32).T
-_TRIAD_COLORS = np.array([[1, 0, 0], [1, 0.6, 0], [0, 1, 0], [0.6, 1, 0], [0, 0, 1],
-                          [0, 0.6, 1]], dtype=np.float32).T
+_TRIAD_COLORS = np.array([[1, 0, 0], [1, 0, 0], [0, 1, 0], [0, 1, 0], [0, 0, 1], [0, 0, 1]],
+                         dtype=np.float32).T
 
 
 def triad(length: float) -> mg.LineSegments:

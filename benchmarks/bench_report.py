@@ -1,0 +1,39 @@
+r"""Benchmark of the default report (issue "Comparison report"): every seed-001 derivation,
+1000 states × 5 parameter sets each (target: <= 3 s), next to the time of the truth alone
+(Pinocchio, reduced, batched) for the same grid, measured in the same run.
+
+Run: ``.venv/bin/python benchmarks/bench_report.py``
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from wheeled_dyn import CoordinateMap, builtin_coordinate_set, load_model
+from wheeled_dyn.compare.commands import DEFAULT_PARAM_SETS, DEFAULT_SAMPLES, run_comparison
+from wheeled_dyn.derivations import builtin_derivations
+
+
+def main() -> None:
+    files = builtin_derivations("seed001")
+    t0 = time.perf_counter()
+    results = run_comparison(files, DEFAULT_SAMPLES, DEFAULT_PARAM_SETS)
+    total = time.perf_counter() - t0
+    wm = load_model("wip")
+    cmap = CoordinateMap(wm, builtin_coordinate_set(wm, "seed001"))
+    rng = np.random.default_rng(0)
+    n = DEFAULT_SAMPLES * DEFAULT_PARAM_SETS
+    q, nu = rng.uniform(-3, 3, (n, 3)), rng.normal(size=(n, 3))
+    t1 = time.perf_counter()
+    cmap.terms_batch(q, nu)
+    truth = time.perf_counter() - t1
+    print(f"default report: {len(results)} derivations, {DEFAULT_SAMPLES} states x "
+          f"{DEFAULT_PARAM_SETS} parameter sets each: {total:.2f} s (target <= 3 s)")
+    print(f"baseline, the truth alone for one coordinate set on the same grid ({n} states): "
+          f"{truth:.2f} s; report / baseline = {total / truth:.1f}x")
+
+
+if __name__ == "__main__":
+    main()
