@@ -19,6 +19,7 @@ from .errors import WheeledDynError
 COMMAND_MODULES: tuple[str, ...] = (
     "wheeled_dyn.models.commands",
     "wheeled_dyn.compare.commands",
+    "wheeled_dyn.simulate.commands",
 )
 
 

@@ -48,10 +48,47 @@ def _extra_sections(results: Sequence[DerivationResult]) -> tuple[list[str], lis
     return default_sections(results)
 
 
-def _write(results, title: str, out: Path) -> None:
+def _plots(results: Sequence[DerivationResult]) -> tuple[list[str], list[str], dict[str, bytes]]:
+    r"""The optional section: each derivation simulated beside the truth (zero input)."""
+    import base64
+
+    from ..errors import WheeledDynError
+    from ..simulate.commands import default_start
+    from ..simulate.documented import side_by_side
+    from ..simulate.plots import plot_side_by_side
+    md, html, files = ["## Simulations: truth and document from the same start", ""], [
+        "<section><h2>Simulations: truth and document from the same start</h2>"], {}
+    for r in results:
+        d = load_derivation(r.path)
+        try:
+            factors = tuple(None if c is None else float(eval_fraction(c)) for c in r.row_factors)
+            s = side_by_side(d, default_start(d), 4.0, row_factors=factors)
+        except WheeledDynError as exc:
+            md.append(f"- {r.path.name}: not simulated ({exc})")
+            continue
+        png = plot_side_by_side(s)
+        name = f"{r.path.stem}_simulation.png"
+        files[name] = png
+        md.append(f"![{r.title}]({name})")
+        html.append(f"<h3>{r.title}</h3><img alt='{name}' src='data:image/png;base64,"
+                    f"{base64.b64encode(png).decode()}'>")
+    html.append("</section>")
+    return md, html, files
+
+
+def eval_fraction(text: str) -> float:
+    num, _, den = text.partition("/")
+    return float(num) / float(den or 1)
+
+
+def _write(results, title: str, out: Path, plots: bool = False) -> None:
     from ..report import render, write_reports
     md, html, js = _extra_sections(results)
-    paths = write_reports(render(results, title, md, html, js), out)
+    files: dict[str, bytes] = {}
+    if plots:
+        pmd, phtml, files = _plots(results)
+        md, html = [*md, *pmd], [*html, *phtml]
+    paths = write_reports({**render(results, title, md, html, js), **files}, out)
     print("reports: " + ", ".join(str(p) for p in paths))
 
 
@@ -59,7 +96,8 @@ def _cmd_report(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
     results = run_comparison(builtin_derivations("seed001"), args.samples, args.param_sets)
     print_summary(results)
-    _write(results, "wheeled_dyn: seed 001's derivations against the truth", Path(args.out))
+    _write(results, "wheeled_dyn: seed 001's derivations against the truth", Path(args.out),
+           args.plots)
     print(f"{len(results)} derivations, {args.samples} states × {args.param_sets} parameter "
           f"sets each, in {time.perf_counter() - t0:.1f} s")
     return 0
@@ -69,7 +107,8 @@ def _cmd_compare(args: argparse.Namespace) -> int:
     files = [Path(f) for f in args.files]
     results = run_comparison(files, args.samples, args.param_sets, model=args.model)
     print_summary(results)
-    _write(results, f"wheeled_dyn: derivations of {args.model} against the truth", Path(args.out))
+    _write(results, f"wheeled_dyn: derivations of {args.model} against the truth", Path(args.out),
+           args.plots)
     return 0
 
 
@@ -87,4 +126,6 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
                        help="random states per parameter set")
         p.add_argument("--param-sets", type=int, default=DEFAULT_PARAM_SETS,
                        help="random physically consistent parameter sets")
+        p.add_argument("--plots", action="store_true",
+                       help="add simulations of each document beside the truth (PNG)")
         p.set_defaults(handler=handler)

@@ -28,8 +28,9 @@ def render(results: Sequence[DerivationResult], title: str, extra_md: Sequence[s
             "report.json": json.dumps(data, indent=1, default=str, allow_nan=True)}
 
 
-def write_reports(texts: dict[str, str], out: str | Path) -> list[Path]:
-    r"""Write ``texts`` into folder ``out`` (created if needed); returns the paths."""
+def write_reports(texts: dict[str, str | bytes], out: str | Path) -> list[Path]:
+    r"""Write ``texts`` (text, or bytes for images) into folder ``out`` (created if needed);
+    returns the paths."""
     out = Path(out)
     try:
         out.mkdir(parents=True, exist_ok=True)
@@ -39,8 +40,8 @@ def write_reports(texts: dict[str, str], out: str | Path) -> list[Path]:
     try:
         for name, text in texts.items():
             fd, tmp = tempfile.mkstemp(prefix=f".{name}.", dir=out)
-            with os.fdopen(fd, "w", encoding="utf-8") as fh:
-                fh.write(text)
+            with os.fdopen(fd, "wb") as fh:
+                fh.write(text if isinstance(text, bytes) else text.encode("utf-8"))
             os.chmod(tmp, 0o644)
             staged.append((Path(tmp), out / name))
     except OSError as exc:
