@@ -327,12 +327,47 @@ class ComparisonEngine:
             _apply_row_factors(doc, row_factor)
             scales = _row_scales(doc, truth, d.n)
             ok = set()
+            h_values = {}
             for key, D, T, index, _ in _elements(funcs, doc, truth, B_true, d.n):
                 if agrees(D, T, scales[index[0]]):
                     ok.add((key, index))
+                if key == "h":
+                    h_values[index] = (D, T)
+            # a document h term equal to another true h term of its row: a swapped product
+            for a, (Da, Ta) in h_values.items():
+                for b, (Db, Tb) in h_values.items():
+                    if a != b and a[0] == b[0] and agrees(Da, Tb, scales[a[0]]) \
+                            and not agrees(Da, Ta, scales[a[0]]) \
+                            and not agrees(Da, 0 * Da, scales[a[0]]):
+                        ok.add(("swap", a, b))
             return ok
 
         everything = agreeing(tuple(cases))
+        by_index = {(r["key"], r["index"]): r for r in records}
+
+        def minimal(item) -> list[SpecialCase]:
+            needed = list(cases)
+            for case in cases:
+                trial = tuple(c for c in needed if c is not case)
+                if item in agreeing(trial):
+                    needed = list(trial)
+            return needed
+
+        for item in sorted((x for x in everything if x[0] == "swap"), key=str):
+            _, a, b = item
+            ra, rb = by_index.get(("h", a)), by_index.get(("h", b))
+            if ra is None or rb is None or any(x.startswith("swap") for x in ra["diagnoses"]):
+                continue
+            if ra["verdict"] != "differs":
+                continue
+            text = " and ".join(c.description for c in minimal(item))
+            pa, pb = ra["element"].split(":")[1], rb["element"].split(":")[1]
+            ra["diagnoses"].append(f"swap: the document's {pa} term is the true {pb} term "
+                                   f"(equal only if {text})")
+            rb["diagnoses"].append(f"swap: written as {pa} in the document (equal only if {text})")
+            for r in (ra, rb):
+                if r in todo:
+                    todo.remove(r)
         for r in todo:
             if (r["key"], r["index"]) not in everything:
                 continue
