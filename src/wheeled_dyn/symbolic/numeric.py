@@ -23,6 +23,10 @@ from ..errors import StateError, UnknownNameError
 from .parameters import numeric_parameters
 
 
+#: Terms returned as 1-D arrays (the others keep their matrix shape, even n×1 or 1×1).
+VECTOR_TERMS: frozenset[str] = frozenset({"Q", "h"})
+
+
 class HasTerms(Protocol):
     """What :func:`lambdify_terms` needs of a symbolic result."""
 
@@ -38,7 +42,7 @@ class HasTerms(Protocol):
 @dataclass(frozen=True)
 class NumericTerms:
     """Compiled terms: ``self(name, q, v, p)`` or ``self.A(q, v, p)`` etc. return arrays
-    (matrices as 2-D, column vectors as 1-D)."""
+    (``Q`` and ``h`` as 1-D, every other term with its matrix shape)."""
 
     q: tuple[sp.Symbol, ...]
     velocities: tuple[sp.Symbol, ...]
@@ -57,7 +61,7 @@ class NumericTerms:
         out = np.asarray(self.functions[name](qa, va, pa), dtype=float)
         out = np.broadcast_to(out, self.shapes[name]).copy() if out.ndim == 0 else out
         rows, cols = self.shapes[name]
-        return out.reshape(rows) if cols == 1 else out.reshape(rows, cols)
+        return out.reshape(rows) if name in VECTOR_TERMS else out.reshape(rows, cols)
 
     def __getattr__(self, name: str) -> Callable[..., np.ndarray]:
         if name.startswith("_") or name not in self.__dict__.get("functions", {}):

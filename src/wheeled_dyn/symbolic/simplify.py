@@ -36,15 +36,16 @@ TRIG_POLISH_MAX_OPS: int = 60
 #: Largest number of terms of a coefficient that :func:`polish_trig` rewrites (``TR10i`` looks
 #: at pairs of terms).
 TRIG_POLISH_MAX_TERMS: int = 8
+#: Entries with more parameter groups than this are left in canonical form (not polished).
+POLISH_MAX_GROUPS: int = 60
 
 
 def _chop(terms: list[tuple[tuple[int, ...], sp.Expr]], chop: float) -> list:
     if chop <= 0:
         return terms
-    floats = [abs(float(v)) for _, v in terms if v.is_Float]
-    if not floats:
+    if not any(v.is_Float for _, v in terms):
         return terms
-    limit = chop * max(floats)
+    limit = chop * max(abs(complex(v)) for _, v in terms)
     return [(m, v) for m, v in terms if v != 0 and not (v.is_Float and abs(float(v)) <= limit)]
 
 
@@ -94,13 +95,16 @@ def polish_trig(expr: sp.Expr) -> sp.Expr:
     if _has_trig_products(expr):
         t8 = _fu.TR8(expr)
         cands += [t8, _fu.TR10i(t8)]
-    return min(cands, key=lambda e: (sp.count_ops(e), sp.default_sort_key(e)))
+    return min(cands, key=lambda e: (sp.count_ops(e), len(sp.Add.make_args(e)),
+                                     sp.default_sort_key(e)))
 
 
 def collect_terms(ring: TrigRing, p, parameters: Iterable[sp.Symbol] | None = None,
                   chop: float = DEFAULT_CHOP, trig: bool = True) -> sp.Expr:
     r"""A ring element as :math:`\sum_\pi \pi\, f_\pi` over monomials :math:`\pi` in
-    ``parameters`` (default: every generator that is a plain symbol and no angle)."""
+    ``parameters`` (default: every generator that is a plain symbol and no angle). With
+    ``trig``, each :math:`f_\pi` is polished (:func:`polish_trig`) unless the entry has more
+    than :data:`POLISH_MAX_GROUPS` of them (too long to read anyway)."""
     gens = ring.symbols()
     if parameters is None:
         inside = set().union(set(), *[x.free_symbols for x in ring.pairs])
@@ -116,6 +120,7 @@ def collect_terms(ring: TrigRing, p, parameters: Iterable[sp.Symbol] | None = No
         pkey = tuple(k if isp else 0 for k, isp in zip(mon, is_par))
         rest = tuple(0 if isp else k for k, isp in zip(mon, is_par))
         groups.setdefault(pkey, []).append(cf * _monomial(gens, rest))
+    trig = trig and len(groups) <= POLISH_MAX_GROUPS
     out = []
     for pkey in sorted(groups, key=lambda k: (sum(k), k)):
         coef = sp.Add(*groups[pkey])

@@ -173,8 +173,9 @@ def transform(sym: SymbolicModel, S: sp.MatrixBase, Sdot: sp.MatrixBase,
     k = None if B is None else B.shape[1]
     ring, out = _products(flat, n, m, k, nu, coordinates)
     if ring is not None:
-        free = set().union(*[set(ring.symbols()[i].free_symbols) for x in out
-                             for mon in x.monoms() for i, e in enumerate(mon) if e])
+        used = {i for x in out for mon in x.itermonoms() for i, e in enumerate(mon) if e}
+        gens = ring.symbols()
+        free = set().union(*[gens[i].free_symbols for i in used])
     else:
         free = set().union(*[x.free_symbols for x in out])
     pars = [p for p in sym.parameters if p in free]

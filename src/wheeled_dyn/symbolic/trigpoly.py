@@ -40,7 +40,7 @@ def simple_number(x: float, max_denominator: int = 1000) -> sp.Expr:
     matches it within :data:`SIMPLE_NUMBER_RTOL` and reads no longer than the float (plus one
     character), else as a Float."""
     f = Fraction(x).limit_denominator(max_denominator)
-    if abs(f - Fraction(x)) <= SIMPLE_NUMBER_RTOL * max(1.0, abs(x)):
+    if abs(f - Fraction(x)) <= SIMPLE_NUMBER_RTOL * abs(x):
         r = sp.Rational(f.numerator, f.denominator)
         if len(str(r)) <= len(repr(x)) + 1:
             return r
@@ -61,6 +61,7 @@ class TrigRing:
         self.pairs = pairs  # angle -> (index of s, index of c) among ring.gens
         self._back = back
         self._index = {g: i for i, g in enumerate(ring.symbols)}
+        self._symbols = tuple(g.xreplace(back) for g in ring.symbols)
 
     @classmethod
     def from_exprs(cls, exprs: Sequence[sp.Expr], extra: Iterable[sp.Symbol] = ()
@@ -168,7 +169,7 @@ class TrigRing:
 
     def symbols(self) -> tuple[sp.Expr, ...]:
         """The generators as SymPy expressions, sines and cosines restored."""
-        return tuple(g.xreplace(self._back) for g in self.ring.symbols)
+        return self._symbols
 
     def is_trig(self, i: int) -> bool:
         """Whether generator ``i`` stands for a sine or a cosine."""

@@ -1,0 +1,79 @@
+"""On-disk cache of symbolic models: hits return the same closed forms, the key follows the
+model's content, unreadable entries are replaced with a warning."""
+
+from __future__ import annotations
+
+import numpy as np
+import pinocchio as pin
+import pytest
+from test_symbolic_model import SEED, arm3, wip_like
+
+from wheeled_dyn.symbolic import numeric_parameters
+from wheeled_dyn.symbolic.cache import (
+    CACHE_ENV, cache_dir, cached_symbolic_model, clear_cache, model_fingerprint)
+
+
+@pytest.fixture
+def root(tmp_path, monkeypatch):
+    monkeypatch.setenv(CACHE_ENV, str(tmp_path / "cache"))
+    return tmp_path / "cache"
+
+
+def test_cache_dir_follows_the_environment(root):
+    assert cache_dir() == root / "symbolic"
+
+
+def test_second_call_is_a_hit_with_equal_results(root):
+    model = arm3(np.random.default_rng(SEED))
+    first = cached_symbolic_model(model)
+    files = list((root / "symbolic").glob("*.pickle"))
+    assert len(files) == 1
+    mtime = files[0].stat().st_mtime_ns
+    second = cached_symbolic_model(model)
+    assert files[0].stat().st_mtime_ns == mtime
+    assert second is not first
+    assert second.A == first.A and second.Q == first.Q and second.h() == first.h()
+    assert second.christoffel() == first.christoffel()
+    assert second.q == first.q and second.parameters == first.parameters
+
+
+def test_key_follows_the_content(root):
+    rng = np.random.default_rng(SEED)
+    model = wip_like(rng)
+    key = model_fingerprint(model)
+    assert model_fingerprint(pin.Model(model)) == key
+    moved = pin.Model(model)
+    moved.jointPlacements[4] = pin.SE3(np.eye(3), np.array([0.0, 0.0, 0.31]))
+    assert model_fingerprint(moved) != key
+    assert model_fingerprint(model, coordinate_names=list("abcdef")) != key
+    assert model_fingerprint(model, gravity="g") != key
+    assert model_fingerprint(model, simplify=False) != key
+    # with symbolic parameters the model's inertias do not matter; with numbers they do
+    heavier = pin.Model(model)
+    heavier.inertias[4] = pin.Inertia.Random()
+    assert model_fingerprint(heavier) == key
+    assert model_fingerprint(heavier, params=numeric_parameters(heavier)) != \
+        model_fingerprint(model, params=numeric_parameters(model))
+
+
+def test_unreadable_entry_is_replaced(root):
+    model = arm3(np.random.default_rng(SEED))
+    path = root / "symbolic" / f"{model_fingerprint(model)}.pickle"
+    path.parent.mkdir(parents=True)
+    path.write_bytes(b"not a pickle")
+    with pytest.warns(UserWarning, match="unreadable"):
+        sym = cached_symbolic_model(model)
+    assert sym.n == 3
+    assert cached_symbolic_model(model).A == sym.A
+    assert clear_cache() == 1
+    assert not path.exists()
+
+
+def test_refresh_rewrites(root):
+    model = arm3(np.random.default_rng(SEED))
+    cached_symbolic_model(model)
+    path = next((root / "symbolic").glob("*.pickle"))
+    before = path.stat().st_mtime_ns
+    cached_symbolic_model(model, refresh=True)
+    assert path.stat().st_mtime_ns >= before
+    assert len(list((root / "symbolic").glob("*"))) == 1  # no temporary files left
