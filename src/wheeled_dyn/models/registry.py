@@ -63,6 +63,15 @@ def _tiago_spec() -> ModelSpec:
         description="PAL TIAGo (differential drive, torso, 7-DoF arm, head); casters fixed")
 
 
+def _tiago_base_spec() -> ModelSpec:
+    spec = _tiago_spec()
+    upper = ("torso_lift_joint", *(f"arm_{i}_joint" for i in range(1, 8)), "head_1_joint",
+             "head_2_joint")
+    return ModelSpec(**{**spec.__dict__, "name": "tiago_base", "lock": upper,
+                        "description": "TIAGo with torso, arm and head locked: a "
+                                       "differential-drive base carrying a rigid upper body"})
+
+
 MODELS: dict[str, ModelEntry] = {
     "wip": ModelEntry("wip", "two-wheeled inverted pendulum (seed 001), 6 coordinates",
                       _wip_spec, WipParameters),
@@ -70,6 +79,8 @@ MODELS: dict[str, ModelEntry] = {
                                "(seed 001 eqs (9)-(14))", _wip_platform_spec),
     "tiago": ModelEntry("tiago", "PAL TIAGo from example-robot-data, differential drive + arm",
                         _tiago_spec),
+    "tiago_base": ModelEntry("tiago_base", "TIAGo with torso, arm and head locked "
+                             "(differential drive, 5 coordinates)", _tiago_base_spec),
 }
 
 
