@@ -15,6 +15,8 @@ from wheeled_dyn.errors import ModelError, ParameterError, UnknownNameError
 from wheeled_dyn.symbolic import (
     PARAMETER_NAMES, is_zero, lambdify_terms, numeric_parameters, parameter_vector,
     symbolic_model)
+from wheeled_dyn.symbolic.kinematics import velocity_jacobian
+from wheeled_dyn.symbolic.parameters import spatial_inertia
 
 SEED = 4042
 #: Relative tolerance of symbolic-vs-Pinocchio agreement.
@@ -239,6 +241,19 @@ def test_A_is_the_hessian_of_the_kinetic_energy(symbolic_models):
     for i in range(sym.n):
         for j in range(i, sym.n):
             assert is_zero(H[i, j] - sym.A[i, j]), (i, j)
+
+
+def test_A_is_the_sum_of_body_jacobian_products(symbolic_models):
+    """A = sum_j J_j^T I_j J_j with the body Jacobians of the kinematics records and the 6x6
+    spatial inertia of the standard parameters (an independent formula), plus armature."""
+    for name, (model, sym) in symbolic_models.items():
+        A = sp.zeros(sym.n, sym.n)
+        for k in sym.kinematics:
+            J = velocity_jacobian(k, sym.qd)
+            A += J.T * spatial_inertia(sym.params[k.index]) * J
+        bad = [(i, j) for i in range(sym.n) for j in range(i, sym.n)
+               if not is_zero(A[i, j] - sym.A[i, j], atol=ZERO_ATOL)]
+        assert not bad, f"{name}: sum J^T I J differs from A at {bad[:3]}"
 
 
 def test_h_is_C_qdot_and_power_identity(symbolic_models):

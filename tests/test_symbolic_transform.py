@@ -162,6 +162,18 @@ def test_without_simplify_same_values(wip):
         assert all(is_zero(e) for e in a.terms()[name] - b.terms()[name]), name
 
 
+def test_same_name_sign_flip(wip):
+    """subs {phi: -phi} (a document measuring the pitch the other way, same name) is applied
+    simultaneously: Q_phi changes sign, A_phi,phi does not."""
+    _, sym = wip
+    phi = sym.q[3]
+    red = transform(sym, sp.eye(6), sp.zeros(6, 6), sym.qd, subs={phi: -phi})
+    assert red.q == sym.q
+    assert is_zero(red.Q[3] - sym.Q[3].xreplace({phi: -phi}))
+    assert is_zero(red.A[3, 3] - sym.A[3, 3])
+    assert is_zero(red.A[0, 3] - sym.A[0, 3].xreplace({phi: -phi}))
+
+
 def test_shape_errors(wip):
     _, sym = wip
     nu = sp.symbols("a b")

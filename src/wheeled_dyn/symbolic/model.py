@@ -17,9 +17,10 @@ and (seed 001, eqs. (21)–(24))
      + \frac{\partial A_{ik}}{\partial q_j} - \frac{\partial A_{jk}}{\partial q_i}\right),
    \qquad C_{ij} = \sum_k c_{i,jk}\,\dot q_k, \qquad h = C\dot q,
 
-so that :math:`A\ddot q + C\dot q + Q = \tau` (Pinocchio's ``rnea``). :math:`A` is computed as the
-sum of :math:`J_j^T \mathcal{I}_j J_j` with the body Jacobians :math:`J_j` (identical to the
-Hessian of :math:`E`, which is quadratic in :math:`\dot q`, and much cheaper).
+so that :math:`A\ddot q + C\dot q + Q = \tau` (Pinocchio's ``rnea``). Kinematics, energies and
+all derivatives are computed on elements of one :class:`~.trigpoly.TrigRing`
+(:func:`~.kinematics.kinematics_in_ring`, :func:`~.lagrange.lagrange_terms`): exact, canonical
+modulo :math:`\sin^2+\cos^2=1`, and fast; SymPy expressions are made only at the end.
 """
 
 from __future__ import annotations
@@ -130,15 +131,16 @@ def _gravity(model: pin.Model, gravity) -> sp.Matrix:
 def symbolic_model(model: pin.Model, params: Mapping[int, Sequence] | None = None,
                    coordinate_names: Sequence[str] | None = None, gravity=None,
                    simplify: bool = True) -> SymbolicModel:
-    r"""Symbolic :math:`A, Q, E, U` (and on demand :math:`c_{i,jk}, C, h`) of ``model``.
+    r"""Symbolic :math:`A, Q, c_{i,jk}, C, h, \dot A, E, U` of ``model``.
 
     ``params``: ``{joint index or name: 10 numbers or expressions}`` in Pinocchio's
     ``toDynamicParameters()`` order (default: symbols ``M_<joint>, MX_<joint>, ...``; use
     :func:`~.parameters.numeric_parameters` for the model's own numbers). ``coordinate_names``:
     one name per coordinate (default: the joint names); velocities are ``"d" + name``.
     ``gravity``: None (``model.gravity``), a magnitude (symbol, name or number) along
-    ``model.gravity``, or a 3-vector. ``simplify``: canonical trigonometric form collected by
-    parameter (:func:`~.simplify.simplify_matrix`).
+    ``model.gravity``, or a 3-vector. All results are in canonical trigonometric form collected
+    by parameter (and velocity); ``simplify`` also polishes ``A``, ``Q``, ``h`` and ``U`` for
+    reading (:func:`~.simplify.polish_trig`).
     Raises :class:`ModelError` for joints other than 1-DoF revolute/prismatic.
     """
     names = tuple(model.names[j] for j in range(1, model.njoints))
