@@ -23,20 +23,17 @@ def _physical_symbols() -> dict[str, sp.Symbol]:
     return {f.name: sp.Symbol(f.name, real=True) for f in fields(WipParameters)}
 
 
-def document_in_model(d: Derivation) -> Callable[[sp.Expr | None], tuple[str, str]]:
-    r"""A function: document expression → (text, LaTeX) in the model's parameters."""
+def model_expression(d: Derivation) -> Callable[[sp.Expr | None], sp.Expr | None]:
+    r"""A function: document expression → the same in the model's parameters (for the WIP,
+    Khalil calls replaced by the physical parameters)."""
     mapping = {s.symbol: s.value for s in d.symbols.values() if s.value is not None}
     physical = model_entry(d.model).parameters is WipParameters
-    std = standard_parameters(_physical_symbols()) if physical else None
     names = _physical_symbols()
+    std = standard_parameters(names) if physical else None
 
-    dots = {}
-    for q, v in zip(d.positions, d.velocities):
-        dots[v] = rf"\dot{{{sp.latex(q)}}}"
-
-    def convert(expr: sp.Expr | None) -> tuple[str, str]:
+    def convert(expr: sp.Expr | None) -> sp.Expr | None:
         if expr is None:
-            return "", ""
+            return None
         out = sp.sympify(expr).xreplace(mapping)
         if std is not None:
             calls = {}
@@ -46,28 +43,50 @@ def document_in_model(d: Derivation) -> Callable[[sp.Expr | None], tuple[str, st
                     calls[call] = std[link][call.func.__name__]
             out = out.xreplace(calls)
             out = out.xreplace({s: names.get(s.name, s) for s in out.free_symbols})
+        return out
+
+    return convert
+
+
+def document_in_model(d: Derivation) -> Callable[[sp.Expr | None], tuple[str, str]]:
+    r"""A function: document expression → (text, LaTeX) in the model's parameters."""
+    to_model = model_expression(d)
+    dots = {v: rf"\dot{{{sp.latex(q)}}}" for q, v in zip(d.positions, d.velocities)}
+
+    def convert(expr: sp.Expr | None) -> tuple[str, str]:
+        out = to_model(expr)
+        if out is None:
+            return "", ""
         return sp.sstr(out), sp.latex(out, symbol_names=dots)
 
     return convert
 
 
-def annotate(d: Derivation, records: list[dict], coordinates: str) -> None:
-    r"""Fill ``truth`` and ``residual`` of the records where closed forms are available
-    (symbolic engine). Without them the records keep the numeric verdict."""
+def annotate(d: Derivation, records: list[dict], cs, exprs: dict[int, sp.Expr | None]) -> None:
+    r"""Fill ``truth`` (every element) and ``residual`` (truth − document, simplified, for the
+    elements that do not agree) where the symbolic engine provides closed forms; without them
+    the records keep their numeric verdicts."""
     try:
-        from ..symbolic import true_expressions  # provided by the symbolic engine
+        from ..symbolic import true_expressions
     except ImportError:
         return
-    truth = true_expressions(d.model, coordinates)
-    if truth is None:
+    truth = true_expressions(d.model, cs)
+    if not truth:
         return
-    mapped = document_in_model(d)
+    from ..symbolic import simplify_expr
+    to_model = model_expression(d)
+    dots = {v: rf"\dot{{{sp.latex(q)}}}" for q, v in zip(d.positions, d.velocities)}
     for r in records:
         expr = truth.get(r["element"])
-        if expr is None:
+        if expr is None or r["key"] == "B":
             continue
         r["truth"] = sp.sstr(expr)
+        r["truth_latex"] = sp.latex(expr, symbol_names=dots)
         if r["verdict"] != "agrees":
-            doc = sp.sympify(r["document_model"]) if r["document_model"] else sp.Integer(0)  # noqa
-            res = sp.trigsimp(sp.expand(expr - doc))
-            r["residual"] = sp.sstr(res)
+            doc = to_model(exprs.get(id(r)))
+            if doc is None:
+                continue
+            residual = simplify_expr(sp.expand(expr - doc))
+            r["residual"] = sp.sstr(residual)
+            if residual != 0:
+                r["diagnoses"].append(f"truth − document = {sp.sstr(residual)}")

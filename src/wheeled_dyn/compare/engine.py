@@ -61,6 +61,7 @@ class ElementRecord:
     scale: float
     document_latex: str = ""
     model_latex: str = ""
+    truth_latex: str = ""
     truth_sample: float = float("nan")      # the truth at the first sample (reference state)
     document_sample: float = float("nan")
 
@@ -188,15 +189,18 @@ class ComparisonEngine:
             for ps in sets:
                 bound.append(cmap)
             truth = _truth_for(cmap, sets, q, nu)
-            self._truth[key] = (truth, sets, q, nu, cs.name)
+            self._truth[key] = (truth, sets, q, nu, cs)
         return self._truth[key]
 
-    def _document(self, d: Derivation, funcs: DocumentFunctions, sets, q, nu):
+    def _document(self, d: Derivation, funcs: DocumentFunctions, sets, q, nu, H_rows=None):
         rng = np.random.default_rng(self.seed + 1)
         k, n_states, n = q.shape
         per_set = [document_symbol_values(d, ps, rng) for ps in sets]
         values = {s: np.repeat([v[s] for v in per_set], n_states) for s in funcs.params}
-        return funcs.evaluate(q.reshape(-1, n), nu.reshape(-1, n), values), per_set
+        doc = funcs.evaluate(q.reshape(-1, n), nu.reshape(-1, n), values)
+        if doc.H is not None and H_rows is not None:
+            doc.H = doc.H[H_rows]
+        return doc, per_set
 
     # -- main ----------------------------------------------------------------------------
     def compare(self, d: Derivation) -> DerivationResult:
@@ -212,8 +216,9 @@ class ComparisonEngine:
         as_printed = d.read_off(assume=True, unscale=False)
         printed = {"A": as_printed.A, "Q": as_printed.Q, "B": as_printed.B, "h": as_printed.h,
                    "C": d.C}
-        truth, sets, q, nu, cs_name = self._grid(d, (), self.samples, self.param_sets)
-        doc, per_set = self._document(d, funcs, sets, q, nu)
+        truth, sets, q, nu, cs = self._grid(d, (), self.samples, self.param_sets)
+        cs_name = cs.name
+        doc, per_set = self._document(d, funcs, sets, q, nu, truth.H_rows)
         notes: list[str] = []
         B_true = _input_map(d, truth, per_set, self.samples, notes)
         row_factor = _row_factors(doc, truth, B_true, n)
@@ -238,6 +243,7 @@ class ComparisonEngine:
             return out.astype(float) / (c if c is not None else 1.0)
 
         arrays: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+        exprs: list[sp.Expr | None] = []
         lost = set(d.missing)
         names = _latex_names(d)
         for key, D, T, index, expr in _elements(funcs, doc, truth, B_true, n):
@@ -270,10 +276,11 @@ class ComparisonEngine:
                                 scale=float(scale), truth_sample=float(T[0]),
                                 document_sample=float(D[0])))
             arrays[id(records[-1])] = (D, T)
+            exprs.append(expr)
         self._h_swaps(records, arrays)
         self._factorization(records, n)
         self._special(d, funcs, records, row_factor)
-        closed_form.annotate(d, records, cs_name)
+        closed_form.annotate(d, records, cs, {id(r): e for r, e in zip(records, exprs)})
         energy = _energy(funcs, doc, row_factor, flat_q, flat_nu, values, d)
         asym = _asymmetric(doc, scales, n)
         constraints = _constraints(doc, truth, scales)
@@ -322,7 +329,7 @@ class ComparisonEngine:
 
         def _agreeing(combo):
             truth, sets, q, nu, _ = self._grid(d, combo, SPECIAL_SAMPLES, SPECIAL_SETS)
-            doc, per_set = self._document(d, funcs, sets, q, nu)
+            doc, per_set = self._document(d, funcs, sets, q, nu, truth.H_rows)
             B_true = _input_map(d, truth, per_set, SPECIAL_SAMPLES, [])
             _apply_row_factors(doc, row_factor)
             scales = _row_scales(doc, truth, d.n)
@@ -412,6 +419,8 @@ def _truth_for(cmap: CoordinateMap, sets, q, nu) -> Arrays:
     for name in ("A", "C", "Q", "B", "h", "H", "G"):
         vals = [getattr(p, name) for p in parts]
         setattr(out, name, None if vals[0] is None else np.concatenate(vals))
+    n_states = q.shape[1]
+    out.H_rows = np.concatenate([k * n_states + p.H_rows for k, p in enumerate(parts)])
     return out
 
 

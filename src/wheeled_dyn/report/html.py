@@ -64,10 +64,10 @@ def _matrix(result: DerivationResult, key: str, document: bool) -> str:
             elif document:
                 cells.append(_cell(r, _mathml(r.document_latex) or "0"))
             else:
-                val = _mathml(r.truth) if r.truth else f'<span class="num">{r.truth_sample:.4g}</span>'
+                val = _mathml(r.truth_latex) if r.truth_latex else f'<span class="num">{r.truth_sample:.4g}</span>'
                 cells.append(_cell(r, val))
         rows.append("<tr>" + "".join(cells) + "</tr>")
-    side = "document" if document else ("truth" if any(r.truth for r in recs.values())
+    side = "document" if document else ("truth" if any(r.truth_latex for r in recs.values())
                                        else "truth at the reference sample")
     return (f'<div><b>{key}</b> ({side})<table class="matrix">' + "".join(rows) + "</table></div>")
 
@@ -77,7 +77,7 @@ def _table(result: DerivationResult) -> str:
             "<th>truth</th><th>verdict</th></tr>")
     rows = []
     for r in result.records:
-        truth = _mathml(r.truth) if r.truth else (f'<span class="num">{r.truth_sample:.6g}</span>'
+        truth = _mathml(r.truth_latex) if r.truth_latex else (f'<span class="num">{r.truth_sample:.6g}</span>'
                                                   f" at the reference sample")
         verdict = html.escape(VERDICT_TEXT[r.verdict])
         diag = "".join(f"<div class='diag'>{html.escape(d)}</div>" for d in r.diagnoses)

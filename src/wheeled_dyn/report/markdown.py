@@ -39,7 +39,7 @@ def summary_lines(result: DerivationResult) -> list[str]:
 def _row(r: ElementRecord) -> str:
     diag = "; ".join(r.diagnoses)
     verdict = VERDICT_TEXT[r.verdict] + (f": {diag}" if diag else "")
-    truth = _math(r.truth) if r.truth else f"(numeric; max error {r.max_error:.3g})"
+    truth = _math(r.truth_latex) if r.truth_latex else f"(numeric; max error {r.max_error:.3g})"
     return (f"| {r.element} | {_math(r.document_latex)} | {_math(r.model_latex)} | {truth} | "
             f"{verdict.replace('|', '/')} |")
 

@@ -1,0 +1,592 @@
+r"""Reproducing a hand-made comparison table: :func:`reproduce_table`.
+
+Seed 001 ends with a table comparing its eq. (25) (the *derived* document) with the appendix's
+A and C of Kim et al. (the *reference*, "[1]") element by element, after a substitution printed
+above the table (a body symmetric about its mid-plane, centre of mass straight above the axle:
+:math:`MX_1 = MZ_1 = XY_1 = XZ_1 = YZ_1 = 0`, :math:`MY_1 = m_S d`, ...), and lists the
+mismatched elements and the resulting differences in each equation. This module does the same by
+machine and sets the two side by side:
+
+1. **The table's assumptions.** The substitution is turned into the smallest combination of the
+   model's special parameter families (:func:`~wheeled_dyn.compare.samples.special_cases`) under
+   which every substituted symbol's model value equals its substitution, checked on random
+   parameter sets (a substitution no family satisfies is an error of the table file). Cases in
+   ``also_assume`` are added (by default no motor armature: neither document models the motors).
+2. **Document against document.** Both documents' A and C, as printed, at random states and
+   parameter sets of that family; the reference's rows divided by the constant the engine
+   finds (:attr:`DerivationResult.row_factors`: −1 for Kane's generalised inertia forces
+   :math:`F^* = -(A\ddot q + h)`). An element *matches* or is a *mismatch*; a C element whose
+   row has the same :math:`C\dot q` in both is a *factorisation* difference only.
+3. **Against the truth.** Each document's element against the truth at the same samples
+   (:class:`~wheeled_dyn.constraints.CoordinateMap`): which of the two is right under the
+   table's assumptions; the engine's verdict in general parameters is quoted beside it.
+4. **Against the printed table.** The table's mismatched list, its cells (are they the documents
+   as printed?) and its "resulting differences", equation by equation; every place where the
+   machine and the table part ways comes with an explanation.
+
+Expressions shown are in the table's namespace after its substitution (the "equivalent form").
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import sympy as sp
+
+from ..constraints.reduction import CoordinateMap
+from ..derivations.parse import load_derivation
+from ..derivations.schema import Derivation
+from ..derivations.table import ComparisonTable, TableEntry
+from ..errors import DerivationError
+from .diagnose import agrees
+from .engine import ComparisonEngine, DerivationResult
+from .evaluate import derivation_coordinate_set, model_value
+from .samples import ParameterSet, SpecialCase, parameter_sets, random_states, special_cases
+
+#: The documents a shipped table compares: table file name -> (derived, reference) file names,
+#: in the table's folder.
+TABLE_DOCUMENTS: Mapping[str, tuple[str, str]] = {
+    "seed_table.toml": ("eq25_lagrange.toml", "appendix_kim_A_C.toml"),
+}
+#: Special cases assumed beside the table's substitution (neither seed-001 document models the
+#: motors, so the truth is taken without armature).
+ALSO_ASSUMED: tuple[str, ...] = ("no_armature",)
+#: Grid of the document comparison: parameter sets of the table's family × states each.
+FAMILY_SETS, FAMILY_STATES = 3, 60
+#: Random points of the identity checks of printed expressions, and their tolerance.
+CHECK_POINTS, CHECK_TOL = 12, 1e-9
+
+MACHINE_VERDICTS = ("match", "mismatch", "factorization")
+
+
+@dataclass(frozen=True)
+class TableRow:
+    r"""One element of the reproduced table.
+
+    ``derived``/``reference``: the documents' elements as printed, after the table's
+    substitution. ``machine``: ``match``, ``mismatch`` or ``factorization`` (C differs, the
+    row's :math:`C\dot q` does not). ``table``: ``mismatched`` or ``match`` (the printed list).
+    ``truth``: which document agrees with the truth under the table's assumptions (``both``,
+    ``derived``, ``reference``, ``neither``). ``disagreement``: where the machine and the
+    printed table part ways ("" when they do not); ``explanation`` says why."""
+
+    element: str
+    derived: str
+    reference: str
+    machine: str
+    table: str
+    truth: str
+    derived_engine: str
+    reference_engine: str
+    disagreement: str
+    explanation: str
+
+
+@dataclass(frozen=True)
+class EquationDifference:
+    r"""One equation's difference derived − reference (the reference row divided by its factor),
+    after the substitution, beside the table's printed one. ``relation``: ``equal``,
+    ``opposite sign``, ``differs`` or ``not printed``."""
+
+    equation: int
+    machine: str
+    table: str
+    relation: str
+    explanation: str
+
+
+@dataclass(frozen=True)
+class TableReproduction:
+    r"""The machine's version of a hand-made comparison table (:func:`reproduce_table`)."""
+
+    table: Path
+    derived: Path
+    reference: Path
+    assumptions: tuple[str, ...]
+    row_factors: tuple[str | None, ...]
+    rows: tuple[TableRow, ...]
+    equations: tuple[EquationDifference, ...]
+    notes: tuple[str, ...]
+
+    @property
+    def machine_mismatched(self) -> tuple[str, ...]:
+        r"""Elements whose equations differ between the two documents (factorisation-only
+        differences left out)."""
+        return tuple(r.element for r in self.rows if r.machine == "mismatch")
+
+    @property
+    def table_mismatched(self) -> tuple[str, ...]:
+        return tuple(r.element for r in self.rows if r.table == "mismatched")
+
+    @property
+    def disagreements(self) -> tuple[TableRow, ...]:
+        return tuple(r for r in self.rows if r.disagreement)
+
+    def row(self, element: str) -> TableRow:
+        for r in self.rows:
+            if r.element == element:
+                return r
+        raise KeyError(element)
+
+    def markdown(self) -> str:
+        r"""The reproduction as a Markdown document: the element table, the differences per
+        equation, the notes."""
+        factors = ", ".join("1" if c is None else c for c in self.row_factors)
+        lines = [f"# Comparison table reproduced: {self.table.name}", "",
+                 f"- derived: `{self.derived.name}`; reference: `{self.reference.name}` "
+                 f"(its rows are ({factors}) × the truth's, divided out)",
+                 "- assumptions (the table's substitution): " + "; ".join(self.assumptions),
+                 "- mismatched, table: " + (", ".join(self.table_mismatched) or "none"),
+                 "- mismatched, machine: " + (", ".join(self.machine_mismatched) or "none"),
+                 "", "| element | derived | reference | machine | table | right (vs truth) | explanation |",
+                 "|---|---|---|---|---|---|---|"]
+        for r in self.rows:
+            mark = " **≠ table**" if r.disagreement else ""
+            lines.append(f"| {r.element} | {_code(r.derived)} | {_code(r.reference)} | "
+                         f"{r.machine}{mark} | {r.table} | {r.truth} | {_cell(r.explanation)} |")
+        lines += ["", "## Resulting differences (derived − reference)", "",
+                  "| equation | machine | table | relation | explanation |", "|---|---|---|---|---|"]
+        for e in self.equations:
+            lines.append(f"| {e.equation} | {_code(e.machine)} | {_code(e.table)} | {e.relation} "
+                         f"| {_cell(e.explanation)} |")
+        if self.notes:
+            lines += ["", "## Notes", ""] + [f"- {n}" for n in self.notes]
+        return "\n".join(lines) + "\n"
+
+
+def _cell(text: str) -> str:
+    return text.replace("|", "\\|").replace("\n", " ")
+
+
+def _code(text: str) -> str:
+    return f"`{_cell(text)}`" if text else ""
+
+
+# -- helpers ------------------------------------------------------------------------------
+
+def _documents(table: ComparisonTable, derived, reference) -> tuple[Derivation, Derivation]:
+    if derived is None or reference is None:
+        names = TABLE_DOCUMENTS.get(table.path.name)
+        if names is None:
+            raise DerivationError(table.path, "documents", "no known documents for this table; "
+                                  "pass derived= and reference= (derivation files)")
+        derived = derived if derived is not None else table.path.parent / names[0]
+        reference = reference if reference is not None else table.path.parent / names[1]
+    docs = tuple(x if isinstance(x, Derivation) else load_derivation(x)
+                 for x in (derived, reference))
+    for d in docs:
+        if d.model != table.model or tuple(map(str, d.positions)) != tuple(map(str, table.positions)):
+            raise DerivationError(d.path, "coordinates", f"the table {table.path.name} compares "
+                                  f"model {table.model} in {[str(p) for p in table.positions]}; "
+                                  f"this file has {d.model} in {[str(p) for p in d.positions]}")
+        if d.A is None or d.C is None:
+            raise DerivationError(d.path, "matrices", "the table compares A and C: give both")
+    return docs  # type: ignore[return-value]
+
+
+def _substitution_failures(table: ComparisonTable, sets: Sequence[ParameterSet]) -> list[str]:
+    r"""Substituted symbols whose model value differs from their substitution at some set."""
+    failing = []
+    for symbol, expr in table.substitution.items():
+        for ps in sets:
+            values = {s.symbol: model_value(s.value, ps.values) for s in table.symbols.values()
+                      if s.value is not None}
+            lhs = values[symbol]
+            rhs = float(expr.xreplace(values))
+            if abs(lhs - rhs) > CHECK_TOL * max(1.0, abs(lhs), abs(rhs)):
+                failing.append(str(symbol))
+                break
+    return failing
+
+
+def _family(table: ComparisonTable, rng: np.random.Generator) -> tuple[SpecialCase, ...]:
+    r"""The smallest combination of special cases under which the substitution holds."""
+    cases = special_cases(table.model)
+
+    def holds(combo):
+        return not _substitution_failures(table, parameter_sets(table.model, 2, rng, combo))
+
+    if not holds(cases):
+        failing = _substitution_failures(table, parameter_sets(table.model, 2, rng, cases))
+        raise DerivationError(table.path, "substitution", "does not hold for the model even with "
+                              "every special parameter family ("
+                              + ", ".join(c.name for c in cases) + "): " + ", ".join(failing))
+    needed = list(cases)
+    for case in cases:
+        trial = tuple(c for c in needed if c is not case)
+        if holds(trial):
+            needed = list(trial)
+    return tuple(needed)
+
+
+def _factors(result: DerivationResult) -> list[float]:
+    r"""The undeclared row factors the engine found (1 where none)."""
+    return [float(sp.sympify(c or 1)) for c in result.row_factors]
+
+
+def _unscaled(d: Derivation, key: str) -> sp.Matrix:
+    r"""Matrix ``key`` of ``d`` with a declared row scale divided out."""
+    M = sp.Matrix(getattr(d, key))
+    return M if d.row_scale is None else sp.diag(*[1 / s for s in d.row_scale]) * M
+
+
+def _numbers(d: Derivation | ComparisonTable, A: sp.Matrix, C: sp.Matrix, sets, q, nu,
+             factors) -> tuple[np.ndarray, np.ndarray]:
+    r"""A and C in the namespace of ``d`` (a document or the table) over sets × states, rows
+    divided by ``factors``."""
+    params = [s for s in d.symbols.values() if not s.is_input and s.value is not None]
+    args = [*d.positions, *d.velocities, *(s.symbol for s in params)]
+    fA, fC = sp.lambdify(args, A, "numpy"), sp.lambdify(args, C, "numpy")
+    n = len(d.positions)
+    out: dict[str, list[np.ndarray]] = {"A": [], "C": []}
+    for k, ps in enumerate(sets):
+        vals = [model_value(s.value, ps.values) for s in params]
+        for s in range(q.shape[1]):
+            argv = [*q[k, s], *nu[k, s], *vals]
+            out["A"].append(np.asarray(fA(*argv), dtype=float).reshape(n, n))
+            out["C"].append(np.asarray(fC(*argv), dtype=float).reshape(n, n))
+    f = np.asarray(factors, dtype=float)[None, :, None]
+    return np.array(out["A"]) / f, np.array(out["C"]) / f
+
+
+def _truth(d: Derivation, sets, q, nu) -> tuple[np.ndarray, np.ndarray]:
+    cmap = None
+    A, C = [], []
+    for k, ps in enumerate(sets):
+        if cmap is None:
+            cmap = CoordinateMap(ps.model, derivation_coordinate_set(d, ps))
+        cmap.bind(ps.model)
+        t = cmap.terms_batch(q[k], nu[k])
+        A.append(t.A)
+        C.append(t.C)
+    return np.concatenate(A), np.concatenate(C)
+
+
+def _in_table(expr: sp.Expr, d: Derivation, table: ComparisonTable, notes: list[str]) -> sp.Expr:
+    r"""A document expression in the table's namespace: each document symbol becomes the table
+    symbol of the same name and model value, or else the one of the same model value."""
+    rename = {}
+    by_value = {s.value: s.symbol for s in table.symbols.values() if s.value is not None}
+    for spec in d.symbols.values():
+        if spec.symbol not in expr.free_symbols or spec.value is None:
+            continue
+        mine = table.symbols.get(spec.name)
+        if mine is not None and mine.value == spec.value:
+            continue
+        if spec.value in by_value:
+            rename[spec.symbol] = by_value[spec.value]
+        else:
+            note = (f"{d.path.name}: symbol {spec.name} = {spec.value_expr_text} has no "
+                    f"counterpart in the table; kept as is")
+            if note not in notes:
+                notes.append(note)
+    rename.update(zip(d.velocities, table.velocities))
+    rename.update(zip(d.accelerations, table.accelerations))
+    rename.update(zip(d.positions, table.positions))
+    return sp.sympify(expr).xreplace(rename)
+
+
+def _simplest(expr: sp.Expr) -> sp.Expr:
+    trig = sp.trigsimp(sp.expand(expr))
+    powers = [a for a in trig.atoms(sp.Pow) if a.base.func in (sp.sin, sp.cos)]
+    candidates = [trig, sp.factor_terms(trig), sp.simplify(expr),
+                  sp.collect(sp.expand(trig), powers or list(trig.atoms(sp.sin, sp.cos)))]
+    return min(candidates, key=lambda e: (sp.count_ops(e), len(sp.sstr(e))))
+
+
+def _show(expr: sp.Expr, gens: Sequence[sp.Symbol] = ()) -> str:
+    r"""Short text of ``expr``: grouped by the monomials in ``gens`` (velocities,
+    accelerations), each coefficient in its simplest form."""
+    expr = sp.expand(sp.sympify(expr))
+    gens = [g for g in gens if expr.has(g)]
+    if not gens:
+        return sp.sstr(_simplest(expr))
+    terms = [_simplest(c) * sp.Mul(*[g**k for g, k in zip(gens, mon)])
+             for mon, c in sp.Poly(expr, *gens).terms()]
+    return sp.sstr(sp.Add(*terms))
+
+
+def _same(a: sp.Expr, b: sp.Expr, rng: np.random.Generator) -> bool:
+    r"""``a`` equals ``b`` identically (checked at random values of every symbol)."""
+    a, b = sp.sympify(a), sp.sympify(b)
+    symbols = sorted(a.free_symbols | b.free_symbols, key=str)
+    if not symbols:
+        return abs(float(a - b)) <= CHECK_TOL * max(1.0, abs(float(a)), abs(float(b)))
+    fa, fb = sp.lambdify(symbols, a, "numpy"), sp.lambdify(symbols, b, "numpy")
+    for _ in range(CHECK_POINTS):
+        x = rng.uniform(0.3, 1.7, len(symbols))
+        va, vb = float(fa(*x)), float(fb(*x))
+        if abs(va - vb) > CHECK_TOL * max(1.0, abs(va), abs(vb)):
+            return False
+    return True
+
+
+def _engine_text(result: DerivationResult, label: str) -> str:
+    for r in result.records:
+        if r.element == label:
+            return r.verdict + (": " + "; ".join(r.diagnoses) if r.diagnoses else "")
+    return "not compared"
+
+
+# -- the reproduction ---------------------------------------------------------------------
+
+def reproduce_table(table: ComparisonTable, engine: ComparisonEngine, *,
+                    derived: Derivation | str | Path | None = None,
+                    reference: Derivation | str | Path | None = None,
+                    also_assume: Sequence[str] = ALSO_ASSUMED) -> TableReproduction:
+    r"""The machine's version of ``table`` (see the module docstring). ``derived`` and
+    ``reference`` default to the documents :data:`TABLE_DOCUMENTS` names for the table file;
+    ``engine`` compares each against the truth (its row factors and verdicts are used)."""
+    der, ref = _documents(table, derived, reference)
+    rng = np.random.default_rng([engine.seed, 1])
+    notes: list[str] = []
+    family = _assumptions(table, rng, also_assume)
+    results = {"derived": engine.compare(der), "reference": engine.compare(ref)}
+    factors = {w: _factors(results[w]) for w in ("derived", "reference")}
+    n = der.n
+    sets = parameter_sets(table.model, FAMILY_SETS, rng, family)
+    q, nu = random_states(n, FAMILY_SETS * FAMILY_STATES, rng)
+    q, nu = q.reshape(FAMILY_SETS, FAMILY_STATES, n), nu.reshape(FAMILY_SETS, FAMILY_STATES, n)
+    cells = _table_cells(table)
+    numbers = {"derived": _numbers(der, _unscaled(der, "A"), _unscaled(der, "C"), sets, q, nu,
+                                   factors["derived"]),
+               "reference": _numbers(ref, _unscaled(ref, "A"), _unscaled(ref, "C"), sets, q, nu,
+                                     factors["reference"]),
+               "derived cell": _numbers(table, cells["derived"]["A"], cells["derived"]["C"],
+                                        sets, q, nu, [1.0] * n),
+               "reference cell": _numbers(table, cells["reference"]["A"],
+                                          cells["reference"]["C"], sets, q, nu,
+                                          factors["reference"]),
+               "truth": _truth(der, sets, q, nu)}
+    flat_nu = nu.reshape(-1, n)
+    numbers_h = {k: np.einsum("sij,sj->si", v[1], flat_nu) for k, v in numbers.items()}
+    scale = np.ones(n)
+    for A, C in numbers.values():
+        scale = np.maximum(scale, np.abs(np.concatenate([A, C], axis=2)).max(axis=(0, 2)))
+    raw = {which: {key: _unscaled(d, key).applyfunc(lambda e, d=d: _in_table(e, d, table, notes))
+                   for key in ("A", "C")} for which, d in (("derived", der), ("reference", ref))}
+    ctx = _Context(table, numbers, numbers_h, scale, raw, cells, factors, results,
+                   tuple(c.description for c in family), rng)
+    rows = tuple(_row(entry, ctx) for entry in table.entries)
+    sign_only = [r.element for r in rows if r.machine == "match" and "in sign only" in r.explanation]
+    if sign_only:
+        notes.append("the printed cells of " + ", ".join(sign_only) + " differ in sign only and "
+                     "the table rightly does not list them: the reference's rows are ("
+                     + ", ".join(_num(c) for c in factors["reference"]) + ") × the truth's "
+                     "(Kane's generalised inertia forces F* = -(A q̈ + h)), which the engine "
+                     "finds as row factors")
+    notes += _step_notes(table, rng)
+    return TableReproduction(
+        table=table.path, derived=der.path, reference=ref.path, assumptions=ctx.assumed,
+        row_factors=tuple(results["reference"].row_factors), rows=rows,
+        equations=tuple(_equations(ctx, rows)), notes=tuple(notes))
+
+
+@dataclass(frozen=True)
+class _Context:
+    table: ComparisonTable
+    numbers: Mapping[str, tuple[np.ndarray, np.ndarray]]
+    h: Mapping[str, np.ndarray]
+    scale: np.ndarray
+    raw: Mapping[str, Mapping[str, sp.Matrix]]
+    cells: Mapping[str, Mapping[str, sp.Matrix]]
+    factors: Mapping[str, list[float]]
+    results: Mapping[str, DerivationResult]
+    assumed: tuple[str, ...]
+    rng: np.random.Generator
+
+    def subst(self, expr: sp.Expr) -> sp.Expr:
+        return sp.sympify(expr).xreplace(dict(self.table.substitution))
+
+    def factor(self, which: str, i: int) -> sp.Expr:
+        return sp.nsimplify(self.factors[which][i])
+
+
+def _assumptions(table: ComparisonTable, rng, also_assume) -> tuple[SpecialCase, ...]:
+    family = list(_family(table, rng))
+    for name in also_assume:
+        case = next((c for c in special_cases(table.model) if c.name == name), None)
+        if case is None:
+            raise DerivationError(table.path, "also_assume", f"{name!r} is not a special case "
+                                  f"of {table.model}: " + ", ".join(
+                                      c.name for c in special_cases(table.model)))
+        if case not in family:
+            family.append(case)
+    return tuple(family)
+
+
+def _table_cells(table: ComparisonTable) -> dict[str, dict[str, sp.Matrix]]:
+    return {column: {key: table.matrix(key, column) for key in ("A", "C")}
+            for column in ("derived", "reference")}
+
+
+def _num(c: float) -> str:
+    return sp.sstr(sp.nsimplify(c))
+
+
+def _within(diagnoses: Sequence[str], model: str, assumed: Sequence[str]) -> bool:
+    r"""An "agrees only if ..." diagnosis whose conditions are all among ``assumed``
+    (descriptions of the model's special cases, as the engine quotes them)."""
+    text = next((x for x in diagnoses if x.startswith("agrees only if")), None)
+    if text is None:
+        return False
+    return all(c.description not in text or c.description in assumed
+               for c in special_cases(model))
+
+
+def _h_both_wrong(ctx: _Context, i: int) -> list[str]:
+    r"""h coefficients of row ``i`` that the engine finds wrong in both documents, beyond the
+    table's assumptions."""
+    wrong = None
+    for result in ctx.results.values():
+        bad = {r.element for r in result.records if r.key == "h" and r.index[0] == i
+               and r.verdict != "agrees"
+               and not (r.verdict == "agrees_if"
+                        and _within(r.diagnoses, ctx.table.model, ctx.assumed))}
+        wrong = bad if wrong is None else wrong & bad
+    return sorted(wrong or ())
+
+
+def _row(entry: TableEntry, ctx: _Context) -> TableRow:
+    key, i, j = entry.matrix, entry.row - 1, entry.col - 1
+    idx = 0 if key == "A" else 1
+    D, R, T = (ctx.numbers[k][idx][:, i, j] for k in ("derived", "reference", "truth"))
+    tol = ctx.scale[i]
+    match = agrees(D, R, tol)
+    same_h = agrees(ctx.h["derived"][:, i], ctx.h["reference"][:, i], tol)
+    machine = "match" if match else ("factorization" if key == "C" and same_h else "mismatch")
+    right = {"derived": agrees(D, T, tol), "reference": agrees(R, T, tol)}
+    truth = ("both" if all(right.values()) else "derived" if right["derived"] else
+             "reference" if right["reference"] else "neither")
+    d_expr = ctx.subst(ctx.raw["derived"][key][i, j])
+    r_printed = ctx.subst(ctx.raw["reference"][key][i, j])
+    r_expr = r_printed / ctx.factor("reference", i)
+    label = f"{key}[{entry.row},{entry.col}]"
+    engine = {w: _engine_text(ctx.results[w], label) for w in ("derived", "reference")}
+    listed = entry.name in ctx.table.mismatched
+    gens = (*ctx.table.velocities, *ctx.table.accelerations)
+    parts, kinds = [], []
+
+    if machine == "match":
+        if ctx.factors["reference"][i] != 1 and not _same(d_expr, r_printed, ctx.rng):
+            parts.append(f"equal once the reference's row {entry.row} is divided by its factor "
+                         f"{_num(ctx.factors['reference'][i])}; the printed cells differ in "
+                         "sign only")
+        else:
+            parts.append("equal after the substitution")
+    else:
+        parts.append(f"derived − reference = {_show(d_expr - r_expr, gens)}")
+        if machine == "factorization":
+            parts.append(f"but C q̇ of row {entry.row} is the same in both: only the "
+                         "factorisation of C differs, not the equations")
+    verdict = {True: "agrees with the truth", False: "differs from the truth"}
+    parts.append(f"under the table's assumptions the derived {verdict[right['derived']]} "
+                 f"(engine, general parameters: {engine['derived']}), the reference "
+                 f"{verdict[right['reference']]} (engine: {engine['reference']})")
+    if machine == "mismatch" and not listed:
+        kinds.append("missed by the table")
+        parts.append("the table does not list it")
+    elif machine != "mismatch" and listed:
+        kinds.append("factorisation only" if machine == "factorization" else "not a mismatch")
+        parts.append("the table lists it as mismatched, but the equations agree here")
+    elif listed:
+        parts.append("the table lists it: agreed")
+    if machine == "match" and truth == "neither":
+        kinds.append("both documents wrong")
+        hidden = _h_both_wrong(ctx, i)
+        parts.append("the two documents agree with each other here, so a table comparing them "
+                     "cannot see it, but both differ from the truth"
+                     + (f" (the engine finds {', '.join(hidden)} wrong in both)" if hidden else ""))
+    cell_parts, cell_kinds = _cell_checks(entry, ctx, (d_expr, r_printed), T, tol)
+    return TableRow(element=entry.name, derived=_show(d_expr, gens),
+                    reference=_show(r_printed, gens), machine=machine,
+                    table="mismatched" if listed else "match", truth=truth,
+                    derived_engine=engine["derived"], reference_engine=engine["reference"],
+                    disagreement="; ".join(kinds + cell_kinds),
+                    explanation="; ".join(parts + cell_parts))
+
+
+def _cell_checks(entry: TableEntry, ctx: _Context, docs, T, tol):
+    r"""Are the table's derived and reference cells the documents as printed? When they are
+    not, is the cell the truth?"""
+    notes, kinds = [], []
+    key, i, j = entry.matrix, entry.row - 1, entry.col - 1
+    for column, cell, doc in (("derived", entry.derived, docs[0]),
+                              ("reference", entry.reference, docs[1])):
+        printed = ctx.raw[column][key][i, j]
+        if _same(ctx.subst(cell), doc, ctx.rng):
+            if not _same(cell, printed, ctx.rng):
+                notes.append(f"the table's {column} cell {sp.sstr(cell)} is not the document as "
+                             f"printed, {sp.sstr(printed)}, but equal to it after the "
+                             "substitution")
+            continue
+        values = ctx.numbers[f"{column} cell"][0 if key == "A" else 1][:, i, j]
+        kinds.append("cells differ from the documents")
+        notes.append(f"the table's {column} cell {sp.sstr(cell)} is not the {column} document as "
+                     f"printed, {sp.sstr(printed)}, even after the substitution; the cell "
+                     + ("agrees with the truth" if agrees(values, T, tol) else
+                        "differs from the truth too") + " under the table's assumptions")
+    return notes, kinds
+
+
+def _step_notes(table: ComparisonTable, rng) -> list[str]:
+    r"""Printed steps of the "equivalent form" column that do not equal the derived cell after
+    the substitution."""
+    out = []
+    subst = dict(table.substitution)
+    for e in table.entries:
+        target = e.derived.xreplace(subst)
+        for k, step in enumerate(e.equivalent, start=1):
+            if not _same(step, target, rng):
+                out.append(f"{e.name}: step {k} of the table's equivalent form, {sp.sstr(step)}, "
+                           f"is not the derived cell after the substitution, {_show(target)}")
+    return out
+
+
+def _equations(ctx: _Context, rows: Sequence[TableRow]) -> list[EquationDifference]:
+    table = ctx.table
+    acc, vel = sp.Matrix(table.accelerations), sp.Matrix(table.velocities)
+    gens = (*table.velocities, *table.accelerations)
+
+    def lhs(M: Mapping[str, sp.Matrix], i: int) -> sp.Expr:
+        return ctx.subst((M["A"] * acc)[i] + (M["C"] * vel)[i])
+
+    out = []
+    for i in range(len(table.positions)):
+        label = f"equation {i + 1}"
+        f = ctx.factor("reference", i)
+        machine = lhs(ctx.raw["derived"], i) - lhs(ctx.raw["reference"], i) / f
+        from_cells = lhs(ctx.cells["derived"], i) - lhs(ctx.cells["reference"], i) / f
+        printed = table.differences.get(label)
+        mine = [r for r in rows if r.element[1] == str(i + 1)]
+        if printed is None:
+            relation, why = "not printed", "the table gives no difference for this equation"
+        elif _same(printed, machine, ctx.rng):
+            relation, why = "equal", "the table's difference is derived − reference"
+        elif _same(printed, -machine, ctx.rng):
+            relation, why = "opposite sign", ("the table gives reference − derived here, "
+                                              "derived − reference in the other equations")
+        elif _same(printed, from_cells, ctx.rng) or _same(printed, -from_cells, ctx.rng):
+            relation = "differs"
+            why = ("the table's difference follows its own cells, which are not the documents "
+                   "as printed at " + ", ".join(r.element for r in mine
+                                                if "cells differ" in r.disagreement)
+                   + f"; from its cells: {_show(from_cells, gens)}")
+        else:
+            relation = "differs"
+            why = ("neither derived − reference nor its negative; from the table's cells: "
+                   + _show(from_cells, gens))
+        hidden = [r.element for r in mine if r.truth == "neither" and r.machine == "match"]
+        neither = [r.element for r in mine if r.truth == "neither" and r.machine != "match"]
+        if hidden:
+            why += (f"; both documents differ from the truth at {', '.join(hidden)} in the same "
+                    "way, which no difference between them shows")
+        if neither:
+            why += f"; neither document is right at {', '.join(neither)}"
+        out.append(EquationDifference(i + 1, _show(machine, gens),
+                                      "" if printed is None else _show(printed, gens),
+                                      relation, why))
+    return out
