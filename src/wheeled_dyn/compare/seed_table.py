@@ -13,10 +13,14 @@ machine and sets the two side by side:
    parameter sets (a substitution no family satisfies is an error of the table file). Cases in
    ``also_assume`` are added (by default no motor armature: neither document models the motors).
 2. **Document against document.** Both documents' A and C, as printed, at random states and
-   parameter sets of that family; the reference's rows divided by the constant the engine
+   parameter sets of that family; each document's rows divided by the constant the engine
    finds (:attr:`DerivationResult.row_factors`: −1 for Kane's generalised inertia forces
-   :math:`F^* = -(A\ddot q + h)`). An element *matches* or is a *mismatch*; a C element whose
-   row has the same :math:`C\dot q` in both is a *factorisation* difference only.
+   :math:`F^* = -(A\ddot q + h)`), checked under the family, where the row's A must be exactly
+   that constant times the truth's (the engine decides in general parameters, where a document
+   lacking an effect the model has, e.g. the motor armature, can blur the vote; a factor found
+   only under the family is used and noted). An element *matches* or is a *mismatch*; a C
+   element whose row has the same :math:`C\dot q` in both is a *factorisation* difference
+   only.
 3. **Against the truth.** Each document's element against the truth at the same samples
    (:class:`~wheeled_dyn.constraints.CoordinateMap`): which of the two is right under the
    table's assumptions; the engine's verdict in general parameters is quoted beside it.
@@ -42,7 +46,7 @@ from ..derivations.schema import Derivation
 from ..derivations.table import ComparisonTable, TableEntry
 from ..errors import DerivationError
 from .diagnose import agrees
-from .engine import ComparisonEngine, DerivationResult
+from .engine import ROW_FACTORS, ComparisonEngine, DerivationResult
 from .evaluate import derivation_coordinate_set, model_value
 from .samples import ParameterSet, SpecialCase, parameter_sets, random_states, special_cases
 
@@ -100,13 +104,19 @@ class EquationDifference:
 
 @dataclass(frozen=True)
 class TableReproduction:
-    r"""The machine's version of a hand-made comparison table (:func:`reproduce_table`)."""
+    r"""The machine's version of a hand-made comparison table (:func:`reproduce_table`).
+
+    ``row_factors`` / ``derived_row_factors``: the constants the reference's / derived
+    document's rows were divided by (the engine's, checked under the table's assumptions);
+    ``engine_row_factors``: what the engine found in general parameters (derived, reference)."""
 
     table: Path
     derived: Path
     reference: Path
     assumptions: tuple[str, ...]
-    row_factors: tuple[str | None, ...]
+    row_factors: tuple[str, ...]
+    derived_row_factors: tuple[str, ...]
+    engine_row_factors: tuple[tuple[str | None, ...], tuple[str | None, ...]]
     rows: tuple[TableRow, ...]
     equations: tuple[EquationDifference, ...]
     notes: tuple[str, ...]
@@ -134,21 +144,26 @@ class TableReproduction:
     def markdown(self) -> str:
         r"""The reproduction as a Markdown document: the element table, the differences per
         equation, the notes."""
-        factors = ", ".join("1" if c is None else c for c in self.row_factors)
+        def factors(fs):
+            return "(" + ", ".join(fs) + ")"
+
         lines = [f"# Comparison table reproduced: {self.table.name}", "",
-                 f"- derived: `{self.derived.name}`; reference: `{self.reference.name}` "
-                 f"(its rows are ({factors}) × the truth's, divided out)",
+                 f"- derived: `{self.derived.name}`, rows {factors(self.derived_row_factors)} "
+                 f"× the truth's; reference: `{self.reference.name}`, rows "
+                 f"{factors(self.row_factors)} × the truth's (divided out before comparing)",
                  "- assumptions (the table's substitution): " + "; ".join(self.assumptions),
                  "- mismatched, table: " + (", ".join(self.table_mismatched) or "none"),
                  "- mismatched, machine: " + (", ".join(self.machine_mismatched) or "none"),
-                 "", "| element | derived | reference | machine | table | right (vs truth) | explanation |",
+                 "", "| element | derived | reference | machine | table | right (vs truth) "
+                 "| explanation |",
                  "|---|---|---|---|---|---|---|"]
         for r in self.rows:
             mark = " **≠ table**" if r.disagreement else ""
             lines.append(f"| {r.element} | {_code(r.derived)} | {_code(r.reference)} | "
                          f"{r.machine}{mark} | {r.table} | {r.truth} | {_cell(r.explanation)} |")
         lines += ["", "## Resulting differences (derived − reference)", "",
-                  "| equation | machine | table | relation | explanation |", "|---|---|---|---|---|"]
+                  "| equation | machine | table | relation | explanation |",
+                  "|---|---|---|---|---|"]
         for e in self.equations:
             lines.append(f"| {e.equation} | {_code(e.machine)} | {_code(e.table)} | {e.relation} "
                          f"| {_cell(e.explanation)} |")
@@ -178,7 +193,8 @@ def _documents(table: ComparisonTable, derived, reference) -> tuple[Derivation, 
     docs = tuple(x if isinstance(x, Derivation) else load_derivation(x)
                  for x in (derived, reference))
     for d in docs:
-        if d.model != table.model or tuple(map(str, d.positions)) != tuple(map(str, table.positions)):
+        same = tuple(map(str, d.positions)) == tuple(map(str, table.positions))
+        if d.model != table.model or not same:
             raise DerivationError(d.path, "coordinates", f"the table {table.path.name} compares "
                                   f"model {table.model} in {[str(p) for p in table.positions]}; "
                                   f"this file has {d.model} in {[str(p) for p in d.positions]}")
@@ -233,10 +249,9 @@ def _unscaled(d: Derivation, key: str) -> sp.Matrix:
     return M if d.row_scale is None else sp.diag(*[1 / s for s in d.row_scale]) * M
 
 
-def _numbers(d: Derivation | ComparisonTable, A: sp.Matrix, C: sp.Matrix, sets, q, nu,
-             factors) -> tuple[np.ndarray, np.ndarray]:
-    r"""A and C in the namespace of ``d`` (a document or the table) over sets × states, rows
-    divided by ``factors``."""
+def _numbers(d: Derivation | ComparisonTable, A: sp.Matrix, C: sp.Matrix, sets, q, nu
+             ) -> tuple[np.ndarray, np.ndarray]:
+    r"""A and C in the namespace of ``d`` (a document or the table) over sets × states."""
     params = [s for s in d.symbols.values() if not s.is_input and s.value is not None]
     args = [*d.positions, *d.velocities, *(s.symbol for s in params)]
     fA, fC = sp.lambdify(args, A, "numpy"), sp.lambdify(args, C, "numpy")
@@ -248,8 +263,24 @@ def _numbers(d: Derivation | ComparisonTable, A: sp.Matrix, C: sp.Matrix, sets, 
             argv = [*q[k, s], *nu[k, s], *vals]
             out["A"].append(np.asarray(fA(*argv), dtype=float).reshape(n, n))
             out["C"].append(np.asarray(fC(*argv), dtype=float).reshape(n, n))
-    f = np.asarray(factors, dtype=float)[None, :, None]
-    return np.array(out["A"]) / f, np.array(out["C"]) / f
+    return np.array(out["A"]), np.array(out["C"])
+
+
+def _checked_factors(A: np.ndarray, T: np.ndarray, engine_factors: Sequence[float]) -> list[float]:
+    r"""Row factors under the table's assumptions: the candidate (:data:`ROW_FACTORS`) with
+    which a strict majority of the row's nonzero A entries equal c × the truth exactly; the
+    engine's factor where no candidate has one."""
+    out = []
+    for i, engine_f in enumerate(engine_factors):
+        scale = max(float(np.abs(A[:, i]).max()), float(np.abs(T[:, i]).max()), 1e-300)
+        entries = [j for j in range(A.shape[2]) if np.abs(A[:, i, j]).max() > 1e-12 * scale]
+        best = engine_f
+        for c in ROW_FACTORS:
+            hits = sum(agrees(A[:, i, j], c * T[:, i, j], scale) for j in entries)
+            if entries and 2 * hits > len(entries):
+                best = c
+        out.append(float(best))
+    return out
 
 
 def _truth(d: Derivation, sets, q, nu) -> tuple[np.ndarray, np.ndarray]:
@@ -304,9 +335,12 @@ def _show(expr: sp.Expr, gens: Sequence[sp.Symbol] = ()) -> str:
     gens = [g for g in gens if expr.has(g)]
     if not gens:
         return sp.sstr(_simplest(expr))
-    terms = [_simplest(c) * sp.Mul(*[g**k for g, k in zip(gens, mon)])
-             for mon, c in sp.Poly(expr, *gens).terms()]
-    return sp.sstr(sp.Add(*terms))
+    try:
+        monomials = sp.Poly(expr, *gens).terms()
+    except sp.PolynomialError:
+        return sp.sstr(_simplest(expr))
+    return sp.sstr(sp.Add(*[_simplest(c) * sp.Mul(*[g**k for g, k in zip(gens, mon)])
+                            for mon, c in monomials]))
 
 
 def _same(a: sp.Expr, b: sp.Expr, rng: np.random.Generator) -> bool:
@@ -345,22 +379,32 @@ def reproduce_table(table: ComparisonTable, engine: ComparisonEngine, *,
     notes: list[str] = []
     family = _assumptions(table, rng, also_assume)
     results = {"derived": engine.compare(der), "reference": engine.compare(ref)}
-    factors = {w: _factors(results[w]) for w in ("derived", "reference")}
     n = der.n
     sets = parameter_sets(table.model, FAMILY_SETS, rng, family)
     q, nu = random_states(n, FAMILY_SETS * FAMILY_STATES, rng)
     q, nu = q.reshape(FAMILY_SETS, FAMILY_STATES, n), nu.reshape(FAMILY_SETS, FAMILY_STATES, n)
     cells = _table_cells(table)
-    numbers = {"derived": _numbers(der, _unscaled(der, "A"), _unscaled(der, "C"), sets, q, nu,
-                                   factors["derived"]),
-               "reference": _numbers(ref, _unscaled(ref, "A"), _unscaled(ref, "C"), sets, q, nu,
-                                     factors["reference"]),
+    numbers = {"derived": _numbers(der, _unscaled(der, "A"), _unscaled(der, "C"), sets, q, nu),
+               "reference": _numbers(ref, _unscaled(ref, "A"), _unscaled(ref, "C"), sets, q, nu),
                "derived cell": _numbers(table, cells["derived"]["A"], cells["derived"]["C"],
-                                        sets, q, nu, [1.0] * n),
+                                        sets, q, nu),
                "reference cell": _numbers(table, cells["reference"]["A"],
-                                          cells["reference"]["C"], sets, q, nu,
-                                          factors["reference"]),
+                                          cells["reference"]["C"], sets, q, nu),
                "truth": _truth(der, sets, q, nu)}
+    factors = {}
+    for which in ("derived", "reference"):
+        engine_f = _factors(results[which])
+        factors[which] = _checked_factors(numbers[which][0], numbers["truth"][0], engine_f)
+        for i, (e, f) in enumerate(zip(engine_f, factors[which])):
+            if e != f:
+                notes.append(
+                    f"the engine finds row factor {_num(e)} for row {i + 1} of the {which} "
+                    f"document in general parameters, but under the table's assumptions the "
+                    f"row's A is exactly {_num(f)} × the truth's: {_num(f)} is used, and the "
+                    f"engine's verdicts on that row are quoted as they are")
+        for key in (which, f"{which} cell"):
+            f = np.asarray(factors[which])[None, :, None]
+            numbers[key] = (numbers[key][0] / f, numbers[key][1] / f)
     flat_nu = nu.reshape(-1, n)
     numbers_h = {k: np.einsum("sij,sj->si", v[1], flat_nu) for k, v in numbers.items()}
     scale = np.ones(n)
@@ -371,17 +415,20 @@ def reproduce_table(table: ComparisonTable, engine: ComparisonEngine, *,
     ctx = _Context(table, numbers, numbers_h, scale, raw, cells, factors, results,
                    tuple(c.description for c in family), rng)
     rows = tuple(_row(entry, ctx) for entry in table.entries)
-    sign_only = [r.element for r in rows if r.machine == "match" and "in sign only" in r.explanation]
+    sign_only = [r.element for r in rows
+                 if r.machine == "match" and "(in sign only)" in r.explanation]
     if sign_only:
         notes.append("the printed cells of " + ", ".join(sign_only) + " differ in sign only and "
                      "the table rightly does not list them: the reference's rows are ("
                      + ", ".join(_num(c) for c in factors["reference"]) + ") × the truth's "
-                     "(Kane's generalised inertia forces F* = -(A q̈ + h)), which the engine "
-                     "finds as row factors")
+                     "(Kane's generalised inertia forces F* = -(A q̈ + h))")
     notes += _step_notes(table, rng)
     return TableReproduction(
         table=table.path, derived=der.path, reference=ref.path, assumptions=ctx.assumed,
-        row_factors=tuple(results["reference"].row_factors), rows=rows,
+        row_factors=tuple(_num(c) for c in factors["reference"]),
+        derived_row_factors=tuple(_num(c) for c in factors["derived"]),
+        engine_row_factors=(tuple(results["derived"].row_factors),
+                            tuple(results["reference"].row_factors)), rows=rows,
         equations=tuple(_equations(ctx, rows)), notes=tuple(notes))
 
 
@@ -461,8 +508,9 @@ def _row(entry: TableEntry, ctx: _Context) -> TableRow:
     right = {"derived": agrees(D, T, tol), "reference": agrees(R, T, tol)}
     truth = ("both" if all(right.values()) else "derived" if right["derived"] else
              "reference" if right["reference"] else "neither")
-    d_expr = ctx.subst(ctx.raw["derived"][key][i, j])
+    d_printed = ctx.subst(ctx.raw["derived"][key][i, j])
     r_printed = ctx.subst(ctx.raw["reference"][key][i, j])
+    d_expr = d_printed / ctx.factor("derived", i)
     r_expr = r_printed / ctx.factor("reference", i)
     label = f"{key}[{entry.row},{entry.col}]"
     engine = {w: _engine_text(ctx.results[w], label) for w in ("derived", "reference")}
@@ -471,10 +519,12 @@ def _row(entry: TableEntry, ctx: _Context) -> TableRow:
     parts, kinds = [], []
 
     if machine == "match":
-        if ctx.factors["reference"][i] != 1 and not _same(d_expr, r_printed, ctx.rng):
-            parts.append(f"equal once the reference's row {entry.row} is divided by its factor "
-                         f"{_num(ctx.factors['reference'][i])}; the printed cells differ in "
-                         "sign only")
+        f_d, f_r = ctx.factors["derived"][i], ctx.factors["reference"][i]
+        if f_d != f_r and not _same(d_printed, r_printed, ctx.rng):
+            parts.append(f"equal once row {entry.row} is divided by its factor (derived "
+                         f"{_num(f_d)}, reference {_num(f_r)}); the printed cells differ by "
+                         f"the factor {_num(f_r / f_d)}"
+                         + (" (in sign only)" if f_r == -f_d else ""))
         else:
             parts.append("equal after the substitution")
     else:
@@ -500,12 +550,12 @@ def _row(entry: TableEntry, ctx: _Context) -> TableRow:
         parts.append("the two documents agree with each other here, so a table comparing them "
                      "cannot see it, but both differ from the truth"
                      + (f" (the engine finds {', '.join(hidden)} wrong in both)" if hidden else ""))
-    cell_parts, cell_kinds = _cell_checks(entry, ctx, (d_expr, r_printed), T, tol)
-    return TableRow(element=entry.name, derived=_show(d_expr, gens),
+    cell_parts, cell_kinds = _cell_checks(entry, ctx, (d_printed, r_printed), T, tol)
+    return TableRow(element=entry.name, derived=_show(d_printed, gens),
                     reference=_show(r_printed, gens), machine=machine,
                     table="mismatched" if listed else "match", truth=truth,
                     derived_engine=engine["derived"], reference_engine=engine["reference"],
-                    disagreement="; ".join(kinds + cell_kinds),
+                    disagreement="; ".join(dict.fromkeys(kinds + cell_kinds)),
                     explanation="; ".join(parts + cell_parts))
 
 
@@ -557,9 +607,9 @@ def _equations(ctx: _Context, rows: Sequence[TableRow]) -> list[EquationDifferen
     out = []
     for i in range(len(table.positions)):
         label = f"equation {i + 1}"
-        f = ctx.factor("reference", i)
-        machine = lhs(ctx.raw["derived"], i) - lhs(ctx.raw["reference"], i) / f
-        from_cells = lhs(ctx.cells["derived"], i) - lhs(ctx.cells["reference"], i) / f
+        fd, fr = ctx.factor("derived", i), ctx.factor("reference", i)
+        machine = lhs(ctx.raw["derived"], i) / fd - lhs(ctx.raw["reference"], i) / fr
+        from_cells = lhs(ctx.cells["derived"], i) / fd - lhs(ctx.cells["reference"], i) / fr
         printed = table.differences.get(label)
         mine = [r for r in rows if r.element[1] == str(i + 1)]
         if printed is None:
