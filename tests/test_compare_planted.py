@@ -181,8 +181,8 @@ def test_planted_error_is_named(engine, tmp_path, changes, expected, conserves, 
 
 
 def test_planted_swap_in_h_is_paired(engine, tmp_path):
-    r"""φ̇ written for ψ̇ in C[1,2] turns the true ψ̇² term of h1 into a ψ̇φ̇ term: the two h
-    records point at each other."""
+    r"""φ̇ written for ψ̇ in C[1,2] turns the true ψ̇² term of h1 into a ψ̇φ̇ term: the two
+    h records point at each other."""
     result = engine.compare(load_derivation(_planted(
         tmp_path, {("C", 0, 1): "dphi*(MY1*sin(phi) - MX1*cos(phi))"})))
     records = _records(result)
