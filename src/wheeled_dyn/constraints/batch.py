@@ -18,6 +18,7 @@ import sympy as sp
 
 from ..dynamics.terms import Terms
 from .rolling import _LWA
+from .sphere_contact import ball_jacobian
 
 
 def lambdify_batch(matrix: sp.Matrix, args: Sequence) -> callable:
@@ -61,7 +62,6 @@ def reduce_batch_multi(cmap, q: np.ndarray, nus: list[np.ndarray],
     N = q.shape[0]
     n = nus[0].shape[1]
     p = cmap._p
-    w = 2 * len(wm.wheels)
     need_J = cs.rolling in ("eliminate", "multipliers")
     A = np.empty((N, model.nv, model.nv))
     Q = np.empty((N, model.nv))
@@ -77,6 +77,10 @@ def reduce_batch_multi(cmap, q: np.ndarray, nus: list[np.ndarray],
             for k, jid in enumerate(ids):
                 raw[i, k] = get_jacobian(model, data, jid, _LWA)
     J = _rolling_rows(wm, raw) if need_J else None
+    if need_J and wm.contact is not None:
+        ball = np.stack([ball_jacobian(wm, q[i], None, data)[0] for i in range(N)])
+        J = np.concatenate([J, ball], axis=1)
+    w = J.shape[1] if J is not None else 0
     A = np.triu(A) + np.swapaxes(np.triu(A, 1), 1, 2)
     Mp = None
     if cs.kind == "holonomic":
@@ -112,7 +116,11 @@ def reduce_batch_multi(cmap, q: np.ndarray, nus: list[np.ndarray],
         else:
             Tdot = cmap._Tdot_batch(N, *q.T, *v.T, *p)
             if need_dJ:
-                Sdot = -Mp @ np.concatenate([_rolling_rows(wm, raw), Tdot], axis=1) @ S
+                dJ = _rolling_rows(wm, raw)
+                if wm.contact is not None:
+                    ball = np.stack([ball_jacobian(wm, q[i], v[i], data)[1] for i in range(N)])
+                    dJ = np.concatenate([dJ, ball], axis=1)
+                Sdot = -Mp @ np.concatenate([dJ, Tdot], axis=1) @ S
             else:
                 Sdot = -S @ Tdot @ S
         C_nu = St @ C @ S + St @ A @ Sdot

@@ -16,6 +16,10 @@ the same frame: :math:`\dot J_c = P(\dot J_{c,\text{lin}} + R\,[e_z]_\times \dot
 Two wheels on one axle give four rows of rank three (their lateral rows coincide): the
 reduction handles the redundancy by least squares, which is exact because the system is
 consistent.
+
+The functions here serve every rolling contact of a model: the wheels' rows, then those of a
+rolling ball (:mod:`.sphere_contact`, three rows) when the model declares one. A model with
+neither has no rows (:math:`J_c` is 0 × nv).
 """
 
 from __future__ import annotations
@@ -24,6 +28,7 @@ import numpy as np
 import pinocchio as pin
 
 from ..models.builder import WheeledModel
+from .sphere_contact import ball_contact_point, ball_contact_velocity, ball_jacobian
 
 _EZ_CROSS = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 0.0]])
 _LWA = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
@@ -31,7 +36,8 @@ _LWA = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
 
 def contact_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = None,
                      data: pin.Data | None = None) -> tuple[np.ndarray, np.ndarray | None]:
-    r""":math:`J_c(q)` (2·wheels × nv) and, if ``v`` is given, :math:`\dot J_c(q, v)`."""
+    r""":math:`J_c(q)` (2·wheels [+ 3 for a ball] × nv) and, if ``v`` is given,
+    :math:`\dot J_c(q, v)`."""
     model = wm.model
     data = data or model.createData()
     if v is None:
@@ -39,13 +45,18 @@ def contact_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = Non
     else:
         pin.computeJointJacobiansTimeVariation(model, data, q, v)
         pin.computeJointJacobians(model, data, q)
-    rows, drows = [], []
+    rows, drows = [np.zeros((0, model.nv))], [np.zeros((0, model.nv))]
     for wheel in wm.wheels:
         J = pin.getJointJacobian(model, data, wheel.joint_id, _LWA)
         rows.append((J[:3] + wheel.radius * _EZ_CROSS @ J[3:])[:2])
         if v is not None:
             dJ = pin.getJointJacobianTimeVariation(model, data, wheel.joint_id, _LWA)
             drows.append((dJ[:3] + wheel.radius * _EZ_CROSS @ dJ[3:])[:2])
+    if wm.contact is not None:
+        Jb, dJb = ball_jacobian(wm, q, v, data)
+        rows.append(Jb)
+        if v is not None:
+            drows.append(dJb)
     return np.vstack(rows), (np.vstack(drows) if v is not None else None)
 
 
@@ -53,7 +64,10 @@ def contact_points(wm: WheeledModel, q: np.ndarray) -> np.ndarray:
     r"""World positions of the contact points (one row per wheel)."""
     data = wm.model.createData()
     pin.forwardKinematics(wm.model, data, q)
-    return np.array([data.oMi[w.joint_id].translation - [0.0, 0.0, w.radius] for w in wm.wheels])
+    points = [data.oMi[w.joint_id].translation - [0.0, 0.0, w.radius] for w in wm.wheels]
+    if wm.contact is not None:
+        points.append(ball_contact_point(wm, q))
+    return np.array(points).reshape(-1, 3)
 
 
 def contact_velocities(wm: WheeledModel, q: np.ndarray, v: np.ndarray) -> np.ndarray:
@@ -65,4 +79,6 @@ def contact_velocities(wm: WheeledModel, q: np.ndarray, v: np.ndarray) -> np.nda
     for w in wm.wheels:
         vel = pin.getVelocity(wm.model, data, w.joint_id, _LWA)
         out.append(vel.linear + np.cross(vel.angular, [0.0, 0.0, -w.radius]))
-    return np.array(out)
+    if wm.contact is not None:
+        out.append(ball_contact_velocity(wm, q, v))
+    return np.array(out).reshape(-1, 3)

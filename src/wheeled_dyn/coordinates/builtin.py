@@ -11,6 +11,18 @@ r"""The coordinate sets every wheeled model offers, and the WIP's seed-001 names
   angles and the holonomic map :math:`\psi = R(\theta_r - \theta_l)/(2L)`, constraints kept;
 - ``wheels``: the wheel angle rates :math:`\dot\theta_l, \dot\theta_r` then the same others;
   rolling eliminated.
+
+Models without wheels (``fixed`` and ``free`` bases) offer
+
+- ``full``: the model's own coordinates; no rolling (``none``), or, for a model with a rolling
+  ball, the ball's contact constraints kept with multipliers;
+- ``body_rates`` (``free`` base): the components :math:`\omega_x, \omega_y, \omega_z` of the
+  body's angular velocity in its own frame (velocities ``wx, wy, wz``) as quasi-velocities,
+  with the yaw, pitch and roll angles as positions, and the other joints' coordinates.
+  Without a contact the velocities of the origin ``dx0, dy0, dz0`` come first (rolling
+  ``none``); with a rolling ball they are eliminated by the contact (rolling ``eliminate``)
+  and the representative configuration puts the ball on the ground at the origin, or on top
+  of the fixed sphere.
 """
 
 from __future__ import annotations
@@ -18,7 +30,7 @@ from __future__ import annotations
 from typing import Any
 
 from ..errors import UnknownNameError
-from ..models.builder import WheeledModel
+from ..models.builder import FREE_BASE, WheeledModel
 from .spec import CoordinateSet, parse_coordinate_set
 
 BASE = ("x0", "y0", "psi")
@@ -31,8 +43,55 @@ def _others(wm: WheeledModel) -> list[str]:
     return [n for n in wm.coordinate_names if n not in BASE and n not in wheel_names]
 
 
+#: Body angular velocity (own frame) in the ZYX angles of a free base.
+BODY_RATES = {"wx": "droll - sin(pitch)*dyaw",
+              "wy": "cos(roll)*dpitch + sin(roll)*cos(pitch)*dyaw",
+              "wz": "-sin(roll)*dpitch + cos(roll)*cos(pitch)*dyaw"}
+
+
+def _unwheeled_specs(wm: WheeledModel) -> dict[str, dict[str, Any]]:
+    contact = wm.contact is not None
+    specs: dict[str, dict[str, Any]] = {"full": {
+        "description": "the model's own coordinates" + ("; the ball's rolling constraints kept "
+                                                        "as multipliers" if contact else ""),
+        "kind": "holonomic", "rolling": "multipliers" if contact else "none",
+        "positions": list(wm.coordinate_names)}}
+    if wm.base != "free":
+        return specs
+    others = [n for n in wm.coordinate_names if n not in FREE_BASE]
+    angles = ["yaw", "pitch", "roll"]
+    config = {n: n for n in (*angles, *others)}
+    vmap = {**BODY_RATES, **{"d" + n: "d" + n for n in others}}
+    velocities = ["wx", "wy", "wz", *("d" + n for n in others)]
+    if contact:
+        spec = wm.contact.spec
+        config["z0"] = "r" if spec.surface == "plane" else "R1 + r"
+        if spec.surface == "sphere":
+            config["x0"], config["y0"] = (str(float(c)) for c in spec.centre[:2])
+            config["z0"] = f"{float(spec.centre[2])} + R1 + r"
+        description = ("body angular velocity components in the body frame; the ball's "
+                       "rolling eliminated (representative configuration: the ball "
+                       + ("on the ground at the origin)" if spec.surface == "plane"
+                          else "on top of the fixed sphere)"))
+        positions = [*angles, *others]
+    else:
+        config.update({"x0": "x0", "y0": "y0", "z0": "z0"})
+        vmap.update({"dx0": "dx0", "dy0": "dy0", "dz0": "dz0"})
+        velocities = ["dx0", "dy0", "dz0", *velocities]
+        positions = ["x0", "y0", "z0", *angles, *others]
+        description = ("velocity of the body frame origin (world axes), then the body angular "
+                       "velocity components in the body frame")
+    specs["body_rates"] = {"description": description, "kind": "quasi",
+                           "rolling": "eliminate" if contact else "none",
+                           "positions": positions, "velocities": velocities,
+                           "configuration": config, "velocity_map": vmap}
+    return specs
+
+
 def builtin_specs(wm: WheeledModel) -> dict[str, dict[str, Any]]:
     r"""The raw specs (dicts, as a derivation file would write them) of the model's sets."""
+    if not wm.wheels:
+        return _unwheeled_specs(wm)
     others = _others(wm)
     wl, wr = (wm.coordinate_names[w.v_index] for w in wm.wheels)
     heading = {
@@ -77,7 +136,11 @@ def coordinate_set_names(wm: WheeledModel) -> tuple[str, ...]:
 
 
 def default_coordinate_set(wm: WheeledModel) -> str:
-    return DEFAULTS.get(wm.name, "heading")
+    if wm.name in DEFAULTS:
+        return DEFAULTS[wm.name]
+    if wm.wheels:
+        return "heading"
+    return "body_rates" if wm.contact is not None else "full"
 
 
 def builtin_coordinate_set(wm: WheeledModel, name: str | None = None) -> CoordinateSet:
@@ -91,5 +154,6 @@ def builtin_coordinate_set(wm: WheeledModel, name: str | None = None) -> Coordin
 
 
 def parameter_names(wm: WheeledModel) -> tuple[str, ...]:
-    r"""Parameters a coordinate expression may use: the wheel radius R, half track L."""
+    r"""Parameters a coordinate expression may use: the model's geometry (the wheel radius R,
+    half track L of a wheeled model; the named constants of the others)."""
     return tuple(wm.geometry)

@@ -1,62 +1,102 @@
-r"""A wheeled model from any URDF: the body on a ground-plane base, the wheels as revolute joints.
+r"""A model from any URDF on one of three bases: ``planar`` (wheeled), ``fixed`` or ``free``.
 
-Given a URDF, the link that carries the axle (the *body*) and the two drive wheels, the builder
-makes a Pinocchio model whose joints, all with one degree of freedom (so that q and v have the
-same size and Christoffel symbols exist), are
+Every joint of a built model has one degree of freedom (so that q and v have the same size and
+Christoffel symbols exist). ``ModelSpec.base`` chooses what carries the URDF's root link:
 
-.. math::
+- ``"planar"`` (the default; a wheeled body): given the link that carries the axle (the *body*)
+  and the two drive wheels,
 
-    q = (x_0,\ y_0,\ \psi,\ [\varphi],\ \text{the URDF's own joints}\ \dots)
+  .. math::
 
-- :math:`x_0, y_0` (prismatic along the world x and y): the point on the ground plane
-  :math:`z = 0` below the axle midpoint;
-- :math:`\psi` (revolute about the world z, up): the heading, the body's forward direction;
-- :math:`\varphi` (optional, revolute about the axle, oriented from the left wheel to the right
-  wheel): the pitch of the body; the axle midpoint is at height :math:`R` (wheel radius);
-- then the URDF's tree as written, hanging from the body, with ``continuous`` joints as
-  unlimited revolute joints (each wheel angle is one coordinate, measured relative to the body).
+      q = (x_0,\ y_0,\ \psi,\ [\varphi],\ \text{the URDF's own joints}\ \dots)
 
-Joints listed in ``lock`` are frozen at zero (their bodies' inertia is merged into their parents).
-The body's *up* direction (in its link frame, at zero pitch) is declared; *forward* is
-up × axle. The wheel radius comes from the wheel link's cylinder geometry unless given.
+  * :math:`x_0, y_0` (prismatic along the world x and y): the point on the ground plane
+    :math:`z = 0` below the axle midpoint;
+  * :math:`\psi` (revolute about the world z, up): the heading, the body's forward direction;
+  * :math:`\varphi` (optional, revolute about the axle, oriented from the left wheel to the right
+    wheel): the pitch of the body; the axle midpoint is at height :math:`R` (wheel radius);
+  * then the URDF's tree as written, hanging from the body, with ``continuous`` joints as
+    unlimited revolute joints (each wheel angle is one coordinate, measured relative to the body).
+
+  The body's *up* direction (in its link frame, at zero pitch) is declared; *forward* is
+  up × axle. The wheel radius comes from the wheel link's cylinder geometry unless given.
+- ``"fixed"``: the URDF as written, its root link fixed to the world (world z up, gravity −z);
+  no wheels. ``q`` is the URDF's joints.
+- ``"free"``: the root link on six 1-DoF joints, ``q = (x0, y0, z0, yaw, pitch, roll, ...)``:
+  translations along the world axes, then :math:`R = R_z(\text{yaw})\,R_y(\text{pitch})\,
+  R_x(\text{roll})` (ZYX angles). The body's angular velocity in its own frame is
+
+  .. math::
+
+      \omega_B = \begin{bmatrix}\dot\phi - \sin\theta\,\dot\psi\\
+      \cos\phi\,\dot\theta + \sin\phi\cos\theta\,\dot\psi\\
+      -\sin\phi\,\dot\theta + \cos\phi\cos\theta\,\dot\psi\end{bmatrix}
+      \quad(\psi, \theta, \phi = \text{yaw, pitch, roll}),
+
+  singular at :math:`\text{pitch} = \pm\pi/2` (yaw and roll turn about the same axis there:
+  keep motions away from it, or use body angular velocities as quasi-velocities, which are
+  regular everywhere the angles are).
+
+Joints listed in ``lock`` are frozen at zero (their bodies' inertia is merged into their
+parents). Motors: the wheel joints of a planar model; on the other bases, the joints listed in
+``actuated`` (a torque or force along each joint axis, reaction on the parent). ``geometry``
+names constants that coordinate sets and derivation files may use (a rolling radius, a gear
+ratio); a ball rolling without slip on the ground or on a fixed sphere is declared by
+``contact`` (:class:`~wheeled_dyn.models.contact.SphereContact`).
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
 import pinocchio as pin
 
 from ..errors import ModelError, UnknownNameError
+from .contact import BallContact, SphereContact
 from .urdf_source import UrdfSource, read_urdf
 
 #: Largest |cos| between the axle and the up direction for the axle to count as horizontal.
 HORIZONTAL_TOL = 1e-9
 #: Largest relative difference between the two wheel radii.
 RADIUS_TOL = 1e-9
+#: Standard gravity of built models (m/s²); parameter sets may change it.
+GRAVITY = 9.81
 
 _AXES = {"X": np.array([1.0, 0, 0]), "Y": np.array([0, 1.0, 0]), "Z": np.array([0, 0, 1.0])}
 
 
+BASES = ("planar", "fixed", "free")
+#: Coordinate names of the six joints of a free base (ZYX angles: yaw, pitch, roll).
+FREE_BASE = ("x0", "y0", "z0", "yaw", "pitch", "roll")
+
+
 @dataclass(frozen=True)
 class ModelSpec:
-    r"""What to build: a URDF, its body and wheels, conventions. See the module docstring."""
+    r"""What to build: a URDF, its base, body and wheels, conventions. See the module docstring.
+
+    ``body`` and ``wheels`` (left, right) are required for ``base = "planar"``; the other bases
+    take no wheels. ``inputs`` names the motor inputs (default ``tau_l, tau_r`` for the wheels,
+    ``tau_<coordinate>`` for each ``actuated`` joint)."""
 
     name: str
     urdf: Path
-    body: str
-    wheels: tuple[str, str]                      # (left wheel link, right wheel link)
+    body: str = ""
+    wheels: tuple[str, ...] = ()                 # (left wheel link, right wheel link)
     up: tuple[float, float, float] = (0.0, 0.0, 1.0)
     pitch: bool = True
     lock: tuple[str, ...] = ()
     aliases: Mapping[str, str] = field(default_factory=dict)   # joint name -> coordinate name
-    inputs: tuple[str, str] = ("tau_l", "tau_r")
+    inputs: tuple[str, ...] | None = None
     radius: float | None = None
     package_dirs: tuple[str, ...] = ()
     description: str = ""
+    base: str = "planar"
+    actuated: tuple[str, ...] = ()               # joint names with a motor (fixed/free bases)
+    geometry: Mapping[str, float] = field(default_factory=dict)
+    contact: SphereContact | None = None
 
 
 @dataclass(frozen=True)
@@ -74,12 +114,14 @@ class Wheel:
 
 @dataclass(frozen=True)
 class WheeledModel:
-    r"""A Pinocchio model of a wheeled body with its conventions.
+    r"""A Pinocchio model of a wheeled, fixed-base or free body with its conventions.
 
-    ``coordinate_names[i]`` names ``q[i]`` (and ``v[i]``); ``wheels`` are the drive wheels;
-    ``input_names`` the wheel motor torques (acting about each wheel joint axis, reaction on
-    the wheel's parent); ``geometry`` holds ``R`` (wheel radius) and ``L`` (half the distance
-    between the wheel centres).
+    ``coordinate_names[i]`` names ``q[i]`` (and ``v[i]``); ``wheels`` are the drive wheels
+    (none for fixed and free bases); ``input_names`` the motor inputs: wheel torques (about each
+    wheel joint axis, reaction on the wheel's parent), or one per joint of ``actuated``
+    (velocity indices); ``geometry`` holds the named constants (``R`` wheel radius and ``L``
+    half the distance between the wheel centres for a planar model, the spec's ``geometry``
+    otherwise); ``contact`` the rolling ball, if any.
     """
 
     name: str
@@ -91,10 +133,16 @@ class WheeledModel:
     input_names: tuple[str, ...]
     geometry: Mapping[str, float]
     body_joint_id: int
+    actuated: tuple[int, ...] = ()
+    contact: BallContact | None = None
 
     @property
     def nv(self) -> int:
         return self.model.nv
+
+    @property
+    def base(self) -> str:
+        return self.spec.base
 
     def index(self, coordinate: str) -> int:
         try:
@@ -111,18 +159,18 @@ class WheeledModel:
         return self.model.frames[self.model.getFrameId(link)].parentJoint
 
     def input_matrix(self) -> np.ndarray:
-        r"""B (nv × number of motors): motor k acts on its wheel joint, :math:`B_{ik}=\delta_{i,w_k}`."""
-        B = np.zeros((self.nv, len(self.wheels)))
-        for k, wheel in enumerate(self.wheels):
-            B[wheel.v_index, k] = 1.0
+        r"""B (nv × number of motors): motor k acts on its joint, :math:`B_{ik}=\delta_{i,j_k}`
+        (wheel joints, or the ``actuated`` joints; nv × 0 for a body without motors)."""
+        columns = [w.v_index for w in self.wheels] if self.wheels else list(self.actuated)
+        B = np.zeros((self.nv, len(columns)))
+        for k, i in enumerate(columns):
+            B[i, k] = 1.0
         return B
 
     def with_model(self, model: pin.Model) -> "WheeledModel":
         r"""The same conventions on another Pinocchio model of identical structure (e.g. other
         inertial parameters)."""
-        return WheeledModel(self.name, self.spec, model, self.visual_model, self.wheels,
-                            self.coordinate_names, self.input_names, self.geometry,
-                            self.body_joint_id)
+        return replace(self, model=model)
 
 
 def _joint_axis(jmodel: pin.JointModel) -> np.ndarray:
@@ -173,13 +221,16 @@ def _wheel_geometry(source: UrdfSource, spec: ModelSpec, model: pin.Model, data:
     return centre, axis, radius, width, joint.name
 
 
-def build_wheeled_model(spec: ModelSpec) -> WheeledModel:
-    r"""Build the wheeled model described by ``spec`` (see the module docstring)."""
-    source = read_urdf(spec.urdf)
+def _build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
+                   urdf_geom: pin.GeometryModel) -> WheeledModel:
+    if not spec.body:
+        raise ModelError(spec.name, None, "a planar (wheeled) model needs its body link")
+    if len(spec.wheels) != 2:
+        raise ModelError(spec.name, None, f"a planar model needs two drive wheels (left, right), "
+                                          f"got {len(spec.wheels)}")
     body_link = source.link(spec.body).name
     for w in spec.wheels:
         source.link(w)
-    urdf_model, urdf_geom = _urdf_models(source, spec)
     data = urdf_model.createData()
     pin.forwardKinematics(urdf_model, data, pin.neutral(urdf_model))
     pin.updateFramePlacements(urdf_model, data)
@@ -227,25 +278,100 @@ def build_wheeled_model(spec: ModelSpec) -> WheeledModel:
     frame = base.addFrame(pin.Frame("mount", parent, 0, mount_in_heading, pin.FrameType.OP_FRAME))
     model, geom = pin.appendModel(base, urdf_model, pin.GeometryModel(), urdf_geom, frame,
                                   pin.SE3(np.eye(3), -centre))
-    model.name = spec.name
-    model.gravity = pin.Motion(np.array([0.0, 0.0, -9.81]), np.zeros(3))
-
-    coordinate_names = list(names)
-    for jid in range(len(names) + 1, model.njoints):
-        coordinate_names.append(spec.aliases.get(model.names[jid], model.names[jid]))
-    for jid in range(1, model.njoints):
-        if model.joints[jid].nq != 1 or model.joints[jid].nv != 1:
-            raise ModelError(spec.name, model.names[jid],
-                             f"joint type {model.joints[jid].shortname()} has more than one "
-                             "coordinate; lock it or replace it")
+    coordinate_names = _finish(spec, model, names)
     wheels = []
     for link, side, jname, width in ((spec.wheels[0], "left", jl, wl),
                                      (spec.wheels[1], "right", jr, wr)):
         jid = model.getJointId(jname)
         wheels.append(Wheel(link, side, jname, jid, model.joints[jid].idx_v, rl, width))
     body_jid = model.frames[model.getFrameId(body_link)].parentJoint
-    return WheeledModel(spec.name, spec, model, geom, tuple(wheels), tuple(coordinate_names),
-                        tuple(spec.inputs), {"R": rl, "L": half_track}, body_jid)
+    inputs = tuple(spec.inputs) if spec.inputs is not None else ("tau_l", "tau_r")
+    if len(inputs) != 2:
+        raise ModelError(spec.name, None, f"{len(inputs)} input names for two wheel motors")
+    return WheeledModel(spec.name, spec, model, geom, tuple(wheels), coordinate_names, inputs,
+                        {"R": rl, "L": half_track, **spec.geometry}, body_jid)
+
+
+def _finish(spec: ModelSpec, model: pin.Model, base_names: Sequence[str]) -> tuple[str, ...]:
+    r"""Name the model, set gravity, check every joint has one coordinate; the coordinate
+    names (the base's, then the URDF joints' under their aliases)."""
+    model.name = spec.name
+    model.gravity = pin.Motion(np.array([0.0, 0.0, -GRAVITY]), np.zeros(3))
+    names = list(base_names)
+    for jid in range(len(base_names) + 1, model.njoints):
+        names.append(spec.aliases.get(model.names[jid], model.names[jid]))
+    for jid in range(1, model.njoints):
+        if model.joints[jid].nq != 1 or model.joints[jid].nv != 1:
+            raise ModelError(spec.name, model.names[jid],
+                             f"joint type {model.joints[jid].shortname()} has more than one "
+                             "coordinate; lock it or replace it")
+    if len(set(names)) != len(names):
+        raise ModelError(spec.name, None, f"coordinate names repeat: {names}")
+    return tuple(names)
+
+
+def _build_unwheeled(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
+                     urdf_geom: pin.GeometryModel) -> WheeledModel:
+    r"""A fixed-base or free model (no wheels)."""
+    if spec.wheels:
+        raise ModelError(spec.name, None, f"wheels need base 'planar'; this base is {spec.base!r}")
+    if spec.base == "fixed":
+        model, geom, names = pin.Model(urdf_model), urdf_geom, ()
+    else:
+        base = pin.Model()
+        parent = 0
+        joints = (pin.JointModelPX(), pin.JointModelPY(), pin.JointModelPZ(),
+                  pin.JointModelRZ(), pin.JointModelRY(), pin.JointModelRX())
+        for name, jmodel in zip(FREE_BASE, joints):
+            parent = base.addJoint(parent, jmodel, pin.SE3.Identity(), name)
+            base.appendBodyToJoint(parent, pin.Inertia.Zero(), pin.SE3.Identity())
+            base.addJointFrame(parent, -1)
+        frame = base.addFrame(pin.Frame("mount", parent, 0, pin.SE3.Identity(),
+                                        pin.FrameType.OP_FRAME))
+        model, geom = pin.appendModel(base, urdf_model, pin.GeometryModel(), urdf_geom, frame,
+                                      pin.SE3.Identity())
+        names = FREE_BASE
+    coordinate_names = _finish(spec, model, names)
+    actuated = []
+    for joint in spec.actuated:
+        if not model.existJointName(joint):
+            raise UnknownNameError("joint", joint, list(model.names)[1:], where=f"model {spec.name}")
+        actuated.append(model.joints[model.getJointId(joint)].idx_v)
+    inputs = (tuple(spec.inputs) if spec.inputs is not None
+              else tuple("tau_" + coordinate_names[i] for i in actuated))
+    if len(inputs) != len(actuated):
+        raise ModelError(spec.name, None, f"{len(inputs)} input names for {len(actuated)} "
+                                          "actuated joints")
+    body_jid = 0
+    if spec.body:
+        source.link(spec.body)
+        body_jid = model.frames[model.getFrameId(spec.body)].parentJoint
+    geometry = dict(spec.geometry)
+    contact = None
+    if spec.contact is not None:
+        source.link(spec.contact.link)
+        contact = BallContact(spec.contact, model.getFrameId(spec.contact.link))
+        geometry.setdefault("r", float(spec.contact.radius))
+        if spec.contact.surface == "sphere":
+            geometry.setdefault("R1", float(spec.contact.surface_radius))
+    return WheeledModel(spec.name, spec, model, geom, (), coordinate_names, inputs, geometry,
+                        body_jid, tuple(actuated), contact)
+
+
+def build_wheeled_model(spec: ModelSpec) -> WheeledModel:
+    r"""Build the model described by ``spec`` (see the module docstring)."""
+    if spec.base not in BASES:
+        raise ModelError(spec.name, None, f"base {spec.base!r}; expected one of {BASES}")
+    if spec.contact is not None and spec.base == "planar":
+        raise ModelError(spec.name, spec.contact.link, "a rolling ball needs base 'free' or "
+                                                       "'fixed', not 'planar'")
+    source = read_urdf(spec.urdf)
+    urdf_model, urdf_geom = _urdf_models(source, spec)
+    if spec.base == "planar":
+        return _build_planar(spec, source, urdf_model, urdf_geom)
+    return _build_unwheeled(spec, source, urdf_model, urdf_geom)
+
+
 
 
 def coordinate_vector(wm: WheeledModel, values: Mapping[str, float] | Sequence[float]) -> np.ndarray:

@@ -48,8 +48,8 @@ def format_matrix(name: str, M: np.ndarray, rows: tuple[str, ...], cols: tuple[s
     M = np.atleast_2d(np.asarray(M, dtype=float))
     scale = float(np.abs(M).max()) if M.size else 0.0
     M = np.where(np.abs(M) <= PRINT_CHOP * scale, 0.0, M)
-    width = max(13, *(len(c) + 2 for c in cols))
-    label = max(8, *(len(r) for r in rows), len(name))
+    width = max([13, *(len(c) + 2 for c in cols)])
+    label = max([8, *(len(r) for r in rows), len(name)])
     lines = [f"{name:>{label}} " + "".join(f"{c:>{width}}" for c in cols)]
     for r, row in zip(rows, M):
         lines.append(f"{r:>{label}} " + "".join(f"{x:>{width}.6g}" for x in row))
@@ -57,8 +57,9 @@ def format_matrix(name: str, M: np.ndarray, rows: tuple[str, ...], cols: tuple[s
 
 
 def _cmd_list(args: argparse.Namespace) -> int:
+    width = max(len(name) for name in MODELS) + 1
     for name, entry in MODELS.items():
-        print(f"{name:14} {entry.summary}")
+        print(f"{name:{width}} {entry.summary}")
     return 0
 
 
@@ -84,7 +85,8 @@ def _cmd_matrices(args: argparse.Namespace) -> int:
     print(format_matrix("A", terms.A, vel, vel))
     print(format_matrix("C", terms.C, vel, vel))
     print(format_matrix("Q", terms.Q[:, None], vel, ("Q",)))
-    print(format_matrix("B", terms.B, vel, terms.inputs))
+    if terms.B.shape[1]:
+        print(format_matrix("B", terms.B, vel, terms.inputs))
     print(format_matrix("h=Cv", terms.h[:, None], vel, ("h",)))
     if terms.G is not None:
         print(format_matrix("G", terms.G, tuple(f"c{i}" for i in range(terms.G.shape[0])), vel))

@@ -20,6 +20,7 @@ import pinocchio as pin
 
 from ..errors import OptionalDependencyError, UnknownNameError
 from ..paths import example_robot_data_share, urdf_dir
+from .benchmarks import BENCHMARKS
 from .builder import ModelSpec, WheeledModel, build_wheeled_model
 from .wip_parameters import STANDARD_NAMES, WipParameters, standard_parameters
 
@@ -84,6 +85,9 @@ MODELS: dict[str, ModelEntry] = {
 }
 
 
+MODELS.update({name: ModelEntry(name, summary, spec) for name, summary, spec in BENCHMARKS})
+
+
 def model_names() -> tuple[str, ...]:
     return tuple(MODELS)
 
@@ -143,9 +147,10 @@ def apply_wip_parameters(wm: WheeledModel, p: WipParameters) -> WheeledModel:
 
 
 def model_parameters(wm: WheeledModel) -> dict[str, float]:
-    r"""Numeric values of the model's named parameters: R, L, g and, per link with mass,
-    Khalil's standard parameters keyed ``XX(link)`` etc. (in the link frame)."""
-    out = {"R": wm.geometry["R"], "L": wm.geometry["L"],
+    r"""Numeric values of the model's named parameters: its geometry (R, L for a wheeled
+    model; the spec's named constants otherwise), g and, per link with mass, Khalil's standard
+    parameters keyed ``XX(link)`` etc. (in the link frame)."""
+    out = {**{k: float(v) for k, v in wm.geometry.items()},
            "g": float(-wm.model.gravity.linear[2])}
     for frame in wm.model.frames:
         if frame.type != pin.FrameType.BODY:

@@ -1,0 +1,103 @@
+r"""Rolling without slip of a ball on the ground plane or on a fixed sphere.
+
+A ball of radius :math:`r` has its centre :math:`c` at the origin of its link. It touches
+
+- the plane :math:`z = 0` at :math:`p = c - r\,n` with :math:`n = e_z`;
+- a fixed sphere of radius :math:`R_1` and centre :math:`o` (ball outside) on the line of
+  centres, :math:`p = c - r\,n` with :math:`n = (c - o)/\lVert c - o\rVert` (the outward normal
+  of the fixed sphere at the contact).
+
+The material point of the ball at :math:`p` must not move:
+
+.. math::
+
+    v_p = v_c + \omega\times(p - c) = v_c + r\,n\times\omega ,\qquad
+    J_c(q) = J_{c,\text{lin}} + r\,[n]_\times J_\omega ,\qquad J_c v = 0 ,
+
+three rows in world axes, with the Jacobians of the ball's frame in ``LOCAL_WORLD_ALIGNED``
+(origin velocity and angular velocity in world axes). The normal row is the velocity form of
+the holonomic condition that the ball stays on the surface (:math:`\dot z = 0`, or
+:math:`\tfrac{d}{dt}\lVert c - o\rVert = 0`); the two tangential rows are the nonholonomic
+no-slip conditions. The time derivative, for :math:`\dot J_c v` in the constrained equations
+and :math:`\dot S` in the reduced ones, is
+
+.. math::
+
+    \dot J_c = \dot J_{c,\text{lin}} + r\,[n]_\times\dot J_\omega + r\,[\dot n]_\times J_\omega,
+    \qquad \dot n = \frac{(1 - n n^T)\,\dot c}{\lVert c - o\rVert},\quad \dot c = J_{c,\text{lin}}v
+
+(:math:`\dot n = 0` on the plane).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pinocchio as pin
+
+from ..models.builder import WheeledModel
+
+_LWA = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
+_EZ = np.array([0.0, 0.0, 1.0])
+#: Rows of the contact Jacobian of one ball.
+ROWS = 3
+
+
+def _cross(a: np.ndarray) -> np.ndarray:
+    return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+
+
+def contact_normal(wm: WheeledModel, centre: np.ndarray) -> np.ndarray:
+    r"""The surface normal :math:`n` at the contact of a ball centred at ``centre``."""
+    spec = wm.contact.spec
+    if spec.surface == "plane":
+        return _EZ.copy()
+    d = centre - np.asarray(spec.centre, dtype=float)
+    return d / np.linalg.norm(d)
+
+
+def ball_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = None,
+                  data: pin.Data | None = None) -> tuple[np.ndarray, np.ndarray | None]:
+    r""":math:`J_c(q)` (3 × nv) of the ball and, if ``v`` is given, :math:`\dot J_c(q, v)`."""
+    model = wm.model
+    data = data or model.createData()
+    fid, r = wm.contact.frame_id, wm.contact.radius
+    if v is None:
+        pin.computeJointJacobians(model, data, q)
+    else:
+        pin.computeJointJacobiansTimeVariation(model, data, q, v)
+        pin.computeJointJacobians(model, data, q)
+    pin.updateFramePlacements(model, data)
+    J = pin.getFrameJacobian(model, data, fid, _LWA)
+    centre = data.oMf[fid].translation
+    n = contact_normal(wm, centre)
+    Jc = J[:3] + r * _cross(n) @ J[3:]
+    if v is None:
+        return Jc, None
+    dJ = pin.getFrameJacobianTimeVariation(model, data, fid, _LWA)
+    dJc = dJ[:3] + r * _cross(n) @ dJ[3:]
+    if wm.contact.spec.surface == "sphere":
+        dist = np.linalg.norm(centre - np.asarray(wm.contact.spec.centre, dtype=float))
+        cdot = J[:3] @ v
+        ndot = (cdot - n * (n @ cdot)) / dist
+        dJc = dJc + r * _cross(ndot) @ J[3:]
+    return Jc, dJc
+
+
+def ball_contact_point(wm: WheeledModel, q: np.ndarray) -> np.ndarray:
+    r"""World position of the contact point :math:`p = c - r\,n`."""
+    data = wm.model.createData()
+    pin.framesForwardKinematics(wm.model, data, q)
+    centre = data.oMf[wm.contact.frame_id].translation
+    return centre - wm.contact.radius * contact_normal(wm, centre)
+
+
+def ball_contact_velocity(wm: WheeledModel, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+    r"""Velocity (world axes) of the ball's material point at the contact, from the frame
+    velocity of the ball (independently of :func:`ball_jacobian`)."""
+    data = wm.model.createData()
+    pin.forwardKinematics(wm.model, data, q, v)
+    pin.updateFramePlacements(wm.model, data)
+    fid = wm.contact.frame_id
+    vel = pin.getFrameVelocity(wm.model, data, fid, _LWA)
+    n = contact_normal(wm, data.oMf[fid].translation)
+    return vel.linear + np.cross(vel.angular, -wm.contact.radius * n)
