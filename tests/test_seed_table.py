@@ -196,16 +196,10 @@ def test_row_factors_checked_under_the_assumptions(reproduction):
 ROW_FACTOR_SEEDS = (SEED, 1, 2, 3, 4, 8)
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "ComparisonEngine row factors of appendix_kim_A_C.toml (Kane's F* = -(A q̈ + h), all rows "
-    "-1) depend on the random draw: engine._row_factors votes with least-squares ratios "
-    "D·T/T·T in general parameters, where the document lacks the motor armature; the true A11 "
-    "holds 2 I_a/R² (up to ~50 kg beside ~70 kg), so A11's ratio drifts to -0.705 (seed "
-    "20261122, 200 samples x 3 sets), its nearest candidate becomes -0.5, which the 35 % "
-    "ROW_FACTOR_SPREAD rejects; A12 = 0 does not vote, so -1 has 1 of 2 votes and row 1 gets "
-    "no factor. Seeds 20261122 and 3 miss row 1, seed 8 rows 1 and 2 (seed 5 at 1000 x 5 "
-    "too); the row's elements are then judged against the truth without the factor"))
 def test_engine_finds_kane_row_factors_for_every_seed():
+    r"""The appendix's rows are Kane's generalised inertia forces, −(A q̈ + h): every row −1,
+    whatever the random draw (the factors are voted where the special families remove what
+    the document omits, e.g. the motor armature)."""
     from wheeled_dyn.derivations import load_derivation
     d = load_derivation(_table_path().parent / "appendix_kim_A_C.toml")
     found = {seed: ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=seed)

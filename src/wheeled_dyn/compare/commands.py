@@ -17,7 +17,8 @@ DEFAULT_SAMPLES, DEFAULT_PARAM_SETS = 1000, 5
 
 
 def run_comparison(files: Sequence[Path], samples: int, param_sets: int, seed: int = 2026,
-                   model: str | None = None) -> list[DerivationResult]:
+                   model: str | None = None, engine: ComparisonEngine | None = None
+                   ) -> list[DerivationResult]:
     r"""Compare each derivation file; all files are parsed (and checked against ``model``)
     before any comparison starts."""
     derivations = load_derivations(files)
@@ -26,7 +27,7 @@ def run_comparison(files: Sequence[Path], samples: int, param_sets: int, seed: i
         if model is not None and d.model != model:
             raise DerivationError(d.path, "model", f"the file describes model {d.model!r}, "
                                   f"not {model!r}")
-    engine = ComparisonEngine(samples=samples, param_sets=param_sets, seed=seed)
+    engine = engine or ComparisonEngine(samples=samples, param_sets=param_sets, seed=seed)
     return [engine.compare(d) for d in derivations]
 
 
@@ -39,13 +40,35 @@ def print_summary(results: Sequence[DerivationResult]) -> None:
             print(f"    {line}")
 
 
-def _extra_sections(results: Sequence[DerivationResult]) -> tuple[list[str], list[str], dict]:
-    r"""Optional sections contributed by other modules (the seed's own table)."""
-    try:
-        from .seed_table import default_sections
-    except ImportError:
-        return [], [], {}
-    return default_sections(results)
+def _table_sections(engine: ComparisonEngine, group: str) -> tuple[list[str], list[str], dict]:
+    r"""The shipped hand-made comparison tables of ``group``, reproduced by the machine."""
+    import html as H
+
+    from ..derivations import builtin_tables
+    from ..derivations.table import load_comparison_table
+    from .seed_table import reproduce_table
+    md, out_html, data = [], [], []
+    for path in builtin_tables(group):
+        rep = reproduce_table(load_comparison_table(path), engine)
+        md.append(rep.markdown().replace("\n# ", "\n## ").replace("\n## Resulting", "\n### Resulting")
+                  .replace("\n## Notes", "\n### Notes").replace("# Comparison", "## Comparison", 1))
+        rows = "".join(
+            f"<tr><td>{H.escape(r.element)}</td><td><code>{H.escape(r.derived)}</code></td>"
+            f"<td><code>{H.escape(r.reference)}</code></td><td>{H.escape(r.machine)}"
+            f"{' <b>≠ table</b>' if r.disagreement else ''}</td><td>{H.escape(r.table)}</td>"
+            f"<td>{H.escape(r.truth)}</td><td>{H.escape(r.explanation)}</td></tr>" for r in rep.rows)
+        notes = "".join(f"<li>{H.escape(n)}</li>" for n in rep.notes)
+        out_html.append(
+            f"<section><h2>Comparison table reproduced: {H.escape(path.name)}</h2>"
+            f"<p>mismatched, table: {H.escape(', '.join(rep.table_mismatched))}; machine: "
+            f"{H.escape(', '.join(rep.machine_mismatched))}</p><table><tr><th>element</th>"
+            f"<th>derived</th><th>reference</th><th>machine</th><th>table</th>"
+            f"<th>right (vs truth)</th><th>explanation</th></tr>{rows}</table><ul>{notes}</ul>"
+            f"</section>")
+        data.append({"table": path.name, "table_mismatched": list(rep.table_mismatched),
+                     "machine_mismatched": list(rep.machine_mismatched),
+                     "rows": [r.__dict__ for r in rep.rows], "notes": list(rep.notes)})
+    return md, out_html, ({"tables": data} if data else {})
 
 
 def _plots(results: Sequence[DerivationResult]) -> tuple[list[str], list[str], dict[str, bytes]]:
@@ -81,9 +104,10 @@ def eval_fraction(text: str) -> float:
     return float(num) / float(den or 1)
 
 
-def _write(results, title: str, out: Path, plots: bool = False) -> None:
+def _write(results, title: str, out: Path, plots: bool = False,
+           sections: tuple[list[str], list[str], dict] = ([], [], {})) -> None:
     from ..report import render, write_reports
-    md, html, js = _extra_sections(results)
+    md, html, js = sections
     files: dict[str, bytes] = {}
     if plots:
         pmd, phtml, files = _plots(results)
@@ -94,10 +118,17 @@ def _write(results, title: str, out: Path, plots: bool = False) -> None:
 
 def _cmd_report(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
-    results = run_comparison(builtin_derivations("seed001"), args.samples, args.param_sets)
+    engine = ComparisonEngine(samples=args.samples, param_sets=args.param_sets)
+    results = run_comparison(builtin_derivations("seed001"), args.samples, args.param_sets,
+                             engine=engine)
     print_summary(results)
+    sections = _table_sections(engine, "seed001")
+    for entry in sections[2].get("tables", []):
+        print(f"{entry['table']}: mismatched per the seed's table: "
+              f"{', '.join(entry['table_mismatched'])}; per the machine: "
+              f"{', '.join(entry['machine_mismatched'])}")
     _write(results, "wheeled_dyn: seed 001's derivations against the truth", Path(args.out),
-           args.plots)
+           args.plots, sections)
     print(f"{len(results)} derivations, {args.samples} states × {args.param_sets} parameter "
           f"sets each, in {time.perf_counter() - t0:.1f} s")
     return 0
