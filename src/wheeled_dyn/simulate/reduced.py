@@ -1,11 +1,16 @@
-r"""Simulation of a wheeled model on its reduced equations (rolling eliminated).
+r"""Simulation of a model on its reduced equations (rolling eliminated).
 
-The state is the model configuration :math:`q` (all of it: x0, y0, heading, wheel angles...)
-and the document velocities :math:`\nu`:
+For a quasi-velocity set (rolling eliminated, or no rolling), the state is the model
+configuration :math:`q` (all of it: x0, y0, heading, wheel angles...) and the document
+velocities :math:`\nu`:
 
 .. math::
 
-    \dot q = S(q)\,\nu,\qquad A_\nu(q)\,\dot\nu = B_\nu u - h_\nu(q,\nu) - Q_\nu(q),
+    \dot q = S(q)\,\nu,\qquad A_\nu(q)\,\dot\nu = B_\nu u - h_\nu(q,\nu) - Q_\nu(q).
+
+For a holonomic set without rolling constraints (a fixed-base body, or a holonomic map such as
+a gear coupling or a disk rolling on a line) the state is the document's positions and their
+velocities, :math:`\dot q_{doc} = \nu`, and the model configuration is :math:`g(q_{doc})`;
 
 integrated by :func:`scipy.integrate.solve_ivp` (DOP853). The energy
 :math:`E = \tfrac12\nu^TA_\nu\nu + U(q)` is returned along the trajectory; with zero input it
@@ -42,15 +47,18 @@ class Trajectory:
     energy: np.ndarray
     velocities: tuple[str, ...]
     coordinate_names: tuple[str, ...]
+    positions: np.ndarray | None = None      # document positions (N × n), holonomic sets
 
     def relative_energy_drift(self) -> float:
         scale = max(abs(self.energy[0]), np.abs(self.energy - self.energy[0]).max(), 1e-12)
         return float(np.abs(self.energy - self.energy[0]).max() / scale)
 
 
-def energy(cmap: CoordinateMap, q: np.ndarray, nu: np.ndarray) -> float:
-    r""":math:`\tfrac12\nu^TA_\nu\nu + U(q)`."""
-    terms, _, _ = cmap.reduce_at(q, nu)
+def energy(cmap: CoordinateMap, q: np.ndarray, nu: np.ndarray,
+           q_doc: np.ndarray | None = None) -> float:
+    r""":math:`\tfrac12\nu^TA_\nu\nu + U(q)` (``q_doc``: the document positions, needed for
+    holonomic sets)."""
+    terms, _, _ = cmap.reduce_at(q, nu, q_doc)
     return float(0.5 * nu @ terms.A @ nu
                  + pin.computePotentialEnergy(cmap.wm.model, cmap.wm.model.createData(), q))
 
@@ -58,32 +66,52 @@ def energy(cmap: CoordinateMap, q: np.ndarray, nu: np.ndarray) -> float:
 def simulate(cmap: CoordinateMap, q0: np.ndarray, nu0: np.ndarray, duration: float,
              rate: float = 1000.0, u: Input | None = None, rtol: float = RTOL,
              atol: float = ATOL) -> Trajectory:
-    r"""Integrate from model configuration ``q0`` and document velocities ``nu0`` for
-    ``duration`` seconds, sampled at ``rate`` Hz. ``u(t, q, nu)`` gives the motor torques
-    (default zero). The coordinate set must be of kind ``quasi`` with rolling eliminated."""
-    if cmap.cs.kind != "quasi" or cmap.cs.rolling != "eliminate":
-        raise StateError(None, cmap.cs.name, "a quasi-velocity coordinate set with rolling "
-                                             "eliminated (e.g. 'seed001', 'heading', 'wheels')")
-    nq, n = cmap.wm.model.nq, cmap.n
+    r"""Integrate from ``q0`` (the model configuration for a quasi-velocity set, the document
+    positions for a holonomic one) and document velocities ``nu0`` for ``duration`` seconds,
+    sampled at ``rate`` Hz. ``u(t, q, nu)`` gives the motor inputs (default zero; ``q`` is the
+    model configuration). Sets that keep rolling constraints with multipliers cannot be
+    integrated this way."""
+    cs = cmap.cs
+    holonomic = cs.kind == "holonomic"
+    if cs.rolling == "multipliers" or (holonomic and cs.rolling != "none"):
+        raise StateError(None, cs.name, "a quasi-velocity coordinate set with rolling "
+                                        "eliminated (e.g. 'seed001', 'heading', 'wheels'), or a "
+                                        "set without rolling constraints")
+    nq, n = (cmap.n if holonomic else cmap.wm.model.nq), cmap.n
     n_inputs = len(cmap.wm.input_names)
     zero_u = np.zeros(n_inputs)
     control = u or (lambda t, q, nu: zero_u)
 
     def rhs(t: float, y: np.ndarray) -> np.ndarray:
-        q, nu = y[:nq], y[nq:]
-        terms, S, _ = cmap.reduce_at(q, nu)
+        if holonomic:
+            q_doc, nu = y[:nq], y[nq:]
+            q = cmap.model_configuration(q_doc)
+            terms, _, _ = cmap.reduce_at(q, nu, q_doc)
+            qdot = nu
+        else:
+            q, nu = y[:nq], y[nq:]
+            terms, S, _ = cmap.reduce_at(q, nu)
+            qdot = S @ nu
         force = terms.B @ control(t, q, nu) - terms.h - terms.Q
-        return np.concatenate([S @ nu, np.linalg.solve(terms.A, force)])
+        return np.concatenate([qdot, np.linalg.solve(terms.A, force)])
 
-    y0 = np.concatenate([np.asarray(q0, float), np.asarray(nu0, float)])
-    if not np.all(np.isfinite(y0)):
-        raise StateError(None, y0.tolist(), "finite initial state")
+    y0 = np.concatenate([np.asarray(q0, float).reshape(-1), np.asarray(nu0, float).reshape(-1)])
+    if y0.shape != (nq + n,) or not np.all(np.isfinite(y0)):
+        raise StateError(None, y0.tolist(), f"{nq + n} finite numbers (initial state)")
     t_eval = np.linspace(0.0, duration, int(round(duration * rate)) + 1)
     sol = solve_ivp(rhs, (0.0, duration), y0, method="DOP853", t_eval=t_eval, rtol=rtol, atol=atol)
     if not sol.success:
         raise StateError(None, float(sol.t[-1]), f"integration to {duration} s ({sol.message})")
-    qs, nus = sol.y[:nq].T, sol.y[nq:].T
-    us = np.array([control(t, q, nu) for t, q, nu in zip(sol.t, qs, nus)])
-    es = np.array([energy(cmap, q, nu) for q, nu in zip(qs, nus)]) if u is None else \
+    positions = None
+    if holonomic:
+        positions, nus = sol.y[:nq].T, sol.y[nq:].T
+        qs = np.array([cmap.model_configuration(p) for p in positions])
+    else:
+        qs, nus = sol.y[:nq].T, sol.y[nq:].T
+    us = np.array([control(t, q, nu) for t, q, nu in zip(sol.t, qs, nus)]).reshape(len(sol.t),
+                                                                                n_inputs)
+    docs = positions if holonomic else [None] * len(qs)
+    es = np.array([energy(cmap, q, nu, p) for q, nu, p in zip(qs, nus, docs)]) if u is None else \
         np.full(len(sol.t), np.nan)
-    return Trajectory(sol.t, qs, nus, us, es, cmap.cs.velocities, cmap.wm.coordinate_names)
+    return Trajectory(sol.t, qs, nus, us, es, cmap.cs.velocities, cmap.wm.coordinate_names,
+                      positions)
