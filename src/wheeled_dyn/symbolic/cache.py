@@ -23,7 +23,7 @@ import numpy as np
 import pinocchio as pin
 import sympy as sp
 
-from .kinematics import joint_kind
+from .kinematics import joint_kind, resolve_translations
 from .model import SymbolicModel, symbolic_model
 from .parameters import resolve_parameters
 
@@ -53,7 +53,8 @@ def _floats(a) -> str:
 
 def model_fingerprint(model: pin.Model, params: Mapping[int, Sequence] | None = None,
                       coordinate_names: Sequence[str] | None = None, gravity=None,
-                      simplify: bool = True) -> str:
+                      simplify: bool = True, translations: Mapping | None = None,
+                      armature: Sequence | None = None, real: bool = False) -> str:
     """Hex SHA-256 of the inputs of :func:`~.model.symbolic_model` (see module docstring).
     Raises :class:`~wheeled_dyn.errors.ModelError` for unsupported joints."""
     h = hashlib.sha256()
@@ -75,17 +76,26 @@ def model_fingerprint(model: pin.Model, params: Mapping[int, Sequence] | None = 
     for j, pi in sorted(resolve_parameters(model, params).items()):
         put(j, *[float(x).hex() if x.is_Float else sp.srepr(x) for x in pi])
     put(repr(None if coordinate_names is None else list(coordinate_names)))
+    if translations or armature is not None or real:  # keys of older entries stay valid
+        for j, t in sorted(resolve_translations(model, translations).items()):
+            put("translation", j, *[sp.srepr(x) for x in t])
+        put("armature", *(() if armature is None else [sp.srepr(sp.sympify(a))
+                                                        for a in armature]))
+        put("real", real)
     return h.hexdigest()
 
 
 def cached_symbolic_model(model: pin.Model, params: Mapping[int, Sequence] | None = None,
                           coordinate_names: Sequence[str] | None = None, gravity=None,
                           simplify: bool = True, root: str | Path | None = None,
-                          refresh: bool = False) -> SymbolicModel:
+                          refresh: bool = False, translations: Mapping | None = None,
+                          armature: Sequence | None = None, real: bool = False
+                          ) -> SymbolicModel:
     """:func:`~.model.symbolic_model`, read from the cache when an entry for the same inputs
     exists (unless ``refresh``), else derived and stored. An unreadable entry is reported
     with a warning and replaced."""
-    key = model_fingerprint(model, params, coordinate_names, gravity, simplify)
+    key = model_fingerprint(model, params, coordinate_names, gravity, simplify,
+                            translations, armature, real)
     path = cache_dir(root) / f"{key}.pickle"
     if path.is_file() and not refresh:
         try:
@@ -99,17 +109,23 @@ def cached_symbolic_model(model: pin.Model, params: Mapping[int, Sequence] | Non
                 TypeError, ValueError) as exc:
             warnings.warn(f"symbolic cache entry {path} is unreadable ({exc}); re-deriving",
                           stacklevel=2)
-    sym = symbolic_model(model, params, coordinate_names, gravity, simplify)
+    sym = symbolic_model(model, params, coordinate_names, gravity, simplify, translations,
+                         armature, real)
+    store(path, sym)
+    return sym
+
+
+def store(path: Path, obj: object) -> None:
+    """Pickle ``obj`` to ``path`` atomically (a temporary file in the same folder, renamed)."""
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-", suffix=".pickle")
     try:
         with os.fdopen(fd, "wb") as fh:
-            pickle.dump(sym, fh, protocol=pickle.HIGHEST_PROTOCOL)
+            pickle.dump(obj, fh, protocol=pickle.HIGHEST_PROTOCOL)
         os.replace(tmp, path)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
-    return sym
 
 
 def clear_cache(root: str | Path | None = None) -> int:

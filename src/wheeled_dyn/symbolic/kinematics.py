@@ -23,7 +23,7 @@ the model are made exact where they are simple (:func:`exact_number`).
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -31,7 +31,7 @@ import numpy as np
 import pinocchio as pin
 import sympy as sp
 
-from ..errors import ModelError
+from ..errors import ModelError, UnknownNameError
 from .trigpoly import TrigRing
 
 #: Joint kinds accepted, by Pinocchio short name: (kind, fixed axis or None for "unaligned").
@@ -176,26 +176,51 @@ def _cross(a: list, b: list) -> list:
     return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 
 
+def resolve_translations(model: pin.Model, translations: Mapping | None
+                         ) -> dict[int, tuple[sp.Expr, ...]]:
+    """``{joint index: 3 SymPy expressions}`` from a mapping keyed by joint index or name.
+    Raises :class:`UnknownNameError` for a key that is no joint and :class:`ModelError` for a
+    value that is not three entries."""
+    names = list(model.names)
+    out: dict[int, tuple[sp.Expr, ...]] = {}
+    for key, value in (translations or {}).items():
+        j = names.index(key) if isinstance(key, str) and key in names[1:] else key
+        if not (isinstance(j, (int, np.integer)) and 1 <= int(j) < model.njoints):
+            raise UnknownNameError("joint", str(key), names[1:], where="symbolic translations")
+        vals = tuple(sp.sympify(x) for x in value)
+        if len(vals) != 3:
+            raise ModelError(getattr(model, "name", "") or "<pinocchio>", names[int(j)],
+                             f"a translation needs 3 entries, got {len(vals)}")
+        out[int(j)] = vals
+    return out
+
+
 def kinematics_in_ring(model: pin.Model, q: Sequence[sp.Symbol], qd: Sequence[sp.Symbol],
                        extra_exprs: Sequence[sp.Expr] = (),
-                       extra_symbols: Sequence[sp.Symbol] = ()) -> RingKinematics:
+                       extra_symbols: Sequence[sp.Symbol] = (),
+                       translations: Mapping | None = None) -> RingKinematics:
     r"""Placements and frame velocities of joints ``1 .. njoints-1`` computed in one
     :class:`~.trigpoly.TrigRing` (which also holds ``extra_exprs``, e.g. inertial parameters,
     and has ``q``, ``qd`` and ``extra_symbols`` among its generators).
 
     ``q[k]``/``qd[k]`` are the symbols of the k-th velocity index (``model.joints[j].idx_v``).
+    ``translations``: ``{joint index or name: (x, y, z)}`` replacing the translation of
+    ``model.jointPlacements[j]`` by expressions (symbolic geometry: an axle height ``R``, a
+    half track ``L``); the rotation stays the model's.
     Raises :class:`ModelError` for joints that are not 1-DoF revolute/prismatic.
     """
     if len(q) != model.nv or len(qd) != model.nv:
         raise ModelError(getattr(model, "name", "") or "<pinocchio>", None,
                          f"{len(q)} coordinates and {len(qd)} velocities given for nv={model.nv}")
+    moved = resolve_translations(model, translations)
     joints = []
     flat: list[sp.Expr] = list(extra_exprs)
     for j in range(1, model.njoints):
         kind, a = joint_kind(model, j)
         k = model.joints[j].idx_v
         place = model.jointPlacements[j]
-        Rp, pp = exact_matrix(place.rotation), exact_matrix(place.translation)
+        Rp = exact_matrix(place.rotation)
+        pp = sp.Matrix(moved[j]) if j in moved else exact_matrix(place.translation)
         Rq = rodrigues(a, q[k]) if kind == "revolute" else sp.eye(3)
         joints.append((j, kind, k))
         flat += list(a) + list(Rp) + list(pp) + list(Rq)
@@ -252,11 +277,13 @@ def joint_kinematics(model: pin.Model, rk: RingKinematics) -> tuple[JointKinemat
 
 
 def forward_kinematics(model: pin.Model, q: Sequence[sp.Symbol],
-                       qd: Sequence[sp.Symbol]) -> tuple[JointKinematics, ...]:
+                       qd: Sequence[sp.Symbol], translations: Mapping | None = None
+                       ) -> tuple[JointKinematics, ...]:
     r"""Symbolic placements and frame velocities of joints ``1 .. njoints-1`` (expanded,
-    canonical trigonometric form). ``q[k]``/``qd[k]`` are the symbols of velocity index ``k``.
+    canonical trigonometric form). ``q[k]``/``qd[k]`` are the symbols of velocity index ``k``;
+    ``translations`` as in :func:`kinematics_in_ring`.
     Raises :class:`ModelError` for joints that are not 1-DoF revolute/prismatic."""
-    return joint_kinematics(model, kinematics_in_ring(model, q, qd))
+    return joint_kinematics(model, kinematics_in_ring(model, q, qd, translations=translations))
 
 
 def velocity_jacobian(kin: JointKinematics, qd: Sequence[sp.Symbol]) -> sp.Matrix:

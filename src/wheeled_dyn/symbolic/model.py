@@ -130,7 +130,8 @@ def _gravity(model: pin.Model, gravity) -> sp.Matrix:
 
 def symbolic_model(model: pin.Model, params: Mapping[int, Sequence] | None = None,
                    coordinate_names: Sequence[str] | None = None, gravity=None,
-                   simplify: bool = True) -> SymbolicModel:
+                   simplify: bool = True, translations: Mapping | None = None,
+                   armature: Sequence | None = None, real: bool = False) -> SymbolicModel:
     r"""Symbolic :math:`A, Q, c_{i,jk}, C, h, \dot A, E, U` of ``model``.
 
     ``params``: ``{joint index or name: 10 numbers or expressions}`` in Pinocchio's
@@ -138,7 +139,11 @@ def symbolic_model(model: pin.Model, params: Mapping[int, Sequence] | None = Non
     :func:`~.parameters.numeric_parameters` for the model's own numbers). ``coordinate_names``:
     one name per coordinate (default: the joint names); velocities are ``"d" + name``.
     ``gravity``: None (``model.gravity``), a magnitude (symbol, name or number) along
-    ``model.gravity``, or a 3-vector. All results are in canonical trigonometric form collected
+    ``model.gravity``, or a 3-vector. ``translations``: ``{joint: (x, y, z)}`` expressions
+    replacing joint placement translations (symbolic geometry,
+    :func:`~.kinematics.kinematics_in_ring`); ``armature``: one expression per velocity
+    (default ``model.armature``); ``real``: coordinate and velocity symbols with
+    ``real=True``. All results are in canonical trigonometric form collected
     by parameter (and velocity); ``simplify`` also polishes ``A``, ``Q``, ``h`` and ``U`` for
     reading (:func:`~.simplify.polish_trig`).
     Raises :class:`ModelError` for joints other than 1-DoF revolute/prismatic.
@@ -153,16 +158,23 @@ def symbolic_model(model: pin.Model, params: Mapping[int, Sequence] | None = Non
         if len(coords) != model.nv:
             raise ModelError(model.name or "<pinocchio>", None,
                              f"{len(coords)} coordinate names for nv={model.nv}")
-    q = tuple(sp.Symbol(c) for c in coords)
-    qd = tuple(sp.Symbol("d" + c) for c in coords)
+    q = tuple(sp.Symbol(c, real=True) if real else sp.Symbol(c) for c in coords)
+    qd = tuple(sp.Symbol("d" + c, real=True) if real else sp.Symbol("d" + c) for c in coords)
     pis = resolve_parameters(model, params)
     g = _gravity(model, gravity)
     n = model.nv
-    arm = [exact_number(a) for a in model.armature]
+    if armature is None:
+        arm = [exact_number(a) for a in model.armature]
+    else:
+        arm = [sp.sympify(a) for a in armature]
+        if len(arm) != n:
+            raise ModelError(model.name or "<pinocchio>", None,
+                             f"{len(arm)} armature values for nv={n}")
     flat_pi = [x for j in sorted(pis) for x in pis[j]]
     inertial = [s for x in flat_pi for s in sorted(x.free_symbols, key=sp.default_sort_key)]
     rk = kinematics_in_ring(model, q, qd, extra_exprs=list(g) + arm + flat_pi,
-                            extra_symbols=tuple(dict.fromkeys(inertial)))
+                            extra_symbols=tuple(dict.fromkeys(inertial)),
+                            translations=translations)
     ring = rk.ring
     gp, armp, pip = rk.extra[:3], rk.extra[3:3 + n], rk.extra[3 + n:]
     pi_of = {j: pip[10 * i:10 * (i + 1)] for i, j in enumerate(sorted(pis))}

@@ -35,7 +35,8 @@ class ReducedSymbolic:
     ``B`` (None if no input matrix was given); ``q``: the coordinates they depend on (document
     coordinates after ``subs``); ``nu``: the quasi-velocity symbols; ``parameters``: every other
     free symbol (the model's parameters first); ``params``: the model's standard parameters per
-joint (after ``subs``); ``S``, ``Sdot``: as given, after ``subs``."""
+    joint (after ``subs``); ``S``, ``Sdot``: as given, after ``subs``; ``G``: the constraint
+    matrix :math:`J_c S` when constraints are kept with multipliers (else None)."""
 
     q: tuple[sp.Symbol, ...]
     nu: tuple[sp.Symbol, ...]
@@ -48,6 +49,7 @@ joint (after ``subs``); ``S``, ``Sdot``: as given, after ``subs``."""
     B: sp.Matrix | None
     S: sp.Matrix
     Sdot: sp.Matrix
+    G: sp.Matrix | None = None
 
     @property
     def velocities(self) -> tuple[sp.Symbol, ...]:
@@ -55,10 +57,12 @@ joint (after ``subs``); ``S``, ``Sdot``: as given, after ``subs``."""
         return self.nu
 
     def terms(self) -> dict[str, sp.Matrix]:
-        """``{"A", "C", "Q", "h"}`` and ``"B"`` when present."""
+        """``{"A", "C", "Q", "h"}`` and ``"B"``, ``"G"`` when present."""
         out = {"A": self.A, "C": self.C, "Q": self.Q, "h": self.h}
         if self.B is not None:
             out["B"] = self.B
+        if self.G is not None:
+            out["G"] = self.G
         return out
 
 
