@@ -8,6 +8,11 @@ Depends only on ``pinocchio`` (the model) and ``sympy``. Typical use::
     sym.A, sym.C(), sym.Q, sym.h(), sym.christoffel()
     red = transform(sym, S, Sdot, nu, subs={phi: -theta})
     to_latex(red.A); lambdify_terms(red)("h", q, nu, parameter_vector(red, model))
+
+For a wheeled model in a coordinate set, rolling included, in physical symbols::
+
+    red = wheeled_symbolic(load_model("wip"), builtin_coordinate_set(wm, "seed001"))
+    true_expressions("wip", cs)["h[1]:dpsi*dpsi"]     # labelled elements, cached
 """
 
 from .cache import cache_dir, cached_symbolic_model, clear_cache, model_fingerprint
@@ -20,11 +25,15 @@ from .printing import from_srepr, to_latex, to_mathml, to_srepr, to_text, veloci
 from .simplify import canonical_trig, is_zero, polish_trig, simplify_expr, simplify_matrix
 from .transform import ReducedSymbolic, time_derivative, transform
 from .trigpoly import TrigRing
+from .wheeled import (PARAMETER_MODES, contact_rows, element_expressions, physical_symbols,
+                      true_expressions, velocity_products, wheeled_symbolic)
 
 __all__ = [
     "JointKinematics", "LagrangeTerms", "NumericTerms", "PARAMETER_NAMES", "ReducedSymbolic",
     "SymbolicModel", "TrigRing", "cache_dir", "cached_symbolic_model", "canonical_trig",
     "clear_cache", "energy_terms", "exact_number", "forward_kinematics", "from_srepr",
+    "PARAMETER_MODES", "contact_rows", "element_expressions", "physical_symbols",
+    "true_expressions", "velocity_products", "wheeled_symbolic",
     "inertial_symbols", "is_zero", "lagrange_terms", "lambdify_terms", "model_fingerprint",
     "numeric_parameters", "parameter_vector", "polish_trig", "simplify_expr",
     "simplify_matrix", "symbolic_model", "time_derivative", "to_latex", "to_mathml",

@@ -1,0 +1,93 @@
+r"""CLI: ``wheeled-dyn symbolic MODEL [--coords NAME] [--parameters MODE] [--latex | --json]``.
+
+Prints the closed forms :math:`A, C, Q, B` (and, with ``--json``, :math:`h`) of a model in one
+of its coordinate sets (:func:`~.wheeled.wheeled_symbolic`): for the WIP in seed 001's
+physical names (``m_S, d, I1, ..., R, L, g, I_a``) by default, for other models in Khalil's
+standard parameters of their links.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+import sympy as sp
+
+from .printing import to_latex
+from .wheeled import PARAMETER_MODES, physical_latex, wheeled_symbolic
+
+
+def _mode(model: str, requested: str | None) -> str:
+    from ..models.registry import model_entry
+    if requested:
+        return requested
+    return "physical" if model_entry(model).parameters is not None else "standard"
+
+
+def _text(e: sp.Expr) -> str:
+    return sp.sstr(e)
+
+
+def _matrix_lines(name: str, M: sp.Matrix) -> list[str]:
+    lines = []
+    for i in range(M.shape[0]):
+        for j in range(M.shape[1]):
+            label = f"{name}[{i + 1}]" if M.shape[1] == 1 and name in ("Q", "h") \
+                else f"{name}[{i + 1},{j + 1}]"
+            lines.append(f"  {label} = {_text(M[i, j])}")
+    return lines
+
+
+def _cmd_symbolic(args: argparse.Namespace) -> int:
+    from ..coordinates import builtin_coordinate_set
+    from ..models.registry import load_model
+    wm = load_model(args.model)
+    cs = builtin_coordinate_set(wm, args.coords)
+    mode = _mode(args.model, args.parameters)
+    red = wheeled_symbolic(wm, cs, mode)
+    terms = {"A": red.A, "C": red.C, "Q": red.Q}
+    if red.B is not None:
+        terms["B"] = red.B
+    if args.json:
+        out = {"model": wm.name, "coordinate_set": cs.name, "parameters": mode,
+               "coordinates": [str(v) for v in red.nu], "positions": [str(q) for q in red.q],
+               "inputs": list(wm.input_names),
+               "A": [[_text(x) for x in row] for row in red.A.tolist()],
+               "C": [[_text(x) for x in row] for row in red.C.tolist()],
+               "Q": [_text(x) for x in red.Q],
+               "B": None if red.B is None else [[_text(x) for x in row]
+                                                for row in red.B.tolist()],
+               "h": [_text(x) for x in red.h]}
+        if red.G is not None:
+            out["G"] = [[_text(x) for x in row] for row in red.G.tolist()]
+        print(json.dumps(out, indent=2))
+        return 0
+    dots = dict(zip(red.nu, red.q)) if len(red.nu) == len(red.q) else {}
+    if args.latex:
+        for name, M in terms.items():
+            print(f"{name} = {to_latex(M, dots, physical_latex())}")
+            print()
+        return 0
+    print(f"model {wm.name}, coordinates {cs.name}: {cs.description}")
+    print(f"positions {', '.join(map(str, red.q))}; velocities {', '.join(map(str, red.nu))}; "
+          f"inputs {', '.join(wm.input_names)}")
+    print(f"parameters ({mode}): {', '.join(map(str, red.parameters))}")
+    print("A(q) nu' + C(q, nu) nu + Q(q) = B u")
+    for name, M in terms.items():
+        print(f"{name}:")
+        print("\n".join(_matrix_lines(name, M)))
+    return 0
+
+
+def add_commands(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("symbolic", help="closed-form A, C, Q, B of a model in a coordinate set")
+    p.add_argument("model", help="model name (see 'wheeled-dyn list')")
+    p.add_argument("--coords", default=None, help="coordinate set (default: the model's)")
+    p.add_argument("--parameters", default=None, choices=PARAMETER_MODES,
+                   help="physical symbols (default for the WIP), the model's numbers, or "
+                        "Khalil's standard parameters (default for other models)")
+    out = p.add_mutually_exclusive_group()
+    out.add_argument("--latex", action="store_true", help="print LaTeX")
+    out.add_argument("--json", action="store_true",
+                     help="print JSON (keys coordinates, A, C, Q, B, h as strings)")
+    p.set_defaults(handler=_cmd_symbolic)
