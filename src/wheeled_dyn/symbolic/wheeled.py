@@ -52,7 +52,6 @@ import pickle
 import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import fields, replace
-from functools import lru_cache
 
 import numpy as np
 import pinocchio as pin
@@ -63,7 +62,7 @@ from ..coordinates.spec import CoordinateSet
 from ..errors import ModelError, UnknownNameError
 from ..models.builder import WheeledModel
 from .cache import _code_digest, cache_dir, cached_symbolic_model, model_fingerprint, store
-from .kinematics import exact_matrix, exact_number
+from .kinematics import exact_number
 from .model import SymbolicModel
 from .parameters import PARAMETER_NAMES, numeric_parameters
 from .simplify import canonical_trig, simplify_expr
