@@ -203,12 +203,6 @@ def test_planted_missing_term_differs_alone(engine, tmp_path):
     assert result.energy.conserves                       # a constant term does no work
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "A term missing from a nonzero element gets verdict 'differs' with no diagnosis and "
-    "ElementRecord.residual None: compare/diagnose.py value_diagnoses returns [] unless the "
-    "document is 0, -truth or c*truth, and compare/closed_form.annotate imports "
-    "wheeled_dyn.symbolic.true_expressions, which does not exist, so the residual T - D "
-    "(here 2*Iw2) is never filled"))
 def test_planted_missing_term_is_named(engine, tmp_path):
     result = engine.compare(load_derivation(_planted(tmp_path, MISSING_TERM)))
     r = _records(result)["A[2,2]"]

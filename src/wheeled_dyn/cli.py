@@ -20,6 +20,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "wheeled_dyn.models.commands",
     "wheeled_dyn.compare.commands",
     "wheeled_dyn.simulate.commands",
+    "wheeled_dyn.symbolic.commands",
 )
 
 
@@ -46,6 +47,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except WheeledDynError as exc:
         print(f"wheeled-dyn: error: {exc}", file=sys.stderr)
         return 2
+    except BrokenPipeError:          # output piped into a reader that stopped (e.g. head)
+        sys.stderr.close()
+        return 0
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -62,10 +62,12 @@ def document_in_model(d: Derivation) -> Callable[[sp.Expr | None], tuple[str, st
     return convert
 
 
-def annotate(d: Derivation, records: list[dict], cs, exprs: dict[int, sp.Expr | None]) -> None:
-    r"""Fill ``truth`` (every element) and ``residual`` (truth − document, simplified, for the
-    elements that do not agree) where the symbolic engine provides closed forms; without them
-    the records keep their numeric verdicts."""
+def annotate(d: Derivation, records: list[dict], cs, exprs: dict[int, sp.Expr | None],
+             row_factors: tuple[float | None, ...] = ()) -> None:
+    r"""Fill ``truth`` (every element) and ``residual`` (truth − document, expanded, for the
+    elements that do not agree; document rows divided by their detected ``row_factors``) where
+    the symbolic engine provides closed forms; without them the records keep their numeric
+    verdicts."""
     try:
         from ..symbolic import true_expressions
     except ImportError:
@@ -73,7 +75,6 @@ def annotate(d: Derivation, records: list[dict], cs, exprs: dict[int, sp.Expr | 
     truth = true_expressions(d.model, cs)
     if not truth:
         return
-    from ..symbolic import simplify_expr
     to_model = model_expression(d)
     dots = {v: rf"\dot{{{sp.latex(q)}}}" for q, v in zip(d.positions, d.velocities)}
     for r in records:
@@ -86,7 +87,10 @@ def annotate(d: Derivation, records: list[dict], cs, exprs: dict[int, sp.Expr | 
             doc = to_model(exprs.get(id(r)))
             if doc is None:
                 continue
-            residual = simplify_expr(sp.expand(expr - doc))
+            i = r["index"][0]
+            if i < len(row_factors) and row_factors[i]:
+                doc = doc / sp.nsimplify(row_factors[i])
+            residual = sp.expand(sp.expand_trig(expr - doc))
             r["residual"] = sp.sstr(residual)
             if residual != 0:
                 r["diagnoses"].append(f"truth − document = {sp.sstr(residual)}")

@@ -288,7 +288,8 @@ class ComparisonEngine:
         self._h_swaps(records, arrays)
         self._factorization(records, n)
         self._special(d, funcs, records, row_factor)
-        closed_form.annotate(d, records, cs, {id(r): e for r, e in zip(records, exprs)})
+        closed_form.annotate(d, records, cs, {id(r): e for r, e in zip(records, exprs)},
+                             tuple(row_factor))
         energy = _energy(funcs, doc, row_factor, flat_q, flat_nu, values, d)
         asym = _asymmetric(doc, scales, n)
         constraints = _constraints(doc, truth, scales)
