@@ -22,7 +22,11 @@ Models without wheels (``fixed`` and ``free`` bases) offer
   Without a contact the velocities of the origin ``dx0, dy0, dz0`` come first (rolling
   ``none``); with a rolling ball they are eliminated by the contact (rolling ``eliminate``)
   and the representative configuration puts the ball on the ground at the origin, or on top
-  of the fixed sphere.
+  of the fixed sphere;
+- ``world_rates`` (``free`` base): the same with the angular velocity's components in world
+  axes (velocities ``wX, wY, wZ``). For a ball whose inertia is isotropic the reduced
+  equations in these velocities do not depend on the ball's orientation, so a spinning ball
+  on top of the fixed sphere is an equilibrium of (centre, angular velocity).
 """
 
 from __future__ import annotations
@@ -47,6 +51,12 @@ def _others(wm: WheeledModel) -> list[str]:
 BODY_RATES = {"wx": "droll - sin(pitch)*dyaw",
               "wy": "cos(roll)*dpitch + sin(roll)*cos(pitch)*dyaw",
               "wz": "-sin(roll)*dpitch + cos(roll)*cos(pitch)*dyaw"}
+
+
+#: Angular velocity in world axes in the ZYX angles of a free base.
+WORLD_RATES = {"wX": "-sin(yaw)*dpitch + cos(yaw)*cos(pitch)*droll",
+               "wY": "cos(yaw)*dpitch + sin(yaw)*cos(pitch)*droll",
+               "wZ": "dyaw - sin(pitch)*droll"}
 
 
 def _unwheeled_specs(wm: WheeledModel) -> dict[str, dict[str, Any]]:
@@ -85,6 +95,14 @@ def _unwheeled_specs(wm: WheeledModel) -> dict[str, dict[str, Any]]:
                            "rolling": "eliminate" if contact else "none",
                            "positions": positions, "velocities": velocities,
                            "configuration": config, "velocity_map": vmap}
+    world = {**{k: v for k, v in vmap.items() if k not in BODY_RATES}, **WORLD_RATES}
+    specs["world_rates"] = {**specs["body_rates"],
+                            "description": description.replace("body angular velocity "
+                                                               "components in the body frame",
+                                                               "angular velocity in world axes"),
+                            "velocities": [{"wx": "wX", "wy": "wY", "wz": "wZ"}.get(v, v)
+                                           for v in velocities],
+                            "velocity_map": world}
     return specs
 
 
