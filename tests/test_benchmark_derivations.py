@@ -1,0 +1,163 @@
+"""The derivation files of seed 000 and seed 002: they load against their models, they agree
+with the truth at the URDFs' own parameters except where the documents are wrong, and the
+comparison engine says where they are wrong.
+
+At the URDFs' parameters the documents' idealisations (uniform rod, point mass, uniform
+sphere) hold, so a correct equation must agree there exactly; that check does not depend on
+the engine's random parameter families."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from conftest import SEED
+from wheeled_dyn.compare.engine import ComparisonEngine
+from wheeled_dyn.compare.evaluate import derivation_coordinate_set, model_value
+from wheeled_dyn.compare.samples import ParameterSet, namespace_values
+from wheeled_dyn.constraints import CoordinateMap
+from wheeled_dyn.derivations import builtin_derivations, load_derivation
+from wheeled_dyn.models.registry import load_model, model_parameters
+
+#: Relative agreement of a document element with the truth at the URDF's parameters.
+AGREE_TOL = 1e-9
+#: A document element that is wrong differs from the truth by at least this (relative).
+DIFFER_MIN = 1e-3
+#: States per file.
+N_STATES = 12
+#: Engine grid (small: verdicts, not statistics).
+SAMPLES, PARAM_SETS = 60, 2
+
+SEED000 = {"p2_6_compound_pendulum", "p4_4_rod_pendulum", "p4_8_rolling_disk",
+           "p4_9_pendulum_support", "p4_12_bounce_pitch", "p4_13_differential",
+           "p4_13_differential_theta1", "p4_17_flywheel_rod", "p7_2_euler_equations"}
+SEED002 = {"s3_3_sphere_plane"}
+
+#: Elements each document gets wrong (1-based labels); every other element agrees.
+WRONG = {
+    "p4_8_rolling_disk": {"A[1,1]"},                      # -m r^2 for +m r^2
+    "p4_12_bounce_pitch": {"A[1,2]", "A[2,1]",            # linearised: M d for M d cos(theta)
+                           "Q[1]", "Q[2]"},               # springs only, no gravity
+    "p4_13_differential_theta1": {"A[1,1]", "A[1,2]", "A[2,1]", "A[2,2]"},   # G/4 for G^2/4
+}
+#: Position ranges where a document's coordinates are valid (default [-pi, pi]).
+RANGES = {"s3_3_sphere_plane": [(0.2, np.pi - 0.2), (-np.pi, np.pi), (-np.pi, np.pi)]}
+
+
+def _paths():
+    return {p.stem: p for group in ("seed000", "seed002") for p in builtin_derivations(group)}
+
+
+def test_shipped_files():
+    paths = _paths()
+    assert {p.stem for p in builtin_derivations("seed000")} == SEED000
+    assert {p.stem for p in builtin_derivations("seed002")} == SEED002
+    assert set(WRONG) <= set(paths)
+
+
+@pytest.mark.parametrize("stem", sorted(SEED000 | SEED002))
+def test_loads_against_its_model(stem):
+    path = _paths()[stem]
+    model = load_derivation(path).model
+    params = model_parameters(load_model(model))
+    names = {k for k in params if "(" not in k}
+    links = {k.split("(")[1].rstrip(")") for k in params if "(" in k}
+    d = load_derivation(path, parameters=names, links=links)
+    assert d.n >= 1 and d.title
+
+
+def _elements(d, wm, rng, ranges):
+    r"""Per element label of A, Q, h: the largest |document - truth| / (1 + |truth row|) over
+    states (B, an input map, is left to the engine's test)."""
+    ps = ParameterSet(wm, namespace_values(wm, None))
+    cmap = CoordinateMap(wm, derivation_coordinate_set(d, ps))
+    values = {s.symbol: model_value(s.value, ps.values) for s in d.symbols.values()
+              if s.value is not None}
+    doc = d.read_off(unscale=True)
+    parts = {k: sp.lambdify([d.positions, d.velocities], sp.Matrix(M).xreplace(values))
+             for k, M in (("A", doc.A), ("Q", doc.Q), ("h", doc.h)) if M is not None}
+    errors: dict[str, float] = {}
+    for _ in range(N_STATES):
+        q = np.array([rng.uniform(*r) for r in ranges])
+        nu = rng.normal(size=d.n)
+        truth = cmap.terms(q, nu)
+        for key, fn in parts.items():
+            D = np.array(fn(q, nu), dtype=float)
+            T = getattr(truth, key)
+            D = D.reshape(T.shape)
+            for index in np.ndindex(T.shape):
+                if np.isnan(D[index]):
+                    continue                            # lost in the document ("?")
+                row = np.abs(T[index[0]]).max() if T.ndim > 1 else np.abs(T).max()
+                label = f"{key}[{','.join(str(i + 1) for i in index)}]"
+                err = abs(D[index] - T[index]) / (1 + row)
+                errors[label] = max(errors.get(label, 0.0), err)
+    return errors
+
+
+@pytest.mark.parametrize("stem", sorted(SEED000 | SEED002))
+def test_document_against_truth_at_urdf_parameters(stem):
+    d = load_derivation(_paths()[stem])
+    ranges = RANGES.get(stem, [(-np.pi, np.pi)] * d.n)
+    errors = _elements(d, load_model(d.model), np.random.default_rng(SEED), ranges)
+    wrong = WRONG.get(stem, set())
+    for label, err in errors.items():
+        if label in wrong:
+            assert err > DIFFER_MIN, (label, err)
+        else:
+            assert err < AGREE_TOL, (label, err)
+    assert wrong <= set(errors)
+
+
+@pytest.fixture(scope="module")
+def engine():
+    return ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED)
+
+
+@pytest.mark.parametrize("stem", sorted(SEED000))
+def test_engine_verdicts(stem, engine):
+    r"""The engine says 'differs' on every element a document gets wrong, and never on an
+    element of A, Q, B of a document that is right (it may say 'agrees only if ...': the
+    documents assume uniform rods, point masses, principal axes)."""
+    result = engine.compare(load_derivation(_paths()[stem]))
+    verdicts = {r.element: r.verdict for r in result.records}
+    wrong = WRONG.get(stem, set())
+    for label in wrong:
+        assert verdicts[label] == "differs", (label, verdicts[label])
+    for label, verdict in verdicts.items():
+        if label[0] in "AQB" and label not in wrong:
+            assert verdict in ("agrees", "agrees_if"), (label, verdict)
+
+
+def test_engine_names_the_missing_gravity(engine):
+    result = engine.compare(load_derivation(_paths()["p4_12_bounce_pitch"]))
+    q = {r.element: r for r in result.records if r.key == "Q"}
+    assert all(any("missing" in x for x in q[k].diagnoses) for k in ("Q[1]", "Q[2]"))
+
+
+@pytest.mark.xfail(strict=True, reason="compare/engine.py compares the h products of a row "
+                   "whose C elements are lost ('?'): sympy differentiates nan to 0, so the "
+                   "lost row's h coefficients read as 0 (here h[1]:dtheta*dtheta is reported "
+                   "'missing' though the document does not write row 1)")
+def test_engine_skips_h_of_a_lost_row(engine):
+    result = engine.compare(load_derivation(_paths()["p4_9_pendulum_support"]))
+    assert not [r.element for r in result.records if r.element.startswith("h[1]")]
+
+
+@pytest.mark.xfail(strict=True, reason="compare/engine.py _energy scales the power identity by "
+                   "max|nu^T h|, which is identically 0 for Euler's gyroscopic terms; rounding "
+                   "(5e-17) then fails it")
+def test_engine_power_identity_of_euler_equations(engine):
+    result = engine.compare(load_derivation(_paths()["p7_2_euler_equations"]))
+    assert result.energy is not None and result.energy.conserves
+
+
+@pytest.mark.xfail(strict=True, reason="the engine randomises every inertia of a generic model "
+                   "(or keeps the URDF's principal axes and scales each moment): it has no "
+                   "'uniform sphere' family (A = B = C), and samples every position in "
+                   "[-pi, pi] where (3.3)'s u must be in (0, pi); the document, true for the "
+                   "uniform sphere (test above), is reported 'differs'")
+def test_engine_on_the_uniform_sphere(engine):
+    result = engine.compare(load_derivation(_paths()["s3_3_sphere_plane"]))
+    assert all(r.verdict in ("agrees", "agrees_if") for r in result.records if r.key != "C")
