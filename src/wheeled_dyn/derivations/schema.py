@@ -167,9 +167,11 @@ class Derivation:
                 parts[3] = parts[3].row_join(sympy.zeros(self.n, len(self.assumptions)))
             terms = EquationTerms(*parts, inputs)
         if unscale and self.row_scale is not None:
-            scale = sympy.diag(*[1 / s for s in self.row_scale])
-            terms = EquationTerms(*[None if M is None else sympy.ImmutableMatrix(scale * M)
-                                    for M in terms[:4]], inputs)
+            # row by row, not diag(1/s) * M: a lost element ("?", nan) must stay in its row
+            # (0 * nan is nan in a matrix product)
+            terms = EquationTerms(*[None if M is None else sympy.ImmutableMatrix(
+                M.rows, M.cols, lambda i, j, M=M: M[i, j] / self.row_scale[i])
+                for M in terms[:4]], inputs)
         return terms
 
     def constraint_matrix(self) -> sympy.ImmutableMatrix | None:
