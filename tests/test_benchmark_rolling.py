@@ -257,3 +257,25 @@ def test_sphere_on_sphere_spin_probe(factor, stable):
     else:
         assert drift.max() > 0.1, drift.max()
     assert traj.relative_energy_drift() < 1e-5
+
+
+def test_contact_force_of_a_ball_rolling_over_the_top():
+    r"""Multipliers from the full equations with the ball's rows (J_c and J_c-dot): a ball on
+    top of the fixed sphere, its centre moving at speed V, is pushed up by M (g - V^2/rho)
+    (the centripetal part comes from J_c-dot v), and on the plane by M g."""
+    from wheeled_dyn import multipliers
+    rng = np.random.default_rng(SEED)
+    for name in BALLS:
+        wm = load_model(name)
+        cmap = CoordinateMap(wm, builtin_coordinate_set(wm, "world_rates"))
+        M, A, R, R1 = _ball_constants(wm)
+        g = float(-wm.model.gravity.linear[2])
+        q = cmap.model_configuration(np.zeros(3))
+        wx, wy = rng.normal(size=2) * 3.0
+        _, S, v = cmap.reduce_at(q, np.array([wx, wy, 0.0]))
+        speed = np.linalg.norm(v[:3])
+        lam, _ = multipliers(wm, q, v, np.zeros(0))
+        rho = R + R1 if R1 is not None else np.inf
+        assert speed > 0.1
+        assert np.abs(lam[:2]).max() < EXACT_TOL * M * g
+        assert abs(lam[2] - M * (g - speed**2 / rho)) < EXACT_TOL * M * g, (name, lam)

@@ -209,7 +209,8 @@ def multipliers(wm: WheeledModel, q: np.ndarray, v: np.ndarray, u: np.ndarray) -
         \begin{bmatrix}\dot v\\ \lambda\end{bmatrix} =
         \begin{bmatrix} B u - h - Q\\ -\dot J_c v\end{bmatrix}.
 
-    :math:`\lambda` stacks, per wheel, the world x and y ground force on the wheel. Two wheels on
+    :math:`\lambda` stacks, per wheel, the world x and y ground force on the wheel, then, for
+    a rolling ball, the three world components of the surface's force on it. Two wheels on
     one axle share the lateral force in a way rigid-body mechanics does not determine; the
     minimum-norm solution (equal shares) is returned.
     """
