@@ -122,7 +122,8 @@ def side_by_side(d: Derivation, q0: dict[str, float], duration: float = 5.0,
     cs = derivation_coordinate_set(d, params)
     cmap = CoordinateMap(wm, cs)
     pos, vel = cmap.state_from(q0)
-    truth = simulate(cmap, cmap.model_configuration(pos), vel, duration, rate=rate)
+    start = pos if cs.kind == "holonomic" else cmap.model_configuration(pos)
+    truth = simulate(cmap, start, vel, duration, rate=rate)
     # the true motion in the document's positions: integrate its velocities
     dt = np.diff(truth.t)
     doc_q = pos + np.vstack([np.zeros(len(pos)), np.cumsum(0.5 * (truth.nu[1:] + truth.nu[:-1])
