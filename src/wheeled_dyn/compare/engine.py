@@ -586,7 +586,12 @@ def _energy(funcs: DocumentFunctions, doc: Arrays, row_factor, q, nu, values, d:
     fh = sp.lambdify(funcs.args, (v.T * h)[0], "numpy")
     argv = [*q.T, *nu.T, *(values[p] for p in funcs.params)]
     P = np.broadcast_to(fn(*argv), (len(q),))
-    ref = max(float(np.abs(np.broadcast_to(fh(*argv), (len(q),))).max()), 1e-12)
+    # scale: the power's parts, and (when both vanish, e.g. Euler's gyroscopic terms) the
+    # kinetic-energy rate scale |A| |nu|^2 |nu|
+    kinetic = sp.lambdify(funcs.args, (v.T * A * v)[0], "numpy")
+    speed = np.linalg.norm(nu, axis=1)
+    ref = max(float(np.abs(np.broadcast_to(fh(*argv), (len(q),))).max()),
+              float(np.abs(np.broadcast_to(kinetic(*argv), (len(q),)) * speed).max()), 1e-300)
     conserves = bool(np.abs(P).max() <= AGREE_TOL * ref * 10)
     residual = "0"
     if not conserves:
