@@ -167,6 +167,7 @@ class ComparisonEngine:
         self._truth: dict[tuple, tuple[Arrays, list[ParameterSet], np.ndarray, np.ndarray]] = {}
         self._maps: dict[tuple, CoordinateMap] = {}
         self._sets: dict[tuple, object] = {}
+        self._results: dict[tuple, DerivationResult] = {}
 
     # -- the two sides -------------------------------------------------------------------
     def _grid(self, d: Derivation, special: tuple[SpecialCase, ...], n_states: int, k: int):
@@ -204,6 +205,13 @@ class ComparisonEngine:
 
     # -- main ----------------------------------------------------------------------------
     def compare(self, d: Derivation) -> DerivationResult:
+        r"""The comparison of one derivation (memoised per file and content)."""
+        key = (str(d.path), d.path.stat().st_mtime_ns if d.path.exists() else 0)
+        if key not in self._results:
+            self._results[key] = self._compare(d)
+        return self._results[key]
+
+    def _compare(self, d: Derivation) -> DerivationResult:
         terms = d.read_off(assume=True, unscale=True)
         n = d.n
         C = d.C

@@ -323,7 +323,7 @@ def _in_table(expr: sp.Expr, d: Derivation, table: ComparisonTable, notes: list[
 def _simplest(expr: sp.Expr) -> sp.Expr:
     trig = sp.trigsimp(sp.expand(expr))
     powers = [a for a in trig.atoms(sp.Pow) if a.base.func in (sp.sin, sp.cos)]
-    candidates = [trig, sp.factor_terms(trig), sp.simplify(expr),
+    candidates = [trig, sp.factor_terms(trig),
                   sp.collect(sp.expand(trig), powers or list(trig.atoms(sp.sin, sp.cos)))]
     return min(candidates, key=lambda e: (sp.count_ops(e), len(sp.sstr(e))))
 
