@@ -140,19 +140,11 @@ def test_engine_names_the_missing_gravity(engine):
     assert all(any("missing" in x for x in q[k].diagnoses) for k in ("Q[1]", "Q[2]"))
 
 
-@pytest.mark.xfail(strict=True, reason="compare/engine.py compares the h products of a row "
-                   "whose C elements are lost ('?'): sympy differentiates nan to 0, so the "
-                   "lost row's h coefficients read as 0 (here h[1]:dtheta*dtheta is reported "
-                   "'missing' though the document does not write row 1)")
 def test_engine_skips_h_of_a_lost_row(engine):
     result = engine.compare(load_derivation(_paths()["p4_9_pendulum_support"]))
     assert not [r.element for r in result.records if r.element.startswith("h[1]")]
 
 
-@pytest.mark.xfail(strict=False, reason="compare/engine.py _energy scales the power identity by "
-                   "max|nu^T h|, which is identically 0 for Euler's gyroscopic terms: the "
-                   "verdict is decided by rounding noise (5e-17 fails it, an exact 0 passes), "
-                   "so this test fails or passes with the order of the samples")
 def test_engine_power_identity_of_euler_equations(engine):
     result = engine.compare(load_derivation(_paths()["p7_2_euler_equations"]))
     assert result.energy is not None and result.energy.conserves
@@ -168,11 +160,6 @@ def test_engine_on_the_uniform_sphere(engine):
     assert all(r.verdict in ("agrees", "agrees_if") for r in result.records if r.key != "C")
 
 
-@pytest.mark.xfail(strict=True, raises=np.linalg.LinAlgError,
-                   reason="compare/engine.py _asymmetric takes eigenvalues of the document's A "
-                   "with its lost elements ('?', nan) in it: a row of A lost entirely (here "
-                   "(3.12)'s file, whose u1-equation the paper does not print) makes eigvalsh "
-                   "fail")
 def test_engine_runs_with_a_lost_row_of_A(engine):
     engine.compare(load_derivation(_paths()["s3_12_sphere_sphere"]))
 

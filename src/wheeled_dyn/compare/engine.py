@@ -216,7 +216,8 @@ class ComparisonEngine:
         n = d.n
         C = d.C
         if C is not None and d.row_scale is not None:
-            C = sp.ImmutableMatrix(sp.diag(*[1 / s for s in d.row_scale]) * C)
+            C = sp.ImmutableMatrix([[e / d.row_scale[i] for e in C.row(i)]
+                                    for i in range(C.rows)])      # row by row: keeps "?" local
         if C is not None and d.assumptions:
             C = sp.ImmutableMatrix(d.apply_assumptions(C))
         G = d.G if d.G is not None else d.constraint_matrix()
@@ -264,7 +265,9 @@ class ComparisonEngine:
         names = _latex_names(d)
         for key, D, T, index, expr in _elements(funcs, doc, truth, B_true, n):
             i = index[0]
-            if _label(key, index, d.velocities) in lost or (expr is not None and expr.has(sp.nan)):
+            h_row_lost = key == "h" and terms.h is not None and terms.h[i].has(sp.nan)
+            if _label(key, index, d.velocities) in lost or h_row_lost or (
+                    expr is not None and expr.has(sp.nan)):
                 if key != "h":
                     notes.append(f"{_label(key, index, d.velocities)} was lost in the extracted "
                                  "text: not compared")
@@ -609,13 +612,20 @@ def _energy(funcs: DocumentFunctions, doc: Arrays, row_factor, q, nu, values, d:
 
 
 def _asymmetric(doc: Arrays, scales, n: int) -> tuple[str, ...]:
+    r"""Pairs A[i,j] ≠ A[j,i], and whether A is positive definite (elements lost in the
+    extracted text, NaN, are left out; A with a lost element is not tested for definiteness)."""
     if doc.A is None:
         return ()
     out = []
+    lost = ~np.isfinite(doc.A).all(axis=0)
     for i in range(n):
         for j in range(i + 1, n):
+            if lost[i, j] or lost[j, i]:
+                continue
             if not agrees(doc.A[:, i, j], doc.A[:, j, i], max(scales[i], scales[j])):
                 out.append(f"A[{i + 1},{j + 1}] ≠ A[{j + 1},{i + 1}]")
+    if lost.any():
+        return tuple(out)
     sym = 0.5 * (doc.A + np.swapaxes(doc.A, 1, 2))
     lowest = np.linalg.eigvalsh(sym)[:, 0] / np.maximum(np.abs(sym).max(axis=(1, 2)), 1e-300)
     if (lowest <= AGREE_TOL).any():

@@ -142,6 +142,11 @@ def _h_tensor(h: sp.MatrixBase, velocities: Sequence[sp.Symbol]) -> sp.Array:
     for i in range(h.shape[0]):
         if h[i] == 0:
             continue
+        if h[i].has(sp.nan):                  # a lost element: the whole row is unknown
+            for j in range(n):
+                for k in range(n):
+                    H[i][j][k] = sp.nan
+            continue
         for monomial, coeff in sp.Poly(h[i], *velocities).terms():
             idx = [j for j, e in enumerate(monomial) for _ in range(e)]
             if len(idx) != 2:
