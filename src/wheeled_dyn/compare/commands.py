@@ -119,16 +119,16 @@ def _write(results, title: str, out: Path, plots: bool = False,
 def _cmd_report(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
     engine = ComparisonEngine(samples=args.samples, param_sets=args.param_sets)
-    results = run_comparison(builtin_derivations("seed001"), args.samples, args.param_sets,
+    results = run_comparison(builtin_derivations(args.group), args.samples, args.param_sets,
                              engine=engine)
     print_summary(results)
-    sections = _table_sections(engine, "seed001")
+    sections = _table_sections(engine, args.group)
     for entry in sections[2].get("tables", []):
         print(f"{entry['table']}: mismatched per the seed's table: "
               f"{', '.join(entry['table_mismatched'])}; per the machine: "
               f"{', '.join(entry['machine_mismatched'])}")
-    _write(results, "wheeled_dyn: seed 001's derivations against the truth", Path(args.out),
-           args.plots, sections)
+    _write(results, f"wheeled_dyn: the derivations of {args.group} against the truth",
+           Path(args.out), args.plots, sections)
     print(f"{len(results)} derivations, {args.samples} states × {args.param_sets} parameter "
           f"sets each, in {time.perf_counter() - t0:.1f} s")
     return 0
@@ -145,13 +145,18 @@ def _cmd_compare(args: argparse.Namespace) -> int:
 
 def add_commands(sub: argparse._SubParsersAction) -> None:
     for name, helptext, handler in (
-            ("report", "compare every seed-001 derivation with the truth; write reports/",
+            ("report", "compare the shipped derivations (seed 001's by default) with the truth; "
+             "write reports/",
              _cmd_report),
             ("compare", "compare derivation files with the truth of a model", _cmd_compare)):
         p = sub.add_parser(name, help=helptext)
         if name == "compare":
             p.add_argument("model", help="model name (see 'wheeled-dyn list')")
             p.add_argument("files", nargs="+", help="derivation files (TOML) or folders")
+        else:
+            from ..derivations import builtin_groups
+            p.add_argument("--group", default="seed001", choices=builtin_groups(),
+                           help="the shipped derivations to compare (default: seed001)")
         p.add_argument("--out", default="reports", help="folder for report.md/.html/.json")
         p.add_argument("--samples", type=int, default=DEFAULT_SAMPLES,
                        help="random states per parameter set")
