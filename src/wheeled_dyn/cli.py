@@ -21,6 +21,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "wheeled_dyn.compare.commands",
     "wheeled_dyn.simulate.commands",
     "wheeled_dyn.symbolic.commands",
+    "wheeled_dyn.viewer.commands",
 )
 
 
