@@ -18,6 +18,11 @@ from ..derivations.schema import Derivation
 from ..models.registry import model_entry
 from ..models.wip_parameters import WipParameters, standard_parameters
 
+#: Residuals up to this many operations are expanded with trigonometric identities for display
+#: (larger ones, e.g. in seed 001 section 5's wheel-angle coordinates, are shown as they are).
+TRIG_EXPAND_LIMIT = 40
+
+
 def _physical_symbols() -> dict[str, sp.Symbol]:
     from dataclasses import fields
     return {f.name: sp.Symbol(f.name, real=True) for f in fields(WipParameters)}
@@ -90,7 +95,9 @@ def annotate(d: Derivation, records: list[dict], cs, exprs: dict[int, sp.Expr | 
             i = r["index"][0]
             if i < len(row_factors) and row_factors[i]:
                 doc = doc / sp.nsimplify(row_factors[i])
-            residual = sp.expand(sp.expand_trig(expr - doc))
+            residual = expr - doc
+            if sp.count_ops(residual) <= TRIG_EXPAND_LIMIT:
+                residual = sp.expand(sp.expand_trig(residual))
             r["residual"] = sp.sstr(residual)
             if residual != 0:
                 r["diagnoses"].append(f"truth − document = {sp.sstr(residual)}")

@@ -31,6 +31,78 @@ def run_comparison(files: Sequence[Path], samples: int, param_sets: int, seed: i
     return [engine.compare(d) for d in derivations]
 
 
+#: Relative cost of a derivation with n coordinates (measured: n**3), and of reproducing a
+#: hand-made table (in the same units; it compares two documents again under its assumptions).
+TABLE_COST = 110
+
+
+def _bins(derivations, workers: int, heavy: frozenset[str] = frozenset()) -> list[list[int]]:
+    r"""Indices of the derivations split into ``workers`` bins of about equal cost; derivations
+    sharing a model and coordinate set stay together (they share the truth). A group holding a
+    file named in ``heavy`` carries the cost of the table that compares it."""
+    groups: dict[tuple, list[int]] = {}
+    for i, d in enumerate(derivations):
+        groups.setdefault((d.model, d.coordinates.use, repr(d.coordinates.raw)), []).append(i)
+
+    def cost(members):
+        extra = TABLE_COST if any(derivations[i].path.name in heavy for i in members) else 0
+        return sum(derivations[i].n ** 3 for i in members) + extra
+
+    bins: list[list[int]] = [[] for _ in range(workers)]
+    load = [0.0] * workers
+    for members in sorted(groups.values(), key=lambda m: -cost(m)):
+        k = load.index(min(load))
+        bins[k] += members
+        load[k] += cost(members)
+    return [b for b in bins if b]
+
+
+def _work(args):
+    files, indices, samples, param_sets, table_group = args
+    engine = ComparisonEngine(samples=samples, param_sets=param_sets)
+    results = [(i, engine.compare(load_derivation(files[i]))) for i in indices]
+    sections = _table_sections(engine, table_group) if table_group else None
+    return results, sections
+
+
+def compare_report(files: Sequence[Path], samples: int, param_sets: int,
+                   table_group: str | None = None, workers: int | None = None
+                   ) -> tuple[list[DerivationResult], tuple[list[str], list[str], dict]]:
+    r"""Compare ``files`` (and reproduce the shipped comparison tables of ``table_group``) on
+    up to ``workers`` processes (default: the machine's cores, at most 2 per derivation group);
+    results in the order of ``files``. Processes are forked, so nothing is imported twice."""
+    import multiprocessing
+    import os
+    derivations = load_derivations(files)
+    for d in derivations:
+        model_entry(d.model)
+    paths = [d.path for d in derivations]
+    workers = max(1, min(workers or os.cpu_count() or 1, len(derivations)))
+    table_docs: set[str] = set()
+    if table_group:
+        from ..derivations import builtin_tables
+        from .seed_table import TABLE_DOCUMENTS
+        for t in builtin_tables(table_group):
+            table_docs |= set(TABLE_DOCUMENTS.get(t.name, ()))
+    bins = _bins(derivations, workers, frozenset(table_docs))
+    owner = next((k for k, b in enumerate(bins) if any(paths[i].name in table_docs for i in b)), 0)
+    jobs = [(paths, b, samples, param_sets, table_group if k == owner else None)
+            for k, b in enumerate(bins)]
+    if len(jobs) == 1 or "fork" not in multiprocessing.get_all_start_methods():
+        outputs = [_work(job) for job in jobs]
+    else:
+        with multiprocessing.get_context("fork").Pool(len(jobs)) as pool:
+            outputs = pool.map(_work, jobs)
+    results: list[DerivationResult | None] = [None] * len(paths)
+    sections: tuple[list[str], list[str], dict] = ([], [], {})
+    for found, sec in outputs:
+        for i, r in found:
+            results[i] = r
+        if sec is not None:
+            sections = sec
+    return results, sections
+
+
 def print_summary(results: Sequence[DerivationResult]) -> None:
     from ..report.markdown import summary_lines
     for r in results:
@@ -118,11 +190,9 @@ def _write(results, title: str, out: Path, plots: bool = False,
 
 def _cmd_report(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
-    engine = ComparisonEngine(samples=args.samples, param_sets=args.param_sets)
-    results = run_comparison(builtin_derivations(args.group), args.samples, args.param_sets,
-                             engine=engine)
+    results, sections = compare_report(builtin_derivations(args.group), args.samples,
+                                       args.param_sets, table_group=args.group)
     print_summary(results)
-    sections = _table_sections(engine, args.group)
     for entry in sections[2].get("tables", []):
         print(f"{entry['table']}: mismatched per the seed's table: "
               f"{', '.join(entry['table_mismatched'])}; per the machine: "

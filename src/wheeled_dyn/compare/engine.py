@@ -305,7 +305,7 @@ class ComparisonEngine:
         asym = _asymmetric(doc, scales, n)
         constraints = _constraints(doc, truth, scales)
         return DerivationResult(
-            path=d.path, title=d.title, model=d.model, source=d.source, coordinates=cs_name,
+            path=d.path, title=d.title, model=d.model, source=dict(d.source), coordinates=cs_name,
             velocities=tuple(str(v) for v in d.velocities), form=d.form,
             records=tuple(ElementRecord(**r) for r in records),
             row_factors=tuple(None if c is None else nice_number(c) for c in row_factor),
