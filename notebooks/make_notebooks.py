@@ -66,6 +66,31 @@ NOTEBOOKS = {
                       "print(result.energy)\n"
                       "print([r.element for r in result.records if r.element.startswith(\"h[2]\") and r.verdict == \"differs\"])"),
     ],
+    "03_benchmark_body_rod_pendulum.ipynb": [
+        new_markdown_cell("# A benchmark body: the rod pendulum of seed 000, problem 4.4\n\n"
+                          "A uniform rod of mass m and length l hinged at one end swings with "
+                          "ω_n = √(3g/2l) for small angles. We linearise the true equations "
+                          "(Pinocchio) about the hanging position and compare; then the "
+                          "textbook's printed equation goes through the comparison engine."),
+        new_code_cell("import numpy as np\nimport wheeled_dyn as wd\n"
+                      "from wheeled_dyn.models.registry import model_parameters\n\n"
+                      "rod = wd.load_model(\"rod_pendulum\")\n"
+                      "p = model_parameters(rod)\n"
+                      "m, l = p[\"M(rod)\"], 2 * -p[\"MZ(rod)\"] / p[\"M(rod)\"]   # first moment m l/2\n"
+                      "cmap = wd.CoordinateMap(rod, wd.builtin_coordinate_set(rod, \"full\"))\n"
+                      "eps = 1e-6\n"
+                      "A = cmap.terms(np.zeros(1), np.zeros(1)).A[0, 0]\n"
+                      "dQ = (cmap.terms(np.array([eps]), np.zeros(1)).Q[0]\n"
+                      "      - cmap.terms(np.array([-eps]), np.zeros(1)).Q[0]) / (2 * eps)\n"
+                      "print(\"omega_n from the truth:      \", np.sqrt(dQ / A))\n"
+                      "print(\"sqrt(3 g / 2 l) (textbook):  \", np.sqrt(3 * p[\"g\"] / (2 * l)))"),
+        new_code_cell("from wheeled_dyn.derivations import builtin_derivations, load_derivation\n"
+                      "from wheeled_dyn.compare import ComparisonEngine\n"
+                      "from wheeled_dyn.report import summary_lines\n"
+                      "path = next(p for p in builtin_derivations(\"seed000\") if p.name == \"p4_4_rod_pendulum.toml\")\n"
+                      "result = ComparisonEngine(samples=200, param_sets=3).compare(load_derivation(path))\n"
+                      "print(\"\\n\".join(summary_lines(result)))"),
+    ],
 }
 
 

@@ -47,3 +47,9 @@ def test_linearisation_matches_the_pendulum_closed_form():
     a33 = p.I3 + p.m_S * p.d**2
     expected = a11 * p.m_S * p.g * p.d / (a11 * a33 - a13**2)
     assert abs(A[3, 0] - expected) < 1e-5 * expected
+
+
+def test_ball_scenarios_keep_energy():
+    for name in ("roll", "roll_down"):
+        traj = run_scenario(name, 1.0).trajectory
+        assert traj.relative_energy_drift() < ENERGY_DRIFT_TOL, name

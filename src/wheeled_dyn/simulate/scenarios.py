@@ -4,7 +4,9 @@ r"""Scenarios to watch: simulations of the true reduced equations with simple co
 - ``balance``: the WIP balancing under LQR on its linearised reduced model about the upright,
   driving forward at 0.5 m/s from t = 1 s and turning at 0.6 rad/s from t = 3 s;
 - ``circle``: TIAGo's base (upper body locked) driving a circle of radius 1 m at 0.4 m/s under
-  a computed-torque velocity controller.
+  a computed-torque velocity controller;
+- ``roll``: a uniform ball rolling and spinning on the ground; ``roll_down``: a spinning ball
+  rolling down a fixed sphere (seed 002).
 
 The linearisation is by central differences of the reduced dynamics
 :math:`\dot x = f(x, u)`, :math:`x = (\varphi, \dot x, \dot\psi, \dot\varphi)`; the LQR gain
@@ -105,8 +107,27 @@ def _circle(duration: float) -> Scenario:
     return Scenario("circle", "TIAGo's base driving a circle of radius 1 m at 0.4 m/s", wm, traj)
 
 
+def _roll(duration: float) -> Scenario:
+    wm = load_model("sphere_plane")
+    cmap = CoordinateMap(wm, builtin_coordinate_set(wm, "world_rates"))
+    q0 = np.array([0.0, 0.0, wm.geometry["r"], 0.0, 0.0, 0.0])
+    traj = simulate(cmap, q0, np.array([2.0, -1.0, 3.0]), duration, rate=60.0)
+    return Scenario("roll", "a uniform ball rolling and spinning on the ground (seed 002)", wm, traj)
+
+
+def _roll_down(duration: float) -> Scenario:
+    wm = load_model("sphere_sphere")
+    cmap = CoordinateMap(wm, builtin_coordinate_set(wm, "body_rates"))
+    rho, tilt = wm.geometry["r"] + wm.geometry["R1"], 0.3
+    q0 = np.array([rho * np.sin(tilt), 0.0, rho * np.cos(tilt), 0.2, 0.1, -0.3])
+    traj = simulate(cmap, q0, np.array([1.0, -2.0, 30.0]), duration, rate=60.0)
+    return Scenario("roll_down", "a spinning ball rolling down a fixed sphere of radius "
+                    f"{wm.geometry['R1']} m (seed 002; the sphere itself is not drawn)", wm, traj)
+
+
 SCENARIOS = {"fall": (_fall, "wip", 5.0), "balance": (_balance, "wip", 8.0),
-             "circle": (_circle, "tiago_base", 16.0)}
+             "circle": (_circle, "tiago_base", 16.0), "roll": (_roll, "sphere_plane", 2.0),
+             "roll_down": (_roll_down, "sphere_sphere", 1.5)}
 
 
 def default_scenario(model: str) -> str:

@@ -57,7 +57,8 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("view", help="watch a model move in the browser (meshcat)")
     p.add_argument("model", help="model name (see 'wheeled-dyn list')")
     p.add_argument("--scenario", default=None,
-                   help="fall or balance (wip), circle (tiago_base); default: the model's first")
+                   help="fall or balance (wip), circle (tiago_base), roll (sphere_plane), "
+                        "roll_down (sphere_sphere); default: the model's first")
     p.add_argument("--duration", type=float, default=None, help="seconds to simulate")
     p.add_argument("--export", default=None, help="write one self-contained HTML file and stop")
     p.add_argument("--hold", type=float, default=None,
