@@ -164,7 +164,7 @@ class ComparisonEngine:
         self.samples = samples
         self.param_sets = param_sets
         self.seed = seed
-        self._truth: dict[tuple, tuple[Arrays, list[ParameterSet], np.ndarray, np.ndarray]] = {}
+        self._truth: dict[tuple, tuple] = {}      # (truth, sets, q, nu, coordinate set)
         self._maps: dict[tuple, CoordinateMap] = {}
         self._sets: dict[tuple, object] = {}
         self._results: dict[tuple, DerivationResult] = {}
@@ -184,11 +184,9 @@ class ComparisonEngine:
             if mkey not in self._maps:
                 self._maps[mkey] = CoordinateMap(sets[0].model, cs)
             cmap = self._maps[mkey]
-            q, nu = random_states(cs_n := len(cs.positions), k * n_states, rng)
-            q, nu = q.reshape(k, n_states, cs_n), nu.reshape(k, n_states, cs_n)
-            bound = []
-            for ps in sets:
-                bound.append(cmap)
+            n = len(cs.positions)
+            q, nu = random_states(n, k * n_states, rng)
+            q, nu = q.reshape(k, n_states, n), nu.reshape(k, n_states, n)
             truth = _truth_for(cmap, sets, q, nu)
             self._truth[key] = (truth, sets, q, nu, cs)
         return self._truth[key]

@@ -179,8 +179,8 @@ class DocumentFunctions:
             flat = sp.flatten(arr.tolist())
             self._fns[key] = (arr.shape, flat, sp.lambdify(self.args, flat, "numpy", cse=True))
 
-    def evaluate(self, q: np.ndarray, nu: np.ndarray, values: Mapping[sp.Symbol, np.ndarray],
-                 substitute: Mapping[sp.Symbol, sp.Symbol] | None = None) -> Arrays:
+    def evaluate(self, q: np.ndarray, nu: np.ndarray, values: Mapping[sp.Symbol, np.ndarray]
+                 ) -> Arrays:
         r"""Arrays over samples: positions ``q`` (S × n), velocities ``nu``, symbol values
         (arrays of length S)."""
         S = len(q)
