@@ -87,7 +87,9 @@ def annotate(d: Derivation, records: list[dict], cs, exprs: dict[int, sp.Expr | 
         if expr is None or r["key"] == "B":
             continue
         r["truth"] = sp.sstr(expr)
-        r["truth_latex"] = sp.latex(expr, symbol_names=dots)
+        by_name = {str(v): text for v, text in dots.items()}
+        names = {sym: by_name[sym.name] for sym in expr.free_symbols if sym.name in by_name}
+        r["truth_latex"] = sp.latex(expr, symbol_names=names)
         if r["verdict"] != "agrees":
             doc = to_model(exprs.get(id(r)))
             if doc is None:
