@@ -211,3 +211,20 @@ def test_equations_need_one_equals_sign_and_n_rows(tmp_path):
 def test_builtin_group_unknown():
     with pytest.raises(InputFileError, match="seed001"):
         builtin_derivations("nonexistent_group")
+
+
+def test_coordinate_ranges_are_checked(tmp_path):
+    r"""``[coordinates] ranges``: a name that is not a position, or a range with low >= high,
+    is one error naming the key."""
+    from wheeled_dyn.derivations import builtin_derivations, load_derivation
+    from wheeled_dyn.errors import DerivationError
+    src = next(p for p in builtin_derivations("seed002") if p.name == "s3_3_sphere_plane.toml")
+    text = src.read_text()
+    assert "ranges = { u = [0.2, 2.9416] }" in text
+    for bad, where in (("ranges = { w = [0.2, 1.0] }", "coordinates.ranges.w"),
+                       ("ranges = { u = [1.0, 0.2] }", "coordinates.ranges.u")):
+        path = tmp_path / "bad.toml"
+        path.write_text(text.replace("ranges = { u = [0.2, 2.9416] }", bad))
+        with pytest.raises(DerivationError) as err:
+            load_derivation(path)
+        assert where in str(err.value)

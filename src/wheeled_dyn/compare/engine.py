@@ -185,7 +185,9 @@ class ComparisonEngine:
                 self._maps[mkey] = CoordinateMap(sets[0].model, cs)
             cmap = self._maps[mkey]
             n = len(cs.positions)
-            q, nu = random_states(n, k * n_states, rng)
+            declared = dict(d.coordinates.raw.get("ranges", {}))
+            ranges = [tuple(declared.get(p, (-np.pi, np.pi))) for p in cs.positions]
+            q, nu = random_states(n, k * n_states, rng, ranges)
             q, nu = q.reshape(k, n_states, n), nu.reshape(k, n_states, n)
             truth = _truth_for(cmap, sets, q, nu)
             self._truth[key] = (truth, sets, q, nu, cs)
@@ -295,8 +297,8 @@ class ComparisonEngine:
             arrays[id(records[-1])] = (D, T)
             exprs.append(expr)
         self._h_swaps(records, arrays)
-        self._factorization(records, n)
         self._special(d, funcs, records, row_factor)
+        self._factorization(records, n)
         closed_form.annotate(d, records, cs, {id(r): e for r, e in zip(records, exprs)},
                              tuple(row_factor))
         energy = _energy(funcs, doc, row_factor, flat_q, flat_nu, values, d)
@@ -314,18 +316,21 @@ class ComparisonEngine:
     # -- refinements ---------------------------------------------------------------------
     @staticmethod
     def _factorization(records: list[dict], n: int) -> None:
-        r"""C elements that differ while every h coefficient of their row agrees differ in
-        factorisation only."""
+        r"""C elements that differ while every h coefficient of their row agrees (or agrees
+        only for special values) differ in factorisation only."""
         for i in range(n):
             h_row = [r for r in records if r["key"] == "h" and r["index"][0] == i]
-            if not h_row or any(r["verdict"] != "agrees" for r in h_row):
+            if not h_row or any(r["verdict"] not in ("agrees", "agrees_if") for r in h_row):
                 continue
+            special = any(r["verdict"] == "agrees_if" for r in h_row)
             for r in records:
                 if r["key"] == "C" and r["index"][0] == i and r["verdict"] == "differs" \
                         and not any(x.startswith("dimension") for x in r["diagnoses"]):
                     r["verdict"] = "factorization"
-                    r["diagnoses"] = [f"C q̇ agrees in row {i + 1}: only the factorisation of "
-                                      "C differs, not the equations"]
+                    r["diagnoses"] = [f"C q̇ agrees in row {i + 1}"
+                                      + (" (for the special values its h terms need)" if special
+                                         else "") + ": only the factorisation of C differs, "
+                                      "not the equations"]
 
     def _special(self, d: Derivation, funcs: DocumentFunctions, records: list[dict],
                  row_factor: Sequence[float | None]) -> None:

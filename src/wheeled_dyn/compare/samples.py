@@ -13,7 +13,7 @@ model's record (``m_S, d, I1, ...`` for the WIP), the geometric ``R`` (wheel rad
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -55,6 +55,13 @@ URDF_STRUCTURE = SpecialCase(
     "(coordinates and products of inertia that are zero there stay zero)", lambda p: p)
 
 
+#: Generic models: each link scaled as a whole (mass by one factor, lengths by another), so its
+#: shape stays the URDF's (a uniform sphere stays uniform, a rod stays a uniform rod).
+URDF_PROPORTIONS = SpecialCase(
+    "urdf_proportions", "every link keeps the URDF's proportions (its mass and size scaled "
+    "as a whole: a uniform body stays uniform)", lambda p: p)
+
+
 @dataclass(frozen=True)
 class ParameterSet:
     r"""A model with its parameters, and the values of every name of its namespace."""
@@ -72,14 +79,19 @@ def namespace_values(wm: WheeledModel, physical: WipParameters | None) -> dict[s
 
 
 def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
-                          keep_structure: bool = False) -> WheeledModel:
+                          keep_structure: bool = False, proportional: bool = False) -> WheeledModel:
     r"""Random, physically consistent inertias (log-Cholesky parameters) for every joint
     that carries mass; a random gravity. With ``keep_structure`` the URDF's inertias are
     rescaled instead: mass and each centre-of-mass coordinate by random factors, the principal
     moments by random factors keeping the triangle inequality, the principal axes unchanged."""
     model = pin.Model(wm.model)
     for jid in range(1, model.njoints):
-        if model.inertias[jid].mass > 0 and keep_structure:
+        if model.inertias[jid].mass > 0 and proportional:
+            old = model.inertias[jid]
+            mass, size = rng.uniform(0.5, 2.0), rng.uniform(0.8, 1.25)
+            model.inertias[jid] = pin.Inertia(old.mass * mass, old.lever * size,
+                                              old.inertia * mass * size**2)
+        elif model.inertias[jid].mass > 0 and keep_structure:
             old = model.inertias[jid]
             eig, axes = np.linalg.eigh(old.inertia)
             second = 0.5 * (eig.sum() - 2 * eig)           # second moments along the axes
@@ -117,20 +129,24 @@ def parameter_sets(model_name: str, k: int, rng: np.random.Generator,
         return out
     base = load_model(model_name)
     keep = URDF_STRUCTURE in special
+    proportional = URDF_PROPORTIONS in special
     for _ in range(k):
-        wm = _random_link_inertias(base, rng, keep)
+        wm = _random_link_inertias(base, rng, keep, proportional)
         out.append(ParameterSet(wm, namespace_values(wm, None)))
     return out
 
 
 def special_cases(model_name: str) -> tuple[SpecialCase, ...]:
     return WIP_SPECIAL_CASES if model_entry(model_name).parameters is WipParameters \
-        else (URDF_STRUCTURE,)
+        else (URDF_STRUCTURE, URDF_PROPORTIONS)
 
 
-def random_states(n_positions: int, n: int, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
-    r"""``n`` states: positions uniform in [-π, π], velocities standard normal."""
-    return rng.uniform(-np.pi, np.pi, (n, n_positions)), rng.normal(size=(n, n_positions))
+def random_states(n_positions: int, n: int, rng: np.random.Generator,
+                  ranges: Sequence[tuple[float, float]] | None = None) -> tuple[np.ndarray, np.ndarray]:
+    r"""``n`` states: positions uniform in [-π, π] (or in the document's declared ``ranges``,
+    one (low, high) per position), velocities standard normal."""
+    low, high = (np.array(r, dtype=float) for r in zip(*ranges)) if ranges else (-np.pi, np.pi)
+    return rng.uniform(low, high, (n, n_positions)), rng.normal(size=(n, n_positions))
 
 
 __all__ = ["ParameterSet", "SpecialCase", "WIP_SPECIAL_CASES", "namespace_values",

@@ -38,7 +38,8 @@ from .schema import CoordinateSpec
 KINDS: tuple[str, ...] = ("holonomic", "quasi")
 ROLLING: tuple[str, ...] = ("eliminate", "multipliers", "none")
 COORDINATE_KEYS: tuple[str, ...] = ("use", "kind", "positions", "velocities", "accelerations",
-                                    "configuration", "velocity_map", "rolling", "units")
+                                    "configuration", "velocity_map", "rolling", "units",
+                                    "ranges")
 
 
 @dataclass(frozen=True)
@@ -173,6 +174,18 @@ def coordinate_names(path: Path, table: Any, model: str,
             raise DerivationError(path, f"coordinates.units.{name}", exc.reason,
                                   line_of("units")) from exc
         units[name] = str(text)
+    raw_ranges = table.get("ranges", {})
+    if not isinstance(raw_ranges, dict):
+        raise DerivationError(path, "coordinates.ranges", "expected a table name = [low, high]",
+                              line_of("ranges"))
+    for name, pair in raw_ranges.items():
+        if name not in positions:
+            raise DerivationError(path, f"coordinates.ranges.{name}", "not a position; "
+                                  f"positions: {', '.join(positions)}", line_of("ranges"))
+        if (not isinstance(pair, list) or len(pair) != 2
+                or not all(isinstance(x, (int, float)) for x in pair) or not pair[0] < pair[1]):
+            raise DerivationError(path, f"coordinates.ranges.{name}", "expected [low, high] "
+                                  "with low < high", line_of("ranges"))
     all_names = [*positions, *velocities, *accelerations]
     if len(set(all_names)) != len(all_names):
         raise DerivationError(path, "coordinates", "positions, velocities and accelerations "
