@@ -267,3 +267,19 @@ def test_show_trajectory_to_a_file_and_live(cart, tmp_path) -> None:
     finally:
         close_all()
     assert not _serves(url)
+
+
+def test_play_keeps_to_the_clock(cart) -> None:
+    t, qs = cart_circle(duration=2.0)
+    with Viewer.for_wheeled(cart) as viewer:
+        start = time.perf_counter()
+        viewer.play(t, qs, speed=8.0)
+        elapsed = time.perf_counter() - start
+    assert 2.0 / 8.0 - 0.05 < elapsed < 5.0, f"played 2 s at 8x in {elapsed:.2f} s"
+
+
+def test_unknown_frame_joints_are_a_model_error(cart) -> None:
+    from wheeled_dyn.errors import ModelError
+
+    with pytest.raises(ModelError, match=r"joint ids \[99\]"):
+        Viewer(cart.model, frames=[99])

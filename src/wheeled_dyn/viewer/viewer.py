@@ -117,7 +117,8 @@ class Viewer:
             frame_joints = [int(j) for j in frames]
             bad = [j for j in frame_joints if not 0 < j < model.njoints]
             if bad:
-                raise ModelError(self.name, None, f"joint ids {bad} are not in 1..{model.njoints - 1}")
+                raise ModelError(self.name, None,
+                                 f"joint ids {bad} are not in 1..{model.njoints - 1}")
         self.poses = ScenePoses(model, visual_model, frame_joints, com)
         self.closed = True
         self._server = start_server()
