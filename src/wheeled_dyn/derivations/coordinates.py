@@ -117,6 +117,21 @@ def _choice(path: Path, table: Mapping[str, Any], key: str, allowed: tuple[str, 
     return value
 
 
+def _per_position(path: Path, table: Mapping[str, Any], key: str, what: str,
+                  positions: tuple[str, ...], line_of: Callable[[str | None], int | None]):
+    r"""The items of a ``[coordinates]`` sub-table keyed by position (``units``, ``ranges``);
+    a non-table or a key that is not a position raises :class:`DerivationError`."""
+    raw = table.get(key, {})
+    if not isinstance(raw, dict):
+        raise DerivationError(path, f"coordinates.{key}", f"expected a table name = {what}",
+                              line_of(key))
+    for name, value in raw.items():
+        if name not in positions:
+            raise DerivationError(path, f"coordinates.{key}.{name}", "not a position; "
+                                  f"positions: {', '.join(positions)}", line_of(key))
+        yield name, value
+
+
 def coordinate_names(path: Path, table: Any, model: str,
                      line_of: Callable[[str | None], int | None]) -> CoordinateNames:
     r"""Read the names of ``[coordinates]``; ``line_of(key)`` locates a key for messages."""
@@ -160,28 +175,14 @@ def coordinate_names(path: Path, table: Any, model: str,
     rolling = _choice(path, table, "rolling", ROLLING,
                       builtin.rolling if builtin else "eliminate", line_of("rolling"))
     units = dict(builtin.units) if builtin else {}
-    raw_units = table.get("units", {})
-    if not isinstance(raw_units, dict):
-        raise DerivationError(path, "coordinates.units", "expected a table name = units",
-                              line_of("units"))
-    for name, text in raw_units.items():
-        if name not in positions:
-            raise DerivationError(path, f"coordinates.units.{name}", "not a position; "
-                                  f"positions: {', '.join(positions)}", line_of("units"))
+    for name, text in _per_position(path, table, "units", "units", positions, line_of):
         try:
             parse_units(str(text))
         except ExpressionError as exc:
             raise DerivationError(path, f"coordinates.units.{name}", exc.reason,
                                   line_of("units")) from exc
         units[name] = str(text)
-    raw_ranges = table.get("ranges", {})
-    if not isinstance(raw_ranges, dict):
-        raise DerivationError(path, "coordinates.ranges", "expected a table name = [low, high]",
-                              line_of("ranges"))
-    for name, pair in raw_ranges.items():
-        if name not in positions:
-            raise DerivationError(path, f"coordinates.ranges.{name}", "not a position; "
-                                  f"positions: {', '.join(positions)}", line_of("ranges"))
+    for name, pair in _per_position(path, table, "ranges", "[low, high]", positions, line_of):
         if (not isinstance(pair, list) or len(pair) != 2
                 or not all(isinstance(x, (int, float)) for x in pair) or not pair[0] < pair[1]):
             raise DerivationError(path, f"coordinates.ranges.{name}", "expected [low, high] "
