@@ -10,7 +10,8 @@ from pathlib import Path
 from ..derivations import builtin_derivations, load_derivation, load_derivations
 from ..errors import DerivationError
 from ..models.registry import model_entry
-from .engine import ComparisonEngine, DerivationResult
+from .engine import ComparisonEngine
+from .result import DerivationResult
 
 #: Defaults of the default report: states per parameter set, parameter sets.
 DEFAULT_SAMPLES, DEFAULT_PARAM_SETS = 1000, 5

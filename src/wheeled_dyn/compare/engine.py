@@ -18,8 +18,6 @@ For a :class:`~wheeled_dyn.derivations.schema.Derivation`:
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 import sympy as sp
@@ -27,13 +25,30 @@ import sympy as sp
 from ..constraints.reduction import CoordinateMap
 from ..derivations.schema import Derivation
 from . import closed_form
-from .diagnose import AGREE_TOL, agrees, max_error, nice_number, swap_diagnoses, value_diagnoses
-from .evaluate import (Arrays, DocumentFunctions, derivation_coordinate_set,
-                       document_symbol_values, truth_arrays)
-from .samples import ParameterSet, SpecialCase, parameter_sets, random_states, special_cases
+from .diagnose import (
+    AGREE_TOL,
+    agrees,
+    max_error,
+    nice_number,
+    swap_diagnoses,
+    value_diagnoses,
+)
+from .evaluate import (
+    Arrays,
+    DocumentFunctions,
+    derivation_coordinate_set,
+    document_symbol_values,
+    truth_arrays,
+)
+from .result import DerivationResult, ElementRecord, EnergyCheck
+from .samples import (
+    SpecialCase,
+    parameter_sets,
+    random_states,
+    special_cases,
+)
 from .units import DimensionChecker
 
-VERDICTS = ("agrees", "agrees_if", "factorization", "differs")
 #: Smaller grid used to test special parameter families.
 SPECIAL_SAMPLES, SPECIAL_SETS = 40, 2
 #: Power residuals up to this many operations are factorised for display.
@@ -41,96 +56,6 @@ FACTOR_LIMIT = 120
 #: Candidate undeclared row factors, and how far an element's own ratio may be from one.
 ROW_FACTORS = (1.0, -1.0, 2.0, -2.0, 0.5, -0.5)
 ROW_FACTOR_SPREAD = 0.35
-
-
-@dataclass(frozen=True)
-class ElementRecord:
-    r"""One element's comparison. ``element`` is labelled as documents do (1-based):
-    ``A[2,1]``, ``C[3,2]``, ``Q[3]``, ``B[1,2]``, ``h[1]:dpsi*dpsi``."""
-
-    element: str
-    key: str
-    index: tuple[int, ...]
-    verdict: str
-    diagnoses: tuple[str, ...]
-    document: str
-    document_model: str
-    truth: str | None
-    residual: str | None
-    max_error: float
-    scale: float
-    document_latex: str = ""
-    model_latex: str = ""
-    truth_latex: str = ""
-    truth_sample: float = float("nan")      # the truth at the first sample (reference state)
-    document_sample: float = float("nan")
-
-    def as_dict(self) -> dict[str, object]:
-        return {"element": self.element, "verdict": self.verdict, "diagnoses": list(self.diagnoses),
-                "document": self.document, "document_model": self.document_model,
-                "truth": self.truth, "residual": self.residual, "max_error": self.max_error,
-                "scale": self.scale, "truth_at_reference": self.truth_sample,
-                "document_at_reference": self.document_sample}
-
-
-@dataclass(frozen=True)
-class EnergyCheck:
-    r"""The power identity of the document on its own."""
-
-    conserves: bool
-    max_power: float
-    residual: str
-
-    def as_dict(self) -> dict[str, object]:
-        return {"conserves": self.conserves, "max_power": self.max_power, "residual": self.residual}
-
-
-@dataclass(frozen=True)
-class DerivationResult:
-    r"""Everything the reports show of one derivation."""
-
-    path: Path
-    title: str
-    model: str
-    source: Mapping[str, str]
-    coordinates: str
-    velocities: tuple[str, ...]
-    form: str
-    records: tuple[ElementRecord, ...]
-    row_factors: tuple[str | None, ...]
-    energy: EnergyCheck | None
-    asymmetric: tuple[str, ...]
-    constraints: tuple[str, ...]
-    reconstructed: Mapping[str, str]
-    samples: int
-    parameter_sets: int
-    notes: tuple[str, ...] = field(default=())
-
-    def counts(self) -> dict[str, int]:
-        out = {v: 0 for v in VERDICTS}
-        for r in self.records:
-            out[r.verdict] += 1
-        return out
-
-    def typos(self) -> list[ElementRecord]:
-        keys = ("sign:", "factor:", "swap:", "dimension")
-        return [r for r in self.records if r.verdict == "differs"
-                and any(d.startswith(keys) for d in r.diagnoses)]
-
-    def missing(self) -> list[ElementRecord]:
-        typo = {id(r) for r in self.typos()}
-        return [r for r in self.records if r.verdict == "differs" and id(r) not in typo]
-
-    def as_dict(self) -> dict[str, object]:
-        return {"path": str(self.path), "title": self.title, "model": self.model,
-                "source": dict(self.source), "coordinates": self.coordinates,
-                "velocities": list(self.velocities), "form": self.form,
-                "counts": self.counts(), "row_factors": list(self.row_factors),
-                "energy": self.energy.as_dict() if self.energy else None,
-                "asymmetric": list(self.asymmetric), "constraints": list(self.constraints),
-                "reconstructed": dict(self.reconstructed), "samples": self.samples,
-                "parameter_sets": self.parameter_sets, "notes": list(self.notes),
-                "records": [r.as_dict() for r in self.records]}
 
 
 def _latex_names(d: Derivation) -> dict[sp.Symbol, str]:

@@ -46,9 +46,16 @@ from ..derivations.schema import Derivation
 from ..derivations.table import ComparisonTable, TableEntry
 from ..errors import DerivationError
 from .diagnose import agrees
-from .engine import ROW_FACTORS, ComparisonEngine, DerivationResult
+from .engine import ROW_FACTORS, ComparisonEngine
 from .evaluate import derivation_coordinate_set, model_value
-from .samples import ParameterSet, SpecialCase, parameter_sets, random_states, special_cases
+from .result import DerivationResult
+from .samples import (
+    ParameterSet,
+    SpecialCase,
+    parameter_sets,
+    random_states,
+    special_cases,
+)
 
 #: The documents a shipped table compares: table file name -> (derived, reference) file names,
 #: in the table's folder.

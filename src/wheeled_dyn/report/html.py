@@ -14,11 +14,11 @@ from collections.abc import Sequence
 
 from latex2mathml.converter import convert
 
-from ..compare.engine import DerivationResult, ElementRecord
+from ..compare.result import DerivationResult, ElementRecord
 from .markdown import VERDICT_TEXT, summary_lines
 
 COLOURS = {"agrees": "#d9f2d9", "agrees_if": "#fff3c4", "factorization": "#dde8ff",
-           "differs": "#f9d0d0"}
+           "differs": "#f9d0d0", "undecided": "#e0e0e0"}
 
 CSS = """
 body{font-family:"DejaVu Sans",sans-serif;margin:2em;max-width:90em;color:#222}

@@ -4,10 +4,11 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from ..compare.engine import DerivationResult, ElementRecord
+from ..compare.result import DerivationResult, ElementRecord
 
 VERDICT_TEXT = {"agrees": "agrees", "agrees_if": "agrees only for special values",
-                "factorization": "C differs, C q̇ agrees", "differs": "differs"}
+                "factorization": "C differs, C q̇ agrees", "differs": "differs",
+                "undecided": "cannot decide (values not finite)"}
 
 
 def _math(latex: str) -> str:

@@ -13,7 +13,7 @@ import tempfile
 from collections.abc import Sequence
 from pathlib import Path
 
-from ..compare.engine import DerivationResult
+from ..compare.result import DerivationResult
 from ..errors import InputFileError
 from .html import report_html
 from .markdown import report_markdown
