@@ -6,33 +6,53 @@ The Python API in four lines::
     wip = wd.load_model("wip")                                  # seed 001's pendulum
     terms = wd.matrices(wip, "seed001", phi=0.2, dx=1.0, dpsi=0.5)
     terms.A, terms.C, terms.Q, terms.B, terms.h                 # in (dx, dpsi, dphi)
+
+Names are imported on first use (PEP 562 module ``__getattr__``), so ``import wheeled_dyn``
+and the command line's ``--help`` do not load Pinocchio, SymPy or matplotlib.
 """
 
 from __future__ import annotations
 
-from .constraints import CoordinateMap, contact_jacobian, multipliers
-from .coordinates import builtin_coordinate_set, coordinate_set_names
-from .dynamics import Terms, christoffel_tensor, full_terms, h_coefficients
-from .errors import WheeledDynError
-from .models import WheeledModel
-from .models.registry import load_model, model_names
-from .models.wip_parameters import WipParameters, random_wip_parameters, standard_parameters
-from .simulate import Trajectory, simulate
+import importlib
+from typing import Any
 
 __version__ = "0.1.0"
 
+#: Public name → module that defines it (relative to this package).
+_EXPORTS: dict[str, str] = {
+    "CoordinateMap": ".constraints",
+    "contact_jacobian": ".constraints",
+    "multipliers": ".constraints",
+    "builtin_coordinate_set": ".coordinates",
+    "coordinate_set_names": ".coordinates",
+    "Terms": ".dynamics",
+    "christoffel_tensor": ".dynamics",
+    "full_terms": ".dynamics",
+    "h_coefficients": ".dynamics",
+    "WheeledDynError": ".errors",
+    "WheeledModel": ".models",
+    "load_model": ".models.registry",
+    "model_names": ".models.registry",
+    "WipParameters": ".models.wip_parameters",
+    "random_wip_parameters": ".models.wip_parameters",
+    "standard_parameters": ".models.wip_parameters",
+    "Trajectory": ".simulate",
+    "simulate": ".simulate",
+    "matrices": ".api",
+}
 
-def matrices(model: WheeledModel | str, coords: str | None = None, **state: float) -> Terms:
-    r"""A, C, Q, B, h of ``model`` in its built-in coordinate set ``coords`` at the state given
-    by keyword (document names, e.g. ``phi=0.2, dx=1``; missing entries are 0)."""
-    wm = load_model(model) if isinstance(model, str) else model
-    cmap = CoordinateMap(wm, builtin_coordinate_set(wm, coords))
-    q, nu = cmap.state_from(state)
-    return cmap.terms(q, nu)
+
+def __getattr__(name: str) -> Any:
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module 'wheeled_dyn' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module, __name__), name)
+    globals()[name] = value
+    return value
 
 
-__all__ = ["CoordinateMap", "Terms", "Trajectory", "WheeledDynError", "WheeledModel",
-           "WipParameters", "builtin_coordinate_set", "christoffel_tensor", "contact_jacobian",
-           "coordinate_set_names", "full_terms", "h_coefficients", "load_model", "matrices",
-           "model_names", "multipliers", "random_wip_parameters", "simulate",
-           "standard_parameters"]
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_EXPORTS))
+
+
+__all__ = sorted(_EXPORTS)
