@@ -1,14 +1,13 @@
 r"""The comparison engine: documents' derivations against the truth, term by term."""
 
-from .engine import ComparisonEngine
-from .result import (
-           Cause,
-           Convention,
-           ConventionSummary,
-           DerivationResult,
-           ElementRecord,
-           EnergyCheck,
-)
+from .._lazy import attach
 
-__all__ = ["Cause", "ComparisonEngine", "Convention", "ConventionSummary", "DerivationResult",
-           "ElementRecord", "EnergyCheck"]
+__getattr__, __dir__, __all__ = attach(__name__, {
+    "ComparisonEngine": ".engine",
+    "Cause": ".result",
+    "Convention": ".result",
+    "ConventionSummary": ".result",
+    "DerivationResult": ".result",
+    "ElementRecord": ".result",
+    "EnergyCheck": ".result",
+})

@@ -7,11 +7,13 @@ import time
 from collections.abc import Sequence
 from pathlib import Path
 
-from ..derivations import builtin_derivations, load_derivation, load_derivations
+from typing import TYPE_CHECKING
+
 from ..errors import DerivationError
-from ..models.registry import model_entry
-from .engine import ComparisonEngine
-from .result import DerivationResult
+
+if TYPE_CHECKING:       # the heavy modules load in the handlers (a quick --help and list)
+    from .engine import ComparisonEngine
+    from .result import DerivationResult
 
 #: Defaults of the default report: states per parameter set, parameter sets.
 DEFAULT_SAMPLES, DEFAULT_PARAM_SETS = 1000, 5
@@ -22,6 +24,9 @@ def run_comparison(files: Sequence[Path], samples: int, param_sets: int, seed: i
                    ) -> list[DerivationResult]:
     r"""Compare each derivation file; all files are parsed (and checked against ``model``)
     before any comparison starts."""
+    from ..derivations import load_derivations
+    from ..models.registry import model_entry
+    from .engine import ComparisonEngine
     derivations = load_derivations(files)
     for d in derivations:
         model_entry(d.model)
@@ -59,6 +64,8 @@ def _bins(derivations, workers: int, heavy: frozenset[str] = frozenset()) -> lis
 
 
 def _work(args):
+    from ..derivations import load_derivation
+    from .engine import ComparisonEngine
     files, indices, samples, param_sets, table_group = args
     engine = ComparisonEngine(samples=samples, param_sets=param_sets)
     results = [(i, engine.compare(load_derivation(files[i]))) for i in indices]
@@ -74,6 +81,9 @@ def compare_report(files: Sequence[Path], samples: int, param_sets: int,
     results in the order of ``files``. Processes are forked, so nothing is imported twice."""
     import multiprocessing
     import os
+
+    from ..derivations import load_derivations
+    from ..models.registry import model_entry
     derivations = load_derivations(files)
     for d in derivations:
         model_entry(d.model)
@@ -148,6 +158,7 @@ def _plots(results: Sequence[DerivationResult]) -> tuple[list[str], list[str], d
     r"""The optional section: each derivation simulated beside the truth (zero input)."""
     import base64
 
+    from ..derivations import load_derivation
     from ..errors import WheeledDynError
     from ..simulate.commands import default_start
     from ..simulate.documented import side_by_side
@@ -190,6 +201,7 @@ def _write(results, title: str, out: Path, plots: bool = False,
 
 
 def _cmd_report(args: argparse.Namespace) -> int:
+    from ..derivations import builtin_derivations
     t0 = time.perf_counter()
     results, sections = compare_report(builtin_derivations(args.group), args.samples,
                                        args.param_sets, table_group=args.group)
@@ -225,7 +237,7 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
             p.add_argument("model", help="model name (see 'wheeled-dyn list')")
             p.add_argument("files", nargs="+", help="derivation files (TOML) or folders")
         else:
-            from ..derivations import builtin_groups
+            from ..derivations.builtin import builtin_groups
             p.add_argument("--group", default="seed001", choices=builtin_groups(),
                            help="the shipped derivations to compare (default: seed001)")
         p.add_argument("--out", default="reports", help="folder for report.md/.html/.json")

@@ -10,22 +10,32 @@ Pinocchio. Format: ``docs/derivation-format.md``.
 >>> d.A, d.C, d.Q                                              # doctest: +SKIP
 """
 
-from .coordinates import BUILTIN_COORDINATE_SETS, BuiltinSet
-from .errors import DerivationNameError
-from .expressions import (KHALIL_FUNCTIONS, KHALIL_NAMES, STANDARD_FUNCTIONS,
-                          parse_expression, parse_model_expression, parse_units, real_symbol)
-from .builtin import builtin_derivations, builtin_groups, builtin_tables, derivation_files
-from .matrices import MISSING_ELEMENT
-from .parse import load_derivation, load_derivations
-from .readoff import EquationTerms, split_equation_terms
-from .schema import CoordinateSpec, Derivation, SymbolSpec
-from .table import ComparisonTable, TableEntry, load_comparison_table
+from .._lazy import attach
 
-__all__ = [
-    "BUILTIN_COORDINATE_SETS", "BuiltinSet", "ComparisonTable", "CoordinateSpec", "Derivation",
-    "DerivationNameError", "EquationTerms", "KHALIL_FUNCTIONS", "KHALIL_NAMES",
-    "MISSING_ELEMENT", "STANDARD_FUNCTIONS", "SymbolSpec", "TableEntry", "builtin_derivations",
-    "builtin_groups", "builtin_tables", "derivation_files", "load_comparison_table",
-    "load_derivation", "load_derivations", "parse_expression", "parse_model_expression", "parse_units",
-    "real_symbol", "split_equation_terms",
-]
+__getattr__, __dir__, __all__ = attach(__name__, {
+    "BUILTIN_COORDINATE_SETS": ".coordinates",
+    "BuiltinSet": ".coordinates",
+    "DerivationNameError": ".errors",
+    "KHALIL_FUNCTIONS": ".expressions",
+    "KHALIL_NAMES": ".expressions",
+    "STANDARD_FUNCTIONS": ".expressions",
+    "parse_expression": ".expressions",
+    "parse_model_expression": ".expressions",
+    "parse_units": ".expressions",
+    "real_symbol": ".expressions",
+    "builtin_derivations": ".builtin",
+    "builtin_groups": ".builtin",
+    "builtin_tables": ".builtin",
+    "derivation_files": ".builtin",
+    "MISSING_ELEMENT": ".matrices",
+    "load_derivation": ".parse",
+    "load_derivations": ".parse",
+    "EquationTerms": ".readoff",
+    "split_equation_terms": ".readoff",
+    "CoordinateSpec": ".schema",
+    "Derivation": ".schema",
+    "SymbolSpec": ".schema",
+    "ComparisonTable": ".table",
+    "TableEntry": ".table",
+    "load_comparison_table": ".table",
+})

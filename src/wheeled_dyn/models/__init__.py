@@ -1,7 +1,13 @@
 r"""Models: URDF loading, wheeled models on a ground-plane base, physical parameters."""
 
-from .builder import ModelSpec, Wheel, WheeledModel, build_wheeled_model, coordinate_vector
-from .urdf_source import UrdfSource, read_urdf
+from .._lazy import attach
 
-__all__ = ["ModelSpec", "Wheel", "WheeledModel", "build_wheeled_model", "coordinate_vector",
-           "UrdfSource", "read_urdf"]
+__getattr__, __dir__, __all__ = attach(__name__, {
+    "ModelSpec": ".builder",
+    "Wheel": ".builder",
+    "WheeledModel": ".builder",
+    "build_wheeled_model": ".builder",
+    "coordinate_vector": ".builder",
+    "UrdfSource": ".urdf_source",
+    "read_urdf": ".urdf_source",
+})

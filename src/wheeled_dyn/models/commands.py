@@ -4,11 +4,12 @@ from __future__ import annotations
 
 import argparse
 import json
-
-import numpy as np
+from typing import TYPE_CHECKING
 
 from ..errors import ParameterError, StateError, UnknownNameError
-from .registry import MODELS, load_model, model_entry
+
+if TYPE_CHECKING:       # NumPy, Pinocchio and the registry load in the handlers
+    import numpy as np
 
 
 def parse_assignments(text: str | None, what: str) -> dict[str, float]:
@@ -29,6 +30,7 @@ def parse_assignments(text: str | None, what: str) -> dict[str, float]:
 
 def model_from_args(name: str, params_text: str | None):
     r"""The model with ``--param`` overrides applied (models with a parameter record only)."""
+    from .registry import load_model, model_entry
     changes = parse_assignments(params_text, "--param")
     if not changes:
         return load_model(name)
@@ -45,6 +47,7 @@ PRINT_CHOP = 1e-12
 
 def format_matrix(name: str, M: np.ndarray, rows: tuple[str, ...], cols: tuple[str, ...]) -> str:
     r"""A readable table of ``M`` with row and column names."""
+    import numpy as np
     M = np.atleast_2d(np.asarray(M, dtype=float))
     scale = float(np.abs(M).max()) if M.size else 0.0
     M = np.where(np.abs(M) <= PRINT_CHOP * scale, 0.0, M)
@@ -57,9 +60,11 @@ def format_matrix(name: str, M: np.ndarray, rows: tuple[str, ...], cols: tuple[s
 
 
 def _cmd_list(args: argparse.Namespace) -> int:
-    width = max(len(name) for name in MODELS) + 1
-    for name, entry in MODELS.items():
-        print(f"{name:{width}} {entry.summary}")
+    from .listing import model_summaries
+    summaries = model_summaries()
+    width = max(len(name) for name in summaries) + 1
+    for name, summary in summaries.items():
+        print(f"{name:{width}} {summary}")
     return 0
 
 

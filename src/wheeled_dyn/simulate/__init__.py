@@ -1,6 +1,10 @@
 r"""Simulation of wheeled models on their reduced equations."""
 
-from .fast import simulate_fast
-from .reduced import Trajectory, energy, simulate
+from .._lazy import attach
 
-__all__ = ["Trajectory", "energy", "simulate", "simulate_fast"]
+__getattr__, __dir__, __all__ = attach(__name__, {
+    "simulate_fast": ".fast",
+    "Trajectory": ".reduced",
+    "energy": ".reduced",
+    "simulate": ".reduced",
+})

@@ -5,7 +5,6 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ..derivations import load_derivations
 from ..models.commands import parse_assignments
 
 
@@ -19,6 +18,7 @@ def default_start(d) -> dict[str, float]:
 
 
 def _cmd(args: argparse.Namespace) -> int:
+    from ..derivations import load_derivations
     from .documented import side_by_side
     from .plots import plot_side_by_side
     out = Path(args.out)

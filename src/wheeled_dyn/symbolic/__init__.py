@@ -15,27 +15,47 @@ For a wheeled model in a coordinate set, rolling included, in physical symbols::
     true_expressions("wip", cs)["h[1]:dpsi*dpsi"]     # labelled elements, cached
 """
 
-from .cache import cache_dir, cached_symbolic_model, clear_cache, model_fingerprint
-from .kinematics import JointKinematics, exact_number, forward_kinematics
-from .lagrange import LagrangeTerms, energy_terms, lagrange_terms
-from .model import SymbolicModel, symbolic_model
-from .numeric import NumericTerms, lambdify_terms, parameter_vector
-from .parameters import PARAMETER_NAMES, inertial_symbols, numeric_parameters
-from .printing import from_srepr, to_latex, to_mathml, to_srepr, to_text, velocity_dots
-from .simplify import canonical_trig, is_zero, polish_trig, simplify_expr, simplify_matrix
-from .transform import ReducedSymbolic, time_derivative, transform
-from .trigpoly import TrigRing
-from .wheeled import (PARAMETER_MODES, contact_rows, element_expressions, physical_symbols,
-                      true_expressions, velocity_products, wheeled_symbolic)
+from .._lazy import attach
 
-__all__ = [
-    "JointKinematics", "LagrangeTerms", "NumericTerms", "PARAMETER_NAMES", "ReducedSymbolic",
-    "SymbolicModel", "TrigRing", "cache_dir", "cached_symbolic_model", "canonical_trig",
-    "clear_cache", "energy_terms", "exact_number", "forward_kinematics", "from_srepr",
-    "PARAMETER_MODES", "contact_rows", "element_expressions", "physical_symbols",
-    "true_expressions", "velocity_products", "wheeled_symbolic",
-    "inertial_symbols", "is_zero", "lagrange_terms", "lambdify_terms", "model_fingerprint",
-    "numeric_parameters", "parameter_vector", "polish_trig", "simplify_expr",
-    "simplify_matrix", "symbolic_model", "time_derivative", "to_latex", "to_mathml",
-    "to_srepr", "to_text", "transform", "velocity_dots",
-]
+__getattr__, __dir__, __all__ = attach(__name__, {
+    "cache_dir": ".cache",
+    "cached_symbolic_model": ".cache",
+    "clear_cache": ".cache",
+    "model_fingerprint": ".cache",
+    "JointKinematics": ".kinematics",
+    "exact_number": ".kinematics",
+    "forward_kinematics": ".kinematics",
+    "LagrangeTerms": ".lagrange",
+    "energy_terms": ".lagrange",
+    "lagrange_terms": ".lagrange",
+    "SymbolicModel": ".model",
+    "symbolic_model": ".model",
+    "NumericTerms": ".numeric",
+    "lambdify_terms": ".numeric",
+    "parameter_vector": ".numeric",
+    "PARAMETER_NAMES": ".parameters",
+    "inertial_symbols": ".parameters",
+    "numeric_parameters": ".parameters",
+    "from_srepr": ".printing",
+    "to_latex": ".printing",
+    "to_mathml": ".printing",
+    "to_srepr": ".printing",
+    "to_text": ".printing",
+    "velocity_dots": ".printing",
+    "canonical_trig": ".simplify",
+    "is_zero": ".simplify",
+    "polish_trig": ".simplify",
+    "simplify_expr": ".simplify",
+    "simplify_matrix": ".simplify",
+    "ReducedSymbolic": ".transform",
+    "time_derivative": ".transform",
+    "transform": ".transform",
+    "TrigRing": ".trigpoly",
+    "PARAMETER_MODES": ".wheeled",
+    "contact_rows": ".wheeled",
+    "element_expressions": ".wheeled",
+    "physical_symbols": ".wheeled",
+    "true_expressions": ".wheeled",
+    "velocity_products": ".wheeled",
+    "wheeled_symbolic": ".wheeled",
+})

@@ -10,11 +10,13 @@ from __future__ import annotations
 
 import argparse
 import json
+from typing import TYPE_CHECKING
 
-import sympy as sp
+if TYPE_CHECKING:       # SymPy and Pinocchio load in the handler (a quick --help and list)
+    import sympy as sp
 
-from .printing import to_latex
-from .wheeled import PARAMETER_MODES, physical_latex, wheeled_symbolic
+#: Parameter modes (as :data:`~.wheeled.PARAMETER_MODES`, without importing SymPy for --help).
+PARAMETER_MODES: tuple[str, ...] = ("physical", "numbers", "standard")
 
 
 def _mode(model: str, requested: str | None) -> str:
@@ -25,6 +27,7 @@ def _mode(model: str, requested: str | None) -> str:
 
 
 def _text(e: sp.Expr) -> str:
+    import sympy as sp
     return sp.sstr(e)
 
 
@@ -41,6 +44,8 @@ def _matrix_lines(name: str, M: sp.Matrix) -> list[str]:
 def _cmd_symbolic(args: argparse.Namespace) -> int:
     from ..coordinates import builtin_coordinate_set
     from ..models.registry import load_model
+    from .printing import to_latex
+    from .wheeled import physical_latex, wheeled_symbolic
     wm = load_model(args.model)
     cs = builtin_coordinate_set(wm, args.coords)
     mode = _mode(args.model, args.parameters)

@@ -11,19 +11,20 @@ r"""Showing wheeled bodies moving in a browser, with meshcat.
 
 import warnings
 
-with warnings.catch_warnings():     # meshcat 0.3.2 imports a module pyzmq deprecates
-    warnings.filterwarnings("ignore", message="zmq.eventloop.ioloop is deprecated",
-                            category=DeprecationWarning)
-    import meshcat.visualizer  # noqa: F401
+# meshcat 0.3.2 imports a module pyzmq deprecates; every viewer module that imports meshcat
+# is imported after this package, so the filter is in place before meshcat is loaded.
+warnings.filterwarnings("ignore", message="zmq.eventloop.ioloop is deprecated",
+                        category=DeprecationWarning)
 
-from .animation import build_animation, resample
-from .camera import View, frame_points
-from .scene import ScenePoses
-from .server import ServerProcess, ViewerError, start_server, stop_server
-from .shapes import equivalent_box, fallback_visual_model
-from .show import close_all, show_trajectory
-from .viewer import Viewer
+from .._lazy import attach  # noqa: E402
 
-__all__ = ["Viewer", "ViewerError", "show_trajectory", "close_all", "fallback_visual_model",
-           "equivalent_box", "ScenePoses", "View", "frame_points", "resample", "build_animation",
-           "ServerProcess", "start_server", "stop_server"]
+__getattr__, __dir__, __all__ = attach(__name__, {
+    "build_animation": ".animation", "resample": ".animation",
+    "View": ".camera", "frame_points": ".camera",
+    "ScenePoses": ".scene",
+    "ServerProcess": ".server", "ViewerError": ".server", "start_server": ".server",
+    "stop_server": ".server",
+    "equivalent_box": ".shapes", "fallback_visual_model": ".shapes",
+    "close_all": ".show", "show_trajectory": ".show",
+    "Viewer": ".viewer",
+})

@@ -11,13 +11,13 @@ from __future__ import annotations
 import argparse
 import time
 
-import numpy as np
-
 from ..errors import UnknownNameError
-from ..models.registry import load_model
 
 
 def _trajectory(model: str, scenario: str | None, duration: float | None):
+    import numpy as np
+
+    from ..models.registry import load_model
     from ..simulate.scenarios import SCENARIOS, run_scenario
     if scenario is None:
         scenario = next((n for n, (_, m, _) in SCENARIOS.items() if m == model), None)
