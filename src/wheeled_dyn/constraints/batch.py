@@ -19,6 +19,7 @@ import sympy as sp
 from ..dynamics.terms import Terms
 from .rolling import _LWA
 from .sphere_contact import ball_jacobian
+from .wheel_contact import wheel_jacobian
 
 
 def lambdify_batch(matrix: sp.Matrix, args: Sequence) -> callable:
@@ -80,6 +81,9 @@ def reduce_batch_multi(cmap, q: np.ndarray, nus: list[np.ndarray],
     if need_J and wm.contact is not None:
         ball = np.stack([ball_jacobian(wm, q[i], None, data)[0] for i in range(N)])
         J = np.concatenate([J, ball], axis=1)
+    if need_J and wm.rolling_wheels:
+        tilt = np.stack([wheel_jacobian(wm, q[i], None, data)[0] for i in range(N)])
+        J = np.concatenate([J, tilt], axis=1)
     w = J.shape[1] if J is not None else 0
     A = np.triu(A) + np.swapaxes(np.triu(A, 1), 1, 2)
     Mp = None
@@ -120,6 +124,9 @@ def reduce_batch_multi(cmap, q: np.ndarray, nus: list[np.ndarray],
                 if wm.contact is not None:
                     ball = np.stack([ball_jacobian(wm, q[i], v[i], data)[1] for i in range(N)])
                     dJ = np.concatenate([dJ, ball], axis=1)
+                if wm.rolling_wheels:
+                    tilt = np.stack([wheel_jacobian(wm, q[i], v[i], data)[1] for i in range(N)])
+                    dJ = np.concatenate([dJ, tilt], axis=1)
                 Sdot = -Mp @ np.concatenate([dJ, Tdot], axis=1) @ S
             else:
                 Sdot = -S @ Tdot @ S

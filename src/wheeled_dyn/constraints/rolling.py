@@ -18,7 +18,8 @@ reduction handles the redundancy by least squares, which is exact because the sy
 consistent.
 
 The functions here serve every rolling contact of a model: the wheels' rows, then those of a
-rolling ball (:mod:`.sphere_contact`, three rows) when the model declares one. A model with
+rolling ball (:mod:`.sphere_contact`, three rows) when the model declares one, then three per
+tilting wheel (:mod:`.wheel_contact`). A model with
 neither has no rows (:math:`J_c` is 0 × nv).
 """
 
@@ -57,6 +58,12 @@ def contact_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = Non
         rows.append(Jb)
         if v is not None:
             drows.append(dJb)
+    if wm.rolling_wheels:                      # tilting wheels: 3 rows each (.wheel_contact)
+        from .wheel_contact import wheel_jacobian
+        Jw, dJw = wheel_jacobian(wm, q, v, data)
+        rows.append(Jw)
+        if v is not None:
+            drows.append(dJw)
     return np.vstack(rows), (np.vstack(drows) if v is not None else None)
 
 
@@ -67,6 +74,9 @@ def contact_points(wm: WheeledModel, q: np.ndarray) -> np.ndarray:
     points = [data.oMi[w.joint_id].translation - [0.0, 0.0, w.radius] for w in wm.wheels]
     if wm.contact is not None:
         points.append(ball_contact_point(wm, q))
+    if wm.rolling_wheels:
+        from .wheel_contact import wheel_contact_points
+        points.extend(wheel_contact_points(wm, q))
     return np.array(points).reshape(-1, 3)
 
 
@@ -81,4 +91,7 @@ def contact_velocities(wm: WheeledModel, q: np.ndarray, v: np.ndarray) -> np.nda
         out.append(vel.linear + np.cross(vel.angular, [0.0, 0.0, -w.radius]))
     if wm.contact is not None:
         out.append(ball_contact_velocity(wm, q, v))
+    if wm.rolling_wheels:
+        from .wheel_contact import wheel_contact_velocities
+        out.extend(wheel_contact_velocities(wm, q, v))
     return np.array(out).reshape(-1, 3)

@@ -23,6 +23,7 @@ free_body           seed 000, 7.1/2  a block, free in space (free base)
 gyroscope           seed 000, 7.7    rotor on an axle pivoted at one end
 sphere_plane        seed 002         uniform ball rolling on the ground
 sphere_sphere       seed 002         uniform ball rolling on a fixed sphere
+rolling_coin        textbook         uniform thin disk rolling and leaning on the ground
 =================== ================ ==========================================================
 """
 
@@ -33,11 +34,14 @@ from collections.abc import Callable
 from ..paths import urdf_dir
 from .builder import ModelSpec
 from .contact import SphereContact
+from .rolling_wheel import WheelContact
 
 #: Radius of the fixed sphere the ball of ``sphere_sphere`` rolls on (m).
 FIXED_SPHERE_RADIUS = 0.30
 #: Radius of the ball of ``ball.urdf`` (m).
 BALL_RADIUS = 0.109
+#: Radius of the thin disk of ``rolling_coin.urdf`` (m).
+COIN_RADIUS = 0.30
 
 
 def _fixed(name: str, urdf: str, description: str, **kw) -> Callable[[], ModelSpec]:
@@ -94,4 +98,9 @@ BENCHMARKS: tuple[tuple[str, str, Callable[[], ModelSpec]], ...] = (
      _ball("sphere_sphere", SphereContact("ball", BALL_RADIUS, "sphere", FIXED_SPHERE_RADIUS),
            f"uniform ball rolling on the outside of a fixed sphere of radius "
            f"{FIXED_SPHERE_RADIUS} m centred at the origin")),
+    ("rolling_coin", "uniform thin disk (coin) rolling and leaning on the ground",
+     _fixed("rolling_coin", "rolling_coin.urdf", "thin disk m = 2 kg, R = 0.3 m: centre x, y, "
+            "z, heading psi, lean phi, spin theta; z follows from the lean (contact)",
+            body="coin", geometry={"R": COIN_RADIUS},
+            rolling_wheels=(WheelContact("coin", COIN_RADIUS, axis=(0.0, 1.0, 0.0)),))),
 )

@@ -56,6 +56,7 @@ import pinocchio as pin
 
 from ..errors import ModelError, UnknownNameError
 from .contact import BallContact, SphereContact
+from .rolling_wheel import BoundWheelContact, WheelContact
 from .urdf_source import UrdfSource, read_urdf
 
 #: Largest |cos| between the axle and the up direction for the axle to count as horizontal.
@@ -97,6 +98,7 @@ class ModelSpec:
     actuated: tuple[str, ...] = ()               # joint names with a motor (fixed/free bases)
     geometry: Mapping[str, float] = field(default_factory=dict)
     contact: SphereContact | None = None
+    rolling_wheels: tuple[WheelContact, ...] = ()   # tilting wheels on any link (fixed/free)
 
 
 @dataclass(frozen=True)
@@ -135,6 +137,7 @@ class WheeledModel:
     body_joint_id: int
     actuated: tuple[int, ...] = ()
     contact: BallContact | None = None
+    rolling_wheels: tuple[BoundWheelContact, ...] = ()
 
     @property
     def nv(self) -> int:
@@ -354,14 +357,24 @@ def _build_unwheeled(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
         geometry.setdefault("r", float(spec.contact.radius))
         if spec.contact.surface == "sphere":
             geometry.setdefault("R1", float(spec.contact.surface_radius))
+    rolling_wheels = []
+    for wc in spec.rolling_wheels:
+        source.link(wc.link)
+        axis = np.asarray(wc.axis, dtype=float)
+        rolling_wheels.append(BoundWheelContact(wc, model.getFrameId(wc.link),
+                                                axis / np.linalg.norm(axis),
+                                                np.asarray(wc.centre, dtype=float)))
     return WheeledModel(spec.name, spec, model, geom, (), coordinate_names, inputs, geometry,
-                        body_jid, tuple(actuated), contact)
+                        body_jid, tuple(actuated), contact, tuple(rolling_wheels))
 
 
 def build_wheeled_model(spec: ModelSpec) -> WheeledModel:
     r"""Build the model described by ``spec`` (see the module docstring)."""
     if spec.base not in BASES:
         raise ModelError(spec.name, None, f"base {spec.base!r}; expected one of {BASES}")
+    if spec.rolling_wheels and spec.base == "planar":
+        raise ModelError(spec.name, spec.rolling_wheels[0].link, "tilting wheels need base "
+                                                                  "'free' or 'fixed', not 'planar'")
     if spec.contact is not None and spec.base == "planar":
         raise ModelError(spec.name, spec.contact.link, "a rolling ball needs base 'free' or "
                                                        "'fixed', not 'planar'")
