@@ -1,0 +1,98 @@
+r"""Linearised equations of a rolling body about a steady motion, from its reduced dynamics.
+
+The reduced equations of :class:`~.wheel_reduction.RollingReduction` read
+:math:`A_\nu(q)\,\dot\nu = F(q, \nu)` with :math:`F = B_\nu u - h_\nu - Q_\nu`. Let
+:math:`p` be some position coordinates (a bicycle's roll and steer; the others are cyclic or
+follow from the contact conditions, which :meth:`~.wheel_reduction.RollingReduction.on_ground`
+solves at every evaluation), and :math:`\nu` the independent velocities. About
+:math:`(p_0, \nu_0)` with :math:`\dot\nu_0 = 0`,
+
+.. math::
+
+    M\,\delta\dot\nu + D\,\delta\nu + K\,\delta p = 0,\qquad
+    M = A_\nu(p_0),\quad D = -\frac{\partial F}{\partial\nu},\quad
+    K = -\frac{\partial F}{\partial p}
+
+(the term :math:`\partial A_\nu/\partial p\,\dot\nu_0` vanishes). The derivatives are central
+differences refined by one Richardson step (error :math:`O(h^4)`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from .wheel_reduction import RollingReduction
+
+#: Step of the central differences (radians or metres, and per second for velocities).
+STEP = 1e-3
+
+
+@dataclass(frozen=True)
+class LinearModel:
+    r""":math:`M\,\delta\dot\nu + D\,\delta\nu + K\,\delta p = 0` (module docstring): ``M``
+    and ``D`` are n × n, ``K`` n × len(positions); ``residual`` is :math:`\dot\nu_0` (zero at
+    a steady motion)."""
+
+    positions: tuple[str, ...]
+    velocities: tuple[str, ...]
+    M: np.ndarray
+    D: np.ndarray
+    K: np.ndarray
+    residual: np.ndarray
+
+
+def _richardson(f, x0: np.ndarray, h: float) -> np.ndarray:
+    r"""Jacobian of ``f`` at ``x0``: :math:`(4D_{h/2} - D_h)/3` of central differences."""
+    cols = []
+    for i in range(len(x0)):
+        e = np.zeros(len(x0))
+        e[i] = 1.0
+
+        def central(step: float) -> np.ndarray:
+            return (f(x0 + step * e) - f(x0 - step * e)) / (2 * step)
+
+        cols.append((4 * central(h / 2) - central(h)) / 3)
+    return np.array(cols).T
+
+
+def linearise(red: RollingReduction, q0: np.ndarray, positions: Sequence[str],
+              nu0: np.ndarray, u: np.ndarray | None = None, step: float = STEP) -> LinearModel:
+    r"""The linearised equations about ``(q0, nu0)`` in ``positions`` (coordinate names) and
+    the reduction's independent velocities."""
+    wm = red.wm
+    idx = [wm.index(n) for n in positions]
+    q0 = red.on_ground(np.asarray(q0, dtype=float))
+    nu0 = np.asarray(nu0, dtype=float)
+
+    def config(p: np.ndarray) -> np.ndarray:
+        q = q0.copy()
+        q[idx] = p
+        return red.on_ground(q)
+
+    def force(q: np.ndarray, nu: np.ndarray) -> np.ndarray:
+        return red.mass_and_force(q, nu, u)[1]
+
+    M, F0, _ = red.mass_and_force(q0, nu0, u)
+    K = -_richardson(lambda p: force(config(p), nu0), q0[idx], step)
+    D = -_richardson(lambda nu: force(q0, nu), nu0, step)
+    return LinearModel(tuple(positions), red.velocities, M, D, K, np.linalg.solve(M, F0))
+
+
+def state_matrix(lin: LinearModel, rate_of: Sequence[int]) -> np.ndarray:
+    r"""The first-order matrix of :math:`x = (\delta p, \delta\nu)` when
+    :math:`\dot p_i = \nu_{\text{rate\_of}[i]}`:
+
+    .. math::
+
+        \dot x = \begin{bmatrix} 0 & E\\ -M^{-1}K & -M^{-1}D\end{bmatrix} x ,
+
+    :math:`E` selecting the velocities that are the positions' rates."""
+    k, n = lin.K.shape[1], lin.M.shape[0]
+    E = np.zeros((k, n))
+    E[np.arange(k), list(rate_of)] = 1.0
+    top = np.hstack([np.zeros((k, k)), E])
+    bottom = np.hstack([-np.linalg.solve(lin.M, lin.K), -np.linalg.solve(lin.M, lin.D)])
+    return np.vstack([top, bottom])
