@@ -4,12 +4,17 @@ Every error a user can cause (a bad file, an unknown name, a non-physical number
 subclass of :class:`WheeledDynError`. Each carries the data needed to act on it as attributes
 (``path``, ``line``, ``name``, ``valid`` ...) and a message that names the place and what was
 expected. Nothing in the package uses ``assert`` for input validation.
+
+Every error survives a pickle round trip with its data (it is rebuilt from the arguments it was
+made with), so an error raised in a worker process reaches the user as the same one-line
+message.
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterable
 from pathlib import Path
+from typing import Any
 
 
 def _names(valid: Iterable[str] | None) -> str:
@@ -19,8 +24,26 @@ def _names(valid: Iterable[str] | None) -> str:
     return f"; valid: {', '.join(items)}" if items else "; there are none"
 
 
+def _rebuild(cls: type, args: tuple, kwargs: dict[str, Any]) -> WheeledDynError:
+    return cls(*args, **kwargs)
+
+
 class WheeledDynError(Exception):
-    """Base class of every error raised by wheeled_dyn on purpose."""
+    """Base class of every error raised by wheeled_dyn on purpose.
+
+    The arguments a subclass is constructed with are kept (``__new__`` records them), and
+    :meth:`__reduce__` rebuilds the error from them: ``pickle`` (and so a process pool) gives
+    back an equal error, message and attributes included, whatever the subclass's signature.
+    """
+
+    def __new__(cls, *args: Any, **kwargs: Any) -> WheeledDynError:
+        self = super().__new__(cls, *args)
+        self._ctor = (args, kwargs)
+        return self
+
+    def __reduce__(self):
+        args, kwargs = getattr(self, "_ctor", (self.args, {}))
+        return _rebuild, (type(self), args, kwargs), dict(self.__dict__)
 
 
 class InputFileError(WheeledDynError):
@@ -118,3 +141,18 @@ class OptionalDependencyError(WheeledDynError, ImportError):
         self.requirement = requirement
         self.hint = hint
         super().__init__(f"{feature} needs {requirement}: {hint}")
+
+
+class LimitError(WheeledDynError, ValueError):
+    """A number asked for is outside what the toolkit accepts: an option out of its range, or
+    a limit that keeps memory and time bounded (states × parameter sets, simulated seconds,
+    the size of an expression). Attributes: ``name`` (the option or item), ``value``,
+    ``limit`` (the accepted range, as text), ``why`` (what the limit protects, or "")."""
+
+    def __init__(self, name: str, value: object, limit: str, why: str = "") -> None:
+        self.name = name
+        self.value = value
+        self.limit = limit
+        self.why = why
+        because = f" ({why})" if why else ""
+        super().__init__(f"{name} = {value}: expected {limit}{because}")
