@@ -30,7 +30,8 @@ def test_compare_writes_three_reports(tmp_path, capsys):
     assert records["h[1]:dpsi*dpsi"]["verdict"] == "differs"          # the missing psi-dot**2
     html = (out / "report.html").read_text()
     assert "<math" in html and "http://" not in html.replace("http://www.w3.org/1998/Math/MathML", "")
-    assert "swap: dphi where dpsi fits" in capsys.readouterr().out
+    # the CLI prints the causes one line each: the diagnosis, then the elements it explains
+    assert "dphi where dpsi fits — C[3,2]" in capsys.readouterr().out
 
 
 def test_malformed_file_writes_nothing(tmp_path, capsys):

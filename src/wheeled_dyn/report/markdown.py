@@ -1,72 +1,143 @@
-r"""The comparison as Markdown with math GitHub renders (``$...$``)."""
+r"""The comparison as Markdown with math GitHub renders (``$...$``), in the structure of the HTML
+report: the summary table first, then per derivation (in the document's own order) its causes,
+"assumes:" line, conventions, a table of only the elements that differ or hold conditionally
+(document, truth, simplified difference) and the agreeing elements named in one line."""
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 
 from ..compare.result import DerivationResult, ElementRecord
+from . import summary as S
+from .symbols import derivation_notation, difference_latex, product_latex, text_latex
 
 VERDICT_TEXT = {"agrees": "agrees", "agrees_if": "agrees only for special values",
                 "factorization": "C differs, C q̇ agrees", "differs": "differs",
                 "undecided": "cannot decide (values not finite)"}
+#: Formulas longer than this (characters of LaTeX) are left to the HTML report.
+LONG_LATEX = 600
 
 
 def _math(latex: str) -> str:
-    bar = "\\vert "
-    return "$" + latex.replace("|", bar) + "$" if latex else ""
+    if not latex:
+        return ""
+    if len(latex) > LONG_LATEX:
+        return "(long: see the HTML report)"
+    return "$" + latex.replace("|", "\\vert ") + "$"
+
+
+def check_lines(result: DerivationResult) -> list[str]:
+    r"""The checks of the document on its own: energy, symmetry, constraints, notes."""
+    lines = []
+    if result.energy is not None:
+        lines.append("conserves energy (power identity holds)" if result.energy.conserves else
+                     f"does not conserve energy: ν·h − ½ ν·Ȧν = {result.energy.residual}")
+    return lines + list(result.asymmetric) + list(result.constraints) + list(result.notes)
 
 
 def summary_lines(result: DerivationResult) -> list[str]:
     r"""The summary of one derivation, as short lines (also printed by the CLI)."""
     c = result.counts()
     lines = [f"{c['agrees']} agree, {c['agrees_if']} agree only for special parameter values, "
-             f"{c['factorization']} differ in factorisation only, {c['differs']} differ"]
-    typos = result.typos()
-    if typos:
-        lines.append("typos: " + "; ".join(f"{r.element} ({r.diagnoses[0]})" for r in typos))
-    missing = result.missing()
-    if missing:
-        lines.append("missing or extra physics: " + ", ".join(r.element for r in missing))
-    factors = [f"row {i + 1} × {c}" for i, c in enumerate(result.row_factors) if c]
+             f"{c['factorization']} differ in factorisation only, {c['differs']} differ"
+             + (f", {c['undecided']} undecided" if c.get("undecided") else "")]
+    lines += [line.one_line() for line in S.cause_lines(result)]
+    factors = S.row_factor_line(result)
     if factors:
-        lines.append("rows scaled by a constant the file does not declare: " + ", ".join(factors))
-    if result.energy is not None:
-        lines.append("conserves energy (power identity holds)" if result.energy.conserves else
-                     f"does not conserve energy: ν·h − ½ ν·Ȧν = {result.energy.residual}")
-    lines += list(result.asymmetric) + list(result.constraints) + list(result.notes)
+        lines.append(factors)
+    return lines + check_lines(result)
+
+
+def _counts(result: DerivationResult) -> str:
+    short = {"agrees": "agree", "agrees_if": "only if", "factorization": "factorisation",
+             "differs": "differ", "undecided": "undecided"}
+    return ", ".join(f"{n} {short[v]}" for v, n in result.counts().items()
+                     if n or v in ("agrees", "differs"))
+
+
+def _cell(text: str) -> str:
+    return text.replace("|", "/").replace("\n", " ")
+
+
+def summary_markdown(results: Sequence[DerivationResult]) -> list[str]:
+    r"""The summary table (one row per derivation, linking to its section)."""
+    lines = ["## Summary", "", "| derivation | source | verdicts | causes |", "|---|---|---|---|"]
+    for r in results:
+        label = derivation_notation(r.path).label
+        causes = [c.one_line(label) for c in S.cause_lines(r)] or ["no difference found"]
+        lines.append(f"| [{_cell(r.title)}](#{S.anchor(r)}) | {_cell(S.equations(r))} | "
+                     f"{_counts(r)} | {_cell('<br>'.join(causes))} |")
     return lines
 
 
-def _row(r: ElementRecord) -> str:
-    diag = "; ".join(r.diagnoses)
+def _row(result: DerivationResult, r: ElementRecord, names) -> str:
+    diag = "; ".join(d for d in r.diagnoses if not d.startswith("truth − document"))
     verdict = VERDICT_TEXT[r.verdict] + (f": {diag}" if diag else "")
-    truth = _math(r.truth_latex) if r.truth_latex else f"(numeric; max error {r.max_error:.3g})"
-    return (f"| {r.element} | {_math(r.document_latex)} | {_math(r.model_latex)} | {truth} | "
-            f"{verdict.replace('|', '/')} |")
+    truth = text_latex(r.truth, names, r.truth_latex) if r.truth else ""
+    truth = _math(truth) if truth else (f"{r.truth_sample:.4g} at the reference state "
+                                        f"(largest error {r.max_error:.3g})")
+    label = r.element
+    if r.key == "h" and ":" in label:
+        row, product = label.split(":", 1)
+        label = f"{row} · {_math(product_latex(product, names))}"
+    return (f"| {label} | {_cell(verdict)} | "
+            f"{_math(text_latex(r.document, names, r.document_latex)) or '0'} | {truth} | "
+            f"{_math(difference_latex(r.residual, names, r.residual_latex))} |")
 
 
 def derivation_markdown(result: DerivationResult) -> str:
+    r"""One derivation's section."""
+    names = derivation_notation(result.path)
     src = result.source
-    lines = [f"## {result.title}", "",
-             f"`{result.path.name}` — {src.get('document', '')} {src.get('section', '')} "
-             f"eqs {src.get('equations', '')}; model `{result.model}`, coordinates "
-             f"`{result.coordinates}` ({', '.join(result.velocities)}); "
-             f"{result.samples} states × {result.parameter_sets} random parameter sets.", ""]
-    lines += [f"- {line}" for line in summary_lines(result)]
+    lines = [f'<a id="{S.anchor(result)}"></a>', "",
+             f"## {S.equations(result)} — {result.title}", ""]
+    causes = S.cause_lines(result)
+    head = "Causes" if result.causes else "Findings, grouped by diagnosis (no root causes computed)"
+    lines += [f"**{head}:**", ""] + ([f"- {c.one_line(names.label)}" + (f" {_math(c.latex)}" if c.latex else "")
+                                      for c in causes] or ["- none: every element agrees"])
+    lines += ["", f"**Assumes:** {S.assumes_line(result, dict(names.assumed))}", ""]
+    conv = result.conventions
+    if conv is not None:
+        lines.append(f"**Conventions:** declared ({conv.declared.description}): "
+                     + ", ".join(f"{n} {v}" for v, n in conv.declared.counts.items() if n)
+                     + ("" if conv.best is None else f"; best found ({conv.best.description}): "
+                        + ", ".join(f"{n} {v}" for v, n in conv.best.counts.items() if n))
+                     + (f"; {conv.finding}" if conv.finding else ""))
+        lines.append("")
+    factors = S.row_factor_line(result)
+    if factors:
+        lines += [f"**Rows:** {factors}.", ""]
+    lines += [f"`{result.path.name}` — {src.get('document', '')} {src.get('section', '')}; model "
+              f"`{result.model}`, coordinates `{result.coordinates}`; {result.samples} states × "
+              f"{result.parameter_sets} random parameter sets; {_counts(result)}.", ""]
+    shown = [r for r in result.records if r.verdict in S.SHOWN_VERDICTS]
+    if shown:
+        lines += [f"What differs or holds only conditionally ({len(shown)}):", "",
+                  "| element | verdict | document | truth | truth − document |",
+                  "|---|---|---|---|---|"]
+        lines += [_row(result, r, names) for r in shown]
+        lines.append("")
+    agree = [r.element for r in result.records if r.verdict == "agrees"]
+    if agree:
+        lines += [f"Agreeing ({len(agree)}): " + ", ".join(agree), ""]
+    checks = check_lines(result)
+    if checks:
+        lines += ["Checks of the document on its own:", ""] + [f"- {c}" for c in checks] + [""]
     if result.reconstructed:
-        lines += ["", "Reconstructed from garbled text: " + "; ".join(
-            f"{k}: {v}" for k, v in result.reconstructed.items())]
-    lines += ["", "| element | document | document after the parameter map | truth | verdict |",
-              "|---|---|---|---|---|"]
-    lines += [_row(r) for r in result.records]
+        lines += ["Reconstructed from garbled text: " + "; ".join(
+            f"{k}: {v}" for k, v in result.reconstructed.items()), ""]
     return "\n".join(lines) + "\n"
 
 
 def report_markdown(results: Sequence[DerivationResult], title: str,
                     extra: Sequence[str] = ()) -> str:
+    r"""The whole report: summary, derivations in the document's order, extras."""
+    results = S.ordered(results)
     parts = [f"# {title}", "", "Verdicts: *agrees* (over every random state and parameter set), "
              "*agrees only for special values* (named), *C differs, C q̇ agrees* (the equations "
-             "are right; only the factorisation of C differs), *differs* (with its diagnosis).", ""]
+             "are right; only the factorisation of C differs), *differs* (with its diagnosis).",
+             ""]
+    parts += summary_markdown(results) + [""]
     parts += [derivation_markdown(r) for r in results]
     parts += list(extra)
     return "\n".join(parts)

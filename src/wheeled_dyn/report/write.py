@@ -17,12 +17,16 @@ from ..compare.result import DerivationResult
 from ..errors import InputFileError
 from .html import report_html
 from .markdown import report_markdown
+from .summary import ordered, summary_entry
 
 
 def render(results: Sequence[DerivationResult], title: str, extra_md: Sequence[str] = (),
            extra_html: Sequence[str] = (), extra_json: dict | None = None) -> dict[str, str]:
-    r"""The three reports as texts keyed by file name."""
-    data = {"title": title, "derivations": [r.as_dict() for r in results], **(extra_json or {})}
+    r"""The three reports as texts keyed by file name; derivations in the document's order,
+    the JSON's ``summary`` first (one entry per derivation: id, counts, causes in one line)."""
+    results = ordered(results)
+    data = {"title": title, "summary": [summary_entry(r) for r in results],
+            "derivations": [r.as_dict() for r in results], **(extra_json or {})}
     return {"report.md": report_markdown(results, title, extra_md),
             "report.html": report_html(results, title, extra_html),
             "report.json": json.dumps(data, indent=1, default=str, allow_nan=True)}

@@ -1,0 +1,194 @@
+r"""What every report shows first: the derivations in the document's own order, each with its
+verdict counts and its causes in one line each.
+
+Order
+    A derivation's place is, in turn: the ``order`` its result carries, an ``order`` its file
+    declares in ``[source]`` (a number, as text), the section number (``4.3.3`` → (4, 3, 3)), the
+    first equation number (``(3.12)`` → (3, 12)), the file name. So seed 001 reads (1)–(3),
+    (4)–(5), (6)–(8), (9)–(11), (12)–(14), (25), (33)–(35), the appendix — as the document does.
+
+Causes
+    The result's own :class:`~wheeled_dyn.compare.result.Cause` records, most important first.
+    A result without causes (none computed) gets its elements grouped by their first
+    diagnosis instead — one line per distinct diagnosis, naming the elements — so a reader
+    still sees a few reasons, not a list of names.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+from ..compare.result import DerivationResult, ElementRecord
+
+#: Words for the cause kinds of :data:`wheeled_dyn.compare.result.CAUSE_KINDS`.
+KIND_TEXT = {
+    "convention": "convention", "quasi_coordinate_christoffel": "quasi-coordinate Christoffel",
+    "constraint_in_lagrangian": "constraint substituted into the Lagrangian",
+    "c_inconsistent_with_a": "C not consistent with the document's own A",
+    "claimed_relation": "claimed relation is wrong", "upstream_step": "an earlier step",
+    "sign": "sign", "power": "power", "factor": "factor", "swap": "swapped symbol",
+    "swapped_inputs": "swapped inputs", "dimension": "units", "missing_physics": "missing physics",
+    "assumption": "holds only if", "energy": "energy", "not_positive_definite":
+    "A not positive definite", "file_error": "error of the derivation file",
+    # kinds of the grouping by diagnosis
+    "extra": "extra term", "missing": "missing term", "factorization": "factorisation of C only",
+    "differs": "differs",
+}
+#: Verdicts that are shown as findings (everything but "agrees").
+SHOWN_VERDICTS = ("differs", "factorization", "agrees_if", "undecided")
+#: Elements named in one summary line before "+N".
+NAMED_IN_LINE = 4
+
+
+@dataclass(frozen=True)
+class CauseLine:
+    r"""One reason as the reports show it: ``kind`` (a key of :data:`KIND_TEXT`), the
+    ``elements`` it explains, a sentence, optional LaTeX; ``computed``: from the result's
+    causes (True) or from grouping the elements by diagnosis (False)."""
+
+    kind: str
+    elements: tuple[str, ...]
+    text: str
+    latex: str = ""
+    computed: bool = True
+
+    def one_line(self, label: Callable[[str], str] = str) -> str:
+        r"""``kind: sentence — A[1,1], A[1,3] +2``; ``label`` writes an element's name."""
+        named = ", ".join(label(e) for e in self.elements[:NAMED_IN_LINE])
+        more = len(self.elements) - NAMED_IN_LINE
+        where = f" — {named}" + (f" +{more}" if more > 0 else "") if self.elements else ""
+        label = KIND_TEXT.get(self.kind, self.kind.replace("_", " "))
+        text = self.text if not self.text.lower().startswith(label.lower()) else self.text[len(label):].lstrip(": ")
+        return f"{label}: {text}{where}"
+
+
+def _numbers(text: str) -> tuple[int, ...]:
+    m = re.search(r"\d+(?:\.\d+)*", text or "")
+    return tuple(int(x) for x in m.group(0).split(".")) if m else ()
+
+
+def order_key(result: DerivationResult) -> tuple:
+    r"""Sort key: the document's own order (see the module text)."""
+    src = result.source
+    declared = tuple(result.order) if result.order else (
+        tuple(float(x) for x in re.findall(r"-?\d+(?:\.\d+)?", str(src.get("order", "")))))
+    section = _numbers(str(src.get("section", "")))
+    equation = _numbers(str(src.get("equations", "")))
+    return (0 if declared else 1, declared, section or (10 ** 6,), equation or (10 ** 6,),
+            result.path.name)
+
+
+def ordered(results: Sequence[DerivationResult]) -> list[DerivationResult]:
+    r"""``results`` in the document's own order."""
+    return sorted(results, key=order_key)
+
+
+def anchor(result: DerivationResult) -> str:
+    r"""The id of a derivation's section: ``d-`` and the file's stem."""
+    return "d-" + re.sub(r"[^A-Za-z0-9_-]", "-", result.path.stem)
+
+
+def element_anchor(result: DerivationResult, element: str) -> str:
+    r"""The id of one element's entry: ``A[2,1]`` → ``d-eq25_lagrange-A-2-1``."""
+    return anchor(result) + "-" + "-".join(x for x in re.split(r"[^A-Za-z0-9_]+", element) if x)
+
+
+def equations(result: DerivationResult) -> str:
+    r"""The document and equations, short: ``seed 001 §4.3.3 (25)``."""
+    src = result.source
+    section = str(src.get("section", "")).strip()
+    eq = str(src.get("equations", "")).split(":")[0].strip()
+    parts = [str(src.get("document", "")).strip(), f"§{section}" if section and
+             section[0].isdigit() else section, eq]
+    return " ".join(p for p in parts if p)
+
+
+def _diagnosis_kind(record: ElementRecord, diagnosis: str) -> str:
+    if record.verdict == "agrees_if":
+        return "assumption"
+    if record.verdict == "factorization":
+        return "factorization"
+    head = diagnosis.split(":")[0].strip().split(" ")[0]
+    return {"missing": "missing", "extra": "extra", "dimension": "dimension", "sign": "sign",
+            "factor": "factor", "swap": "swap", "power": "power"}.get(head, "differs")
+
+
+def _group_sentence(kind: str, diagnosis: str) -> str:
+    if kind == "factorization":
+        return "only the factorisation of C differs; C q̇ agrees"
+    if kind in ("missing", "extra"):
+        return diagnosis.split(":", 1)[-1].strip() if ":" in diagnosis else diagnosis
+    if kind == "assumption":
+        return re.sub(r"^agrees only if\s*", "", diagnosis)
+    return diagnosis.split(":", 1)[1].strip() if ":" in diagnosis and kind != "differs" else diagnosis
+
+
+def _first_diagnosis(record: ElementRecord) -> str:
+    useful = [d for d in record.diagnoses if not d.startswith("truth − document")]
+    if record.verdict == "agrees_if":
+        useful = [d for d in useful if d.startswith("agrees only")] or useful
+    return useful[0] if useful else {"differs": "no single-term diagnosis",
+                                     "undecided": "values not finite"}.get(record.verdict,
+                                                                           record.verdict)
+
+
+#: Order of the grouped kinds: typos, then physics, factorisation, conditions.
+_GROUP_ORDER = ("dimension", "sign", "power", "factor", "swap", "missing", "extra", "differs",
+                "factorization", "assumption")
+
+
+def cause_lines(result: DerivationResult) -> list[CauseLine]:
+    r"""The causes of a derivation, most important first (see the module text)."""
+    if result.causes:
+        return [CauseLine(c.kind, tuple(c.elements), c.explanation, c.latex) for c in result.causes]
+    groups: dict[tuple[str, str], list[str]] = {}
+    for r in result.records:
+        if r.verdict not in SHOWN_VERDICTS:
+            continue
+        first = _first_diagnosis(r)
+        kind = _diagnosis_kind(r, first)
+        groups.setdefault((kind, _group_sentence(kind, first)), []).append(r.element)
+    rank = {k: i for i, k in enumerate(_GROUP_ORDER)}
+    keys = sorted(groups, key=lambda k: (rank.get(k[0], len(rank)), -len(groups[k])))
+    return [CauseLine(k, tuple(groups[(k, s)]), s, computed=False) for k, s in keys]
+
+
+def row_factor_line(result: DerivationResult) -> str:
+    r"""A sentence on the rows the document multiplied by a constant, or ``""``."""
+    rows = [(i + 1, c) for i, c in enumerate(result.row_factors) if c]
+    if not rows:
+        return ""
+    factors = {c for _, c in rows}
+    which = ", ".join(str(i) for i, _ in rows)
+    if len(factors) == 1:
+        c = rows[0][1]
+        rows_are = f"rows {which} of the document are" if len(rows) > 1 else \
+            f"row {which} of the document is"
+        return (f"{rows_are} {c} × the equations of motion (a factor the file does not "
+                f"declare): divided by {c} before comparing; the document's numbers and its "
+                "expressions in the model's parameters are shown after that division")
+    return ("rows of the document are multiplied by constants the file does not declare ("
+            + ", ".join(f"row {i}: {c}" for i, c in rows) + "): each is divided out before "
+            "comparing, and the document's numbers and expressions below are shown after that")
+
+
+def assumes_line(result: DerivationResult, file_assumptions: dict[str, str] | None = None) -> str:
+    r"""The "assumes:" line: the result's ``assumes``, else the terms the file sets to a value
+    (``[assume]``), else a sentence saying none are declared."""
+    if result.assumes:
+        return "; ".join(result.assumes)
+    if file_assumptions:
+        return ("the file sets " + ", ".join(f"{k} = {v}" for k, v in file_assumptions.items())
+                + " (terms the model lacks); no other assumption is declared")
+    return "nothing declared by the file"
+
+
+def summary_entry(result: DerivationResult) -> dict[str, object]:
+    r"""The summary of one derivation for the JSON report (also the order of the report)."""
+    return {"id": anchor(result), "path": str(result.path), "title": result.title,
+            "equations": equations(result), "counts": result.counts(),
+            "causes": [c.one_line() for c in cause_lines(result)],
+            "row_factors": row_factor_line(result),
+            "causes_computed": bool(result.causes), "assumes": list(result.assumes)}
