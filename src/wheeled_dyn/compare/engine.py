@@ -133,7 +133,8 @@ class ComparisonEngine:
         r"""The comparison of one derivation (memoised per file and content)."""
         key = (str(d.path), d.path.stat().st_mtime_ns if d.path.exists() else 0)
         if key not in self._results:
-            self._results[key] = self._compare(d)
+            from .steps import with_steps          # earlier steps, upstream causes
+            self._results[key] = with_steps(d, self._compare, self.seed)
         return self._results[key]
 
     def _compare(self, d: Derivation) -> DerivationResult:

@@ -19,6 +19,8 @@ from ..paths import DATA_DIR
 BUILTIN_DIR = DATA_DIR / "derivations"
 #: Files in a group folder whose name ends so are comparison tables, not derivations.
 TABLE_SUFFIX = "_table.toml"
+#: Files of earlier steps only (kinematics, energies ...) that feed the derivations they name.
+STEPS_SUFFIX = "_steps.toml"
 
 
 def derivation_files(paths: Iterable[str | Path]) -> list[Path]:
@@ -28,7 +30,8 @@ def derivation_files(paths: Iterable[str | Path]) -> list[Path]:
     for entry in paths:
         p = Path(entry)
         if p.is_dir():
-            files.extend(f for f in sorted(p.glob("*.toml")) if not f.name.endswith(TABLE_SUFFIX))
+            files.extend(f for f in sorted(p.glob("*.toml"))
+                         if not f.name.endswith((TABLE_SUFFIX, STEPS_SUFFIX)))
         else:
             files.append(p)
     return files

@@ -36,10 +36,11 @@ from .expressions import (RESERVED_NAMES, ExpressionError, UndeclaredNameError,
 from .matrices import MatrixReader
 from .schema import Derivation, SymbolSpec
 from .source import SourceText, read_toml
+from .steps import read_steps
 
 TOP_LEVEL_KEYS: tuple[str, ...] = ("title", "model", "source", "coordinates", "inputs",
                                    "symbols", "assume", "definitions", "rows", "matrices",
-                                   "constraints", "reconstructed")
+                                   "constraints", "reconstructed", "step", "feeds")
 SYMBOL_KEYS: tuple[str, ...] = ("value", "units", "meaning", "input", "free", "latex")
 
 
@@ -274,7 +275,8 @@ def load_derivation(path: str | Path, *, parameters: Collection[str] | None = No
                           for i, t in enumerate(scale))
 
     reader = MatrixReader(ld, n, input_symbols)
-    matrices = reader.read(ld.table("matrices", required=True))
+    mtable = ld.table("matrices", required="step" not in data)   # a file of steps only
+    matrices = reader.read(mtable) if mtable else {}
 
     constraints = None
     ctable = ld.table("constraints")
@@ -305,7 +307,10 @@ def load_derivation(path: str | Path, *, parameters: Collection[str] | None = No
         G=matrices.get("G"), equations=reader.equations, constraints=constraints,
         missing=tuple(reader.missing), reconstructed=MappingProxyType(dict(reconstructed)),
         positions=positions, velocities=velocities, accelerations=accelerations,
-        namespace=MappingProxyType(dict(ld.names)))
+        namespace=MappingProxyType(dict(ld.names)),
+        steps=read_steps(data.get("step"), src.lines, n,
+                         lambda text, item: ld.expr(text, item, None, "step"), ld.fail),
+        feeds=tuple(str(f) for f in data.get("feeds", ())))
 
 
 def load_derivations(paths: Iterable[str | Path], *, parameters: Collection[str] | None = None,

@@ -109,6 +109,8 @@ class Derivation:
     velocities: tuple[sympy.Symbol, ...]
     accelerations: tuple[sympy.Symbol, ...]
     namespace: Mapping[str, sympy.Symbol]
+    steps: tuple = ()               # earlier steps as printed (:class:`.steps.Step`)
+    feeds: tuple[str, ...] = ()     # stems of the derivation files these steps lead to
 
     @property
     def form(self) -> str:

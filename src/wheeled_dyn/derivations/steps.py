@@ -1,0 +1,208 @@
+r"""Steps of a derivation before its equations of motion: the ``[[step]]`` tables of a file.
+
+A hand derivation is a chain — kinematics, energies, constraints, generalized forces — and each
+link is printed under an equation label. A ``[[step]]`` table records one such result as
+printed, in the file's namespace (positions :math:`q`, velocities :math:`\nu`, accelerations
+:math:`\dot\nu`, symbols, definitions):
+
+=========================== ============================================================
+``kind``                    what ``components`` (or ``value``, ``relations``) hold
+=========================== ============================================================
+``velocity``                velocity of a point of ``body`` (``point``: ``"origin"``,
+                            ``"com"``, ``"contact"`` or ``[x, y, z]`` in the body's frame)
+``acceleration``            its acceleration (inertial, :math:`\ddot{\mathbf r}`)
+``angular velocity``        angular velocity :math:`\omega` of ``body``
+``angular acceleration``    :math:`\dot\omega` (inertial derivative)
+``kinetic energy``          ``value``: kinetic energy of ``bodies`` (default: all)
+``potential energy``        ``value``: gravity potential of ``bodies`` (up to a constant)
+``constraint``              ``relations``: velocity constraints ``"lhs = rhs"`` (linear in
+                            :math:`\nu`) or configuration constraints (no velocities)
+``claim``                   ``relations`` between coordinates or between parameters
+``generalized force``       ``components`` of Kane's generalized inertia forces
+                            (``quantity = "inertia"``: :math:`F^* = -(A\dot\nu + h)`) or of
+                            the inertial left side (``quantity = "inertial terms"``:
+                            :math:`A\dot\nu + h`), for the document's ``rows``
+=========================== ============================================================
+
+Vectors are expressed in ``frame`` (``"world"``, ``"heading"`` — turning with the heading
+angle only: x forward, y left, z up — or a link name) along the document's ``axes``
+(default ``["x", "y", "z"]``; e.g. ``["x", "z", "-y"]`` for a frame with x forward, y up and z
+to the right written over the heading frame). ``given`` names special parameter families of
+the model under which the document states the step (``"no_products"``, ``"disc_wheels"`` ...).
+Every step carries its document ``equation`` label as printed (``"(57)"``, ``"1.11"``).
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import sympy
+
+from ..errors import DerivationError
+
+#: Kinds of steps a file can record (a subset of :data:`wheeled_dyn.compare.result.STEPS`).
+STEP_KINDS: tuple[str, ...] = ("velocity", "angular velocity", "acceleration",
+                               "angular acceleration", "kinetic energy", "potential energy",
+                               "constraint", "claim", "generalized force")
+VECTOR_KINDS = STEP_KINDS[:4]
+#: Named points of a body.
+POINTS: tuple[str, ...] = ("origin", "com", "contact")
+#: Frames every model has; any link name is a frame too.
+FRAMES: tuple[str, ...] = ("world", "heading")
+AXES: tuple[str, ...] = ("x", "y", "z", "-x", "-y", "-z")
+QUANTITIES: tuple[str, ...] = ("inertia", "inertial terms")
+STEP_KEYS: tuple[str, ...] = ("equation", "kind", "label", "body", "bodies", "point", "frame",
+                              "axes", "components", "value", "relations", "quantity", "rows",
+                              "given", "note")
+#: An element the extracted text lost.
+LOST = "?"
+
+
+@dataclass(frozen=True)
+class Step:
+    r"""One printed step. ``components`` are document expressions (``sympy.nan`` where the
+    text lost one): vector components along ``axes``, the energy (one), the relations as
+    left side minus right side, or the generalized forces of ``rows`` (0-based).
+    ``printed`` keeps the text of each component as written."""
+
+    equation: str
+    kind: str
+    components: tuple[sympy.Expr, ...]
+    printed: tuple[str, ...]
+    label: str = ""
+    body: str | None = None
+    bodies: tuple[str, ...] = ()
+    point: str | tuple[sympy.Expr, ...] = "origin"
+    frame: str = "world"
+    axes: tuple[str, ...] = ("x", "y", "z")
+    quantity: str = "inertia"
+    rows: tuple[int, ...] = ()
+    given: tuple[str, ...] = ()
+    note: str = ""
+    line: int | None = None
+    sides: tuple[tuple[sympy.Expr, sympy.Expr], ...] = ()    # relations: (lhs, rhs)
+
+    @property
+    def name(self) -> str:
+        r"""How reports name the step: its label, else its kind and equation."""
+        return f"{self.equation} {self.label}".strip() if self.label else \
+            f"{self.equation} {self.kind}".strip()
+
+    def component_names(self) -> tuple[str, ...]:
+        r"""Names of the components as reports print them (``x``, ``-z``, ``row 2``, ...)."""
+        if self.kind in VECTOR_KINDS:
+            return self.axes
+        if self.kind == "generalized force":
+            return tuple(f"row {r + 1}" for r in self.rows)
+        if self.kind in ("constraint", "claim"):
+            return tuple(f"relation {i + 1}" for i in range(len(self.components)))
+        return ("value",)
+
+
+def _header_lines(lines: list[str]) -> list[int]:
+    return [i + 1 for i, text in enumerate(lines) if re.match(r"^\s*\[\[\s*step\s*\]\]", text)]
+
+
+def read_steps(raw: Any, lines: list[str], n: int, expr: Callable[[Any, str], sympy.Expr],
+               fail: Callable[[str, str, int | None], DerivationError]) -> tuple[Step, ...]:
+    r"""Parse the ``[[step]]`` array. ``expr(text, item)`` parses one document expression,
+    ``fail(item, reason, line)`` builds the error; ``n`` is the number of positions."""
+    if raw is None:
+        return ()
+    if not isinstance(raw, list) or not all(isinstance(t, dict) for t in raw):
+        raise fail("step", "expected [[step]] tables", None)
+    headers = _header_lines(lines)
+    return tuple(_step(t, k, headers[k] if k < len(headers) else None, n, expr, fail)
+                 for k, t in enumerate(raw))
+
+
+def _strings(table: dict, key: str, item: str, line, fail) -> tuple[str, ...]:
+    value = table.get(key, [])
+    if isinstance(value, str):
+        value = [value]
+    if not isinstance(value, list) or not all(isinstance(v, (str, int, float)) and
+                                              not isinstance(v, bool) for v in value):
+        raise fail(f"{item}.{key}", "expected a list of strings", line)
+    return tuple(str(v) for v in value)
+
+
+def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
+    label = str(t.get("equation", ""))
+    item = f"step {k + 1}" + (f" {label}" if label else "")
+    for key in t:
+        if key not in STEP_KEYS:
+            raise fail(f"{item}.{key}", "unknown key; valid: " + ", ".join(STEP_KEYS), line)
+    if not label.strip():
+        raise fail(item, "every step needs its document label: equation = \"(57)\"", line)
+    kind = t.get("kind")
+    if kind not in STEP_KINDS:
+        raise fail(f"{item}.kind", f"{kind!r} is not a step kind; valid: "
+                   + ", ".join(STEP_KINDS), line)
+
+    def parse(text: Any, where: str) -> sympy.Expr:
+        if isinstance(text, str) and text.strip() == LOST:
+            return sympy.nan
+        return expr(text, where)
+
+    extra: dict[str, Any] = {}
+    if kind in VECTOR_KINDS:
+        body = t.get("body")
+        if not isinstance(body, str) or not body:
+            raise fail(f"{item}.body", "a vector step names its body (a link of the model)", line)
+        axes = _strings(t, "axes", item, line, fail) or ("x", "y", "z")
+        bad = [a for a in axes if a not in AXES]
+        if bad or len(axes) != len(set(a.lstrip("-") for a in axes)):
+            raise fail(f"{item}.axes", f"axes are distinct among {', '.join(AXES)}", line)
+        texts = _strings(t, "components", item, line, fail)
+        if len(texts) != len(axes):
+            raise fail(f"{item}.components", f"{len(texts)} components for {len(axes)} axes", line)
+        point = t.get("point", "origin")
+        if isinstance(point, list):
+            if len(point) != 3:
+                raise fail(f"{item}.point", "a point is [x, y, z] in the body's frame", line)
+            point = tuple(expr(p, f"{item}.point") for p in point)
+        elif point not in POINTS:
+            raise fail(f"{item}.point", f"{point!r}: expected one of {', '.join(POINTS)} or "
+                       "[x, y, z] in the body's frame", line)
+        frame = t.get("frame", "world")
+        if not isinstance(frame, str) or not frame:
+            raise fail(f"{item}.frame", "expected world, heading or a link name", line)
+        extra = dict(body=body, axes=axes, point=point, frame=frame)
+    elif kind in ("kinetic energy", "potential energy"):
+        if "value" not in t:
+            raise fail(f"{item}.value", "an energy step gives value = \"...\"", line)
+        texts = (str(t["value"]),)
+        extra = dict(bodies=_strings(t, "bodies", item, line, fail))
+    elif kind in ("constraint", "claim"):
+        texts = _strings(t, "relations", item, line, fail)
+        if not texts or any(s.count("=") != 1 for s in texts):
+            raise fail(f"{item}.relations", "expected relations = [\"lhs = rhs\", ...], one "
+                       "'=' each", line)
+    else:
+        quantity = t.get("quantity", "inertia")
+        if quantity not in QUANTITIES:
+            raise fail(f"{item}.quantity", f"expected one of {', '.join(QUANTITIES)}", line)
+        texts = _strings(t, "components", item, line, fail)
+        rows = t.get("rows", list(range(1, len(texts) + 1)))
+        if not isinstance(rows, list) or len(rows) != len(texts) or not all(
+                isinstance(r, int) and not isinstance(r, bool) and 1 <= r <= n for r in rows):
+            raise fail(f"{item}.rows", f"one row number (1 to {n}) per component", line)
+        extra = dict(quantity=quantity, rows=tuple(r - 1 for r in rows))
+    components, sides = [], []
+    for i, text in enumerate(texts):
+        where = f"{item} component {i + 1}"
+        if kind in ("constraint", "claim"):
+            lhs, rhs = (parse(side, where) for side in text.split("="))
+            sides.append((lhs, rhs))
+            components.append(lhs - rhs)
+        else:
+            components.append(parse(text, where))
+    return Step(equation=label, kind=kind, components=tuple(components), printed=texts,
+                label=str(t.get("label", "")), given=_strings(t, "given", item, line, fail),
+                note=str(t.get("note", "")), line=line, sides=tuple(sides), **extra)
+
+
+__all__ = ["Step", "STEP_KINDS", "read_steps"]
