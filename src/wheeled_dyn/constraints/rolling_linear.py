@@ -96,3 +96,54 @@ def state_matrix(lin: LinearModel, rate_of: Sequence[int]) -> np.ndarray:
     top = np.hstack([np.zeros((k, k)), E])
     bottom = np.hstack([-np.linalg.solve(lin.M, lin.K), -np.linalg.solve(lin.M, lin.D)])
     return np.vstack([top, bottom])
+
+
+@dataclass(frozen=True)
+class SpeedForm:
+    r"""Linearised equations of a vehicle about straight running at speed :math:`v`, in the
+    form of Meijaard et al. (2007):
+    :math:`M\ddot p + v\,C_1\dot p + (g K_0 + v^2 K_2)\,p = f`."""
+
+    M: np.ndarray
+    C1: np.ndarray
+    K0: np.ndarray
+    K2: np.ndarray
+    g: float
+
+    def state_matrix(self, speed: float) -> np.ndarray:
+        r""":math:`\dot x = A(v)\,x`, :math:`x = (p, \dot p)`."""
+        k = self.M.shape[0]
+        Minv = np.linalg.inv(self.M)
+        K = self.g * self.K0 + speed ** 2 * self.K2
+        return np.block([[np.zeros((k, k)), np.eye(k)], [-Minv @ K, -speed * Minv @ self.C1]])
+
+    def eigenvalues(self, speeds: np.ndarray) -> np.ndarray:
+        r"""Eigenvalues (N × 2k, each row sorted by real part) at N speeds, in one batched
+        call."""
+        speeds = np.atleast_1d(np.asarray(speeds, dtype=float))
+        k = self.M.shape[0]
+        Minv = np.linalg.inv(self.M)
+        A = np.zeros((len(speeds), 2 * k, 2 * k))
+        A[:, :k, k:] = np.eye(k)
+        A[:, k:, :k] = -(self.g * Minv @ self.K0)[None] - speeds[:, None, None] ** 2 * (
+            Minv @ self.K2)[None]
+        A[:, k:, k:] = -speeds[:, None, None] * (Minv @ self.C1)[None]
+        ev = np.linalg.eigvals(A)
+        return np.take_along_axis(ev, np.argsort(ev.real + 1e-9 * ev.imag, axis=1), axis=1)
+
+
+def speed_form(red: RollingReduction, q0: np.ndarray, positions: Sequence[str],
+               unit: np.ndarray, rates: Sequence[int], g: float) -> tuple[SpeedForm, LinearModel,
+                                                                            LinearModel]:
+    r"""The :class:`SpeedForm` of the true reduced dynamics from two linearisations, at rest
+    and at the independent velocities ``unit`` of unit forward speed (the reduced forces are
+    quadratic in :math:`\nu`, so :math:`K(v) = K(0) + v^2 (K(1) - K(0))` and
+    :math:`D(v) = v\,D(1)` exactly). ``rates[i]`` is the velocity that is ``positions[i]``'s
+    rate. Also returns the two linear models (their other rows and columns carry the couplings
+    to the remaining velocities, zero for a symmetric vehicle)."""
+    rest = linearise(red, q0, positions, np.zeros_like(unit))
+    moving = linearise(red, q0, positions, unit)
+    sel = list(rates)
+    form = SpeedForm(rest.M[np.ix_(sel, sel)], moving.D[np.ix_(sel, sel)], rest.K[sel] / g,
+                     moving.K[sel] - rest.K[sel], g)
+    return form, rest, moving

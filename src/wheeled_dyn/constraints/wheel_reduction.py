@@ -194,6 +194,9 @@ class RollingReduction:
         def rhs(t: float, y: np.ndarray) -> np.ndarray:
             qq, nn = y[:nq], y[nq:]
             A_nu, force, v = self.mass_and_force(qq, nn, control(t, qq, nn))
+            if not (np.all(np.isfinite(A_nu)) and np.all(np.isfinite(force))):
+                raise StateError(None, float(t), "a state where the reduced equations are "
+                                 "finite (the motion reached a singular configuration)")
             return np.concatenate([v, np.linalg.solve(A_nu, force)])
 
         times = np.linspace(0.0, duration, int(round(duration * rate)) + 1)

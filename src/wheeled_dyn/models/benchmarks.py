@@ -24,11 +24,13 @@ gyroscope           seed 000, 7.7    rotor on an axle pivoted at one end
 sphere_plane        seed 002         uniform ball rolling on the ground
 sphere_sphere       seed 002         uniform ball rolling on a fixed sphere
 rolling_coin        textbook         uniform thin disk rolling and leaning on the ground
+bicycle             Meijaard 2007    Whipple bicycle at the benchmark parameters (Table 1)
 =================== ================ ==========================================================
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 
 from ..paths import urdf_dir
@@ -103,4 +105,12 @@ BENCHMARKS: tuple[tuple[str, str, Callable[[], ModelSpec]], ...] = (
             "z, heading psi, lean phi, spin theta; z follows from the lean (contact)",
             body="coin", geometry={"R": COIN_RADIUS},
             rolling_wheels=(WheelContact("coin", COIN_RADIUS, axis=(0.0, 1.0, 0.0)),))),
+    ("bicycle", "Whipple bicycle, benchmark parameters of Meijaard et al. 2007 (roll, steer)",
+     _fixed("bicycle", "bicycle.urdf", "rear frame with rider, fork and handlebar, two "
+            "knife-edge wheels (Meijaard, Papadopoulos, Ruina, Schwab 2007, Table 1); rear hub "
+            "x, y, z, yaw, roll, pitch, rear_wheel, steer, front_wheel; z and pitch follow "
+            "from the contacts", body="rear_frame", actuated=("roll", "steer"),
+            inputs=("T_phi", "T_delta"),
+            geometry={"rR": 0.3, "rF": 0.35, "w": 1.02, "c": 0.08, "lambda": math.pi / 10},
+            rolling_wheels=(WheelContact("rear_wheel", 0.3), WheelContact("front_wheel", 0.35)))),
 )

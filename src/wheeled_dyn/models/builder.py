@@ -361,8 +361,8 @@ def _build_unwheeled(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
     for wc in spec.rolling_wheels:
         source.link(wc.link)
         axis = np.asarray(wc.axis, dtype=float)
-        rolling_wheels.append(BoundWheelContact(wc, model.getFrameId(wc.link),
-                                                axis / np.linalg.norm(axis),
+        frame = model.getFrameId(wc.link, pin.FrameType.BODY)
+        rolling_wheels.append(BoundWheelContact(wc, frame, axis / np.linalg.norm(axis),
                                                 np.asarray(wc.centre, dtype=float)))
     return WheeledModel(spec.name, spec, model, geom, (), coordinate_names, inputs, geometry,
                         body_jid, tuple(actuated), contact, tuple(rolling_wheels))
