@@ -56,7 +56,7 @@ AXES: tuple[str, ...] = ("x", "y", "z", "-x", "-y", "-z")
 QUANTITIES: tuple[str, ...] = ("inertia", "inertial terms")
 STEP_KEYS: tuple[str, ...] = ("equation", "kind", "label", "body", "bodies", "point", "frame",
                               "axes", "components", "value", "relations", "quantity", "rows",
-                              "given", "note")
+                              "given", "note", "names")
 #: An element the extracted text lost.
 LOST = "?"
 
@@ -84,6 +84,7 @@ class Step:
     note: str = ""
     line: int | None = None
     sides: tuple[tuple[sympy.Expr, sympy.Expr], ...] = ()    # relations: (lhs, rhs)
+    names: tuple[str, ...] = ()          # the document's names of the components (i, j, k)
 
     @property
     def name(self) -> str:
@@ -93,6 +94,8 @@ class Step:
 
     def component_names(self) -> tuple[str, ...]:
         r"""Names of the components as reports print them (``x``, ``-z``, ``row 2``, ...)."""
+        if self.names:
+            return self.names
         if self.kind in VECTOR_KINDS:
             return self.axes
         if self.kind == "generalized force":
@@ -191,6 +194,9 @@ def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
                 isinstance(r, int) and not isinstance(r, bool) and 1 <= r <= n for r in rows):
             raise fail(f"{item}.rows", f"one row number (1 to {n}) per component", line)
         extra = dict(quantity=quantity, rows=tuple(r - 1 for r in rows))
+    names = _strings(t, "names", item, line, fail)
+    if names and len(names) != len(texts):
+        raise fail(f"{item}.names", f"{len(names)} names for {len(texts)} components", line)
     components, sides = [], []
     for i, text in enumerate(texts):
         where = f"{item} component {i + 1}"
@@ -202,7 +208,7 @@ def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
             components.append(parse(text, where))
     return Step(equation=label, kind=kind, components=tuple(components), printed=texts,
                 label=str(t.get("label", "")), given=_strings(t, "given", item, line, fail),
-                note=str(t.get("note", "")), line=line, sides=tuple(sides), **extra)
+                note=str(t.get("note", "")), line=line, sides=tuple(sides), names=names, **extra)
 
 
 __all__ = ["Step", "STEP_KINDS", "read_steps"]

@@ -1,0 +1,378 @@
+r"""Each step of a derivation against the truth, component by component and term by term.
+
+For the ``[[step]]`` tables of a derivation file (:mod:`wheeled_dyn.derivations.steps`): the
+truth on :data:`STEP_SETS` random parameter sets (of the families a step is ``given``) ×
+:data:`STEP_STATES` random states (:mod:`.kinematics_truth`), the document's components on the
+same samples, and one :class:`~.result.ElementRecord` per component (``step`` = the step's
+kind, ``equation`` = its label as printed) with the verdicts and diagnoses of :mod:`.diagnose`
+(sign, factor, missing, extra, a swapped symbol), plus:
+
+- its *terms*, when the component differs: each monomial of the velocities and accelerations
+  (:math:`\dot x\dot\psi`, :math:`\ddot\phi`) against the truth's coefficient, obtained by
+  evaluating the truth at unit velocities and accelerations
+  (:math:`b_{jk} = F(e_j+e_k) - F(e_j) - F(e_k) + F(0)`);
+- for a relation (constraint, claim): it is checked on the model's admissible motions (a
+  configuration relation through its rate, a claim between parameters on the parameter sets);
+  a right side that is a constant times the truth, sin written for cos, a power of a symbol
+  (R⁻² for R²), mismatched dimensions;
+- "agrees only if": the smallest combination of the model's special parameter families under
+  which a differing component agrees.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import replace
+
+import numpy as np
+import sympy as sp
+
+from ..constraints.reduction import CoordinateMap
+from ..derivations.schema import Derivation
+from ..derivations.steps import VECTOR_KINDS, Step
+from ..errors import DerivationError
+from .diagnose import agrees, max_error, nice_number, swap_diagnoses, value_diagnoses
+from .evaluate import derivation_coordinate_set, document_symbol_values
+from .kinematics_truth import Motion, along, check_links
+from .result import ElementRecord
+from .samples import parameter_sets, random_states, special_cases
+from .units import DimensionChecker, format_dim
+
+#: Parameter sets and states per set on which the steps are compared.
+STEP_SETS, STEP_STATES = 3, 40
+#: States per set on which the truth's coefficients are computed (only for differing components).
+DECOMPOSE_STATES = 8
+#: Smaller grid on which special parameter families are tried.
+SPECIAL_SETS, SPECIAL_STATES = 2, 12
+#: Kinds whose components are polynomial in the velocities and accelerations (decomposable).
+_TERMED = (*VECTOR_KINDS, "kinetic energy", "generalized force")
+_TRIG_SWAP = {sp.sin: sp.cos, sp.cos: sp.sin}
+
+
+class _Group:
+    r"""The samples, truth and document values of the steps sharing one parameter family."""
+
+    def __init__(self, d: Derivation, given: tuple[str, ...], seed: int,
+                 sets: int = STEP_SETS, states: int = STEP_STATES) -> None:
+        self.d, self.N = d, states
+        cases = {c.name: c for c in special_cases(d.model)}
+        for name in given:
+            if name not in cases:
+                raise DerivationError(d.path, "step.given", f"{name!r} is not a parameter family "
+                                      f"of model {d.model}; valid: " + ", ".join(cases))
+        rng = np.random.default_rng([seed, 11, len(given)])
+        self.sets = parameter_sets(d.model, sets, rng, tuple(cases[g] for g in given))
+        self.cs = derivation_coordinate_set(d, self.sets[0])
+        self.cmap = CoordinateMap(self.sets[0].model, self.cs)
+        n = len(self.cs.positions)
+        declared = dict(d.coordinates.raw.get("ranges", {}))
+        ranges = [tuple(declared.get(p, (-np.pi, np.pi))) for p in self.cs.positions]
+        q, nu = random_states(n, sets * states, rng, ranges)
+        self.q, self.nu, self.nudot = q, nu, rng.normal(size=nu.shape)
+        self.params = tuple(s.symbol for s in d.symbols.values() if not s.is_input)
+        self.values = [document_symbol_values(d, ps, rng) for ps in self.sets]
+        self.args = [*d.positions, *d.velocities, *d.accelerations, *self.params]
+
+    def truth(self, steps: Sequence[Step]) -> list[np.ndarray]:
+        r"""The truth of every step at every sample; the states are made admissible first."""
+        out = [np.zeros((len(self.q), len(s.components))) for s in steps]
+        for k, ps in enumerate(self.sets):
+            self.cmap.bind(ps.model)
+            check_links(ps.model, [b for s in steps for b in (*([s.body] if s.body else []),
+                                                              *s.bodies)])
+            data = ps.model.model.createData()
+            for i in range(k * self.N, (k + 1) * self.N):
+                m = Motion(self.cmap, data, self.q[i], self.nu[i], self.nudot[i])
+                self.nu[i], self.nudot[i] = m.nu, m.nudot
+                for s, arr in zip(steps, out):
+                    arr[i] = self._true(s, m, k)
+        return out
+
+    def coefficients(self, step: Step, monomials: Sequence[tuple[int, ...]]) -> dict:
+        r"""The truth's coefficient of each monomial (exponents over velocities then
+        accelerations) on the first :data:`DECOMPOSE_STATES` states of each set."""
+        n = len(self.cs.positions)
+        out = {m: [] for m in monomials}
+        for k, ps in enumerate(self.sets):
+            self.cmap.bind(ps.model)
+            data = ps.model.model.createData()
+            for i in range(k * self.N, k * self.N + min(DECOMPOSE_STATES, self.N)):
+                cache: dict[tuple, np.ndarray] = {}
+
+                def F(nu, nudot):
+                    key = (*nu, *nudot)
+                    if key not in cache:
+                        m = Motion(self.cmap, data, self.q[i], np.array(nu, float),
+                                   np.array(nudot, float), admissible=False)
+                        cache[key] = self._true(step, m, k)
+                    return cache[key]
+
+                zero = (0.0,) * n
+                unit = [tuple(float(j == i2) for i2 in range(n)) for j in range(n)]
+                c = F(zero, zero)
+                for mono in monomials:
+                    vel, acc = mono[:n], mono[n:]
+                    idx = [j for j, e in enumerate(vel) for _ in range(e)]
+                    if sum(acc) == 1 and not idx:
+                        val = F(zero, unit[acc.index(1)]) - c
+                    elif len(idx) == 1 and not sum(acc):
+                        j = idx[0]
+                        val = (F(unit[j], zero) - F(tuple(-x for x in unit[j]), zero)) / 2
+                    elif len(idx) == 2 and not sum(acc) and idx[0] == idx[1]:
+                        j = idx[0]
+                        val = (F(unit[j], zero) + F(tuple(-x for x in unit[j]), zero)) / 2 - c
+                    elif len(idx) == 2 and not sum(acc):
+                        j, l = idx
+                        both = tuple(a + b for a, b in zip(unit[j], unit[l]))
+                        val = F(both, zero) - F(unit[j], zero) - F(unit[l], zero) + c
+                    elif not idx and not sum(acc):
+                        val = c
+                    else:
+                        val = np.full(len(c), np.nan)     # not a term the truth can have
+                    out[mono].append(val)
+        return {m: np.array(v) for m, v in out.items()}
+
+    def sample_rows(self) -> np.ndarray:
+        return np.concatenate([np.arange(k * self.N, k * self.N + min(DECOMPOSE_STATES, self.N))
+                               for k in range(len(self.sets))])
+
+    def _true(self, s: Step, m: Motion, k: int) -> np.ndarray:
+        if s.kind in VECTOR_KINDS:
+            point = s.point
+            if isinstance(point, tuple):
+                point = np.array([float(sp.sympify(p).xreplace(self.values[k])) for p in point])
+            return along(m.vector(s.kind, s.body, point, s.frame), s.axes)
+        if s.kind == "kinetic energy":
+            return np.array([m.kinetic_energy(s.bodies)])
+        if s.kind == "potential energy":
+            return np.array([m.potential_energy(s.bodies)])
+        if s.kind == "generalized force":
+            f = m.inertial_terms()[list(s.rows)]
+            return -f if s.quantity == "inertia" else f
+        return np.zeros(len(s.components))      # a relation holds on the model's motions
+
+    def _rate(self, expr: sp.Expr) -> sp.Expr:
+        r"""A configuration relation's rate :math:`\sum_i \partial f/\partial q_i\,\dot q_i`
+        (holonomic sets); velocity relations and parameter claims as they are."""
+        d = self.d
+        if expr.has(*d.velocities) or not expr.has(*d.positions):
+            return expr
+        if self.cs.kind != "holonomic":
+            raise DerivationError(d.path, "step", "a relation between coordinates is checked "
+                                  "through its rate: it needs a holonomic coordinate set")
+        return sum((expr.diff(p) * v for p, v in zip(d.positions, d.velocities)), sp.Integer(0))
+
+    _fns: dict = {}
+
+    def _fn(self, expr: sp.Expr) -> Callable:
+        key = (tuple(self.args), expr)
+        if key not in _Group._fns:
+            _Group._fns[key] = sp.lambdify(self.args, expr, "numpy")
+        return _Group._fns[key]
+
+    def argv(self, rows: np.ndarray | None = None) -> list[np.ndarray]:
+        rows = np.arange(len(self.q)) if rows is None else rows
+        per = np.repeat(np.arange(len(self.sets)), self.N)[rows]
+        return [*self.q[rows].T, *self.nu[rows].T, *self.nudot[rows].T,
+                *(np.array([self.values[k][p] for k in per]) for p in self.params)]
+
+    def document(self, expr: sp.Expr, rows: np.ndarray | None = None) -> np.ndarray:
+        argv = self.argv(rows)
+        return np.broadcast_to(np.asarray(self._fn(expr)(*argv), dtype=float),
+                               (len(argv[0]),)).copy()
+
+
+def _monomial_name(mono: tuple[int, ...], names: Sequence[sp.Symbol]) -> str:
+    parts = [str(s) for s, e in zip(names, mono) for _ in range(e)]
+    return "*".join(parts) if parts else "1"
+
+
+def _terms(expr: sp.Expr, gens: Sequence[sp.Symbol]) -> dict[tuple[int, ...], sp.Expr] | None:
+    try:
+        return {m: c for m, c in sp.Poly(sp.expand(expr), *gens).terms()}
+    except sp.PolynomialError:
+        return None
+
+
+def _trig_swaps(expr: sp.Expr, g: _Group, T: np.ndarray, scale: float) -> list[str]:
+    found = []
+    for f in sorted(expr.atoms(sp.sin, sp.cos), key=sp.default_sort_key):
+        other = _TRIG_SWAP[f.func](*f.args)
+        if agrees(g.document(expr.xreplace({f: other})), T, scale):
+            found.append(f"swap: {sp.sstr(f)} where {sp.sstr(other)} fits")
+    return found
+
+
+def _power_swaps(expr: sp.Expr, g: _Group, T: np.ndarray, scale: float) -> list[str]:
+    found = []
+    factors = [f for term in sp.Add.make_args(sp.expand(expr)) for f in sp.Mul.make_args(term)]
+    for s in sorted(expr.free_symbols & set(g.params), key=str):
+        e = next((f.as_base_exp()[1] for f in factors if f.as_base_exp()[0] == s), 0)
+        for p in (-1, 2, sp.Rational(1, 2)):
+            if e != 0 and agrees(g.document(expr.xreplace({s: s ** p})), T, scale):
+                found.append(f"power: {sp.sstr(s ** e)} where {sp.sstr(s ** (e * p))} fits")
+    return found
+
+
+def _side_factor(g: _Group, sides: tuple[sp.Expr, sp.Expr], scale: float) -> list[str]:
+    r"""A relation whose right side is a constant c times what the left side is on the
+    model's motions: the true relation has the right side divided by c."""
+    L, R = (g.document(g._rate(x)) for x in sides)
+    if float(L @ L) <= 0 or float(R @ R) <= 0:
+        return []
+    c = float(R @ L / (L @ L))
+    if not agrees(R, c * L, scale):
+        return []
+    true = sp.nsimplify(sides[1] / sp.nsimplify(nice_number(c)))
+    return [f"factor: the right side is {nice_number(c)} × what the left side is on the "
+            f"model's motions; true: {sp.sstr(sides[0])} = {sp.sstr(true)}"]
+
+
+def _swap_groups(d: Derivation) -> list[list[sp.Symbol]]:
+    by_units: dict[str, list[sp.Symbol]] = {}
+    for spec in d.symbols.values():
+        if not spec.is_input and spec.units:
+            by_units.setdefault(spec.units.replace(" ", ""), []).append(spec.symbol)
+    return [list(d.velocities), list(d.positions), *[v for v in by_units.values() if len(v) > 1]]
+
+
+def _term_diagnoses(g: _Group, step: Step, j: int, expr: sp.Expr, scale: float) -> list[str]:
+    d = g.d
+    gens = [*d.velocities, *d.accelerations]
+    if step.kind not in _TERMED or (g.cs.kind == "holonomic" and g.cs.rolling == "multipliers"):
+        return []
+    doc = _terms(expr, gens)
+    if doc is None:
+        return []
+    n = len(d.velocities)
+    if step.kind in ("velocity", "angular velocity"):
+        candidates = [tuple(int(i == j2) for i in range(2 * n)) for j2 in range(n)]
+    else:
+        candidates = [tuple(int(i == n + j2) for i in range(2 * n)) for j2 in range(n)]
+        candidates += [tuple(int(i == a) + int(i == b) for i in range(2 * n))
+                       for a in range(n) for b in range(a, n)]
+    monos = list(dict.fromkeys([*candidates, *doc]))
+    truth = g.coefficients(step, monos)
+    rows = g.sample_rows()
+    values = {m: (g.document(doc.get(m, sp.Integer(0)), rows), truth[m][:, j]) for m in monos}
+    cscale = max([float(np.abs(v).max(initial=0.0)) for pair in values.values() for v in pair]
+                 + [1e-300])
+    out = []
+    for m, (D, T) in values.items():
+        if not np.all(np.isfinite(T)) or agrees(D, T, cscale):
+            continue
+        why = value_diagnoses(D, T, cscale) or ["differs"]
+        out.append(f"term {_monomial_name(m, gens)}: {why[0]}")
+    return out
+
+
+def _document_values(g: _Group, step: Step, T: np.ndarray):
+    r"""The document's values of each component (None where lost) and the step's scale: the
+    largest value on either side (for a relation, of either side's rate)."""
+    D_all, parts = [], []
+    for j, expr in enumerate(step.components):
+        lost = expr.has(sp.nan)
+        D_all.append(None if lost else g.document(g._rate(expr)))
+        if step.kind in ("constraint", "claim") and not lost:
+            parts += [g.document(g._rate(side)) for side in step.sides[j]]
+    scale = max([float(np.abs(a).max(initial=0.0))
+                 for a in (*[x for x in D_all if x is not None], T, *parts)
+                 if np.all(np.isfinite(a))] + [1e-300])
+    return D_all, scale
+
+
+def _special(d: Derivation, step: Step, seed: int) -> dict[int, str]:
+    r"""For the components that differ, the smallest combination of the model's special
+    parameter families (beyond the step's ``given``) under which they agree."""
+    cases = [c for c in special_cases(d.model) if c.name not in step.given]
+    memo: dict[tuple[str, ...], set[int]] = {}
+
+    def agreeing(names: tuple[str, ...]) -> set[int]:
+        if names not in memo:
+            g = _Group(d, step.given + names, seed, SPECIAL_SETS, SPECIAL_STATES)
+            T = g.truth([step])[0]
+            D_all, scale = _document_values(g, step, T)
+            memo[names] = {j for j, D in enumerate(D_all) if D is not None
+                           and np.all(np.isfinite(D)) and agrees(D, T[:, j], scale)}
+        return memo[names]
+
+    full = tuple(c.name for c in cases)
+    out = {}
+    for j in (agreeing(full) if cases else ()):
+        needed = list(full)
+        for name in full:
+            trial = tuple(x for x in needed if x != name)
+            if j in agreeing(trial):
+                needed = list(trial)
+        out[j] = " and ".join(c.description for c in cases if c.name in needed) or "always"
+    return out
+
+
+def _records(g: _Group, step: Step, index: int, T: np.ndarray) -> list[ElementRecord]:
+    d = g.d
+    names = step.component_names()
+    groups = _swap_groups(d)
+    dims = DimensionChecker(d)
+    recs = []
+    D_all, scale = _document_values(g, step, T)
+    for j, expr in enumerate(step.components):
+        D, Tj = D_all[j], T[:, j]
+        element = f"{step.name} {names[j]}"
+        common = dict(element=element, key="step", index=(index, j), document=step.printed[j],
+                      document_model="", truth=None, residual=None, step=step.kind,
+                      equation=step.equation)
+        if D is None or not np.all(np.isfinite(D)) or not np.all(np.isfinite(Tj)):
+            why = "lost in the extracted text: not compared" if D is None else \
+                "not finite at some samples"
+            recs.append(ElementRecord(verdict="undecided", diagnoses=(why,), max_error=float("nan"),
+                                      scale=scale, **common))
+            continue
+        diags: list[str] = []
+        expr = g._rate(step.components[j])
+        relation = step.kind in ("constraint", "claim")
+        if relation:
+            lhs, rhs = step.sides[j]
+            dl, dr = dims.dim(lhs, []), dims.dim(rhs, [])
+            if dl is not None and dr is not None and dl != dr:
+                diags.append(f"dimension: the left side is {format_dim(dl)}, the right side "
+                             f"{format_dim(dr)}")
+        ok = agrees(D, Tj, scale) and not diags
+        if not ok:
+            if relation:
+                diags += _side_factor(g, step.sides[j], scale)
+            else:
+                diags += value_diagnoses(D, Tj, scale)
+                diags += _term_diagnoses(g, step, j, expr, scale)
+            diags += swap_diagnoses(expr, groups, lambda a, b: g.document(expr.xreplace({a: b})),
+                                    Tj, scale)
+            diags += _trig_swaps(expr, g, Tj, scale)
+            if step.kind == "claim" and not expr.has(*d.positions, *d.velocities):
+                diags += _power_swaps(expr, g, Tj, scale)
+        recs.append(ElementRecord(verdict="agrees" if ok else "differs", diagnoses=tuple(diags),
+                                  max_error=max_error(D, Tj), scale=scale,
+                                  document_latex=sp.latex(expr), truth_sample=float(Tj[0]),
+                                  document_sample=float(D[0]), **common))
+    return recs
+
+
+def compare_steps(d: Derivation, seed: int = 2026) -> list[ElementRecord]:
+    r"""Records of every ``[[step]]`` of ``d``, in the file's order."""
+    by_given: dict[tuple[str, ...], list[int]] = {}
+    for i, s in enumerate(d.steps):
+        by_given.setdefault(s.given, []).append(i)
+    out: dict[int, list[ElementRecord]] = {}
+    for given, idx in by_given.items():
+        g = _Group(d, given, seed)
+        truths = g.truth([d.steps[i] for i in idx])
+        for i, T in zip(idx, truths):
+            out[i] = _records(g, d.steps[i], i, T)
+            todo = [r for r in out[i] if r.verdict == "differs"
+                    and not any(x.startswith("dimension") for x in r.diagnoses)]
+            special = _special(d, d.steps[i], seed) if todo else {}
+            out[i] = [replace(r, verdict="agrees_if", diagnoses=(
+                f"agrees only if {special[r.index[1]]}", *r.diagnoses))
+                if r in todo and r.index[1] in special else r for r in out[i]]
+    return [r for i in sorted(out) for r in out[i]]
+
+
+__all__ = ["STEP_SETS", "STEP_STATES", "compare_steps"]
