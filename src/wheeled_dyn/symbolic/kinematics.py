@@ -32,6 +32,7 @@ import pinocchio as pin
 import sympy as sp
 
 from ..errors import ModelError, UnknownNameError
+from .exact import exact_translation
 from .trigpoly import TrigRing
 
 #: Joint kinds accepted, by Pinocchio short name: (kind, fixed axis or None for "unaligned").
@@ -220,7 +221,7 @@ def kinematics_in_ring(model: pin.Model, q: Sequence[sp.Symbol], qd: Sequence[sp
         k = model.joints[j].idx_v
         place = model.jointPlacements[j]
         Rp = exact_matrix(place.rotation)
-        pp = sp.Matrix(moved[j]) if j in moved else exact_matrix(place.translation)
+        pp = sp.Matrix(moved[j]) if j in moved else exact_translation(place.translation)
         Rq = rodrigues(a, q[k]) if kind == "revolute" else sp.eye(3)
         joints.append((j, kind, k))
         flat += list(a) + list(Rp) + list(pp) + list(Rq)

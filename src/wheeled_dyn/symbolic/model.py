@@ -33,6 +33,7 @@ import pinocchio as pin
 import sympy as sp
 
 from ..errors import ModelError
+from .exact import exact_length, exact_translation
 from .kinematics import JointKinematics, exact_matrix, exact_number, joint_kinematics, \
     kinematics_in_ring
 from .lagrange import lagrange_terms
@@ -112,7 +113,7 @@ class SymbolicModel:
 def _gravity(model: pin.Model, gravity) -> sp.Matrix:
     where = model.name or "<pinocchio>"
     if gravity is None:
-        return exact_matrix(model.gravity.linear)
+        return exact_translation(model.gravity.linear)
     if isinstance(gravity, (str, int, float, sp.Expr)):
         mag = sp.Symbol(gravity) if isinstance(gravity, str) else sp.sympify(gravity)
         g0 = np.asarray(model.gravity.linear, dtype=float)
@@ -164,7 +165,7 @@ def symbolic_model(model: pin.Model, params: Mapping[int, Sequence] | None = Non
     g = _gravity(model, gravity)
     n = model.nv
     if armature is None:
-        arm = [exact_number(a) for a in model.armature]
+        arm = [exact_length(a) for a in model.armature]
     else:
         arm = [sp.sympify(a) for a in armature]
         if len(arm) != n:

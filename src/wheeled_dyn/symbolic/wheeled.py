@@ -61,6 +61,7 @@ from sympy.polys.matrices import DomainMatrix
 from ..coordinates.spec import CoordinateSet
 from ..errors import ModelError, UnknownNameError
 from ..models.builder import WheeledModel
+from .exact import exact_length, exact_model
 from .cache import _code_digest, cache_dir, cached_symbolic_model, model_fingerprint, store
 from .kinematics import exact_number
 from .model import SymbolicModel
@@ -171,8 +172,8 @@ def _numeric_setup(wm: WheeledModel, mode: str) -> dict:
         else:
             params[j] = [exact_number(x) for x in pi]
     return dict(params=params, gravity=None, translations=None, armature=None,
-                radius=[exact_number(w.radius) for w in wm.wheels],
-                geometry={k: exact_number(v) for k, v in wm.geometry.items()})
+                radius=[exact_length(w.radius) for w in wm.wheels],
+                geometry={k: exact_length(v) for k, v in wm.geometry.items()})
 
 
 def _setup(wm: WheeledModel, parameters: str) -> dict:
@@ -286,25 +287,21 @@ def wheeled_symbolic(wm: WheeledModel, cs: CoordinateSet, parameters: str = "phy
     return symbolic_parts(wm, cs, parameters, simplify, model_coordinates)[1]
 
 
-def symbolic_parts(wm: WheeledModel, cs: CoordinateSet, parameters: str = "physical",
-                   simplify: bool = True, model_coordinates: bool = False
-                   ) -> tuple[SymbolicModel, ReducedSymbolic]:
-    r"""(the model's :class:`~.model.SymbolicModel`, :func:`wheeled_symbolic`'s result)."""
-    setup = _setup(wm, parameters)
-    sym = cached_symbolic_model(wm.model, setup["params"], wm.coordinate_names,
-                                setup["gravity"], simplify, translations=setup["translations"],
-                                armature=setup["armature"], real=True)
-    if model_coordinates and cs.kind != "quasi":
-        raise ModelError(wm.name, cs.name, "terms in model coordinates need a quasi-velocity "
-                                           "set (kind = 'quasi')")
+def velocity_basis(wm: WheeledModel, cs: CoordinateSet, setup: Mapping, q: Sequence[sp.Symbol],
+                   qd: Sequence[sp.Symbol], J: sp.Matrix | None
+                   ) -> tuple[sp.Matrix, sp.Matrix, dict, tuple, tuple]:
+    r"""``(S, Sdot, config, pos, nu)`` of the coordinate set ``cs`` (module docstring) for
+    model coordinates ``q`` and velocities ``qd``: :math:`\dot q = S\nu`, ``Sdot`` in ``q, qd``;
+    ``config`` maps each model coordinate to its expression in the document positions ``pos``
+    (dummies, as ``nu``); ``J``: the contact rows (:func:`contact_rows`) or None."""
+    sym = type("_Coordinates", (), {"q": tuple(q), "qd": tuple(qd)})
     geo = _geometry_subs(cs, setup["geometry"])
     pos = tuple(sp.Dummy(p) for p in cs.positions)
     nu = tuple(sp.Dummy(v) for v in cs.velocities)
     doc = dict(zip(cs.position_symbols(), pos))
     config = {sym.q[i]: sp.sympify(cs.configuration.get(name, 0)).xreplace(doc).xreplace(geo)
               for i, name in enumerate(wm.coordinate_names)}
-    n, m = sym.n, len(nu)
-    J = contact_rows(sym, wm, setup["radius"]) if cs.rolling != "none" else None
+    n, m = len(sym.q), len(nu)
     if cs.kind == "holonomic":
         g = sp.Matrix([config[qi] for qi in sym.q])
         S = g.jacobian(list(pos))
@@ -326,6 +323,23 @@ def symbolic_parts(wm: WheeledModel, cs: CoordinateSet, parameters: str = "physi
                                  "velocities without rolling elimination")
             S = trig_solve(T, sp.eye(n))
         Sdot = time_derivative(S, sym.q, sym.qd)
+    return S, Sdot, config, pos, nu
+
+
+def symbolic_parts(wm: WheeledModel, cs: CoordinateSet, parameters: str = "physical",
+                   simplify: bool = True, model_coordinates: bool = False
+                   ) -> tuple[SymbolicModel, ReducedSymbolic]:
+    r"""(the model's :class:`~.model.SymbolicModel`, :func:`wheeled_symbolic`'s result)."""
+    setup = _setup(wm, parameters)
+    sym = cached_symbolic_model(exact_model(wm.model), setup["params"], wm.coordinate_names,
+                                setup["gravity"], simplify, translations=setup["translations"],
+                                armature=setup["armature"], real=True)
+    if model_coordinates and cs.kind != "quasi":
+        raise ModelError(wm.name, cs.name, "terms in model coordinates need a quasi-velocity "
+                                           "set (kind = 'quasi')")
+    J = contact_rows(sym, wm, setup["radius"]) if cs.rolling != "none" else None
+    S, Sdot, config, pos, nu = velocity_basis(wm, cs, setup, sym.q, sym.qd, J)
+    n = sym.n
     B = sp.Matrix(wm.input_matrix().astype(int)) if wm.input_matrix().size else None
     if model_coordinates:
         subs, coords = {}, sym.q
