@@ -179,3 +179,93 @@ def test_bad_input_is_reported():
         build_wheeled_model(ModelSpec(name="bad", urdf=urdf_dir() / "rolling_coin.urdf",
                                       body="coin", wheels=("coin", "coin"),
                                       rolling_wheels=(WheelContact("coin", 0.3),)))
+
+
+# -- wheels on different bodies: Upkie with its legs free --------------------------------------
+
+#: Independent velocities of Upkie: body pitch, the four leg joints, the left wheel.
+UPKIE_VELOCITIES = ("pitch", "left_hip", "left_knee", "right_hip", "right_knee", "left_wheel")
+#: Short zero-input run (s): the legs fold under gravity.
+UPKIE_RUN = 0.2
+
+
+def _upkie(rng, symmetric=False):
+    pytest.importorskip("upkie_description", reason="model upkie needs upkie-description")
+    wm = load_model("upkie")
+    red = RollingReduction(wm, UPKIE_VELOCITIES, ("z0", "roll"))
+    q = np.zeros(wm.nv)
+    q[2] = 0.5
+    q[[0, 1, 3]] = rng.uniform(-1, 1, 3)
+    q[4] = rng.uniform(-0.3, 0.3)
+    legs = rng.uniform(-0.6, 0.6, 2)
+    q[[6, 7]] = legs
+    q[[9, 10]] = -legs if symmetric else rng.uniform(-0.6, 0.6, 2)   # mirrored joint frames
+    q[[8, 11]] = rng.uniform(-3, 3, 2)
+    return wm, red, red.on_ground(q)
+
+
+def test_upkie_rolling_identities():
+    rng = np.random.default_rng(SEED + 6)
+    for _ in range(N_STATES):
+        wm, red, q = _upkie(rng)
+        assert np.abs(wheel_heights(wm, q)).max() < EXACT_TOL
+        nu = rng.normal(size=red.n)
+        S, v, _, _ = red.kinematics(q, nu)
+        assert np.abs(wheel_contact_velocities(wm, q, v)).max() < EXACT_TOL
+        _, dJ = wheel_jacobian(wm, q, v)
+        Jp, _ = wheel_jacobian(wm, pin.integrate(wm.model, q, FD_STEP * v))
+        Jm, _ = wheel_jacobian(wm, pin.integrate(wm.model, q, -FD_STEP * v))
+        assert np.abs((Jp - Jm) / (2 * FD_STEP) - dJ).max() < FD_TOL * max(1, np.abs(dJ).max())
+        t = red.terms(q, nu)
+        Ap = red.terms(pin.integrate(wm.model, q, FD_STEP * v), nu).A
+        Am = red.terms(pin.integrate(wm.model, q, -FD_STEP * v), nu).A
+        half_dA = 0.5 * nu @ ((Ap - Am) / (2 * FD_STEP)) @ nu
+        assert abs(nu @ t.h - half_dA) < FD_TOL * max(1.0, abs(half_dA))
+        lam, vdot = red.multipliers(q, nu)
+        nudot = red.acceleration(q, nu)
+        assert np.abs(vdot[red.index] - nudot).max() < EXACT_TOL * max(1, np.abs(nudot).max())
+    traj = red.simulate(q, nu * 0.1, UPKIE_RUN, rate=50)
+    assert traj.relative_energy_drift() < 1e-8
+    assert traj.drift < 1e-9
+
+
+def test_upkie_coaxial_wheels_lose_a_row():
+    r"""With both legs alike the wheels are coaxial: their lateral no-slip rows coincide (rank
+    5, the body may turn); otherwise the six rows are independent (rank 6, no turning without
+    slip), and six independent velocities no longer parametrise the coaxial case."""
+    rng = np.random.default_rng(SEED + 7)
+    wm, red, q = _upkie(rng, symmetric=True)
+    J, _ = wheel_jacobian(wm, q)
+    assert np.linalg.matrix_rank(J, tol=1e-9) == 5
+    with pytest.raises(StateError, match="parametrise"):
+        red.terms(q, np.zeros(red.n))
+    wm, red, q = _upkie(rng)
+    assert np.linalg.matrix_rank(wheel_jacobian(wm, q)[0], tol=1e-9) == 6
+
+
+@pytest.mark.parametrize("name", ["bicycle", "upkie", "rolling_coin"])
+def test_batch_equals_single(name):
+    from wheeled_dyn.constraints.wheel_batch import terms_batch
+    rng = np.random.default_rng(SEED + 8)
+    if name == "upkie":
+        states = [_upkie(rng)[2] for _ in range(N_STATES)]
+        wm, red, _ = _upkie(rng)
+    else:
+        wm = load_model(name)
+        red = (RollingReduction(wm, ("roll", "steer", "rear_wheel"), ("z", "pitch"))
+               if name == "bicycle" else RollingReduction(wm, ("psi", "phi", "theta"), ("z",)))
+        states = []
+        for _ in range(N_STATES):
+            q = np.zeros(wm.nv)
+            q[2] = 0.3
+            q[4] = rng.uniform(-0.3, 0.3)
+            q[[0, 1, 3]] = rng.uniform(-1, 1, 3)
+            q[5 if name == "rolling_coin" else 7] = rng.uniform(-0.5, 0.5)
+            states.append(red.on_ground(q))
+    qs, nus = np.array(states), rng.normal(size=(N_STATES, red.n))
+    batch = terms_batch(red, qs, nus)
+    for i in range(N_STATES):
+        single = red.terms(qs[i], nus[i])
+        for key in ("A", "C", "Q", "B", "h"):
+            diff = np.abs(getattr(batch, key)[i] - getattr(single, key))
+            assert diff.max(initial=0.0) < EXACT_TOL, key

@@ -90,11 +90,12 @@ class WheelPoint:
 
 
 def wheel_point(wm: WheeledModel, k: int, data: pin.Data) -> WheelPoint:
-    r"""Contact geometry of wheel ``k`` from ``data`` (frame placements up to date)."""
+    r"""Contact geometry of wheel ``k`` from ``data`` (joint placements up to date)."""
     wc = wm.rolling_wheels[k]
-    M = data.oMf[wc.frame_id]
-    a = M.rotation @ wc.axis
-    c = M.translation + M.rotation @ wc.centre
+    H = pin.updateFramePlacement(wm.model, data, wc.frame_id).homogeneous
+    R, o = H[:3, :3], H[:3, 3]
+    a = R @ wc.axis
+    c = o + R @ wc.centre
     u = _EZ - a[2] * a
     s = float(np.linalg.norm(u))
     if s < FLAT_TOL:
@@ -102,7 +103,7 @@ def wheel_point(wm: WheeledModel, k: int, data: pin.Data) -> WheelPoint:
                          "not lying flat (spin axis not vertical)")
     d = -u / s
     p = c + wc.radius * d - wc.tyre_radius * _EZ
-    return WheelPoint(M.translation.copy(), c, a, d, s, p, p - M.translation)
+    return WheelPoint(o, c, a, d, s, p, p - o)
 
 
 def _kinematics(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None, data: pin.Data) -> None:
@@ -112,7 +113,6 @@ def _kinematics(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None, data: pin
     else:
         pin.computeJointJacobiansTimeVariation(model, data, q, v)
         pin.computeJointJacobians(model, data, q)
-    pin.updateFramePlacements(model, data)
 
 
 def wheel_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = None,

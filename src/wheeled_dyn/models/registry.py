@@ -73,6 +73,31 @@ def _tiago_base_spec() -> ModelSpec:
                                        "differential-drive base carrying a rigid upper body"})
 
 
+#: Rolling radius of Upkie's wheels (m): the distance from ``left_wheel_tire`` to the
+#: ``left_contact`` frame in upkie_description's URDF.
+UPKIE_WHEEL_RADIUS = 0.047
+
+
+def _upkie_spec() -> ModelSpec:
+    try:
+        import upkie_description
+    except ImportError:
+        raise OptionalDependencyError("model upkie", "upkie-description",
+                                      "pip install upkie-description") from None
+    from .rolling_wheel import WheelContact
+    wheels = tuple(WheelContact(f"{side}_wheel_tire", UPKIE_WHEEL_RADIUS, axis=(0.0, 0.0, 1.0))
+                   for side in ("left", "right"))
+    return ModelSpec(
+        name="upkie", urdf=Path(upkie_description.URDF_PATH), base="free", body="base",
+        actuated=tuple(f"{side}_{joint}" for side in ("left", "right")
+                       for joint in ("hip", "knee", "wheel")),
+        package_dirs=(str(Path(upkie_description.__file__).parent.parent),),
+        rolling_wheels=wheels, geometry={"R": UPKIE_WHEEL_RADIUS},
+        description="Upkie wheel-legged robot (upkie-description): free base, hips and knees "
+                    "free, both wheels rolling (knife edges, radius from the URDF's contact "
+                    "frames)")
+
+
 MODELS: dict[str, ModelEntry] = {
     "wip": ModelEntry("wip", "two-wheeled inverted pendulum (seed 001), 6 coordinates",
                       _wip_spec, WipParameters),
@@ -82,6 +107,8 @@ MODELS: dict[str, ModelEntry] = {
                         _tiago_spec),
     "tiago_base": ModelEntry("tiago_base", "TIAGo with torso, arm and head locked "
                              "(differential drive, 5 coordinates)", _tiago_base_spec),
+    "upkie": ModelEntry("upkie", "Upkie wheel-legged robot, legs free, both wheels rolling "
+                        "(upkie-description)", _upkie_spec),
 }
 
 
