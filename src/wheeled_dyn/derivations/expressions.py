@@ -14,6 +14,13 @@ is an :class:`ExpressionError`; an undeclared name is an :class:`UndeclaredNameE
 the name. Unknown names are errors, never new symbols: a typo in a file is reported, not
 silently turned into a fresh parameter.
 
+Limits, checked on the text before SymPy (or NumPy) sees it, so that no expression can make the
+parser recurse without end, allocate a number of billions of digits, or hang the comparison:
+at most :data:`MAX_TOKENS` tokens, :data:`MAX_NESTING` levels of parentheses, every exponent a
+constant number of magnitude at most :data:`MAX_EXPONENT`, every constant part (``9**9``,
+``1e400``) of magnitude at most :data:`MAX_CONSTANT`. The largest expression of the shipped
+files has about 300 tokens, 4 levels and exponents up to 4.
+
 Two namespaces exist. The *document* namespace holds what the document writes (its symbols,
 coordinates, velocities, inputs). The *model* namespace (values of ``[symbols]``) holds the
 model's physical parameters as real symbols and Khalil's standard inertial parameters as
@@ -34,8 +41,10 @@ making new ones (``Symbol("phi")`` without assumptions is a different symbol).
 
 from __future__ import annotations
 
+import ast
 import io
 import keyword
+import math
 import tokenize
 from collections.abc import Collection, Mapping
 from typing import Union
@@ -74,6 +83,21 @@ _GLOBALS: dict[str, object] = {"Integer": sympy.Integer, "Float": sympy.Float,
 
 Nested = Union[str, list["Nested"]]
 
+#: Most tokens (names, numbers, operators) in one expression (Python's compiler, which SymPy's
+#: parser uses, recurses once per binary operator and fails near 3000 of them).
+MAX_TOKENS = 2000
+#: Most levels of parentheses in one expression.
+MAX_NESTING = 32
+#: Largest magnitude of an exponent: ``(1 + sin(phi))**2000`` overflows a float and makes
+#: SymPy expand for minutes; ``9**9**9**9`` would be a number of billions of digits.
+MAX_EXPONENT = 64
+#: Largest magnitude of a number written in an expression, or of a constant part of one.
+MAX_CONSTANT = 1e100
+#: Most terms an expression may have once multiplied out (:func:`expanded_terms`): the
+#: comparison expands every element (its time grows faster than the number of terms: 210 terms
+#: take 9 s), and ``(a + b + c + d + e)**16`` has 4845 terms. Shipped elements have at most 8.
+MAX_EXPANDED_TERMS = 100
+
 
 class ExpressionError(ValueError):
     """An expression cannot be parsed; ``reason`` says why (internal: the loader adds the file,
@@ -82,7 +106,15 @@ class ExpressionError(ValueError):
     def __init__(self, text: str, reason: str) -> None:
         self.text = text
         self.reason = reason
-        super().__init__(f"{reason} in {text!r}")
+        super().__init__(f"{reason} in {_short(text)!r}")
+
+    def __reduce__(self):
+        return type(self), (self.text, self.reason)
+
+
+def _short(text: str, width: int = 120) -> str:
+    text = str(text)
+    return text if len(text) <= width else f"{text[:width - 20]} ... {text[-15:]}"
 
 
 class UndeclaredNameError(ExpressionError):
@@ -92,6 +124,9 @@ class UndeclaredNameError(ExpressionError):
         self.name = name
         self.kind = kind
         super().__init__(text, f"undeclared {kind} {name!r}")
+
+    def __reduce__(self):
+        return type(self), (self.text, self.name, self.kind)
 
 
 def real_symbol(name: str) -> sympy.Symbol:
@@ -132,7 +167,96 @@ def scan_names(text: str) -> list[tuple[str, bool]]:
             raise ExpressionError(text, "'=' is allowed only once, in an equation")
         else:
             raise ExpressionError(text, f"token {tok.string!r} is not allowed")
+    check_limits(text, src, tokens)
     return names
+
+
+def check_limits(text: str, src: str, tokens: list[tokenize.TokenInfo]) -> None:
+    r"""Raise :class:`ExpressionError` if the expression exceeds :data:`MAX_TOKENS`,
+    :data:`MAX_NESTING`, :data:`MAX_EXPONENT` or :data:`MAX_CONSTANT` (``tokens`` are those of
+    the normalised text ``src``, already checked to be allowed ones)."""
+    if len(tokens) > MAX_TOKENS:
+        raise ExpressionError(text, f"expression too long: {len(tokens)} tokens, at most "
+                                    f"{MAX_TOKENS} (split it with [definitions])")
+    depth = 0
+    for tok in tokens:
+        depth += tok.string == "("
+        depth -= tok.string == ")"
+        if depth > MAX_NESTING:
+            raise ExpressionError(text, f"parentheses nested deeper than {MAX_NESTING} levels")
+    try:
+        tree = ast.parse(src.replace("^", "**"), mode="eval")
+    except (SyntaxError, ValueError):
+        return                                  # SymPy's parser reports it
+    except (RecursionError, MemoryError):
+        raise ExpressionError(text, "expression nested too deeply") from None
+    _check_constants(text, tree.body)
+
+
+def _check_constants(text: str, root: ast.AST) -> None:
+    r"""Walk the syntax tree (without recursion: a sum of 2000 terms is 2000 levels deep),
+    evaluating its constant parts in floating point with the bounds checked before each
+    power; every exponent must be constant."""
+    values: dict[int, float | None] = {}      # id(node) -> value, None if not constant
+    stack: list[tuple[ast.AST, bool]] = [(root, False)]
+    while stack:
+        node, done = stack.pop()
+        children = list(ast.iter_child_nodes(node))
+        if not done:
+            stack.append((node, True))
+            stack.extend((c, False) for c in children)
+            continue
+        values[id(node)] = _constant_value(text, node, values)
+
+
+def _constant_value(text: str, node: ast.AST, values: dict[int, float | None]) -> float | None:
+    if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)):
+        if isinstance(node.value, int) and abs(node.value) > 10 ** 100:
+            raise ExpressionError(text, f"number larger than {MAX_CONSTANT:g}")
+        return _bounded(text, float(node.value), "number")
+    if isinstance(node, ast.Name):
+        return math.pi if node.id == "pi" else None
+    if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.UAdd, ast.USub)):
+        v = values.get(id(node.operand))
+        return None if v is None else (-v if isinstance(node.op, ast.USub) else v)
+    if not isinstance(node, ast.BinOp):
+        return None
+    a, b = values.get(id(node.left)), values.get(id(node.right))
+    if isinstance(node.op, (ast.Pow, ast.BitXor)):
+        if b is None:
+            raise ExpressionError(text, f"the exponent {_short(ast.unparse(node.right), 40)!r} "
+                                        "is not a constant number")
+        if abs(b) > MAX_EXPONENT:
+            raise ExpressionError(text, f"exponent {b:.6g} out of range: at most "
+                                        f"{MAX_EXPONENT} in magnitude")
+        if a is None:
+            return None
+        try:
+            return _bounded(text, math.pow(a, b), "constant")
+        except (OverflowError, ValueError, ZeroDivisionError):
+            if a == 0 or a < 0:
+                return None                     # 0**-1, (-1)**0.5: SymPy reports these
+            raise ExpressionError(text, f"constant larger than {MAX_CONSTANT:g}") from None
+    if a is None or b is None:
+        return None
+    try:
+        if isinstance(node.op, ast.Add):
+            return _bounded(text, a + b, "constant")
+        if isinstance(node.op, ast.Sub):
+            return _bounded(text, a - b, "constant")
+        if isinstance(node.op, ast.Mult):
+            return _bounded(text, a * b, "constant")
+        if isinstance(node.op, ast.Div):
+            return _bounded(text, a / b, "constant")
+    except ZeroDivisionError:
+        return None                             # SymPy reports a division by zero
+    return None
+
+
+def _bounded(text: str, value: float, what: str) -> float:
+    if not math.isfinite(value) or abs(value) > MAX_CONSTANT:
+        raise ExpressionError(text, f"{what} larger than {MAX_CONSTANT:g}")
+    return value
 
 
 def _evaluate(text: str, local: Mapping[str, object]) -> sympy.Expr:
@@ -141,11 +265,51 @@ def _evaluate(text: str, local: Mapping[str, object]) -> sympy.Expr:
                           transformations=_TRANSFORMATIONS, evaluate=True)
     except (SyntaxError, TypeError, ValueError, AttributeError, ZeroDivisionError) as exc:
         raise ExpressionError(text, f"not a valid expression ({exc})") from exc
+    except (RecursionError, MemoryError, OverflowError):
+        raise ExpressionError(text, "expression too large or nested too deeply") from None
     if not isinstance(expr, sympy.Expr):
         raise ExpressionError(text, f"not a scalar expression (got {type(expr).__name__})")
     if expr.has(sympy.zoo, sympy.nan, sympy.oo, -sympy.oo):
         raise ExpressionError(text, "evaluates to infinity or an undefined value")
     return expr
+
+
+def expanded_terms(expr: sympy.Basic) -> int:
+    r"""How many terms ``sympy.expand(expr)`` has at most, counted without expanding: a sum
+    adds its terms' counts, a product multiplies them, a power :math:`s^n` of a sum of
+    :math:`t` terms (integer :math:`n > 0`) has :math:`\binom{n+t-1}{t-1}`; any other
+    expression (a function, a quotient's denominator, a fractional power) counts 1."""
+    memo: dict[sympy.Basic, int] = {}
+
+    def count(e: sympy.Basic) -> int:
+        if e in memo:
+            return memo[e]
+        if isinstance(e, sympy.Add):
+            value = sum(count(a) for a in e.args)
+        elif isinstance(e, sympy.Mul):
+            value = math.prod(count(a) for a in e.args)
+        elif isinstance(e, sympy.Pow) and e.exp.is_Integer and e.exp > 0:
+            t = count(e.base)
+            value = math.comb(int(e.exp) + t - 1, t - 1) if t > 1 else 1
+        else:
+            value = 1
+        memo[e] = value = min(value, 10 ** 12)
+        return value
+
+    try:
+        return count(expr)
+    except RecursionError:
+        return 10 ** 12
+
+
+def check_expanded(text: str, expr: sympy.Basic) -> None:
+    r"""Raise :class:`ExpressionError` if ``expr`` (parsed from ``text``, with any definitions
+    substituted) has more than :data:`MAX_EXPANDED_TERMS` terms once multiplied out."""
+    n = expanded_terms(expr)
+    if n > MAX_EXPANDED_TERMS:
+        size = f"{n}" if n < 10 ** 12 else "more than 10**12"
+        raise ExpressionError(text, f"expression too large: {size} terms once multiplied out, "
+                                    f"at most {MAX_EXPANDED_TERMS}")
 
 
 def parse_expression(text: str, names: Mapping[str, sympy.Basic]) -> sympy.Expr:

@@ -31,8 +31,8 @@ from .builtin import derivation_files
 from .coordinates import coordinate_names, coordinate_spec
 from .errors import DerivationNameError
 from .expressions import (RESERVED_NAMES, ExpressionError, UndeclaredNameError,
-                          parse_expression, parse_model_expression, parse_units, real_symbol,
-                          scan_names)
+                          check_expanded, parse_expression, parse_model_expression, parse_units,
+                          real_symbol, scan_names)
 from .matrices import MatrixReader
 from .schema import Derivation, SymbolSpec
 from .source import SourceText, read_toml
@@ -106,12 +106,14 @@ class _Loader:
         source = str(text)
         try:
             value = parse_expression(source, names)
+            value = value.xreplace(self.expansion) if expand and self.expansion else value
+            check_expanded(source, value)
         except UndeclaredNameError as exc:
             raise DerivationNameError(self.path, item, "symbol", exc.name, names,
                                       self.line(table, key, exc.name)) from exc
         except ExpressionError as exc:
             raise self.fail(item, exc.reason, self.line(table, key, source)) from exc
-        return value.xreplace(self.expansion) if expand and self.expansion else value
+        return value
 
     # -- sections -------------------------------------------------------------------------
     def symbols(self) -> dict[str, SymbolSpec]:

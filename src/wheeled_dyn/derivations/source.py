@@ -71,16 +71,46 @@ class SourceText:
         return start
 
 
+#: Largest file read as a derivation file or comparison table (the shipped ones are < 20 kB).
+MAX_FILE_BYTES = 4 * 1024 * 1024
+
+
+def read_small_text(p: Path) -> str:
+    r"""The UTF-8 text of a regular file of at most :data:`MAX_FILE_BYTES`. A missing file, a
+    folder, a FIFO or a device (reading those could block or never end), a larger file, or
+    text that is not UTF-8 raises :class:`InputFileError`."""
+    import os
+    import stat
+    try:
+        info = os.stat(p)
+    except FileNotFoundError:
+        raise InputFileError(p, "file not found") from None
+    except OSError as exc:
+        raise InputFileError(p, f"cannot read the file ({exc.strerror})") from None
+    if stat.S_ISDIR(info.st_mode):
+        raise InputFileError(p, "is a folder, expected a file")
+    if not stat.S_ISREG(info.st_mode):
+        kind = ("a FIFO" if stat.S_ISFIFO(info.st_mode) else "a socket"
+                if stat.S_ISSOCK(info.st_mode) else "a device")
+        raise InputFileError(p, f"is {kind}, not a regular file")
+    if info.st_size > MAX_FILE_BYTES:
+        raise InputFileError(p, f"file of {info.st_size} bytes; at most {MAX_FILE_BYTES} "
+                                "(4 MiB) are read")
+    try:
+        with open(p, "rb") as fh:
+            raw = fh.read(MAX_FILE_BYTES + 1)
+        return raw[:MAX_FILE_BYTES].decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputFileError(p, f"not UTF-8 text (byte {exc.start})") from None
+    except OSError as exc:
+        raise InputFileError(p, f"cannot read the file ({exc.strerror})") from None
+
+
 def read_toml(path: str | Path) -> tuple[dict[str, Any], SourceText]:
     r"""Parse a TOML file. A missing or unreadable file, or a syntax error, raises
     :class:`InputFileError` (with the line and column tomllib reports)."""
     p = Path(path)
-    try:
-        text = p.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise InputFileError(p, "file not found") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputFileError(p, f"cannot read the file ({exc})") from exc
+    text = read_small_text(p)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
