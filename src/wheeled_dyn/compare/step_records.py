@@ -55,6 +55,7 @@ class _Group:
     def __init__(self, d: Derivation, given: tuple[str, ...], seed: int,
                  sets: int = STEP_SETS, states: int = STEP_STATES) -> None:
         self.d, self.N = d, states
+        self.reference: dict[int, float] = {}
         cases = {c.name: c for c in special_cases(d.model)}
         for name in given:
             if name not in cases:
@@ -86,6 +87,9 @@ class _Group:
                 self.nu[i], self.nudot[i] = m.nu, m.nudot
                 for s, arr in zip(steps, out):
                     arr[i] = self._true(s, m, k)
+                    if s.kind in VECTOR_KINDS:       # the size of the body's motion
+                        size = float(np.linalg.norm(m.vector(s.kind, s.body, "origin", "world")))
+                        self.reference[id(s)] = max(self.reference.get(id(s), 0.0), size)
         return out
 
     def coefficients(self, step: Step, monomials: Sequence[tuple[int, ...]]) -> dict:
@@ -200,6 +204,12 @@ def _trig_swaps(expr: sp.Expr, g: _Group, T: np.ndarray, scale: float) -> list[s
         other = _TRIG_SWAP[f.func](*f.args)
         if agrees(g.document(expr.xreplace({f: other})), T, scale):
             found.append(f"swap: {sp.sstr(f)} where {sp.sstr(other)} fits")
+    for arg in sorted({f.args[0] for f in expr.atoms(sp.sin, sp.cos)}, key=sp.default_sort_key):
+        s, c = sp.sin(arg), sp.cos(arg)
+        both = expr.xreplace({s: c, c: s})
+        if not found and expr.has(s) and expr.has(c) and agrees(g.document(both), T, scale):
+            found.append(f"swap: {sp.sstr(s)} and {sp.sstr(c)} exchanged (sin written for cos "
+                         "and cos for sin)")
     return found
 
 
@@ -268,7 +278,9 @@ def _term_diagnoses(g: _Group, step: Step, j: int, expr: sp.Expr, scale: float) 
 
 def _document_values(g: _Group, step: Step, T: np.ndarray):
     r"""The document's values of each component (None where lost) and the step's scale: the
-    largest value on either side (for a relation, of either side's rate)."""
+    largest value on either side (for a relation, of either side's rate; for a vector, at
+    least the size of the body origin's vector of the same kind, so that a vector that is 0
+    (a contact point's velocity) is judged against the motion's size)."""
     D_all, parts = [], []
     for j, expr in enumerate(step.components):
         lost = expr.has(sp.nan)
@@ -277,7 +289,7 @@ def _document_values(g: _Group, step: Step, T: np.ndarray):
             parts += [g.document(g._rate(side)) for side in step.sides[j]]
     scale = max([float(np.abs(a).max(initial=0.0))
                  for a in (*[x for x in D_all if x is not None], T, *parts)
-                 if np.all(np.isfinite(a))] + [1e-300])
+                 if np.all(np.isfinite(a))] + [g.reference.get(id(step), 0.0), 1e-300])
     return D_all, scale
 
 
@@ -333,7 +345,7 @@ def _records(g: _Group, step: Step, index: int, T: np.ndarray) -> list[ElementRe
         if relation:
             lhs, rhs = step.sides[j]
             dl, dr = dims.dim(lhs, []), dims.dim(rhs, [])
-            if dl is not None and dr is not None and dl != dr:
+            if dl is not None and dr is not None and dl != dr and lhs != 0 and rhs != 0:
                 diags.append(f"dimension: the left side is {format_dim(dl)}, the right side "
                              f"{format_dim(dr)}")
         ok = agrees(D, Tj, scale) and not diags

@@ -36,7 +36,8 @@ from .result import Cause, DerivationResult, ElementRecord
 from .samples import parameter_sets
 from .step_records import STEP_SETS, STEP_STATES, compare_steps
 
-def _hessian_records(steps_d: Derivation, eom: Derivation, seed: int) -> list[ElementRecord]:
+def energy_consistency(steps_d: Derivation, eom: Derivation, seed: int = 2026
+                       ) -> list[ElementRecord]:
     r"""The fed derivation's A against the Hessian of the document's own total kinetic energy,
     and its Q against the gradient of its own total potential energy (names matched)."""
     out: list[ElementRecord] = []
@@ -190,11 +191,11 @@ def with_steps(d: Derivation, compare: Callable[[Derivation], DerivationResult],
     if not own and not fed:
         return base
     steps = own + [r for _, recs in fed for r in recs]
-    consistency = _hessian_records(d, d, seed) + [r for sd, _ in fed
-                                                   for r in _hessian_records(sd, d, seed)]
+    consistency = energy_consistency(d, d, seed) + [r for sd, _ in fed
+                                                   for r in energy_consistency(sd, d, seed)]
     causes = upstream_causes(steps, base.records, d)
     return replace(base, records=tuple(base.records) + tuple(steps) + tuple(consistency),
                    causes=tuple(base.causes) + tuple(causes))
 
 
-__all__ = ["compare_steps", "feeding_files", "upstream_causes", "with_steps"]
+__all__ = ["compare_steps", "energy_consistency", "feeding_files", "upstream_causes", "with_steps"]
