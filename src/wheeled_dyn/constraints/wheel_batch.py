@@ -16,11 +16,10 @@ import pinocchio as pin
 from ..dynamics.terms import Terms
 from ..errors import StateError
 from .wheel_contact import FLAT_TOL
-from .wheel_reduction import RollingReduction
+from .wheel_reduction import (PARAMETRISATION_TOL, RollingReduction,
+                              normalised_determinant)
 
 _LWA = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
-#: Largest residual of [J_c; T] S = [0; 1] accepted.
-PARAMETRISATION_TOL = 1e-8
 
 
 def _cross_columns(x: np.ndarray, M: np.ndarray) -> np.ndarray:
@@ -75,17 +74,12 @@ def terms_batch(red: RollingReduction, q: np.ndarray, nu: np.ndarray) -> Terms:
         rows[:, 3 * j:3 * j + 3] = J6[:, j, :3] - _cross_columns(rho, J6[:, j, 3:])
         geo.append((a, c - org[:, j], s, d, rho))
     K = np.concatenate([rows, np.broadcast_to(red.T, (N, n, nv))], axis=1)
-    E = np.broadcast_to(red._rhs, (N, nv, n))
-    try:
-        S = np.linalg.solve(K, E)
-    except np.linalg.LinAlgError:
-        S = np.full((N, nv, n), np.nan)
-    bad = ~np.all(np.isfinite(S), axis=(1, 2))
-    bad |= np.abs(K @ np.where(bad[:, None, None], 0.0, S) - E).max(axis=(1, 2)) > PARAMETRISATION_TOL
+    bad = ~(normalised_determinant(K) > PARAMETRISATION_TOL)
     if bad.any():
         raise StateError("independent velocities", red.independent, "velocities that "
                          "parametrise the rolling motions at every state (state "
                          f"{int(np.argmax(bad))}: [J_c; T] is singular)")
+    S = np.linalg.solve(K, np.broadcast_to(red._rhs, (N, nv, n)))
     v = np.einsum("nij,nj->ni", S, nu)
     A = np.empty((N, nv, nv))
     C = np.empty((N, nv, nv))

@@ -106,38 +106,59 @@ def wheel_point(wm: WheeledModel, k: int, data: pin.Data) -> WheelPoint:
     return WheelPoint(o, c, a, d, s, p, p - o)
 
 
-def _kinematics(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None, data: pin.Data) -> None:
+def _cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                     a[0] * b[1] - a[1] * b[0]])
+
+
+@dataclass(frozen=True)
+class WheelRows:
+    r""":math:`J_c` at one configuration with what :math:`\dot J_c` needs: per wheel its
+    geometry and the angular rows :math:`J_\omega` of its frame."""
+
+    J: np.ndarray
+    points: tuple[WheelPoint, ...]
+    angular: tuple[np.ndarray, ...]
+
+
+def wheel_rows(wm: WheeledModel, q: np.ndarray, data: pin.Data) -> WheelRows:
+    r""":math:`J_c(q)` and the geometry behind it (one kinematics pass)."""
     model = wm.model
-    if v is None:
-        pin.computeJointJacobians(model, data, q)
-    else:
-        pin.computeJointJacobiansTimeVariation(model, data, q, v)
-        pin.computeJointJacobians(model, data, q)
+    pin.computeJointJacobians(model, data, q)
+    rows, points, angular = [np.zeros((0, model.nv))], [], []
+    for k, wc in enumerate(wm.rolling_wheels):
+        g = wheel_point(wm, k, data)
+        J = pin.getFrameJacobian(model, data, wc.frame_id, _LWA)
+        rows.append(J[:3] - _cross(g.rho) @ J[3:])
+        points.append(g)
+        angular.append(J[3:])
+    return WheelRows(np.vstack(rows), tuple(points), tuple(angular))
+
+
+def wheel_rows_rate(wm: WheeledModel, q: np.ndarray, v: np.ndarray, rows: WheelRows,
+                    data: pin.Data) -> np.ndarray:
+    r""":math:`\dot J_c(q, v)` given :func:`wheel_rows` at the same ``q``."""
+    model = wm.model
+    pin.computeJointJacobiansTimeVariation(model, data, q, v)
+    out = [np.zeros((0, model.nv))]
+    for wc, g, Jw in zip(wm.rolling_wheels, rows.points, rows.angular):
+        dJ = pin.getFrameJacobianTimeVariation(model, data, wc.frame_id, _LWA)
+        w = Jw @ v
+        adot = _cross3(w, g.axis)
+        udot = -(adot[2] * g.axis + g.axis[2] * adot)
+        ddot = -(udot - g.d * (g.d @ udot)) / g.s
+        rhodot = _cross3(w, g.centre - g.origin) + wc.radius * ddot
+        out.append(dJ[:3] - _cross(g.rho) @ dJ[3:] - _cross(rhodot) @ Jw)
+    return np.vstack(out)
 
 
 def wheel_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = None,
                    data: pin.Data | None = None) -> tuple[np.ndarray, np.ndarray | None]:
     r""":math:`J_c(q)` (3 per wheel × nv: world x, y, z of the material contact point's
     velocity) and, if ``v`` is given, :math:`\dot J_c(q, v)`."""
-    model = wm.model
-    data = data or model.createData()
-    _kinematics(wm, q, v, data)
-    rows, drows = [np.zeros((0, model.nv))], [np.zeros((0, model.nv))]
-    for k, wc in enumerate(wm.rolling_wheels):
-        g = wheel_point(wm, k, data)
-        J = pin.getFrameJacobian(model, data, wc.frame_id, _LWA)
-        Jw = J[3:]
-        rows.append(J[:3] - _cross(g.rho) @ Jw)
-        if v is None:
-            continue
-        dJ = pin.getFrameJacobianTimeVariation(model, data, wc.frame_id, _LWA)
-        w = Jw @ v
-        adot = np.cross(w, g.axis)
-        udot = -(adot[2] * g.axis + g.axis[2] * adot)
-        ddot = -(udot - g.d * (g.d @ udot)) / g.s
-        rhodot = np.cross(w, g.centre - g.origin) + wc.radius * ddot
-        drows.append(dJ[:3] - _cross(g.rho) @ dJ[3:] - _cross(rhodot) @ Jw)
-    return np.vstack(rows), (np.vstack(drows) if v is not None else None)
+    data = data or wm.model.createData()
+    rows = wheel_rows(wm, q, data)
+    return rows.J, (wheel_rows_rate(wm, q, v, rows, data) if v is not None else None)
 
 
 def wheel_contact_points(wm: WheeledModel, q: np.ndarray) -> np.ndarray:

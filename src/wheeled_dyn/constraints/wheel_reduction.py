@@ -38,10 +38,12 @@ from scipy.integrate import solve_ivp
 from ..dynamics.terms import Terms, check_vector
 from ..errors import StateError
 from ..models.builder import WheeledModel
-from .wheel_contact import solve_contact, wheel_heights, wheel_jacobian
+from .wheel_contact import (WheelRows, solve_contact, wheel_heights, wheel_jacobian,
+                            wheel_rows, wheel_rows_rate)
 
-#: Largest condition number of [J_c; T] for the chosen velocities to parametrise the motions.
-CONDITION_LIMIT = 1e10
+#: Smallest |det [J_c; T]| / (product of its row norms) (Hadamard's ratio, in [0, 1]) for the
+#: chosen velocities to parametrise the rolling motions.
+PARAMETRISATION_TOL = 1e-10
 #: Default integration tolerances (relative, absolute).
 RTOL, ATOL = 1e-10, 1e-12
 
@@ -63,6 +65,12 @@ class RollingTrajectory:
     def relative_energy_drift(self) -> float:
         scale = max(abs(self.energy[0]), np.abs(self.energy - self.energy[0]).max(), 1e-12)
         return float(np.abs(self.energy - self.energy[0]).max() / scale)
+
+
+def normalised_determinant(K: np.ndarray) -> np.ndarray:
+    r""":math:`|\det K| / \prod_i \lVert K_{i\cdot}\rVert` (stacks allowed): 1 for orthogonal
+    rows, 0 for dependent ones, whatever the rows' scales."""
+    return np.abs(np.linalg.det(K)) / np.prod(np.linalg.norm(K, axis=-1), axis=-1)
 
 
 class RollingReduction:
@@ -95,14 +103,14 @@ class RollingReduction:
         self._rhs = np.vstack([np.zeros((self.m, self.n)), np.eye(self.n)])
 
     # -- kinematics -------------------------------------------------------------------------
-    def _solve(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        J, _ = wheel_jacobian(self.wm, q, data=self._data)
-        K = np.vstack([J, self.T])
-        if np.linalg.cond(K) > CONDITION_LIMIT:
+    def _solve(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, WheelRows]:
+        rows = wheel_rows(self.wm, q, self._data)
+        K = np.vstack([rows.J, self.T])
+        if not normalised_determinant(K) > PARAMETRISATION_TOL:
             raise StateError("independent velocities", self.independent,
                              "velocities that parametrise the rolling motions at this "
                              "configuration ([J_c; T] is singular)")
-        return K, np.linalg.solve(K, self._rhs)
+        return K, np.linalg.solve(K, self._rhs), rows
 
     def velocity_matrix(self, q: np.ndarray) -> np.ndarray:
         r""":math:`S(q)`: model velocities :math:`v = S\nu` that keep the contacts rolling."""
@@ -111,9 +119,9 @@ class RollingReduction:
     def kinematics(self, q: np.ndarray, nu: np.ndarray
                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         r"""(S, v, :math:`\dot S`, :math:`\dot S\nu`) at ``(q, nu)``."""
-        K, S = self._solve(q)
+        K, S, rows = self._solve(q)
         v = S @ nu
-        _, dJ = wheel_jacobian(self.wm, q, v, data=self._data)
+        dJ = wheel_rows_rate(self.wm, q, v, rows, self._data)
         Sdot = -np.linalg.solve(K, np.vstack([dJ @ S, np.zeros((self.n, self.n))]))
         return S, v, Sdot, Sdot @ nu
 
