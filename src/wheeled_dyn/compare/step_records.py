@@ -292,10 +292,14 @@ def _term_diagnoses(g: _Group, step: Step, j: int, expr: sp.Expr, scale: float) 
 
 
 def _explained(diagnoses: Sequence[str]) -> bool:
-    r"""A diagnosis that names the error already (a term missing, extra, of the wrong sign or
-    factor, a swapped symbol, a power, a dimension): no special family is searched then."""
-    keys = ("missing", "extra", "sign", "factor", "swap", "power", "dimension")
-    return any(x.split(": ", 1)[-1].startswith(keys) or x.startswith(keys) for x in diagnoses)
+    r"""A diagnosis that names the error already (the whole component of the wrong sign or
+    factor, a term of the wrong sign or factor, a swapped symbol, a power, a dimension): no
+    special family is searched then. A missing or extra term is not enough: it may be what a
+    special family removes (a centre of mass off the axis)."""
+    keys = ("sign", "factor", "swap", "power", "dimension")
+    return any(x.startswith(keys) or (x.startswith("term ") and
+                                      x.split(": ", 1)[-1].startswith(("sign", "factor")))
+               for x in diagnoses)
 
 
 def _document_values(g: _Group, step: Step, T: np.ndarray):
