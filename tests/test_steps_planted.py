@@ -281,3 +281,23 @@ def test_step_expressions_are_sympy():
     assert a_b.components[1] == sp.sympify("ddpsi*d*sin(phi) + dpsi*dphi*d*cos(phi)",
                                            locals={n: d.symbol(n) for n in
                                                    ("ddpsi", "d", "phi", "dpsi", "dphi")})
+
+
+def test_the_documented_step_examples_load_and_say_what_the_text_says(tmp_path):
+    import re
+    doc = (Path(__file__).resolve().parents[1] / "docs" / "derivation-format.md").read_text()
+    blocks = [b for b in re.findall(r"```toml\n(.*?)```", doc, flags=re.S) if "[[step]]" in b]
+    assert len(blocks) == 2
+    verdicts = {}
+    for k, block in enumerate(blocks):
+        path = tmp_path / f"example{k}_steps.toml"
+        path.write_text(block)
+        for r in compare_steps(load_derivation(path), SEED):
+            verdicts.setdefault(r.equation, []).append(r.verdict)
+    assert verdicts["(56)"] == ["agrees"] * 3
+    assert verdicts["(65)"] == ["agrees", "differs", "agrees"]
+    assert verdicts["(18)"] == ["agrees"]
+    assert verdicts["F2"] == ["differs"]                      # Kim's F2 lacks the x-dot psi-dot term
+    assert verdicts["after F3"] == ["differs"]
+    assert verdicts["(33)"] == ["agrees", "differs"]
+    assert verdicts["before (35)"] == ["differs"]
