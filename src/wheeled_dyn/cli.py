@@ -3,7 +3,8 @@ r"""The ``wheeled-dyn`` command: a thin layer over the Python API.
 Each feature package contributes its sub-commands through a function
 ``add_commands(subparsers)`` listed in :data:`COMMAND_MODULES`; the handler it registers with
 ``set_defaults(handler=...)`` receives the parsed arguments and returns an exit code. Errors of
-the project's own type are printed as one line on stderr with exit code 2.
+the project's own type are printed as one line on stderr with exit code 2; Ctrl-C ends a
+command with exit code 130 and one line, no traceback.
 """
 
 from __future__ import annotations
@@ -37,6 +38,14 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
+    try:
+        return _run(argv)
+    except KeyboardInterrupt:        # Ctrl-C: the writers have removed their temporary files
+        print("wheeled-dyn: interrupted", file=sys.stderr)
+        return 130
+
+
+def _run(argv: Sequence[str] | None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     handler = getattr(args, "handler", None)
@@ -51,6 +60,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     except BrokenPipeError:          # output piped into a reader that stopped (e.g. head)
         sys.stderr.close()
         return 0
+    except OSError as exc:           # the system refused (a full disk, ...): one line too
+        where = f"{exc.filename}: " if exc.filename else ""
+        print(f"wheeled-dyn: error: {where}{exc.strerror or exc}", file=sys.stderr)
+        return 2
 
 
 if __name__ == "__main__":  # pragma: no cover

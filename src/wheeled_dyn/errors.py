@@ -156,3 +156,15 @@ class LimitError(WheeledDynError, ValueError):
         self.why = why
         because = f" ({why})" if why else ""
         super().__init__(f"{name} = {value}: expected {limit}{because}")
+
+
+class WorkerError(WheeledDynError):
+    """A worker process of a parallel computation ended without an answer (killed, or a crash
+    in compiled code). Attributes: ``reason``, ``files`` (what it may have been working on)."""
+
+    def __init__(self, reason: str, files: Iterable[str] = ()) -> None:
+        self.reason = reason
+        self.files = tuple(files)
+        which = f" while comparing one of: {', '.join(self.files)}" if self.files else ""
+        super().__init__(f"{reason}{which}; compare them one by one "
+                         "('wheeled-dyn compare MODEL FILE') to find the one")

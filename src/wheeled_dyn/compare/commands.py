@@ -17,6 +17,45 @@ if TYPE_CHECKING:       # the heavy modules load in the handlers (a quick --help
 
 #: Defaults of the default report: states per parameter set, parameter sets.
 DEFAULT_SAMPLES, DEFAULT_PARAM_SETS = 1000, 5
+#: Ranges of --samples and --param-sets, and of their product (the states of one comparison):
+#: memory and time grow with it (at 10**9 states the comparison asked for 112 GiB).
+MAX_SAMPLES, MAX_PARAM_SETS, MAX_STATES = 100_000, 1000, 1_000_000
+
+
+def check_grid(samples: int, param_sets: int) -> None:
+    r"""Raise :class:`~wheeled_dyn.errors.LimitError` unless ``1 <= samples <= MAX_SAMPLES``,
+    ``1 <= param_sets <= MAX_PARAM_SETS`` and their product is at most ``MAX_STATES``."""
+    from ..errors import LimitError
+    if not 1 <= samples <= MAX_SAMPLES:
+        raise LimitError("--samples", samples, f"an integer from 1 to {MAX_SAMPLES}")
+    if not 1 <= param_sets <= MAX_PARAM_SETS:
+        raise LimitError("--param-sets", param_sets, f"an integer from 1 to {MAX_PARAM_SETS}")
+    if samples * param_sets > MAX_STATES:
+        raise LimitError("--samples × --param-sets", samples * param_sets,
+                         f"at most {MAX_STATES:,} states", "memory and time grow with them")
+
+
+def input_files(entries: Sequence[str | Path]) -> list[Path]:
+    r"""The derivation files named on the command line (a folder stands for its ``*.toml``
+    files); a folder without any raises :class:`~wheeled_dyn.errors.InputFileError`."""
+    from ..derivations.builtin import derivation_files
+    from ..errors import InputFileError
+    files: list[Path] = []
+    for entry in entries:
+        found = derivation_files([entry])
+        if not found:
+            raise InputFileError(entry, "folder without derivation files (*.toml)")
+        files.extend(found)
+    return files
+
+
+def progress(total: int, what: str):
+    r"""A progress bar on stderr (``tqdm``) when stderr is a terminal; silent otherwise."""
+    import sys
+
+    from tqdm import tqdm
+    return tqdm(total=total, desc=what, unit="file", file=sys.stderr, leave=False,
+                disable=not sys.stderr.isatty())
 
 
 def run_comparison(files: Sequence[Path], samples: int, param_sets: int, seed: int = 2026,
@@ -34,7 +73,12 @@ def run_comparison(files: Sequence[Path], samples: int, param_sets: int, seed: i
             raise DerivationError(d.path, "model", f"the file describes model {d.model!r}, "
                                   f"not {model!r}")
     engine = engine or ComparisonEngine(samples=samples, param_sets=param_sets, seed=seed)
-    return [engine.compare(d) for d in derivations]
+    results = []
+    with progress(len(derivations), "comparing") as bar:
+        for d in derivations:
+            results.append(engine.compare(d))
+            bar.update()
+    return results
 
 
 #: Relative cost of a derivation with n coordinates (measured: n**3), and of reproducing a
@@ -63,12 +107,71 @@ def _bins(derivations, workers: int, heavy: frozenset[str] = frozenset()) -> lis
     return [b for b in bins if b]
 
 
-def _work(args):
+#: In a worker: where it reports each derivation done (a queue inherited from the parent).
+_PROGRESS = None
+
+
+def _start_worker() -> None:
+    r"""Workers leave Ctrl-C to the parent, which ends them (no traceback from each), and
+    announce their process id (so that the parent notices one that dies)."""
+    import os
+    import signal
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if _PROGRESS is not None:
+        _PROGRESS.put(("pid", os.getpid()))
+
+
+def _alive(pid: int) -> bool:
+    import os
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        pass
+    return True
+
+
+def _run_pool(ctx, jobs: list, bar) -> list:
+    r"""Run ``_work`` on each job in its own process; progress and worker ids come through
+    the queue :data:`_PROGRESS`. A worker's error is raised here (the project's errors
+    survive pickling); a worker that dies (a crash in compiled code) raises
+    :class:`~wheeled_dyn.errors.WorkerError` naming the files it may have been comparing,
+    instead of waiting forever."""
+    from ..errors import WorkerError
+    workers: set[int] = set()
+    with ctx.Pool(len(jobs), initializer=_start_worker) as pool:
+        pending = [pool.apply_async(_work, (job,)) for job in jobs]
+        while waiting := [p for p in pending if not p.ready()]:
+            waiting[0].wait(0.2)
+            while not _PROGRESS.empty():
+                message = _PROGRESS.get()
+                if isinstance(message, tuple):
+                    workers.add(message[1])
+                else:
+                    bar.update(message)
+            for p in pending:
+                if p.ready() and not p.successful():
+                    p.get()                          # raises the worker's error
+            if any(not _alive(pid) for pid in workers):
+                files = sorted({jobs[k][0][i].name for k, p in enumerate(pending)
+                                if not p.ready() for i in jobs[k][1]})
+                raise WorkerError("a comparison process ended abruptly", files)
+        return [p.get() for p in pending]
+
+
+def _work(args, tick=None):
     from ..derivations import load_derivation
     from .engine import ComparisonEngine
     files, indices, samples, param_sets, table_group = args
     engine = ComparisonEngine(samples=samples, param_sets=param_sets)
-    results = [(i, engine.compare(load_derivation(files[i]))) for i in indices]
+    results = []
+    for i in indices:
+        results.append((i, engine.compare(load_derivation(files[i]))))
+        if tick is not None:
+            tick()
+        elif _PROGRESS is not None:
+            _PROGRESS.put(1)
     sections = _table_sections(engine, table_group) if table_group else None
     return results, sections
 
@@ -99,11 +202,18 @@ def compare_report(files: Sequence[Path], samples: int, param_sets: int,
     owner = next((k for k, b in enumerate(bins) if any(paths[i].name in table_docs for i in b)), 0)
     jobs = [(paths, b, samples, param_sets, table_group if k == owner else None)
             for k, b in enumerate(bins)]
-    if len(jobs) == 1 or "fork" not in multiprocessing.get_all_start_methods():
-        outputs = [_work(job) for job in jobs]
-    else:
-        with multiprocessing.get_context("fork").Pool(len(jobs)) as pool:
-            outputs = pool.map(_work, jobs)
+    global _PROGRESS
+    with progress(len(paths), "comparing") as bar:
+        if len(jobs) == 1 or "fork" not in multiprocessing.get_all_start_methods():
+            outputs = [_work(job, bar.update) for job in jobs]
+        else:
+            ctx = multiprocessing.get_context("fork")
+            _PROGRESS = ctx.SimpleQueue()
+            try:
+                outputs = _run_pool(ctx, jobs, bar)
+            finally:
+                _PROGRESS.close()
+                _PROGRESS = None
     results: list[DerivationResult | None] = [None] * len(paths)
     sections: tuple[list[str], list[str], dict] = ([], [], {})
     for found, sec in outputs:
@@ -202,6 +312,9 @@ def _write(results, title: str, out: Path, plots: bool = False,
 
 def _cmd_report(args: argparse.Namespace) -> int:
     from ..derivations import builtin_derivations
+    from ..output import check_output_folder
+    check_grid(args.samples, args.param_sets)
+    check_output_folder(args.out)
     t0 = time.perf_counter()
     results, sections = compare_report(builtin_derivations(args.group), args.samples,
                                        args.param_sets, table_group=args.group)
@@ -218,7 +331,10 @@ def _cmd_report(args: argparse.Namespace) -> int:
 
 
 def _cmd_compare(args: argparse.Namespace) -> int:
-    files = [Path(f) for f in args.files]
+    from ..output import check_output_folder
+    check_grid(args.samples, args.param_sets)
+    check_output_folder(args.out)
+    files = input_files(args.files)
     results = run_comparison(files, args.samples, args.param_sets, model=args.model)
     print_summary(results)
     _write(results, f"wheeled_dyn: derivations of {args.model} against the truth", Path(args.out),

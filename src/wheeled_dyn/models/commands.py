@@ -13,7 +13,8 @@ if TYPE_CHECKING:       # NumPy, Pinocchio and the registry load in the handlers
 
 
 def parse_assignments(text: str | None, what: str) -> dict[str, float]:
-    r"""``"a=1,b=-0.5"`` → ``{"a": 1.0, "b": -0.5}``; a malformed item raises an error naming it."""
+    r"""``"a=1,b=-0.5"`` → ``{"a": 1.0, "b": -0.5}``; a malformed item, a name given twice or
+    a value that is not a finite number raises :class:`StateError` naming it."""
     out: dict[str, float] = {}
     if not text:
         return out
@@ -21,10 +22,16 @@ def parse_assignments(text: str | None, what: str) -> dict[str, float]:
         key, sep, value = item.partition("=")
         if not sep or not key.strip():
             raise StateError(what, item, "name=value")
+        key = key.strip()
+        if key in out:
+            raise StateError(key, value, f"one value: {key} is given twice in {what}")
         try:
-            out[key.strip()] = float(value)
+            number = float(value)
         except ValueError:
-            raise StateError(key.strip(), value, "a number") from None
+            raise StateError(key, value, "a number") from None
+        if number != number or number in (float("inf"), float("-inf")):
+            raise StateError(key, value, "a finite number")
+        out[key] = number
     return out
 
 

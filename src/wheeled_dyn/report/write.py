@@ -2,19 +2,18 @@ r"""Writing the three reports (Markdown, HTML, JSON) whole or not at all.
 
 Every text is made in memory first; then each file is written to a temporary name in the
 target folder and renamed over its final name (``os.replace`` is atomic), so a failure leaves
-either the previous reports or none, never half a file.
+either the previous reports or none, never half a file, and no temporary file
+(:func:`~wheeled_dyn.output.write_files_atomic`).
 """
 
 from __future__ import annotations
 
 import json
-import os
-import tempfile
 from collections.abc import Sequence
 from pathlib import Path
 
 from ..compare.result import DerivationResult
-from ..errors import InputFileError
+from ..output import write_files_atomic
 from .html import report_html
 from .markdown import report_markdown
 from .summary import ordered, summary_entry
@@ -34,24 +33,6 @@ def render(results: Sequence[DerivationResult], title: str, extra_md: Sequence[s
 
 def write_reports(texts: dict[str, str | bytes], out: str | Path) -> list[Path]:
     r"""Write ``texts`` (text, or bytes for images) into folder ``out`` (created if needed);
-    returns the paths."""
-    out = Path(out)
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise InputFileError(out, f"cannot create the report folder: {exc.strerror}") from None
-    staged: list[tuple[Path, Path]] = []
-    try:
-        for name, text in texts.items():
-            fd, tmp = tempfile.mkstemp(prefix=f".{name}.", dir=out)
-            with os.fdopen(fd, "wb") as fh:
-                fh.write(text if isinstance(text, bytes) else text.encode("utf-8"))
-            os.chmod(tmp, 0o644)
-            staged.append((Path(tmp), out / name))
-    except OSError as exc:
-        for tmp, _ in staged:
-            tmp.unlink(missing_ok=True)
-        raise InputFileError(out, f"cannot write the reports: {exc.strerror}") from None
-    for tmp, final in staged:
-        os.replace(tmp, final)
-    return [final for _, final in staged]
+    returns the paths. All files are staged under temporary names and renamed only when every
+    one is written; on any failure (a full disk, Ctrl-C) the temporary files are removed."""
+    return write_files_atomic(texts, out)

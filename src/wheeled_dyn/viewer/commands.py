@@ -32,8 +32,24 @@ def _trajectory(model: str, scenario: str | None, duration: float | None):
     return s.model, s.trajectory.t, s.trajectory.q, s.description
 
 
+def _check_args(args: argparse.Namespace) -> None:
+    r"""Duration, hold time and export place, before anything is simulated."""
+    import math
+
+    from ..errors import LimitError
+    from ..output import check_output_file
+    from ..simulate.commands import check_duration
+    if args.duration is not None:
+        check_duration(args.duration)
+    if args.hold is not None and not (math.isfinite(args.hold) and args.hold >= 0):
+        raise LimitError("--hold", args.hold, "seconds, 0 or more")
+    if args.export:
+        check_output_file(args.export, ".html")
+
+
 def _cmd_view(args: argparse.Namespace) -> int:
     from .show import close_all, show_trajectory
+    _check_args(args)
     wm, times, qs, what = _trajectory(args.model, args.scenario, args.duration)
     if args.export:
         path = show_trajectory(wm, times, qs, export=args.export)

@@ -271,10 +271,8 @@ class Viewer:
             raise ViewerError("export_html needs both times and qs, or neither")
         if times is not None and qs is not None:
             self.animate(times, qs, fps, speed, play=True, repetitions=repetitions)
-        out = Path(path)
-        out.parent.mkdir(parents=True, exist_ok=True)
-        out.write_text(self.static_html(), encoding="utf-8")
-        return out
+        from ..output import write_atomic      # whole or not at all (a full disk, Ctrl-C)
+        return write_atomic(path, self.static_html())
 
     # -- lifetime -----------------------------------------------------------------------------
     def close(self) -> None:

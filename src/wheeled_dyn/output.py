@@ -1,0 +1,130 @@
+r"""Output places checked before any computing, and files written whole or not at all.
+
+:func:`check_output_folder` and :func:`check_output_file` are called by the commands before
+they start computing: a place that cannot be written (a file where a folder is expected, a
+folder where a file is expected, a name longer than the file system allows, a read-only place)
+raises :class:`~wheeled_dyn.errors.InputFileError` at once instead of after minutes of work.
+The check writes and removes a probe file in the nearest existing folder (``os.access`` says
+yes to root even on a read-only file system), and creates nothing.
+
+:func:`write_atomic` and :func:`write_files_atomic` write to a temporary name (``.NAME.XXXX``)
+in the target folder and rename it over the final name (``os.replace`` is atomic): a failure
+(a full disk, Ctrl-C) leaves the previous file or none, never half of one, and removes the
+temporary files on every path out.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from collections.abc import Mapping
+from pathlib import Path
+
+from .errors import InputFileError
+
+#: Longest name of one path component, in bytes (POSIX file systems: 255).
+NAME_MAX = 255
+
+
+def _check_names(p: Path) -> None:
+    for part in p.parts:
+        size = len(os.fsencode(part))
+        if size > NAME_MAX:
+            raise InputFileError(p, f"a name of {size} bytes ({part[:24]}...); file names are "
+                                    f"at most {NAME_MAX} bytes")
+
+
+def _probe(folder: Path, target: Path) -> None:
+    r"""Raise unless a file can be created (and removed) in the existing ``folder``."""
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=".wheeled_dyn_probe.", dir=folder)
+    except OSError as exc:
+        raise InputFileError(target, f"cannot write in {folder} ({exc.strerror})") from None
+    os.close(fd)
+    os.unlink(tmp)
+
+
+def _nearest_existing(p: Path) -> tuple[Path, Path]:
+    r"""The nearest existing ancestor of ``p`` (``p`` itself if it exists) and the first
+    missing component below it."""
+    current, missing = p, p
+    while not current.exists():
+        missing = current
+        if current.parent == current:
+            break
+        current = current.parent
+    return current, missing
+
+
+def check_output_folder(path: str | Path) -> Path:
+    r"""Check that ``path`` is, or can be created as, a writable folder. Returns it."""
+    p = Path(path)
+    _check_names(p)
+    existing, _ = _nearest_existing(p)
+    if not existing.is_dir():
+        what = "is a file" if existing == p else f"cannot be created: {existing} is a file"
+        raise InputFileError(p, f"{what}, expected a folder")
+    _probe(existing, p)
+    return p
+
+
+def check_output_file(path: str | Path, suffix: str | None = None) -> Path:
+    r"""Check that ``path`` names a file that can be written (its folder existing or
+    creatable, writable; the path not a folder). ``suffix`` (e.g. ``".html"``), if given, is
+    required. Returns the path."""
+    text = os.fspath(path)
+    p = Path(text)
+    _check_names(p)
+    if text.endswith(os.sep) or p.is_dir():
+        raise InputFileError(p, "is a folder, expected a file name"
+                                + (f" ending in {suffix}" if suffix else ""))
+    if suffix and p.suffix.lower() != suffix:
+        raise InputFileError(p, f"expected a file name ending in {suffix}")
+    existing, _ = _nearest_existing(p.parent)
+    if not existing.is_dir():
+        raise InputFileError(p, f"cannot be created: {existing} is a file, not a folder")
+    _probe(existing, p)
+    return p
+
+
+def write_files_atomic(files: Mapping[str, str | bytes], folder: str | Path) -> list[Path]:
+    r"""Write ``files`` (name → text or bytes) into ``folder`` (created if needed), all or
+    none: every file is staged under a temporary name first, and the renames happen only when
+    all are written. Returns the final paths."""
+    out = Path(folder)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputFileError(out, f"cannot create the folder: {exc.strerror}") from None
+    staged: list[tuple[Path, Path]] = []
+    try:
+        for name, data in files.items():
+            fd, tmp = tempfile.mkstemp(prefix=f".{name}.", dir=out)
+            staged.append((Path(tmp), out / name))
+            with os.fdopen(fd, "wb") as fh:
+                fh.write(data if isinstance(data, bytes) else data.encode("utf-8"))
+            os.chmod(tmp, 0o644)
+        for tmp, final in staged:
+            os.replace(tmp, final)
+    except OSError as exc:
+        _remove(staged)
+        name = exc.filename if isinstance(exc.filename, str) else out
+        raise InputFileError(out, f"cannot write {Path(name).name} ({exc.strerror})") from None
+    except BaseException:
+        _remove(staged)
+        raise
+    return [final for _, final in staged]
+
+
+def write_atomic(path: str | Path, data: str | bytes) -> Path:
+    r"""Write one file whole or not at all (its folder created if needed). Returns the path."""
+    p = Path(path)
+    return write_files_atomic({p.name: data}, p.parent)[0]
+
+
+def _remove(staged: list[tuple[Path, Path]]) -> None:
+    for tmp, _ in staged:
+        try:
+            tmp.unlink(missing_ok=True)
+        except OSError:
+            pass
