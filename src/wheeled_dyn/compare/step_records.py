@@ -374,6 +374,10 @@ def _records(g: _Group, step: Step, index: int, T: np.ndarray) -> list[ElementRe
             if dl is not None and dr is not None and dl != dr and lhs != 0 and rhs != 0:
                 diags.append(f"dimension: the left side is {format_dim(dl)}, the right side "
                              f"{format_dim(dr)}")
+        else:
+            problems: list[str] = []
+            dims.dim(step.components[j], problems)
+            diags += [f"dimension: {x}" for x in problems]
         ok = agrees(D, Tj, scale) and not diags
         if not ok:
             if relation:

@@ -78,9 +78,10 @@ def energy_consistency(steps_d: Derivation, eom: Derivation, seed: int = 2026
             scale = max(float(np.abs(Da).max()), float(np.abs(Db).max()), 1e-300)
             ok = agrees(Da, Db, scale)
             diags = () if ok else (f"{label} of {eom.path.stem} is not {what} of the document's "
-                                   f"own energy {s.equation}", *value_diagnoses(Da, Db, scale))
+                                   f"own energy {s.name}", *(x.replace("the truth", "the energy's")
+                                                              for x in value_diagnoses(Da, Db, scale)))
             out.append(ElementRecord(
-                element=f"{label} vs {what} {s.equation}", key="consistency", index=(),
+                element=f"{label} vs {what} of {s.name}", key="consistency", index=(),
                 verdict="agrees" if ok else "differs", diagnoses=diags, document=sp.sstr(a),
                 document_model=sp.sstr(b), truth=None, residual=None,
                 max_error=max_error(Da, Db), scale=scale, step=s.kind, equation=s.equation))
