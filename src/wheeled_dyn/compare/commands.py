@@ -49,6 +49,46 @@ def input_files(entries: Sequence[str | Path]) -> list[Path]:
     return files
 
 
+def check_model_names(d) -> None:
+    r"""The names derivation ``d`` uses of its model, checked before comparing: every key of
+    ``[inputs]`` is a model input, every value of ``[symbols]`` uses the model's parameters
+    and links. Raises :class:`~wheeled_dyn.derivations.errors.DerivationNameError` naming the
+    file, the line, the item and the valid names."""
+    from sympy.core.function import AppliedUndef
+
+    from ..derivations.errors import DerivationNameError
+    from ..derivations.source import SourceText, read_small_text
+    from ..models.registry import load_model, model_entry
+    from .samples import namespace_values
+    wm = load_model(d.model)
+    entry = model_entry(d.model)
+    values = namespace_values(wm, entry.parameters() if entry.parameters else None)
+    src = SourceText(d.path, read_small_text(d.path))
+    for key in d.inputs:
+        if key not in wm.input_names:
+            raise DerivationNameError(d.path, f"inputs.{key}", "model input", key,
+                                      wm.input_names, src.line_of("inputs", key))
+    links = sorted({k[k.index("(") + 1:-1] for k in values if "(" in k})
+    for name, spec in d.symbols.items():
+        if spec.value is None:
+            continue
+        item, line = f"symbols.{name}.value", src.line_of("symbols", name)
+        args = set()
+        for call in spec.value.atoms(AppliedUndef):
+            link = str(call.args[0])
+            args |= call.args[0].free_symbols
+            if link not in links:
+                raise DerivationNameError(d.path, item, "link", link, links, line)
+            key = f"{call.func.__name__}({link})"
+            if key not in values:
+                raise DerivationNameError(d.path, item, "model parameter", key,
+                                          [k for k in values if k.endswith(f"({link})")], line)
+        for symbol in spec.value.free_symbols - args:
+            if symbol.name not in values:
+                raise DerivationNameError(d.path, item, "model parameter", symbol.name,
+                                          [k for k in values if "(" not in k], line)
+
+
 def progress(total: int, what: str):
     r"""A progress bar on stderr (``tqdm``) when stderr is a terminal; silent otherwise."""
     import sys
@@ -72,6 +112,7 @@ def run_comparison(files: Sequence[Path], samples: int, param_sets: int, seed: i
         if model is not None and d.model != model:
             raise DerivationError(d.path, "model", f"the file describes model {d.model!r}, "
                                   f"not {model!r}")
+        check_model_names(d)
     engine = engine or ComparisonEngine(samples=samples, param_sets=param_sets, seed=seed)
     results = []
     with progress(len(derivations), "comparing") as bar:
@@ -190,6 +231,7 @@ def compare_report(files: Sequence[Path], samples: int, param_sets: int,
     derivations = load_derivations(files)
     for d in derivations:
         model_entry(d.model)
+        check_model_names(d)
     paths = [d.path for d in derivations]
     workers = max(1, min(workers or os.cpu_count() or 1, len(derivations)))
     table_docs: set[str] = set()

@@ -174,6 +174,13 @@ def coordinate_names(path: Path, table: Any, model: str,
                    line_of("kind"))
     rolling = _choice(path, table, "rolling", ROLLING,
                       builtin.rolling if builtin else "eliminate", line_of("rolling"))
+    if kind == "holonomic" and rolling == "eliminate":
+        said = "'eliminate'" if "rolling" in table else "not given (default 'eliminate')"
+        raise DerivationError(path, "coordinates.rolling", f"{said}: eliminating rolling "
+                              "constraints needs kind = \"quasi\"; for holonomic coordinates "
+                              "write rolling = \"none\" (no rolling contact, or one the "
+                              "coordinates already satisfy) or rolling = \"multipliers\"",
+                              line_of("rolling") or line_of(None))
     units = dict(builtin.units) if builtin else {}
     for name, text in _per_position(path, table, "units", "units", positions, line_of):
         try:

@@ -60,7 +60,7 @@ def energy_summary(s) -> str:
 
 
 def _cmd(args: argparse.Namespace) -> int:
-    from ..compare.commands import input_files, progress
+    from ..compare.commands import check_model_names, input_files, progress
     from ..derivations import load_derivations
     from ..output import check_output_folder, write_atomic
     from .documented import side_by_side
@@ -70,6 +70,7 @@ def _cmd(args: argparse.Namespace) -> int:
     state = parse_assignments(args.state, "--state")
     derivations = load_derivations(input_files(args.files))
     for d in derivations:
+        check_model_names(d)
         check_rates(state, d.velocities)
     with progress(len(derivations), "simulating") as bar:
         for d in derivations:
