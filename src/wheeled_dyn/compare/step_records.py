@@ -39,7 +39,7 @@ from .samples import parameter_sets, random_states, special_cases
 from .units import DimensionChecker, format_dim
 
 #: Parameter sets and states per set on which the steps are compared.
-STEP_SETS, STEP_STATES = 2, 16
+STEP_SETS, STEP_STATES = 2, 10
 #: States per set on which the truth's coefficients are computed (only for differing components).
 DECOMPOSE_STATES = 3
 #: Smaller grid on which special parameter families are tried.
@@ -181,7 +181,7 @@ class _Group:
     def _fn(self, expr: sp.Expr) -> Callable:
         key = (tuple(self.args), expr)
         if key not in _Group._fns:
-            _Group._fns[key] = sp.lambdify(self.args, expr, "numpy")
+            _Group._fns[key] = sp.lambdify(self.args, expr, "numpy", docstring_limit=0)
         return _Group._fns[key]
 
     def argv(self, rows: np.ndarray | None = None) -> list[np.ndarray]:
@@ -189,6 +189,16 @@ class _Group:
         per = np.repeat(np.arange(len(self.sets)), self.N)[rows]
         return [*self.q[rows].T, *self.nu[rows].T, *self.nudot[rows].T,
                 *(np.array([self.values[k][p] for k in per]) for p in self.params)]
+
+    def documents(self, exprs: Sequence[sp.Expr], rows: np.ndarray | None = None
+                  ) -> list[np.ndarray]:
+        r"""Several expressions at the samples, compiled together (one ``lambdify``)."""
+        if not exprs:
+            return []
+        argv = self.argv(rows)
+        values = self._fn(tuple(exprs))(*argv)
+        return [np.broadcast_to(np.asarray(v, dtype=float), (len(argv[0]),)).copy()
+                for v in values]
 
     def document(self, expr: sp.Expr, rows: np.ndarray | None = None,
                  read: tuple[sp.Symbol, sp.Symbol] | None = None) -> np.ndarray:
@@ -279,7 +289,8 @@ def _term_diagnoses(g: _Group, step: Step, j: int, expr: sp.Expr, scale: float) 
     monos = list(dict.fromkeys([*candidates, *doc]))
     truth = g.coefficients(step, monos)
     rows = g.sample_rows()
-    values = {m: (g.document(doc.get(m, sp.Integer(0)), rows), truth[m][:, j]) for m in monos}
+    docs = g.documents([doc.get(m, sp.Integer(0)) for m in monos], rows)
+    values = {m: (D, truth[m][:, j]) for m, D in zip(monos, docs)}
     cscale = max([float(np.abs(v).max(initial=0.0)) for pair in values.values() for v in pair]
                  + [1e-300])
     out = []
@@ -307,12 +318,15 @@ def _document_values(g: _Group, step: Step, T: np.ndarray):
     largest value on either side (for a relation, of either side's rate; for a vector, at
     least the size of the body origin's vector of the same kind, so that a vector that is 0
     (a contact point's velocity) is judged against the motion's size)."""
-    D_all, parts = [], []
-    for j, expr in enumerate(step.components):
-        lost = expr.has(sp.nan)
-        D_all.append(None if lost else g.document(g._rate(expr)))
-        if step.kind in ("constraint", "claim") and not lost:
-            parts += [g.document(g._rate(side)) for side in step.sides[j]]
+    kept = [j for j, expr in enumerate(step.components) if not expr.has(sp.nan)]
+    exprs = [g._rate(step.components[j]) for j in kept]
+    if step.kind in ("constraint", "claim"):
+        exprs += [g._rate(side) for j in kept for side in step.sides[j]]
+    values = g.documents(exprs)
+    D_all = [None] * len(step.components)
+    for j, v in zip(kept, values):
+        D_all[j] = v
+    parts = values[len(kept):]
     scale = max([float(np.abs(a).max(initial=0.0))
                  for a in (*[x for x in D_all if x is not None], T, *parts)
                  if np.all(np.isfinite(a))] + [g.reference.get(id(step), 0.0), 1e-300])
