@@ -141,9 +141,10 @@ _GROUP_ORDER = ("dimension", "sign", "power", "factor", "swap", "missing", "extr
 
 def cause_lines(result: DerivationResult) -> list[CauseLine]:
     r"""The causes of a derivation, most important first (see the module text)."""
-    if result.causes:
-        return [CauseLine(c.kind, tuple(c.elements), c.explanation, c.latex) for c in result.causes]
-    groups: dict[tuple[str, str], list[str]] = {}
+    computed = [CauseLine(c.kind, tuple(c.elements), c.explanation, c.latex) for c in result.causes]
+    if any(c.kind != "upstream_step" for c in result.causes):
+        return computed
+    groups: dict[tuple[str, str], list[str]] = {}        # (earlier steps' causes come last)
     for r in result.records:
         if r.verdict not in SHOWN_VERDICTS:
             continue
@@ -152,7 +153,7 @@ def cause_lines(result: DerivationResult) -> list[CauseLine]:
         groups.setdefault((kind, _group_sentence(kind, first)), []).append(r.element)
     rank = {k: i for i, k in enumerate(_GROUP_ORDER)}
     keys = sorted(groups, key=lambda k: (rank.get(k[0], len(rank)), -len(groups[k])))
-    return [CauseLine(k, tuple(groups[(k, s)]), s, computed=False) for k, s in keys]
+    return [CauseLine(k, tuple(groups[(k, s)]), s, computed=False) for k, s in keys] + computed
 
 
 def row_factor_line(result: DerivationResult) -> str:
