@@ -1,12 +1,12 @@
-r"""The coordinate sets every wheeled model offers, and the WIP's seed-001 names.
+r"""The coordinate sets every model offers, and those its model file declares.
 
 - ``full``: the model's own coordinates (x0, y0, psi, [phi], ..., theta_l, theta_r), rolling
   constraints kept with multipliers;
 - ``heading``: the heading speed :math:`\dot x = \cos\psi\,\dot x_0 + \sin\psi\,\dot y_0`, the
   heading rate :math:`\dot\psi`, then every coordinate that is neither the base's nor a wheel's
-  (the pitch :math:`\varphi` of the WIP); rolling eliminated. For ``wip`` this is seed 001's
-  eq. (25) set and is also called ``seed001`` (states x, psi, phi, dx, dpsi, dphi);
-- ``absolute_wheels`` (``wip`` only): seed 001 section 5's coordinates
+  (the pitch :math:`\varphi` of the WIP); rolling eliminated. ``wip.toml`` declares the same
+  set as ``seed001`` (seed 001's eq. (25): states x, psi, phi, dx, dpsi, dphi) and
+  ``absolute_wheels``: seed 001 section 5's coordinates
   :math:`(x_0, y_0, \theta_l, \theta_r, \varphi)` with absolute, forward-positive wheel
   angles and the holonomic map :math:`\psi = R(\theta_r - \theta_l)/(2L)`, constraints kept;
 - ``wheels``: the wheel angle rates :math:`\dot\theta_l, \dot\theta_r` then the same others;
@@ -27,6 +27,10 @@ Models without wheels (``fixed`` and ``free`` bases) offer
   axes (velocities ``wX, wY, wZ``). For a ball whose inertia is isotropic the reduced
   equations in these velocities do not depend on the ball's orientation, so a spinning ball
   on top of the fixed sphere is an equilibrium of (centre, angular velocity).
+
+A model file's ``[coordinates.<name>]`` tables (:attr:`ModelSpec.coordinate_sets
+<wheeled_dyn.models.builder.ModelSpec.coordinate_sets>`) add sets, or replace the generated
+set of the same name; ``default_coordinates`` names the default.
 """
 
 from __future__ import annotations
@@ -38,8 +42,6 @@ from ..models.builder import FREE_BASE, WheeledModel
 from .spec import CoordinateSet, parse_coordinate_set
 
 BASE = ("x0", "y0", "psi")
-#: The default set of each model (the first of its list otherwise).
-DEFAULTS = {"wip": "seed001"}
 
 
 def _others(wm: WheeledModel) -> list[str]:
@@ -106,8 +108,8 @@ def _unwheeled_specs(wm: WheeledModel) -> dict[str, dict[str, Any]]:
     return specs
 
 
-def builtin_specs(wm: WheeledModel) -> dict[str, dict[str, Any]]:
-    r"""The raw specs (dicts, as a derivation file would write them) of the model's sets."""
+def _generated_specs(wm: WheeledModel) -> dict[str, dict[str, Any]]:
+    r"""The sets every model of this kind offers (see the module docstring)."""
     if not wm.wheels:
         return _unwheeled_specs(wm)
     others = _others(wm)
@@ -132,20 +134,16 @@ def builtin_specs(wm: WheeledModel) -> dict[str, dict[str, Any]]:
         "kind": "holonomic", "rolling": "multipliers",
         "positions": list(wm.coordinate_names),
     }
-    specs = {"heading": heading, "wheels": wheels, "full": full}
-    if wm.name == "wip":
-        specs = {"seed001": {**heading, "description": "seed 001 eq. (25): " +
-                             heading["description"]}, **specs}
-        specs["absolute_wheels"] = {
-            "description": "seed 001 section 5's coordinates done right: x0, y0, absolute wheel "
-                           "angles (forward-positive), pitch; psi = R(theta_r - theta_l)/(2L); "
-                           "rolling kept as multipliers",
-            "kind": "holonomic", "rolling": "multipliers",
-            "positions": ["x0", "y0", "theta_l", "theta_r", "phi"],
-            "configuration": {"x0": "x0", "y0": "y0", "psi": "R*(theta_r - theta_l)/(2*L)",
-                              "phi": "phi", "theta_l": "-theta_l - phi",
-                              "theta_r": "-theta_r - phi"},
-        }
+    return {"heading": heading, "wheels": wheels, "full": full}
+
+
+def builtin_specs(wm: WheeledModel) -> dict[str, dict[str, Any]]:
+    r"""The raw specs (dicts, as a derivation file would write them) of the model's sets: the
+    generated ones, then those its model file declares (replacing a generated one of the same
+    name)."""
+    specs = _generated_specs(wm)
+    for name, raw in wm.spec.coordinate_sets.items():
+        specs[name] = {k: (dict(v) if isinstance(v, dict) else v) for k, v in raw.items()}
     return specs
 
 
@@ -154,8 +152,8 @@ def coordinate_set_names(wm: WheeledModel) -> tuple[str, ...]:
 
 
 def default_coordinate_set(wm: WheeledModel) -> str:
-    if wm.name in DEFAULTS:
-        return DEFAULTS[wm.name]
+    if wm.spec.default_coordinates:
+        return wm.spec.default_coordinates
     if wm.wheels:
         return "heading"
     return "body_rates" if wm.contact is not None else "full"

@@ -13,7 +13,7 @@ Pinocchio. Format: ``docs/derivation-format.md``.
 from .._lazy import attach
 
 __getattr__, __dir__, __all__ = attach(__name__, {
-    "BUILTIN_COORDINATE_SETS": ".coordinates",
+    "declared_sets": ".coordinates",
     "BuiltinSet": ".coordinates",
     "DerivationNameError": ".errors",
     "KHALIL_FUNCTIONS": ".expressions",

@@ -17,8 +17,12 @@ Either a built-in set of the model (``use = "seed001"``), or an inline set:
 :math:`G^{\mathsf T}\lambda`) or ``"none"``. Names default to ``d<position>`` for velocities
 and ``dd<position>`` for accelerations.
 
-The parser knows the names of the built-in sets in :data:`BUILTIN_COORDINATE_SETS` (it does not
-import the models); a file may ``use`` another set if it also lists ``positions``.
+The parser knows the names of the sets a model file declares (``[coordinates.<name>]`` in
+``data/models/<model>.toml``, or in the model file the derivation's ``model =`` names by path),
+read with :mod:`tomllib` alone (it does not import the models: :func:`declared_sets`); a file
+may ``use`` another set (one every model offers, e.g. ``heading``) if it also lists
+``positions``. A ``model =`` path is relative to the derivation file
+(:func:`resolve_model_reference`).
 """
 
 from __future__ import annotations
@@ -31,7 +35,7 @@ from typing import Any
 
 import sympy
 
-from ..errors import DerivationError
+from ..errors import DerivationError, InputFileError
 from .expressions import ExpressionError, parse_model_expression, parse_units, scan_names
 from .schema import CoordinateSpec
 
@@ -53,24 +57,40 @@ class BuiltinSet:
     units: Mapping[str, str] = field(default_factory=dict)
 
 
-#: model name → set name → names. ``wip``: ``seed001`` (x = distance along the heading,
-#: :math:`\dot x = \cos\psi\,\dot x_0 + \sin\psi\,\dot y_0`; ψ heading; φ pitch; rolling
-#: eliminated), ``wheels`` (wheel angles relative to the body, pitch), ``full`` (all six model
-#: coordinates, rolling kept as multipliers).
-BUILTIN_COORDINATE_SETS: Mapping[str, Mapping[str, BuiltinSet]] = MappingProxyType({
-    "wip": MappingProxyType({
-        "seed001": BuiltinSet(("x", "psi", "phi"), ("dx", "dpsi", "dphi"), "quasi", "eliminate",
-                              {"x": "m", "psi": "rad", "phi": "rad"}),
-        "wheels": BuiltinSet(("theta_l", "theta_r", "phi"), ("dtheta_l", "dtheta_r", "dphi"),
-                             "holonomic", "eliminate",
-                             {"theta_l": "rad", "theta_r": "rad", "phi": "rad"}),
-        "full": BuiltinSet(("x0", "y0", "psi", "phi", "theta_l", "theta_r"),
-                           ("dx0", "dy0", "dpsi", "dphi", "dtheta_l", "dtheta_r"),
-                           "holonomic", "multipliers",
-                           {"x0": "m", "y0": "m", "psi": "rad", "phi": "rad",
-                            "theta_l": "rad", "theta_r": "rad"}),
-    }),
-})
+def _builtin_set(raw: Mapping[str, Any]) -> BuiltinSet:
+    positions = tuple(raw.get("positions", ()))
+    kind = raw.get("kind", "holonomic")
+    return BuiltinSet(positions, tuple(raw.get("velocities", ["d" + p for p in positions])),
+                      kind, raw.get("rolling", "eliminate" if kind == "quasi" else "none"),
+                      MappingProxyType(dict(raw.get("units", {}))))
+
+
+def declared_sets(model: str) -> Mapping[str, BuiltinSet]:
+    r"""Names of the coordinate sets the model file of ``model`` (a shipped model's name or a
+    model file path) declares; empty for a model written in Python or an unknown name."""
+    from ..models.listing import shipped_model_files
+    from ..models.model_file import is_model_path, read_model_file
+    if is_model_path(model):
+        mf = read_model_file(model)
+    else:
+        mf = shipped_model_files().get(model)
+        if mf is None:
+            return MappingProxyType({})
+    return MappingProxyType({name: _builtin_set(raw)
+                             for name, raw in mf.coordinate_sets.items()})
+
+
+def resolve_model_reference(path: Path, model: str, line: int | None) -> str:
+    r"""A derivation's ``model =``: a name unchanged, a model file path made absolute (relative
+    to the derivation file ``path``); a path to no file raises :class:`DerivationError`."""
+    from ..models.model_file import is_model_path
+    if not is_model_path(model):
+        return model
+    target = (path.parent / Path(model).expanduser()).resolve()
+    if not target.is_file():
+        raise DerivationError(path, "model", f"no model file {model!r} (looked for {target})",
+                              line)
+    return str(target)
 
 
 @dataclass(frozen=True)
@@ -147,13 +167,16 @@ def coordinate_names(path: Path, table: Any, model: str,
     if use is not None:
         if not isinstance(use, str):
             raise DerivationError(path, "coordinates.use", "expected a name", line_of("use"))
-        builtin = BUILTIN_COORDINATE_SETS.get(model, {}).get(use)
+        try:
+            sets = declared_sets(model)
+        except InputFileError as exc:
+            raise DerivationError(path, "model", f"model file: {exc}", None) from None
+        builtin = sets.get(use)
         if builtin is None and positions is None:
-            known = ", ".join(f"{m}:{s}" for m, sets in BUILTIN_COORDINATE_SETS.items()
-                              for s in sets)
-            raise DerivationError(path, "coordinates.use", f"{use!r} is not a built-in "
-                                  f"coordinate set of model {model!r} known to the parser "
-                                  f"({known}); list its positions too", line_of("use"))
+            known = ", ".join(f"{model}:{name}" for name in sets) or "none"
+            raise DerivationError(path, "coordinates.use", f"{use!r} is not a coordinate set "
+                                  f"declared by model {model!r}'s file (declared: {known}); "
+                                  "list its positions too", line_of("use"))
         for key in ("configuration", "velocity_map"):
             if key in table:
                 raise DerivationError(path, f"coordinates.{key}", "not allowed with 'use' (the "

@@ -28,7 +28,7 @@ import sympy
 
 from ..errors import DerivationError
 from .builtin import derivation_files
-from .coordinates import coordinate_names, coordinate_spec
+from .coordinates import coordinate_names, coordinate_spec, resolve_model_reference
 from .errors import DerivationNameError
 from .expressions import (RESERVED_NAMES, ExpressionError, UndeclaredNameError,
                           check_expanded, parse_expression, parse_model_expression, parse_units,
@@ -229,6 +229,7 @@ def load_derivation(path: str | Path, *, parameters: Collection[str] | None = No
             raise ld.fail(key, "unknown key or table; valid: " + ", ".join(TOP_LEVEL_KEYS),
                           src.line_of(None, key) or src.line_of(key))
     title, model = ld.text("title"), ld.text("model")
+    model = resolve_model_reference(p, model, ld.line(None, "model"))
     source = ld.table("source")
     if not all(isinstance(v, str) for v in source.values()):
         raise ld.fail("source", "values are strings", ld.line("source"))

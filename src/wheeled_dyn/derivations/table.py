@@ -32,7 +32,7 @@ from typing import Any
 
 import sympy
 
-from .coordinates import coordinate_names
+from .coordinates import coordinate_names, resolve_model_reference
 from .parse import _Loader
 from .schema import SymbolSpec
 from .source import read_toml
@@ -111,6 +111,7 @@ def load_comparison_table(path: str | Path) -> ComparisonTable:
             raise ld.fail(key, "unknown key or table; valid: " + ", ".join(TABLE_KEYS),
                           src.line_of(None, key) or src.line_of(key))
     title, model = ld.text("title"), ld.text("model")
+    model = resolve_model_reference(p, model, ld.line(None, "model"))
     names = coordinate_names(p, ld.table("coordinates", required=True), model,
                              lambda key: ld.line("coordinates", key))
     positions = tuple(ld.declare(n, "position", "coordinates", None) for n in names.positions)

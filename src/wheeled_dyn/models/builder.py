@@ -37,8 +37,12 @@ Christoffel symbols exist). ``ModelSpec.base`` chooses what carries the URDF's r
   keep motions away from it, or use body angular velocities as quasi-velocities, which are
   regular everywhere the angles are).
 
-Joints listed in ``lock`` are frozen at zero (their bodies' inertia is merged into their
-parents). Motors: the wheel joints of a planar model; on the other bases, the joints listed in
+Joints listed in ``lock`` are frozen, at the values of ``locked`` (0 for a joint not given
+there); their bodies' inertia is merged into their parents. A wheel link may hang from its spin
+joint through fixed joints (a tyre on a hub on a motor rotor): its link origin is the wheel
+centre, which must lie on the spin axis; the joint's origin is moved along its axis to that
+centre (an exact change of frame: a rotation about an axis commutes with a translation along
+it), so the rolling constraint acts at the tyre. Motors: the wheel joints of a planar model; on the other bases, the joints listed in
 ``actuated`` (a torque or force along each joint axis, reaction on the parent). ``geometry``
 names constants that coordinate sets and derivation files may use (a rolling radius, a gear
 ratio); a ball rolling without slip on the ground or on a fixed sphere is declared by
@@ -61,6 +65,8 @@ from .urdf_source import UrdfSource, read_urdf
 
 #: Largest |cos| between the axle and the up direction for the axle to count as horizontal.
 HORIZONTAL_TOL = 1e-9
+#: Largest distance (m) of a wheel link's origin from its spin joint's axis.
+AXIS_TOL = 1e-9
 #: Largest relative difference between the two wheel radii.
 RADIUS_TOL = 1e-9
 #: Standard gravity of built models (m/s²); parameter sets may change it.
@@ -99,6 +105,11 @@ class ModelSpec:
     geometry: Mapping[str, float] = field(default_factory=dict)
     contact: SphereContact | None = None
     rolling_wheels: tuple[WheelContact, ...] = ()   # tilting wheels on any link (fixed/free)
+    locked: Mapping[str, float] = field(default_factory=dict)  # values of ``lock`` joints
+    accept_inertia: tuple[str, ...] = ()         # links whose URDF inertia is not checked
+    coordinate_sets: Mapping[str, Mapping] = field(default_factory=dict)  # declared sets
+    default_coordinates: str | None = None       # the default coordinate set's name
+    source: Path | None = None                   # the model file, if the spec came from one
 
 
 @dataclass(frozen=True)
@@ -181,7 +192,8 @@ def _joint_axis(jmodel: pin.JointModel) -> np.ndarray:
     if short in ("JointModelRX", "JointModelRY", "JointModelRZ"):
         return _AXES[short[-1]]
     if short == "JointModelRevoluteUnaligned":
-        return np.asarray(jmodel.axis, dtype=float)
+        inner = jmodel.extract() if hasattr(jmodel, "extract") else jmodel
+        return np.asarray(inner.axis, dtype=float)
     raise ValueError(short)
 
 
@@ -190,26 +202,43 @@ def _urdf_models(source: UrdfSource, spec: ModelSpec) -> tuple[pin.Model, pin.Ge
     model = pin.buildModelFromXML(text)
     geom = pin.buildGeomFromUrdfString(model, text, pin.GeometryType.VISUAL,
                                        package_dirs=list(spec.package_dirs))
+    for name in spec.locked:
+        if name not in spec.lock:
+            raise ModelError(spec.name, name, "a value is given for a joint that is not locked")
     if spec.lock:
         ids = []
+        q_ref = pin.neutral(model)
         for name in spec.lock:
             if not model.existJointName(name):
                 raise UnknownNameError("joint", name, list(model.names)[1:], where=str(source.path))
-            ids.append(model.getJointId(name))
-        model, geom = pin.buildReducedModel(model, geom, ids, pin.neutral(model))
+            jid = model.getJointId(name)
+            ids.append(jid)
+            value = float(spec.locked.get(name, 0.0))
+            if model.joints[jid].nq != 1 or not np.isfinite(value):
+                raise ModelError(spec.name, name, f"locked value {value!r}: expected a finite "
+                                                  "number for a joint with one coordinate")
+            q_ref[model.joints[jid].idx_q] = value
+        model, geom = pin.buildReducedModel(model, geom, ids, q_ref)
     return model, geom
 
 
 def _wheel_geometry(source: UrdfSource, spec: ModelSpec, model: pin.Model, data: pin.Data,
                     link: str) -> tuple[np.ndarray, np.ndarray, float, float, str]:
-    """Centre, spin axis (in the URDF root frame), radius, width and joint name of a wheel."""
+    """Centre, spin axis (in the URDF root frame), radius, width and joint name of a wheel
+    (the joint that spins it: the first moving joint above ``link``)."""
     joint = source.joint_to(link)
+    while joint.type == "fixed" or joint.name in spec.lock:
+        joint = source.joint_to(joint.parent)
     if joint.type not in ("continuous", "revolute"):
         raise ModelError(spec.name, link, f"wheel joint {joint.name!r} is {joint.type!r}, "
                                           "expected continuous or revolute")
     jid = model.getJointId(joint.name)
-    centre = data.oMi[jid].translation.copy()
+    centre = data.oMf[model.getFrameId(link, pin.FrameType.BODY)].translation.copy()
     axis = data.oMi[jid].rotation @ _joint_axis(model.joints[jid])
+    offset = centre - data.oMi[jid].translation
+    if np.linalg.norm(offset - (offset @ axis) * axis) > AXIS_TOL:
+        raise ModelError(spec.name, link, f"the wheel link's origin is not on the spin axis of "
+                                          f"joint {joint.name!r}")
     cylinder = source.cylinder(link)
     if spec.radius is not None:
         radius = float(spec.radius)
@@ -286,6 +315,7 @@ def _build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
     for link, side, jname, width in ((spec.wheels[0], "left", jl, wl),
                                      (spec.wheels[1], "right", jr, wr)):
         jid = model.getJointId(jname)
+        _move_joint_to(model, geom, jid, model.frames[model.getFrameId(link, pin.FrameType.BODY)])
         wheels.append(Wheel(link, side, jname, jid, model.joints[jid].idx_v, rl, width))
     body_jid = model.frames[model.getFrameId(body_link)].parentJoint
     inputs = tuple(spec.inputs) if spec.inputs is not None else ("tau_l", "tau_r")
@@ -293,6 +323,30 @@ def _build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
         raise ModelError(spec.name, None, f"{len(inputs)} input names for two wheel motors")
     return WheeledModel(spec.name, spec, model, geom, tuple(wheels), coordinate_names, inputs,
                         {"R": rl, "L": half_track, **spec.geometry}, body_jid)
+
+
+def _move_joint_to(model: pin.Model, geom: pin.GeometryModel, jid: int, frame: pin.Frame) -> None:
+    r"""Move joint ``jid``'s origin along its axis to the origin of ``frame`` (on the axis):
+    with :math:`d` the offset along the axis, :math:`{}^{j}M_{j'} = (I, d\,a)`, and everything
+    the joint carries re-expressed in the new joint frame by :math:`(I, -d\,a)`."""
+    if frame.parentJoint != jid:
+        return
+    axis = _joint_axis(model.joints[jid])
+    d = float(frame.placement.translation @ axis)
+    if d == 0.0:
+        return
+    shift, back = pin.SE3(np.eye(3), d * axis), pin.SE3(np.eye(3), -d * axis)
+    model.jointPlacements[jid] = model.jointPlacements[jid] * shift
+    model.inertias[jid] = back.act(model.inertias[jid])
+    for f in model.frames:
+        if f.parentJoint == jid and f.type != pin.FrameType.JOINT:
+            f.placement = back * f.placement
+    for child in range(jid + 1, model.njoints):
+        if model.parents[child] == jid:
+            model.jointPlacements[child] = back * model.jointPlacements[child]
+    for obj in geom.geometryObjects:
+        if obj.parentJoint == jid:
+            obj.placement = back * obj.placement
 
 
 def _finish(spec: ModelSpec, model: pin.Model, base_names: Sequence[str]) -> tuple[str, ...]:
@@ -378,7 +432,7 @@ def build_wheeled_model(spec: ModelSpec) -> WheeledModel:
     if spec.contact is not None and spec.base == "planar":
         raise ModelError(spec.name, spec.contact.link, "a rolling ball needs base 'free' or "
                                                        "'fixed', not 'planar'")
-    source = read_urdf(spec.urdf)
+    source = read_urdf(spec.urdf, tuple(spec.lock), tuple(spec.accept_inertia))
     urdf_model, urdf_geom = _urdf_models(source, spec)
     if spec.base == "planar":
         return _build_planar(spec, source, urdf_model, urdf_geom)

@@ -1,8 +1,11 @@
-r"""Named models shipped with the toolkit, and physical parameters applied to them.
+r"""The models: the shipped model files (``data/models/*.toml``), models written in Python,
+and model files named by path; physical parameters applied to them.
 
-``load_model("wip")`` builds the seed-001 wheeled pendulum from ``urdf/wip.urdf``;
+``load_model("wip")`` builds the seed-001 wheeled pendulum described by ``data/models/wip.toml``;
 ``load_model("wip", WipParameters(...))`` the same body with other physical parameters (masses,
 inertias, centre of mass, wheel radius R, half track L, gravity, motor armature).
+``load_model("path/to/robot.toml")`` builds the model a user's file describes (any reference
+ending in ``.toml`` or containing a path separator is a file; format: ``docs/model-format.md``).
 ``load_model("tiago")`` is PAL's TIAGo from example-robot-data (its casters are fixed joints in
 the URDF: their mass is part of the base, their contact is what keeps the base level, so the
 base does not pitch; their rolling is not modelled).
@@ -18,10 +21,11 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 
-from ..errors import OptionalDependencyError, UnknownNameError
-from ..paths import example_robot_data_share, urdf_dir
-from .benchmarks import BENCHMARKS
+from ..errors import UnknownNameError
+from .benchmarks import PYTHON_BENCHMARKS
 from .builder import ModelSpec, WheeledModel, build_wheeled_model
+from .listing import shipped_model_files
+from .model_file import ModelFile, is_model_path, read_model_file
 from .wip_parameters import STANDARD_NAMES, WipParameters, standard_parameters
 
 
@@ -31,109 +35,75 @@ class ModelEntry:
     summary: str
     spec: Callable[[], ModelSpec]
     parameters: type | None = None          # physical-parameter record, if the model has one
+    source: Path | None = None              # the model file, if the model is one
 
 
-def _wip_spec() -> ModelSpec:
-    return ModelSpec(
-        name="wip", urdf=urdf_dir() / "wip.urdf", body="body",
-        wheels=("wheel_left", "wheel_right"), up=(0.0, 1.0, 0.0), pitch=True,
-        aliases={"wheel_left_joint": "theta_l", "wheel_right_joint": "theta_r"},
-        description="two-wheeled inverted pendulum of seed 001 (body pitching on its axle)")
-
-
-def _wip_platform_spec() -> ModelSpec:
-    return ModelSpec(
-        name="wip_platform", urdf=urdf_dir() / "wip_platform.urdf", body="platform",
-        wheels=("wheel_left", "wheel_right"), up=(0.0, 1.0, 0.0), pitch=False,
-        aliases={"wheel_left_joint": "theta_l", "wheel_right_joint": "theta_r",
-                 "hinge": "alpha", "pendulum_joint": "alpha", "alpha": "alpha"},
-        description="level platform on two wheels carrying a pendulum on a passive hinge "
-                    "(seed 001's book equations (9)-(14))")
-
-
-def _tiago_spec() -> ModelSpec:
-    share = example_robot_data_share()
-    if share is None:
-        raise OptionalDependencyError("model tiago", "example-robot-data",
-                                      "pip install example-robot-data")
-    return ModelSpec(
-        name="tiago", urdf=share / "example-robot-data/robots/tiago_description/robots/"
-        "tiago_no_hand.urdf", body="base_link", wheels=("wheel_left_link", "wheel_right_link"),
-        up=(0.0, 0.0, 1.0), pitch=False, package_dirs=(str(share),),
-        aliases={"wheel_left_joint": "theta_l", "wheel_right_joint": "theta_r"},
-        description="PAL TIAGo (differential drive, torso, 7-DoF arm, head); casters fixed")
-
-
-def _tiago_base_spec() -> ModelSpec:
-    spec = _tiago_spec()
-    upper = ("torso_lift_joint", *(f"arm_{i}_joint" for i in range(1, 8)), "head_1_joint",
-             "head_2_joint")
-    return ModelSpec(**{**spec.__dict__, "name": "tiago_base", "lock": upper,
-                        "description": "TIAGo with torso, arm and head locked: a "
-                                       "differential-drive base carrying a rigid upper body"})
-
+#: Physical-parameter records by the name a model file gives (``parameters = "wip"``).
+PARAMETER_RECORDS: dict[str, type] = {"wip": WipParameters}
 
 #: Rolling radius of Upkie's wheels (m): the distance from ``left_wheel_tire`` to the
-#: ``left_contact`` frame in upkie_description's URDF.
+#: ``left_contact`` frame in upkie_description's URDF (``data/models/upkie.toml``).
 UPKIE_WHEEL_RADIUS = 0.047
 
 
-def _upkie_spec() -> ModelSpec:
-    try:
-        import upkie_description
-    except ImportError:
-        raise OptionalDependencyError("model upkie", "upkie-description",
-                                      "pip install upkie-description") from None
-    from .rolling_wheel import WheelContact
-    wheels = tuple(WheelContact(f"{side}_wheel_tire", UPKIE_WHEEL_RADIUS, axis=(0.0, 0.0, 1.0))
-                   for side in ("left", "right"))
-    return ModelSpec(
-        name="upkie", urdf=Path(upkie_description.URDF_PATH), base="free", body="base",
-        actuated=tuple(f"{side}_{joint}" for side in ("left", "right")
-                       for joint in ("hip", "knee", "wheel")),
-        package_dirs=(str(Path(upkie_description.__file__).parent.parent),),
-        rolling_wheels=wheels, geometry={"R": UPKIE_WHEEL_RADIUS},
-        description="Upkie wheel-legged robot (upkie-description): free base, hips and knees "
-                    "free, both wheels rolling (knife edges, radius from the URDF's contact "
-                    "frames)")
+def file_entry(mf: ModelFile) -> ModelEntry:
+    r"""The registry entry of a model file."""
+    return ModelEntry(mf.name, mf.summary, mf.spec,
+                      PARAMETER_RECORDS[mf.parameters] if mf.parameters else None, mf.path)
 
 
-MODELS: dict[str, ModelEntry] = {
-    "wip": ModelEntry("wip", "two-wheeled inverted pendulum (seed 001), 6 coordinates",
-                      _wip_spec, WipParameters),
-    "wip_platform": ModelEntry("wip_platform", "platform on two wheels with a hinged pendulum "
-                               "(seed 001 eqs (9)-(14))", _wip_platform_spec),
-    "tiago": ModelEntry("tiago", "PAL TIAGo from example-robot-data, differential drive + arm",
-                        _tiago_spec),
-    "tiago_base": ModelEntry("tiago_base", "TIAGo with torso, arm and head locked "
-                             "(differential drive, 5 coordinates)", _tiago_base_spec),
-    "upkie": ModelEntry("upkie", "Upkie wheel-legged robot, legs free, both wheels rolling "
-                        "(upkie-description)", _upkie_spec),
-}
+MODELS: dict[str, ModelEntry] = {name: file_entry(mf)
+                                 for name, mf in shipped_model_files().items()}
+for _name, _summary, _spec in PYTHON_BENCHMARKS:
+    if _name in MODELS:
+        raise UnknownNameError("model", _name, (), where="models.benchmarks: defined twice")
+    MODELS[_name] = ModelEntry(_name, _summary, _spec)
 
 
-MODELS.update({name: ModelEntry(name, summary, spec) for name, summary, spec in BENCHMARKS})
+def register_model(name: str, summary: str, spec: Callable[[], ModelSpec],
+                   parameters: type | None = None) -> ModelEntry:
+    r"""Register a model written in Python (a :class:`ModelSpec` function) under ``name``."""
+    MODELS[name] = ModelEntry(name, summary, spec, parameters)
+    _built.cache_clear()
+    return MODELS[name]
 
 
 def model_names() -> tuple[str, ...]:
     return tuple(MODELS)
 
 
-def model_entry(name: str) -> ModelEntry:
-    try:
-        return MODELS[name]
-    except KeyError:
-        raise UnknownNameError("model", name, MODELS) from None
+@lru_cache(maxsize=None)
+def _path_entry(resolved: str) -> ModelEntry:
+    return file_entry(read_model_file(resolved))
+
+
+def _key(reference: str | Path) -> str:
+    text = str(reference)
+    if text in MODELS or not is_model_path(text):
+        return text
+    return str(Path(text).expanduser().resolve())
+
+
+def model_entry(reference: str | Path) -> ModelEntry:
+    r"""The entry of a model name or a model file path (see the module docstring)."""
+    key = _key(reference)
+    if key in MODELS:
+        return MODELS[key]
+    if is_model_path(key):
+        return _path_entry(key)
+    raise UnknownNameError("model", str(reference), MODELS,
+                           where="names, or a model file path (name.toml)")
 
 
 @lru_cache(maxsize=None)
-def _built(name: str) -> WheeledModel:
-    return build_wheeled_model(model_entry(name).spec())
+def _built(key: str) -> WheeledModel:
+    return build_wheeled_model(model_entry(key).spec())
 
 
-def load_model(name: str, params: WipParameters | None = None) -> WheeledModel:
-    r"""The named model, with the given physical parameters if the model has a record."""
-    base = _built(name)
+def load_model(name: str | Path, params: WipParameters | None = None) -> WheeledModel:
+    r"""The model named ``name`` (or described by the model file at that path), with the given
+    physical parameters if the model has a record."""
+    base = _built(_key(name))
     if params is None:
         return base.with_model(pin.Model(base.model))
     entry = model_entry(name)

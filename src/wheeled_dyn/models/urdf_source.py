@@ -18,6 +18,7 @@ from pathlib import Path
 import yourdfpy
 
 from ..errors import InputFileError, ModelError, UnknownNameError
+from .urdf_checks import check_urdf_tree
 
 #: Limits written for ``continuous`` joints turned ``revolute`` (radians): wheels never reach them.
 UNBOUNDED_LIMIT = 1.0e6
@@ -32,7 +33,7 @@ class UrdfSource:
 
     @cached_property
     def robot(self) -> yourdfpy.URDF:
-        return yourdfpy.URDF.load(io.StringIO(self.text), build_scene_graph=False,
+        return yourdfpy.URDF.load(io.BytesIO(self.text.encode("utf-8")), build_scene_graph=False,
                                   load_meshes=False, load_collision_meshes=False)
 
     @property
@@ -91,16 +92,22 @@ class UrdfSource:
         return ET.tostring(root, encoding="unicode")
 
 
-def read_urdf(path: str | Path) -> UrdfSource:
+def read_urdf(path: str | Path, locked: tuple[str, ...] = (),
+              accept_inertia: tuple[str, ...] = ()) -> UrdfSource:
     r"""Read and check a URDF file.
 
     Raises :class:`InputFileError` if the file is missing, is not well-formed XML (with line and
-    column), has no ``<robot>`` root, or is rejected by yourdfpy (with its reason).
+    column), has no ``<robot>`` root, fails the tree checks of :mod:`.urdf_checks` or is
+    rejected by yourdfpy (with its reason); :class:`ModelError` for bad inertial data
+    (``locked`` joints count as fixed there, the links of ``accept_inertia`` are not checked).
     """
     path = Path(path)
     if not path.is_file():
         raise InputFileError(path, "no such URDF file")
-    text = path.read_text(encoding="utf-8")
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputFileError(path, f"cannot read the URDF: {exc}") from None
     try:
         root = ET.fromstring(text)
     except ET.ParseError as exc:
@@ -109,6 +116,7 @@ def read_urdf(path: str | Path) -> UrdfSource:
                              line=line, column=column + 1) from None
     if root.tag != "robot":
         raise InputFileError(path, f"root element is <{root.tag}>, expected <robot>", line=1)
+    check_urdf_tree(path, text, root, tuple(locked), tuple(accept_inertia))
     source = UrdfSource(path=path, text=text)
     try:
         _ = source.robot

@@ -1,0 +1,247 @@
+r"""Model files: a model as data (TOML), read into the same :class:`~.builder.ModelSpec` as a
+model written in Python. Format and a complete example: ``docs/model-format.md``.
+
+.. code-block:: toml
+
+    name = "upkie_crouch"
+    summary = "Upkie with its legs locked at a crouch: a two-wheeled pendulum"
+    [urdf]
+    package = "upkie-description"           # or: path = "robot.urdf" (relative to this file)
+    [base]
+    type = "planar"                         # planar (wheeled) | fixed | free
+    body = "base"
+    up = [0.0, 0.0, 1.0]
+    [wheels]
+    links = ["left_wheel_tire", "right_wheel_tire"]
+    radius = 0.047
+    [joints]
+    locked = { left_hip = 0.6, left_knee = -1.2, right_hip = -0.6, right_knee = 1.2 }
+
+Reading a file needs only :mod:`tomllib` (:func:`read_model_file`, used by ``wheeled-dyn list``
+and by the derivation parser for the names of the declared coordinate sets);
+:meth:`ModelFile.spec` resolves the URDF (a path, or a robot inside an installed description
+package) and builds the spec. Every error names the file, the line and the key.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from types import MappingProxyType
+from typing import TYPE_CHECKING, Any
+
+from ..derivations.source import SourceText, read_toml
+from ..errors import InputFileError, OptionalDependencyError
+from .urdf_packages import PACKAGES, resolve_package
+
+if TYPE_CHECKING:
+    from .builder import ModelSpec
+
+#: Keys of a model file, by table (None: the top level).
+KEYS: Mapping[str | None, tuple[str, ...]] = MappingProxyType({
+    None: ("name", "summary", "description", "parameters", "default_coordinates", "urdf",
+           "base", "wheels", "joints", "geometry", "contact", "rolling_wheel", "coordinates",
+           "checks"),
+    "urdf": ("path", "package", "package_dirs"),
+    "base": ("type", "body", "up", "pitch"),
+    "wheels": ("links", "radius", "inputs"),
+    "joints": ("lock", "locked", "actuated", "inputs", "aliases"),
+    "contact": ("link", "radius", "surface", "surface_radius", "centre"),
+    "rolling_wheel": ("link", "radius", "axis", "centre", "tyre_radius"),
+    "checks": ("accept_inertia",),
+})
+#: Physical-parameter records a model file may name (``parameters = "wip"``).
+PARAMETER_RECORDS: tuple[str, ...] = ("wip",)
+
+
+@dataclass(frozen=True)
+class ModelFile:
+    r"""A model file that parsed: its path, name, summary and raw tables."""
+
+    path: Path
+    name: str
+    summary: str
+    data: Mapping[str, Any]
+    source: SourceText
+
+    @property
+    def coordinate_sets(self) -> Mapping[str, Mapping[str, Any]]:
+        r"""The declared coordinate sets, ``{name: raw table}`` (in the file's order)."""
+        return MappingProxyType(dict(self.data.get("coordinates", {})))
+
+    @property
+    def parameters(self) -> str | None:
+        return self.data.get("parameters")
+
+    def fail(self, key: str, reason: str, table: str | None = None) -> InputFileError:
+        line = self.source.line_of(table, key) if key else self.source.line_of(table)
+        item = f"{table}.{key}" if table and key else (table or key)
+        return InputFileError(self.path, f"{item}: {reason}", line=line)
+
+    def urdf_path(self) -> tuple[Path, tuple[str, ...]]:
+        r"""The URDF file and the package folders its ``package://`` meshes resolve in."""
+        table = self.data["urdf"]
+        dirs = tuple(str((self.path.parent / d).resolve()) for d in table.get("package_dirs", ()))
+        package = table.get("package")
+        if package is None:
+            return (self.path.parent / table["path"]).resolve(), dirs
+        try:
+            urdf, pkg_dirs = resolve_package(package, table.get("path"))
+        except OptionalDependencyError:
+            raise
+        except LookupError as exc:
+            raise self.fail("package", str(exc), "urdf") from None
+        return urdf, (*dirs, *pkg_dirs)
+
+    def spec(self) -> "ModelSpec":
+        r"""The :class:`~.builder.ModelSpec` this file describes (the URDF resolved)."""
+        from .builder import ModelSpec
+        from .contact import SphereContact
+        from .rolling_wheel import WheelContact
+        d = self.data
+        urdf, package_dirs = self.urdf_path()
+        base = d.get("base", {})
+        wheels = d.get("wheels", {})
+        joints = d.get("joints", {})
+        locked = dict(joints.get("locked", {}))
+        lock = (*joints.get("lock", ()), *(j for j in locked if j not in joints.get("lock", ())))
+        inputs = wheels.get("inputs", joints.get("inputs"))
+        contact = d.get("contact")
+        return ModelSpec(
+            name=self.name, urdf=urdf, body=base.get("body", ""),
+            wheels=tuple(wheels.get("links", ())),
+            up=tuple(float(x) for x in base.get("up", (0.0, 0.0, 1.0))),
+            pitch=bool(base.get("pitch", True)), lock=tuple(lock),
+            locked=MappingProxyType({k: float(v) for k, v in locked.items()}),
+            aliases=MappingProxyType(dict(joints.get("aliases", {}))),
+            inputs=tuple(inputs) if inputs is not None else None,
+            radius=float(wheels["radius"]) if "radius" in wheels else None,
+            package_dirs=package_dirs, description=d.get("description", self.summary),
+            base=base.get("type", "planar"), actuated=tuple(joints.get("actuated", ())),
+            geometry=MappingProxyType({k: float(v) for k, v in d.get("geometry", {}).items()}),
+            contact=SphereContact(**{k: tuple(v) if isinstance(v, list) else v
+                                     for k, v in contact.items()}) if contact else None,
+            rolling_wheels=tuple(WheelContact(**{k: tuple(v) if isinstance(v, list) else v
+                                                 for k, v in w.items()})
+                                 for w in d.get("rolling_wheel", ())),
+            accept_inertia=tuple(d.get("checks", {}).get("accept_inertia", ())),
+            coordinate_sets=self.coordinate_sets,
+            default_coordinates=d.get("default_coordinates"), source=self.path)
+
+
+def _names(mf: ModelFile, table: str | None, key: str, value: Any) -> None:
+    if not isinstance(value, list) or not all(isinstance(v, str) and v for v in value):
+        raise mf.fail(key, "expected a list of names", table)
+
+
+def _numbers(mf: ModelFile, table: str | None, key: str, value: Any, n: int | None) -> None:
+    ok = isinstance(value, list) and all(isinstance(x, (int, float)) and not
+                                         isinstance(x, bool) and math.isfinite(x) for x in value)
+    if not ok or (n is not None and len(value) != n):
+        raise mf.fail(key, f"expected {n or 'a list of'} finite numbers", table)
+
+
+def _number(mf: ModelFile, table: str | None, key: str, value: Any) -> None:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise mf.fail(key, f"expected a finite number, got {value!r}", table)
+
+
+def _check_table(mf: ModelFile, table: str, raw: Any, line_table: str | None = None) -> None:
+    if not isinstance(raw, dict):
+        raise mf.fail(table, "expected a table", None)
+    for key in raw:
+        if key not in KEYS[table]:
+            raise mf.fail(key, "unknown key; valid: " + ", ".join(KEYS[table]),
+                          line_table or table)
+
+
+def _validate(mf: ModelFile) -> None:
+    d = mf.data
+    for key in d:
+        if key not in KEYS[None]:
+            raise mf.fail(key, "unknown key or table; valid: " + ", ".join(KEYS[None]))
+    for key in ("name", "summary", "description", "parameters", "default_coordinates"):
+        if key in d and not isinstance(d[key], str):
+            raise mf.fail(key, "expected a string")
+    if "urdf" not in d:
+        raise mf.fail("urdf", "missing: give [urdf] path = \"...\" or package = \"...\"")
+    _check_table(mf, "urdf", d["urdf"])
+    urdf = d["urdf"]
+    if "path" not in urdf and "package" not in urdf:
+        raise mf.fail("urdf", "give path (relative to this file) or package (one of "
+                      + ", ".join(PACKAGES) + ")")
+    for key in ("path", "package"):
+        if key in urdf and not isinstance(urdf[key], str):
+            raise mf.fail(key, "expected a string", "urdf")
+    if "package_dirs" in urdf:
+        _names(mf, "urdf", "package_dirs", urdf["package_dirs"])
+    for table in ("base", "wheels", "joints", "checks", "contact"):
+        if table in d:
+            _check_table(mf, table, d[table])
+    base = d.get("base", {})
+    if "up" in base:
+        _numbers(mf, "base", "up", base["up"], 3)
+    if "pitch" in base and not isinstance(base["pitch"], bool):
+        raise mf.fail("pitch", "expected true or false", "base")
+    for table, key in (("base", "type"), ("base", "body")):
+        if key in d.get(table, {}) and not isinstance(d[table][key], str):
+            raise mf.fail(key, "expected a string", table)
+    wheels = d.get("wheels", {})
+    for table, key in (("wheels", "links"), ("wheels", "inputs"), ("joints", "lock"),
+                       ("joints", "actuated"), ("joints", "inputs"),
+                       ("checks", "accept_inertia")):
+        if key in d.get(table, {}):
+            _names(mf, table, key, d[table][key])
+    if "radius" in wheels:
+        _number(mf, "wheels", "radius", wheels["radius"])
+    joints = d.get("joints", {})
+    for key, check in (("locked", _number), ("aliases", None)):
+        raw = joints.get(key, {})
+        if not isinstance(raw, dict):
+            raise mf.fail(key, "expected a table joint = value", "joints")
+        for name, value in raw.items():
+            if check is not None:
+                check(mf, "joints", key, value)
+            elif not isinstance(value, str) or not value.isidentifier():
+                raise mf.fail(key, f"alias of {name!r}: expected a coordinate name", "joints")
+    geometry = d.get("geometry", {})
+    if not isinstance(geometry, dict):
+        raise mf.fail("geometry", "expected a table name = number")
+    for name, value in geometry.items():
+        if not name.isidentifier():
+            raise mf.fail(name, "not a name", "geometry")
+        _number(mf, "geometry", name, value)
+    wheel_list = d.get("rolling_wheel", [])
+    if not isinstance(wheel_list, list):
+        raise mf.fail("rolling_wheel", "expected [[rolling_wheel]] tables")
+    for w in wheel_list:
+        _check_table(mf, "rolling_wheel", w)
+    sets = d.get("coordinates", {})
+    if not isinstance(sets, dict) or not all(isinstance(v, dict) for v in sets.values()):
+        raise mf.fail("coordinates", "expected [coordinates.<set name>] tables")
+    default = d.get("default_coordinates")
+    if default is not None and default not in sets:
+        raise mf.fail("default_coordinates", f"{default!r} is not a set declared in "
+                      "[coordinates.<name>] (the sets every model offers are the default)")
+    if "parameters" in d and d["parameters"] not in PARAMETER_RECORDS:
+        raise mf.fail("parameters", "expected one of " + ", ".join(PARAMETER_RECORDS))
+
+
+def read_model_file(path: str | Path) -> ModelFile:
+    r"""Read and check a model file (TOML only: no URDF, no Pinocchio). Errors:
+    :class:`~wheeled_dyn.errors.InputFileError` with the file, line and key."""
+    p = Path(path)
+    data, source = read_toml(p)
+    mf = ModelFile(p, str(data.get("name", p.stem)), "", MappingProxyType(data), source)
+    _validate(mf)
+    summary = " ".join(str(data.get("summary", data.get("description", ""))).split())
+    return ModelFile(p, mf.name, summary, mf.data, source)
+
+
+def is_model_path(reference: str | Path) -> bool:
+    r"""Whether a model reference is a file path (``.toml``, or containing a path separator)
+    rather than a registered name."""
+    text = str(reference)
+    return text.endswith(".toml") or "/" in text or "\\" in text

@@ -1,0 +1,172 @@
+r"""Checks of a URDF's tree and inertial data, made before Pinocchio reads the file.
+
+Pinocchio trusts its input: a joint naming a missing link, a link with two parents or a cycle
+of joints make it fail with an unhelpful message or crash the process (a cycle: a
+segmentation fault). These checks read the XML tree and raise one error per file, naming the
+link or joint:
+
+- **structure** (:class:`~wheeled_dyn.errors.InputFileError`): a link or joint without a name or
+  named twice; a joint without ``<parent link>``/``<child link>`` or naming a missing link; a
+  link that is the child of two joints; a cycle of joints; more than one root link.
+- **inertial data** (:class:`~wheeled_dyn.errors.ModelError`): a mass that is not a finite
+  positive number (a zero mass with a zero inertia is a massless frame, as real URDFs write
+  ``base_footprint``, and counts as no ``<inertial>``); an inertia tensor :math:`I` (about the centre of mass) with a non-finite
+  entry, with a negative principal moment (not positive semi-definite) or whose principal
+  moments violate the triangle inequality :math:`I_a + I_b \ge I_c` (no mass distribution has
+  them); a moving joint whose whole subtree carries no mass (its coordinate has no inertia:
+  the mass matrix is singular) — a link without ``<inertial>`` is massless.
+
+A point mass (:math:`I = 0`) and a thin rod (one principal moment 0) are accepted: they are
+positive semi-definite limits that keep the mass matrix regular when other bodies carry
+inertia about the missing axes.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import InputFileError, ModelError
+
+#: Relative tolerance (of the largest principal moment) for PSD and triangle checks.
+INERTIA_TOL = 1e-9
+#: Absolute tolerance (kg m²) for PSD and triangle checks (rounding in near-zero inertias).
+INERTIA_ABS_TOL = 1e-12
+#: How to build a model from a URDF whose link inertia is known to be wrong.
+ACCEPT_HINT = ("; to build anyway (e.g. a small link merged into a larger body), list the link "
+               "in the model file's accept_inertia")
+#: Joint types that do not move their child.
+FIXED_TYPES = ("fixed",)
+
+
+def _line_of(text: str, tag: str, name: str) -> int | None:
+    r"""1-based line of ``<tag ... name="name"`` in ``text``, or None."""
+    match = re.search(rf"<{tag}\b[^>]*\bname\s*=\s*[\"']{re.escape(name)}[\"']", text)
+    return text.count("\n", 0, match.start()) + 1 if match else None
+
+
+def _float(value: str | None) -> float:
+    try:
+        return float(value) if value is not None else 0.0
+    except ValueError:
+        return math.nan
+
+
+def _check_inertial(path: Path, text: str, link: ET.Element, accept: tuple[str, ...]) -> float:
+    r"""The link's mass (0 without ``<inertial>``); errors for bad mass or inertia."""
+    name = link.get("name", "")
+    inertial = link.find("inertial")
+    if inertial is None:
+        return 0.0
+    mass_el = inertial.find("mass")
+    where = f"{path.name}:{_line_of(text, 'link', name) or '?'}"
+    if mass_el is None:
+        raise ModelError(path.stem, name, f"<inertial> without <mass> ({where})")
+    mass = _float(mass_el.get("value"))
+    inertia = inertial.find("inertia")
+    values = {k: _float(inertia.get(k, "0")) if inertia is not None else 0.0
+              for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
+    massless_frame = mass == 0 and all(v == 0 for v in values.values())
+    if not (math.isfinite(mass) and mass > 0) and not massless_frame:
+        raise ModelError(path.stem, name, f"mass {mass_el.get('value')!r} is not a finite "
+                                          f"positive number ({where})")
+    bad = [k for k, v in values.items() if not math.isfinite(v)]
+    if bad:
+        raise ModelError(path.stem, name, f"inertia entry {bad[0]} is not a finite number "
+                                          f"({where})")
+    I = np.array([[values["ixx"], values["ixy"], values["ixz"]],
+                  [values["ixy"], values["iyy"], values["iyz"]],
+                  [values["ixz"], values["iyz"], values["izz"]]])
+    moments = np.linalg.eigvalsh(I)
+    tol = max(INERTIA_TOL * float(np.abs(moments).max()), INERTIA_ABS_TOL)
+    if name in accept:
+        return mass
+    if moments[0] < -tol:
+        raise ModelError(path.stem, name, "inertia is not positive semi-definite (principal "
+                                          f"moments {', '.join(f'{m:.6g}' for m in moments)}) "
+                                          f"({where}){ACCEPT_HINT}")
+    if moments[0] + moments[1] < moments[2] - tol:
+        raise ModelError(path.stem, name, "inertia violates the triangle inequality "
+                                          f"I_a + I_b >= I_c (principal moments "
+                                          f"{', '.join(f'{m:.6g}' for m in moments)}) ({where})"
+                                          + ACCEPT_HINT)
+    return mass
+
+
+def check_urdf_tree(path: str | Path, text: str, root: ET.Element,
+                    locked: tuple[str, ...] = (), accept: tuple[str, ...] = ()) -> None:
+    r"""Check the tree and inertial data of a parsed URDF (see the module docstring).
+
+    ``locked`` joints count as fixed (their subtree moves with the parent); the inertia tensors
+    of the links in ``accept`` are not checked (their mass still is)."""
+    path = Path(path)
+    links: dict[str, ET.Element] = {}
+    for link in root.findall("link"):
+        name = link.get("name")
+        if not name:
+            raise InputFileError(path, "a <link> has no name")
+        if name in links:
+            raise InputFileError(path, f"link {name!r} is defined twice",
+                                 line=_line_of(text, "link", name))
+        links[name] = link
+    joints: dict[str, tuple[str, str, str]] = {}
+    parent_of: dict[str, str] = {}          # child link -> joint
+    for joint in root.findall("joint"):
+        name = joint.get("name")
+        if not name:
+            raise InputFileError(path, "a <joint> has no name")
+        line = _line_of(text, "joint", name)
+        if name in joints:
+            raise InputFileError(path, f"joint {name!r} is defined twice", line=line)
+        ends = []
+        for end in ("parent", "child"):
+            el = joint.find(end)
+            link = el.get("link") if el is not None else None
+            if not link:
+                raise InputFileError(path, f"joint {name!r} has no <{end} link=...>", line=line)
+            if link not in links:
+                raise InputFileError(path, f"joint {name!r} names {end} link {link!r}, which "
+                                           "is not defined", line=line)
+            ends.append(link)
+        parent, child = ends
+        if child in parent_of:
+            raise InputFileError(path, f"joint {name!r}: link {child!r} is already the child "
+                                       f"of joint {parent_of[child]!r} (a URDF is a tree)",
+                                 line=line)
+        parent_of[child] = name
+        joints[name] = (joint.get("type", ""), parent, child)
+    for start in parent_of:                  # every link has at most one parent: follow them
+        seen = [start]
+        link = start
+        while link in parent_of:
+            link = joints[parent_of[link]][1]
+            if link in seen:
+                cycle = seen[seen.index(link):] + [link]
+                raise InputFileError(path, "the joints form a cycle through links "
+                                     + " -> ".join(reversed(cycle)) + f" (joint "
+                                     f"{parent_of[start]!r})",
+                                     line=_line_of(text, "joint", parent_of[start]))
+            seen.append(link)
+    roots = [n for n in links if n not in parent_of]
+    if len(roots) != 1:
+        raise InputFileError(path, f"expected one root link, found {len(roots)}: {roots}")
+    mass = {name: _check_inertial(path, text, link, accept) for name, link in links.items()}
+    children: dict[str, list[str]] = {}
+    for jname, (_, parent, child) in joints.items():
+        children.setdefault(parent, []).append(child)
+
+    def subtree_mass(link: str) -> float:
+        return mass[link] + sum(subtree_mass(c) for c in children.get(link, ()))
+
+    for jname, (jtype, _, child) in joints.items():
+        if jtype in FIXED_TYPES or jname in locked:
+            continue
+        if subtree_mass(child) <= 0:
+            raise ModelError(path.stem, child, f"link moved by joint {jname!r} has no inertial "
+                                               "data, nor has anything it carries: the joint's "
+                                               "coordinate would have no inertia "
+                                               f"({path.name}:{_line_of(text, 'link', child)})")

@@ -1,0 +1,59 @@
+r"""Robots inside installed description packages, named by a model file's ``[urdf] package``.
+
+=================== ============================================ ==============================
+package             ``path`` is relative to                      without ``path``
+=================== ============================================ ==============================
+wheeled-dyn         the toolkit's shipped URDFs (``urdf/``)      (path required)
+example-robot-data  ``<site-packages>/cmeel.prefix/share/        (path required)
+                    example-robot-data/`` (e.g. ``robots/
+                    tiago_description/robots/tiago.urdf``)
+upkie-description   the ``upkie_description`` package folder     ``upkie_description.URDF_PATH``
+=================== ============================================ ==============================
+
+Each also gives the folders ``package://`` mesh names resolve in. A package that is not
+installed raises :class:`~wheeled_dyn.errors.OptionalDependencyError` with the command that
+installs it; a path that is not in the package raises :class:`LookupError` (reported by the
+model file with its line).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from ..errors import OptionalDependencyError
+from ..paths import example_robot_data_share, urdf_dir
+
+#: Package names a model file may give.
+PACKAGES: tuple[str, ...] = ("wheeled-dyn", "example-robot-data", "upkie-description")
+
+
+def _inside(root: Path, path: str | None, package: str) -> Path:
+    if path is None:
+        raise LookupError(f"package {package!r} needs path = \"...\" (relative to {root})")
+    found = (root / path).resolve()
+    if not found.is_file():
+        raise LookupError(f"no file {path!r} in package {package!r} (looked in {root})")
+    return found
+
+
+def resolve_package(package: str, path: str | None) -> tuple[Path, tuple[str, ...]]:
+    r"""(URDF file, package folders) of ``path`` inside ``package`` (see the module table)."""
+    if package == "wheeled-dyn":
+        return _inside(urdf_dir(), path, package), ()
+    if package == "example-robot-data":
+        share = example_robot_data_share()
+        if share is None:
+            raise OptionalDependencyError("package example-robot-data", "example-robot-data",
+                                          "pip install example-robot-data")
+        return _inside(share / "example-robot-data", path, package), (str(share),)
+    if package == "upkie-description":
+        try:
+            import upkie_description
+        except ImportError:
+            raise OptionalDependencyError("package upkie-description", "upkie-description",
+                                          "pip install upkie-description") from None
+        folder = Path(upkie_description.__file__).resolve().parent
+        urdf = (Path(upkie_description.URDF_PATH) if path is None
+                else _inside(folder, path, package))
+        return urdf, (str(folder.parent),)
+    raise LookupError(f"unknown package {package!r}; known: {', '.join(PACKAGES)}")
