@@ -53,8 +53,9 @@ L = { value = "L", units = "m" }
 def _step(kind: str, components, **keys) -> str:
     lines = ["[[step]]", 'equation = "(1)"', f'kind = "{kind}"']
     for k, v in keys.items():
+        v = [v] if isinstance(v, bool) else v
         lines.append(f"{k} = " + (f'"{v}"' if isinstance(v, str) else repr(list(v)).replace("'", '"')))
-    key = "relations" if kind in ("constraint", "claim") else (
+    key = "relations" if kind in ("constraint", "claim", "linearised equations") else (
         "value" if "energy" in kind else "components")
     text = f'"{components}"' if key == "value" else repr(list(components)).replace("'", '"')
     lines.append(f"{key} = {text}")
@@ -301,3 +302,19 @@ def test_the_documented_step_examples_load_and_say_what_the_text_says(tmp_path):
     assert verdicts["after F3"] == ["differs"]
     assert verdicts["(33)"] == ["agrees", "differs"]
     assert verdicts["before (35)"] == ["differs"]
+
+
+def test_linearised_equations_right_rewritten_and_planted_sign(tmp_path):
+    path = Path(__file__).resolve().parents[1] / \
+        "src/wheeled_dyn/data/derivations/seed000/p7_2_linearised_steps.toml"
+    text = path.read_text()
+    head = text.split("[[step]]")[0]
+    body = "".join(_step("linearised equations", rel, about_table=True)
+                   for rel in (["dq + (I1 - I3)*Omega/I2*r = 0"],                 # (7.24)
+                               ["I2*dq = (I3 - I1)*Omega*r"],                     # rewritten
+                               ["dr - (I2 - I1)*Omega/I3*q = 0"]))               # planted sign
+    body = body.replace("about_table = [True]", 'about = { p = "Omega" }\ngiven = ["urdf_structure"]')
+    records = _records(tmp_path, body, head)
+    assert _verdicts(records) == ["agrees", "agrees", "differs"]
+    assert "term q: sign: the document has the opposite sign" in records[2].diagnoses
+    assert records[2].step == "linearised equations"

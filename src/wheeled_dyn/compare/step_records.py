@@ -29,7 +29,7 @@ import sympy as sp
 
 from ..constraints.reduction import CoordinateMap
 from ..derivations.schema import Derivation
-from ..derivations.steps import VECTOR_KINDS, Step
+from ..derivations.steps import RELATION_KINDS, VECTOR_KINDS, Step
 from ..errors import DerivationError
 from .diagnose import agrees, max_error, nice_number, swap_diagnoses, value_diagnoses
 from .evaluate import derivation_coordinate_set, document_symbol_values
@@ -60,6 +60,7 @@ class _Group:
                  sets: int = STEP_SETS, states: int = STEP_STATES) -> None:
         self.d, self.N = d, states
         self.reference: dict[int, float] = {}
+        self.linearised = False
         cases = {c.name: c for c in special_cases(d.model)}
         for name in given:
             if name not in cases:
@@ -80,12 +81,15 @@ class _Group:
         ranges = [tuple(declared.get(p, (-np.pi, np.pi))) for p in self.cs.positions]
         q, nu = random_states(n, sets * states, rng, ranges)
         self.q, self.nu, self.nudot = q, nu, rng.normal(size=nu.shape)
+        self.rng = rng
         self.params = tuple(s.symbol for s in d.symbols.values() if not s.is_input)
         self.values = [document_symbol_values(d, ps, rng) for ps in self.sets]
         self.args = [*d.positions, *d.velocities, *d.accelerations, *self.params]
 
     def truth(self, steps: Sequence[Step]) -> list[np.ndarray]:
-        r"""The truth of every step at every sample; the states are made admissible first."""
+        r"""The truth of every step at every sample; the states are made admissible first (a
+        linearised step, alone in its group: replaced by deviations, see :meth:`_deviations`)."""
+        self.linearised = steps[0].kind == "linearised equations"
         out = [np.zeros((len(self.q), len(s.components))) for s in steps]
         for k, ps in enumerate(self.sets):
             self.cmap.bind(ps.model)
@@ -93,6 +97,9 @@ class _Group:
                                                               *s.bodies)])
             data = ps.model.model.createData()
             for i in range(k * self.N, (k + 1) * self.N):
+                if steps[0].kind == "linearised equations":      # alone in its group
+                    self._deviations(steps[0], k, i)
+                    continue
                 m = Motion(self.cmap, data, self.q[i], self.nu[i], self.nudot[i])
                 self.nu[i], self.nudot[i] = m.nu, m.nudot
                 for s, arr in zip(steps, out):
@@ -101,6 +108,39 @@ class _Group:
                         size = float(np.linalg.norm(m.vector(s.kind, s.body, "origin", "world")))
                         self.reference[id(s)] = max(self.reference.get(id(s), 0.0), size)
         return out
+
+    def _deviations(self, step: Step, k: int, i: int) -> None:
+        r"""Sample ``i`` of a linearised step: the state :math:`x^*` (``about``; positions not
+        named there as drawn), the true free motion's Jacobians :math:`J_q, J_\nu` of
+        :math:`\dot\nu = A^{-1}(-h - Q)` there (central differences; exact in :math:`\nu`,
+        where it is quadratic), and random deviations :math:`\Delta q, \Delta\nu` with
+        :math:`\Delta\dot\nu = J_q\Delta q + J_\nu\Delta\nu` in place of the sample."""
+        d, cmap = self.d, self.cmap
+        if self.cs.rolling == "multipliers":
+            raise DerivationError(d.path, f"step {step.equation}", "linearised equations need "
+                                  "coordinates with the rolling eliminated (or none)")
+        q0, nu0 = self.q[i].copy(), np.zeros(len(self.nu[i]))
+        names = [str(p) for p in d.positions], [str(v) for v in d.velocities]
+        for name, value in step.about:
+            x = float(value.xreplace(self.values[k]))
+            if name in names[0]:
+                q0[names[0].index(name)] = x
+            elif name in names[1]:
+                nu0[names[1].index(name)] = x
+            else:
+                raise DerivationError(d.path, f"step {step.equation}.about.{name}", "not a "
+                                      "position or velocity of the document")
+
+        def f(q, nu):
+            t = cmap.terms_at(cmap.model_configuration(q), nu, q)
+            return np.linalg.solve(t.A, -(t.h + t.Q))
+
+        n = len(nu0)
+        eye = np.eye(n)
+        J_nu = np.stack([(f(q0, nu0 + 1e-3 * e) - f(q0, nu0 - 1e-3 * e)) / 2e-3 for e in eye], 1)
+        J_q = np.stack([(f(q0 + 1e-4 * e, nu0) - f(q0 - 1e-4 * e, nu0)) / 2e-4 for e in eye], 1)
+        dq, dnu = self.rng.normal(size=n), self.rng.normal(size=n)
+        self.q[i], self.nu[i], self.nudot[i] = dq, dnu, J_q @ dq + J_nu @ dnu
 
     def coefficients(self, step: Step, monomials: Sequence[tuple[int, ...]]) -> dict:
         r"""The truth's coefficient of each monomial (exponents over velocities then
@@ -169,7 +209,7 @@ class _Group:
         r"""A configuration relation's rate :math:`\sum_i \partial f/\partial q_i\,\dot q_i`
         (holonomic sets); velocity relations and parameter claims as they are."""
         d = self.d
-        if expr.has(*d.velocities) or not expr.has(*d.positions):
+        if self.linearised or expr.has(*d.velocities) or not expr.has(*d.positions):
             return expr
         if self.cs.kind != "holonomic":
             raise DerivationError(d.path, "step", "a relation between coordinates is checked "
@@ -263,6 +303,35 @@ def _side_factor(g: _Group, sides: tuple[sp.Expr, sp.Expr], scale: float) -> lis
             f"model's motions; true: {sp.sstr(sides[0])} = {sp.sstr(true)}"]
 
 
+def _linear_terms(g: _Group, expr: sp.Expr) -> list[str]:
+    r"""A linearised relation :math:`\sum c_a\Delta\dot\nu_a + \sum c_x\Delta x` that does
+    not hold: its residual on the true deviations is :math:`\sum\kappa_x\Delta x`
+    (:math:`\kappa` fitted per parameter set over the deviations the relation names); the
+    document's :math:`c_x` against the needed :math:`c_x - \kappa_x`."""
+    d = g.d
+    xs = [x for x in (*d.positions, *d.velocities) if expr.has(x)]
+    if not xs:
+        return []
+    R = g.document(expr)
+    X = np.stack(g.documents(xs), 1)
+    kappa = np.zeros_like(X)
+    for k in range(len(g.sets)):
+        rows = slice(k * g.N, (k + 1) * g.N)
+        fit = np.linalg.lstsq(X[rows], R[rows], rcond=None)[0]
+        if not agrees(X[rows] @ fit, R[rows], float(np.abs(R).max(initial=0.0))):
+            return []                   # the residual needs deviations the relation lacks
+        kappa[rows] = fit
+    out = []
+    coefficients = g.documents([expr.diff(x) for x in xs])
+    scale = max(float(np.abs(c).max(initial=0.0)) for c in coefficients)
+    for i, (x, c) in enumerate(zip(xs, coefficients)):
+        needed = c - kappa[:, i]
+        if not agrees(c, needed, scale):
+            why = value_diagnoses(c, needed, scale) or ["differs"]
+            out.append(f"term {x}: {why[0]}")
+    return out
+
+
 def _swap_groups(d: Derivation) -> list[list[sp.Symbol]]:
     by_units: dict[str, list[sp.Symbol]] = {}
     for spec in d.symbols.values():
@@ -320,8 +389,9 @@ def _document_values(g: _Group, step: Step, T: np.ndarray):
     (a contact point's velocity) is judged against the motion's size)."""
     kept = [j for j, expr in enumerate(step.components) if not expr.has(sp.nan)]
     exprs = [g._rate(step.components[j]) for j in kept]
-    if step.kind in ("constraint", "claim"):
-        exprs += [g._rate(side) for j in kept for side in step.sides[j]]
+    if step.kind in RELATION_KINDS:        # the size of each side's terms: a side may be 0
+        exprs += [g._rate(t) for j in kept for side in step.sides[j]
+                  for t in sp.Add.make_args(sp.expand(side))]
     values = g.documents(exprs)
     D_all = [None] * len(step.components)
     for j, v in zip(kept, values):
@@ -381,7 +451,7 @@ def _records(g: _Group, step: Step, index: int, T: np.ndarray) -> list[ElementRe
             continue
         diags: list[str] = []
         expr = g._rate(step.components[j])
-        relation = step.kind in ("constraint", "claim")
+        relation = step.kind in RELATION_KINDS
         if relation:
             lhs, rhs = step.sides[j]
             dl, dr = dims.dim(lhs, []), dims.dim(rhs, [])
@@ -394,7 +464,9 @@ def _records(g: _Group, step: Step, index: int, T: np.ndarray) -> list[ElementRe
             diags += [f"dimension: {x}" for x in problems]
         ok = agrees(D, Tj, scale) and not diags
         if not ok:
-            if relation:
+            if step.kind == "linearised equations":
+                diags += _linear_terms(g, step.components[j])
+            elif relation:
                 diags += _side_factor(g, step.sides[j], scale)
             else:
                 diags += value_diagnoses(D, Tj, scale)
@@ -414,11 +486,12 @@ def _records(g: _Group, step: Step, index: int, T: np.ndarray) -> list[ElementRe
 
 def compare_steps(d: Derivation, seed: int = 2026) -> list[ElementRecord]:
     r"""Records of every ``[[step]]`` of ``d``, in the file's order."""
-    by_given: dict[tuple[str, ...], list[int]] = {}
+    by_given: dict[tuple, list[int]] = {}
     for i, s in enumerate(d.steps):
-        by_given.setdefault(s.given, []).append(i)
+        alone = (i,) if s.kind == "linearised equations" else ()
+        by_given.setdefault((s.given, alone), []).append(i)
     out: dict[int, list[ElementRecord]] = {}
-    for given, idx in by_given.items():
+    for (given, _), idx in by_given.items():
         g = _Group(d, given, seed)
         truths = g.truth([d.steps[i] for i in idx])
         for i, T in zip(idx, truths):

@@ -18,6 +18,9 @@ printed, in the file's namespace (positions :math:`q`, velocities :math:`\nu`, a
 ``constraint``              ``relations``: velocity constraints ``"lhs = rhs"`` (linear in
                             :math:`\nu`) or configuration constraints (no velocities)
 ``claim``                   ``relations`` between coordinates or between parameters
+``linearised equations``    ``relations`` linear in deviations (the document's positions,
+                            velocities, accelerations read as deviations) about the state
+                            ``about`` (velocities not named there are 0, positions random)
 ``generalized force``       ``components`` of Kane's generalized inertia forces
                             (``quantity = "inertia"``: :math:`F^* = -(A\dot\nu + h)`) or of
                             the inertial left side (``quantity = "inertial terms"``:
@@ -46,8 +49,10 @@ from ..errors import DerivationError
 #: Kinds of steps a file can record (a subset of :data:`wheeled_dyn.compare.result.STEPS`).
 STEP_KINDS: tuple[str, ...] = ("velocity", "angular velocity", "acceleration",
                                "angular acceleration", "kinetic energy", "potential energy",
-                               "constraint", "claim", "generalized force")
+                               "constraint", "claim", "generalized force",
+                               "linearised equations")
 VECTOR_KINDS = STEP_KINDS[:4]
+RELATION_KINDS = ("constraint", "claim", "linearised equations")
 #: Named points of a body.
 POINTS: tuple[str, ...] = ("origin", "com", "contact")
 #: Frames every model has; any link name is a frame too.
@@ -56,7 +61,7 @@ AXES: tuple[str, ...] = ("x", "y", "z", "-x", "-y", "-z")
 QUANTITIES: tuple[str, ...] = ("inertia", "inertial terms")
 STEP_KEYS: tuple[str, ...] = ("equation", "kind", "label", "body", "bodies", "point", "frame",
                               "axes", "components", "value", "relations", "quantity", "rows",
-                              "given", "note", "names")
+                              "given", "note", "names", "about")
 #: An element the extracted text lost.
 LOST = "?"
 
@@ -85,6 +90,7 @@ class Step:
     line: int | None = None
     sides: tuple[tuple[sympy.Expr, sympy.Expr], ...] = ()    # relations: (lhs, rhs)
     names: tuple[str, ...] = ()          # the document's names of the components (i, j, k)
+    about: tuple[tuple[str, sympy.Expr], ...] = ()   # linearised: (name, value) of the state
 
     @property
     def name(self) -> str:
@@ -100,7 +106,7 @@ class Step:
             return self.axes
         if self.kind == "generalized force":
             return tuple(f"row {r + 1}" for r in self.rows)
-        if self.kind in ("constraint", "claim"):
+        if self.kind in RELATION_KINDS:
             return tuple(f"relation {i + 1}" for i in range(len(self.components)))
         return ("value",)
 
@@ -179,7 +185,13 @@ def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
             raise fail(f"{item}.value", "an energy step gives value = \"...\"", line)
         texts = (str(t["value"]),)
         extra = dict(bodies=_strings(t, "bodies", item, line, fail))
-    elif kind in ("constraint", "claim"):
+    elif kind in RELATION_KINDS:
+        if kind == "linearised equations":
+            about = t.get("about", {})
+            if not isinstance(about, dict):
+                raise fail(f"{item}.about", "expected a table: name = \"value\"", line)
+            extra = dict(about=tuple((str(k), expr(v, f"{item}.about.{k}"))
+                                     for k, v in about.items()))
         texts = _strings(t, "relations", item, line, fail)
         if not texts or any(s.count("=") != 1 for s in texts):
             raise fail(f"{item}.relations", "expected relations = [\"lhs = rhs\", ...], one "
@@ -200,7 +212,7 @@ def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
     components, sides = [], []
     for i, text in enumerate(texts):
         where = f"{item} component {i + 1}"
-        if kind in ("constraint", "claim"):
+        if kind in RELATION_KINDS:
             lhs, rhs = (parse(side, where) for side in text.split("="))
             sides.append((lhs, rhs))
             components.append(lhs - rhs)
@@ -211,4 +223,4 @@ def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
                 note=str(t.get("note", "")), line=line, sides=tuple(sides), names=names, **extra)
 
 
-__all__ = ["Step", "STEP_KINDS", "read_steps"]
+__all__ = ["RELATION_KINDS", "Step", "STEP_KINDS", "read_steps"]
