@@ -200,18 +200,24 @@ class ComparisonEngine:
                 continue
             scale = scales[i]
             problems = dims.check(key, index, expr) if key != "h" else []
-            ok = agrees(D, T, scale)
+            finite = np.isfinite(D) & np.isfinite(T)
+            ok = agrees(D, T, scale) and bool(finite.all())
             diags: list[str] = [f"dimension: {p}" for p in problems]
+            if not finite.all():
+                side = "the document's" if not np.isfinite(D).all() else "the truth's"
+                diags.insert(0, f"undecided: {side} values are not finite at "
+                             f"{int((~finite).sum())} of {len(finite)} samples")
             if ok and problems:
                 diags.append("numerically equal here only because the inconsistent term "
                              "vanishes for this model's parameters")
-            if not ok:
+            if not ok and finite.all():
                 diags += value_diagnoses(D, T, scale)
                 if expr is not None and key != "h" and not any(
                         x.startswith(("sign", "factor", "extra")) for x in diags):
                     diags += swap_diagnoses(expr, groups, lambda a, b: swapped(key, index, a, b),
                                             T, scale)
-            verdict = "agrees" if ok and not problems else "differs"
+            verdict = ("undecided" if not finite.all() else
+                       "agrees" if ok and not problems else "differs")
             records.append(dict(element=_label(key, index, d.velocities), key=key, index=index,
                                 verdict=verdict, diagnoses=diags,
                                 document=_text(shown := _element_expr(printed, key, index, d.velocities)),
@@ -302,6 +308,11 @@ class ComparisonEngine:
         by_index = {(r["key"], r["index"]): r for r in records}
 
         def minimal(item) -> list[SpecialCase]:
+            r"""The first single family that suffices (weakest first), else a greedy
+            minimal combination."""
+            for case in cases:
+                if item in agreeing((case,)):
+                    return [case]
             needed = list(cases)
             for case in cases:
                 trial = tuple(c for c in needed if c is not case)
@@ -327,12 +338,7 @@ class ComparisonEngine:
         for r in todo:
             if (r["key"], r["index"]) not in everything:
                 continue
-            # greedy: drop each case that is not needed; what remains is a minimal set
-            needed = list(cases)
-            for case in cases:
-                trial = tuple(c for c in needed if c is not case)
-                if (r["key"], r["index"]) in agreeing(trial):
-                    needed = list(trial)
+            needed = minimal((r["key"], r["index"]))
             r["verdict"] = "agrees_if"
             text = " and ".join(c.description for c in needed) if needed else "always"
             r["diagnoses"] = [f"agrees only if {text}"] + [
@@ -520,7 +526,11 @@ def _energy(funcs: DocumentFunctions, doc: Arrays, row_factor, q, nu, values, d:
     A = scale * sp.Matrix(A)
     h = scale * sp.Matrix(h)
     v = sp.Matrix(d.velocities)
-    Adot = sum((A.diff(p) * dp for p, dp in zip(d.positions, d.velocities)), sp.zeros(d.n, d.n))
+    rates = position_rates(d)
+    if any(rates[p] is None for p in d.positions if A.diff(p) != sp.zeros(d.n, d.n)):
+        return None                       # A depends on a position whose rate is not known
+    Adot = sum((A.diff(p) * rates[p] for p in d.positions if rates[p] is not None),
+               sp.zeros(d.n, d.n))
     power = (v.T * h)[0] - (v.T * Adot * v)[0] / 2
     fn = sp.lambdify(funcs.args, power, "numpy")
     fh = sp.lambdify(funcs.args, (v.T * h)[0], "numpy")
@@ -538,6 +548,44 @@ def _energy(funcs: DocumentFunctions, doc: Arrays, row_factor, q, nu, values, d:
         expr = sp.expand(sp.expand_trig(power))
         residual = sp.sstr(sp.factor(expr) if sp.count_ops(expr) <= FACTOR_LIMIT else expr)
     return EnergyCheck(conserves, float(np.abs(P).max()), residual)
+
+
+def position_rates(d: Derivation) -> dict[sp.Symbol, sp.Expr | None]:
+    r"""The rate of each document position along the motion, in the document's velocities.
+
+    Holonomic sets: :math:`\dot q_k` is the k-th velocity. Quasi-velocity sets: with the
+    configuration :math:`c = e(p)` (model coordinates of the document's positions) and the
+    velocity map :math:`\nu = V(c)\,\dot c`, the rates solve
+    :math:`\nu_i = \sum_c V_{ic}\,\sum_k \partial e_c/\partial p_k\,\dot p_k` for the
+    velocities whose map involves configured coordinates only. A position no equation fixes
+    (the distance x travelled along the heading) gets None. Built-in sets: the velocity
+    ``d<position>`` is the position's rate when the set has it (the built-in quasi set's
+    heading speed ``dx`` is not the rate of any coordinate the matrices depend on)."""
+    spec = d.coordinates
+    if spec.kind != "quasi" or spec.use:
+        return dict(zip(d.positions, d.velocities))
+    rates = sp.symbols(f"rate_0:{d.n}")
+    model_rate = {}
+    for name, e in spec.configuration.items():
+        e = sp.sympify(e).xreplace(d.model_values)
+        model_rate[f"d{name}"] = sum((e.diff(p) * r for p, r in zip(d.positions, rates)),
+                                     sp.Integer(0))
+    eqs = []
+    for vel in d.velocities:
+        expr = spec.velocity_map.get(str(vel))
+        if expr is None:
+            continue
+        if any(s.name.startswith("d") and s.name not in model_rate
+               and s.name not in spec.configuration for s in expr.free_symbols):
+            continue                      # involves a model velocity no position fixes
+        sub = {s: model_rate[s.name] for s in expr.free_symbols if s.name in model_rate}
+        sub.update({s: sp.sympify(spec.configuration[s.name]).xreplace(d.model_values)
+                    for s in expr.free_symbols if s.name in spec.configuration})
+        eqs.append(sp.Eq(vel, expr.xreplace(sub)))
+    solution = sp.solve(eqs, rates, dict=True) if eqs else []
+    found = solution[0] if solution else {}
+    return {p: (found[r] if r in found and not found[r].free_symbols & set(rates)
+                else None) for p, r in zip(d.positions, rates)}
 
 
 def _asymmetric(doc: Arrays, scales, n: int) -> tuple[str, ...]:

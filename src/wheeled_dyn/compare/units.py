@@ -11,7 +11,9 @@ row scale is divided out, so an undeclared scale shows as a wrong dimension). Th
     [Q_i] = [h_i] = [F_i],\quad [B_{ij}] = [F_i]/[u_j],
 
 and every additive term of an element must have its element's dimension; the argument of a
-function (sin, cos, ...) must be dimensionless. Dimensions are exponent vectors over
+function (sin, cos, ...) must be dimensionless, except for functions homogeneous in their
+arguments (``atan2(y, x)``, ``Abs``, ``Max``, ``Min``, ``sign``), whose arguments must share one
+dimension. Dimensions are exponent vectors over
 (kg, m, s).
 """
 
@@ -31,6 +33,12 @@ _BASE: Mapping[str, Dim] = {
     "W": (1, 2, -3), "rad": (0, 0, 0), "A": (0, 0, 0), "V": (1, 2, -3), "K": (0, 0, 0),
     "mol": (0, 0, 0),
 }
+
+
+#: Functions homogeneous in their arguments, which must share one dimension: degree 0 (the
+#: value is dimensionless, e.g. the angle atan2(y, x) of a point) or 1 (the value has the
+#: arguments' dimension: |x|, max, min).
+_HOMOGENEOUS: Mapping[type, int] = {sp.atan2: 0, sp.sign: 0, sp.Abs: 1, sp.Max: 1, sp.Min: 1}
 
 
 def _add(a: Dim, b: Dim, k=1) -> Dim:
@@ -114,6 +122,17 @@ class DimensionChecker:
             if not exp.is_Number:
                 return ZERO if bd == ZERO else None
             return tuple(sp.nsimplify(x * exp) for x in bd)
+        if expr.func in _HOMOGENEOUS:
+            # atan2(y, x), Max, Min: homogeneous of degree 0 or 1 in arguments of one dimension
+            dims = [self.dim(a, problems) for a in expr.args]
+            known = [(a, dd) for a, dd in zip(expr.args, dims) if dd is not None]
+            for a, dd in known[1:]:
+                if dd != known[0][1]:
+                    problems.append(f"arguments of {expr.func.__name__}: {sp.sstr(a)} is "
+                                    f"{format_dim(dd)} beside {format_dim(known[0][1])}")
+            if _HOMOGENEOUS[expr.func] == 0:
+                return ZERO
+            return known[0][1] if len(known) == len(dims) else None
         if isinstance(expr, sp.Function):
             for arg in expr.args:
                 ad = self.dim(arg, problems)
