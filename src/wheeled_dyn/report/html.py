@@ -19,6 +19,7 @@ Formulas are MathML made by ``latex2mathml`` from SymPy's LaTeX with the documen
 
 from __future__ import annotations
 
+import functools
 import html
 import re
 from collections.abc import Sequence
@@ -41,6 +42,8 @@ from .symbols import (
 #: Short verdict words (summary counts, matrix cells).
 SHORT = {"agrees": "agree", "agrees_if": "only if", "factorization": "factorisation",
          "differs": "differ", "undecided": "undecided"}
+#: Numbers smaller than this are rounding noise of the truth (shown as ≈0).
+ROUNDING = 1e-12
 #: Causes shown per derivation in the summary table (the rest in its section).
 SUMMARY_CAUSES = 3
 #: Marks of a matrix cell by verdict (besides its colour).
@@ -77,11 +80,13 @@ border:1px solid #bbb;white-space:nowrap;font-size:.92em}
 .mat td.v-differs,.mat td.v-agrees_if,.mat td.v-factorization{outline:2px solid #a33;
 outline-offset:-2px}.mat td.v-agrees_if{outline-color:#b80}.mat td.v-factorization{outline-color:#36c}
 .mark{font-size:.75em;font-weight:bold;color:#a33;vertical-align:super;margin-left:.2em}
-.mat a{text-decoration:none;color:inherit}
+.mat a{text-decoration:none;color:inherit}.mat td.lost{color:#999;font-size:.8em}
+.num{font-family:"DejaVu Sans Mono",monospace;font-size:.85em;color:#333}
 .card{border:1px solid #ccc;border-left:6px solid #ccc;margin:.6em 0;padding:.3em .6em}
 .card.v-differs{border-left-color:#c44}.card.v-agrees_if{border-left-color:#d9a400}
 .card.v-factorization{border-left-color:#36c}.card.v-undecided{border-left-color:#888}
 .card{background:#fff}.card h4{margin:.2em 0;font-size:1em}
+h4.step{margin:1em 0 .2em;font-size:1em;color:#444}
 .card .diag{font-size:.92em;margin:.1em 0 .3em}
 .rows{display:grid;grid-template-columns:11em minmax(0,1fr);gap:.15em .8em;align-items:center}
 .rows>span{color:#555;font-size:.9em}
@@ -97,6 +102,12 @@ details{margin:.6em 0}summary{cursor:pointer;font-weight:bold}
 """
 
 
+def _num(x: float, digits: int = 4) -> str:
+    r"""A number at the reference state; rounding noise (below :data:`ROUNDING`) as ≈0."""
+    return "≈0" if abs(x) < ROUNDING else f"{x:.{digits}g}"
+
+
+@functools.lru_cache(maxsize=8192)
 def _mathml(latex: str) -> str:
     if not latex:
         return ""
@@ -173,17 +184,20 @@ def _truth_latex(r: ElementRecord, names: Notation) -> str:
     return text_latex(r.truth, names, r.truth_latex) if r.truth else ""
 
 
-def _truth_number(r: ElementRecord) -> str:
-    return f'<span class="num">{r.truth_sample:.4g}</span>'
+def _closed(result: DerivationResult, key: str) -> bool:
+    return any(r.truth for r in result.records if r.key == key)
 
 
 def _matrix(result: DerivationResult, key: str, names: Notation, document: bool) -> str:
+    r"""One matrix of one side. With closed-form truths the document is shown in the model's
+    parameters (the truth's symbols); without, as printed, and both sides show their numbers
+    at the reference state (the document's after dividing out a row factor)."""
     recs = {r.index: r for r in result.records if r.key == key}
     if not recs:
         return ""
+    closed = _closed(result, key)
     n = max(i[0] for i in recs) + 1
     cols = 1 if key == "Q" else max(i[1] for i in recs) + 1
-    numeric = False
     rows = []
     for i in range(n):
         factor = result.row_factors[i] if i < len(result.row_factors) else None
@@ -191,15 +205,20 @@ def _matrix(result: DerivationResult, key: str, names: Notation, document: bool)
         for j in range(cols):
             r = recs.get((i,) if key == "Q" else (i, j))
             if r is None:
-                cells.append("<td class='lost'>·</td>")
+                cells.append("<td class='lost' title='not compared (lost in the extracted text "
+                             "or not given)'>lost</td>")
                 continue
-            if document:
+            if document and closed:
                 body = _mathml(_divided(r.document_model or r.document, factor, names)) or \
                     _mathml(r.model_latex or r.document_latex)
+            elif document:
+                latex = text_latex(r.document, names, r.document_latex)
+                number = "" if not r.document or parse(r.document) is None or \
+                    parse(r.document).is_number else f'<div class="num">{_num(r.document_sample)}</div>'
+                body = (_mathml(latex) or "0") + number
             else:
                 latex = _truth_latex(r, names)
-                body = _mathml(latex) if latex else _truth_number(r)
-                numeric = numeric or not latex
+                body = _mathml(latex) if latex else f'<div class="num">{_num(r.truth_sample)}</div>'
             mark = f'<span class="mark">{MARK[r.verdict]}</span>' if MARK[r.verdict] else ""
             if r.verdict != "agrees":
                 body = f"<a href='#{S.element_anchor(result, r.element)}'>{body}</a>"
@@ -207,9 +226,13 @@ def _matrix(result: DerivationResult, key: str, names: Notation, document: bool)
             cells.append(f'<td class="v-{r.verdict}" title="{tip}">{body}{mark}</td>')
         side = f"<th>÷ {_e(factor)}</th>" if document and factor else ""
         rows.append(f"<tr>{side}{''.join(cells)}</tr>")
-    label = "truth at the reference state (numbers)" if numeric else "truth"
-    return (f'<div><b>{key}</b> <span class="note">({"document" if document else label})'
-            f'</span><table class="mat">{"".join(rows)}</table></div>')
+    if document:
+        label = ("document, in the model's parameters" if closed else
+                 "document as printed; below each, its number at the reference state")
+    else:
+        label = "truth" if closed else "truth: numbers at the reference state"
+    return (f'<div><b>{key}</b> <span class="note">({label})</span>'
+            f'<table class="mat">{"".join(rows)}</table></div>')
 
 
 def _matrices(result: DerivationResult, names: Notation) -> str:
@@ -247,16 +270,32 @@ def _card(result: DerivationResult, r: ElementRecord, names: Notation) -> str:
     if truth:
         rows.append(("truth", _math_box(truth)))
     else:
-        rows.append(("truth (number)", f"<div>{r.truth_sample:.6g} at the reference state; "
-                     f"document {r.document_sample:.6g}; largest error {r.max_error:.3g}</div>"))
+        rows.append(("truth (number)", f"<div>{_num(r.truth_sample, 6)} at the reference state; "
+                     f"document {_num(r.document_sample, 6)}; largest error {r.max_error:.3g}</div>"))
     diff = _difference(r, names)
     if diff:
         rows.append(("truth − document", _math_box(diff)))
     grid = "".join(f"<span>{_e(a)}</span>{b}" for a, b in rows)
     return (f'<div class="card v-{r.verdict}" id="{S.element_anchor(result, r.element)}">'
-            f"<h4>{element_title(r, names)} — {_e(VERDICT_TEXT[r.verdict])}</h4>"
+            f"<h4>{element_title(r, names)}{_e(f' {r.equation}' if r.equation and r.equation not in r.element else '')}"
+            f" — {_e(VERDICT_TEXT[r.verdict])}</h4>"
             + "".join(f'<div class="diag">{_e(d)}</div>' for d in diags)
             + f'<div class="rows">{grid}</div></div>')
+
+
+def _cards(result: DerivationResult, shown: Sequence[ElementRecord], names: Notation) -> str:
+    r"""The entries of the shown elements, the equations of motion first, then each earlier
+    step of the derivation (velocities, energies, claims ...) under its own heading."""
+    steps: dict[str, list[ElementRecord]] = {}
+    for r in shown:
+        steps.setdefault(r.step, []).append(r)
+    order = sorted(steps, key=lambda s: s != "equations of motion")
+    out = []
+    for step in order:
+        if step != "equations of motion" or len(steps) > 1:
+            out.append(f'<h4 class="step">{_e(step[:1].upper() + step[1:])}</h4>')
+        out += [_card(result, r, names) for r in steps[step]]
+    return "".join(out)
 
 
 def _agreeing(result: DerivationResult, names: Notation) -> str:
@@ -325,13 +364,12 @@ def derivation_html(result: DerivationResult, names: Notation | None = None) -> 
             f"(velocities {_mathml(', '.join(names.latex(v) for v in result.velocities))}); "
             f"{result.samples} states × {result.parameter_sets} random parameter sets. "
             f"{_counts(result)}</p>{recon}"
-            f"<h3>Matrices: document (in the model's parameters) | truth</h3>"
+            f"<h3>Matrices: document | truth</h3>"
             f'<p class="note">Marked cells: ≠ differs, ? agrees only for special values, '
             f"≈ only the factorisation of C differs; click one for its entry below.</p>"
             f"{_matrices(result, names)}"
             f"<h3>What differs or holds only conditionally ({len(shown)})</h3>"
-            + ("".join(_card(result, r, names) for r in shown) or "<p>Nothing: every element "
-               "agrees.</p>")
+            + (_cards(result, shown, names) or "<p>Nothing: every element agrees.</p>")
             + _agreeing(result, names)
             + (f"<details><summary>Checks of the document on its own</summary><ul>{checks}</ul>"
                "</details>" if checks else "")

@@ -14,8 +14,10 @@ from .symbols import derivation_notation, difference_latex, product_latex, text_
 VERDICT_TEXT = {"agrees": "agrees", "agrees_if": "agrees only for special values",
                 "factorization": "C differs, C q̇ agrees", "differs": "differs",
                 "undecided": "cannot decide (values not finite)"}
+#: Causes named per derivation in the summary table (all of them in its section).
+SUMMARY_CAUSES = 3
 #: Formulas longer than this (characters of LaTeX) are left to the HTML report.
-LONG_LATEX = 600
+LONG_LATEX = 200
 
 
 def _math(latex: str) -> str:
@@ -65,9 +67,20 @@ def summary_markdown(results: Sequence[DerivationResult]) -> list[str]:
     for r in results:
         label = derivation_notation(r.path).label
         causes = [c.one_line(label) for c in S.cause_lines(r)] or ["no difference found"]
+        if len(causes) > SUMMARY_CAUSES:
+            causes = causes[:SUMMARY_CAUSES] + [f"+{len(causes) - SUMMARY_CAUSES} more"]
         lines.append(f"| [{_cell(r.title)}](#{S.anchor(r)}) | {_cell(S.equations(r))} | "
                      f"{_counts(r)} | {_cell('<br>'.join(causes))} |")
     return lines
+
+
+def _label(r: ElementRecord, names) -> str:
+    if r.key == "h" and ":" in r.element:
+        row, product = r.element.split(":", 1)
+        return f"{row} · {_math(product_latex(product, names))}"
+    if r.step != "equations of motion":
+        return _cell(f"{r.step}: {r.element}")
+    return r.element
 
 
 def _row(result: DerivationResult, r: ElementRecord, names) -> str:
@@ -76,11 +89,7 @@ def _row(result: DerivationResult, r: ElementRecord, names) -> str:
     truth = text_latex(r.truth, names, r.truth_latex) if r.truth else ""
     truth = _math(truth) if truth else (f"{r.truth_sample:.4g} at the reference state "
                                         f"(largest error {r.max_error:.3g})")
-    label = r.element
-    if r.key == "h" and ":" in label:
-        row, product = label.split(":", 1)
-        label = f"{row} · {_math(product_latex(product, names))}"
-    return (f"| {label} | {_cell(verdict)} | "
+    return (f"| {_label(r, names)} | {_cell(verdict)} | "
             f"{_math(text_latex(r.document, names, r.document_latex)) or '0'} | {truth} | "
             f"{_math(difference_latex(r.residual, names, r.residual_latex))} |")
 
@@ -110,12 +119,20 @@ def derivation_markdown(result: DerivationResult) -> str:
     lines += [f"`{result.path.name}` — {src.get('document', '')} {src.get('section', '')}; model "
               f"`{result.model}`, coordinates `{result.coordinates}`; {result.samples} states × "
               f"{result.parameter_sets} random parameter sets; {_counts(result)}.", ""]
-    shown = [r for r in result.records if r.verdict in S.SHOWN_VERDICTS]
+    shown = [r for r in result.records if r.verdict in S.SHOWN_VERDICTS and r.verdict != "agrees_if"]
     if shown:
-        lines += [f"What differs or holds only conditionally ({len(shown)}):", "",
+        lines += [f"What differs ({len(shown)}):", "",
                   "| element | verdict | document | truth | truth − document |",
                   "|---|---|---|---|---|"]
         lines += [_row(result, r, names) for r in shown]
+        lines.append("")
+    conditional = [r for r in result.records if r.verdict == "agrees_if"]
+    if conditional:
+        lines += [f"What holds only conditionally ({len(conditional)}):", "",
+                  "| element | condition | truth − document |", "|---|---|---|"]
+        lines += [f"| {_label(r, names)} | {_cell(S.condition(r))} | "
+                  f"{_math(difference_latex(r.residual, names, r.residual_latex))} |"
+                  for r in conditional]
         lines.append("")
     agree = [r.element for r in result.records if r.verdict == "agrees"]
     if agree:

@@ -38,6 +38,8 @@ KIND_TEXT = {
 }
 #: Verdicts that are shown as findings (everything but "agrees").
 SHOWN_VERDICTS = ("differs", "factorization", "agrees_if", "undecided")
+#: Longest equation text shown in a heading.
+LABEL_CHARS = 40
 #: Elements named in one summary line before "+N".
 NAMED_IN_LINE = 4
 
@@ -99,10 +101,21 @@ def equations(result: DerivationResult) -> str:
     r"""The document and equations, short: ``seed 001 §4.3.3 (25)``."""
     src = result.source
     section = str(src.get("section", "")).strip()
-    eq = str(src.get("equations", "")).split(":")[0].strip()
+    eq = _labels(str(src.get("equations", "")))
     parts = [str(src.get("document", "")).strip(), f"§{section}" if section and
              section[0].isdigit() else section, eq]
     return " ".join(p for p in parts if p)
+
+
+def _labels(text: str) -> str:
+    r"""The equation labels a ``[source] equations`` text starts with: ``(7.24) dq' + ...`` →
+    ``(7.24)``; ``(1)-(3)``, ``(33), (35)`` as they are; a text without labels up to its
+    first colon, at most :data:`LABEL_CHARS` characters."""
+    m = re.match(r"\s*(\([^)]*\)(?:\s*(?:,|-|–|and)\s*\([^)]*\))*)", text)
+    if m:
+        return m.group(1)
+    head = text.split(":")[0].strip()
+    return head if len(head) <= LABEL_CHARS else head[:LABEL_CHARS - 1] + "…"
 
 
 def _diagnosis_kind(record: ElementRecord, diagnosis: str) -> str:
@@ -113,6 +126,13 @@ def _diagnosis_kind(record: ElementRecord, diagnosis: str) -> str:
     head = diagnosis.split(":")[0].strip().split(" ")[0]
     return {"missing": "missing", "extra": "extra", "dimension": "dimension", "sign": "sign",
             "factor": "factor", "swap": "swap", "power": "power"}.get(head, "differs")
+
+
+def condition(record: ElementRecord) -> str:
+    r"""The condition under which an "agrees only if" element agrees (its first such
+    diagnosis), or its first diagnosis."""
+    return _group_sentence("assumption", _first_diagnosis(record)) \
+        if record.verdict == "agrees_if" else _first_diagnosis(record)
 
 
 def _group_sentence(kind: str, diagnosis: str) -> str:

@@ -19,7 +19,8 @@ Three rules.
    truth, a definition) is the rate :math:`\dot{q}`, never the product :math:`d\,q`.
 3. **Expressions are re-read from the records' text** (SymPy's ``sstr``) with every name a
    plain symbol, so ``I``, ``E``, ``S``, ``N`` ... stay symbols of the document, then written
-   by :func:`sympy.latex` with the names above.
+   by :func:`sympy.latex` with the names above; a standard parameter of a link written as a
+   call (``XX(ball)``) is the symbol :math:`XX_{\mathrm{ball}}`.
 """
 
 from __future__ import annotations
@@ -51,7 +52,7 @@ CONSTANTS: Mapping[str, object] = {"pi": sp.pi, "oo": sp.oo, "nan": sp.nan, "zoo
 MAX_TEXT = 6000
 
 #: Differences up to this many operations are simplified for display.
-SIMPLIFY_LIMIT = 150
+SIMPLIFY_LIMIT = 80
 #: Simplified differences up to this many operations get their common factors pulled out.
 FACTOR_LIMIT = 40
 
@@ -78,9 +79,18 @@ def _split(name: str) -> tuple[str, str]:
     return name, ""
 
 
+def accented(name: str, accent: str) -> str:
+    r"""``name`` with ``accent`` (``\dot``, ``\ddot``) over its letter, not its subscript:
+    ``x0`` → ``\dot{x}_{0}``."""
+    base, sub = _split(name)
+    return f"{accent}{{{base}}}" + (f"_{{{sub}}}" if sub else "")
+
+
 def name_latex(name: str) -> str:
     r"""LaTeX of one symbol name by rule 1 (``Ixy`` → ``I_{xy}``, ``theta_l`` → ``\theta_{l}``)."""
     base, sub = _split(name)
+    if len(base) > 1 and base.isalpha():      # one symbol, not a product: {XX}_{1}
+        base = f"{{{base}}}"
     return f"{base}_{{{sub}}}" if sub else base
 
 
@@ -107,11 +117,10 @@ class Notation:
             if name[:n] == "d" * n and (base in self.positions or base in GREEK):
                 return name_text(base, n)
         tex = self.special.get(name, "")
-        m = re.fullmatch(r"\\(d?dot)\{(.*)\}", tex)
-        if m:
-            inner = next((v for v in self.special if name_latex(v) == m.group(2)), None)
-            plain = inner or next((p for p in self.positions if name_latex(p) == m.group(2)), name)
-            return name_text(plain, 2 if m.group(1) == "ddot" else 1)
+        for source in (*self.positions, *self.special):
+            for dots, accent in ((1, r"\dot"), (2, r"\ddot")):
+                if tex and tex == accented(source, accent):
+                    return name_text(source, dots)
         return name_text(name)
 
     def label(self, element: str) -> str:
@@ -128,7 +137,7 @@ class Notation:
         for n, accent in ((2, r"\ddot"), (1, r"\dot")):
             base = name[n:]
             if name[:n] == "d" * n and (base in self.positions or base in GREEK):
-                return f"{accent}{{{name_latex(base)}}}"
+                return accented(base, accent)
         return name_latex(name)
 
 
@@ -141,11 +150,11 @@ def notation(positions: tuple[str, ...], velocities: tuple[str, ...],
     for q, v, a in zip(positions, velocities, accelerations):
         rate = not quasi or v == "d" + q
         if rate:
-            special.setdefault(v, rf"\dot{{{name_latex(q)}}}")
-            special.setdefault(a, rf"\ddot{{{name_latex(q)}}}")
+            special.setdefault(v, accented(q, r"\dot"))
+            special.setdefault(a, accented(q, r"\ddot"))
         else:
             special.setdefault(v, name_latex(v))
-            special.setdefault(a, rf"\dot{{{name_latex(v)}}}" if a == "d" + v else name_latex(a))
+            special.setdefault(a, accented(v, r"\dot") if a == "d" + v else name_latex(a))
     return Notation(tuple(positions), special)
 
 
@@ -179,6 +188,7 @@ def _load_notation(path: str | Path) -> Notation:
     return Notation(out.positions, out.special, {k: str(v) for k, v in d.assumptions.items()})
 
 
+@functools.lru_cache(maxsize=8192)
 def parse(text: str) -> sp.Expr | None:
     r"""An expression from SymPy's text form with every name a plain symbol (``I`` is a
     symbol, not :math:`\sqrt{-1}`); None when the text cannot be read."""
@@ -204,6 +214,10 @@ def parse(text: str) -> sp.Expr | None:
 
 def expression_latex(expr: sp.Basic, names: Notation) -> str:
     r"""LaTeX of ``expr`` with every symbol written by ``names``."""
+    from sympy.core.function import AppliedUndef
+    calls = {c: sp.Symbol(f"{c.func.__name__}_{c.args[0]}") for c in expr.atoms(AppliedUndef)
+             if len(c.args) == 1 and isinstance(c.args[0], sp.Symbol)}
+    expr = expr.xreplace(calls) if calls else expr          # XX(ball) → XX_{ball}
     symbol_names = {s: names.latex(s.name) for s in expr.free_symbols if isinstance(s, sp.Symbol)}
     return sp.latex(expr, symbol_names=symbol_names)
 
