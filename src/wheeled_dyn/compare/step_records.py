@@ -61,6 +61,7 @@ class _Group:
         self.d, self.N = d, states
         self.reference: dict[int, float] = {}
         self.linearised = False
+        self._argv: list[np.ndarray] | None = None
         cases = {c.name: c for c in special_cases(d.model)}
         for name in given:
             if name not in cases:
@@ -90,6 +91,7 @@ class _Group:
         r"""The truth of every step at every sample; the states are made admissible first (a
         linearised step, alone in its group: replaced by deviations, see :meth:`_deviations`)."""
         self.linearised = steps[0].kind == "linearised equations"
+        self._argv = None
         out = [np.zeros((len(self.q), len(s.components))) for s in steps]
         for k, ps in enumerate(self.sets):
             self.cmap.bind(ps.model)
@@ -225,17 +227,27 @@ class _Group:
         return _Group._fns[key]
 
     def argv(self, rows: np.ndarray | None = None) -> list[np.ndarray]:
-        rows = np.arange(len(self.q)) if rows is None else rows
-        per = np.repeat(np.arange(len(self.sets)), self.N)[rows]
-        return [*self.q[rows].T, *self.nu[rows].T, *self.nudot[rows].T,
-                *(np.array([self.values[k][p] for k in per]) for p in self.params)]
+        r"""The arguments of the document's functions at the samples ``rows`` (all: cached;
+        call after :meth:`truth`, which makes the states admissible)."""
+        if rows is None and self._argv is not None:
+            return list(self._argv)
+        every = np.arange(len(self.q)) if rows is None else rows
+        per = np.repeat(np.arange(len(self.sets)), self.N)[every]
+        out = [*self.q[every].T, *self.nu[every].T, *self.nudot[every].T,
+               *(np.array([self.values[k][p] for k in per]) for p in self.params)]
+        if rows is None:
+            self._argv = out
+        return list(out)
 
-    def documents(self, exprs: Sequence[sp.Expr], rows: np.ndarray | None = None
-                  ) -> list[np.ndarray]:
-        r"""Several expressions at the samples, compiled together (one ``lambdify``)."""
+    def documents(self, exprs: Sequence[sp.Expr], rows: np.ndarray | None = None,
+                  read: tuple[sp.Symbol, sp.Symbol] | None = None) -> list[np.ndarray]:
+        r"""Several expressions at the samples, compiled together (one ``lambdify``);
+        ``read`` as in :meth:`document`."""
         if not exprs:
             return []
         argv = self.argv(rows)
+        if read is not None:
+            argv[self.args.index(read[0])] = argv[self.args.index(read[1])]
         values = self._fn(tuple(exprs))(*argv)
         return [np.broadcast_to(np.asarray(v, dtype=float), (len(argv[0]),)).copy()
                 for v in values]
@@ -382,13 +394,18 @@ def _explained(diagnoses: Sequence[str]) -> bool:
                for x in diagnoses)
 
 
+def _compiled(g: _Group, step: Step) -> list[sp.Expr]:
+    r"""The step's components (rates of relations) that the text did not lose, in order."""
+    return [g._rate(e) for e in step.components if not e.has(sp.nan)]
+
+
 def _document_values(g: _Group, step: Step, T: np.ndarray):
     r"""The document's values of each component (None where lost) and the step's scale: the
     largest value on either side (for a relation, of either side's rate; for a vector, at
     least the size of the body origin's vector of the same kind, so that a vector that is 0
     (a contact point's velocity) is judged against the motion's size)."""
     kept = [j for j, expr in enumerate(step.components) if not expr.has(sp.nan)]
-    exprs = [g._rate(step.components[j]) for j in kept]
+    exprs = _compiled(g, step)
     if step.kind in RELATION_KINDS:        # the size of each side's terms: a side may be 0
         exprs += [g._rate(t) for j in kept for side in step.sides[j]
                   for t in sp.Add.make_args(sp.expand(side))]
@@ -471,8 +488,10 @@ def _records(g: _Group, step: Step, index: int, T: np.ndarray) -> list[ElementRe
             else:
                 diags += value_diagnoses(D, Tj, scale)
                 diags += _term_diagnoses(g, step, j, expr, scale)
-            diags += swap_diagnoses(expr, groups, lambda a, b: g.document(expr, read=(a, b)),
-                                    Tj, scale)
+            together, at = _compiled(g, step), sum(1 for e in step.components[:j]
+                                                    if not e.has(sp.nan))
+            diags += swap_diagnoses(expr, groups,
+                                    lambda a, b: g.documents(together, read=(a, b))[at], Tj, scale)
             if not _explained(diags):
                 diags += _trig_swaps(expr, g, Tj, scale)
             if step.kind == "claim" and not expr.has(*d.positions, *d.velocities):

@@ -151,23 +151,33 @@ def upstream_causes(steps: Sequence[ElementRecord], eom_records: Sequence[Elemen
 _STEP_CACHE: dict[tuple, tuple[Derivation, list[ElementRecord]]] = {}
 
 
-def _step_file(path: Path, seed: int):
+_LOADED: dict[tuple[str, int], Derivation] = {}
+
+
+def _load(path: Path) -> Derivation:
+    r"""A step file, parsed once per content."""
     from ..derivations.parse import load_derivation
+    key = (str(path), path.stat().st_mtime_ns)
+    if key not in _LOADED:
+        _LOADED[key] = load_derivation(path)
+    return _LOADED[key]
+
+
+def _step_file(path: Path, seed: int):
     key = (str(path), path.stat().st_mtime_ns, seed)
     if key not in _STEP_CACHE:
-        sd = load_derivation(path)
+        sd = _load(path)
         _STEP_CACHE[key] = (sd, compare_steps(sd, seed))
     return _STEP_CACHE[key]
 
 
 def feeding_files(d: Derivation) -> list[Path]:
     r"""The ``*_steps.toml`` files beside ``d`` whose ``feeds`` name it (sorted)."""
-    from ..derivations.parse import load_derivation
     folder = d.path.parent
     if not folder.is_dir():
         return []
     return [p for p in sorted(folder.glob("*" + STEPS_SUFFIX))
-            if p != d.path and d.path.stem in load_derivation(p).feeds]
+            if p != d.path and d.path.stem in _load(p).feeds]
 
 
 def has_equations(d: Derivation) -> bool:
