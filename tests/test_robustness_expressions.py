@@ -1,0 +1,127 @@
+"""Expression limits, checked on the text before SymPy or NumPy sees it: size, nesting, power
+bounds, constants, terms once multiplied out; errors name the file, the line and the item."""
+
+from __future__ import annotations
+
+import math
+import os
+import pickle
+
+import pytest
+import sympy as sp
+
+from wheeled_dyn.derivations import builtin_derivations, load_derivation
+from wheeled_dyn.derivations.expressions import (MAX_EXPANDED_TERMS, MAX_EXPONENT,
+                                                 MAX_NESTING, MAX_TOKENS, ExpressionError,
+                                                 UndeclaredNameError, expanded_terms,
+                                                 parse_expression, real_symbol)
+from wheeled_dyn.errors import DerivationError, InputFileError
+
+NAMES = {n: real_symbol(n) for n in ("x", "y", "th", "a", "b", "c", "d", "e")}
+KIM = {p.name: p for p in builtin_derivations("seed001")}["kim_eq1_3.toml"]
+
+
+@pytest.mark.parametrize("text,reason", [
+    ("(1+sin(th))**(10**10**10)", "exponent 1e+10 out of range"),
+    ("9**9**9**9", "exponent 3.8742e+08 out of range"),
+    ("(1+sin(th))**2000", "exponent 2000 out of range"),
+    ("x^100", "exponent 100 out of range"),
+    ("x**th", "is not a constant number"),
+    ("1e400*x", "number larger than"),
+    ("10**60*10**60*x", "constant larger than"),
+    ("+".join(["x"] * 20000), "expression too long"),
+    ("(" * (MAX_NESTING + 1) + "x" + ")" * (MAX_NESTING + 1), "nested deeper"),
+])
+def test_limits(text, reason):
+    with pytest.raises(ExpressionError) as err:
+        parse_expression(text, NAMES)
+    assert reason in err.value.reason
+    assert len(str(err.value)) < 400            # a long expression is shortened in the message
+
+
+@pytest.mark.parametrize("text,expected", [
+    ("x**2", "x**2"), ("x^2", "x**2"), ("x**(1/2)", "sqrt(x)"), ("x**-2", "x**(-2)"),
+    (f"x**{MAX_EXPONENT}", f"x**{MAX_EXPONENT}"), ("2**10*x", "1024*x"),
+    ("(1+sin(th))**4", "(sin(th) + 1)**4"), ("pi**2*x", "pi**2*x")])
+def test_within_limits_unchanged(text, expected):
+    assert str(parse_expression(text, NAMES)) == expected
+
+
+def test_just_under_the_token_limit_parses():
+    terms = (MAX_TOKENS - 1) // 2                 # x+x+...: 2 tokens per term
+    assert parse_expression("+".join(["x"] * terms), NAMES) == terms * NAMES["x"]
+
+
+@pytest.mark.parametrize("text", ["(a+b+c)**4", "(a+b)*(c+d+e)", "(a+b)**3*(c+d)**2 + x",
+                                  "(a + b)/(c + d)", "sin(a+b)*(x+y)", "(a+b+c+d+e)**3"])
+def test_expanded_terms_counts_what_expand_gives(text):
+    r"""Without cancellations (distinct symbols) the count is exact: the same as SymPy's."""
+    e = parse_expression(text, NAMES)
+    assert expanded_terms(e) == len(sp.Add.make_args(sp.expand(e)))
+
+
+def test_expanded_terms_bounds_cancellations_from_above():
+    e = parse_expression("(a+b)**2 - (a-b)**2", NAMES)
+    assert expanded_terms(e) == 6 >= len(sp.Add.make_args(sp.expand(e)))
+    assert expanded_terms(parse_expression("(a+b+c+d+e)**16", NAMES)) == math.comb(20, 4)
+
+
+def test_shipped_files_are_within_every_limit():
+    from wheeled_dyn.derivations import builtin_groups
+    for group in builtin_groups():
+        for path in builtin_derivations(group):
+            load_derivation(path)
+
+
+def _mutated(tmp_path, old: str, new: str):
+    text = KIM.read_text()
+    path = tmp_path / "doc.toml"
+    path.write_text(text.replace(old, new, 1))
+    line = next(i for i, t in enumerate(path.read_text().splitlines(), 1) if new[:12] in t)
+    return path, line
+
+
+@pytest.mark.parametrize("element,reason", [
+    ("(m_c+m_s+sin(phi)+cos(phi)+d)**16*ddx", f"at most {MAX_EXPANDED_TERMS}"),
+    ("(1+sin(phi))**(10**10**10)*ddx", "exponent"), ("9**9**9**9*ddx", "exponent"),
+    ("(" + "+".join(["m_c"] * 20000) + ")*ddx", "too long")])
+def test_errors_name_file_line_and_item(element, reason, tmp_path):
+    path, line = _mutated(tmp_path, "3*(m_c + m_s)*ddx", element)
+    with pytest.raises(DerivationError) as err:
+        load_derivation(path)
+    assert (err.value.path, err.value.line, err.value.item) == (path, line, "equation 1")
+    assert reason in str(err.value)
+
+
+def test_definitions_are_counted_after_substitution(tmp_path):
+    r"""A definition cannot smuggle a large expression past the limit."""
+    text = KIM.read_text().replace(
+        "[matrices]", '[definitions]\nS = "(m_c+m_s+sin(phi)+cos(phi)+d)**4"\n\n[matrices]', 1)
+    text = text.replace("3*(m_c + m_s)*ddx", "S**4*ddx", 1)
+    path = tmp_path / "doc.toml"
+    path.write_text(text)
+    with pytest.raises(DerivationError) as err:
+        load_derivation(path)
+    assert "equation 1" in str(err.value) and "terms once multiplied out" in str(err.value)
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="needs FIFOs (POSIX)")
+def test_fifo_folder_and_large_file(tmp_path):
+    fifo = tmp_path / "pipe.toml"
+    os.mkfifo(fifo)
+    with pytest.raises(InputFileError, match="is a FIFO"):
+        load_derivation(fifo)
+    with pytest.raises(InputFileError, match="is a folder"):
+        load_derivation(tmp_path)
+    big = tmp_path / "big.toml"
+    with open(big, "wb") as fh:
+        fh.truncate(5 * 1024 * 1024)
+    with pytest.raises(InputFileError, match="at most"):
+        load_derivation(big)
+
+
+def test_internal_errors_pickle():
+    for err in (ExpressionError("x**y", "bad"), UndeclaredNameError("x+q", "q", "link")):
+        back = pickle.loads(pickle.dumps(err))
+        assert type(back) is type(err) and str(back) == str(err)
+        assert vars(back) == vars(err)
