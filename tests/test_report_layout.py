@@ -13,7 +13,7 @@ from wheeled_dyn.compare.commands import run_comparison
 from wheeled_dyn.compare.result import Cause
 from wheeled_dyn.derivations import builtin_derivations
 from wheeled_dyn.report import render
-from wheeled_dyn.report.summary import anchor, element_anchor, ordered
+from wheeled_dyn.report.summary import anchor, cause_lines, element_anchor, ordered
 
 #: A small grid: the layout is under test, not the engine's numbers.
 SAMPLES, SETS = 40, 2
@@ -143,3 +143,18 @@ def test_json_keeps_the_per_derivation_contract(texts):
         assert CONTRACT_KEYS <= set(d)
     for s in data["summary"]:
         assert {"id", "title", "equations", "counts", "causes"} <= set(s)
+
+
+def test_a_cause_is_not_repeated_among_the_grouped_findings(results):
+    eq25 = next(r for r in results if r.path.name == "eq25_lagrange.toml")
+    swapped = [x.element for x in eq25.records if any(d.startswith("swap: dphi where dpsi")
+                                                       for d in x.diagnoses)]
+    assert swapped
+    cause = Cause("swap", tuple(swapped), "psi-dot written as phi-dot in C[3,2]")
+    lines = cause_lines(dataclasses.replace(eq25, causes=(cause,)))
+    assert lines[0].computed and lines[0].elements == tuple(swapped)
+    assert not any(set(swapped) & set(line.elements) for line in lines[1:])
+    before = {e for line in cause_lines(dataclasses.replace(eq25, causes=()))
+              for e in line.elements}
+    after = {e for line in lines for e in line.elements}
+    assert before == after             # every differing element is still named once

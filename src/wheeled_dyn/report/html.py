@@ -312,17 +312,29 @@ def _agreeing(result: DerivationResult, names: Notation) -> str:
 
 
 def _causes(result: DerivationResult, names: Notation) -> str:
+    r"""The causes the result names, the other findings grouped by diagnosis, the causes in
+    earlier steps."""
     lines = S.cause_lines(result)
-    computed = bool(result.causes)
-    head = "Causes" if computed else "Findings, grouped by diagnosis"
     if not lines:
         return '<div class="causes"><b>Causes:</b> none — every element agrees.</div>'
-    items = "".join(f"<li>{_e(c.one_line(names.label))}"
-                    + (f"<div class='m'>{_mathml(c.latex)}</div>" if c.latex else "") + "</li>"
-                    for c in lines)
-    note = "" if computed else (' <span class="note">(no root causes were computed for this '
-                                "derivation; its elements are grouped by their diagnosis)</span>")
-    return f'<div class="causes{"" if computed else " grouped"}"><b>{head}</b>{note}<ul>{items}</ul></div>'
+
+    def items(group):
+        return "".join(f"<li>{_e(c.one_line(names.label))}"
+                       + (f"<div class='m'>{_mathml(c.latex)}</div>" if c.latex else "") + "</li>"
+                       for c in group)
+    root = [c for c in lines if c.computed and c.kind != "upstream_step"]
+    grouped = [c for c in lines if not c.computed]
+    upstream = [c for c in lines if c.computed and c.kind == "upstream_step"]
+    out = f"<b>Causes</b><ul>{items(root)}</ul>" if root else ""
+    if grouped:
+        head = "Other findings, grouped by diagnosis" if root else \
+            "Findings, grouped by diagnosis"
+        note = "" if root else (' <span class="note">(no root cause was computed for these '
+                                "elements; they are grouped by their diagnosis)</span>")
+        out += f"<b>{head}</b>{note}<ul>{items(grouped)}</ul>"
+    if upstream:
+        out += f"<b>Found in earlier steps</b><ul>{items(upstream)}</ul>"
+    return f'<div class="causes{"" if root else " grouped"}">{out}</div>'
 
 
 def _conventions(result: DerivationResult) -> str:

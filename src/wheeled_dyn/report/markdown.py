@@ -101,10 +101,24 @@ def derivation_markdown(result: DerivationResult) -> str:
     lines = [f'<a id="{S.anchor(result)}"></a>', "",
              f"## {S.equations(result)} — {result.title}", ""]
     causes = S.cause_lines(result)
-    head = "Causes" if result.causes else "Findings, grouped by diagnosis (no root causes computed)"
-    lines += [f"**{head}:**", ""] + ([f"- {c.one_line(names.label)}" + (f" {_math(c.latex)}" if c.latex else "")
-                                      for c in causes] or ["- none: every element agrees"])
-    lines += ["", f"**Assumes:** {S.assumes_line(result, dict(names.assumed))}", ""]
+    root = [c for c in causes if c.computed and c.kind != "upstream_step"]
+    grouped = [c for c in causes if not c.computed]
+    upstream = [c for c in causes if c.computed and c.kind == "upstream_step"]
+
+    def items(group):
+        return [f"- {c.one_line(names.label)}" + (f" {_math(c.latex)}" if c.latex else "")
+                for c in group]
+    if root:
+        lines += ["**Causes:**", ""] + items(root) + [""]
+    if grouped:
+        head = "Other findings, grouped by diagnosis" if root else \
+            "Findings, grouped by diagnosis (no root cause computed)"
+        lines += [f"**{head}:**", ""] + items(grouped) + [""]
+    if upstream:
+        lines += ["**Found in earlier steps:**", ""] + items(upstream) + [""]
+    if not causes:
+        lines += ["**Causes:** none, every element agrees.", ""]
+    lines += [f"**Assumes:** {S.assumes_line(result, dict(names.assumed))}", ""]
     conv = result.conventions
     if conv is not None:
         lines.append(f"**Conventions:** declared ({conv.declared.description}): "

@@ -8,10 +8,10 @@ Order
     (4)–(5), (6)–(8), (9)–(11), (12)–(14), (25), (33)–(35), the appendix — as the document does.
 
 Causes
-    The result's own :class:`~wheeled_dyn.compare.result.Cause` records, most important first.
-    A result without causes (none computed) gets its elements grouped by their first
-    diagnosis instead — one line per distinct diagnosis, naming the elements — so a reader
-    still sees a few reasons, not a list of names.
+    The result's own root causes (:class:`~wheeled_dyn.compare.result.Cause`), most important
+    first; then the elements no cause explains (all of them when none was computed), grouped by
+    their first diagnosis — one line per distinct diagnosis, naming the elements — so a reader
+    sees a few reasons, not a list of names; then the causes found in earlier steps.
 """
 
 from __future__ import annotations
@@ -160,20 +160,24 @@ _GROUP_ORDER = ("dimension", "sign", "power", "factor", "swap", "missing", "extr
 
 
 def cause_lines(result: DerivationResult) -> list[CauseLine]:
-    r"""The causes of a derivation, most important first (see the module text)."""
-    computed = [CauseLine(c.kind, tuple(c.elements), c.explanation, c.latex) for c in result.causes]
-    if any(c.kind != "upstream_step" for c in result.causes):
-        return computed
-    groups: dict[tuple[str, str], list[str]] = {}        # (earlier steps' causes come last)
+    r"""The causes of a derivation, most important first (see the module text): the computed
+    root causes, then the findings no cause explains grouped by diagnosis, then the causes
+    found in earlier steps of the derivation (``upstream_step``)."""
+    causes = [CauseLine(c.kind, tuple(c.elements), c.explanation, c.latex) for c in result.causes]
+    upstream = [c for c in causes if c.kind == "upstream_step"]
+    root = [c for c in causes if c.kind != "upstream_step"]
+    explained = {e for c in causes for e in c.elements}
+    groups: dict[tuple[str, str], list[str]] = {}
     for r in result.records:
-        if r.verdict not in SHOWN_VERDICTS:
+        if r.verdict not in SHOWN_VERDICTS or r.element in explained:
             continue
         first = _first_diagnosis(r)
         kind = _diagnosis_kind(r, first)
         groups.setdefault((kind, _group_sentence(kind, first)), []).append(r.element)
     rank = {k: i for i, k in enumerate(_GROUP_ORDER)}
     keys = sorted(groups, key=lambda k: (rank.get(k[0], len(rank)), -len(groups[k])))
-    return [CauseLine(k, tuple(groups[(k, s)]), s, computed=False) for k, s in keys] + computed
+    grouped = [CauseLine(k, tuple(groups[(k, s)]), s, computed=False) for k, s in keys]
+    return root + grouped + upstream
 
 
 def row_factor_line(result: DerivationResult) -> str:
