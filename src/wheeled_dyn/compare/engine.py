@@ -47,6 +47,7 @@ from .samples import (
     random_states,
     special_cases,
 )
+from .assumptions import Assumptions, apply_to_truth, declared, position_ranges
 from .units import DimensionChecker
 
 #: Smaller grid used to test special parameter families.
@@ -95,9 +96,11 @@ class ComparisonEngine:
         self._results: dict[tuple, DerivationResult] = {}
 
     # -- the two sides -------------------------------------------------------------------
-    def _grid(self, d: Derivation, special: tuple[SpecialCase, ...], n_states: int, k: int):
+    def _grid(self, d: Derivation, special: tuple[SpecialCase, ...], n_states: int, k: int,
+              assumed: Assumptions = Assumptions()):
+        special = tuple(dict.fromkeys((*assumed.families, *special)))
         key = (d.model, repr(d.coordinates.raw), d.coordinates.use,
-               tuple(c.name for c in special), n_states, k)
+               tuple(c.name for c in special), n_states, k, assumed.key())
         if key not in self._truth:
             rng = np.random.default_rng([self.seed, len(special), n_states])
             sets = parameter_sets(d.model, k, rng, special)
@@ -110,11 +113,11 @@ class ComparisonEngine:
                 self._maps[mkey] = CoordinateMap(sets[0].model, cs)
             cmap = self._maps[mkey]
             n = len(cs.positions)
-            declared = dict(d.coordinates.raw.get("ranges", {}))
-            ranges = [tuple(declared.get(p, (-np.pi, np.pi))) for p in cs.positions]
+            ranges = position_ranges(d, cs.positions, assumed)
             q, nu = random_states(n, k * n_states, rng, ranges)
             q, nu = q.reshape(k, n_states, n), nu.reshape(k, n_states, n)
             truth = _truth_for(cmap, sets, q, nu)
+            apply_to_truth(truth, assumed)
             self._truth[key] = (truth, sets, q, nu, cs)
         return self._truth[key]
 
@@ -151,17 +154,19 @@ class ComparisonEngine:
         as_printed = d.read_off(assume=True, unscale=False)
         printed = {"A": as_printed.A, "Q": as_printed.Q, "B": as_printed.B, "h": as_printed.h,
                    "C": d.C}
-        truth, sets, q, nu, cs = self._grid(d, (), self.samples, self.param_sets)
+        assumed = declared(d)
+        truth, sets, q, nu, cs = self._grid(d, (), self.samples, self.param_sets, assumed)
         cs_name = cs.name
         doc, per_set = self._document(d, funcs, sets, q, nu, truth.H_rows)
         notes: list[str] = []
         B_true = _input_map(d, truth, per_set, self.samples, notes)
         row_factor = _row_factors(doc, truth, B_true, n)
-        cases = special_cases(d.model)
+        cases = tuple(c for c in special_cases(d.model) if c not in assumed.families)
         if cases:
             # a document usually omits what the special families remove (armature, products
             # of inertia ...): there its rows match the truth up to their factor exactly
-            t2, sets2, q2, nu2, _ = self._grid(d, tuple(cases), SPECIAL_SAMPLES, SPECIAL_SETS)
+            t2, sets2, q2, nu2, _ = self._grid(d, tuple(cases), SPECIAL_SAMPLES, SPECIAL_SETS,
+                                               assumed)
             doc2, per2 = self._document(d, funcs, sets2, q2, nu2, t2.H_rows)
             special = _row_factors(doc2, t2, _input_map(d, t2, per2, SPECIAL_SAMPLES, []), n)
             row_factor = [f if f is not None else m for f, m in zip(special, row_factor)]
@@ -229,7 +234,7 @@ class ComparisonEngine:
             arrays[id(records[-1])] = (D, T)
             exprs.append(expr)
         self._h_swaps(records, arrays)
-        self._special(d, funcs, records, row_factor)
+        self._special(d, funcs, records, row_factor, assumed)
         self._factorization(records, n)
         closed_form.annotate(d, records, cs, {id(r): e for r, e in zip(records, exprs)},
                              tuple(row_factor))
@@ -243,7 +248,7 @@ class ComparisonEngine:
             row_factors=tuple(None if c is None else nice_number(c) for c in row_factor),
             energy=energy, asymmetric=asym, constraints=constraints,
             reconstructed=dict(d.reconstructed), samples=self.samples,
-            parameter_sets=self.param_sets, notes=tuple(notes))
+            parameter_sets=self.param_sets, notes=tuple(notes), assumes=assumed.describe())
 
     # -- refinements ---------------------------------------------------------------------
     @staticmethod
@@ -265,10 +270,10 @@ class ComparisonEngine:
                                       "not the equations"]
 
     def _special(self, d: Derivation, funcs: DocumentFunctions, records: list[dict],
-                 row_factor: Sequence[float | None]) -> None:
+                 row_factor: Sequence[float | None], assumed: Assumptions) -> None:
         r"""For elements that differ, the smallest combinations of special parameter families
-        under which they agree."""
-        cases = special_cases(d.model)
+        the document did not declare under which they agree."""
+        cases = tuple(c for c in special_cases(d.model) if c not in assumed.families)
         todo = [r for r in records if r["verdict"] == "differs"
                 and not any(x.startswith(("dimension", "sign", "factor", "swap")) for x in r["diagnoses"])]
         if not cases or not todo:
@@ -283,7 +288,7 @@ class ComparisonEngine:
             return memo[key]
 
         def _agreeing(combo):
-            truth, sets, q, nu, _ = self._grid(d, combo, SPECIAL_SAMPLES, SPECIAL_SETS)
+            truth, sets, q, nu, _ = self._grid(d, combo, SPECIAL_SAMPLES, SPECIAL_SETS, assumed)
             doc, per_set = self._document(d, funcs, sets, q, nu, truth.H_rows)
             B_true = _input_map(d, truth, per_set, SPECIAL_SAMPLES, [])
             _apply_row_factors(doc, row_factor)
@@ -581,11 +586,61 @@ def position_rates(d: Derivation) -> dict[sp.Symbol, sp.Expr | None]:
         sub = {s: model_rate[s.name] for s in expr.free_symbols if s.name in model_rate}
         sub.update({s: sp.sympify(spec.configuration[s.name]).xreplace(d.model_values)
                     for s in expr.free_symbols if s.name in spec.configuration})
-        eqs.append(sp.Eq(vel, expr.xreplace(sub)))
-    solution = sp.solve(eqs, rates, dict=True) if eqs else []
-    found = solution[0] if solution else {}
-    return {p: (found[r] if r in found and not found[r].free_symbols & set(rates)
-                else None) for p, r in zip(d.positions, rates)}
+        eqs.append(expr.xreplace(sub) - vel)
+    found = _solve_rates(eqs, rates, d) if eqs else {}
+    return {p: found.get(r) for p, r in zip(d.positions, rates)}
+
+
+#: Seed of the generic point at which the rank of the rate equations is read.
+RATE_POINT_SEED = 4099
+#: Relative size below which a singular value of the rate equations counts as zero.
+RATE_RANK_TOL = 1e-9
+
+
+def _solve_rates(eqs: Sequence[sp.Expr], rates: Sequence[sp.Symbol], d: Derivation
+                 ) -> dict[sp.Symbol, sp.Expr]:
+    r"""The rates the linear equations :math:`M(p)\,r = b` fix, as expressions.
+
+    A rate :math:`r_k` is fixed when :math:`e_k` lies in the row space of :math:`M`, read at
+    a generic point (numbers for every symbol). Independent rows and pivot columns found
+    there give a square system solved by LU without simplification (``sp.solve`` on
+    trigonometric coefficients can run for hours); rates outside the pivots are set to 0."""
+    M = sp.Matrix(eqs).jacobian(list(rates))
+    b = -sp.Matrix(eqs).xreplace({r: 0 for r in rates})
+    symbols = sorted(M.free_symbols | b.free_symbols, key=str)
+    rng = np.random.default_rng(RATE_POINT_SEED)
+    point = dict(zip(symbols, rng.uniform(0.3, 1.2, len(symbols))))
+    try:
+        Mn = np.array(M.xreplace(point).evalf(), dtype=float)
+    except (TypeError, ValueError):
+        return {}
+    if not np.all(np.isfinite(Mn)) or not Mn.size:
+        return {}
+    _, s, vt = np.linalg.svd(Mn)
+    rank = int((s > RATE_RANK_TOL * max(s[0], 1e-300)).sum())
+    if rank == 0:
+        return {}
+    null = vt[rank:]
+    fixed = [k for k in range(len(rates)) if not null.size or
+             np.abs(null[:, k]).max() <= RATE_RANK_TOL]
+    rows = _independent(Mn, rank)
+    cols = _independent(Mn[rows].T, rank)
+    sol = M.extract(rows, cols).LUsolve(b.extract(rows, [0]))
+    value = dict(zip((rates[c] for c in cols), sol))
+    return {rates[k]: value.get(rates[k], sp.Integer(0)) for k in fixed}
+
+
+def _independent(Mn: np.ndarray, rank: int) -> list[int]:
+    r"""``rank`` linearly independent rows of ``Mn`` (greedy, in order)."""
+    chosen: list[int] = []
+    for i in range(Mn.shape[0]):
+        trial = Mn[chosen + [i]]
+        if np.linalg.matrix_rank(trial, tol=RATE_RANK_TOL * max(np.abs(Mn).max(), 1e-300)) \
+                > len(chosen):
+            chosen.append(i)
+        if len(chosen) == rank:
+            break
+    return chosen
 
 
 def _asymmetric(doc: Arrays, scales, n: int) -> tuple[str, ...]:

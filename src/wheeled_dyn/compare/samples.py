@@ -3,7 +3,8 @@ r"""Random, physically consistent parameter sets and the values of a model's par
 A comparison evaluates the document and the truth over K parameter sets × N states. Agreement
 at one set of numbers can hide errors (a product of inertia that happens to be 0 hides every
 term it multiplies), so the sets are random with every product of inertia and centre-of-mass
-offset nonzero. *Special cases* restrict them (e.g. products of inertia zero): an element that
+offset nonzero, except where the model declares a symmetry: the two drive wheels of a wheeled
+model stay alike (one shared random scaling of the URDF's wheels). *Special cases* restrict them (e.g. products of inertia zero): an element that
 agrees under a special case only is reported as "agrees only if ...".
 
 The model namespace a derivation's symbols are written in: the physical parameters of the
@@ -107,8 +108,25 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
             theta[0] += 0.5 * scale / 3
             model.inertias[jid] = pin.Inertia.FromLogCholeskyParameters(
                 pin.LogCholeskyParameters(theta))
+    _alike_wheels(wm, model, rng)
     model.gravity = pin.Motion(np.array([0.0, 0.0, -rng.uniform(5.0, 15.0)]), np.zeros(3))
     return wm.with_model(model)
+
+
+def _alike_wheels(wm: WheeledModel, model: pin.Model, rng: np.random.Generator) -> None:
+    r"""The two drive wheels of a wheeled model stay alike, as the model declares them: each
+    is its URDF inertia scaled by one shared random mass factor and size factor (a centred,
+    axisymmetric wheel stays so; the two stay equal)."""
+    wheels = tuple(getattr(wm.spec, "wheels", ()) or ())
+    if len(wheels) != 2:
+        return
+    mass, size = rng.uniform(0.5, 2.0), rng.uniform(0.8, 1.25)
+    for link in wheels:
+        jid = wm.joint_id_of_link(link)
+        old = wm.model.inertias[jid]
+        if old.mass > 0:
+            model.inertias[jid] = pin.Inertia(old.mass * mass, old.lever * size,
+                                              old.inertia * mass * size**2)
 
 
 def parameter_sets(model_name: str, k: int, rng: np.random.Generator,

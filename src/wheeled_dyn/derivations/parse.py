@@ -40,7 +40,10 @@ from .steps import read_steps
 
 TOP_LEVEL_KEYS: tuple[str, ...] = ("title", "model", "source", "coordinates", "inputs",
                                    "symbols", "assume", "definitions", "rows", "matrices",
-                                   "constraints", "reconstructed", "step", "feeds")
+                                   "constraints", "reconstructed", "step", "feeds",
+                                   "assumes")
+#: Keys of ``[assumes]``: what the document assumes (see docs/derivation-format.md).
+ASSUMES_KEYS: tuple[str, ...] = ("families", "linearised_about", "potential", "text")
 SYMBOL_KEYS: tuple[str, ...] = ("value", "units", "meaning", "input", "free", "latex")
 
 
@@ -298,6 +301,7 @@ def load_derivation(path: str | Path, *, parameters: Collection[str] | None = No
                           ld.line("reconstructed", label))
         reader.check_label(label, ld.line("reconstructed", label))
 
+    assumes = _assumes(ld, positions)
     spec = coordinate_spec(p, coord_table, names,
                            lambda text, item, key: ld.expr(text, item, "coordinates", key),
                            lambda key: ld.line("coordinates", key))
@@ -313,7 +317,40 @@ def load_derivation(path: str | Path, *, parameters: Collection[str] | None = No
         namespace=MappingProxyType(dict(ld.names)),
         steps=read_steps(data.get("step"), src.lines, n,
                          lambda text, item: ld.expr(text, item, None, "step"), ld.fail),
-        feeds=tuple(str(f) for f in data.get("feeds", ())))
+        feeds=tuple(str(f) for f in data.get("feeds", ())), assumes=assumes)
+
+
+def _assumes(ld: "_Loader", positions: tuple) -> Mapping[str, Any]:
+    r"""``[assumes]``: ``families`` (names of the model's special parameter families),
+    ``linearised_about`` (position = number), ``potential = "equilibrium"``, ``text`` (other
+    assumptions in words). Family names are checked against the model by the comparison."""
+    raw = ld.table("assumes")
+    for key in raw:
+        if key not in ASSUMES_KEYS:
+            raise ld.fail(f"assumes.{key}", "unknown key; valid: " + ", ".join(ASSUMES_KEYS),
+                          ld.line("assumes", key))
+    for key in ("families", "text"):
+        if key in raw and not (isinstance(raw[key], list)
+                               and all(isinstance(x, str) for x in raw[key])):
+            raise ld.fail(f"assumes.{key}", "expected a list of strings", ld.line("assumes", key))
+    point = raw.get("linearised_about", {})
+    names = {str(q) for q in positions}
+    if not isinstance(point, dict) or any(
+            k not in names or isinstance(v, bool) or not isinstance(v, (int, float))
+            for k, v in point.items()):
+        raise ld.fail("assumes.linearised_about", "expected { position = number, ... } with "
+                      "positions among " + ", ".join(sorted(names)),
+                      ld.line("assumes", "linearised_about"))
+    if raw.get("potential", "equilibrium") != "equilibrium" or (
+            "potential" in raw and set(point) != names):
+        raise ld.fail("assumes.potential", 'expected "equilibrium", with linearised_about '
+                      "giving every position (the equilibrium state)",
+                      ld.line("assumes", "potential"))
+    return MappingProxyType({"families": tuple(raw.get("families", ())),
+                             "linearised_about": MappingProxyType(
+                                 {k: float(v) for k, v in point.items()}),
+                             "potential": raw.get("potential"),
+                             "text": tuple(raw.get("text", ()))})
 
 
 def load_derivations(paths: Iterable[str | Path], *, parameters: Collection[str] | None = None,

@@ -18,8 +18,9 @@ marks ``"?"`` are ``sympy.nan`` and listed in :attr:`Derivation.missing`.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
+from types import MappingProxyType
 
 import sympy
 
@@ -111,6 +112,8 @@ class Derivation:
     namespace: Mapping[str, sympy.Symbol]
     steps: tuple = ()               # earlier steps as printed (:class:`.steps.Step`)
     feeds: tuple[str, ...] = ()     # stems of the derivation files these steps lead to
+    #: ``[assumes]``: families, linearised_about, potential, text (what the document assumes)
+    assumes: Mapping[str, object] = field(default_factory=lambda: MappingProxyType({}))
 
     @property
     def form(self) -> str:
