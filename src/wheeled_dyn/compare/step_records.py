@@ -61,6 +61,7 @@ class _Group:
         self.d, self.N = d, states
         self.reference: dict[int, float] = {}
         self.linearised = False
+        self.integral = False
         self._argv: list[np.ndarray] | None = None
         cases = {c.name: c for c in special_cases(d.model)}
         for name in given:
@@ -85,12 +86,16 @@ class _Group:
         self.rng = rng
         self.params = tuple(s.symbol for s in d.symbols.values() if not s.is_input)
         self.values = [document_symbol_values(d, ps, rng) for ps in self.sets]
-        self.args = [*d.positions, *d.velocities, *d.accelerations, *self.params]
+        #: the rates of the positions along the free motion (first integrals; else 0)
+        self.rates = [sp.Symbol("_rate_" + str(p), real=True) for p in d.positions]
+        self.qdot = np.zeros_like(q)
+        self.args = [*d.positions, *d.velocities, *d.accelerations, *self.params, *self.rates]
 
     def truth(self, steps: Sequence[Step]) -> list[np.ndarray]:
         r"""The truth of every step at every sample; the states are made admissible first (a
         linearised step, alone in its group: replaced by deviations, see :meth:`_deviations`)."""
         self.linearised = steps[0].kind == "linearised equations"
+        self.integral = steps[0].kind == "first integral"
         self._argv = None
         out = [np.zeros((len(self.q), len(s.components))) for s in steps]
         for k, ps in enumerate(self.sets):
@@ -101,6 +106,9 @@ class _Group:
             for i in range(k * self.N, (k + 1) * self.N):
                 if steps[0].kind == "linearised equations":      # alone in its group
                     self._deviations(steps[0], k, i)
+                    continue
+                if steps[0].kind == "first integral":            # alone in its group
+                    self._free_rates(steps[0], i)
                     continue
                 m = Motion(self.cmap, data, self.q[i], self.nu[i], self.nudot[i])
                 self.nu[i], self.nudot[i] = m.nu, m.nudot
@@ -143,6 +151,28 @@ class _Group:
         J_q = np.stack([(f(q0 + 1e-4 * e, nu0) - f(q0 - 1e-4 * e, nu0)) / 2e-4 for e in eye], 1)
         dq, dnu = self.rng.normal(size=n), self.rng.normal(size=n)
         self.q[i], self.nu[i], self.nudot[i] = dq, dnu, J_q @ dq + J_nu @ dnu
+
+    def _free_rates(self, step: Step, i: int) -> None:
+        r"""Sample ``i`` of a first integral: the true accelerations of the free motion,
+        :math:`\dot\nu = A^{-1}(-h - Q)`, and the rates of the document's positions
+        (:math:`\dot q_d = \nu` for holonomic sets; else the least-squares solution of
+        :math:`\partial g/\partial q_d\,\dot q_d = v` with the model's velocity
+        :math:`v = S\nu`, :math:`\partial g/\partial q_d` by central differences)."""
+        cmap = self.cmap
+        if self.cs.rolling == "multipliers":
+            raise DerivationError(self.d.path, f"step {step.equation}", "first integrals need "
+                                  "coordinates with the rolling eliminated (or none)")
+        q0, nu = self.q[i], self.nu[i]
+        q = cmap.model_configuration(q0)
+        terms, _, v = cmap.reduce_at(q, nu, q0)
+        self.nudot[i] = np.linalg.solve(terms.A, -(terms.h + terms.Q))
+        if self.cs.kind == "holonomic":
+            self.qdot[i] = nu
+            return
+        G = np.stack([(cmap.model_configuration(q0 + 1e-6 * e) -
+                       cmap.model_configuration(q0 - 1e-6 * e)) / 2e-6
+                      for e in np.eye(len(q0))], 1)
+        self.qdot[i] = np.linalg.lstsq(G, v, rcond=None)[0]
 
     def coefficients(self, step: Step, monomials: Sequence[tuple[int, ...]]) -> dict:
         r"""The truth's coefficient of each monomial (exponents over velocities then
@@ -211,6 +241,10 @@ class _Group:
         r"""A configuration relation's rate :math:`\sum_i \partial f/\partial q_i\,\dot q_i`
         (holonomic sets); velocity relations and parameter claims as they are."""
         d = self.d
+        if self.integral:                 # its rate along the free motion
+            return sum((expr.diff(p) * r for p, r in zip(d.positions, self.rates)),
+                       sp.Integer(0)) + sum((expr.diff(v) * a for v, a in
+                                             zip(d.velocities, d.accelerations)), sp.Integer(0))
         if self.linearised or expr.has(*d.velocities) or not expr.has(*d.positions):
             return expr
         if self.cs.kind != "holonomic":
@@ -234,7 +268,8 @@ class _Group:
         every = np.arange(len(self.q)) if rows is None else rows
         per = np.repeat(np.arange(len(self.sets)), self.N)[every]
         out = [*self.q[every].T, *self.nu[every].T, *self.nudot[every].T,
-               *(np.array([self.values[k][p] for k in per]) for p in self.params)]
+               *(np.array([self.values[k][p] for k in per]) for p in self.params),
+               *self.qdot[every].T]
         if rows is None:
             self._argv = out
         return list(out)
@@ -295,9 +330,11 @@ def _power_swaps(expr: sp.Expr, g: _Group, T: np.ndarray, scale: float) -> list[
     factors = [f for term in sp.Add.make_args(sp.expand(expr)) for f in sp.Mul.make_args(term)]
     for s in sorted(expr.free_symbols & set(g.params), key=str):
         e = next((f.as_base_exp()[1] for f in factors if f.as_base_exp()[0] == s), 0)
-        for p in (-1, 2, sp.Rational(1, 2)):
-            if e != 0 and agrees(g.document(expr.xreplace({s: s ** p})), T, scale):
-                found.append(f"power: {sp.sstr(s ** e)} where {sp.sstr(s ** (e * p))} fits")
+        if e == 0 or not e.is_Rational:
+            continue
+        for new in dict.fromkeys((-e, e - 1, e + 1, 2 * e, e / 2)):
+            if new != 0 and agrees(g.document(expr.xreplace({s: s ** (new / e)})), T, scale):
+                found.append(f"power: {sp.sstr(s ** e)} where {sp.sstr(s ** new)} fits")
     return found
 
 
@@ -409,6 +446,17 @@ def _document_values(g: _Group, step: Step, T: np.ndarray):
     if step.kind in RELATION_KINDS:        # the size of each side's terms: a side may be 0
         exprs += [g._rate(t) for j in kept for side in step.sides[j]
                   for t in sp.Add.make_args(sp.expand(side))]
+    reference = g.reference.get(id(step), 0.0)
+    if step.kind == "first integral":
+        # the size its rate would have were it not an integral: |dI/dq| |q'| + |dI/dnu| |nu'|
+        d = g.d
+        for j in kept:
+            e = step.components[j]
+            grads = g.documents([e.diff(x) for x in (*d.positions, *d.velocities)])
+            n = len(d.positions)
+            size = (sum(np.abs(x) for x in grads[:n]) * np.linalg.norm(g.qdot, axis=1)
+                    + sum(np.abs(x) for x in grads[n:]) * np.linalg.norm(g.nudot, axis=1))
+            reference = max(reference, float(np.max(size, initial=0.0)))
     values = g.documents(exprs)
     D_all = [None] * len(step.components)
     for j, v in zip(kept, values):
@@ -416,7 +464,7 @@ def _document_values(g: _Group, step: Step, T: np.ndarray):
     parts = values[len(kept):]
     scale = max([float(np.abs(a).max(initial=0.0))
                  for a in (*[x for x in D_all if x is not None], T, *parts)
-                 if np.all(np.isfinite(a))] + [g.reference.get(id(step), 0.0), 1e-300])
+                 if np.all(np.isfinite(a))] + [reference, 1e-300])
     return D_all, scale
 
 
@@ -458,7 +506,8 @@ def _records(g: _Group, step: Step, index: int, T: np.ndarray) -> list[ElementRe
         D, Tj = D_all[j], T[:, j]
         element = f"{step.name} {names[j]}"
         common = dict(element=element, key="step", index=(index, j), document=step.printed[j],
-                      document_model="", truth=None, residual=None, step=step.kind,
+                      document_model="", truth=None, residual=None,
+                      step="claim" if step.kind == "first integral" else step.kind,
                       equation=step.equation)
         if D is None or not np.all(np.isfinite(D)) or not np.all(np.isfinite(Tj)):
             why = "lost in the extracted text: not compared" if D is None else \
@@ -481,7 +530,9 @@ def _records(g: _Group, step: Step, index: int, T: np.ndarray) -> list[ElementRe
             diags += [f"dimension: {x}" for x in problems]
         ok = agrees(D, Tj, scale) and not diags
         if not ok:
-            if step.kind == "linearised equations":
+            if step.kind == "first integral":
+                diags.append("its rate along the model's free motion is not 0")
+            elif step.kind == "linearised equations":
                 diags += _linear_terms(g, step.components[j])
             elif relation:
                 diags += _side_factor(g, step.sides[j], scale)
@@ -494,7 +545,8 @@ def _records(g: _Group, step: Step, index: int, T: np.ndarray) -> list[ElementRe
                                     lambda a, b: g.documents(together, read=(a, b))[at], Tj, scale)
             if not _explained(diags):
                 diags += _trig_swaps(expr, g, Tj, scale)
-            if step.kind == "claim" and not expr.has(*d.positions, *d.velocities):
+            if step.kind == "first integral" or (
+                    step.kind == "claim" and not expr.has(*d.positions, *d.velocities)):
                 diags += _power_swaps(expr, g, Tj, scale)
         recs.append(ElementRecord(verdict="agrees" if ok else "differs", diagnoses=tuple(diags),
                                   max_error=max_error(D, Tj), scale=scale,
@@ -507,7 +559,7 @@ def compare_steps(d: Derivation, seed: int = 2026) -> list[ElementRecord]:
     r"""Records of every ``[[step]]`` of ``d``, in the file's order."""
     by_given: dict[tuple, list[int]] = {}
     for i, s in enumerate(d.steps):
-        alone = (i,) if s.kind == "linearised equations" else ()
+        alone = (i,) if s.kind in ("linearised equations", "first integral") else ()
         by_given.setdefault((s.given, alone), []).append(i)
     out: dict[int, list[ElementRecord]] = {}
     for (given, _), idx in by_given.items():

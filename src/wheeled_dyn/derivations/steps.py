@@ -21,6 +21,8 @@ printed, in the file's namespace (positions :math:`q`, velocities :math:`\nu`, a
 ``linearised equations``    ``relations`` linear in deviations (the document's positions,
                             velocities, accelerations read as deviations) about the state
                             ``about`` (velocities not named there are 0, positions random)
+``first integral``          ``value``: a quantity the document says is constant in the
+                            free motion (no inputs)
 ``generalized force``       ``components`` of Kane's generalized inertia forces
                             (``quantity = "inertia"``: :math:`F^* = -(A\dot\nu + h)`) or of
                             the inertial left side (``quantity = "inertial terms"``:
@@ -50,7 +52,7 @@ from ..errors import DerivationError
 STEP_KINDS: tuple[str, ...] = ("velocity", "angular velocity", "acceleration",
                                "angular acceleration", "kinetic energy", "potential energy",
                                "constraint", "claim", "generalized force",
-                               "linearised equations")
+                               "linearised equations", "first integral")
 VECTOR_KINDS = STEP_KINDS[:4]
 RELATION_KINDS = ("constraint", "claim", "linearised equations")
 #: Named points of a body.
@@ -180,9 +182,9 @@ def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
         if not isinstance(frame, str) or not frame:
             raise fail(f"{item}.frame", "expected world, heading or a link name", line)
         extra = dict(body=body, axes=axes, point=point, frame=frame)
-    elif kind in ("kinetic energy", "potential energy"):
+    elif kind in ("kinetic energy", "potential energy", "first integral"):
         if "value" not in t:
-            raise fail(f"{item}.value", "an energy step gives value = \"...\"", line)
+            raise fail(f"{item}.value", f"a {kind} step gives value = \"...\"", line)
         texts = (str(t["value"]),)
         extra = dict(bodies=_strings(t, "bodies", item, line, fail))
     elif kind in RELATION_KINDS:
