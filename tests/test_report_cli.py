@@ -56,4 +56,5 @@ def test_unwritable_folder_is_one_error(tmp_path, capsys):
     blocker.write_text("x")
     assert main(["compare", "wip", str(EQ25), "--out", str(blocker / "sub"),
                  "--samples", SAMPLES, "--param-sets", SETS]) == 2
-    assert "report folder" in capsys.readouterr().err
+    err = capsys.readouterr().err
+    assert str(blocker) in err and "expected a folder" in err and len(err.splitlines()) == 1

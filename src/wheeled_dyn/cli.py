@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
+import signal
 import sys
 from collections.abc import Sequence
 
@@ -41,6 +43,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         return _run(argv)
     except KeyboardInterrupt:        # Ctrl-C: the writers have removed their temporary files
+        # a second Ctrl-C (or the one the workers' shutdown sees) must not turn the clean
+        # exit into a traceback or a death by signal
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
         print("wheeled-dyn: interrupted", file=sys.stderr)
         return 130
 
@@ -66,5 +71,17 @@ def _run(argv: Sequence[str] | None) -> int:
         return 2
 
 
+def entry() -> None:
+    r"""The ``wheeled-dyn`` command: :func:`main`'s exit code. After Ctrl-C the process ends
+    at once with 130 (its files are already cleaned up): the interpreter's own shutdown could
+    otherwise meet the interrupt again and end by the signal instead."""
+    code = main()
+    if code == 130:
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(130)
+    sys.exit(code)
+
+
 if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())
+    entry()

@@ -196,9 +196,10 @@ def coordinate_names(path: Path, table: Any, model: str,
     kind = _choice(path, table, "kind", KINDS, builtin.kind if builtin else "holonomic",
                    line_of("kind"))
     rolling = _choice(path, table, "rolling", ROLLING,
-                      builtin.rolling if builtin else "eliminate", line_of("rolling"))
+                      builtin.rolling if builtin else
+                      ("eliminate" if kind == "quasi" else "none"), line_of("rolling"))
     if kind == "holonomic" and rolling == "eliminate":
-        said = "'eliminate'" if "rolling" in table else "not given (default 'eliminate')"
+        said = "'eliminate'" if "rolling" in table else f"'eliminate' (set {use!r})"
         raise DerivationError(path, "coordinates.rolling", f"{said}: eliminating rolling "
                               "constraints needs kind = \"quasi\"; for holonomic coordinates "
                               "write rolling = \"none\" (no rolling contact, or one the "
