@@ -253,6 +253,26 @@ def _wheel_geometry(source: UrdfSource, spec: ModelSpec, model: pin.Model, data:
     return centre, axis, radius, width, joint.name
 
 
+def _check_on_body(spec: ModelSpec, source: UrdfSource, body: str, wheel: str,
+                   wheel_joint: str) -> None:
+    r"""The wheel's spin joint hangs from ``body`` through fixed or locked joints only (the
+    rolling constraint of a planar base needs the axle on one rigid body)."""
+    joint = source.joint_to(wheel)
+    while joint.name != wheel_joint:
+        joint = source.joint_to(joint.parent)
+    link = joint.parent
+    while link != body:
+        if link == source.root_link():
+            raise ModelError(spec.name, wheel, f"the wheel does not hang from the body {body!r}")
+        joint = source.joint_to(link)
+        if joint.type != "fixed" and joint.name not in spec.lock:
+            raise ModelError(spec.name, joint.name, f"this joint moves wheel {wheel!r} relative "
+                                                    f"to the body {body!r}: lock it (a planar "
+                                                    "base needs the axle on one rigid body), or "
+                                                    "use base 'free' with rolling wheels")
+        link = joint.parent
+
+
 def _build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
                    urdf_geom: pin.GeometryModel) -> WheeledModel:
     if not spec.body:
@@ -269,6 +289,8 @@ def _build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
 
     (cl, al, rl, wl, jl), (cr, ar, rr, wr, jr) = (
         _wheel_geometry(source, spec, urdf_model, data, link) for link in spec.wheels)
+    for link, jname in ((spec.wheels[0], jl), (spec.wheels[1], jr)):
+        _check_on_body(spec, source, body_link, link, jname)
     if abs(rl - rr) > RADIUS_TOL * max(rl, rr):
         raise ModelError(spec.name, None, f"wheel radii differ: {rl} and {rr}")
     axle = cr - cl

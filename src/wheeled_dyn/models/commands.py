@@ -72,6 +72,25 @@ def _cmd_list(args: argparse.Namespace) -> int:
     width = max(len(name) for name in summaries) + 1
     for name, summary in summaries.items():
         print(f"{name:{width}} {summary}")
+    from .listing import ADD_MODEL_HINT
+    print("\n" + ADD_MODEL_HINT)
+    return 0
+
+
+def _cmd_model(args: argparse.Namespace) -> int:
+    from ..errors import InputFileError
+    from ..output import check_output_file
+    from .starter import write_starter
+    if args.out is not None:
+        out = check_output_file(args.out, ".toml")
+        if out.exists() and not args.force:
+            raise InputFileError(out, "exists; give --force to replace it")
+    text = write_starter(args.urdf, args.out)
+    if args.out is None:
+        print(text, end="")
+    else:
+        print(f"wrote {args.out}: check the lines marked CHECK, then run "
+              f"'wheeled-dyn matrices {args.out}'")
     return 0
 
 
@@ -108,8 +127,13 @@ def _cmd_matrices(args: argparse.Namespace) -> int:
 def add_commands(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("list", help="list the models")
     p.set_defaults(handler=_cmd_list)
+    p = sub.add_parser("model", help="inspect a URDF and write a starting model file")
+    p.add_argument("urdf", help="URDF file")
+    p.add_argument("--out", default=None, help="model file to write (default: print it)")
+    p.add_argument("--force", action="store_true", help="replace an existing --out file")
+    p.set_defaults(handler=_cmd_model)
     p = sub.add_parser("matrices", help="A, C, Q, B, h of a model in a coordinate set")
-    p.add_argument("model", help="model name (see 'wheeled-dyn list')")
+    p.add_argument("model", help="model name (see 'wheeled-dyn list') or model file (.toml)")
     p.add_argument("--coords", default=None, help="coordinate set (default: the model's)")
     p.add_argument("--state", default=None, help="state entries, e.g. phi=0.2,dpsi=1")
     p.add_argument("--param", default=None, help="physical parameters, e.g. m_S=50,d=0.4")

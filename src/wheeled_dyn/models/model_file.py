@@ -221,10 +221,6 @@ def _validate(mf: ModelFile) -> None:
     sets = d.get("coordinates", {})
     if not isinstance(sets, dict) or not all(isinstance(v, dict) for v in sets.values()):
         raise mf.fail("coordinates", "expected [coordinates.<set name>] tables")
-    default = d.get("default_coordinates")
-    if default is not None and default not in sets:
-        raise mf.fail("default_coordinates", f"{default!r} is not a set declared in "
-                      "[coordinates.<name>] (the sets every model offers are the default)")
     if "parameters" in d and d["parameters"] not in PARAMETER_RECORDS:
         raise mf.fail("parameters", "expected one of " + ", ".join(PARAMETER_RECORDS))
 

@@ -77,7 +77,8 @@ def _path_entry(resolved: str) -> ModelEntry:
     return file_entry(read_model_file(resolved))
 
 
-def _key(reference: str | Path) -> str:
+def model_key(reference: str | Path) -> str:
+    r"""The registry key of a model reference: the name, or the model file's absolute path."""
     text = str(reference)
     if text in MODELS or not is_model_path(text):
         return text
@@ -86,7 +87,7 @@ def _key(reference: str | Path) -> str:
 
 def model_entry(reference: str | Path) -> ModelEntry:
     r"""The entry of a model name or a model file path (see the module docstring)."""
-    key = _key(reference)
+    key = model_key(reference)
     if key in MODELS:
         return MODELS[key]
     if is_model_path(key):
@@ -103,7 +104,7 @@ def _built(key: str) -> WheeledModel:
 def load_model(name: str | Path, params: WipParameters | None = None) -> WheeledModel:
     r"""The model named ``name`` (or described by the model file at that path), with the given
     physical parameters if the model has a record."""
-    base = _built(_key(name))
+    base = _built(model_key(name))
     if params is None:
         return base.with_model(pin.Model(base.model))
     entry = model_entry(name)

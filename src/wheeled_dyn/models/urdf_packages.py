@@ -57,3 +57,25 @@ def resolve_package(package: str, path: str | None) -> tuple[Path, tuple[str, ..
                 else _inside(folder, path, package))
         return urdf, (str(folder.parent),)
     raise LookupError(f"unknown package {package!r}; known: {', '.join(PACKAGES)}")
+
+
+def package_reference(urdf: Path) -> tuple[str, str | None] | None:
+    r"""``(package, path or None)`` naming ``urdf`` inside an installed package of
+    :data:`PACKAGES` (the inverse of :func:`resolve_package`), or None."""
+    urdf = urdf.resolve()
+    try:
+        import upkie_description
+        if urdf == Path(upkie_description.URDF_PATH).resolve():
+            return "upkie-description", None
+    except ImportError:
+        pass
+    roots = [("wheeled-dyn", urdf_dir())]
+    share = example_robot_data_share()
+    if share is not None:
+        roots.append(("example-robot-data", share / "example-robot-data"))
+    for package, root in roots:
+        try:
+            return package, urdf.relative_to(root.resolve()).as_posix()
+        except ValueError:
+            continue
+    return None

@@ -156,7 +156,7 @@ def _cmd_symbolic(args: argparse.Namespace) -> int:
 
 def add_commands(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("symbolic", help="closed-form A, C, Q, B of a model in a coordinate set")
-    p.add_argument("model", help="model name (see 'wheeled-dyn list')")
+    p.add_argument("model", help="model name (see 'wheeled-dyn list') or model file (.toml)")
     p.add_argument("--coords", default=None, help="coordinate set (default: the model's)")
     p.add_argument("--parameters", default=None, choices=PARAMETER_MODES,
                    help="physical symbols (default for the WIP), the model's numbers, or "

@@ -71,7 +71,7 @@ def _cmd_view(args: argparse.Namespace) -> int:
 
 def add_commands(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("view", help="watch a model move in the browser (meshcat)")
-    p.add_argument("model", help="model name (see 'wheeled-dyn list')")
+    p.add_argument("model", help="model name (see 'wheeled-dyn list') or model file (.toml)")
     p.add_argument("--scenario", default=None,
                    help="fall or balance (wip), circle (tiago_base), roll (sphere_plane), "
                         "roll_down (sphere_sphere); default: the model's first")

@@ -1,0 +1,251 @@
+r"""A starting model file from a URDF: ``wheeled-dyn model robot.urdf [--out robot.toml]``.
+
+The URDF is checked (:mod:`.urdf_checks`) and inspected with yourdfpy at its zero
+configuration. *Candidate wheels* are links with a cylinder (collision first, then visual)
+whose axis is parallel to the axis of the revolute or continuous joint that turns them (the
+first moving joint above the link, through fixed joints) and whose joint carries no other
+moving joint (wheels end their chains); for each such joint the largest cylinder counts (a
+tyre rather than a hub). The suggested pair has equal radii, lies lowest and farthest apart;
+*left* is the one whose name says so, or else the one on the root link's +y side (x forward,
+z up, the ROS convention); the suggested up direction is perpendicular to the axle. The
+suggested body is the root link; the joints between it and the wheels are locked at 0 (a
+planar base needs the axle on one rigid body). Every suggestion is marked
+``CHECK`` in the written file, with the reason it was made.
+"""
+
+from __future__ import annotations
+
+import io
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import ModelError
+from .urdf_packages import package_reference
+from .urdf_source import read_urdf
+
+#: Largest |sin| of the angle between a cylinder's axis and its joint's axis to count as parallel.
+PARALLEL_TOL = 1e-6
+#: Largest relative difference of two wheel radii to pair them.
+PAIR_RADIUS_TOL = 1e-6
+
+
+@dataclass(frozen=True)
+class WheelCandidate:
+    r"""A link that looks like a wheel: its cylinder turns about its joint's axis."""
+
+    link: str
+    joint: str
+    radius: float
+    width: float
+    position: tuple[float, float, float]      # link origin in the root frame, zero configuration
+    geometry: str                             # "collision" or "visual"
+
+
+@dataclass(frozen=True)
+class UrdfInventory:
+    r"""What :func:`inspect_urdf` found."""
+
+    path: Path
+    robot: str
+    root: str
+    links: tuple[tuple[str, float, str], ...]          # (name, mass, cylinder note)
+    joints: tuple[tuple[str, str, str, str, str], ...]  # (name, type, parent, child, axis)
+    candidates: tuple[WheelCandidate, ...]
+    pair: tuple[WheelCandidate, WheelCandidate] | None
+    path_joints: tuple[str, ...]                        # moving joints body -> wheels
+    bad_inertia: tuple[str, ...] = ()                   # links failing the inertia checks
+
+
+def _cylinder(link) -> tuple[float, float, np.ndarray, str] | None:
+    for kind, shapes in (("collision", link.collisions), ("visual", link.visuals)):
+        for shape in shapes:
+            cyl = shape.geometry.cylinder if shape.geometry is not None else None
+            if cyl is not None:
+                origin = shape.origin if shape.origin is not None else np.eye(4)
+                return float(cyl.radius), float(cyl.length), np.asarray(origin)[:3, 2], kind
+    return None
+
+
+def inspect_urdf(path: str | Path) -> UrdfInventory:
+    r"""Links, joints and candidate wheels of a URDF (see the module docstring)."""
+    import yourdfpy
+    accept: list[str] = []
+    while True:                       # a bad link inertia is reported, not fatal, here
+        try:
+            source = read_urdf(path, accept_inertia=tuple(accept))
+            break
+        except ModelError as exc:
+            if "inertia" not in exc.reason or exc.item in accept or exc.item is None:
+                raise
+            accept.append(exc.item)
+    urdf = yourdfpy.URDF.load(io.BytesIO(source.text.encode("utf-8")), build_scene_graph=True,
+                              load_meshes=False, load_collision_meshes=False)
+    robot = urdf.robot
+    root = source.root_link()
+    parent_joint = {j.child: j for j in robot.joints}
+    carriers = set()                  # joints that carry another moving joint
+    for j in robot.joints:
+        if j.type == "fixed":
+            continue
+        link = j.parent
+        while link in parent_joint:
+            above = parent_joint[link]
+            if above.type != "fixed":
+                carriers.add(above.name)
+            link = above.parent
+    links, candidates = [], {}
+    for link in robot.links:
+        mass = float(link.inertial.mass) if link.inertial is not None and \
+            link.inertial.mass is not None else 0.0
+        cyl = _cylinder(link)
+        links.append((link.name, mass, f"cylinder r={cyl[0]:g} m, length {cyl[1]:g} m "
+                      f"({cyl[3]})" if cyl else ""))
+        if cyl is None or link.name not in parent_joint:
+            continue
+        joint = parent_joint[link.name]
+        while joint.type == "fixed" and joint.parent in parent_joint:
+            joint = parent_joint[joint.parent]
+        if joint.type not in ("revolute", "continuous") or joint.name in carriers:
+            continue
+        to_child = urdf.get_transform(link.name, joint.child)
+        cyl_axis = to_child[:3, :3] @ cyl[2]
+        axis = np.asarray(joint.axis if joint.axis is not None else (1.0, 0.0, 0.0), dtype=float)
+        if np.linalg.norm(np.cross(cyl_axis, axis / np.linalg.norm(axis))) > PARALLEL_TOL:
+            continue
+        pos = tuple(float(x) for x in urdf.get_transform(link.name, root)[:3, 3])
+        cand = WheelCandidate(link.name, joint.name, cyl[0], cyl[1], pos, cyl[3])
+        best = candidates.get(joint.name)
+        if best is None or cand.radius > best.radius:
+            candidates[joint.name] = cand
+    ordered = sorted(candidates.values(), key=lambda c: (c.position[2], c.link))
+    pair = _pair(ordered)
+    path_joints: list[str] = []
+    if pair is not None:
+        for cand in pair:
+            link = cand.link
+            while link in parent_joint:
+                joint = parent_joint[link]
+                if (joint.type != "fixed" and joint.name != cand.joint
+                        and joint.name not in path_joints):
+                    path_joints.insert(0, joint.name)
+                link = joint.parent
+    joints = tuple((j.name, j.type, j.parent, j.child,
+                    " ".join(f"{x:g}" for x in (j.axis if j.axis is not None else ())))
+                   for j in robot.joints)
+    return UrdfInventory(Path(path), robot.name, root, tuple(links), joints, tuple(ordered),
+                         pair, tuple(path_joints), tuple(accept))
+
+
+def _pair(cands: list[WheelCandidate]) -> tuple[WheelCandidate, WheelCandidate] | None:
+    best, best_key = None, None
+    for i, a in enumerate(cands):
+        for b in cands[i + 1:]:
+            if abs(a.radius - b.radius) > PAIR_RADIUS_TOL * max(a.radius, b.radius):
+                continue
+            gap = float(np.linalg.norm(np.subtract(a.position, b.position)))
+            key = (round(a.position[2] + b.position[2], 6), -round(gap, 9))
+            if gap > 0 and (best_key is None or key < best_key):
+                best, best_key = (a, b), key
+    if best is None:
+        return None
+    for a, b in (best, best[::-1]):
+        if _side(a.link) == "left" or _side(b.link) == "right":
+            return a, b
+    return tuple(sorted(best, key=lambda c: -c.position[1]))  # type: ignore[return-value]
+
+
+def _side(name: str) -> str | None:
+    low = name.lower()
+    for side, marks in (("left", ("left", "_l_", "_l")), ("right", ("right", "_r_", "_r"))):
+        if any(m in low and (m != "_l" and m != "_r" or low.endswith(m)) for m in marks):
+            return side
+    return None
+
+
+def _up(a: WheelCandidate, b: WheelCandidate) -> str:
+    axle = np.abs(np.subtract(a.position, b.position))
+    up = [0.0, 0.0, 1.0] if int(np.argmax(axle)) != 2 else [0.0, 1.0, 0.0]
+    return "[" + ", ".join(f"{x:.1f}" for x in up) + "]"
+
+
+def _q(text: str) -> str:
+    return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+
+
+def starter_text(inv: UrdfInventory, out: Path | None) -> str:
+    r"""The text of a starting model file for ``inv`` (written next to ``out`` if given)."""
+    urdf = inv.path.resolve()
+    rel = os.path.relpath(urdf, (out.resolve().parent if out else Path.cwd()))
+    name = "".join(c if c.isalnum() or c == "_" else "_" for c in (inv.robot or inv.path.stem))
+    lines = [f"# Starting model file for {inv.robot or inv.path.stem}, written by "
+             f"'wheeled-dyn model {inv.path.name}'.",
+             "# Check every line marked CHECK before trusting results; format: "
+             "docs/model-format.md.",
+             f"name = {_q(name)}",
+             f"summary = {_q(f'{inv.robot or inv.path.stem} from {inv.path.name}')}",
+             "", "[urdf]"]
+    package = package_reference(urdf)
+    if package is None:
+        lines += [f"path = {_q(Path(rel).as_posix())}   # relative to this file", ""]
+    else:
+        lines += [f"package = {_q(package[0])}"]
+        lines += [f"path = {_q(package[1])}   # inside the package"] if package[1] else []
+        lines += [""]
+    if inv.bad_inertia:
+        lines += ["[checks]",
+                  "# CHECK: these links' inertias fail the URDF checks (not a mass "
+                  "distribution); accepted",
+                  "# so the file builds. Fix the URDF, or keep them if they are small parts "
+                  "of a larger body.",
+                  "accept_inertia = [" + ", ".join(_q(n) for n in inv.bad_inertia) + "]", ""]
+    if inv.pair is None:
+        lines += ["[base]",
+                  "# No pair of wheels found (no two cylinders of equal radius turning about",
+                  "# their joints' axes). CHECK: fixed (root link fixed to the world) or free.",
+                  'type = "fixed"', f"body = {_q(inv.root)}", ""]
+    else:
+        left, right = inv.pair
+        lines += ["[base]",
+                  'type = "planar"        # a wheeled body on the ground plane (fixed, free: '
+                  'see the format)',
+                  f"body = {_q(inv.root)}    # CHECK: the link carrying the axle (suggested: "
+                  "the root link)",
+                  f"up = {_up(left, right)}   # CHECK: the body's up direction in its link "
+                  "frame (perpendicular to the axle)",
+                  "pitch = true           # CHECK: true if the body pitches about the axle "
+                  "(a pendulum), false if casters keep it level", "",
+                  "[wheels]",
+                  f"links = [{_q(left.link)}, {_q(right.link)}]   # left, right: CHECK",
+                  f"radius = {left.radius:.6g}    # CHECK: the rolling radius; read from "
+                  f"{left.link}'s {left.geometry} cylinder", ""]
+        if inv.path_joints:
+            lines += ["[joints]",
+                      "# The joints between the body and the wheels, locked (a planar base "
+                      "needs the axle on one rigid",
+                      "# body). CHECK the values (rad or m): the axle must stay horizontal.",
+                      "locked = { " + ", ".join(f"{j} = 0.0" for j in inv.path_joints) + " }",
+                      ""]
+    lines += ["# Candidate wheels (link, joint, radius m, position in the root frame m):"]
+    lines += [f"#   {c.link:28} {c.joint:20} r={c.radius:<8g} "
+              f"({', '.join(f'{x:.4g}' for x in c.position)})" for c in inv.candidates] \
+        or ["#   none"]
+    lines += [f"# Links ({len(inv.links)}): name, mass kg, cylinder"]
+    lines += [f"#   {n:32} {m:<10.6g} {note}".rstrip() for n, m, note in inv.links]
+    lines += [f"# Joints ({len(inv.joints)}): name, type, parent -> child, axis"]
+    lines += [f"#   {n:32} {t:10} {p} -> {c}  {a}".rstrip() for n, t, p, c, a in inv.joints]
+    return "\n".join(lines) + "\n"
+
+
+def write_starter(urdf: str | Path, out: str | Path | None) -> str:
+    r"""Inspect ``urdf`` and return the starting model file's text; write it to ``out`` (atomic:
+    a temporary file renamed; missing folders created) when given."""
+    from ..output import write_atomic
+    out_path = Path(out) if out is not None else None
+    text = starter_text(inspect_urdf(urdf), out_path)
+    if out_path is not None:
+        write_atomic(out_path, text)
+    return text
+
