@@ -9,7 +9,7 @@ from pathlib import Path
 
 from typing import TYPE_CHECKING
 
-from ..errors import DerivationError
+from ..errors import DerivationError, WheeledDynError
 
 if TYPE_CHECKING:       # the heavy modules load in the handlers (a quick --help and list)
     from .engine import ComparisonEngine
@@ -104,12 +104,12 @@ def run_comparison(files: Sequence[Path], samples: int, param_sets: int, seed: i
     r"""Compare each derivation file; all files are parsed (and checked against ``model``)
     before any comparison starts."""
     from ..derivations import load_derivations
-    from ..models.registry import model_entry
+    from ..models.registry import model_entry, model_key
     from .engine import ComparisonEngine
     derivations = load_derivations(files)
     for d in derivations:
         model_entry(d.model)
-        if model is not None and d.model != model:
+        if model is not None and model_key(d.model) != model_key(model):
             raise DerivationError(d.path, "model", f"the file describes model {d.model!r}, "
                                   f"not {model!r}")
         check_model_names(d)
@@ -377,11 +377,25 @@ def _cmd_compare(args: argparse.Namespace) -> int:
     check_grid(args.samples, args.param_sets)
     check_output_folder(args.out)
     files = input_files(args.files)
-    results = run_comparison(files, args.samples, args.param_sets, model=args.model)
-    print_summary(results)
-    _write(results, f"wheeled_dyn: derivations of {args.model} against the truth", Path(args.out),
-           args.plots)
-    return 0
+    from .engine import ComparisonEngine
+    engine = ComparisonEngine(samples=args.samples, param_sets=args.param_sets, seed=2026)
+
+    def check() -> None:
+        results = run_comparison(files, args.samples, args.param_sets, model=args.model,
+                                 engine=engine)
+        print_summary(results)
+        _write(results, f"wheeled_dyn: derivations of {args.model} against the truth",
+               Path(args.out), args.plots)
+
+    if not getattr(args, "watch", False):
+        check()
+        return 0
+    from .watch import watch
+    try:
+        check()
+    except WheeledDynError as exc:          # the first version may be the broken one
+        print(f"wheeled-dyn: error: {exc}", flush=True)
+    return watch(files, check)
 
 
 def add_commands(sub: argparse._SubParsersAction) -> None:
@@ -392,8 +406,11 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
             ("compare", "compare derivation files with the truth of a model", _cmd_compare)):
         p = sub.add_parser(name, help=helptext)
         if name == "compare":
-            p.add_argument("model", help="model name (see 'wheeled-dyn list')")
+            p.add_argument("model", help="model name (see 'wheeled-dyn list') or model file (.toml)")
             p.add_argument("files", nargs="+", help="derivation files (TOML) or folders")
+            p.add_argument("--watch", action="store_true",
+                           help="check the files again each time they are saved (the truth "
+                                "is computed once); Ctrl-C to stop")
         else:
             from ..derivations.builtin import builtin_groups
             p.add_argument("--group", default="seed001", choices=builtin_groups(),
