@@ -71,3 +71,50 @@ def swap_diagnoses(expr: sp.Expr, candidates: Sequence[Sequence[sp.Symbol]],
                 if agrees(evaluate(a, b), T, scale):
                     found.append(f"swap: {sp.sstr(a)} where {sp.sstr(b)} fits")
     return found
+
+
+#: Largest number of additive terms of an element searched for one wrong term.
+MAX_TERMS = 16
+
+
+def power_diagnoses(expr: sp.Expr, params: Sequence[sp.Symbol],
+                    evaluate: Callable[[sp.Expr], np.ndarray], T: np.ndarray,
+                    scale: float) -> list[str]:
+    r"""A parameter :math:`s` written to the power :math:`e` where :math:`e'` fits
+    (:math:`e' \in \{-e, e \pm 1, 2e\}`, e.g. G where G² fits, R⁻² where R² fits):
+    ``expr`` with :math:`s \to s^{e'/e}` agrees. ``evaluate(e)`` gives an expression's values
+    at the samples."""
+    found = []
+    factors = [f for term in sp.Add.make_args(sp.expand(expr)) for f in sp.Mul.make_args(term)]
+    for s in sorted(expr.free_symbols & set(params), key=str):
+        e = next((f.as_base_exp()[1] for f in factors if f.as_base_exp()[0] == s), 0)
+        if e == 0 or not e.is_Rational:
+            continue
+        for new in dict.fromkeys((-e, e - 1, e + 1, 2 * e)):
+            if new != 0 and agrees(evaluate(expr.xreplace({s: s ** (new / e)})), T, scale):
+                found.append(f"power: {sp.sstr(s ** e)} where {sp.sstr(s ** new)} fits")
+    return found
+
+
+def term_diagnoses(expr: sp.Expr, evaluate: Callable[[sp.Expr], np.ndarray], D: np.ndarray,
+                   T: np.ndarray, scale: float) -> list[str]:
+    r"""One additive term :math:`t` of the element wrong, the rest right: with the wrong sign
+    (:math:`D - 2t = T`) or a constant factor :math:`c` (:math:`D + (1/c - 1)\,t = T`, the
+    document's term is :math:`c` × the one that fits)."""
+    terms = sp.Add.make_args(sp.expand(expr))
+    if not 1 < len(terms) <= MAX_TERMS:
+        return []
+    found = []
+    for t in terms:
+        tv = np.broadcast_to(np.asarray(evaluate(t), float), D.shape)
+        tt = float(tv @ tv)
+        if tt <= (AGREE_TOL * scale) ** 2 * len(tv):
+            continue
+        if agrees(D - 2 * tv, T, scale):
+            found.append(f"sign: the term {sp.sstr(t)} has the wrong sign")
+            continue
+        k = float((T - D) @ tv / tt)                  # T = D + k t, the document's term is
+        if abs(1 + k) > 1e-12 and agrees(D + k * tv, T, scale):   # 1/(1+k) × what fits
+            found.append(f"factor: the term {sp.sstr(t)} is {nice_number(1 / (1 + k))} × what "
+                         "fits")
+    return found

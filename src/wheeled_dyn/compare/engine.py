@@ -18,19 +18,22 @@ For a :class:`~wheeled_dyn.derivations.schema.Derivation`:
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from dataclasses import replace
 
 import numpy as np
 import sympy as sp
 
 from ..constraints.reduction import CoordinateMap
 from ..derivations.schema import Derivation
-from . import closed_form
+from . import causes, closed_form, conventions
 from .diagnose import (
     AGREE_TOL,
     agrees,
     max_error,
     nice_number,
+    power_diagnoses,
     swap_diagnoses,
+    term_diagnoses,
     value_diagnoses,
 )
 from .evaluate import (
@@ -40,7 +43,8 @@ from .evaluate import (
     document_symbol_values,
     truth_arrays,
 )
-from .result import DerivationResult, ElementRecord, EnergyCheck
+from .result import (Cause, Convention, ConventionSummary, DerivationResult, ElementRecord,
+                     EnergyCheck)
 from .samples import (
     SpecialCase,
     parameter_sets,
@@ -141,6 +145,43 @@ class ComparisonEngine:
         return self._results[key]
 
     def _compare(self, d: Derivation) -> DerivationResult:
+        r"""The comparison under the declared reading of the file's maps, or under a better
+        sign convention when one explains :data:`conventions.MIN_GAIN` more elements
+        (:mod:`.conventions`); then the root causes (:mod:`.causes`)."""
+        result, ev = self._judge(d)
+        declared_counts = result.counts()
+        summary, first = None, []
+        best = conventions.best_reading(d, ev.doc_at, ev.score) if conventions.readings(d) \
+            else None
+        if best is not None:
+            s, t, _, _ = best
+            flipped = conventions.flipped(d, s, t)
+            better, ev2 = self._judge(flipped)
+            if better.counts()["agrees"] > declared_counts["agrees"]:
+                before = {r.element for r in result.records if r.verdict != "agrees"}
+                now = {r.element for r in better.records if r.verdict == "agrees"}
+                text = conventions.describe(d, s, t)
+                summary = ConventionSummary(
+                    declared=Convention("as declared: " + conventions.maps_text(d),
+                                        declared_counts),
+                    best=Convention(f"{text} ({conventions.maps_text(flipped)})",
+                                    better.counts()),
+                    finding=(f"read as {conventions.maps_text(flipped)} instead of the file's "
+                             f"{conventions.maps_text(d)} ({text}), "
+                             f"{better.counts()['agrees']} elements agree instead of "
+                             f"{declared_counts['agrees']}"))
+                first = [Cause(kind="convention",
+                               elements=tuple(sorted(before & now)),
+                               explanation=summary.finding + "; the elements below are "
+                               "compared under this reading")]
+                result, ev, d = better, ev2, flipped
+        if summary is None:
+            summary = ConventionSummary(declared=Convention("as declared", declared_counts))
+        found = causes.root_causes(ev, d, result.records, result.energy, result.asymmetric,
+                                   first)
+        return replace(result, causes=found, conventions=summary)
+
+    def _judge(self, d: Derivation) -> tuple[DerivationResult, causes.Evaluation]:
         terms = d.read_off(assume=True, unscale=True)
         n = d.n
         C = d.C
@@ -218,6 +259,10 @@ class ComparisonEngine:
             if not ok and finite.all():
                 diags += value_diagnoses(D, T, scale)
                 if expr is not None and key != "h" and not any(
+                        x.startswith(("sign", "extra", "missing")) for x in diags):
+                    diags[:0] = _term_diagnoses(expr, funcs, argv, row_factor[i], D, T, scale,
+                                                any(x.startswith("factor") for x in diags))
+                if expr is not None and key != "h" and not any(
                         x.startswith(("sign", "factor", "extra")) for x in diags):
                     diags += swap_diagnoses(expr, groups, lambda a, b: swapped(key, index, a, b),
                                             T, scale)
@@ -241,6 +286,9 @@ class ComparisonEngine:
         energy = _energy(funcs, doc, row_factor, flat_q, flat_nu, values, d)
         asym = _asymmetric(doc, scales, n)
         constraints = _constraints(doc, truth, scales)
+        ev = _Evaluation(funcs=funcs, doc=doc, truth=truth, B_true=B_true, scales=scales,
+                         q=flat_q, nu=flat_nu, values=values, row_factor=tuple(row_factor),
+                         kind=cs.kind)
         return DerivationResult(
             path=d.path, title=d.title, model=d.model, source=dict(d.source), coordinates=cs_name,
             velocities=tuple(str(v) for v in d.velocities), form=d.form,
@@ -248,7 +296,7 @@ class ComparisonEngine:
             row_factors=tuple(None if c is None else nice_number(c) for c in row_factor),
             energy=energy, asymmetric=asym, constraints=constraints,
             reconstructed=dict(d.reconstructed), samples=self.samples,
-            parameter_sets=self.param_sets, notes=tuple(notes), assumes=assumed.describe())
+            parameter_sets=self.param_sets, notes=tuple(notes), assumes=assumed.describe()), ev
 
     # -- refinements ---------------------------------------------------------------------
     @staticmethod
@@ -367,6 +415,48 @@ class ComparisonEngine:
                     b = r_miss["element"].split(":")[1]
                     r_extra["diagnoses"].append(f"swap: the document's {a} term is the true {b} term")
                     r_miss["diagnoses"].append(f"swap: written as {a} in the document")
+
+
+class _Evaluation(causes.Evaluation):
+    r"""The engine's evaluation, with what the convention search needs: the document at
+    sign-flipped states and the number of elements agreeing in a set of arrays."""
+
+    def doc_at(self, s: Sequence[int]) -> Arrays:
+        r"""The document's arrays at :math:`(Sp, S\nu)` (rows not yet divided by factors)."""
+        S = np.asarray(s, float)
+        out = self.funcs.evaluate(self.q * S, self.nu * S, self.values)
+        if out.H is not None and self.truth.H_rows is not None:
+            out.H = out.H[self.truth.H_rows]
+        return out
+
+    def score(self, doc: Arrays) -> int:
+        r"""Elements of ``doc`` that agree with the truth, after its own row factors."""
+        n = self.q.shape[1]
+        factors = _row_factors(doc, self.truth, self.B_true, n)
+        _apply_row_factors(doc, factors)
+        scales = _row_scales(doc, self.truth, n)
+        return sum(bool(np.isfinite(D).all()) and agrees(D, T, scales[index[0]])
+                   for _, D, T, index, _ in _elements(self.funcs, doc, self.truth,
+                                                      self.B_true, n))
+
+
+def _term_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.ndarray],
+                    factor: float | None, D: np.ndarray, T: np.ndarray, scale: float,
+                    has_factor: bool) -> list[str]:
+    r"""A parameter to the wrong power (also where a constant factor fits: with a geometry
+    constant the sets do not vary, G for G² *is* a factor), then, when the element has no
+    diagnosis yet, one additive term with the wrong sign or factor (:mod:`.diagnose`)."""
+    c = 1.0 if factor is None else factor
+
+    def evaluate(e: sp.Expr) -> np.ndarray:
+        with np.errstate(all="ignore"):           # a trial power may leave the reals: NaN
+            out = sp.lambdify(funcs.args, e, "numpy")(*argv)
+        return np.broadcast_to(np.asarray(out, float), D.shape) / c
+
+    found = power_diagnoses(expr, funcs.params, evaluate, T, scale)
+    if not found and not has_factor:
+        found = term_diagnoses(expr, evaluate, D, T, scale)
+    return found
 
 
 def _truth_for(cmap: CoordinateMap, sets, q, nu) -> Arrays:

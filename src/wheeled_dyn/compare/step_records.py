@@ -31,7 +31,8 @@ from ..constraints.reduction import CoordinateMap
 from ..derivations.schema import Derivation
 from ..derivations.steps import RELATION_KINDS, VECTOR_KINDS, Step
 from ..errors import DerivationError
-from .diagnose import agrees, max_error, nice_number, swap_diagnoses, value_diagnoses
+from .diagnose import (agrees, max_error, nice_number, power_diagnoses, swap_diagnoses,
+                       value_diagnoses)
 from .evaluate import derivation_coordinate_set, document_symbol_values
 from .kinematics_truth import Motion, along, check_links
 from .result import ElementRecord
@@ -326,16 +327,7 @@ def _trig_swaps(expr: sp.Expr, g: _Group, T: np.ndarray, scale: float) -> list[s
 
 
 def _power_swaps(expr: sp.Expr, g: _Group, T: np.ndarray, scale: float) -> list[str]:
-    found = []
-    factors = [f for term in sp.Add.make_args(sp.expand(expr)) for f in sp.Mul.make_args(term)]
-    for s in sorted(expr.free_symbols & set(g.params), key=str):
-        e = next((f.as_base_exp()[1] for f in factors if f.as_base_exp()[0] == s), 0)
-        if e == 0 or not e.is_Rational:
-            continue
-        for new in dict.fromkeys((-e, e - 1, e + 1, 2 * e, e / 2)):
-            if new != 0 and agrees(g.document(expr.xreplace({s: s ** (new / e)})), T, scale):
-                found.append(f"power: {sp.sstr(s ** e)} where {sp.sstr(s ** new)} fits")
-    return found
+    return power_diagnoses(expr, g.params, g.document, T, scale)
 
 
 def _side_factor(g: _Group, sides: tuple[sp.Expr, sp.Expr], scale: float) -> list[str]:

@@ -30,6 +30,8 @@ import sympy as sp
 from ..derivations.builtin import STEPS_SUFFIX
 from ..derivations.schema import Derivation
 from ..derivations.steps import STEP_KINDS
+from .assumptions import declared
+from .causes import claim_causes
 from .diagnose import agrees, max_error, value_diagnoses
 from .evaluate import document_symbol_values
 from .result import Cause, DerivationResult, ElementRecord
@@ -46,6 +48,7 @@ def energy_consistency(steps_d: Derivation, eom: Derivation, seed: int = 2026
             [str(p) for p in steps_d.positions] != [str(p) for p in eom.positions]:
         return out
     terms = eom.read_off(assume=True, unscale=True)
+    point = dict(declared(eom).linearised_about)
     rng = np.random.default_rng([seed, 13])
     sets = parameter_sets(eom.model, 2, rng)
     for s in steps_d.steps:
@@ -63,6 +66,9 @@ def energy_consistency(steps_d: Derivation, eom: Derivation, seed: int = 2026
         else:
             continue
         states = rng.uniform(-np.pi, np.pi, (20, eom.n))
+        for k, p in enumerate(eom.positions):          # a linearised A: at its point
+            if str(p) in point:
+                states[:, k] = point[str(p)]
         for label, a, b, what in pairs:
             if a.has(sp.nan):
                 continue
@@ -204,7 +210,7 @@ def with_steps(d: Derivation, compare: Callable[[Derivation], DerivationResult],
     steps = own + [r for _, recs in fed for r in recs]
     consistency = energy_consistency(d, d, seed) + [r for sd, _ in fed
                                                    for r in energy_consistency(sd, d, seed)]
-    causes = upstream_causes(steps, base.records, d)
+    causes = claim_causes(steps) + upstream_causes(steps, base.records, d)
     return replace(base, records=tuple(base.records) + tuple(steps) + tuple(consistency),
                    causes=tuple(base.causes) + tuple(causes))
 

@@ -258,7 +258,8 @@ def _difference(r: ElementRecord, names: Notation) -> str:
 
 
 def _card(result: DerivationResult, r: ElementRecord, names: Notation) -> str:
-    factor = result.row_factors[r.index[0]] if r.index[0] < len(result.row_factors) else None
+    factor = result.row_factors[r.index[0]] if r.index and r.index[0] < len(result.row_factors) \
+        else None
     diags = [d for d in r.diagnoses if not d.startswith("truth − document")]
     doc_latex = text_latex(r.document, names, r.document_latex)
     model = _divided(r.document_model, factor, names) if r.document_model else ""

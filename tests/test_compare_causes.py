@@ -1,0 +1,270 @@
+"""Root causes: planted method errors, conventions and single-term errors are named by one
+cause each; a right derivation, also written with its own sign conventions, has none.
+
+The planted files are copies of ``tests/data/wip_true_seed001.toml`` (the WIP's true reduced
+equations, derived by hand and checked against CoordinateMap in test_compare_planted.py).
+The Christoffel terms are checked against an independent formula (the Lagrangian form
+:math:`h = \\dot A\\dot q - \\tfrac12\\,\\partial(\\dot q^TA\\dot q)/\\partial q`).
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from wheeled_dyn.compare import ComparisonEngine
+from wheeled_dyn.compare.causes import christoffel_h
+from wheeled_dyn.derivations import load_derivation
+
+from conftest import SEED
+from test_compare_planted import BASE, TRUE_FILE, _dumps
+
+#: Small grid: the planted errors are structural.
+SAMPLES, PARAM_SETS = 200, 3
+SHIPPED = Path(__file__).parents[1] / "src" / "wheeled_dyn" / "data" / "derivations"
+
+#: An inline coordinate set equal to the built-in 'seed001' one, with the pitch read as
+#: ``phi_model = sign * phi`` (sign = -1: a document whose pitch is the other way round).
+INLINE = {
+    "kind": "quasi", "positions": ["x", "psi", "phi"], "rolling": "eliminate",
+    "units": {"x": "m", "psi": "rad", "phi": "rad"},
+}
+
+
+def _inline(sign: int) -> dict:
+    out = copy.deepcopy(INLINE)
+    p = "phi" if sign > 0 else "-phi"
+    out["configuration"] = {"psi": "psi", "phi": p}
+    out["velocity_map"] = {"dx": "cos(psi)*dx0 + sin(psi)*dy0", "dpsi": "dpsi",
+                           "dphi": "dphi" if sign > 0 else "-dphi"}
+    return out
+
+
+def _file(tmp_path: Path, changes: dict[tuple, str] = {}, coordinates: dict | None = None,
+          name: str = "planted.toml") -> Path:
+    data = copy.deepcopy(BASE)
+    for (key, *index), text in changes.items():
+        M = data["matrices"][key]
+        if len(index) == 1:
+            M[index[0]] = text
+        else:
+            M[index[0]][index[1]] = text
+    if coordinates is not None:
+        data["coordinates"] = coordinates
+    path = tmp_path / name
+    path.write_text(_dumps(data))
+    return path
+
+
+@pytest.fixture(scope="module")
+def engine() -> ComparisonEngine:
+    return ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED)
+
+
+def _causes(result) -> dict[str, list]:
+    out: dict[str, list] = {}
+    for c in result.causes:
+        out.setdefault(c.kind, []).append(c)
+    return out
+
+
+def _explained_once(result) -> None:
+    seen: list[str] = []
+    for c in result.causes:
+        if c.kind != "upstream_step":
+            seen += list(c.elements)
+    assert len(seen) == len(set(seen)), f"an element in two causes: {seen}"
+
+
+# -- the Christoffel terms, against an independent formula -----------------------------------
+
+def test_christoffel_h_is_lagrange_form():
+    r"""For coordinates, :math:`h^{chr} = \dot A\dot q - \frac12\partial_q(\dot q^TA\dot q)`."""
+    q = sp.symbols("q1:4")
+    dq = sp.symbols("dq1:4")
+    a, b, c = sp.symbols("a b c", positive=True)
+    A = sp.Matrix([[a + b * sp.cos(q[1]), c * sp.sin(q[2]), 0],
+                   [c * sp.sin(q[2]), a * sp.cos(q[0]) ** 2 + b, c * q[1]],
+                   [0, c * q[1], a + b * sp.sin(q[0] + q[1])]])
+    v = sp.Matrix(dq)
+    Adot = sum((A.diff(x) * r for x, r in zip(q, dq)), sp.zeros(3, 3))
+    energy = (v.T * A * v)[0]
+    lagrange = Adot * v - sp.Matrix([energy.diff(x) for x in q]) / 2
+    assert sp.simplify(christoffel_h(A, q, dq) - lagrange) == sp.zeros(3, 1)
+
+
+# -- right derivations: no cause --------------------------------------------------------------
+
+def test_true_file_has_no_cause(engine):
+    result = engine.compare(load_derivation(TRUE_FILE))
+    assert result.causes == (), result.causes
+    assert result.conventions is not None and result.conventions.best is None
+
+
+def _rewritten_for_flipped_pitch() -> dict[tuple, str]:
+    r"""The true file's elements rewritten by SymPy for the pitch read the other way round
+    (:math:`\varphi_{model} = -\varphi`): :math:`A' = SA(Sp)S`, :math:`C' = SC(Sp, S\nu)S`,
+    :math:`Q' = SQ(Sp)`, :math:`B' = SB` with :math:`S = \mathrm{diag}(1, 1, -1)`."""
+    phi, dphi = sp.symbols("phi dphi")
+    flip = {phi: -phi, dphi: -dphi}
+    s = (1, 1, -1)
+    out = {}
+    for key in ("A", "C", "B"):
+        for i, row in enumerate(BASE["matrices"][key]):
+            for j, text in enumerate(row):
+                col = s[j] if key != "B" else 1
+                out[(key, i, j)] = sp.sstr(s[i] * col * sp.sympify(text).xreplace(flip))
+    for i, text in enumerate(BASE["matrices"]["Q"]):
+        out[("Q", i)] = sp.sstr(s[i] * sp.sympify(text).xreplace(flip))
+    return out
+
+
+def test_own_sign_convention_is_judged_right(engine, tmp_path):
+    r"""The true equations written with the pitch the other way round, and the file declaring
+    exactly that (φ = −φ_model, the equations rewritten for it): everything agrees."""
+    path = _file(tmp_path, _rewritten_for_flipped_pitch(), _inline(-1), "own.toml")
+    result = engine.compare(load_derivation(path))
+    wrong = [(r.element, r.verdict, r.diagnoses) for r in result.records if r.verdict != "agrees"]
+    assert not wrong, wrong
+    assert result.causes == () and result.conventions.best is None
+
+
+def test_inline_coordinates_equal_the_builtin_set(engine, tmp_path):
+    result = engine.compare(load_derivation(_file(tmp_path, {}, _inline(1), "inline.toml")))
+    wrong = [(r.element, r.verdict) for r in result.records if r.verdict != "agrees"]
+    assert not wrong and result.causes == ()
+
+
+# -- conventions --------------------------------------------------------------------------------
+
+def test_convention_is_found_and_applied(engine, tmp_path):
+    r"""The true equations, with a file declaring the pitch the other way round: the search
+    finds φ → −φ, every element agrees under it, and the convention is the only cause."""
+    result = engine.compare(load_derivation(_file(tmp_path, {}, _inline(-1), "flip.toml")))
+    assert result.conventions.best is not None
+    assert "phi → −phi" in result.conventions.best.description
+    assert result.conventions.best.counts["agrees"] > result.conventions.declared.counts["agrees"]
+    wrong = [(r.element, r.verdict) for r in result.records if r.verdict != "agrees"]
+    assert not wrong, wrong
+    kinds = [c.kind for c in result.causes]
+    assert kinds == ["convention"], result.causes
+    assert result.causes[0].elements
+
+
+# -- method errors ------------------------------------------------------------------------------
+
+def test_quasi_coordinate_christoffel(engine, tmp_path):
+    r"""C[1,2] and C[2,1] (the SᵀAṠ terms) set to what a Christoffel formula on A in
+    (x, ψ, φ) gives, 0: one quasi-coordinate cause names exactly the h terms they carry."""
+    result = engine.compare(load_derivation(_file(tmp_path, {("C", 0, 1): "0", ("C", 1, 0): "0"})))
+    causes = _causes(result)
+    assert list(causes) == ["quasi_coordinate_christoffel"], result.causes
+    (cause,) = causes["quasi_coordinate_christoffel"]
+    assert {"h[1]:dpsi*dpsi", "h[2]:dx*dpsi", "C[1,2]", "C[2,1]"} == set(cause.elements)
+    assert "Boltzmann" in cause.explanation
+    _explained_once(result)
+
+
+def test_c_inconsistent_with_a(engine, tmp_path):
+    r"""A term added to C[2,2] that neither A's Christoffel terms nor the truth have."""
+    result = engine.compare(load_derivation(_file(tmp_path, {
+        ("C", 1, 1): "dphi*((XX1 - YY1)*sin(2*phi)/2 + XY1*cos(2*phi)) + dphi*ZZ1"})))
+    causes = _causes(result)
+    assert "c_inconsistent_with_a" in causes, result.causes
+    (cause,) = causes["c_inconsistent_with_a"]
+    assert "h[2]:dpsi*dphi" in cause.elements and "C[2,2]" in cause.elements
+    assert "quasi_coordinate_christoffel" not in causes
+    _explained_once(result)
+
+
+# -- single-term errors -------------------------------------------------------------------------
+
+def test_sign_of_one_term(engine, tmp_path):
+    result = engine.compare(load_derivation(_file(tmp_path, {("A", 1, 1): (
+        "2*Iw2 + 2*m_C*L**2 + 2*Iw3*L**2/R**2 + 2*I_a*L**2/R**2 + XX1*sin(phi)**2 "
+        "- XY1*sin(2*phi) + YY1*cos(phi)**2")})))
+    (cause,) = [c for c in result.causes if "A[2,2]" in c.elements]
+    assert cause.kind == "sign" and "XY1*sin(2*phi)" in cause.explanation, cause
+
+
+def test_factor_of_one_term(engine, tmp_path):
+    result = engine.compare(load_derivation(_file(tmp_path, {("A", 0, 0): (
+        "m_S + 4*m_C + 2*Iw3/R**2 + 2*I_a/R**2")})))
+    (cause,) = [c for c in result.causes if "A[1,1]" in c.elements]
+    assert cause.kind == "factor" and "4*m_C" in cause.explanation and "2 ×" in cause.explanation
+
+
+def test_power_of_a_parameter(engine, tmp_path):
+    result = engine.compare(load_derivation(_file(tmp_path, {("B", 1, 0): "L**2/R"})))
+    record = next(r for r in result.records if r.element == "B[2,1]")
+    assert any(x.startswith("power: L**2 where L fits") for x in record.diagnoses), record
+
+
+# -- the seeds ----------------------------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def seed_engine() -> ComparisonEngine:
+    return ComparisonEngine(samples=300, param_sets=3, seed=SEED)
+
+
+def _seed(engine, name: str):
+    return engine.compare(load_derivation(SHIPPED / name))
+
+
+def test_seed001_eq25_names_the_quasi_coordinate_cause(seed_engine):
+    causes = _causes(_seed(seed_engine, "seed001/eq25_lagrange.toml"))
+    (quasi,) = causes["quasi_coordinate_christoffel"]
+    assert {"h[1]:dpsi*dpsi", "h[2]:dx*dpsi"} <= set(quasi.elements)
+    assert any("C[3,2]" in c.elements for c in causes["swap"])
+
+
+def test_seed001_kim_rewriting_is_a_convention(seed_engine):
+    result = _seed(seed_engine, "seed001/kim_eq6_8.toml")
+    assert result.causes[0].kind == "convention"
+    assert "theta → −theta" in result.conventions.best.description
+    assert result.counts()["differs"] <= 6
+
+
+def test_seed001_section5_causes(seed_engine):
+    result = _seed(seed_engine, "seed001/sec5_nonholonomic.toml")
+    kinds = {c.kind for c in result.causes}
+    assert {"constraint_in_lagrangian", "c_inconsistent_with_a", "claimed_relation"} <= kinds
+    assert not any("a rolling constraint of the model" in x and "not" not in x
+                   for x in result.constraints), result.constraints
+
+
+def test_seed000_sign_power_and_declared_linearisation(seed_engine):
+    (sign,) = [c for c in _seed(seed_engine, "seed000/p4_8_rolling_disk.toml").causes]
+    assert sign.kind == "sign" and "m*r**2" in sign.explanation
+    power = _seed(seed_engine, "seed000/p4_13_differential_theta1.toml").causes
+    assert [c.kind for c in power] == ["power"] and "G where G**2 fits" in power[0].explanation
+    lin = _seed(seed_engine, "seed000/p4_12_bounce_pitch.toml")
+    wrong = [r.element for r in lin.records if r.step == "equations of motion"
+             and r.verdict != "agrees"]
+    assert not wrong
+
+
+@pytest.mark.parametrize("name", ["seed001/book_eq9_11.toml", "seed001/book_eq12_14.toml"])
+def test_book_files_have_no_false_alarm_in_A(seed_engine, name):
+    r"""With the two wheels alike, the false alarms in A[1,1], A[1,2], A[2,1] are gone; A[2,2]
+    (the yaw inertia, a constant in the book) differs under every family of the model and is
+    left as the document's difference."""
+    result = _seed(seed_engine, name)
+    wrong = [r.element for r in result.records if r.key == "A" and r.verdict != "agrees"]
+    assert wrong == ["A[2,2]"]
+
+
+def test_causes_are_in_the_json(seed_engine):
+    result = _seed(seed_engine, "seed001/eq25_lagrange.toml")
+    data = json.loads(json.dumps(result.as_dict()))
+    kinds = [c["kind"] for c in data["causes"]]
+    assert "quasi_coordinate_christoffel" in kinds
+    assert all(set(c) >= {"kind", "elements", "explanation"} for c in data["causes"])
+    own = sum(r.verdict == "agrees" for r in result.records if r.step == "equations of motion")
+    assert data["conventions"]["declared"]["counts"]["agrees"] == own
+    assert np.isfinite([r["max_error"] for r in data["records"]]).all()
