@@ -19,12 +19,16 @@ from .markdown import report_markdown
 from .summary import ordered, summary_entry
 
 
+#: The version of the JSON report's contract (``docs/report-schema.json``).
+SCHEMA = "wheeled-dyn-report/1"
+
+
 def render(results: Sequence[DerivationResult], title: str, extra_md: Sequence[str] = (),
            extra_html: Sequence[str] = (), extra_json: dict | None = None) -> dict[str, str]:
     r"""The three reports as texts keyed by file name; derivations in the document's order,
     the JSON's ``summary`` first (one entry per derivation: id, counts, causes in one line)."""
     results = ordered(results)
-    data = {"title": title, "summary": [summary_entry(r) for r in results],
+    data = {"schema": SCHEMA, "title": title, "summary": [summary_entry(r) for r in results],
             "derivations": [r.as_dict() for r in results], **(extra_json or {})}
     return {"report.md": report_markdown(results, title, extra_md),
             "report.html": report_html(results, title, extra_html),

@@ -1,0 +1,64 @@
+"""The JSON report's contract: what `render` writes validates against docs/report-schema.json,
+and every cause, record and summary entry says what the schema promises. The files rendered
+include seed 000's 4.12, whose energy-consistency records have no matrix index."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import pytest
+
+from wheeled_dyn.compare import ComparisonEngine
+from wheeled_dyn.derivations import load_derivation
+from wheeled_dyn.report.write import SCHEMA, render
+
+from conftest import SEED
+
+jsonschema = pytest.importorskip("jsonschema", reason="jsonschema is in the [test] extra")
+
+ROOT = Path(__file__).parents[1]
+SHIPPED = ROOT / "src" / "wheeled_dyn" / "data" / "derivations"
+FILES = ("seed001/eq25_lagrange.toml", "seed001/kim_eq6_8.toml", "seed000/p4_12_bounce_pitch.toml")
+
+
+@pytest.fixture(scope="module")
+def rendered() -> dict[str, str]:
+    engine = ComparisonEngine(samples=200, param_sets=2, seed=SEED)
+    results = [engine.compare(load_derivation(SHIPPED / f)) for f in FILES]
+    return render(results, "schema test")
+
+
+def test_report_json_validates(rendered):
+    schema = json.loads((ROOT / "docs" / "report-schema.json").read_text())
+    data = json.loads(rendered["report.json"])
+    jsonschema.validate(data, schema)
+    assert data["schema"] == SCHEMA == schema["$id"]
+
+
+def test_schema_names_every_cause_kind():
+    from wheeled_dyn.compare.result import CAUSE_KINDS, VERDICTS
+    schema = json.loads((ROOT / "docs" / "report-schema.json").read_text())
+    assert set(schema["$defs"]["cause"]["properties"]["kind"]["enum"]) == set(CAUSE_KINDS)
+    assert set(schema["$defs"]["verdict"]["enum"]) == set(VERDICTS)
+
+
+def test_causes_name_records_and_agrees_is_finite(rendered):
+    data = json.loads(rendered["report.json"])
+    for d in data["derivations"]:
+        labels = {r["element"] for r in d["records"]}
+        for c in d["causes"]:
+            missing = set(c["elements"]) - labels
+            assert not missing, (d["path"], c["kind"], missing)
+        for r in d["records"]:
+            if r["verdict"] == "agrees":
+                assert math.isfinite(r["max_error"]), (d["path"], r["element"])
+
+
+def test_summary_anchors_exist_in_html(rendered):
+    data = json.loads(rendered["report.json"])
+    html = rendered["report.html"]
+    assert [s["path"] for s in data["summary"]] == [d["path"] for d in data["derivations"]]
+    for s in data["summary"]:
+        assert f'id="{s["id"]}"' in html, s["id"]
