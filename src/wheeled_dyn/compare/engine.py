@@ -437,7 +437,7 @@ class _Evaluation(causes.Evaluation):
         scales = _row_scales(doc, self.truth, n)
         return sum(bool(np.isfinite(D).all()) and agrees(D, T, scales[index[0]])
                    for _, D, T, index, _ in _elements(self.funcs, doc, self.truth,
-                                                      self.B_true, n))
+                                                      self.B_true, n, expressions=False))
 
 
 def _term_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.ndarray],
@@ -450,7 +450,7 @@ def _term_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.n
 
     def evaluate(e: sp.Expr) -> np.ndarray:
         with np.errstate(all="ignore"):           # a trial power may leave the reals: NaN
-            out = sp.lambdify(funcs.args, e, "numpy")(*argv)
+            out = funcs.compiled(e)(*argv)
         return np.broadcast_to(np.asarray(out, float), D.shape) / c
 
     found = power_diagnoses(expr, funcs.params, evaluate, T, scale)
@@ -515,9 +515,13 @@ def _expanded(expr: sp.Expr) -> sp.Expr:
     return _EXPANDED[expr]
 
 
-def _elements(funcs: DocumentFunctions, doc: Arrays, truth: Arrays, B_true, n: int):
-    r"""(key, document values, true values, index, document expression) of every element."""
+def _elements(funcs: DocumentFunctions, doc: Arrays, truth: Arrays, B_true, n: int,
+              expressions: bool = True):
+    r"""(key, document values, true values, index, document expression) of every element
+    (the expression None without ``expressions``)."""
     ex, vel = funcs.exprs, funcs.d.velocities
+    if not expressions:
+        ex = {k: (None if v is None else _Nones()) for k, v in ex.items()}
     if doc.A is not None:
         for i in range(n):
             for j in range(n):
@@ -539,7 +543,14 @@ def _elements(funcs: DocumentFunctions, doc: Arrays, truth: Arrays, B_true, n: i
                 for k in range(j, n):
                     w = 1.0 if j == k else 2.0
                     yield ("h", w * doc.H[:, i, j, k], w * truth.H[:, i, j, k], (i, j, k),
-                           _element_expr(ex, "h", (i, j, k), vel))
+                           _element_expr(ex, "h", (i, j, k), vel) if expressions else None)
+
+
+class _Nones:
+    r"""Stands for a matrix of expressions that are not needed: every element is None."""
+
+    def __getitem__(self, index) -> None:
+        return None
 
 
 def _row_factors(doc: Arrays, truth: Arrays, B_true, n: int) -> list[float | None]:

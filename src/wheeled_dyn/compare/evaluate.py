@@ -172,6 +172,7 @@ class DocumentFunctions:
         self.exprs["H"] = None if h is None else _h_tensor(h, d.velocities)
         self._fns = {}
         self._element_fns: dict[tuple, object] = {}
+        self._compiled: dict[sp.Expr, object] = {}
         for key, M in self.exprs.items():
             if M is None:
                 continue
@@ -196,6 +197,12 @@ class DocumentFunctions:
                 arr = arr[..., 0]
             setattr(out, key, arr)
         return out
+
+    def compiled(self, expr: sp.Expr):
+        r"""``expr`` (in the document's positions, velocities and symbols) compiled once."""
+        if expr not in self._compiled:
+            self._compiled[expr] = sp.lambdify(self.args, expr, "numpy", docstring_limit=0)
+        return self._compiled[expr]
 
     def element_function(self, key: str, index: tuple[int, ...]):
         r"""The compiled function of one element (for ``h``: of :math:`H_{i,jk}`)."""
