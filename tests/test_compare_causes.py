@@ -268,3 +268,70 @@ def test_causes_are_in_the_json(seed_engine):
     own = sum(r.verdict == "agrees" for r in result.records if r.step == "equations of motion")
     assert data["conventions"]["declared"]["counts"]["agrees"] == own
     assert np.isfinite([r["max_error"] for r in data["records"]]).all()
+
+
+# -- right derivations written another way, and swapped inputs ----------------------------------
+
+def _equations(order: tuple[int, ...]) -> list[str]:
+    r"""The true file's rows written out as equations :math:`A\ddot q + C\dot q + Q = Bu`, in
+    ``order``."""
+    acc, vel, inputs = ("ddx", "ddpsi", "ddphi"), ("dx", "dpsi", "dphi"), ("u_l", "u_r")
+    m = BASE["matrices"]
+    rows = []
+    for i in range(3):
+        left = " + ".join([f"({m['A'][i][j]})*{acc[j]}" for j in range(3)]
+                          + [f"({m['C'][i][j]})*{vel[j]}" for j in range(3)] + [f"({m['Q'][i]})"])
+        right = " + ".join(f"({m['B'][i][k]})*{inputs[k]}" for k in range(2))
+        rows.append(f"{left} = {right}")
+    return [rows[k] for k in order]
+
+
+def _equation_file(tmp_path: Path, order: tuple[int, ...]) -> Path:
+    data = copy.deepcopy(BASE)
+    data["matrices"] = {"equations": _equations(order)}
+    data["coordinates"] = _inline(1)
+    path = tmp_path / "equations.toml"
+    path.write_text(_dumps(data))
+    return path
+
+
+def test_equations_in_another_order_agree(engine, tmp_path):
+    r"""The pitch equation printed first: found as the order, every element agrees."""
+    result = engine.compare(load_derivation(_equation_file(tmp_path, (2, 0, 1))))
+    wrong = [(r.element, r.verdict) for r in result.records if r.verdict != "agrees"]
+    assert not wrong, wrong
+    assert [c.kind for c in result.causes] == ["convention"]
+    assert "equation 1 is the one of phi" in result.causes[0].explanation
+
+
+def test_equations_in_the_coordinates_order_have_no_cause(engine, tmp_path):
+    result = engine.compare(load_derivation(_equation_file(tmp_path, (0, 1, 2))))
+    assert result.causes == () and all(r.verdict == "agrees" for r in result.records)
+
+
+def test_refactorised_c_is_no_error(engine, tmp_path):
+    r"""C[2,2] moved into C[2,3] (h unchanged): C differs in factorisation only, no cause."""
+    k = "(XX1 - YY1)*sin(2*phi)/2 + XY1*cos(2*phi)"
+    result = engine.compare(load_derivation(_file(tmp_path, {
+        ("C", 1, 1): "0", ("C", 1, 2): f"2*dpsi*({k}) + dphi*(XZ1*cos(phi) - YZ1*sin(phi))"})))
+    verdicts = {r.element: r.verdict for r in result.records}
+    assert verdicts["C[2,2]"] == verdicts["C[2,3]"] == "factorization"
+    assert "differs" not in verdicts.values()
+    assert result.causes == ()
+
+
+def test_rewritten_trigonometry_agrees(engine, tmp_path):
+    result = engine.compare(load_derivation(_file(tmp_path, {("A", 1, 1): (
+        "2*Iw2 + 2*m_C*L**2 + 2*Iw3*L**2/R**2 + 2*I_a*L**2/R**2 + XX1*(1 - cos(2*phi))/2 "
+        "+ 2*XY1*sin(phi)*cos(phi) + YY1*(1 - sin(phi)**2)")})))
+    assert all(r.verdict == "agrees" for r in result.records) and result.causes == ()
+
+
+def test_swapped_input_columns(engine, tmp_path):
+    r"""The turning row's input columns exchanged (right motor where the left belongs), in a
+    file with its own coordinate table: one swapped-inputs cause, then everything agrees."""
+    result = engine.compare(load_derivation(_file(
+        tmp_path, {("B", 1, 0): "-L/R", ("B", 1, 1): "L/R"}, _inline(1), "swapped.toml")))
+    assert [c.kind for c in result.causes] == ["swapped_inputs"], result.causes
+    assert "u_l ↔ u_r" in result.conventions.best.description
+    assert all(r.verdict == "agrees" for r in result.records)

@@ -58,6 +58,8 @@ from .units import DimensionChecker
 SPECIAL_SAMPLES, SPECIAL_SETS = 40, 2
 #: Power residuals up to this many operations are factorised for display.
 FACTOR_LIMIT = 120
+#: Samples the convention search scores each reading on (spread over the parameter sets).
+SEARCH_SAMPLES = 400
 #: Candidate undeclared row factors, and how far an element's own ratio may be from one.
 ROW_FACTORS = (1.0, -1.0, 2.0, -2.0, 0.5, -0.5)
 ROW_FACTOR_SPREAD = 0.35
@@ -149,18 +151,28 @@ class ComparisonEngine:
         sign convention when one explains :data:`conventions.MIN_GAIN` more elements
         (:mod:`.conventions`); then the root causes (:mod:`.causes`)."""
         result, ev = self._judge(d)
+        first: list[Cause] = []
+        rows = conventions.best_row_order(d, ev.doc_at, ev.score)
+        if rows is not None:
+            again, ev2 = self._judge(conventions.reordered(d, rows[0]))
+            if again.counts()["agrees"] > result.counts()["agrees"]:
+                d = conventions.reordered(d, rows[0])
+                first.append(Cause(kind="convention", elements=(), explanation=(
+                    "the equations are printed in another order than the coordinates ("
+                    f"{conventions.describe_rows(d, rows[0])}): compared in that order")))
+                result, ev = again, ev2
         declared_counts = result.counts()
-        summary, first = None, []
+        summary = None
         best = conventions.best_reading(d, ev.doc_at, ev.score) if conventions.readings(d) \
             else None
         if best is not None:
-            s, t, _, _ = best
-            flipped = conventions.flipped(d, s, t)
+            reading = best[0]
+            flipped = conventions.flipped(d, *reading)
             better, ev2 = self._judge(flipped)
             if better.counts()["agrees"] > declared_counts["agrees"]:
                 before = {r.element for r in result.records if r.verdict != "agrees"}
                 now = {r.element for r in better.records if r.verdict == "agrees"}
-                text = conventions.describe(d, s, t)
+                text = conventions.describe(d, *reading)
                 summary = ConventionSummary(
                     declared=Convention("as declared: " + conventions.maps_text(d),
                                         declared_counts),
@@ -170,10 +182,11 @@ class ComparisonEngine:
                              f"{conventions.maps_text(d)} ({text}), "
                              f"{better.counts()['agrees']} elements agree instead of "
                              f"{declared_counts['agrees']}"))
-                first = [Cause(kind="convention",
-                               elements=tuple(sorted(before & now)),
-                               explanation=summary.finding + "; the elements below are "
-                               "compared under this reading")]
+                kind = "swapped_inputs" if conventions.is_permutation_only(reading) \
+                    else "convention"
+                first.append(Cause(kind=kind, elements=tuple(sorted(before & now)),
+                                   explanation=summary.finding + "; the elements below are "
+                                   "compared under this reading"))
                 result, ev, d = better, ev2, flipped
         if summary is None:
             summary = ConventionSummary(declared=Convention("as declared", declared_counts))
@@ -421,23 +434,43 @@ class _Evaluation(causes.Evaluation):
     r"""The engine's evaluation, with what the convention search needs: the document at
     sign-flipped states and the number of elements agreeing in a set of arrays."""
 
+    def _subset(self) -> tuple[np.ndarray, Arrays, np.ndarray | None]:
+        r"""The samples the search scores on: those where the truth has H (the first
+        :data:`~.evaluate.H_SAMPLES` states of every parameter set), at most
+        :data:`SEARCH_SAMPLES`; the truth and its B there."""
+        if not hasattr(self, "_sub"):
+            rows = self.truth.H_rows if self.truth.H_rows is not None \
+                else np.arange(len(self.q))
+            keep = np.arange(len(rows))
+            if len(rows) > SEARCH_SAMPLES:
+                keep = np.linspace(0, len(rows) - 1, SEARCH_SAMPLES).astype(int)
+            rows = rows[keep]
+            sub = Arrays(**{k: (None if getattr(self.truth, k) is None
+                                else getattr(self.truth, k)[rows]) for k in "ACQBhG"})
+            sub.H = None if self.truth.H is None else self.truth.H[keep]
+            B = None if self.B_true is None else self.B_true[rows]
+            self._sub = (rows, sub, B)
+        return self._sub
+
     def doc_at(self, s: Sequence[int]) -> Arrays:
-        r"""The document's arrays at :math:`(Sp, S\nu)` (rows not yet divided by factors)."""
+        r"""The document's arrays at :math:`(Sp, S\nu)` on the search's samples (rows not
+        yet divided by factors)."""
+        rows, _, _ = self._subset()
         S = np.asarray(s, float)
-        out = self.funcs.evaluate(self.q * S, self.nu * S, self.values)
-        if out.H is not None and self.truth.H_rows is not None:
-            out.H = out.H[self.truth.H_rows]
-        return out
+        values = {p: np.asarray(v)[rows] if np.ndim(v) else v for p, v in self.values.items()}
+        return self.funcs.evaluate(self.q[rows] * S, self.nu[rows] * S, values)
 
     def score(self, doc: Arrays) -> int:
-        r"""Elements of ``doc`` that agree with the truth, after its own row factors."""
+        r"""Elements of ``doc`` (on the search's samples) that agree with the truth, after
+        its own row factors."""
         n = self.q.shape[1]
-        factors = _row_factors(doc, self.truth, self.B_true, n)
+        _, truth, B_true = self._subset()
+        factors = _row_factors(doc, truth, B_true, n)
         _apply_row_factors(doc, factors)
-        scales = _row_scales(doc, self.truth, n)
+        scales = _row_scales(doc, truth, n)
         return sum(bool(np.isfinite(D).all()) and agrees(D, T, scales[index[0]])
-                   for _, D, T, index, _ in _elements(self.funcs, doc, self.truth,
-                                                      self.B_true, n, expressions=False))
+                   for _, D, T, index, _ in _elements(self.funcs, doc, truth, B_true, n,
+                                                      expressions=False))
 
 
 def _term_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.ndarray],
