@@ -172,11 +172,23 @@ def test_substitution_no_family_satisfies_is_an_error(engine, tmp_path):
                         reference=folder / "appendix_kim_A_C.toml")
 
 
-def test_unknown_table_needs_its_documents(engine, tmp_path):
+def test_table_without_documents_needs_them(engine, tmp_path):
+    r"""A table that does not name its two documents cannot be reproduced on its own."""
+    text = _table_path().read_text()
+    start = text.index("[documents]")
+    end = text.index("[coordinates]")
     other = tmp_path / "other_table.toml"
-    other.write_text(_table_path().read_text())
+    other.write_text(text[:start] + text[end:])
+    table = load_comparison_table(other)
+    assert table.documents == ()
     with pytest.raises(DerivationError, match="derived= and reference="):
-        reproduce_table(load_comparison_table(other), engine)
+        reproduce_table(table, engine)
+
+
+def test_table_names_its_documents():
+    table = load_comparison_table(_table_path())
+    assert table.documents == ("eq25_lagrange.toml", "appendix_kim_A_C.toml")
+    assert all((_table_path().parent / name).is_file() for name in table.documents)
 
 
 def test_row_factors_checked_under_the_assumptions(reproduction):

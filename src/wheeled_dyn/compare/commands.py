@@ -237,9 +237,9 @@ def compare_report(files: Sequence[Path], samples: int, param_sets: int,
     table_docs: set[str] = set()
     if table_group:
         from ..derivations import builtin_tables
-        from .seed_table import TABLE_DOCUMENTS
+        from ..derivations.table import table_documents
         for t in builtin_tables(table_group):
-            table_docs |= set(TABLE_DOCUMENTS.get(t.name, ()))
+            table_docs |= set(table_documents(t))
     bins = _bins(derivations, workers, frozenset(table_docs))
     owner = next((k for k, b in enumerate(bins) if any(paths[i].name in table_docs for i in b)), 0)
     jobs = [(paths, b, samples, param_sets, table_group if k == owner else None)

@@ -183,15 +183,17 @@ class DocumentFunctions:
     def evaluate(self, q: np.ndarray, nu: np.ndarray, values: Mapping[sp.Symbol, np.ndarray]
                  ) -> Arrays:
         r"""Arrays over samples: positions ``q`` (S × n), velocities ``nu``, symbol values
-        (arrays of length S)."""
+        (arrays of length S). An element that overflows or leaves the reals is inf or NaN
+        there, silently (the comparison calls it undecided)."""
         S = len(q)
         argv = [*q.T, *nu.T, *(values[p] for p in self.params)]
         out = Arrays()
         for key, (shape, flat, fn) in self._fns.items():
-            vals = fn(*argv)
             arr = np.empty((S, len(flat)))
-            for j, v in enumerate(vals):
-                arr[:, j] = v
+            with np.errstate(all="ignore"):
+                vals = fn(*argv)
+                for j, v in enumerate(vals):
+                    arr[:, j] = v
             arr = arr.reshape((S, *shape))
             if key in ("Q", "h") and arr.ndim == 3:
                 arr = arr[..., 0]
@@ -199,9 +201,17 @@ class DocumentFunctions:
         return out
 
     def compiled(self, expr: sp.Expr):
-        r"""``expr`` (in the document's positions, velocities and symbols) compiled once."""
+        r"""``expr`` (in the document's positions, velocities and symbols) compiled once;
+        the function returned evaluates without floating-point warnings (an overflow gives
+        inf, a value outside the reals NaN)."""
         if expr not in self._compiled:
-            self._compiled[expr] = sp.lambdify(self.args, expr, "numpy", docstring_limit=0)
+            fn = sp.lambdify(self.args, expr, "numpy", docstring_limit=0)
+
+            def quiet(*argv: np.ndarray, _fn=fn) -> np.ndarray:
+                with np.errstate(all="ignore"):
+                    return _fn(*argv)
+
+            self._compiled[expr] = quiet
         return self._compiled[expr]
 
     def element_function(self, key: str, index: tuple[int, ...]):

@@ -46,7 +46,8 @@ from ..derivations.schema import Derivation
 from ..derivations.table import ComparisonTable, TableEntry
 from ..errors import DerivationError
 from .diagnose import agrees
-from .engine import ROW_FACTORS, ComparisonEngine
+from .elements import ROW_FACTORS
+from .engine import ComparisonEngine
 from .evaluate import derivation_coordinate_set, model_value
 from .result import DerivationResult
 from .samples import (
@@ -57,11 +58,6 @@ from .samples import (
     special_cases,
 )
 
-#: The documents a shipped table compares: table file name -> (derived, reference) file names,
-#: in the table's folder.
-TABLE_DOCUMENTS: Mapping[str, tuple[str, str]] = {
-    "seed_table.toml": ("eq25_lagrange.toml", "appendix_kim_A_C.toml"),
-}
 #: Special cases assumed beside the table's substitution (neither seed-001 document models the
 #: motors, so the truth is taken without armature).
 ALSO_ASSUMED: tuple[str, ...] = ("no_armature",)
@@ -191,9 +187,10 @@ def _code(text: str) -> str:
 
 def _documents(table: ComparisonTable, derived, reference) -> tuple[Derivation, Derivation]:
     if derived is None or reference is None:
-        names = TABLE_DOCUMENTS.get(table.path.name)
-        if names is None:
-            raise DerivationError(table.path, "documents", "no known documents for this table; "
+        names = table.documents
+        if not names:
+            raise DerivationError(table.path, "documents", "the table names no documents; "
+                                  "add [documents] derived = \"...\", reference = \"...\" or "
                                   "pass derived= and reference= (derivation files)")
         derived = derived if derived is not None else table.path.parent / names[0]
         reference = reference if reference is not None else table.path.parent / names[1]
@@ -379,7 +376,7 @@ def reproduce_table(table: ComparisonTable, engine: ComparisonEngine, *,
                     reference: Derivation | str | Path | None = None,
                     also_assume: Sequence[str] = ALSO_ASSUMED) -> TableReproduction:
     r"""The machine's version of ``table`` (see the module docstring). ``derived`` and
-    ``reference`` default to the documents :data:`TABLE_DOCUMENTS` names for the table file;
+    ``reference`` default to the documents the table file names in ``[documents]``;
     ``engine`` compares each against the truth (its row factors and verdicts are used)."""
     der, ref = _documents(table, derived, reference)
     rng = np.random.default_rng([engine.seed, 1])

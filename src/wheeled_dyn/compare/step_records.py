@@ -284,7 +284,8 @@ class _Group:
         argv = self.argv(rows)
         if read is not None:
             argv[self.args.index(read[0])] = argv[self.args.index(read[1])]
-        values = self._fn(tuple(exprs))(*argv)
+        with np.errstate(all="ignore"):       # inf/NaN: the records call it undecided
+            values = self._fn(tuple(exprs))(*argv)
         return [np.broadcast_to(np.asarray(v, dtype=float), (len(argv[0]),)).copy()
                 for v in values]
 
@@ -295,8 +296,9 @@ class _Group:
         argv = self.argv(rows)
         if read is not None:
             argv[self.args.index(read[0])] = argv[self.args.index(read[1])]
-        return np.broadcast_to(np.asarray(self._fn(expr)(*argv), dtype=float),
-                               (len(argv[0]),)).copy()
+        with np.errstate(all="ignore"):       # inf/NaN: the records call it undecided
+            value = self._fn(expr)(*argv)
+        return np.broadcast_to(np.asarray(value, dtype=float), (len(argv[0]),)).copy()
 
 
 def _monomial_name(mono: tuple[int, ...], names: Sequence[sp.Symbol]) -> str:

@@ -37,8 +37,11 @@ from .parse import _Loader
 from .schema import SymbolSpec
 from .source import read_toml
 
-TABLE_KEYS: tuple[str, ...] = ("title", "model", "source", "coordinates", "symbols",
-                               "substitution", "element", "mismatch", "reconstructed")
+TABLE_KEYS: tuple[str, ...] = ("title", "model", "source", "documents", "coordinates",
+                               "symbols", "substitution", "element", "mismatch",
+                               "reconstructed")
+#: Keys of ``[documents]``: the derivation files (beside the table) whose matrices it compares.
+DOCUMENT_KEYS: tuple[str, str] = ("derived", "reference")
 ELEMENT_KEYS: tuple[str, ...] = ("name", "derived", "derived_latex", "equivalent",
                                  "equivalent_latex", "reference", "reference_latex")
 _ELEMENT_NAME = re.compile(r"^([A-Z])(\d)(\d)$")
@@ -79,6 +82,8 @@ class ComparisonTable:
     velocities: tuple[sympy.Symbol, ...]
     accelerations: tuple[sympy.Symbol, ...]
     namespace: Mapping[str, sympy.Symbol]
+    #: ``[documents]``: the derived and the reference derivation files, beside the table
+    documents: tuple[str, ...] = ()
 
     def entry(self, name: str) -> TableEntry:
         r"""The entry of element ``name`` (``"C23"``)."""
@@ -112,6 +117,7 @@ def load_comparison_table(path: str | Path) -> ComparisonTable:
                           src.line_of(None, key) or src.line_of(key))
     title, model = ld.text("title"), ld.text("model")
     model = resolve_model_reference(p, model, ld.line(None, "model"))
+    documents = _documents(ld, ld.table("documents"))
     names = coordinate_names(p, ld.table("coordinates", required=True), model,
                              lambda key: ld.line("coordinates", key))
     positions = tuple(ld.declare(n, "position", "coordinates", None) for n in names.positions)
@@ -150,7 +156,37 @@ def load_comparison_table(path: str | Path) -> ComparisonTable:
         differences=MappingProxyType(differences),
         reconstructed=MappingProxyType(dict(ld.table("reconstructed"))),
         positions=positions, velocities=velocities, accelerations=accelerations,
-        namespace=MappingProxyType(dict(ld.names)))
+        namespace=MappingProxyType(dict(ld.names)), documents=documents)
+
+
+def _documents(ld: _Loader, raw: dict[str, Any]) -> tuple[str, ...]:
+    r"""``[documents] derived = "...", reference = "..."`` as (derived, reference), or ()."""
+    if not raw:
+        return ()
+    for key in raw:
+        if key not in DOCUMENT_KEYS:
+            raise ld.fail(f"documents.{key}", "unknown key; valid: " + ", ".join(DOCUMENT_KEYS),
+                          ld.line("documents", key))
+    out = []
+    for key in DOCUMENT_KEYS:
+        value = raw.get(key)
+        if not isinstance(value, str) or not value.endswith(".toml"):
+            raise ld.fail(f"documents.{key}", "expected the name of a derivation file (.toml) "
+                          "beside the table", ld.line("documents", key) or ld.line("documents"))
+        out.append(value)
+    return tuple(out)
+
+
+def table_documents(path: str | Path) -> tuple[str, ...]:
+    r"""The ``[documents]`` file names of a table file, read without parsing the rest (for
+    grouping work before the table is loaded); () when it names none or cannot be read."""
+    import tomllib
+    try:
+        raw = tomllib.loads(Path(path).read_text(encoding="utf-8")).get("documents", {})
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+        return ()
+    names = tuple(raw.get(k) for k in DOCUMENT_KEYS) if isinstance(raw, dict) else ()
+    return names if all(isinstance(x, str) for x in names) and names else ()
 
 
 def _entry(ld: _Loader, raw: Any) -> TableEntry:

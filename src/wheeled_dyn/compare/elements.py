@@ -1,0 +1,219 @@
+r"""Element by element: both sides' numbers per element, labels, and undeclared row factors.
+
+- :func:`truth_for` the truth over K parameter sets, :func:`input_map` its B in the document's
+  inputs (:math:`B\,\partial\tau/\partial u_{doc}`);
+- :func:`element_values` every element of A, C, Q, B and every velocity product of h with the
+  document's and the true values and the document's expression; :func:`element_label` its
+  name as documents write it (``A[2,1]``, ``h[1]:dpsi*dpsi``);
+- :func:`row_factors` constants :math:`c_i` the document multiplied a row by without saying so
+  (Kane's generalised inertia forces :math:`F^* = -(A\ddot q + h)`), found by a vote of the
+  row's elements, and :func:`apply_row_factors`; :func:`row_scales`, the size of each row's
+  entries, the scale agreement is measured against.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+import sympy as sp
+
+from ..constraints.reduction import CoordinateMap
+from ..derivations.schema import Derivation
+from .evaluate import Arrays, DocumentFunctions, truth_arrays
+
+#: Candidate undeclared row factors, and how far an element's own ratio may be from one.
+ROW_FACTORS = (1.0, -1.0, 2.0, -2.0, 0.5, -0.5)
+ROW_FACTOR_SPREAD = 0.35
+
+
+def latex_names(d: Derivation) -> dict[sp.Symbol, str]:
+    r"""LaTeX of velocities and accelerations as dotted coordinates (:math:`\dot\psi`)."""
+    out = {}
+    for q, v, a in zip(d.positions, d.velocities, d.accelerations):
+        base = sp.latex(q)
+        out[v] = rf"\dot{{{base}}}"
+        out[a] = rf"\ddot{{{base}}}"
+    return out
+
+
+def expr_text(expr: sp.Expr | None) -> str:
+    return "" if expr is None else sp.sstr(expr)
+
+
+def element_label(key: str, index: tuple[int, ...], velocities: Sequence[sp.Symbol]) -> str:
+    if key in ("Q",):
+        return f"Q[{index[0] + 1}]"
+    if key == "h":
+        i, j, k = index
+        return f"h[{i + 1}]:{velocities[j]}*{velocities[k]}"
+    return f"{key}[{index[0] + 1},{index[1] + 1}]"
+
+
+def truth_for(cmap: CoordinateMap, sets, q, nu) -> Arrays:
+    r"""The truth at every parameter set (B in the model's inputs)."""
+    parts = []
+    for k, ps in enumerate(sets):
+        cmap.bind(ps.model)
+        parts.append(truth_arrays([cmap], q[k:k + 1], nu[k:k + 1], None))
+    out = Arrays()
+    for name in ("A", "C", "Q", "B", "h", "H", "G"):
+        vals = [getattr(p, name) for p in parts]
+        setattr(out, name, None if vals[0] is None else np.concatenate(vals))
+    n_states = q.shape[1]
+    out.H_rows = np.concatenate([k * n_states + p.H_rows for k, p in enumerate(parts)])
+    return out
+
+
+def input_map(d: Derivation, truth: Arrays, per_set, n_states: int, notes: list[str]):
+    r"""The truth's B in the document's inputs: :math:`B\,\partial\tau/\partial u_{doc}`."""
+    if not d.input_symbols or not d.inputs:
+        if d.input_symbols:
+            notes.append("the file maps no model input to the document's inputs: B not compared")
+        return None
+    from ..models.registry import load_model
+    names = load_model(d.model).input_names
+    f = sp.Matrix([d.inputs.get(name, 0) for name in names])
+    P = f.jacobian(sp.Matrix(d.input_symbols))
+    Ps = np.stack([np.array(P.xreplace(v), dtype=float) for v in per_set])
+    Ps = np.repeat(Ps, n_states, axis=0)
+    return truth.B @ Ps
+
+
+def element_expr(exprs: Mapping[str, object], key: str, index: tuple[int, ...],
+                  velocities: Sequence[sp.Symbol]) -> sp.Expr | None:
+    r"""The expression of one element (for h: the coefficient of a velocity product)."""
+    M = exprs.get(key if key != "h" else "h")
+    if M is None:
+        return None
+    if key == "Q":
+        return M[index[0]]
+    if key == "h":
+        i, j, k = index
+        h = expanded(M[i])
+        if j == k:
+            return h.coeff(velocities[j], 2)
+        return h.coeff(velocities[j], 1).coeff(velocities[k], 1)
+    return M[index]
+
+
+_EXPANDED: dict[sp.Expr, sp.Expr] = {}
+
+
+def expanded(expr: sp.Expr) -> sp.Expr:
+    if expr not in _EXPANDED:
+        _EXPANDED[expr] = sp.expand(expr)
+    return _EXPANDED[expr]
+
+
+def element_values(funcs: DocumentFunctions, doc: Arrays, truth: Arrays, B_true, n: int,
+              expressions: bool = True):
+    r"""(key, document values, true values, index, document expression) of every element
+    (the expression None without ``expressions``)."""
+    ex, vel = funcs.exprs, funcs.d.velocities
+    if not expressions:
+        ex = {k: (None if v is None else Nones()) for k, v in ex.items()}
+    if doc.A is not None:
+        for i in range(n):
+            for j in range(n):
+                yield "A", doc.A[:, i, j], truth.A[:, i, j], (i, j), ex["A"][i, j]
+    if doc.C is not None:
+        for i in range(n):
+            for j in range(n):
+                yield "C", doc.C[:, i, j], truth.C[:, i, j], (i, j), ex["C"][i, j]
+    if doc.Q is not None:
+        for i in range(n):
+            yield "Q", doc.Q[:, i], truth.Q[:, i], (i,), ex["Q"][i]
+    if doc.B is not None and B_true is not None:
+        for i in range(n):
+            for j in range(doc.B.shape[2]):
+                yield "B", doc.B[:, i, j], B_true[:, i, j], (i, j), ex["B"][i, j]
+    if doc.H is not None:
+        for i in range(n):
+            for j in range(n):
+                for k in range(j, n):
+                    w = 1.0 if j == k else 2.0
+                    yield ("h", w * doc.H[:, i, j, k], w * truth.H[:, i, j, k], (i, j, k),
+                           element_expr(ex, "h", (i, j, k), vel) if expressions else None)
+
+
+class Nones:
+    r"""Stands for a matrix of expressions that are not needed: every element is None."""
+
+    def __getitem__(self, index) -> None:
+        return None
+
+
+def row_factors(doc: Arrays, truth: Arrays, B_true, n: int) -> list[float | None]:
+    r"""A constant :math:`c_i` with document row i = :math:`c_i` × true row i that the file did
+    not declare (e.g. −1 for Kane's generalised inertia forces :math:`F^* = -(A\ddot q + h)`).
+
+    Each nonzero element of the row votes for the candidate of :data:`ROW_FACTORS` nearest its
+    own least-squares ratio (within :data:`ROW_FACTOR_SPREAD`); a candidate other than 1 needs
+    a strict majority among A's entries and among all of the row's (A, Q, B). Voting keeps a
+    single wrong coefficient (e.g. 3(m_c + m_s)) from scaling a row."""
+    out: list[float | None] = []
+    for i in range(n):
+        a_pairs, other_pairs = [], []
+        if doc.A is not None:
+            a_pairs = [(doc.A[:, i, j], truth.A[:, i, j]) for j in range(doc.A.shape[2])]
+        if doc.Q is not None:
+            other_pairs.append((doc.Q[:, i], truth.Q[:, i]))
+        if doc.B is not None and B_true is not None:
+            other_pairs += [(doc.B[:, i, j], B_true[:, i, j]) for j in range(doc.B.shape[2])]
+
+        def vote(pairs):
+            votes = []
+            for D, T in pairs:
+                tt = float(T @ T)
+                if tt <= 0 or float(D @ D) <= 0:
+                    continue
+                c = float(D @ T / tt)
+                best = min(ROW_FACTORS, key=lambda f: abs(c - f))
+                votes.append(best if abs(c - best) <= ROW_FACTOR_SPREAD * abs(best) else None)
+            return votes
+
+        # A's entries decide; Q and B only confirm (a wrong input map must not scale a row)
+        votes_a, votes_all = vote(a_pairs), vote(a_pairs + other_pairs)
+        winner = None
+        for f in ROW_FACTORS:
+            if f == 1.0 or not votes_a:
+                continue
+            if sum(v == f for v in votes_a) * 2 > len(votes_a) and \
+                    sum(v == f for v in votes_all) * 2 > len(votes_all):
+                winner = f
+        out.append(winner)
+    return out
+
+
+def apply_row_factors(doc: Arrays, factors) -> None:
+    for i, c in enumerate(factors):
+        if c is None:
+            continue
+        for name in ("A", "C", "Q", "B", "h", "H"):
+            M = getattr(doc, name)
+            if M is not None:
+                M[:, i] = M[:, i] / c
+
+
+def row_scales(doc: Arrays, truth: Arrays, n: int) -> np.ndarray:
+    s = np.zeros(n)
+    for arrays in (doc, truth):
+        for name in ("A", "C", "Q", "H"):
+            M = getattr(arrays, name)
+            if M is not None:
+                s = np.maximum(s, np.abs(M.reshape(M.shape[0], n, -1)).max(axis=(0, 2)))
+    return np.where(s > 0, s, 1.0)
+
+
+def swap_groups(d: Derivation) -> list[list[sp.Symbol]]:
+    by_units: dict[str, list[sp.Symbol]] = {}
+    for spec in d.symbols.values():
+        if not spec.is_input and spec.units:
+            by_units.setdefault(spec.units.replace(" ", ""), []).append(spec.symbol)
+    return [list(d.velocities), list(d.positions), *[g for g in by_units.values() if len(g) > 1]]
+
+
+__all__ = ["ROW_FACTORS", "ROW_FACTOR_SPREAD", "Nones", "apply_row_factors", "element_expr",
+           "element_label", "element_values", "expanded", "expr_text", "input_map",
+           "latex_names", "row_factors", "row_scales", "swap_groups", "truth_for"]
