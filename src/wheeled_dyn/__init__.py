@@ -39,6 +39,7 @@ _EXPORTS: dict[str, str] = {
     "Trajectory": ".simulate",
     "simulate": ".simulate",
     "matrices": ".api",
+    "compare": "",              # the package wheeled_dyn.compare, callable (api.compare)
 }
 
 
@@ -46,7 +47,8 @@ def __getattr__(name: str) -> Any:
     module = _EXPORTS.get(name)
     if module is None:
         raise AttributeError(f"module 'wheeled_dyn' has no attribute {name!r}")
-    value = getattr(importlib.import_module(module, __name__), name)
+    value = importlib.import_module(f".{name}", __name__) if not module else \
+        getattr(importlib.import_module(module, __name__), name)
     globals()[name] = value
     return value
 

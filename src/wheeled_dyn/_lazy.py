@@ -32,6 +32,27 @@ class _LazyPackage(types.ModuleType):
         super().__setattr__(name, value)
 
 
+class _CallablePackage(_LazyPackage):
+    r"""A package that can be called: ``wd.compare(model, A=...)`` runs the function named by
+    ``_call`` (``"module:function"``, relative to the package's parent), while
+    ``wheeled_dyn.compare`` stays the package of the comparison engine."""
+
+    _call: str = ""
+
+    def __call__(self, *args: Any, **kwargs: Any) -> Any:
+        where, name = self._call.split(":")
+        parent = self.__name__.rpartition(".")[0]
+        return getattr(importlib.import_module(where, parent), name)(*args, **kwargs)
+
+
+def callable_package(package: str, target: str) -> None:
+    r"""Make the (attached) ``package`` callable: calling it calls ``target``
+    (``".api:compare"``, relative to the package's parent)."""
+    module = sys.modules[package]
+    module.__class__ = _CallablePackage
+    object.__setattr__(module, "_call", target)
+
+
 def attach(package: str, exports: Mapping[str, str]
            ) -> tuple[Callable[[str], Any], Callable[[], list[str]], list[str]]:
     r"""``(__getattr__, __dir__, __all__)`` for ``package``: ``exports`` maps each public

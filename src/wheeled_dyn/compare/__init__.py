@@ -1,6 +1,10 @@
-r"""The comparison engine: documents' derivations against the truth, term by term."""
+r"""The comparison engine: documents' derivations against the truth, term by term.
 
-from .._lazy import attach
+The package is also callable: ``wheeled_dyn.compare(model, A=..., C=..., ...)`` is
+:func:`wheeled_dyn.api.compare` (a derivation built from SymPy objects, compared).
+"""
+
+from .._lazy import attach, callable_package
 
 __getattr__, __dir__, __all__ = attach(__name__, {
     "ComparisonEngine": ".engine",
@@ -11,3 +15,4 @@ __getattr__, __dir__, __all__ = attach(__name__, {
     "ElementRecord": ".result",
     "EnergyCheck": ".result",
 })
+callable_package(__name__, ".api:compare")

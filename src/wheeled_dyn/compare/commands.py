@@ -63,7 +63,7 @@ def check_model_names(d) -> None:
     wm = load_model(d.model)
     entry = model_entry(d.model)
     values = namespace_values(wm, entry.parameters() if entry.parameters else None)
-    src = SourceText(d.path, read_small_text(d.path))
+    src = SourceText(d.path, read_small_text(d.path) if d.path.is_file() else "")  # or Python
     for key in d.inputs:
         if key not in wm.input_names:
             raise DerivationNameError(d.path, f"inputs.{key}", "model input", key,

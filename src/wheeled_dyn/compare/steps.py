@@ -180,7 +180,7 @@ def _step_file(path: Path, seed: int):
 def feeding_files(d: Derivation) -> list[Path]:
     r"""The ``*_steps.toml`` files beside ``d`` whose ``feeds`` name it (sorted)."""
     folder = d.path.parent
-    if not folder.is_dir():
+    if not d.path.is_file() or not folder.is_dir():      # a derivation built in Python
         return []
     return [p for p in sorted(folder.glob("*" + STEPS_SUFFIX))
             if p != d.path and d.path.stem in _load(p).feeds]

@@ -1,0 +1,136 @@
+r"""Derivations built in Python: SymPy matrices or equations from a notebook, compared like a file.
+
+A person who derives in SymPy has :math:`A`, :math:`C`, :math:`Q`, :math:`B` (or the equations
+:math:`A\ddot q + C\dot q + Q = Bu` themselves) as SymPy objects. :func:`derivation_from_sympy`
+turns them, with the same tables a derivation file has (coordinates, symbols and their meaning
+in the model, inputs, assumptions), into a :class:`~.schema.Derivation` — by writing the TOML a
+file would hold (``tomli_w``) and reading it with :func:`~.parse.load_derivation`, so every
+check, limit and error of the file format applies unchanged. Errors name the derivation as
+``<python: title>`` instead of the temporary file.
+"""
+
+from __future__ import annotations
+
+import re
+import tempfile
+from collections.abc import Mapping, Sequence
+from dataclasses import replace
+from pathlib import Path
+from typing import Any
+
+import sympy as sp
+import tomli_w
+
+from ..errors import DerivationError, InputFileError, WheeledDynError
+from .parse import load_derivation
+from .schema import Derivation
+
+#: Characters kept from a title in the temporary file's name.
+_NAME = re.compile(r"[^A-Za-z0-9_-]+")
+
+
+def _text(e: Any) -> str:
+    return e if isinstance(e, str) else sp.sstr(sp.sympify(e))
+
+
+def _matrix(M: Any, column: bool = False) -> list:
+    r"""Nested lists of SymPy-syntax strings (a column vector as a flat list)."""
+    rows = sp.Matrix(M).tolist() if not isinstance(M, (list, tuple)) or \
+        any(isinstance(r, (list, tuple)) for r in M) else [[x] for x in M]
+    if column:
+        return [_text(r[0]) for r in rows] if all(len(r) == 1 for r in rows) \
+            else [_text(x) for x in rows[0]]
+    return [[_text(x) for x in r] for r in rows]
+
+
+def _equation(e: Any) -> str:
+    if isinstance(e, str):
+        return e
+    if isinstance(e, sp.Equality):
+        return f"{_text(e.lhs)} = {_text(e.rhs)}"
+    return f"{_text(e)} = 0"
+
+
+def derivation_data(model: str | Path, *, coordinates: str | Mapping[str, Any],
+                    symbols: Mapping[str, Any] | None = None,
+                    inputs: Mapping[str, Any] | None = None,
+                    A: Any = None, C: Any = None, Q: Any = None, B: Any = None,
+                    G: Any = None, equations: Sequence[Any] | None = None,
+                    assumes: Mapping[str, Any] | None = None,
+                    title: str = "derivation from Python",
+                    source: Mapping[str, str] | None = None) -> dict[str, Any]:
+    r"""The TOML tables of a derivation file for these SymPy objects (see
+    :func:`derivation_from_sympy`)."""
+    symbols = {k: (_text(v) if not isinstance(v, Mapping) else dict(v))
+               for k, v in (symbols or {}).items()}
+    inputs = {k: _text(v) for k, v in (inputs or {}).items()}
+    for text in inputs.values():
+        for s in sorted(sp.sympify(text).free_symbols, key=str):
+            symbols.setdefault(s.name, {"input": True})
+    data: dict[str, Any] = {"title": title, "model": str(model)}
+    if source:
+        data["source"] = dict(source)
+    data["coordinates"] = {"use": coordinates} if isinstance(coordinates, str) \
+        else dict(coordinates)
+    if inputs:
+        data["inputs"] = inputs
+    data["symbols"] = symbols
+    if assumes:
+        data["assumes"] = dict(assumes)
+    matrices: dict[str, Any] = {}
+    if equations is not None:
+        matrices["equations"] = [_equation(e) for e in equations]
+    for key, M in (("A", A), ("C", C), ("B", B), ("G", G)):
+        if M is not None:
+            matrices[key] = _matrix(M)
+    if Q is not None:
+        matrices["Q"] = _matrix(Q, column=True)
+    data["matrices"] = matrices
+    return data
+
+
+def derivation_from_sympy(model: str | Path, **tables: Any) -> Derivation:
+    r"""A :class:`~.schema.Derivation` from SymPy objects.
+
+    ``model``: a model name or model file; ``coordinates``: a built-in coordinate set's name or
+    an inline table (as ``[coordinates]`` of a file); ``symbols``: document name → its value in
+    the model (``"m_S"``, ``"MX(body)"``) or a table ``{value, units, meaning}``; ``inputs``:
+    model input → expression in the document's inputs (undeclared input symbols are declared);
+    ``A``, ``C``, ``Q``, ``B``, ``G`` (SymPy matrices or nested lists) or ``equations``
+    (``sympy.Eq`` or expressions equal to 0); ``assumes``, ``title``, ``source`` as in a file.
+    Raises the errors a file would, naming ``<python: title>``."""
+    title = str(tables.get("title", "derivation from Python"))
+    data = derivation_data(model, **tables)
+    model_path = Path(str(model))
+    if model_path.suffix == ".toml" and not model_path.is_absolute():
+        data["model"] = str(model_path.resolve())
+    with tempfile.TemporaryDirectory(prefix="wheeled-dyn-") as folder:
+        path = Path(folder) / ((_NAME.sub("_", title).strip("_") or "derivation") + ".toml")
+        path.write_text(tomli_w.dumps(data), encoding="utf-8")
+        try:
+            d = load_derivation(path)
+        except WheeledDynError as exc:
+            raise _renamed(exc, path, f"<python: {title}>") from None
+    return replace(d, path=Path(f"<python: {title}>"))
+
+
+def _renamed(exc: WheeledDynError, path: Path, name: str) -> WheeledDynError:
+    r"""``exc`` rebuilt with the temporary file's path replaced by ``name`` (and no line
+    number: the lines are those of the generated file)."""
+    args, kwargs = getattr(exc, "_ctor", (exc.args, {}))
+
+    def swap(x: Any) -> Any:
+        return Path(name) if isinstance(x, (str, Path)) and str(x) == str(path) else x
+
+    kwargs = {k: (None if k in ("line", "column") else swap(v)) for k, v in kwargs.items()}
+    args = [swap(a) for a in args]
+    if isinstance(exc, InputFileError):          # (path, [item,] reason, line, column)
+        keep = 3 if isinstance(exc, DerivationError) else 2
+        args = args[:keep]
+    try:
+        return type(exc)(*args, **kwargs)
+    except TypeError:
+        return exc
+
+
+__all__ = ["derivation_data", "derivation_from_sympy"]

@@ -1,0 +1,88 @@
+"""`wd.compare`: a derivation built from SymPy objects is compared exactly as the same
+derivation written as a file (same records, verdicts and causes), errors name
+``<python: title>``, and nothing is left in the temporary folder."""
+
+from __future__ import annotations
+
+import tempfile
+from pathlib import Path
+
+import pytest
+import sympy as sp
+
+import wheeled_dyn as wd
+from wheeled_dyn.compare import ComparisonEngine
+from wheeled_dyn.derivations import load_derivation
+from wheeled_dyn.errors import WheeledDynError
+
+from conftest import SEED
+from test_compare_planted import BASE, TRUE_FILE
+
+SAMPLES, PARAM_SETS = 200, 3
+
+
+def _sympy_tables(changes: dict[tuple, str] = {}) -> dict:
+    r"""The true file's matrices as SymPy matrices (as a notebook would have them)."""
+    m = {k: [list(r) if isinstance(r, list) else r for r in v]
+         for k, v in BASE["matrices"].items()}
+    for (key, *index), text in changes.items():
+        if len(index) == 1:
+            m[key][index[0]] = text
+        else:
+            m[key][index[0]][index[1]] = text
+    return {"A": sp.Matrix(sp.sympify(m["A"])), "C": sp.Matrix(sp.sympify(m["C"])),
+            "Q": sp.Matrix(sp.sympify(m["Q"])), "B": sp.Matrix(sp.sympify(m["B"])),
+            "symbols": dict(BASE["symbols"]), "inputs": dict(BASE["inputs"]),
+            "coordinates": BASE["coordinates"]["use"], "title": "true WIP from a notebook"}
+
+
+def _summary(result) -> list[tuple]:
+    return [(r.element, r.verdict, r.diagnoses) for r in result.records]
+
+
+def test_api_equals_the_file():
+    api = wd.compare("wip", samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED, **_sympy_tables())
+    engine = ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED)
+    from_file = engine.compare(load_derivation(TRUE_FILE))
+    assert _summary(api) == _summary(from_file)
+    assert all(r.verdict == "agrees" for r in api.records) and api.causes == ()
+    assert str(api.path) == "<python: true WIP from a notebook>"
+
+
+def test_api_names_a_planted_error():
+    tables = _sympy_tables({("Q", 2): "-g*(MX1*cos(phi) - MY1*sin(phi))"})
+    result = wd.compare("wip", samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED, **tables)
+    wrong = {r.element: r.diagnoses for r in result.records if r.verdict != "agrees"}
+    assert list(wrong) == ["Q[3]"] and wrong["Q[3]"][0].startswith("sign")
+    assert [c.kind for c in result.causes] == ["sign"]
+
+
+def test_api_equations_form():
+    acc, vel = sp.symbols("ddx ddpsi ddphi"), sp.symbols("dx dpsi dphi")
+    t = _sympy_tables()
+    u = sp.Matrix(sp.symbols("u_l u_r"))
+    lhs = t["A"] * sp.Matrix(acc) + t["C"] * sp.Matrix(vel) + t["Q"]
+    eqs = [sp.Eq(lhs[i], (t["B"] * u)[i]) for i in range(3)]
+    tables = {k: v for k, v in t.items() if k not in "ACQB"}
+    result = wd.compare("wip", samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED,
+                        equations=eqs, **tables)
+    assert result.form == "equations"
+    assert all(r.verdict == "agrees" for r in result.records), _summary(result)
+
+
+def test_api_undeclared_symbol_is_one_error():
+    tables = _sympy_tables({("A", 0, 0): "m_S + 2*m_C + m_X"})
+    before = set(Path(tempfile.gettempdir()).glob("wheeled-dyn-*"))
+    with pytest.raises(WheeledDynError) as info:
+        wd.compare("wip", **tables)
+    message = str(info.value)
+    assert "<python: true WIP from a notebook>" in message and "m_X" in message
+    assert "A[1,1]" in message
+    assert set(Path(tempfile.gettempdir()).glob("wheeled-dyn-*")) == before
+
+
+def test_compare_is_the_package_and_callable():
+    import wheeled_dyn.compare as package
+    from wheeled_dyn.compare import ComparisonEngine as engine_class
+    assert wd.compare is package and callable(wd.compare)
+    assert engine_class is ComparisonEngine
