@@ -21,6 +21,10 @@ from ..models.wip_parameters import WipParameters, standard_parameters
 #: Residuals up to this many operations are expanded with trigonometric identities for display
 #: (larger ones, e.g. in seed 001 section 5's wheel-angle coordinates, are shown as they are).
 TRIG_EXPAND_LIMIT = 40
+#: Models without a physical record: residuals in Khalil's parameters longer than this many
+#: operations, or with roots of them (a document's mass or length read as an algebraic function
+#: of the link's parameters), are not shown; the truth is.
+STANDARD_RESIDUAL_LIMIT = 60
 
 
 def _physical_symbols() -> dict[str, sp.Symbol]:
@@ -28,18 +32,40 @@ def _physical_symbols() -> dict[str, sp.Symbol]:
     return {f.name: sp.Symbol(f.name, real=True) for f in fields(WipParameters)}
 
 
-def model_expression(d: Derivation) -> Callable[[sp.Expr | None], sp.Expr | None]:
+def _standard_names(model: str) -> tuple[Callable[[sp.Expr], sp.Expr], dict]:
+    r"""For a model without a physical record: Khalil calls ``XX(link)`` → the symbolic
+    engine's symbols ``XX_link``, and the model's other names (geometry, gravity) → their
+    values as exact numbers, as in its closed forms."""
+    from ..models.registry import load_model, model_parameters
+    numbers = {sp.Symbol(k, real=True): sp.nsimplify(v, rational=True)
+               for k, v in model_parameters(load_model(model)).items() if "(" not in k}
+    plain = {sp.Symbol(s.name): v for s, v in numbers.items()}
+
+    def convert(out: sp.Expr) -> sp.Expr:
+        calls = {c: sp.Symbol(f"{c.func.__name__}_{c.args[0]}", real=True)
+                 for c in out.atoms(AppliedUndef)}
+        return out.xreplace(calls).xreplace(numbers).xreplace(plain)
+
+    return convert, numbers
+
+
+def model_expression(d: Derivation, standard: bool = False
+                     ) -> Callable[[sp.Expr | None], sp.Expr | None]:
     r"""A function: document expression → the same in the model's parameters (for the WIP,
-    Khalil calls replaced by the physical parameters)."""
+    Khalil calls replaced by the physical parameters; with ``standard``, for a model without a
+    physical record, in the symbols of its standard-parameter closed forms)."""
     mapping = {s.symbol: s.value for s in d.symbols.values() if s.value is not None}
     physical = model_entry(d.model).parameters is WipParameters
     names = _physical_symbols()
     std = standard_parameters(names) if physical else None
+    to_standard = _standard_names(d.model)[0] if standard and not physical else None
 
     def convert(expr: sp.Expr | None) -> sp.Expr | None:
         if expr is None:
             return None
         out = sp.sympify(expr).xreplace(mapping)
+        if to_standard is not None:
+            return to_standard(out)
         if std is not None:
             calls = {}
             for call in out.atoms(AppliedUndef):
@@ -80,7 +106,8 @@ def annotate(d: Derivation, records: list[dict], cs, exprs: dict[int, sp.Expr | 
     truth = true_expressions(d.model, cs)
     if not truth:
         return
-    to_model = model_expression(d)
+    physical = model_entry(d.model).parameters is WipParameters
+    to_model = model_expression(d, standard=not physical)
     dots = {v: rf"\dot{{{sp.latex(q)}}}" for q, v in zip(d.positions, d.velocities)}
     for r in records:
         expr = truth.get(r["element"])
@@ -100,6 +127,9 @@ def annotate(d: Derivation, records: list[dict], cs, exprs: dict[int, sp.Expr | 
             residual = expr - doc
             if sp.count_ops(residual) <= TRIG_EXPAND_LIMIT:
                 residual = sp.expand(sp.expand_trig(residual))
+            if not physical and (sp.count_ops(residual) > STANDARD_RESIDUAL_LIMIT or any(
+                    not p.exp.is_Integer for p in residual.atoms(sp.Pow))):
+                continue                      # roots of Khalil's parameters: not shown
             r["residual"] = sp.sstr(residual)
             if residual != 0:
                 r["diagnoses"].append(f"truth − document = {sp.sstr(residual)}")

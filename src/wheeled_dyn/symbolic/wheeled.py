@@ -423,6 +423,10 @@ def coordinate_set_key(cs: CoordinateSet) -> str:
 
 
 _MEMORY: dict[str, dict[str, sp.Expr] | None] = {}
+#: Models without a physical record get closed forms in standard parameters for the reports
+#: when they have a fixed base and at most this many joints (the benchmark bodies of seed 000
+#: take a tenth of a second; a free body in body rates takes minutes).
+STANDARD_MAX_DOF = 4
 
 
 def _true_key(model: str, cs: CoordinateSet, wm: WheeledModel) -> str:
@@ -438,9 +442,11 @@ def _true_key(model: str, cs: CoordinateSet, wm: WheeledModel) -> str:
 def true_expressions(model: str, cs: CoordinateSet, refresh: bool = False
                      ) -> dict[str, sp.Expr] | None:
     r"""The true elements of model ``model`` (a registry name) in the coordinate set ``cs``,
-    in the model's physical parameters (:func:`wheeled_symbolic` with ``"physical"``), labelled
-    as :func:`element_expressions` does; ``"B[i,j]"`` in the model's inputs (``tau_l,
-    tau_r``). None for a model without a physical-parameter record.
+    in the model's physical parameters (:func:`wheeled_symbolic` with ``"physical"``) or, for a
+    model without a physical-parameter record, in Khalil's standard parameters of its links
+    (``"standard"``: symbols ``XX_link`` ..., geometry as exact numbers), labelled as
+    :func:`element_expressions` does; ``"B[i,j]"`` in the model's inputs. None where the
+    symbolic engine does not fit the model.
 
     Cached in memory and on disk (:func:`~.cache.cache_dir`, ``true-<key>.pickle``), keyed by
     the model, the content of ``cs`` and the code version; ``refresh`` re-derives.
@@ -448,9 +454,10 @@ def true_expressions(model: str, cs: CoordinateSet, refresh: bool = False
     from ..models.registry import load_model, model_entry
     model_entry(model)  # unknown names raise here
     wm = load_model(model)
-    if not _has_physical_record(wm):
-        return None
-    key = _true_key(model, cs, wm)
+    mode = "physical" if _has_physical_record(wm) else "standard"
+    if mode == "standard" and (wm.spec.base != "fixed" or wm.model.nv > STANDARD_MAX_DOF):
+        return None                     # free bodies and contacts: minutes in SymPy
+    key = _true_key(model, cs, wm) + mode
     if key in _MEMORY and not refresh:
         return _MEMORY[key]
     path = cache_dir() / f"true-{key}.pickle"
@@ -466,7 +473,11 @@ def true_expressions(model: str, cs: CoordinateSet, refresh: bool = False
         except (OSError, EOFError, pickle.UnpicklingError, AttributeError, ImportError,
                 TypeError, ValueError) as exc:
             warnings.warn(f"cache entry {path} is unreadable ({exc}); re-deriving", stacklevel=2)
-    red = wheeled_symbolic(wm, cs, "physical")
+    try:
+        red = wheeled_symbolic(wm, cs, mode)
+    except ModelError:                        # a model the standard mode does not fit
+        _MEMORY[key] = None
+        return None
     out = element_expressions(red, wm.input_names)
     store(path, out)
     _MEMORY[key] = out
