@@ -5,6 +5,11 @@ Each feature package contributes its sub-commands through a function
 ``set_defaults(handler=...)`` receives the parsed arguments and returns an exit code. Errors of
 the project's own type are printed as one line on stderr with exit code 2; Ctrl-C ends a
 command with exit code 130 and one line, no traceback.
+
+A Ctrl-C that arrives while a module is being imported is held back until the import has
+finished (see :func:`_on_interrupt`): third-party packages catch ``BaseException`` around
+their optional imports (trimesh, loaded by yourdfpy) and would swallow it, and an exception
+raised inside a compiled extension's initialisation can abort the process.
 """
 
 from __future__ import annotations
@@ -15,6 +20,7 @@ import os
 import signal
 import sys
 from collections.abc import Sequence
+from types import FrameType
 
 from .errors import WheeledDynError
 
@@ -26,6 +32,53 @@ COMMAND_MODULES: tuple[str, ...] = (
     "wheeled_dyn.symbolic.commands",
     "wheeled_dyn.viewer.commands",
 )
+
+
+#: Seconds between two looks, after a Ctrl-C held back during an import, at whether the
+#: import has finished (the interrupt is then raised).
+INTERRUPT_RETRY = 0.02
+
+#: Set by :func:`_on_interrupt` when Ctrl-C comes while a command runs.
+_interrupted = False
+#: The SIGALRM handler that :func:`_on_interrupt` replaced to look again (None: not replaced).
+_previous_alarm: object = None
+
+
+def _importing(frame: FrameType | None) -> bool:
+    r"""Whether ``frame`` runs inside an import (the import system's frames are on its stack)."""
+    while frame is not None:
+        if frame.f_code.co_filename.startswith("<frozen importlib._bootstrap"):
+            return True
+        frame = frame.f_back
+    return False
+
+
+def _on_interrupt(signum: int, frame: FrameType | None) -> None:
+    r"""SIGINT while a command runs (and the SIGALRM of a held-back one): raise
+    :class:`KeyboardInterrupt`, unless a module is being imported; then look again every
+    :data:`INTERRUPT_RETRY` seconds and raise it once the import has finished."""
+    global _interrupted, _previous_alarm
+    if signum == signal.SIGINT:
+        _interrupted = True
+    if not _interrupted:
+        return
+    if _importing(frame) and hasattr(signal, "setitimer"):
+        if _previous_alarm is None:
+            before = signal.signal(signal.SIGALRM, _on_interrupt)
+            _previous_alarm = signal.SIG_DFL if before is None else before
+        signal.setitimer(signal.ITIMER_REAL, INTERRUPT_RETRY)
+        return
+    raise KeyboardInterrupt
+
+
+def _restore_alarm(handler: object) -> None:
+    r"""Cancel a pending look at a held-back Ctrl-C and give SIGALRM ``handler`` (its
+    handler before :func:`_on_interrupt` took it, when ``None``)."""
+    global _previous_alarm
+    if _previous_alarm is not None:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, _previous_alarm if handler is None else handler)
+        _previous_alarm = None
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -40,14 +93,30 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
+    r"""Run the command ``argv`` (default: the process's arguments); its exit code. While it
+    runs, SIGINT is handled by :func:`_on_interrupt`."""
+    global _interrupted
+    _interrupted = False
+    try:
+        previous = signal.signal(signal.SIGINT, _on_interrupt)
+    except ValueError:               # not the main thread: signals are not ours to handle
+        previous = None
+    interrupted = False
     try:
         return _run(argv)
     except KeyboardInterrupt:        # Ctrl-C: the writers have removed their temporary files
-        # a second Ctrl-C (or the one the workers' shutdown sees) must not turn the clean
-        # exit into a traceback or a death by signal
+        # a second Ctrl-C (or the one the workers' shutdown sees, or a look at a held-back
+        # one) must not turn the clean exit into a traceback or a death by signal
         signal.signal(signal.SIGINT, signal.SIG_IGN)
+        _restore_alarm(signal.SIG_IGN)
+        interrupted = True
         print("wheeled-dyn: interrupted", file=sys.stderr)
         return 130
+    finally:
+        if not interrupted:
+            _restore_alarm(None)
+            if previous is not None:
+                signal.signal(signal.SIGINT, previous)
 
 
 def _run(argv: Sequence[str] | None) -> int:

@@ -45,13 +45,17 @@ def energy_check(funcs: DocumentFunctions, doc: Arrays, row_factor, q, nu, value
     fn = sp.lambdify(funcs.args, power, "numpy")
     fh = sp.lambdify(funcs.args, (v.T * h)[0], "numpy")
     argv = [*q.T, *nu.T, *(values[p] for p in funcs.params)]
-    P = np.broadcast_to(fn(*argv), (len(q),))
     # scale: the power's parts, and (when both vanish, e.g. Euler's gyroscopic terms) the
     # kinetic-energy rate scale |A| |nu|^2 |nu|
     kinetic = sp.lambdify(funcs.args, (v.T * A * v)[0], "numpy")
     speed = np.linalg.norm(nu, axis=1)
-    ref = max(float(np.abs(np.broadcast_to(fh(*argv), (len(q),))).max()),
-              float(np.abs(np.broadcast_to(kinetic(*argv), (len(q),)) * speed).max()), 1e-300)
+    with np.errstate(all="ignore"):          # an overflowing document: no verdict, below
+        P = np.broadcast_to(fn(*argv), (len(q),)).astype(float)
+        parts = (np.abs(np.broadcast_to(fh(*argv), (len(q),))).astype(float),
+                 np.abs(np.broadcast_to(kinetic(*argv), (len(q),)) * speed).astype(float))
+    if not (np.isfinite(P).all() and all(np.isfinite(x).all() for x in parts)):
+        return None                           # values not finite: the identity is undecided
+    ref = max(float(parts[0].max()), float(parts[1].max()), 1e-300)
     conserves = bool(np.abs(P).max() <= AGREE_TOL * ref * 10)
     residual = "0"
     if not conserves:

@@ -165,6 +165,8 @@ def row_factors(doc: Arrays, truth: Arrays, B_true, n: int) -> list[float | None
         def vote(pairs):
             votes = []
             for D, T in pairs:
+                if not (np.isfinite(D).all() and np.isfinite(T).all()):
+                    continue                  # an element that overflows does not vote
                 tt = float(T @ T)
                 if tt <= 0 or float(D @ D) <= 0:
                     continue

@@ -144,12 +144,13 @@ def check_urdf_tree(path: str | Path, text: str, root: ET.Element,
         link = start
         while link in parent_of:
             link = joints[parent_of[link]][1]
-            if link in seen:
-                cycle = seen[seen.index(link):] + [link]
+            if link in seen:            # parent -> child order; name the cycle's joints
+                cycle = list(reversed(seen[seen.index(link):] + [link]))
+                ring = [parent_of[child] for child in cycle[1:]]
                 raise InputFileError(path, "the joints form a cycle through links "
-                                     + " -> ".join(reversed(cycle)) + f" (joint "
-                                     f"{parent_of[start]!r})",
-                                     line=_line_of(text, "joint", parent_of[start]))
+                                     + " -> ".join(cycle) + " (joints "
+                                     + ", ".join(repr(j) for j in ring) + ")",
+                                     line=_line_of(text, "joint", ring[-1]))
             seen.append(link)
     roots = [n for n in links if n not in parent_of]
     if len(roots) != 1:
