@@ -17,7 +17,8 @@ G        m×n               constraint matrix (multipliers side)
 A matrix is either text in SymPy list syntax (``"[[a, b], [c, d]]"``) or a TOML array of
 arrays of strings or numbers. An element ``"?"`` marks a place the extracted text lost and
 the file does not restore; it becomes ``sympy.nan`` and its label (``C[5,1]``) is recorded.
-Labels are 1-based, as documents number their elements.
+Labels are 1-based, as documents number their elements. ``{ latex = '\begin{bmatrix} ...
+\end{bmatrix}' }`` gives a matrix as LaTeX (:mod:`.latex`), one element per cell.
 """
 
 from __future__ import annotations
@@ -28,6 +29,7 @@ from typing import TYPE_CHECKING, Any
 import sympy
 
 from .expressions import ExpressionError, split_nested
+from .latex import LatexSource, split_latex_matrix, unwrap_latex
 
 if TYPE_CHECKING:  # pragma: no cover
     from .parse import _Loader
@@ -51,14 +53,22 @@ class MatrixReader:
         self.equations: tuple[sympy.Eq, ...] | None = None
         self.shapes: dict[str, tuple[int, int]] = {}
 
-    def _nested(self, key: str, raw: Any) -> Any:
+    def _nested(self, key: str, raw: Any, top: bool = True) -> Any:
+        raw = unwrap_latex(raw)
+        if isinstance(raw, LatexSource):        # a whole matrix, or one element of an array
+            if not top:
+                return raw
+            try:
+                return [[LatexSource(c) for c in row] for row in split_latex_matrix(raw)]
+            except ExpressionError as exc:
+                raise self.ld.fail(key, exc.reason, self.ld.line("matrices", key)) from exc
         if isinstance(raw, str):
             try:
                 return split_nested(raw)
             except ExpressionError as exc:
                 raise self.ld.fail(key, exc.reason, self.ld.line("matrices", key)) from exc
         if isinstance(raw, list):
-            return [self._nested(key, r) for r in raw]
+            return [self._nested(key, r, top=False) for r in raw]
         if isinstance(raw, (int, float)) and not isinstance(raw, bool):
             return str(raw)
         raise self.ld.fail(key, f"expected a matrix (text or array), got {raw!r}",
@@ -116,7 +126,10 @@ class MatrixReader:
         return sympy.ImmutableMatrix(out)
 
     def equation(self, text: Any, item: str, table: str, key: str) -> sympy.Eq:
-        r"""Parse ``"lhs = rhs"`` (exactly one ``=``)."""
+        r"""Parse ``"lhs = rhs"`` (exactly one ``=``), or a LaTeX equation."""
+        text = unwrap_latex(text)
+        if isinstance(text, LatexSource):
+            text = self.ld.from_latex(text, item, table, key, equation=True)
         if not isinstance(text, str) or text.count("=") != 1:
             raise self.ld.fail(item, "expected \"left side = right side\" with one '='",
                                self.ld.line(table, key, str(text)[:30]))
@@ -155,7 +168,7 @@ class MatrixReader:
         if "G" in table:
             out["G"] = self.grid("G", table["G"], None, n)
         if "equations" in table:
-            eqs = table["equations"]
+            eqs = unwrap_latex(table["equations"])
             if not isinstance(eqs, list):
                 raise ld.fail("equations", "expected a list of \"lhs = rhs\"",
                               ld.line("matrices", "equations"))

@@ -33,6 +33,8 @@ from .errors import DerivationNameError
 from .expressions import (RESERVED_NAMES, ExpressionError, UndeclaredNameError,
                           check_expanded, parse_expression, parse_model_expression, parse_units,
                           real_symbol, scan_names)
+from .latex import (LATEX_KEYS, LatexNames, LatexSource, is_printed_name, latex_to_sympy,
+                    unwrap_latex)
 from .matrices import MatrixReader
 from .schema import Derivation, SymbolSpec
 from .source import SourceText, read_toml
@@ -41,7 +43,7 @@ from .steps import read_steps
 TOP_LEVEL_KEYS: tuple[str, ...] = ("title", "model", "source", "coordinates", "inputs",
                                    "symbols", "assume", "definitions", "rows", "matrices",
                                    "constraints", "reconstructed", "step", "feeds",
-                                   "assumes")
+                                   "assumes", "latex")
 #: Keys of ``[assumes]``: what the document assumes (see docs/derivation-format.md).
 ASSUMES_KEYS: tuple[str, ...] = ("families", "linearised_about", "potential", "text")
 SYMBOL_KEYS: tuple[str, ...] = ("value", "units", "meaning", "input", "free", "latex")
@@ -57,6 +59,9 @@ class _Loader:
         self.names: dict[str, sympy.Symbol] = {}
         self.kinds: dict[str, str] = {}
         self.expansion: dict[sympy.Symbol, sympy.Expr] = {}
+        self.coordinates: dict[str, tuple[str, ...]] = {}     # positions, velocities, ...
+        self.latex_input: dict[str, tuple[str, str]] = {}     # item -> (LaTeX, read as)
+        self._latex: LatexNames | None = None
 
     # -- errors and lines ---------------------------------------------------------------
     def line(self, table: str | None, key: str | None = None,
@@ -103,6 +108,9 @@ class _Loader:
              names: Mapping[str, sympy.Basic] | None = None, expand: bool = True) -> sympy.Expr:
         r"""Parse a document expression; errors name the file, the line and ``item``."""
         names = self.names if names is None else names
+        text = unwrap_latex(text)
+        if isinstance(text, LatexSource):
+            text = self.from_latex(text, item, table, key)
         if isinstance(text, bool) or not isinstance(text, (str, int, float)):
             raise self.fail(item, f"expected an expression, got {text!r}",
                             self.line(table, key))
@@ -117,6 +125,68 @@ class _Loader:
         except ExpressionError as exc:
             raise self.fail(item, exc.reason, self.line(table, key, source)) from exc
         return value
+
+    # -- LaTeX input (docs/derivation-format.md, "LaTeX input") -----------------------
+    def latex_names(self) -> LatexNames:
+        r"""The file's names for reading LaTeX: every declared name, the positions' velocities
+        and accelerations, how the document prints names (``latex`` fields of ``[symbols]``,
+        ``[latex] names``) and ``[latex] abbreviations``."""
+        if self._latex is not None:
+            return self._latex
+        raw = self.table("latex")
+        extra = sorted(set(raw) - set(LATEX_KEYS))
+        if extra:
+            raise self.fail(f"latex.{extra[0]}", "unknown key; valid: " + ", ".join(LATEX_KEYS),
+                            self.line("latex", extra[0]))
+        for key in LATEX_KEYS:
+            if not isinstance(raw.get(key, {}), dict) or not all(
+                    isinstance(v, str) for v in raw.get(key, {}).values()):
+                raise self.fail(f"latex.{key}", "expected { 'LaTeX as printed' = \"SymPy "
+                                "expression\", ... }" if key == "abbreviations" else
+                                "expected { name = 'LaTeX as printed', ... }",
+                                self.line("latex", key))
+        abbreviations, printed = dict(raw.get("abbreviations", {})), {}
+        for printed_text, value in abbreviations.items():
+            self.expr(value, f"latex.abbreviations.{printed_text}", "latex", "abbreviations",
+                      expand=False)
+        for name, entry in self.table("symbols").items():
+            if isinstance(entry, dict) and entry.get("latex") is not None:
+                printed[name] = (f"symbols.{name}.latex", entry["latex"])
+        for name, text in raw.get("names", {}).items():
+            if name not in self.names:
+                raise DerivationNameError(self.path, f"latex.names.{name}", "name", name,
+                                          self.names, self.line("latex", "names"))
+            printed[name] = (f"latex.names.{name}", text)
+        for name, (item, text) in printed.items():
+            if not isinstance(text, str) or not is_printed_name(text):
+                raise self.fail(item, f"{text!r} is not a name as LaTeX prints it (letters, "
+                                "Greek letters, one subscript)",
+                                self.line("symbols", name) if item.startswith("symbols.")
+                                else self.line("latex", "names"))
+        pos, vel, acc = (self.coordinates.get(k, ()) for k in
+                         ("positions", "velocities", "accelerations"))
+        try:
+            self._latex = LatexNames(tuple(self.names), dict(zip(pos, vel)), dict(zip(pos, acc)),
+                                     {n: t for n, (_, t) in printed.items()}, abbreviations)
+        except ExpressionError as exc:
+            raise self.fail(f"latex.abbreviations.{exc.text}", exc.reason,
+                            self.line("latex", "abbreviations")) from exc
+        return self._latex
+
+    def from_latex(self, source: LatexSource, item: str, table: str | None, key: str,
+                   equation: bool = False) -> str:
+        r"""The SymPy-syntax text of a LaTeX value (kept in :attr:`latex_input` under
+        ``item``); errors name the file, the line and ``item``."""
+        line = self.line(table, key, (source.strip().splitlines() or [""])[0][:40] or None)
+        try:
+            text = latex_to_sympy(source, self.latex_names(), equation=equation)
+        except UndeclaredNameError as exc:
+            raise DerivationNameError(self.path, item, exc.kind, exc.name, self.names,
+                                      line) from exc
+        except ExpressionError as exc:
+            raise self.fail(item, exc.reason, line) from exc
+        self.latex_input[item] = (str(source), text)
+        return text
 
     # -- sections -------------------------------------------------------------------------
     def symbols(self) -> dict[str, SymbolSpec]:
@@ -169,7 +239,7 @@ class _Loader:
         texts = {}
         for name, entry in raw.items():
             item, line = f"assume.{name}", self.line("assume", name)
-            if isinstance(entry, dict):
+            if isinstance(entry, dict) and unwrap_latex(entry) is entry:
                 extra = set(entry) - {"value", "units", "meaning"}
                 if extra or "value" not in entry:
                     raise self.fail(item, "expected \"value\" or { value = ..., units = ..., "
@@ -190,7 +260,8 @@ class _Loader:
             self.declare(name, "definition", f"definitions.{name}", self.line("definitions", name))
         parsed = {}
         for name, entry in raw.items():
-            text = entry.get("value") if isinstance(entry, dict) else entry
+            text = (entry.get("value") if isinstance(entry, dict)
+                    and unwrap_latex(entry) is entry else entry)
             parsed[name] = self.expr(text, f"definitions.{name}", "definitions", name,
                                      expand=False)
         symbols = {self.names[name]: name for name in raw}
@@ -239,6 +310,8 @@ def load_derivation(path: str | Path, *, parameters: Collection[str] | None = No
     coord_table = ld.table("coordinates", required=True)
     names = coordinate_names(p, coord_table, model,
                              lambda key: ld.line("coordinates", key))
+    ld.coordinates = {"positions": names.positions, "velocities": names.velocities,
+                      "accelerations": names.accelerations}
     positions = tuple(ld.declare(n, "position", "coordinates.positions",
                                  ld.line("coordinates", "positions")) for n in names.positions)
     velocities = tuple(ld.declare(n, "velocity", "coordinates.velocities",
@@ -249,6 +322,8 @@ def load_derivation(path: str | Path, *, parameters: Collection[str] | None = No
     symbols = ld.symbols()
     assumed_texts = ld.assume_names()
     definitions = ld.definitions()
+    if "latex" in data:
+        ld.latex_names()                          # check [latex] even if no value uses it
     assumptions = {name: ld.expr(text, f"assume.{name}", "assume", name)
                    for name, text in assumed_texts.items()}
     input_symbols = tuple(s.symbol for s in symbols.values() if s.is_input)
@@ -288,11 +363,12 @@ def load_derivation(path: str | Path, *, parameters: Collection[str] | None = No
     ctable = ld.table("constraints")
     if ctable:
         extra = set(ctable) - {"equations"}
-        if extra or not isinstance(ctable.get("equations"), list):
+        equations = unwrap_latex(ctable.get("equations"))
+        if extra or not isinstance(equations, list):
             raise ld.fail("constraints", "expected equations = [\"lhs = rhs\", ...]",
                           ld.line("constraints"))
         constraints = tuple(reader.equation(t, f"constraint {i + 1}", "constraints", "equations")
-                            for i, t in enumerate(ctable["equations"]))
+                            for i, t in enumerate(equations))
 
     reconstructed = ld.table("reconstructed")
     for label, note in reconstructed.items():
@@ -317,7 +393,8 @@ def load_derivation(path: str | Path, *, parameters: Collection[str] | None = No
         namespace=MappingProxyType(dict(ld.names)),
         steps=read_steps(data.get("step"), src.lines, n,
                          lambda text, item: ld.expr(text, item, None, "step"), ld.fail),
-        feeds=tuple(str(f) for f in data.get("feeds", ())), assumes=assumes)
+        feeds=tuple(str(f) for f in data.get("feeds", ())), assumes=assumes,
+        latex_input=MappingProxyType(dict(ld.latex_input)))
 
 
 def _assumes(ld: "_Loader", positions: tuple) -> Mapping[str, Any]:

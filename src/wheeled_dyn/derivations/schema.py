@@ -114,6 +114,10 @@ class Derivation:
     feeds: tuple[str, ...] = ()     # stems of the derivation files these steps lead to
     #: ``[assumes]``: families, linearised_about, potential, text (what the document assumes)
     assumes: Mapping[str, object] = field(default_factory=lambda: MappingProxyType({}))
+    #: values given as LaTeX: item (``A[2,3]``, ``equation 1``, ``definitions.Mbb``) →
+    #: (the LaTeX as written, the SymPy text it was parsed as), for a report to echo
+    latex_input: Mapping[str, tuple[str, str]] = field(
+        default_factory=lambda: MappingProxyType({}))
 
     @property
     def form(self) -> str:
