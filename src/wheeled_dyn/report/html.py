@@ -339,17 +339,10 @@ def _causes(result: DerivationResult, names: Notation) -> str:
 
 
 def _conventions(result: DerivationResult) -> str:
-    conv = result.conventions
     factors = S.row_factor_line(result)
     parts = []
-    if conv is not None:
-        def counts(c):
-            return ", ".join(f"{n} {SHORT[v]}" for v, n in c.counts.items() if n)
-        parts.append(f"declared ({_e(conv.declared.description)}): {_e(counts(conv.declared))}")
-        if conv.best is not None:
-            parts.append(f"best found ({_e(conv.best.description)}): {_e(counts(conv.best))}")
-        if conv.finding:
-            parts.append(_e(conv.finding))
+    if S.conventions_line(result):
+        parts.append(_e(S.conventions_line(result)))
     if factors:
         parts.append(_e(factors))
     if not parts:

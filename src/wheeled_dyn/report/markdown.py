@@ -119,14 +119,8 @@ def derivation_markdown(result: DerivationResult) -> str:
     if not causes:
         lines += ["**Causes:** none, every element agrees.", ""]
     lines += [f"**Assumes:** {S.assumes_line(result, dict(names.assumed))}", ""]
-    conv = result.conventions
-    if conv is not None:
-        lines.append(f"**Conventions:** declared ({conv.declared.description}): "
-                     + ", ".join(f"{n} {v}" for v, n in conv.declared.counts.items() if n)
-                     + ("" if conv.best is None else f"; best found ({conv.best.description}): "
-                        + ", ".join(f"{n} {v}" for v, n in conv.best.counts.items() if n))
-                     + (f"; {conv.finding}" if conv.finding else ""))
-        lines.append("")
+    if S.conventions_line(result):
+        lines += [f"**Conventions:** {S.conventions_line(result)}.", ""]
     factors = S.row_factor_line(result)
     if factors:
         lines += [f"**Rows:** {factors}.", ""]

@@ -180,6 +180,23 @@ def cause_lines(result: DerivationResult) -> list[CauseLine]:
     return root + grouped + upstream
 
 
+def conventions_line(result: DerivationResult) -> str:
+    r"""The conventions sentence: the file's reading kept (nothing explains more), or the
+    better reading found with the verdict counts under both; ``""`` for a file of steps."""
+    conv = result.conventions
+    if conv is None:
+        return ""
+    if conv.best is None:
+        return ("as the file declares them (no other sign of its coordinates or inputs, order "
+                "of its inputs or of its equations explains more)")
+
+    def counts(c) -> str:
+        return ", ".join(f"{n} {v}" for v, n in c.counts.items() if n)
+
+    return (f"{conv.finding}. Under the file's own reading: {counts(conv.declared)}; under "
+            f"{conv.best.description}: {counts(conv.best)}")
+
+
 def row_factor_line(result: DerivationResult) -> str:
     r"""A sentence on the rows the document multiplied by a constant, or ``""``."""
     rows = [(i + 1, c) for i, c in enumerate(result.row_factors) if c]
