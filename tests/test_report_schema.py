@@ -79,3 +79,18 @@ def test_benchmark_bodies_have_closed_form_truths():
     assert sp.simplify(sp.sympify(records["A[1,2]"].residual,
                                   locals={"ZZ_pinion": sp.Symbol("ZZ_pinion", real=True)})
                        - expected) == 0
+
+
+def test_latex_input_is_echoed():
+    r"""A twin given in LaTeX: each element read from LaTeX is in the JSON and the HTML with
+    the text it was parsed as."""
+    twin = ROOT / "tests" / "data" / "latex_twins" / "eq25_lagrange.tex.toml"
+    engine = ComparisonEngine(samples=100, param_sets=2, seed=SEED)
+    result = engine.compare(load_derivation(twin))
+    texts = render([result], "latex")
+    data = json.loads(texts["report.json"])
+    echoed = data["derivations"][0]["latex_input"]
+    assert echoed and all(set(v) == {"latex", "read_as"} for v in echoed.values())
+    assert "parsed as" in texts["report.html"] and "parsed as" in texts["report.md"]
+    schema = json.loads((ROOT / "docs" / "report-schema.json").read_text())
+    jsonschema.validate(data, schema)

@@ -297,7 +297,8 @@ class ComparisonEngine:
             row_factors=tuple(None if c is None else nice_number(c) for c in row_factor),
             energy=energy, asymmetric=asym, constraints=constraints,
             reconstructed=dict(d.reconstructed), samples=self.samples,
-            parameter_sets=self.param_sets, notes=tuple(notes), assumes=assumed.describe()), ev
+            parameter_sets=self.param_sets, notes=tuple(notes), assumes=assumed.describe(),
+            latex_input=dict(d.latex_input)), ev
 
     # -- refinements ---------------------------------------------------------------------
     @staticmethod

@@ -179,6 +179,8 @@ class DerivationResult:
     causes: tuple[Cause, ...] = field(default=())
     conventions: ConventionSummary | None = None
     order: tuple = field(default=())
+    #: values the file gives as LaTeX: item → (the LaTeX as written, the text it was read as)
+    latex_input: Mapping[str, tuple[str, str]] = field(default_factory=dict)
 
     def counts(self) -> dict[str, int]:
         out = {v: 0 for v in VERDICTS}
@@ -207,4 +209,6 @@ class DerivationResult:
                 "asymmetric": list(self.asymmetric), "constraints": list(self.constraints),
                 "reconstructed": dict(self.reconstructed), "samples": self.samples,
                 "parameter_sets": self.parameter_sets, "notes": list(self.notes),
+                "latex_input": {k: {"latex": a, "read_as": b}
+                                for k, (a, b) in self.latex_input.items()},
                 "records": [r.as_dict() for r in self.records]}

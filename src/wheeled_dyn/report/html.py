@@ -359,6 +359,13 @@ def derivation_html(result: DerivationResult, names: Notation | None = None) -> 
     if result.reconstructed:
         recon = ('<p class="note"><b>Reconstructed from garbled text:</b> ' + "; ".join(
             _e(f"{k}: {v}") for k, v in result.reconstructed.items()) + "</p>")
+    if result.latex_input:
+        recon += ('<details class="latex-input"><summary>Read from LaTeX ('
+                  f"{len(result.latex_input)})</summary><table>"
+                  + "".join(f"<tr><td>{_e(k)}</td><td><code>{_e(a)}</code></td>"
+                            f"<td>parsed as <code>{_e(b)}</code></td></tr>"
+                            for k, (a, b) in result.latex_input.items())
+                  + "</table></details>")
     checks = "".join(f"<li>{_e(line)}</li>" for line in check_lines(result))
     return (f'<section id="{S.anchor(result)}"><h2>{_e(S.equations(result))} — {_e(result.title)}</h2>'
             f"{_causes(result, names)}"

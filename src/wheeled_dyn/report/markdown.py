@@ -151,6 +151,9 @@ def derivation_markdown(result: DerivationResult) -> str:
     if result.reconstructed:
         lines += ["Reconstructed from garbled text: " + "; ".join(
             f"{k}: {v}" for k, v in result.reconstructed.items()), ""]
+    if result.latex_input:
+        lines += ["Read from LaTeX:", ""] + [
+            f"- {k}: `{a}` parsed as `{b}`" for k, (a, b) in result.latex_input.items()] + [""]
     return "\n".join(lines) + "\n"
 
 
