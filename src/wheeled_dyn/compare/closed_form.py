@@ -93,12 +93,32 @@ def document_in_model(d: Derivation) -> Callable[[sp.Expr | None], tuple[str, st
     return convert
 
 
+def family_substitution(families: tuple[str, ...]) -> dict[sp.Symbol, sp.Expr]:
+    r"""The WIP's special parameter families (:data:`~.samples.WIP_SPECIAL_CASES`) as a
+    substitution of its physical symbols, so a closed-form truth reads under what a document
+    assumes (``com_on_axis``: :math:`d_x = d_z = 0` ...)."""
+    p = _physical_symbols()
+    table = {
+        "no_products": {p["Ixy"]: 0, p["Ixz"]: 0, p["Iyz"]: 0},
+        "com_on_axis": {p["d_x"]: 0, p["d_z"]: 0},
+        "disc_wheels": {p["Iw3"]: p["m_C"] * p["R"] ** 2 / 2, p["Iw2"]: p["m_C"] * p["R"] ** 2 / 4},
+        "I1_eq_I2": {p["I2"]: p["I1"]},
+        "no_armature": {p["I_a"]: 0},
+    }
+    out: dict[sp.Symbol, sp.Expr] = {}
+    for name in families:
+        out.update({k: sp.sympify(v) for k, v in table.get(name, {}).items()})
+    return out
+
+
 def annotate(d: Derivation, records: list[dict], cs, exprs: dict[int, sp.Expr | None],
-             row_factors: tuple[float | None, ...] = ()) -> None:
+             row_factors: tuple[float | None, ...] = (), families: tuple[str, ...] = ()
+             ) -> None:
     r"""Fill ``truth`` (every element) and ``residual`` (truth − document, expanded, for the
     elements that do not agree; document rows divided by their detected ``row_factors``) where
     the symbolic engine provides closed forms; without them the records keep their numeric
-    verdicts."""
+    verdicts. The truth and the document are both read under the parameter ``families`` the
+    document assumes (:func:`family_substitution`)."""
     try:
         from ..symbolic import true_expressions
     except ImportError:
@@ -108,6 +128,14 @@ def annotate(d: Derivation, records: list[dict], cs, exprs: dict[int, sp.Expr | 
         return
     physical = model_entry(d.model).parameters is WipParameters
     to_model = model_expression(d, standard=not physical)
+    assumed = family_substitution(families) if physical else {}
+    if assumed:
+        truth = {k: sp.sympify(v).xreplace(assumed) for k, v in truth.items()}
+        plain = to_model
+
+        def to_model(e: sp.Expr | None) -> sp.Expr | None:
+            out = plain(e)
+            return None if out is None else out.xreplace(assumed)
     dots = {v: rf"\dot{{{sp.latex(q)}}}" for q, v in zip(d.positions, d.velocities)}
     for r in records:
         expr = truth.get(r["element"])

@@ -283,7 +283,7 @@ class ComparisonEngine:
         self._special(d, funcs, records, row_factor, assumed)
         self._factorization(records, n)
         closed_form.annotate(d, records, cs, {id(r): e for r, e in zip(records, exprs)},
-                             tuple(row_factor))
+                             tuple(row_factor), tuple(c.name for c in assumed.families))
         energy = energy_check(funcs, doc, row_factor, flat_q, flat_nu, values, d)
         asym = asymmetry(doc, scales, n)
         constraints = constraint_rows(doc, truth, scales)
