@@ -103,23 +103,30 @@ def run_comparison(files: Sequence[Path], samples: int, param_sets: int, seed: i
                    ) -> list[DerivationResult]:
     r"""Compare each derivation file; all files are parsed (and checked against ``model``)
     before any comparison starts."""
+    from ..constraints.linear_document import load_linear_document
     from ..derivations import load_derivations
     from ..models.registry import model_entry, model_key
     from .engine import ComparisonEngine
-    derivations = load_derivations(files)
-    for d in derivations:
-        model_entry(d.model)
-        if model is not None and model_key(d.model) != model_key(model):
-            raise DerivationError(d.path, "model", f"the file describes model {d.model!r}, "
-                                  f"not {model!r}")
-        check_model_names(d)
+    from .linear import compare_linear, is_linear_document
+    linear = [Path(p) for p in files if is_linear_document(p)]
+    derivations = load_derivations([p for p in files if Path(p) not in linear])
+    for item in [*derivations, *(load_linear_document(p) for p in linear)]:
+        model_entry(item.model)
+        if model is not None and model_key(item.model) != model_key(model):
+            raise DerivationError(item.path, "model", f"the file describes model "
+                                  f"{item.model!r}, not {model!r}")
+        if item.path not in linear:
+            check_model_names(item)
     engine = engine or ComparisonEngine(samples=samples, param_sets=param_sets, seed=seed)
-    results = []
-    with progress(len(derivations), "comparing") as bar:
+    by_path = {}
+    with progress(len(files), "comparing") as bar:
         for d in derivations:
-            results.append(engine.compare(d))
+            by_path[d.path] = engine.compare(d)
             bar.update()
-    return results
+        for p in linear:                        # published linearised equations
+            by_path[p] = compare_linear(p)
+            bar.update()
+    return [by_path[d.path] for d in derivations] + [by_path[p] for p in linear]
 
 
 #: Relative cost of a derivation with n coordinates (measured: n**3), and of reproducing a
@@ -318,6 +325,8 @@ def _plots(results: Sequence[DerivationResult]) -> tuple[list[str], list[str], d
     md, html, files = ["## Simulations: truth and document from the same start", ""], [
         "<section><h2>Simulations: truth and document from the same start</h2>"], {}
     for r in results:
+        if r.form == "linearised":              # published linear equations: nothing to run
+            continue
         d = load_derivation(r.path)
         try:
             factors = tuple(None if c is None else float(eval_fraction(c)) for c in r.row_factors)

@@ -36,6 +36,10 @@ class LinearDocument:
     form: SpeedForm
     eigenvalues: dict[float, np.ndarray]
     claims: dict[str, float]
+    #: ``[reduction]``: (independent velocities, dependent coordinates, independent
+    #: velocities at unit forward speed) — how the model's rolling is eliminated for the truth
+    reduction: tuple[tuple[str, ...], tuple[str, ...], dict[str, float]] = ((), (), {})
+    source: dict[str, str] | None = None
 
 
 def _matrix(path: Path, table: dict, key: str, k: int) -> np.ndarray:
@@ -79,4 +83,31 @@ def load_linear_document(path: str | Path = MEIJAARD_2007) -> LinearDocument:
                                  f"{2 * k} [real, imaginary] pairs")
         eig[float(row["speed"])] = values[:, 0] + 1j * values[:, 1]
     return LinearDocument(path, str(data.get("title", "")), str(data["model"]), positions, form,
-                          eig, {key: float(val) for key, val in claims.items()})
+                          eig, {key: float(val) for key, val in claims.items()},
+                          _reduction(path, data.get("reduction", {}), positions),
+                          {k: str(v) for k, v in data.get("source", {}).items()})
+
+
+def _reduction(path: Path, table: dict, positions: tuple[str, ...]
+               ) -> tuple[tuple[str, ...], tuple[str, ...], dict[str, float]]:
+    r"""``[reduction] independent = [...], dependent = [...], unit_speed = { name = rate }``;
+    the positions must be among the independent velocities' coordinates."""
+    if not table:
+        return (), (), {}
+    independent = tuple(table.get("independent", ()))
+    dependent = tuple(table.get("dependent", ()))
+    unit = table.get("unit_speed", {})
+    if not independent or not all(isinstance(x, str) for x in (*independent, *dependent)):
+        raise InputFileError(path, "[reduction].independent: expected joint names")
+    missing = [p for p in positions if p not in independent]
+    if missing:
+        raise InputFileError(path, f"[reduction].independent lacks the positions {missing}")
+    try:
+        rates = {str(k): float(v) for k, v in dict(unit).items()}
+    except (TypeError, ValueError):
+        raise InputFileError(path, "[reduction].unit_speed: expected name = number") from None
+    unknown = [k for k in rates if k not in independent]
+    if unknown or not all(np.isfinite(list(rates.values()))):
+        raise InputFileError(path, f"[reduction].unit_speed: {unknown or 'values'} not "
+                             "finite rates of independent velocities")
+    return independent, dependent, rates

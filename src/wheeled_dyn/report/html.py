@@ -350,6 +350,13 @@ def _conventions(result: DerivationResult) -> str:
     return '<p class="conv"><b>Conventions:</b> ' + "; ".join(parts) + "</p>"
 
 
+def _grid_text(result: DerivationResult) -> str:
+    r"""What the numbers were decided on: the random grid, or the model's linearisation."""
+    if result.form == "linearised":
+        return "the model's own linearisation (each number to its printed digits)"
+    return f"{result.samples} states × {result.parameter_sets} random parameter sets"
+
+
 def derivation_html(result: DerivationResult, names: Notation | None = None) -> str:
     r"""One derivation's section."""
     names = names or derivation_notation(result.path)
@@ -375,7 +382,7 @@ def derivation_html(result: DerivationResult, names: Notation | None = None) -> 
             f"{_e(src.get('document', ''))} {_e(src.get('section', ''))}; model "
             f"<code>{_e(result.model)}</code>, coordinates <code>{_e(result.coordinates)}</code> "
             f"(velocities {_mathml(', '.join(names.latex(v) for v in result.velocities))}); "
-            f"{result.samples} states × {result.parameter_sets} random parameter sets. "
+            f"{_grid_text(result)} "
             f"{_counts(result)}</p>{recon}"
             f"<h3>Matrices: document | truth</h3>"
             f'<p class="note">Marked cells: ≠ differs, ? agrees only for special values, '
@@ -396,12 +403,11 @@ def report_html(results: Sequence[DerivationResult], title: str, extra_html: Seq
     titles = _extra_titles(extra_html)
     extras = "".join(f'<div class="wide" id="extra-{k + 1}">{text}</div>'
                      for k, text in enumerate(extra_html))
-    states = {(r.samples, r.parameter_sets) for r in results}
-    grid = "; ".join(f"{a} states × {b} random parameter sets" for a, b in sorted(states))
+    grid = "; ".join(sorted({_grid_text(r) for r in results}))
     body = "".join(derivation_html(r) for r in results)
     return ("<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>"
             "<meta name='viewport' content='width=device-width, initial-scale=1'>"
             f"<title>{_e(title)}</title><style>{CSS}</style></head><body>"
             f"<h1>{_e(title)}</h1><p class='lede'>{len(results)} derivations, in the documents' "
-            f"order; {_e(grid)} each. Verdicts: {legend}</p>"
+            f"order; each on {_e(grid)}. Verdicts: {legend}</p>"
             f"{summary_table(results)}{contents(results, titles)}{body}{extras}</body></html>")
