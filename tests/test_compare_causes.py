@@ -335,3 +335,25 @@ def test_swapped_input_columns(engine, tmp_path):
     assert [c.kind for c in result.causes] == ["swapped_inputs"], result.causes
     assert "u_l ↔ u_r" in result.conventions.best.description
     assert all(r.verdict == "agrees" for r in result.records)
+
+
+def test_swap_in_c_is_one_cause(engine, tmp_path):
+    r"""φ̇ written for ψ̇ in C[1,2]: the C element and the two h products it moves are one
+    swap cause, not three."""
+    result = engine.compare(load_derivation(_file(
+        tmp_path, {("C", 0, 1): "dphi*(MY1*sin(phi) - MX1*cos(phi))"})))
+    swaps = [c for c in result.causes if c.kind == "swap"]
+    assert len(swaps) == 1, result.causes
+    assert set(swaps[0].elements) == {"C[1,2]", "h[1]:dpsi*dpsi", "h[1]:dpsi*dphi"}
+    _explained_once(result)
+
+
+def test_seed001_kim_halved_term_is_a_factor_under_a_condition(seed_engine):
+    r"""Kim's ψ̇φ̇ term of (2) is exactly half the truth when I1 = I2; the φ̇²-for-ψ̇² swap
+    of (3) is one cause."""
+    result = _seed(seed_engine, "seed001/kim_eq1_3.toml")
+    record = next(r for r in result.records if r.element == "h[2]:dpsi*dphi")
+    assert record.diagnoses[0].startswith("factor: the document is 1/2 × the truth (if ")
+    assert "I1 = I2" in record.diagnoses[0]
+    (swap,) = [c for c in result.causes if c.kind == "swap"]
+    assert set(swap.elements) == {"h[3]:dpsi*dpsi", "h[3]:dphi*dphi"}

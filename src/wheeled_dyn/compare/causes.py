@@ -269,6 +269,17 @@ TERM_KINDS = (
 )
 
 
+def _one_swap(r, detail: str) -> str:
+    r"""The two halves of a swapped velocity product in h — ``h[3]:dpsi*dpsi`` "written as
+    dphi*dphi in the document (...)" and ``h[3]:dphi*dphi`` "the document's dphi*dphi term is
+    the true dpsi*dpsi term (...)" — as one sentence, so they make one cause."""
+    p = _product(r.element)
+    if p is None or not detail.startswith("written as ") or " in the document" not in detail:
+        return detail
+    written, rest = detail[len("written as "):].split(" in the document", 1)
+    return f"the document's {written} term is the true {p[1]} term{rest}"
+
+
 def term_causes(records: Sequence, explained: set[str],
                 velocities: Sequence[sp.Symbol] = ()) -> list[Cause]:
     r"""One cause per single-term diagnosis (``dimension``, ``sign``, ``power``, ``factor``,
@@ -288,6 +299,7 @@ def term_causes(records: Sequence, explained: set[str],
             hit = next((x for x in r.diagnoses if x.startswith(prefix)), None)
             if hit is not None:
                 detail = hit.split(":", 1)[1].strip() if ":" in hit else sentence
+                detail = _one_swap(r, detail) if kind == "swap" else detail
                 key = (kind, sentence if kind == "missing_physics" else detail)
                 groups.setdefault(key, []).append(r.element)
                 break

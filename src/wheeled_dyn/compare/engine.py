@@ -348,6 +348,10 @@ class ComparisonEngine:
             for key, D, T, index, _ in element_values(funcs, doc, truth, B_true, d.n):
                 if agrees(D, T, scales[index[0]]):
                     ok.add((key, index))
+                else:                         # a constant factor that holds only here
+                    found = value_diagnoses(D, T, scales[index[0]])
+                    if found and found[0].startswith("factor"):
+                        ok.add(("factor", key, index, found[0]))
                 if key == "h":
                     h_values[index] = (D, T)
             # a document h term equal to another true h term of its row: a swapped product
@@ -392,6 +396,13 @@ class ComparisonEngine:
                     todo.remove(r)
         for r in todo:
             if (r["key"], r["index"]) not in everything:
+                # no family makes it agree: a constant factor under the weakest that gives one
+                for case in cases:
+                    hit = next((x[3] for x in agreeing((case,))
+                                if x[0] == "factor" and x[1:3] == (r["key"], r["index"])), None)
+                    if hit is not None:
+                        r["diagnoses"].insert(0, f"{hit} (if {case.description})")
+                        break
                 continue
             needed = minimal((r["key"], r["index"]))
             r["verdict"] = "agrees_if"
