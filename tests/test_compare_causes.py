@@ -357,3 +357,12 @@ def test_seed001_kim_halved_term_is_a_factor_under_a_condition(seed_engine):
     assert "I1 = I2" in record.diagnoses[0]
     (swap,) = [c for c in result.causes if c.kind == "swap"]
     assert set(swap.elements) == {"h[3]:dpsi*dpsi", "h[3]:dphi*dphi"}
+
+
+def test_swapped_input_columns_with_a_builtin_set(engine, tmp_path):
+    r"""The same swap in the true file itself (built-in 'seed001' coordinates): only the
+    inputs are read otherwise, and the swap is found."""
+    result = engine.compare(load_derivation(_file(
+        tmp_path, {("B", 1, 0): "-L/R", ("B", 1, 1): "L/R"})))
+    assert [c.kind for c in result.causes] == ["swapped_inputs"], result.causes
+    assert all(r.verdict == "agrees" for r in result.records)

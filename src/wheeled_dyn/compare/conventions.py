@@ -54,18 +54,20 @@ Reading = tuple[tuple[int, ...], tuple[int, ...], tuple[int, ...]]
 
 def readings(d: Derivation) -> list[Reading]:
     r"""Every reading :math:`(s, t, \pi)` of ``d``'s positions and inputs but the declared one
-    (none when ``d`` uses a built-in coordinate set, was flipped already, or has more than
-    :data:`MAX_SIGNS` signs)."""
+    (with a built-in coordinate set, of its inputs only; none when ``d`` was flipped already
+    or has more than :data:`MAX_SIGNS` signs)."""
     n, m = d.n, len(d.input_symbols) if d.inputs else 0
-    if d.coordinates.use or FLIPPED_KEY in d.coordinates.raw or n + m > MAX_SIGNS:
+    flips = 0 if d.coordinates.use else n        # a built-in set's positions are the model's
+    if FLIPPED_KEY in d.coordinates.raw or flips + m > MAX_SIGNS or flips + m == 0:
         return []
     orders = list(itertools.permutations(range(m))) if m <= MAX_PERMUTED else [tuple(range(m))]
     identity = tuple(range(m))
     out = []
-    for signs in itertools.product((1, -1), repeat=n + m):
+    for signs in itertools.product((1, -1), repeat=flips + m):
+        s = tuple(signs[:flips]) if flips else (1,) * n
         for order in orders:
             if any(x < 0 for x in signs) or order != identity:
-                out.append((tuple(signs[:n]), tuple(signs[n:]), tuple(order)))
+                out.append((s, tuple(signs[flips:]), tuple(order)))
     return out
 
 
@@ -123,9 +125,9 @@ def flipped(d: Derivation, s: Sequence[int], t: Sequence[int],
     spec = d.coordinates
     pos = {p: sign * p for p, sign in zip(d.positions, s) if sign < 0}
     configuration = {k: sp.sympify(v).xreplace(pos) for k, v in spec.configuration.items()}
-    velocity_map = {v: (-sp.sympify(e) if s[i] < 0 else e)
-                    for i, v in enumerate(spec.velocities)
-                    for e in [spec.velocity_map[v]] if v in spec.velocity_map}
+    sign = dict(zip(spec.velocities, s))
+    velocity_map = {v: (-sp.sympify(e) if sign.get(v, 1) < 0 else e)
+                    for v, e in spec.velocity_map.items()}
     raw = dict(spec.raw)
     raw[FLIPPED_KEY] = describe(d, s, t, order)
     new_spec = replace(spec, configuration=configuration, velocity_map=velocity_map, raw=raw)
