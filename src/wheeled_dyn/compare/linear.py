@@ -40,11 +40,13 @@ STEP = "linearised equations"
 
 def is_linear_document(path: str | Path) -> bool:
     r"""A TOML file with a ``[form]`` table and no ``[matrices]`` (a linearised-equation file,
-    not a derivation file). False for anything unreadable (the derivation parser then reports
-    it)."""
-    try:
-        data = tomllib.loads(Path(path).read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+    not a derivation file). False for anything unreadable, a FIFO or a device included (the
+    derivation parser then reports it)."""
+    from ..derivations.source import read_small_text
+    from ..errors import InputFileError
+    try:                                  # a regular file of bounded size only (not a FIFO)
+        data = tomllib.loads(read_small_text(Path(path)))
+    except (InputFileError, OSError, tomllib.TOMLDecodeError):
         return False
     return isinstance(data.get("form"), dict) and "matrices" not in data
 
