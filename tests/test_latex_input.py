@@ -120,6 +120,202 @@ def test_bad_matrices(latex, reason):
         split_latex_matrix(latex)
 
 
+# -- constructs of printed documents (the seed 001 twins) -------------------------------------
+@pytest.mark.parametrize("latex, expected", [
+    (r"sin^{2}\phi", "sin(phi)**2"), (r"cos^2\theta", "cos(theta)**2"), (r"sin\phi", "sin(phi)"),
+    (r"tan\psi", "tan(psi)"), (r"m_{s}d^{2}sin^{2}\phi", "m_s*d**2*sin(phi)**2"),
+    (r"m_s d cos \phi\ddot{x}", "m_s*d*cos(phi)*ddx"), (r"sin\phi cos\phi", "sin(phi)*cos(phi)"),
+    (r"sin(2\phi) + cos 2\psi", "sin(2*phi) + cos(2*psi)"), (r"sinh\phi", "sinh(phi)"),
+    (r"exp\frac{a}{b}", "exp(a/b)"), (r"a sin\dot{\phi}", "a*sin(dphi)"),
+])
+def test_functions_in_plain_letters(latex, expected):
+    same(latex, expected)
+
+
+def test_function_in_plain_letters_power_binds_like_a_macro():
+    assert latex_to_sympy(r"m_{s}d^{2}sin^{2}\phi", NAMES) \
+        == latex_to_sympy(r"m_{s}d^{2}\sin^{2}\phi", NAMES) == "m_s*d**2*sin(phi)**2"
+
+
+def test_function_in_plain_letters_that_reads_as_names_is_ambiguous():
+    names = LatexNames(("s", "i", "n", "phi", "a"))
+    with pytest.raises(LatexError) as caught:
+        latex_to_sympy(r"sin\phi", names)
+    assert set(caught.value.readings) == {"s*i*n*phi", "sin(phi)"}
+    assert "or as sin(phi)" in caught.value.reason
+    with pytest.raises(LatexError) as caught:
+        latex_to_sympy(r"a sin^{2}\phi", names)
+    assert set(caught.value.readings) == {"a*s*i*n**2*phi", "a*sin(phi)**2"}
+    assert "ambiguous: 'asin^2 " in caught.value.reason           # as printed, with the power
+    # with no argument after it, the letters are only names
+    assert latex_to_sympy("sin + a", names) == "s*i*n + a"
+    # the macro is never a name
+    assert latex_to_sympy(r"\sin\phi", names) == "sin(phi)"
+
+
+def test_function_in_plain_letters_not_read_where_it_cannot_be():
+    # a subscript spells no function; a function needs its argument
+    with pytest.raises(UndeclaredNameError):
+        latex_to_sympy(r"sin_1\phi", NAMES)
+    with pytest.raises(UndeclaredNameError) as caught:
+        latex_to_sympy(r"a sin + b", NAMES)
+    assert caught.value.name == "sin"
+
+
+def test_abbreviation_spelling_a_function_is_read_instead():
+    names = LatexNames(("phi", "a"), abbreviations={r"sin\phi": "sin(phi)"})
+    assert latex_to_sympy(r"a sin\phi", names) == "a*(sin(phi))"
+    assert latex_to_sympy(r"a sin^{2}\phi", names) == "a*sin(phi)**2"
+    assert latex_to_sympy(r"sin\phi cos\phi", names) == "(sin(phi))*cos(phi)"
+
+
+BB = LatexNames(("Mbb", "Sbb1", "Sbb2", "psi", "a"),
+                printed={"Mbb": r"\mathbb{M}", "Sbb1": r"\mathbb{S}_1", "Sbb2": r"\mathbb{S}_{2}"})
+
+
+@pytest.mark.parametrize("latex, expected", [
+    (r"\mathbb{M}\cos^2\psi", "Mbb*cos(psi)**2"), (r"\frac{1}{2}\mathbb{M}\sin2\psi",
+                                                   "Mbb*sin(2*psi)/2"),
+    (r"\mathbb{S}_1 - \mathbb{S}_{2}", "Sbb1 - Sbb2"), (r"-\mathbb{S}_{1}a", "-Sbb1*a"),
+])
+def test_blackboard_bold_names(latex, expected):
+    assert sympy.simplify(parse_latex_expression(latex, BB, {n: real_symbol(n) for n in BB.names})
+                          - sympy.sympify(expected, locals={n: real_symbol(n)
+                                                            for n in BB.names})) == 0
+
+
+RATES = LatexNames(("x0", "y0", "theta_l", "dx0", "dy0", "dtheta_l", "ddx0", "ddtheta_l", "a"),
+                   {"x0": "dx0", "y0": "dy0", "theta_l": "dtheta_l"},
+                   {"x0": "ddx0", "theta_l": "ddtheta_l"})
+
+
+@pytest.mark.parametrize("latex, expected", [
+    (r"\dot{x}_0", "dx0"), (r"\dot{y}_0", "dy0"), (r"\dot{\theta}_l", "dtheta_l"),
+    (r"\ddot{x}_0", "ddx0"), (r"\ddot{\theta}_{l}", "ddtheta_l"), (r"\dot x_0", "dx0"),
+    (r"\dot{x}_0^2", "dx0**2"), (r"\dot{x_0}", "dx0"),
+    (r"\dot{x}_0 \sin\theta_l - a\dot{y}_0", "dx0*sin(theta_l) - a*dy0"),
+])
+def test_subscript_after_a_dot(latex, expected):
+    assert latex_to_sympy(latex, RATES) == expected
+
+
+def test_subscript_after_a_dot_errors():
+    with pytest.raises(UndeclaredNameError) as caught:
+        latex_to_sympy(r"\dot{x}_1", RATES)
+    assert caught.value.name == r"\dot{x}_1" and caught.value.kind == "velocity"
+    with pytest.raises(UndeclaredNameError) as caught:
+        latex_to_sympy(r"\ddot{y}_0", RATES)
+    assert caught.value.kind == "acceleration"
+    with pytest.raises(LatexError, match="subscript _1 after"):
+        latex_to_sympy(r"\dot{x_0}_1", RATES)
+
+
+@pytest.mark.parametrize("latex, expected", [
+    (r"\begin{bmatrix} 0 & 0 & -m g \sin\phi \end{bmatrix}^T",
+     [["0"], ["0"], [r"-m g \sin\phi"]]),
+    (r"\mathbf{Q} = \begin{bmatrix} a & b \end{bmatrix}^{T}", [["a"], ["b"]]),
+    (r"\begin{bmatrix} a & b \end{bmatrix}^\top", [["a"], ["b"]]),
+    (r"\begin{bmatrix} a & b \end{bmatrix}^{\top}", [["a"], ["b"]]),
+    (r"\begin{bmatrix} a & b \end{bmatrix}^{\mathsf{T}}", [["a"], ["b"]]),
+    (r"\begin{pmatrix} a & b \\ c & d \end{pmatrix}^T", [["a", "c"], ["b", "d"]]),
+    (r"\begin{bmatrix} a \\ b \end{bmatrix}^T", [["a", "b"]]),
+])
+def test_transposed_matrix(latex, expected):
+    assert split_latex_matrix(latex) == expected
+
+
+@pytest.mark.parametrize("latex, reason", [
+    (r"\begin{bmatrix} a & b \\ c \end{bmatrix}^T", "rows of one length"),
+    (r"\begin{bmatrix} a & b \end{bmatrix}^2", "expected one"),
+    (r"\begin{bmatrix} a & b \end{bmatrix}^T + c", "expected one"),
+    (r"\begin{bmatrix} a & b \end{bmatrix}^{T", "cannot read the LaTeX"),
+])
+def test_bad_transposes(latex, reason):
+    with pytest.raises(LatexError, match=reason):
+        split_latex_matrix(latex)
+
+
+@pytest.mark.parametrize("latex, expected", [
+    (r"m_s\ddot{x} = a \tag{10}", "m_s*ddx = a"), (r"m_s\ddot{x} = a \tag*{(10)}", "m_s*ddx = a"),
+    (r"m_s\ddot{x} = a \quad (9)", "m_s*ddx = a"), (r"m_s\ddot{x} = a\qquad(9)", "m_s*ddx = a"),
+    (r"m_s\ddot{x} = a \quad\quad (4.2a)", "m_s*ddx = a"),
+    (r"$m_s\ddot{x} = a \quad (9)$", "m_s*ddx = a"),
+    # not after the last term: spacing and a factor
+    (r"m_s\ddot{x} \quad (2) = a", "m_s*ddx*(2) = a"),
+    (r"m_s\ddot{x} = a (9)", "m_s*ddx = a*(9)"), (r"m_s\ddot{x} = a \, (9)", "m_s*ddx = a*(9)"),
+])
+def test_equation_numbers(latex, expected):
+    assert latex_to_sympy(latex, NAMES, equation=True) == expected
+
+
+def test_equation_numbers_outside_equations():
+    assert latex_to_sympy(r"a \tag{3}", NAMES) == "a"
+    assert latex_to_sympy(r"a \quad (2)", NAMES) == "a*(2)"      # an expression: a factor
+    with pytest.raises(LatexError, match="empty expression"):
+        latex_to_sympy(r"a = \quad (2)", NAMES, equation=True)
+    assert split_latex_matrix(r"\begin{bmatrix} a & b \end{bmatrix}^T \quad (35)") \
+        == split_latex_matrix(r"\begin{bmatrix} a & b \end{bmatrix}^T \tag{35}") == [["a"], ["b"]]
+
+
+def test_loader_reads_the_printed_constructs(tmp_path):
+    d = load(tmp_path, r"""I = { value = "I3", units = "kg*m**2" }
+
+[latex]
+names = { I = '\mathbb{I}' }
+
+[definitions]
+Ibb = { latex = 'd^2 sin^2 \phi + \mathbb{I}' }
+
+[matrices]
+A = "[[1, 0, 0], [0, 1, 0], [0, 0, 1]]"
+C = "[[0, 0, 0], [0, 0, 0], [0, 0, 0]]"
+Q = { latex = '\mathbf{Q} = \begin{bmatrix} 0 & 0 & -m_s d cos\phi \end{bmatrix}^T \quad (35)' }
+""")
+    phi, dd, m_s = (d.symbol(n) for n in ("phi", "d", "m_s"))
+    assert d.Q.shape == (3, 1) and d.Q[2] == -m_s * dd * sympy.cos(phi)
+    assert d.latex_input["definitions.Ibb"][1] == "d**2*sin(phi)**2 + I"
+    with pytest.raises(DerivationError, match="shape") as caught:
+        load(tmp_path, r"""
+[matrices]
+A = "[[1, 0, 0], [0, 1, 0], [0, 0, 1]]"
+C = "[[0, 0, 0], [0, 0, 0], [0, 0, 0]]"
+Q = { latex = '\begin{bmatrix} 0 & 0 \end{bmatrix}^T' }
+""")
+    assert caught.value.item == "Q"
+
+
+def test_loader_plain_letter_function_ambiguity_names_the_item(tmp_path):
+    with pytest.raises(DerivationError) as caught:
+        load(tmp_path, r"""s = "1"
+i = "1"
+n = "1"
+
+[definitions]
+k = { latex = 'm_s sin\phi' }
+
+[matrices]
+equations = ['k*ddx = 0', 'ddpsi = 0', 'ddphi = 0']
+""")
+    err = caught.value
+    assert err.item == "definitions.k" and err.path.name == "d.toml"
+    assert "reads as m_s*s*i*n*phi or as m_s*sin(phi)" in str(err)
+
+
+def test_loader_subscript_after_a_dot(tmp_path):
+    head = HEAD.replace('use = "seed001"', 'positions = ["x_0", "theta_l", "phi"]\n'
+                        'configuration = { x = "x_0", theta_l = "theta_l", phi = "phi" }')
+    d = load(tmp_path, r"""
+[constraints]
+equations = { latex = ['\dot{x}_0 - d\dot{\theta}_l = 0'] }
+
+[matrices]
+equations = { latex = ['m_s\ddot{x}_0 = 0', '\ddot{\theta}_{l} = 0', '\ddot{\phi} = 0 \tag{3}'] }
+""", head)
+    assert d.latex_input["constraint 1"][1] == "dx_0 - d*dtheta_l = 0"
+    assert d.latex_input["equation 1"][1] == "m_s*ddx_0 = 0"
+    assert d.latex_input["equation 3"][1] == "ddphi = 0"
+
+
 # -- errors ----------------------------------------------------------------------------------
 @pytest.mark.parametrize("latex, reason", [
     (r"\frac{a}{b", "cannot read the LaTeX"), (r"a}", "cannot read the LaTeX"),
@@ -127,7 +323,7 @@ def test_bad_matrices(latex, reason):
     (r"a = b", "only in an equation"), (r"\sin", "without an argument"),
     (r"a^", "without an argument"), (r"(a + b", "missing"), (r"a^2^3", "double superscript"),
     (r"\begin{bmatrix} a \end{bmatrix}", "where an expression is expected"),
-    ("a" * 30000, "longer than"),
+    ("a" * 30000, "longer than"), (r"x_\mathbf\mathbf c", "not a name"),
 ])
 def test_unreadable_latex_is_one_error(latex, reason):
     with pytest.raises(LatexError, match=reason):
@@ -286,6 +482,9 @@ def test_loader_checks_the_latex_table(tmp_path):
     with pytest.raises(DerivationError, match="not a name") as caught:
         load(tmp_path, "[latex]\nnames = { phi = '\\frac{a}{b}' }\n" + eqs)
     assert caught.value.item == "latex.names.phi"
+    with pytest.raises(DerivationError, match="an abbreviation is") as caught:
+        load(tmp_path, "[latex]\nabbreviations = { '\\dot{x}' = \"dx\" }\n" + eqs)
+    assert caught.value.item.startswith("latex.abbreviations")
 
 
 def test_loader_keeps_the_expression_limits(tmp_path):
@@ -383,7 +582,8 @@ def test_random_latex_raises_only_expression_errors():
               r"\left(", r"\right)", r"\sin", "2", "0.5", "+", "-", "=", r"\cdot", "&", r"\\",
               r"\begin{bmatrix}", r"\end{bmatrix}", r"\mathbf", "m_s", " ", "d", "x", r"\sqrt",
               "[", "]", r"\,", "$", "%", "~", "'", r"\foo", r"\left", "|", "\u03c6", r"\tfrac",
-              r"\bm", r"c\psi", "\\", r"\begin", r"\end", r"\varphi"]
+              r"\bm", r"c\psi", "\\", r"\begin", r"\end", r"\varphi", r"\mathbb", "sin", "cos^",
+              "^T", r"^\top", r"\tag", r"\quad", "(9)", r"\dot{x}_", "_0"]
     rng = random.Random(13)
     for _ in range(3000):
         text = "".join(rng.choice(pieces) for _ in range(rng.randint(1, 12)))

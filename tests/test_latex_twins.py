@@ -37,27 +37,10 @@ DERIVATIONS = ("appendix_kim_A_C", "book_eq12_14", "book_eq9_11", "eq25_lagrange
                "kim_eq1_3", "kim_eq6_8", "report3_eq4_5", "sec5_nonholonomic")
 
 #: Twins the LaTeX reader cannot read yet: stem -> (the fragments of the loading error that
-#: mark one of the known constructs, the reason the test is skipped).
-BLOCKED: dict[str, tuple[tuple[str, ...], str]] = {
-    "kim_eq1_3": (
-        ("equation 2: unknown symbol 'sin'",),
-        r"eq. (2) prints 'm_{s}d^{2}sin^{2}\phi': a sine in plain letters with a power, which "
-        r"the LaTeX reader cannot read ([latex] abbreviations such as 'sin\phi' take no power "
-        r"inside them)"),
-    "kim_eq6_8": (
-        ("equation 2: unknown symbol 'sin'",),
-        r"eq. (7) prints 'ml^{2}sin^{2}\theta': a sine in plain letters with a power, which "
-        r"the LaTeX reader cannot read ([latex] abbreviations such as 'sin\theta' take no power "
-        r"inside them)"),
-    "sec5_nonholonomic": (
-        ("\\mathbb", "unknown velocity '\\dot{", "definitions.Ibb: unknown symbol 'sin'",
-         "Q: expected one \\begin{bmatrix}", "Gamma: expected one \\begin{bmatrix}"),
-        r"eq. (35) and (33) print constructs the LaTeX reader cannot read: blackboard-bold "
-        r"abbreviations (\mathbb{M}, \mathbb{S}_1, ...), row vectors transposed "
-        r"(Q, Gamma: '\begin{bmatrix} ... \end{bmatrix}^T'), a subscript after a dot "
-        r"(\dot{x}_0, \dot{y}_0, \dot{\theta}_l), a plain-letter function with a power in "
-        r"the abbreviation I ('sin^2 \phi', 'cos^2 \phi')"),
-}
+#: mark one of the known constructs, the reason the test is skipped). Empty: the reader knows
+#: every construct the seed's twins print (plain-letter functions with powers, \mathbb names,
+#: transposed rows, subscripts after a dot).
+BLOCKED: dict[str, tuple[tuple[str, ...], str]] = {}
 
 #: Where a twin restores what the extracted text lost or garbled, as its SymPy-syntax file
 #: does (listed under [reconstructed]): (as printed in the seed, as written in the twin).

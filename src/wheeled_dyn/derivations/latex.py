@@ -8,17 +8,24 @@ SymPy-syntax text the rest of the loader parses (:mod:`.expressions`, with all i
   split into declared names; a name is printed as written (``m_s``, ``I_w3`` as ``I_{w3}``), as
   its letters with the trailing digits or the lower-case rest subscripted (``XX1`` as
   ``XX_1``, ``Mw`` as ``M_w``), or as its ``latex`` field in ``[symbols]``. Fonts
-  (``\mathbf`` ...) and spaces do not separate names. A run that splits in two ways is an
-  error showing both readings (:class:`LatexError`); one that does not split an
+  (``\mathbf``, ``\mathbb`` ...) and spaces do not separate names. A run that splits in two
+  ways is an error showing both readings (:class:`LatexError`); one that does not split an
   :class:`~.expressions.UndeclaredNameError`;
 - ``\dot{p}``, ``\ddot{p}`` of a position are its velocity and acceleration (of another name
-  ``n``: the declared ``dn``, ``ddn``);
+  ``n``: the declared ``dn``, ``ddn``); a subscript after the dot joins the dotted letters
+  as in a name: ``\dot{x}_0`` is the velocity of ``x_0`` (``x0``);
 - ``\sin\phi\cos\phi``: a function without parentheses takes one name (with a leading number:
-  ``\sin 2\phi``); ``\sin^2\phi`` is ``sin(phi)**2``;
+  ``\sin 2\phi``); ``\sin^2\phi`` is ``sin(phi)**2``. A function spelled in plain letters
+  (``sin^{2}\phi``, a print that lost its backslash) is one more reading of a run of letters:
+  the function when the letters read as no declared names, ambiguous when they also do; a
+  ``[latex] abbreviation`` spelling it (``'sin\phi'``) is read instead;
 - abbreviations declared in ``[latex] abbreviations`` (``'s2\psi' = "sin(2*psi)"``) are
   pieces of a run like names;
 - ``\frac``, ``\sqrt``, ``\left( \right)``, ``\cdot``, ``\times``, powers, implicit products;
-  ``bmatrix``/``pmatrix`` cells (:func:`split_latex_matrix`); ``=`` in equations.
+  ``bmatrix``/``pmatrix`` cells (:func:`split_latex_matrix`), transposed by ``^T``;
+  ``=`` in equations;
+- equation numbers: ``\tag{10}`` is dropped anywhere; ``\quad (9)`` only at the end of an
+  equation or a matrix (elsewhere it is spacing and a factor 9).
 """
 
 from __future__ import annotations
@@ -60,23 +67,36 @@ GREEK: frozenset[str] = frozenset(
 #: Variant letters: read as the plain letter when only that one is declared.
 VARIANTS: Mapping[str, str] = {"varphi": "phi", "vartheta": "theta", "varepsilon": "epsilon",
                                "varrho": "rho", "varsigma": "sigma"}
-FONTS: frozenset[str] = frozenset({"mathbf", "mathrm", "mathit", "mathsf", "boldsymbol", "bm"})
+#: Fonts: a name in any of them is the name (``\mathbb{M}``, ``\mathbf{MZ_1}``).
+FONTS: frozenset[str] = frozenset({"mathbf", "mathrm", "mathit", "mathsf", "mathtt", "mathbb",
+                                   "mathcal", "mathfrak", "mathscr", "boldsymbol", "bm"})
 IGNORED: frozenset[str] = frozenset({",", ";", ":", "!", " ", "quad", "qquad", "big", "Big",
                                      "bigl", "bigr", "Bigl", "Bigr", "displaystyle"})
 OPERATORS: Mapping[str, str] = {"cdot": "*", "times": "*", "div": "/", "{": "(", "}": ")",
                                 "lbrack": "(", "rbrack": ")"}
 MATRICES: frozenset[str] = frozenset({"bmatrix", "pmatrix", "matrix", "Bmatrix"})
+#: An equation number: ``\tag{10}`` (dropped anywhere) and, after the last term of an
+#: equation or a matrix, ``\quad (9)`` (one of :data:`NUMBER_SPACES`, then the number).
+TAG = "tag"
+NUMBER_SPACES: frozenset[str] = frozenset({"quad", "qquad"})
+EQUATION_NUMBER = re.compile(r"\s*\(\s*\d+(?:\.\d+)*[a-z]?\s*\)\s*")
+#: A transposed matrix: ``\end{bmatrix}^T`` (``^{T}``, ``^\top``, ``^{\mathsf{T}}``, ...).
+_T_MARK = r"(?:T|\\top|\\intercal|\\(?:mathsf|mathrm|mathit|mathbf)\s*\{\s*T\s*\})"
+TRANSPOSE = re.compile(rf"\^\s*(?:{_T_MARK}|\{{\s*{_T_MARK}\s*\}})\s*")
 _ARGUMENTS = {"frac": 2, "tfrac": 2, "dfrac": 2, "sqrt": 1, "dot": 1, "ddot": 1,
               **{font: 1 for font in FONTS}}
 _CHAR_OPS = {"+": "+", "-": "-", "*": "*", "/": "/", "=": "=", "(": "(", ")": ")", "[": "(",
              "]": ")"}
+_LONGEST_FUNCTION = max(map(len, FUNCTIONS))
 _NUMBER = re.compile(r"\d+(?:\.\d*)?|\.\d+")
 _SPLITS = (re.compile(r"^([A-Za-z]+?)(\d+)$"), re.compile(r"^([A-Z]+)([a-z0-9]+)$"))
 
 _CONTEXT = get_default_latex_context_db()
 _CONTEXT.add_context_category("wheeled_dyn", prepend=True, macros=[
     macrospec.MacroSpec(m, "{{") for m in ("tfrac", "dfrac")] + [
-    macrospec.MacroSpec(m, "{") for m in ("boldsymbol", "bm", "operatorname")])
+    macrospec.MacroSpec(m, "{") for m in ("boldsymbol", "bm", "operatorname")] + [
+    macrospec.MacroSpec(TAG, "*{"), macrospec.MacroSpec("top", ""),
+    macrospec.MacroSpec("intercal", "")])
 
 
 class LatexSource(str):
@@ -127,6 +147,9 @@ class LatexNames:
             if key is None:
                 raise LatexError(text, f"the printed form of {name} is not a name")
             forms.setdefault(key, set()).add(name)
+        object.__setattr__(self, "_forms", forms)       # read by the abbreviations' \dot{}
+        object.__setattr__(self, "_abbrev", {})
+        object.__setattr__(self, "_longest", max([len(b) for b, _ in forms] + [1]))
         abbrev = {}
         for text, value in self.abbreviations.items():
             atoms = _Reader(self, text).atoms(_parse(text))
@@ -134,7 +157,6 @@ class LatexNames:
                                 for a in atoms):
                 raise LatexError(text, "an abbreviation is letters, digits and subscripts")
             abbrev[tuple(_atom_key(a) for a in atoms)] = f"({value})"
-        object.__setattr__(self, "_forms", forms)
         object.__setattr__(self, "_abbrev", abbrev)
         # no piece is longer (in atoms) than the longest name (in letters) or abbreviation
         object.__setattr__(self, "_longest", max([len(b) for b, _ in forms]
@@ -210,6 +232,13 @@ class _Op(NamedTuple):
     sup: str | None = None
 
 
+class _Rate(NamedTuple):        # \dot{x}, \ddot{x}: named once its subscript is known
+    macro: str                  # "dot" or "ddot"
+    arg: tuple[Any, ...]        # the atoms under the dot
+    sub: str = ""               # a subscript after the dot: \dot{x}_0
+    sup: str | None = None
+
+
 def _wrap(text: str) -> str:
     return text if re.fullmatch(r"[\w.]+(\*\*[\w.]+)?", text) else f"({text})"
 
@@ -272,16 +301,16 @@ class _Reader:
                 out.extend(self._node(node))
         if pending:
             raise self.fail(f"{pending!r} without an argument")
-        return out
+        return [_Value(self._derivative(a), a.sup) if isinstance(a, _Rate) else a for a in out]
 
     def _attach(self, out: list[Any], marker: str, arg: Any, key: str | None) -> None:
         last = out[-1] if out else None
         if marker == "_":
-            if not isinstance(last, _Letter) or last.sub or last.sup:
+            if not isinstance(last, (_Letter, _Rate)) or last.sub or last.sup:
                 raise self.fail(f"subscript _{key} after no letter")
             out[-1] = last._replace(sub=key)
             return
-        if isinstance(last, (_Letter, _Value, _Func)) or (isinstance(last, _Op)
+        if isinstance(last, (_Letter, _Value, _Func, _Rate)) or (isinstance(last, _Op)
                                                           and last.op == ")"):
             if last.sup is not None:
                 raise self.fail("double superscript")
@@ -303,7 +332,8 @@ class _Reader:
             elif isinstance(node, LatexGroupNode):
                 parts.append(self._key_text(node.nodelist))
             elif isinstance(node, LatexMacroNode) and node.macroname in FONTS:
-                parts.append(self._key_text([a for a in node.nodeargd.argnlist if a]))
+                parts.append(self._key_text([a for a in (node.nodeargd.argnlist if node.nodeargd
+                                                         else []) if a]))
             elif isinstance(node, LatexMacroNode) and node.macroname in GREEK | set(VARIANTS):
                 parts.append(node.macroname)
             elif not (isinstance(node, LatexMacroNode) and node.macroname in IGNORED):
@@ -348,7 +378,10 @@ class _Reader:
                 return [_Value(f"({_wrap(inner)}**(1/{root}))")]
             return [_Value(f"sqrt({inner})")]
         if name in ("dot", "ddot"):
-            return [_Value(self._derivative(name, args[0]))]
+            arg = args[0].nodelist if isinstance(args[0], LatexGroupNode) else [args[0]]
+            return [_Rate(name, tuple(self.atoms(arg)))]
+        if name == TAG:                     # an equation number
+            return []
         if name in OPERATORS:
             return [_Op(OPERATORS[name])]
         if name in IGNORED or name in ("left", "right"):
@@ -357,53 +390,71 @@ class _Reader:
             raise self.fail("'\\\\' outside a matrix")
         raise self.fail(f"unknown LaTeX macro \\{name}")
 
-    def _derivative(self, name: str, arg: Any) -> str:
-        atoms = self.atoms(arg.nodelist if isinstance(arg, LatexGroupNode) else [arg])
-        readings = self._readings(atoms, 0) if atoms and all(
-            isinstance(a, _Letter) for a in atoms) else []
+    def _derivative(self, rate: _Rate) -> str:
+        r"""The velocity (``\dot``) or acceleration (``\ddot``) name of ``rate``; a subscript
+        after the dot joins the dotted letters (``\dot{x}_0`` is the rate of ``x_0``)."""
+        atoms = list(rate.arg)
+        letters = bool(atoms) and all(isinstance(a, _Letter) for a in atoms)
+        if rate.sub:
+            if not letters or atoms[-1].sub or atoms[-1].sup:
+                raise self.fail(f"subscript _{rate.sub} after \\{rate.macro}{{...}} of no letter")
+            atoms[-1] = atoms[-1]._replace(sub=rate.sub)
+        readings = self._readings(atoms) if letters else []
         if len(readings) > 1:
             raise self._ambiguous(atoms, readings)
-        table, prefix = ((self.names.velocity, "d") if name == "dot"
+        table, prefix = ((self.names.velocity, "d") if rate.macro == "dot"
                          else (self.names.acceleration, "dd"))
         if readings and len(readings[0]) == 1:
             found = table.get(readings[0][0], prefix + readings[0][0])
             if found in self.names.names:
                 return found
-        what = _printed(atoms) if atoms and all(isinstance(a, _Letter) for a in atoms) else "?"
-        raise UndeclaredNameError(self.source, f"\\{name}{{{what}}}", "velocity" if
-                                  name == "dot" else "acceleration")
+        what = _printed(list(rate.arg)) if letters else "?"
+        sub = (f"_{{{rate.sub}}}" if len(rate.sub) > 1 else f"_{rate.sub}") if rate.sub else ""
+        raise UndeclaredNameError(self.source, f"\\{rate.macro}{{{what}}}{sub}", "velocity"
+                                  if rate.macro == "dot" else "acceleration")
 
     # -- runs of letters -> names ----------------------------------------------------
-    def _readings(self, atoms: list[Any], start: int,
-                  memo: dict[int, list[list[str]]] | None = None) -> list[list[str]]:
-        r"""Up to :data:`MAX_READINGS` ways to read ``atoms[start:]`` as declared names,
-        numbers and abbreviations (each a list of SymPy factors)."""
-        memo = {} if memo is None else memo
-        if start == len(atoms):
-            return [[]]
-        if start in memo:
-            return memo[start]
-        found: list[list[str]] = []
-        for end, text in self._pieces(atoms, start):
-            for rest in self._readings(atoms, end, memo):
-                if len(found) < MAX_READINGS and [text, *rest] not in found:
-                    found.append([text, *rest])
-        memo[start] = found
-        return found
+    def _readings(self, atoms: list[Any], *, functions: bool = False,
+                  open_end: bool = False) -> list[list[Any]]:
+        r"""Up to :data:`MAX_READINGS` ways to read ``atoms`` as declared names, numbers and
+        abbreviations (each a list of SymPy factors) and, with ``functions``, functions
+        spelled in plain letters (:class:`_Func`; at the end of the run only if
+        ``open_end``: its argument follows the run)."""
+        memo: dict[int, list[list[Any]]] = {}
 
-    def _pieces(self, atoms: list[Any], start: int) -> Iterable[tuple[int, str]]:
+        def read(start: int) -> list[list[Any]]:
+            if start == len(atoms):
+                return [[]]
+            if start not in memo:
+                found: list[list[Any]] = []
+                for end, piece in self._pieces(atoms, start, functions, open_end):
+                    for rest in read(end):
+                        if len(found) < MAX_READINGS and [piece, *rest] not in found:
+                            found.append([piece, *rest])
+                memo[start] = found
+            return memo[start]
+
+        return read(0)
+
+    def _pieces(self, atoms: list[Any], start: int, functions: bool = False,
+                open_end: bool = False) -> Iterable[tuple[int, Any]]:
         r"""Pieces read from ``atoms[start]`` on: (end, SymPy text) for a number, each
-        declared name and each abbreviation the atoms up to ``end`` print."""
+        declared name and each abbreviation the atoms up to ``end`` print; with
+        ``functions``, (end, :class:`_Func`) for a function spelled in plain letters
+        (``sin^2`` of ``sin^{2}\phi``) unless an abbreviation read from ``start`` spells it
+        (``'sin\phi'`` declared: the file's own reading of the print)."""
         if isinstance(atoms[start], _Value):
             yield start + 1, _pow(atoms[start].text, atoms[start].sup)
         forms, abbreviations, longest = (getattr(self.names, k)
                                          for k in ("_forms", "_abbrev", "_longest"))
+        abbreviated = start
         for end in range(start + 1, min(len(atoms), start + longest) + 1):
             piece, last = atoms[start:end], atoms[end - 1]
             if any(a.sup for a in piece[:-1]):
                 break
             value = abbreviations.get(tuple(_atom_key(a) for a in piece))
             if value is not None:
+                abbreviated = end
                 yield end, _pow(value, last.sup)
             if not all(isinstance(a, _Letter) for a in piece) or any(a.sub for a in piece[:-1]):
                 continue
@@ -413,9 +464,15 @@ class _Reader:
                 names |= forms.get(("".join(spelled), last.sub), set())
             for name in sorted(names):
                 yield end, _pow(name, last.sup)
+        if functions:
+            for end, func in _spelled_functions(atoms, start):
+                if end > abbreviated and (end < len(atoms) or open_end):
+                    yield end, func
 
     def _resolve(self, atoms: list[Any]) -> list[Any]:
-        r"""Replace each run of letters (and the numbers in it) by its one reading."""
+        r"""Replace each run of letters (and the numbers in it) by its one reading: names,
+        numbers, abbreviations and functions spelled in plain letters (a function ends the
+        run only before what can be its argument: a factor or ``(``)."""
         out: list[Any] = []
         i = 0
         while i < len(atoms):
@@ -426,23 +483,27 @@ class _Reader:
                 out.append(atoms[i])
                 i += 1
                 continue
-            run = atoms[i:j]
-            readings = self._readings(run, 0)
+            run, after = atoms[i:j], atoms[j] if j < len(atoms) else None
+            open_end = isinstance(after, (_Value, _Func)) or (isinstance(after, _Op)
+                                                              and after.op == "(")
+            readings = self._readings(run, functions=True, open_end=open_end)
             if len(readings) > 1:
                 raise self._ambiguous(run, readings)
             if not readings:
-                raise UndeclaredNameError(self.source, _unresolved(self, run))
-            out.extend(_Value(t, number=_NUMBER.fullmatch(t) is not None) for t in readings[0])
+                raise UndeclaredNameError(self.source, _unresolved(self, run, open_end))
+            out.extend(t if isinstance(t, _Func) else
+                       _Value(t, number=_NUMBER.fullmatch(t) is not None) for t in readings[0])
             i = j
         return out
 
-    def _ambiguous(self, run: list[Any], readings: list[list[str]]) -> LatexError:
-        shown = tuple("*".join(r) for r in readings)
+    def _ambiguous(self, run: list[Any], readings: list[list[Any]]) -> LatexError:
+        shown = tuple(_shown(r) for r in readings)
         cut = [t if len(t) <= MAX_SHOWN else t[:MAX_SHOWN - 3] + "..."
-               for t in (_printed(run), *shown)]
+               for t in (_printed(run, powers=True), *shown)]
         return self.fail(f"ambiguous: {cut[0]!r} reads as {cut[1]} or as {cut[2]}; "
                          "write it so that it reads one way (\\cdot or braces between factors, "
-                         "\\dot{x} for a velocity) or rename a symbol", shown)
+                         "\\dot{x} for a velocity, \\sin for a function) or rename a symbol",
+                         shown)
 
     # -- atoms -> SymPy text ---------------------------------------------------------
     def expression(self, nodes: Iterable[Any], equation: bool = False) -> str:
@@ -467,30 +528,68 @@ def _in_run(atom: Any) -> bool:
     return isinstance(atom, _Letter) or (isinstance(atom, _Value) and atom.number)
 
 
-def _printed(run: list[Any]) -> str:
-    r"""``run`` as LaTeX, a space after a subscript or a Greek letter (``m_s dx``)."""
+def _spelled_functions(atoms: list[Any], start: int) -> Iterable[tuple[int, _Func]]:
+    r"""(end, function) for each of :data:`FUNCTIONS` the plain letters ``atoms[start:end]``
+    spell (``s i n^{2}``: ``sin`` squared); a subscript, or a power before the last
+    letter, spells none."""
+    letters = ""
+    for k in range(start, min(len(atoms), start + _LONGEST_FUNCTION)):
+        atom = atoms[k]
+        if not (isinstance(atom, _Letter) and len(atom.base) == 1 and not atom.sub):
+            return
+        letters += atom.base
+        if letters in FUNCTIONS:
+            yield k + 1, _Func(FUNCTIONS[letters], atom.sup)
+        if atom.sup is not None:
+            return
+
+
+def _shown(reading: list[Any]) -> str:
+    r"""A reading as SymPy-like text: factors joined by ``*``, a function applied to the
+    factor after it (``m_s*sin(phi)**2``)."""
+    out: list[str] = []
+    k = 0
+    while k < len(reading):
+        text, k = _shown_factor(reading, k)
+        out.append(text)
+    return "*".join(out)
+
+
+def _shown_factor(reading: list[Any], k: int) -> tuple[str, int]:
+    piece = reading[k]
+    if not isinstance(piece, _Func):
+        return piece, k + 1
+    arg, end = _shown_factor(reading, k + 1) if k + 1 < len(reading) else ("...", k + 1)
+    return _pow(f"{piece.name}({arg})", piece.sup), end
+
+
+def _printed(run: list[Any], powers: bool = False) -> str:
+    r"""``run`` as LaTeX, a space after a subscript or a Greek letter (``m_s dx``); with
+    ``powers``, the powers too (``sin^2\phi``)."""
     out = ""
     for a in run:
+        sup = "" if not powers or a.sup is None else (
+            f"^{{{a.sup}}}" if len(a.sup) > 1 else f"^{a.sup}")
         if isinstance(a, _Value):
-            out += a.text
+            out += a.text + sup
             continue
         greek = a.base in GREEK or a.alt is not None
         out += ("\\" if greek else "") + a.base + (f"_{{{a.sub}}}" if len(a.sub) > 1 else
-                                                    f"_{a.sub}" if a.sub else "")
-        out += " " if a.sub or greek else ""
+                                                    f"_{a.sub}" if a.sub else "") + sup
+        out += " " if a.sub or greek or sup else ""
     return out.strip()
 
 
-def _unresolved(reader: _Reader, run: list[Any]) -> str:
+def _unresolved(reader: _Reader, run: list[Any], open_end: bool) -> str:
     r"""The printed part of ``run`` no reading gets past: from the farthest point readings
     reach to the first point from which the rest reads."""
     reach = {0}
     for k in range(len(run)):
         if k in reach:
-            reach |= {end for end, _ in reader._pieces(run, k)}
+            reach |= {end for end, _ in reader._pieces(run, k, True, open_end)}
     stop = max(reach)
     end = next(k for k in range(stop + 1, len(run) + 1)
-               if k == len(run) or reader._readings(run[k:], 0))
+               if k == len(run) or reader._readings(run[k:], functions=True, open_end=open_end))
     return _printed(run[stop:end])
 
 
@@ -590,26 +689,60 @@ def latex_to_sympy(source: str, names: LatexNames, *, equation: bool = False) ->
     ways, :class:`~.expressions.UndeclaredNameError` for a name ``names`` lacks."""
     reader = _Reader(names, source)
     try:
-        return reader.expression(_parse(source), equation=equation)
+        nodes = _content(_parse(source))
+        return reader.expression(_drop_equation_number(nodes) if equation else nodes,
+                                 equation=equation)
     except RecursionError:
         raise LatexError(source, "LaTeX nested too deeply") from None
 
 
+def _blank(node: Any) -> bool:
+    return node is None or isinstance(node, LatexCommentNode) or (
+        isinstance(node, LatexCharsNode) and not node.chars.strip())
+
+
+def _content(nodes: list[Any]) -> list[Any]:
+    r"""The nodes of a value without blanks and comments; of one math group (``$...$``),
+    the nodes inside it."""
+    kept = [n for n in nodes if not _blank(n)]
+    if len(kept) == 1 and isinstance(kept[0], LatexMathNode):
+        kept = [n for n in kept[0].nodelist if not _blank(n)]
+    return kept
+
+
+def _drop_equation_number(nodes: list[Any]) -> list[Any]:
+    r"""``nodes`` without a final equation number ``\quad (9)``: spacing with at least one of
+    :data:`NUMBER_SPACES`, then only :data:`EQUATION_NUMBER`, after a last term. Anywhere
+    else ``\quad (9)`` is spacing and a factor 9."""
+    kept = [n for n in nodes if not _blank(n)]
+    if not (kept and isinstance(kept[-1], LatexCharsNode)
+            and EQUATION_NUMBER.fullmatch(kept[-1].chars)):
+        return nodes
+    j, spaced = len(kept) - 1, False
+    while j > 0 and isinstance(kept[j - 1], LatexMacroNode) and kept[j - 1].macroname in IGNORED:
+        spaced = spaced or kept[j - 1].macroname in NUMBER_SPACES
+        j -= 1
+    return kept[:j] if spaced and j > 0 else nodes
+
+
 def split_latex_matrix(source: str) -> list[list[str]]:
     r"""The cells (LaTeX text) of the one ``bmatrix``/``pmatrix`` in ``source``, row by row.
-    Text before the matrix ending in ``=`` (its printed name, ``\mathbf{A} =``) is skipped."""
-    nodes = [n for n in _parse(source) if n is not None and not isinstance(n, LatexCommentNode)
-             and not (isinstance(n, LatexCharsNode) and not n.chars.strip())]
-    if len(nodes) == 1 and isinstance(nodes[0], LatexMathNode):
-        nodes = [n for n in nodes[0].nodelist if not (isinstance(n, LatexCharsNode)
-                                                      and not n.chars.strip())]
+    Text before the matrix ending in ``=`` (its printed name, ``\mathbf{A} =``) is skipped;
+    a matrix followed by a transpose (:data:`TRANSPOSE`: ``^T``, ``^{T}``, ``^\top``,
+    ``^{\mathsf{T}}``) gives its columns as rows (a printed row vector ``[a & b]^T`` is the
+    column ``[[a], [b]]``); ``\tag{...}`` and a final ``\quad (35)`` are dropped."""
+    nodes = _drop_equation_number([n for n in _content(_parse(source)) if not (
+        isinstance(n, LatexMacroNode) and n.macroname == TAG)])
     envs = [k for k, n in enumerate(nodes) if isinstance(n, LatexEnvironmentNode)]
     prefix = source[nodes[0].pos:nodes[envs[0]].pos].strip() if envs else ""
-    if (len(envs) != 1 or envs[0] != len(nodes) - 1
+    tail = "".join(source[n.pos:n.pos + n.len] for n in nodes[envs[0] + 1:]) if envs else ""
+    transposed = bool(tail) and TRANSPOSE.fullmatch(tail) is not None
+    if (len(envs) != 1 or (tail and not transposed)
             or nodes[envs[0]].environmentname not in MATRICES
             or (prefix and not prefix.endswith("="))):
         raise LatexError(source, "expected one \\begin{bmatrix} ... \\end{bmatrix} "
-                                 "(or pmatrix), optionally after 'A ='")
+                                 "(or pmatrix), optionally after 'A =', optionally "
+                                 "transposed (^T)")
     rows: list[list[str]] = [[]]
     cell: list[Any] = []
 
@@ -631,6 +764,11 @@ def split_latex_matrix(source: str) -> list[list[str]]:
         rows.pop()                              # a trailing \\ ends the last row
     if any(c == "" for row in rows for c in row):
         raise LatexError(source, "empty matrix cell")
+    if transposed:
+        if len({len(row) for row in rows}) != 1:
+            raise LatexError(source, "a transposed matrix needs rows of one length, got "
+                                     + ", ".join(str(len(row)) for row in rows))
+        rows = [list(column) for column in zip(*rows)]
     return rows
 
 
