@@ -185,17 +185,15 @@ def method_causes(ev: Evaluation, d, records: Sequence) -> list[Cause]:
         rows = {q.index[0] for q in quasi}
         c_rows = [r.element for r in records if r.key == "C" and r.index[0] in rows
                   and r.verdict == "differs" and not _specific(r)]
-        terms = "; ".join(f"{r.element}: {r.residual}" for r in quasi if r.residual)
-        latex = r" \\ ".join(rf"\Delta h_{{{r.index[0] + 1}}}:\ {r.residual_latex}"
-                             for r in quasi if r.residual_latex)
         out.append(Cause(
             kind="quasi_coordinate_christoffel",
             elements=tuple(r.element for r in quasi) + tuple(c_rows),
             explanation=("the document's C is the Christoffel matrix of its own A taken as if "
                          f"its velocities ({', '.join(names)}) were rates of coordinates; at least "
                          "one is a quasi-velocity (q̇ = S ν), so the SᵀAṠ (Boltzmann–Hamel) terms "
-                         "are missing" + (f" — truth − document: {terms}" if terms else "")),
-            latex=latex))
+                         "are missing" + (" (truth − document below)"
+                                          if any(r.residual for r in quasi) else "")),
+            latex=_missing_terms_latex(quasi, d)))
     elif quasi:
         pass          # coordinates: the h terms follow from A, whose own records say what differs
     if inconsistent:
@@ -209,6 +207,28 @@ def method_causes(ev: Evaluation, d, records: Sequence) -> list[Cause]:
                          "document's own A (nor the truth's): C was not derived from this A "
                          f"(rows {', '.join(str(i + 1) for i in sorted(rows))})")))
     return out
+
+
+def _missing_terms_latex(records: Sequence, d) -> str:
+    r"""The truth − document terms of h records, as equations per row in LaTeX
+    (:math:`\Delta h_1 = m_S d\sin\varphi\,\dot\psi^2`), velocities dotted."""
+    dots = {v: sp.Symbol(rf"\dot{{{sp.latex(p)}}}") for p, v in zip(d.positions, d.velocities)}
+    by_row: dict[int, sp.Expr] = {}
+    for r in records:
+        p = _product(r.element)
+        if p is None or not r.residual:
+            continue
+        try:
+            coeff = sp.sympify(r.residual)
+        except (sp.SympifyError, TypeError, SyntaxError):
+            return ""
+        velocity = {str(v): v for v in d.velocities}
+        product = sp.Mul(*(velocity[name] for name in p[1].split("*") if name in velocity))
+        by_row[p[0]] = by_row.get(p[0], sp.Integer(0)) + coeff * product
+    names = {v: sp.latex(dots[v]) for v in d.velocities}
+    return r",\qquad ".join(rf"\Delta h_{{{i + 1}}} = " + sp.latex(
+        e.xreplace({s: v for v in d.velocities for s in e.free_symbols if s.name == str(v)}),
+        symbol_names=names) for i, e in sorted(by_row.items()))
 
 
 def constraint_cause(ev: Evaluation, records: Sequence) -> list[Cause]:
@@ -316,17 +336,33 @@ def term_causes(records: Sequence, explained: set[str],
             for (kind, text), elements in groups.items() if elements]
 
 
-def document_causes(energy, asymmetric: Sequence[str]) -> list[Cause]:
-    r"""What the document fails on its own: energy, positive definiteness."""
+def document_causes(energy, asymmetric: Sequence[str], d=None) -> list[Cause]:
+    r"""What the document fails on its own: energy (the power :math:`\nu^Th -
+    \tfrac12\nu^T\dot A\nu` as math when it reads), positive definiteness."""
     out = []
     if energy is not None and not energy.conserves:
-        out.append(Cause(kind="energy", elements=(),
-                         explanation=("the model as printed does not conserve energy: "
-                                      f"ν·h − ½ ν·Ȧν = {energy.residual}")))
+        latex = _power_latex(energy.residual, d)
+        out.append(Cause(kind="energy", elements=(), latex=latex,
+                         explanation=("the model as printed does not conserve energy: its "
+                                      "gyroscopic terms do work, ν·h − ½ ν·Ȧν ≠ 0"
+                                      + (" (below)" if latex else f": {energy.residual}"))))
     pd = [x for x in asymmetric if "positive definite" in x]
     if pd:
         out.append(Cause(kind="not_positive_definite", elements=(), explanation=pd[0]))
     return out
+
+
+def _power_latex(residual: str, d) -> str:
+    r""":math:`\nu^Th - \tfrac12\nu^T\dot A\nu = \dots` in LaTeX, velocities dotted, or
+    ``""``."""
+    if d is None:
+        return ""
+    try:
+        expr = sp.sympify(residual, locals={str(s): s for s in (*d.positions, *d.velocities)})
+    except (sp.SympifyError, TypeError, SyntaxError):
+        return ""
+    names = {v: rf"\dot{{{sp.latex(p)}}}" for p, v in zip(d.positions, d.velocities)}
+    return r"\nu^T h - \tfrac{1}{2}\nu^T \dot A \nu = " + sp.latex(expr, symbol_names=names)
 
 
 def root_causes(ev: Evaluation | None, d, records: Sequence, energy, asymmetric: Sequence[str],
@@ -346,7 +382,7 @@ def root_causes(ev: Evaluation | None, d, records: Sequence, energy, asymmetric:
         out.append(c if fresh == c.elements else Cause(c.kind, fresh, c.explanation, c.latex,
                                                        c.step, c.equation))
     out += term_causes(records, explained, d.velocities)
-    out += document_causes(energy, asymmetric)
+    out += document_causes(energy, asymmetric, d)
     return tuple(out)
 
 

@@ -79,15 +79,20 @@ def model_expression(d: Derivation, standard: bool = False
     return convert
 
 
-def document_in_model(d: Derivation) -> Callable[[sp.Expr | None], tuple[str, str]]:
-    r"""A function: document expression → (text, LaTeX) in the model's parameters."""
+def document_in_model(d: Derivation, families: tuple[str, ...] = ()
+                      ) -> Callable[[sp.Expr | None], tuple[str, str]]:
+    r"""A function: document expression → (text, LaTeX) in the model's parameters, read under
+    the parameter ``families`` the document assumes (as the truth beside it is)."""
     to_model = model_expression(d)
     dots = {v: rf"\dot{{{sp.latex(q)}}}" for q, v in zip(d.positions, d.velocities)}
+    assumed = family_substitution(families) \
+        if model_entry(d.model).parameters is WipParameters else {}
 
     def convert(expr: sp.Expr | None) -> tuple[str, str]:
         out = to_model(expr)
         if out is None:
             return "", ""
+        out = out.xreplace(assumed)
         return sp.sstr(out), sp.latex(out, symbol_names=dots)
 
     return convert

@@ -215,7 +215,7 @@ class ComparisonEngine:
         apply_row_factors(doc, row_factor)
         scales = row_scales(doc, truth, n)
         dims = DimensionChecker(d)
-        mapped = closed_form.document_in_model(d)
+        mapped = closed_form.document_in_model(d, tuple(c.name for c in assumed.families))
         records = []
         groups = swap_groups(d)
         flat_q, flat_nu = q.reshape(-1, n), nu.reshape(-1, n)
