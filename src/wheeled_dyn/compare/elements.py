@@ -20,6 +20,7 @@ import sympy as sp
 
 from ..constraints.reduction import CoordinateMap
 from ..derivations.schema import Derivation
+from .diagnose import AGREE_TOL, agrees
 from .evaluate import Arrays, DocumentFunctions, truth_arrays
 
 #: Candidate undeclared row factors, and how far an element's own ratio may be from one.
@@ -184,8 +185,21 @@ def row_factors(doc: Arrays, truth: Arrays, B_true, n: int) -> list[float | None
             if sum(v == f for v in votes_a) * 2 > len(votes_a) and \
                     sum(v == f for v in votes_all) * 2 > len(votes_all):
                 winner = f
+        if winner is not None and not _explains(winner, a_pairs + other_pairs):
+            winner = None
         out.append(winner)
     return out
+
+
+def _explains(factor: float, pairs: Sequence[tuple[np.ndarray, np.ndarray]]) -> bool:
+    r"""A row factor is only taken when dividing by it makes at least one nonzero element
+    of the row agree exactly (near-ratios of elements that differ anyway explain nothing)."""
+    finite = [(D, T) for D, T in pairs if np.isfinite(D).all() and np.isfinite(T).all()]
+    if not finite:
+        return False
+    scale = max(max(float(np.abs(D).max()), float(np.abs(T).max())) for D, T in finite)
+    return any(float(np.abs(T).max()) > AGREE_TOL * scale and agrees(D / factor, T, scale)
+               for D, T in finite)
 
 
 def apply_row_factors(doc: Arrays, factors) -> None:
