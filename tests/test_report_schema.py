@@ -94,3 +94,12 @@ def test_latex_input_is_echoed():
     assert "parsed as" in texts["report.html"] and "parsed as" in texts["report.md"]
     schema = json.loads((ROOT / "docs" / "report-schema.json").read_text())
     jsonschema.validate(data, schema)
+
+
+def test_equation_records_name_their_equations(rendered):
+    r"""Every record of the equations of motion names the document's equation labels."""
+    data = json.loads(rendered["report.json"])
+    by_path = {Path(d["path"]).name: d for d in data["derivations"]}
+    eq25 = [r for r in by_path["eq25_lagrange.toml"]["records"]
+            if r["step"] == "equations of motion"]
+    assert eq25 and all(r["equation"] == "(25)" for r in eq25)

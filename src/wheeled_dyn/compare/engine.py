@@ -29,7 +29,7 @@ import numpy as np
 import sympy as sp
 
 from ..constraints.reduction import CoordinateMap
-from ..derivations.schema import Derivation
+from ..derivations.schema import Derivation, equation_labels
 from . import causes, closed_form, conventions
 from .diagnose import (
     agrees,
@@ -217,6 +217,7 @@ class ComparisonEngine:
         dims = DimensionChecker(d)
         mapped = closed_form.document_in_model(d, tuple(c.name for c in assumed.families))
         records = []
+        label = equation_labels(str(d.source.get("equations", "")))
         groups = swap_groups(d)
         flat_q, flat_nu = q.reshape(-1, n), nu.reshape(-1, n)
         values = {s: np.repeat([v[s] for v in per_set], self.samples) for s in funcs.params}
@@ -276,7 +277,7 @@ class ComparisonEngine:
                                 **dict(zip(("document_model", "model_latex"), mapped(expr))),
                                 truth=None, residual=None, max_error=max_error(D, T),
                                 scale=float(scale), truth_sample=float(T[0]),
-                                document_sample=float(D[0])))
+                                document_sample=float(D[0]), equation=label))
             arrays[id(records[-1])] = (D, T)
             exprs.append(expr)
         self._h_swaps(records, arrays)

@@ -17,6 +17,7 @@ marks ``"?"`` are ``sympy.nan`` and listed in :attr:`Derivation.missing`.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -73,6 +74,22 @@ class CoordinateSpec:
     rolling: str
     units: Mapping[str, str]
     raw: Mapping[str, object]
+
+
+#: Longest equation text kept as a label when the source names no numbered equation.
+LABEL_CHARS = 40
+_LABELS = re.compile(r"\s*(\([^)]*\)(?:\s*(?:,|-|–|and)\s*\([^)]*\))*)")
+
+
+def equation_labels(text: str) -> str:
+    r"""The equation labels a ``[source] equations`` text starts with: ``(7.24) dq' + ...`` →
+    ``(7.24)``; ``(1)-(3)``, ``(33), (35)`` as they are; a text without labels up to its first
+    colon, at most :data:`LABEL_CHARS` characters."""
+    m = _LABELS.match(text)
+    if m:
+        return m.group(1)
+    head = text.split(":")[0].strip()
+    return head if len(head) <= LABEL_CHARS else head[:LABEL_CHARS - 1] + "…"
 
 
 @dataclass(frozen=True)

@@ -21,6 +21,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 from ..compare.result import DerivationResult, ElementRecord
+from ..derivations.schema import equation_labels
 
 #: Words for the cause kinds of :data:`wheeled_dyn.compare.result.CAUSE_KINDS`.
 KIND_TEXT = {
@@ -38,8 +39,6 @@ KIND_TEXT = {
 }
 #: Verdicts that are shown as findings (everything but "agrees").
 SHOWN_VERDICTS = ("differs", "factorization", "agrees_if", "undecided")
-#: Longest equation text shown in a heading.
-LABEL_CHARS = 40
 #: Elements named in one summary line before "+N".
 NAMED_IN_LINE = 4
 
@@ -101,21 +100,11 @@ def equations(result: DerivationResult) -> str:
     r"""The document and equations, short: ``seed 001 §4.3.3 (25)``."""
     src = result.source
     section = str(src.get("section", "")).strip()
-    eq = _labels(str(src.get("equations", "")))
+    eq = equation_labels(str(src.get("equations", "")))
     parts = [str(src.get("document", "")).strip(), f"§{section}" if section and
              section[0].isdigit() else section, eq]
     return " ".join(p for p in parts if p)
 
-
-def _labels(text: str) -> str:
-    r"""The equation labels a ``[source] equations`` text starts with: ``(7.24) dq' + ...`` →
-    ``(7.24)``; ``(1)-(3)``, ``(33), (35)`` as they are; a text without labels up to its
-    first colon, at most :data:`LABEL_CHARS` characters."""
-    m = re.match(r"\s*(\([^)]*\)(?:\s*(?:,|-|–|and)\s*\([^)]*\))*)", text)
-    if m:
-        return m.group(1)
-    head = text.split(":")[0].strip()
-    return head if len(head) <= LABEL_CHARS else head[:LABEL_CHARS - 1] + "…"
 
 
 def _diagnosis_kind(record: ElementRecord, diagnosis: str) -> str:
