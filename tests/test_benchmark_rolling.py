@@ -33,7 +33,11 @@ THRESHOLD_TOL = 1e-3
 #: Real parts below this (relative to the spin) count as zero in the linearisation.
 NEUTRAL_TOL = 1e-6
 
-BALLS = ("sphere_plane", "sphere_sphere")
+#: The uniform balls (closed forms) and every ball-bounded body (identities).
+UNIFORM = ("sphere_plane", "sphere_sphere")
+BALLS = (*UNIFORM, "offset_sphere_plane", "offset_sphere_sphere")
+#: Seed 002's body of revolution with its centre of mass off the sphere's centre.
+OFFSET = ("offset_sphere_plane", "offset_sphere_sphere")
 
 
 def _random_ball_state(wm, rng):
@@ -136,6 +140,24 @@ def test_ball_on_plane_moves_uniformly():
     expected = wm.geometry["r"] * np.cross(w0, [0.0, 0.0, 1.0])
     assert np.abs(centre_speed - expected).max() < 1e-6
     assert traj.relative_energy_drift() < INTEGRAL_TOL
+
+
+@pytest.mark.parametrize("name", OFFSET)
+def test_offset_body_keeps_energy_and_contact(name):
+    r"""The body of revolution with its centre of mass off-centre, rolling (and wobbling)
+    with zero input: its energy stays constant and the contact point stays at rest; the centre
+    of mass really is off the centre (the gravity torque about the contact is not zero)."""
+    rng = np.random.default_rng(SEED)
+    wm = load_model(name)
+    cmap = CoordinateMap(wm, builtin_coordinate_set(wm, "body_rates"))
+    q0 = _random_ball_state(wm, rng)
+    traj = simulate(cmap, q0, np.array([1.5, -0.5, 4.0]), 2.0, rate=50)
+    assert traj.relative_energy_drift() < INTEGRAL_TOL
+    for q, nu in zip(traj.q[::10], traj.nu[::10]):
+        _, S, v = cmap.reduce_at(q, nu)
+        assert np.abs(contact_velocities(wm, q, v)).max() < EXACT_TOL * (1 + np.abs(v).max())
+    com = wm.model.inertias[wm.joint_id_of_link("ball")].lever
+    assert abs(com[2]) > 0.01 and abs(com[0]) < EXACT_TOL and abs(com[1]) < EXACT_TOL
 
 
 # -- seed 002, section 3: uniform sphere on a fixed sphere ----------------------------------------
@@ -265,7 +287,7 @@ def test_contact_force_of_a_ball_rolling_over_the_top():
     (the centripetal part comes from J_c-dot v), and on the plane by M g."""
     from wheeled_dyn import multipliers
     rng = np.random.default_rng(SEED)
-    for name in BALLS:
+    for name in UNIFORM:
         wm = load_model(name)
         cmap = CoordinateMap(wm, builtin_coordinate_set(wm, "world_rates"))
         M, A, R, R1 = _ball_constants(wm)

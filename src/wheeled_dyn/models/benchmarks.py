@@ -8,25 +8,28 @@ their coordinates, so a model's coordinates read as the document's. Named consta
 coordinate maps need (a rolling radius, a gear ratio, ball and fixed-sphere radii) are the
 model's ``geometry``.
 
-=================== ================ ==========================================================
-model               document         body
-=================== ================ ==========================================================
-compound_pendulum   seed 000, 2.6    a bar on a pivot (I_g, a)
-rod_pendulum        seed 000, 4.4    uniform slender rod hinged at one end
-rolling_disk        seed 000, 4.8    disk with a point mass, rolling (x = R theta imposed by
-                                     the coordinate map)
-pendulum_support    seed 000, 4.9    pendulum whose support moves vertically
-bounce_pitch        seed 000, 4.12   car body in bounce y and pitch theta (no springs)
-differential        seed 000, 4.13   two wheels and the pinion (gear coupling imposed by the
-                                     coordinate map)
-flywheel_rod        seed 000, 4.17   rod hinged on a driven flywheel
-free_body           seed 000, 7.1/2  a block, free in space (free base)
-gyroscope           seed 000, 7.7    rotor on an axle pivoted at one end
-sphere_plane        seed 002         uniform ball rolling on the ground
-sphere_sphere       seed 002         uniform ball rolling on a fixed sphere
-rolling_coin        textbook         uniform thin disk rolling and leaning on the ground
-bicycle             Meijaard 2007    Whipple bicycle at the benchmark parameters (Table 1)
-=================== ================ ==========================================================
+==================== ================ ==========================================================
+model                document         body
+==================== ================ ==========================================================
+compound_pendulum    seed 000, 2.6    a bar on a pivot (I_g, a)
+rod_pendulum         seed 000, 4.4    uniform slender rod hinged at one end
+rolling_disk         seed 000, 4.8    disk with a point mass, rolling (x = R theta imposed by
+                                      the coordinate map)
+pendulum_support     seed 000, 4.9    pendulum whose support moves vertically
+bounce_pitch         seed 000, 4.12   car body in bounce y and pitch theta (no springs)
+differential         seed 000, 4.13   two wheels and the pinion (gear coupling imposed by the
+                                      coordinate map)
+flywheel_rod         seed 000, 4.17   rod hinged on a driven flywheel
+free_body            seed 000, 7.1/2  a block, free in space (free base)
+gyroscope            seed 000, 7.7    rotor on an axle pivoted at one end
+sphere_plane         seed 002         uniform ball rolling on the ground
+sphere_sphere        seed 002         uniform ball rolling on a fixed sphere
+offset_sphere_plane  seed 002         body of revolution bounded by a sphere, centre of mass on
+                                      its axis off the centre, rolling on the ground
+offset_sphere_sphere seed 002         the same body rolling on a fixed sphere
+rolling_coin         textbook         uniform thin disk rolling and leaning on the ground
+bicycle              Meijaard 2007    Whipple bicycle at the benchmark parameters (Table 1)
+==================== ================ ==========================================================
 """
 
 from __future__ import annotations
@@ -50,7 +53,7 @@ COIN_RADIUS = 0.30
 BENCHMARK_NAMES: tuple[str, ...] = (
     "compound_pendulum", "rod_pendulum", "rolling_disk", "pendulum_support", "bounce_pitch",
     "differential", "flywheel_rod", "free_body", "gyroscope", "sphere_plane", "sphere_sphere",
-    "rolling_coin", "bicycle")
+    "offset_sphere_plane", "offset_sphere_sphere", "rolling_coin", "bicycle")
 
 #: Benchmark bodies written in Python instead of a model file: (name, one-line summary, spec
 #: function). A model defined here is registered like a file's.
