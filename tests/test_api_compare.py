@@ -86,3 +86,24 @@ def test_compare_is_the_package_and_callable():
     from wheeled_dyn.compare import ComparisonEngine as engine_class
     assert wd.compare is package and callable(wd.compare)
     assert engine_class is ComparisonEngine
+
+
+THETA = {"positions": ["theta"], "configuration": {"theta": "theta"}}
+
+
+@pytest.mark.parametrize("model, tables, words", [
+    ("nope", {"coordinates": "full", "A": sp.Matrix([[1]])}, ["unknown model 'nope'"]),
+    ("rod_pendulum", {"coordinates": THETA, "A": [["m +* 2"]], "symbols": {"m": "M(rod)"}},
+     ["<python: ", "A[1,1]", "not a valid expression"]),
+    ("rod_pendulum", {"coordinates": THETA, "A": object()}, ["<python: ", "expected SymPy"]),
+    ("rod_pendulum", {"coordinates": THETA, "symbols": {}}, ["nothing to compare"]),
+    ("rod_pendulum", {"coordinates": THETA, "A": sp.Matrix([[sp.oo]])}, ["A[1,1]", "'oo'"]),
+    ("rod_pendulum", {"coordinates": THETA, "A": sp.Matrix([[1, 0], [0, 1]])},
+     ["A: shape", "expected 1×1"]),
+])
+def test_api_bad_input_is_one_error(model, tables, words):
+    with pytest.raises(WheeledDynError) as info:
+        wd.compare(model, samples=20, param_sets=1, **tables)
+    message = str(info.value)
+    assert "\n" not in message and all(w in message for w in words), message
+    assert "/tmp" not in message and "wheeled-dyn-" not in message      # no temporary path

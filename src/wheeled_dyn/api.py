@@ -38,6 +38,8 @@ def compare(model: str | Path, *, samples: int = 1000, param_sets: int = 5, seed
     from .compare.commands import check_model_names
     from .compare.engine import ComparisonEngine
     from .derivations.from_python import derivation_from_sympy
+    from .models.registry import model_entry
+    model_entry(str(model))                    # an unknown model: its own error, first
     d = derivation_from_sympy(model, **tables)
     check_model_names(d)
     return ComparisonEngine(samples=samples, param_sets=param_sets, seed=seed).compare(d)

@@ -11,6 +11,7 @@ check, limit and error of the file format applies unchanged. Errors name the der
 
 from __future__ import annotations
 
+import inspect
 import re
 import tempfile
 from collections.abc import Mapping, Sequence
@@ -21,7 +22,7 @@ from typing import Any
 import sympy as sp
 import tomli_w
 
-from ..errors import DerivationError, InputFileError, WheeledDynError
+from ..errors import DerivationError, WheeledDynError
 from .parse import load_derivation
 from .schema import Derivation
 
@@ -35,8 +36,10 @@ def _text(e: Any) -> str:
 
 def _matrix(M: Any, column: bool = False) -> list:
     r"""Nested lists of SymPy-syntax strings (a column vector as a flat list)."""
-    rows = sp.Matrix(M).tolist() if not isinstance(M, (list, tuple)) or \
-        any(isinstance(r, (list, tuple)) for r in M) else [[x] for x in M]
+    if isinstance(M, (list, tuple)):
+        rows = [list(r) if isinstance(r, (list, tuple)) else [r] for r in M]
+    else:
+        rows = sp.Matrix(M).tolist()
     if column:
         return [_text(r[0]) for r in rows] if all(len(r) == 1 for r in rows) \
             else [_text(x) for x in rows[0]]
@@ -100,7 +103,15 @@ def derivation_from_sympy(model: str | Path, **tables: Any) -> Derivation:
     (``sympy.Eq`` or expressions equal to 0); ``assumes``, ``title``, ``source`` as in a file.
     Raises the errors a file would, naming ``<python: title>``."""
     title = str(tables.get("title", "derivation from Python"))
-    data = derivation_data(model, **tables)
+    name = f"<python: {title}>"
+    if not any(tables.get(k) is not None for k in ("A", "C", "Q", "B", "G", "equations")):
+        raise DerivationError(Path(name), "matrices", "nothing to compare: give A, C, Q, B, G "
+                              "or equations")
+    try:
+        data = derivation_data(model, **tables)
+    except (TypeError, ValueError, AttributeError, sp.SympifyError) as exc:
+        raise DerivationError(Path(name), "matrices", "expected SymPy matrices, nested lists "
+                              f"of expressions, or sympy.Eq equations ({' '.join(str(exc).split())})") from None
     model_path = Path(str(model))
     if model_path.suffix == ".toml" and not model_path.is_absolute():
         data["model"] = str(model_path.resolve())
@@ -110,25 +121,25 @@ def derivation_from_sympy(model: str | Path, **tables: Any) -> Derivation:
         try:
             d = load_derivation(path)
         except WheeledDynError as exc:
-            raise _renamed(exc, path, f"<python: {title}>") from None
-    return replace(d, path=Path(f"<python: {title}>"))
+            raise _renamed(exc, path, name) from None
+    return replace(d, path=Path(name))
 
 
 def _renamed(exc: WheeledDynError, path: Path, name: str) -> WheeledDynError:
     r"""``exc`` rebuilt with the temporary file's path replaced by ``name`` (and no line
     number: the lines are those of the generated file)."""
     args, kwargs = getattr(exc, "_ctor", (exc.args, {}))
-
-    def swap(x: Any) -> Any:
-        return Path(name) if isinstance(x, (str, Path)) and str(x) == str(path) else x
-
-    kwargs = {k: (None if k in ("line", "column") else swap(v)) for k, v in kwargs.items()}
-    args = [swap(a) for a in args]
-    if isinstance(exc, InputFileError):          # (path, [item,] reason, line, column)
-        keep = 3 if isinstance(exc, DerivationError) else 2
-        args = args[:keep]
     try:
-        return type(exc)(*args, **kwargs)
+        bound = inspect.signature(type(exc)).bind(*args, **kwargs)
+    except TypeError:
+        return exc
+    for key, value in bound.arguments.items():
+        if key in ("line", "column"):
+            bound.arguments[key] = None
+        elif isinstance(value, (str, Path)) and str(value) == str(path):
+            bound.arguments[key] = Path(name)
+    try:
+        return type(exc)(*bound.args, **bound.kwargs)
     except TypeError:
         return exc
 
