@@ -209,10 +209,21 @@ def method_causes(ev: Evaluation, d, records: Sequence) -> list[Cause]:
     return out
 
 
+def velocity_latex(d) -> dict[sp.Symbol, str]:
+    r"""LaTeX of the document's velocities as it writes them: the rate of a position
+    (``dpsi`` of ``psi``) dotted, :math:`\dot\psi`; a quasi-velocity that is no position's
+    rate (``u``, ``n``, ``wx``) by its own name."""
+    positions = {str(p): p for p in d.positions}
+    out = {}
+    for v in d.velocities:
+        p = positions.get(str(v)[1:]) if str(v).startswith("d") else None
+        out[v] = rf"\dot{{{sp.latex(p)}}}" if p is not None else sp.latex(v)
+    return out
+
+
 def _missing_terms_latex(records: Sequence, d) -> str:
     r"""The truth − document terms of h records, as equations per row in LaTeX
     (:math:`\Delta h_1 = m_S d\sin\varphi\,\dot\psi^2`), velocities dotted."""
-    dots = {v: sp.Symbol(rf"\dot{{{sp.latex(p)}}}") for p, v in zip(d.positions, d.velocities)}
     by_row: dict[int, sp.Expr] = {}
     for r in records:
         p = _product(r.element)
@@ -225,7 +236,7 @@ def _missing_terms_latex(records: Sequence, d) -> str:
         velocity = {str(v): v for v in d.velocities}
         product = sp.Mul(*(velocity[name] for name in p[1].split("*") if name in velocity))
         by_row[p[0]] = by_row.get(p[0], sp.Integer(0)) + coeff * product
-    names = {v: sp.latex(dots[v]) for v in d.velocities}
+    names = velocity_latex(d)
     return r",\qquad ".join(rf"\Delta h_{{{i + 1}}} = " + sp.latex(
         e.xreplace({s: v for v in d.velocities for s in e.free_symbols if s.name == str(v)}),
         symbol_names=names) for i, e in sorted(by_row.items()))
@@ -361,8 +372,8 @@ def _power_latex(residual: str, d) -> str:
         expr = sp.sympify(residual, locals={str(s): s for s in (*d.positions, *d.velocities)})
     except (sp.SympifyError, TypeError, SyntaxError):
         return ""
-    names = {v: rf"\dot{{{sp.latex(p)}}}" for p, v in zip(d.positions, d.velocities)}
-    return r"\nu^T h - \tfrac{1}{2}\nu^T \dot A \nu = " + sp.latex(expr, symbol_names=names)
+    return r"\nu^T h - \tfrac{1}{2}\nu^T \dot A \nu = " + sp.latex(
+        expr, symbol_names=velocity_latex(d))
 
 
 def root_causes(ev: Evaluation | None, d, records: Sequence, energy, asymmetric: Sequence[str],
