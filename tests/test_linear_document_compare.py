@@ -63,8 +63,12 @@ def test_compare_command_on_the_benchmark(tmp_path):
                           text=True, timeout=300)
     assert done.returncode == 0, done.stderr
     assert re.search(r"106 agree, .* 0 differ", done.stdout), done.stdout
-    (doc,) = json.loads((out / "report.json").read_text())["derivations"]
+    data = json.loads((out / "report.json").read_text())
+    (doc,) = data["derivations"]
     assert doc["form"] == "linearised" and doc["counts"]["agrees"] == 106
+    jsonschema = pytest.importorskip("jsonschema", reason="jsonschema is in the [test] extra")
+    schema = json.loads((Path(__file__).parents[1] / "docs" / "report-schema.json").read_text())
+    jsonschema.validate(data, schema)
     wrong = subprocess.run([sys.executable, "-m", "wheeled_dyn.cli", "compare", "wip",
                             str(MEIJAARD_2007), "--out", str(tmp_path / "x")],
                            capture_output=True, text=True, timeout=300)
