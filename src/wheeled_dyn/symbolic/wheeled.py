@@ -218,10 +218,26 @@ def _reduce_fraction(e: sp.Expr) -> sp.Expr:
     return sp.cancel(num / den) if not den.has(sp.sin, sp.cos) else num / den
 
 
+#: Floats below this size in a matrix to invert are rounding noise of composed rotations
+#: (a locked joint's 1e-16): taken as 0. Other floats become the rationals they print as, so
+#: the elimination runs over exact numbers (over floats it is slow and loses digits).
+FLOAT_NOISE = 1e-12
+
+
+def _exact_numbers(M: sp.Matrix) -> sp.Matrix:
+    r"""``M`` with its floats exact: noise (:data:`FLOAT_NOISE`) as 0, others as rationals."""
+    floats = M.atoms(sp.Float)
+    if not floats:
+        return M
+    return M.xreplace({f: sp.Integer(0) if abs(f) < FLOAT_NOISE
+                       else sp.nsimplify(f, rational=True) for f in floats})
+
+
 def trig_solve(M: sp.Matrix, E: sp.Matrix) -> sp.Matrix:
     r""":math:`X = M^{-1}E` for a square ``M`` whose entries are polynomials in parameters and
     in sines and cosines: exact Gaussian elimination over the fraction field with
     :math:`\sin x, \cos x` as indeterminates, then each entry reduced (:func:`_reduce_fraction`)."""
+    M, E = _exact_numbers(M), _exact_numbers(E)
     fwd = _angles(list(M) + list(E))
     back = {d: a for a, d in fwd.items()}
     Md, Ed = M.xreplace(fwd), E.xreplace(fwd)
