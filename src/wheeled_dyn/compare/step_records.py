@@ -238,10 +238,13 @@ class _Group:
             return -f if s.quantity == "inertia" else f
         return np.zeros(len(s.components))      # a relation holds on the model's motions
 
-    def _rate(self, expr: sp.Expr) -> sp.Expr:
+    def _rate(self, expr: sp.Expr, kind: str | None = None) -> sp.Expr:
         r"""A configuration relation's rate :math:`\sum_i \partial f/\partial q_i\,\dot q_i`
-        (holonomic sets); velocity relations and parameter claims as they are."""
+        (holonomic sets); velocity relations and parameter claims as they are; a potential
+        energy (``kind``) is a value, not a relation, compared as it is (up to a constant)."""
         d = self.d
+        if kind == "potential energy":
+            return expr
         if self.integral:                 # its rate along the free motion
             return sum((expr.diff(p) * r for p, r in zip(d.positions, self.rates)),
                        sp.Integer(0)) + sum((expr.diff(v) * a for v, a in
@@ -427,7 +430,7 @@ def _explained(diagnoses: Sequence[str]) -> bool:
 
 def _compiled(g: _Group, step: Step) -> list[sp.Expr]:
     r"""The step's components (rates of relations) that the text did not lose, in order."""
-    return [g._rate(e) for e in step.components if not e.has(sp.nan)]
+    return [g._rate(e, step.kind) for e in step.components if not e.has(sp.nan)]
 
 
 def _document_values(g: _Group, step: Step, T: np.ndarray):
@@ -510,7 +513,10 @@ def _records(g: _Group, step: Step, index: int, T: np.ndarray) -> list[ElementRe
                                       scale=scale, **common))
             continue
         diags: list[str] = []
-        expr = g._rate(step.components[j])
+        expr = g._rate(step.components[j], step.kind)
+        if step.kind == "potential energy":          # measured from any level: up to a
+            k = len(g.sets)                           # constant per parameter set
+            D = (D.reshape(k, -1) - (D - Tj).reshape(k, -1).mean(axis=1, keepdims=True)).ravel()
         relation = step.kind in RELATION_KINDS
         if relation:
             lhs, rhs = step.sides[j]

@@ -1,0 +1,208 @@
+"""Seed 001's formula steps (15), (17), (55), (64), (66), (68) against the truth.
+
+Before, the step files recorded only the components the document prints after these formulas.
+Now they record each formula too, worked out into components as its
+``[reconstructed]`` entry says. The expectations come from the document's geometry. Seed 001
+section 4: frame 0 moves with the robot, x along the heading, y up, z along the axle from left
+to right; frame 1 is the body's, a rotation by phi about z with its origin at the middle of the
+axle. Section 7: i, j, k are the heading frame (x forward, y left, z up), the body turns by phi
+about j, and its C.G. is at d (sin(phi) i + cos(phi) k). The expectations do not come from the
+tool's output. Each formula is a correct rigid-body formula, so its worked-out components
+agree. The printed components that follow them are where the errors enter:
+
+- (61) alpha_B lacks the -phi-dot psi-dot i term of d(phi-dot j)/dt, because j turns with the
+  heading;
+- (65), (67), (69) take dv_xyz/dt = x-double-dot i and drop the x-dot psi-dot j from the
+  turning of i. (65) also uses (61)'s alpha_B, which halves its psi-dot phi-dot j term.
+
+Not compared, because no step kind can express them: in (15), 0w0 (the angular velocity of
+frame 0, which is not a link), 0g, 0T1, 1e1 and q1-dot = phi-dot. U1 of (17) is compared as a
+potential energy, up to a constant.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+import sympy as sp
+
+from wheeled_dyn.compare.step_records import compare_steps
+from wheeled_dyn.derivations import load_derivation
+from wheeled_dyn.errors import DerivationError
+
+from conftest import SEED
+
+FOLDER = Path(__file__).resolve().parents[1] / "src/wheeled_dyn/data/derivations/seed001"
+S4 = FOLDER / "s4_energy_steps.toml"
+S7 = FOLDER / "s7_newton_euler_steps.toml"
+
+
+@pytest.fixture(scope="module")
+def s4():
+    d = load_derivation(S4)
+    return d, compare_steps(d, SEED)
+
+
+@pytest.fixture(scope="module")
+def s7():
+    d = load_derivation(S7)
+    return d, compare_steps(d, SEED)
+
+
+def _by_equation(records, equation: str) -> dict[str, object]:
+    out = {r.element: r for r in records if r.equation == equation}
+    assert out, f"no records for {equation}"
+    return out
+
+
+def _verdicts(records, equation: str) -> dict[str, str]:
+    return {e: r.verdict for e, r in _by_equation(records, equation).items()}
+
+
+def _step(d, equation: str):
+    (s,) = [s for s in d.steps if s.equation == equation]
+    return s
+
+
+def _vec(d, equation: str) -> sp.Matrix:
+    return sp.Matrix(_step(d, equation).components)
+
+
+# -- section 4 ---------------------------------------------------------------------------------
+
+def test_eq15_velocity_of_frame_0_agrees(s4):
+    """0V0 = [x-dot 0 0]: the middle of the axle moves at the heading speed, along frame 0's x
+    axis (forward). It is right. It is compared as the velocity of the body link's origin, which
+    is frame 0's origin because 0P1 = 0."""
+    _, records = s4
+    assert _verdicts(records, "(15)") == {"(15) 0V0 x0": "agrees", "(15) 0V0 y0": "agrees",
+                                          "(15) 0V0 z0": "agrees"}
+    assert {r.step for r in _by_equation(records, "(15)").values()} == {"velocity"}
+
+
+def test_eq17_kinetic_energy_of_the_body_agrees(s4):
+    """E1 = 1/2 (w1^T J_G1 w1 + M1 V1^T V1 + 2 MS1^T (V1 x w1)) is Khalil's kinetic energy of a
+    link. J_G1 is the inertia at frame 1's origin, the XX1 ... ZZ1 that (25) is written in. It
+    is right, worked out with the (right) 1w1, 1V1 of (16). It is compared for the link 'body'
+    alone."""
+    d, records = s4
+    r = _by_equation(records, "(17)")["(17) E1 value"]
+    assert (r.element, r.step, r.verdict) == ("(17) E1 value", "kinetic energy", "agrees")
+    assert all(s.bodies == ("body",) for s in d.steps if s.equation == "(17)")
+
+
+def test_eq17_comparison_is_not_vacuous(tmp_path):
+    """The same E1 with the first-moment term written 2 MS1^T (w1 x V1), the cross product
+    reversed, differs. The terms it names are x-dot psi-dot and x-dot phi-dot."""
+    text = S4.read_text()
+    wrong = text.replace("2*(MZ1*dx*dpsi - (MX1*sin(phi) + MY1*cos(phi))*dx*dphi)",
+                         "-2*(MZ1*dx*dpsi - (MX1*sin(phi) + MY1*cos(phi))*dx*dphi)")
+    assert wrong != text
+    path = tmp_path / "s4_planted_steps.toml"
+    path.write_text(wrong)
+    (r,) = [r for r in compare_steps(load_derivation(path), SEED)
+            if r.equation == "(17)" and "E1" in r.element]
+    assert r.verdict == "differs"
+    assert any(x.startswith(("term dx*dpsi", "term dpsi*dx")) for x in r.diagnoses)
+
+
+def test_potential_energy_u1_agrees(tmp_path):
+    """U1 = -[0g^T 0] 0T1 [MS1; M1] with 0g = [0 -g 0] and the printed 0T1 is
+    g (MX1 sin(phi) + MY1 cos(phi)). That is right: the height of the point (X, Y) of frame 1
+    is X sin(phi) + Y cos(phi) above the axle. A potential energy is compared as a value, up
+    to a constant (the document measures it from the axle's height)."""
+    text = S4.read_text().split("[[step]]")[0]           # the file's tables, no step
+    text += ('[[step]]\nequation = "(17)"\nlabel = "U1"\nkind = "potential energy"\n'
+             'bodies = ["body"]\nvalue = "g*(MX1*sin(phi) + MY1*cos(phi))"\n')
+    path = tmp_path / "s4_u1_steps.toml"
+    path.write_text(text)
+    (r,) = compare_steps(load_derivation(path), SEED)
+    assert r.verdict == "agrees"
+
+
+# -- section 7.1 -------------------------------------------------------------------------------
+
+def test_eq55_velocity_formula_agrees_and_is_56(s7):
+    """v_B = v_xyz + omega_B x d is right. Worked out, it is exactly the printed (56)."""
+    d, records = s7
+    assert set(_verdicts(records, "(55)").values()) == {"agrees"}
+    assert len(_by_equation(records, "(55)")) == 3
+    assert sp.simplify(_vec(d, "(55)") - _vec(d, "(56)")) == sp.zeros(3, 1)
+
+
+def test_eq64_acceleration_formula_agrees_but_65_differs(s7):
+    """a_B = dv_xyz/dt + alpha_B x d + omega_B x (omega_B x d) (label lost in the text) is the
+    right rigid-body formula, so it agrees. The error enters when it is worked out into (65).
+    (65) j lacks x-dot psi-dot (dv_xyz/dt taken as x-double-dot i, i held fixed), and it has
+    half the true 2 psi-dot phi-dot d cos(phi): it uses (61)'s alpha_B, which lacks
+    -phi-dot psi-dot i."""
+    _, records = s7
+    assert _verdicts(records, "(64)") == {"(64) a_B i": "agrees", "(64) a_B j": "agrees",
+                                          "(64) a_B k": "agrees"}
+    j = _by_equation(records, "(65)")["(65) a_B j"]
+    assert j.verdict == "differs"
+    assert "term dx*dpsi: missing: the document has 0" in j.diagnoses
+    assert "term dpsi*dphi: factor: the document is 1/2 × the truth" in j.diagnoses
+    alpha = _by_equation(records, "(61)")
+    assert alpha["(61) alpha_B i"].verdict == "differs"
+    assert "term dpsi*dphi: missing: the document has 0" in alpha["(61) alpha_B i"].diagnoses
+
+
+def test_65_is_64_worked_out_with_61_and_a_fixed_heading(s7):
+    """The diagnosis, checked in the document's own symbols: (64) evaluated with the printed
+    omega_B (54), alpha_B (61) and dv_xyz/dt = x-double-dot i gives the printed (65) exactly."""
+    d, _ = s7
+    phi, dist, ddx = (d.symbol(n) for n in ("phi", "d", "ddx"))
+    vec_d = dist * sp.Matrix([sp.sin(phi), 0, sp.cos(phi)])
+    omega, alpha = _vec(d, "(54)"), _vec(d, "(61)")
+    a = sp.Matrix([ddx, 0, 0]) + alpha.cross(vec_d) + omega.cross(omega.cross(vec_d))
+    assert sp.simplify(a - _vec(d, "(65)")) == sp.zeros(3, 1)
+
+
+def test_eq64_comparison_is_not_vacuous(tmp_path):
+    """(64) worked out with (61)'s alpha_B instead of d omega_B/dt loses one of its two
+    psi-dot phi-dot d cos(phi) terms in j, and the comparison says so."""
+    text = S7.read_text()
+    wrong = text.replace("(ddpsi*d*sin(phi) + dphi*dpsi*d*cos(phi))", "(ddpsi*d*sin(phi))")
+    assert wrong != text
+    path = tmp_path / "s7_planted_steps.toml"
+    path.write_text(wrong)
+    got = _by_equation(compare_steps(load_derivation(path), SEED), "(64)")
+    assert [got[f"(64) a_B {n}"].verdict for n in "ijk"] == ["agrees", "differs", "agrees"]
+    assert ("term dpsi*dphi: factor: the document is 1/2 × the truth"
+            in got["(64) a_B j"].diagnoses)
+
+
+@pytest.mark.parametrize("formula, result, wheel", [("(66)", "(67)", "a_L"),
+                                                    ("(68)", "(69)", "a_R")])
+def test_wheel_acceleration_formulas_agree_but_67_69_differ(s7, formula, result, wheel):
+    """a_L = dv_xyz/dt + alpha_xyz x O_xyzL + omega_xyz x (omega_xyz x O_xyzL), and a_R likewise,
+    are right: the wheel centre at +-L j, the frame turning at psi-dot k. Worked out, they
+    agree. The printed (67), (69) drop the x-dot psi-dot j of dv_xyz/dt: the centripetal part
+    of the turning heading speed."""
+    _, records = s7
+    assert _verdicts(records, formula) == {f"{formula} {wheel} {n}": "agrees" for n in "ijk"}
+    printed = _by_equation(records, result)
+    assert [printed[f"{result} {wheel} {n}"].verdict for n in "ijk"] == \
+        ["agrees", "differs", "agrees"]
+    assert printed[f"{result} {wheel} j"].diagnoses == ("term dx*dpsi: missing: the document has 0",)
+
+
+def test_potential_energy_with_a_wrong_term_differs(tmp_path):
+    r"""The same U1 with cos and sin exchanged in its second term differs: the constant that
+    is allowed cannot absorb a term that changes with the pitch."""
+    text = S4.read_text().split("[[step]]")[0]           # the file's tables, no step
+    text += ('[[step]]\nequation = "(17)"\nlabel = "U1"\nkind = "potential energy"\n'
+             'bodies = ["body"]\nvalue = "g*(MX1*sin(phi) + MY1*sin(phi))"\n')
+    path = tmp_path / "s4_u1_wrong_steps.toml"
+    path.write_text(text)
+    (r,) = compare_steps(load_derivation(path), SEED)
+    assert r.verdict == "differs"
+
+
+def test_shipped_u1_agrees():
+    r"""The shipped step file compares U1 of (17) as well: it agrees up to a constant."""
+    records = compare_steps(load_derivation(S4), SEED)
+    (u1,) = [r for r in records if r.equation == "(17)" and "U1" in r.element]
+    assert u1.verdict == "agrees", u1.diagnoses
