@@ -29,7 +29,6 @@ import sympy as sp
 
 from wheeled_dyn.compare.step_records import compare_steps
 from wheeled_dyn.derivations import load_derivation
-from wheeled_dyn.errors import DerivationError
 
 from conftest import SEED
 
@@ -107,18 +106,23 @@ def test_eq17_comparison_is_not_vacuous(tmp_path):
     assert any(x.startswith(("term dx*dpsi", "term dpsi*dx")) for x in r.diagnoses)
 
 
+def _u1_record(tmp_path, value: str):
+    r"""The record of a step file with the s4 file's tables and one step: U1 = ``value``."""
+    text = S4.read_text().split("[[step]]")[0]           # the file's tables, no step
+    text += ('[[step]]\nequation = "(17)"\nlabel = "U1"\nkind = "potential energy"\n'
+             f'bodies = ["body"]\nvalue = "{value}"\n')
+    path = tmp_path / "s4_u1_steps.toml"
+    path.write_text(text)
+    (r,) = compare_steps(load_derivation(path), SEED)
+    return r
+
+
 def test_potential_energy_u1_agrees(tmp_path):
     """U1 = -[0g^T 0] 0T1 [MS1; M1] with 0g = [0 -g 0] and the printed 0T1 is
     g (MX1 sin(phi) + MY1 cos(phi)). That is right: the height of the point (X, Y) of frame 1
     is X sin(phi) + Y cos(phi) above the axle. A potential energy is compared as a value, up
     to a constant (the document measures it from the axle's height)."""
-    text = S4.read_text().split("[[step]]")[0]           # the file's tables, no step
-    text += ('[[step]]\nequation = "(17)"\nlabel = "U1"\nkind = "potential energy"\n'
-             'bodies = ["body"]\nvalue = "g*(MX1*sin(phi) + MY1*cos(phi))"\n')
-    path = tmp_path / "s4_u1_steps.toml"
-    path.write_text(text)
-    (r,) = compare_steps(load_derivation(path), SEED)
-    assert r.verdict == "agrees"
+    assert _u1_record(tmp_path, "g*(MX1*sin(phi) + MY1*cos(phi))").verdict == "agrees"
 
 
 # -- section 7.1 -------------------------------------------------------------------------------
@@ -192,13 +196,7 @@ def test_wheel_acceleration_formulas_agree_but_67_69_differ(s7, formula, result,
 def test_potential_energy_with_a_wrong_term_differs(tmp_path):
     r"""The same U1 with cos and sin exchanged in its second term differs: the constant that
     is allowed cannot absorb a term that changes with the pitch."""
-    text = S4.read_text().split("[[step]]")[0]           # the file's tables, no step
-    text += ('[[step]]\nequation = "(17)"\nlabel = "U1"\nkind = "potential energy"\n'
-             'bodies = ["body"]\nvalue = "g*(MX1*sin(phi) + MY1*sin(phi))"\n')
-    path = tmp_path / "s4_u1_wrong_steps.toml"
-    path.write_text(text)
-    (r,) = compare_steps(load_derivation(path), SEED)
-    assert r.verdict == "differs"
+    assert _u1_record(tmp_path, "g*(MX1*sin(phi) + MY1*sin(phi))").verdict == "differs"
 
 
 def test_shipped_u1_agrees():

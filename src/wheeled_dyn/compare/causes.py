@@ -180,29 +180,29 @@ def method_causes(ev: Evaluation, d, records: Sequence) -> list[Cause]:
         if r is None or r.verdict != "differs":
             continue
         (quasi if same else inconsistent).append(r)
+    def c_elements(rows: set[int]) -> tuple[str, ...]:
+        r"""The differing C elements of ``rows`` without a precise diagnosis of their own."""
+        return tuple(r.element for r in records if r.key == "C" and r.index[0] in rows
+                     and r.verdict == "differs" and not _specific(r))
+
     out = []
+    # with coordinates (not quasi-velocities) an h term equal to A's Christoffel term but not
+    # to the truth follows from A, whose own records say what differs: no cause of its own
     if quasi and ev.kind == "quasi":
-        rows = {q.index[0] for q in quasi}
-        c_rows = [r.element for r in records if r.key == "C" and r.index[0] in rows
-                  and r.verdict == "differs" and not _specific(r)]
         out.append(Cause(
             kind="quasi_coordinate_christoffel",
-            elements=tuple(r.element for r in quasi) + tuple(c_rows),
+            elements=tuple(r.element for r in quasi) + c_elements({q.index[0] for q in quasi}),
             explanation=("the document's C is the Christoffel matrix of its own A taken as if "
                          f"its velocities ({', '.join(names)}) were rates of coordinates; at least "
                          "one is a quasi-velocity (q̇ = S ν), so the SᵀAṠ (Boltzmann–Hamel) terms "
                          "are missing" + (" (truth − document below)"
                                           if any(r.residual for r in quasi) else "")),
             latex=_missing_terms_latex(quasi, d)))
-    elif quasi:
-        pass          # coordinates: the h terms follow from A, whose own records say what differs
     if inconsistent:
         rows = {q.index[0] for q in inconsistent}
-        c_rows = [r.element for r in records if r.key == "C" and r.index[0] in rows
-                  and r.verdict == "differs" and not _specific(r)]
         out.append(Cause(
             kind="c_inconsistent_with_a",
-            elements=tuple(r.element for r in inconsistent) + tuple(c_rows),
+            elements=tuple(r.element for r in inconsistent) + c_elements(rows),
             explanation=("these velocity products of C q̇ are not the Christoffel terms of the "
                          "document's own A (nor the truth's): C was not derived from this A "
                          f"(rows {', '.join(str(i + 1) for i in sorted(rows))})")))
