@@ -366,3 +366,33 @@ def test_swapped_input_columns_with_a_builtin_set(engine, tmp_path):
         tmp_path, {("B", 1, 0): "-L/R", ("B", 1, 1): "L/R"})))
     assert [c.kind for c in result.causes] == ["swapped_inputs"], result.causes
     assert all(r.verdict == "agrees" for r in result.records)
+
+
+def test_constraint_substituted_into_the_lagrangian():
+    r"""The WIP in (x0, y0, θl, θr, φ) with multipliers, its A made as section 5 of seed 001
+    makes it but with the right heading relation: the true reduced kinetic energy in
+    (ẋ, ψ̇, φ̇) written in the five velocities through ẋ = cos ψ ẋ0 + sin ψ ẏ0,
+    ψ̇ = R(θ̇r − θ̇l)/(2L), i.e. :math:`A = M^TA_\nu M` (rank 3). The cause is named, and the
+    energy is right on the admissible motions; the G rows given are the model's."""
+    import wheeled_dyn as wd
+    from wheeled_dyn.symbolic import true_expressions
+    wip = wd.load_model("wip")
+    reduced = true_expressions("wip", wd.builtin_coordinate_set(wip, "seed001"))
+    A_nu = sp.Matrix(3, 3, lambda i, j: reduced[f"A[{i + 1},{j + 1}]"])
+    tl, tr, R, L = sp.symbols("theta_l theta_r R L", real=True)
+    psi = R * (tr - tl) / (2 * L)
+    M = sp.Matrix([[sp.cos(psi), sp.sin(psi), 0, 0, 0],
+                   [0, 0, -R / (2 * L), R / (2 * L), 0],
+                   [0, 0, 0, 0, 1]])
+    G = sp.Matrix([[1, 0, -R * sp.cos(psi) / 2, -R * sp.cos(psi) / 2, 0],
+                   [0, 1, -R * sp.sin(psi) / 2, -R * sp.sin(psi) / 2, 0]])
+    A = M.T * A_nu * M
+    names = sorted({s.name for s in A.free_symbols} - {"theta_l", "theta_r", "phi"})
+    result = wd.compare("wip", coordinates="absolute_wheels", A=A, G=G,
+                        symbols={p: p for p in names}, samples=SAMPLES, param_sets=2,
+                        seed=SEED, title="constraint substituted")
+    (cause,) = [c for c in result.causes if c.kind == "constraint_in_lagrangian"]
+    assert "rank 3 of 5" in cause.explanation
+    assert "on the admissible motions it equals the true kinetic energy" in cause.explanation
+    assert all(x.endswith("a rolling constraint of the model") and "not" not in x
+               for x in result.constraints), result.constraints
