@@ -32,7 +32,7 @@ def _physical_symbols() -> dict[str, sp.Symbol]:
     return {f.name: sp.Symbol(f.name, real=True) for f in fields(WipParameters)}
 
 
-def _standard_names(model: str) -> tuple[Callable[[sp.Expr], sp.Expr], dict]:
+def _standard_names(model: str) -> Callable[[sp.Expr], sp.Expr]:
     r"""For a model without a physical record: Khalil calls ``XX(link)`` → the symbolic
     engine's symbols ``XX_link``, and the model's other names (geometry, gravity) → their
     values as exact numbers, as in its closed forms."""
@@ -46,7 +46,7 @@ def _standard_names(model: str) -> tuple[Callable[[sp.Expr], sp.Expr], dict]:
                  for c in out.atoms(AppliedUndef)}
         return out.xreplace(calls).xreplace(numbers).xreplace(plain)
 
-    return convert, numbers
+    return convert
 
 
 def model_expression(d: Derivation, standard: bool = False
@@ -58,7 +58,7 @@ def model_expression(d: Derivation, standard: bool = False
     physical = model_entry(d.model).parameters is WipParameters
     names = _physical_symbols()
     std = standard_parameters(names) if physical else None
-    to_standard = _standard_names(d.model)[0] if standard and not physical else None
+    to_standard = _standard_names(d.model) if standard and not physical else None
 
     def convert(expr: sp.Expr | None) -> sp.Expr | None:
         if expr is None:

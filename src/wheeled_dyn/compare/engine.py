@@ -93,12 +93,15 @@ class ComparisonEngine:
     def _grid(self, d: Derivation, special: tuple[SpecialCase, ...], n_states: int, k: int,
               assumed: Assumptions = Assumptions()):
         special = tuple(dict.fromkeys((*assumed.families, *special)))
-        key = (d.model, repr(d.coordinates.raw), d.coordinates.use,
+        # the coordinates' identity: equations read in another order have the same truth
+        raw = repr({name: value for name, value in d.coordinates.raw.items()
+                    if name != conventions.ROWS_KEY})
+        key = (d.model, raw, d.coordinates.use,
                tuple(c.name for c in special), n_states, k, assumed.key())
         if key not in self._truth:
             rng = np.random.default_rng([self.seed, len(special), n_states])
             sets = parameter_sets(d.model, k, rng, special)
-            ckey = (d.model, repr(d.coordinates.raw), d.coordinates.use)
+            ckey = (d.model, raw, d.coordinates.use)
             if ckey not in self._sets:
                 self._sets[ckey] = derivation_coordinate_set(d, sets[0])
             cs = self._sets[ckey]
@@ -142,17 +145,17 @@ class ComparisonEngine:
         first: list[Cause] = []
         rows = conventions.best_row_order(d, ev.doc_at, ev.score)
         if rows is not None:
-            again, ev2 = self._judge(conventions.reordered(d, rows[0]))
+            ordered = conventions.reordered(d, rows[0])
+            again, ev2 = self._judge(ordered)
             if again.counts()["agrees"] > result.counts()["agrees"]:
-                d = conventions.reordered(d, rows[0])
+                d = ordered
                 first.append(Cause(kind="convention", elements=(), explanation=(
                     "the equations are printed in another order than the coordinates ("
                     f"{conventions.describe_rows(d, rows[0])}): compared in that order")))
                 result, ev = again, ev2
         declared_counts = result.counts()
         summary = None
-        best = conventions.best_reading(d, ev.doc_at, ev.score) if conventions.readings(d) \
-            else None
+        best = conventions.best_reading(d, ev.doc_at, ev.score)
         if best is not None:
             reading = best[0]
             flipped = conventions.flipped(d, *reading)

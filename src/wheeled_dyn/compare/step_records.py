@@ -33,6 +33,7 @@ from ..derivations.steps import RELATION_KINDS, VECTOR_KINDS, Step
 from ..errors import DerivationError
 from .diagnose import (agrees, max_error, nice_number, power_diagnoses, swap_diagnoses,
                        value_diagnoses)
+from .elements import swap_groups
 from .evaluate import derivation_coordinate_set, document_symbol_values
 from .kinematics_truth import Motion, along, check_links
 from .result import ElementRecord
@@ -378,14 +379,6 @@ def _linear_terms(g: _Group, expr: sp.Expr) -> list[str]:
     return out
 
 
-def _swap_groups(d: Derivation) -> list[list[sp.Symbol]]:
-    by_units: dict[str, list[sp.Symbol]] = {}
-    for spec in d.symbols.values():
-        if not spec.is_input and spec.units:
-            by_units.setdefault(spec.units.replace(" ", ""), []).append(spec.symbol)
-    return [list(d.velocities), list(d.positions), *[v for v in by_units.values() if len(v) > 1]]
-
-
 def _term_diagnoses(g: _Group, step: Step, j: int, expr: sp.Expr, scale: float) -> list[str]:
     d = g.d
     gens = [*d.velocities, *d.accelerations]
@@ -495,7 +488,7 @@ def _special(d: Derivation, step: Step, seed: int) -> dict[int, str]:
 def _records(g: _Group, step: Step, index: int, T: np.ndarray) -> list[ElementRecord]:
     d = g.d
     names = step.component_names()
-    groups = _swap_groups(d)
+    groups = swap_groups(d)
     dims = DimensionChecker(d)
     recs = []
     D_all, scale = _document_values(g, step, T)
