@@ -119,32 +119,24 @@ def test_document_coordinate_sets(name):
                            f"document set {name}")
 
 
+#: Models whose closed forms are checked in their heading coordinates: TIAGo's base, and
+#: Upkie with its legs locked at a crouch (the locked joints' rotations leave float noise,
+#: 1e-16, in the rolling constraints; the elimination runs over exact numbers).
+HEADING_MODELS = ("tiago_base", str(Path(__file__).parent / "data" / "upkie_crouch"
+                                    / "upkie_crouch.toml"))
+
+
 @pytest.mark.parametrize("mode", ["numbers", "standard"])
-def test_tiago_base_heading(mode):
+@pytest.mark.parametrize("model", HEADING_MODELS, ids=["tiago_base", "upkie_crouch"])
+def test_heading_closed_forms(model, mode):
     try:
-        wm = load_model("tiago_base")
+        wm = load_model(model)
     except OptionalDependencyError as exc:
         pytest.skip(str(exc))
     cs = builtin_coordinate_set(wm, "heading")
     red = wheeled_symbolic(wm, cs, mode)
     _check_against_numeric(wm, cs, red, parameter_vector(red, wm.model),
-                           np.random.default_rng(SEED + 3), f"tiago_base {mode}")
-
-
-@pytest.mark.parametrize("mode", ["numbers", "standard"])
-def test_locked_legs_closed_forms(mode):
-    r"""Upkie with its legs locked at a crouch (a model file of the tests): the locked joints'
-    rotations leave float noise (1e-16) in the rolling constraints; the elimination runs over
-    exact numbers and the closed forms give the numbers of the numeric reduction."""
-    path = Path(__file__).parent / "data" / "upkie_crouch" / "upkie_crouch.toml"
-    try:
-        wm = load_model(str(path))
-    except OptionalDependencyError as exc:
-        pytest.skip(str(exc))
-    cs = builtin_coordinate_set(wm, "heading")
-    red = wheeled_symbolic(wm, cs, mode)
-    _check_against_numeric(wm, cs, red, parameter_vector(red, wm.model),
-                           np.random.default_rng(SEED + 4), f"upkie crouched {mode}")
+                           np.random.default_rng(SEED + 3), f"{Path(model).stem} {mode}")
 
 
 def test_seed001_closed_form_reads_as_expected():
