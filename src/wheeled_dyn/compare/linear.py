@@ -112,8 +112,7 @@ class LinearTruth:
 
     def boundaries(self) -> list[float]:
         r"""Speeds where the largest real part of the eigenvalues changes sign, in order."""
-        abscissa = np.array([self.form.eigenvalues(np.array([v]))[0].real.max()
-                             for v in SCAN_SPEEDS])
+        abscissa = self.form.eigenvalues(SCAN_SPEEDS).real.max(axis=1)
         out = []
         for a, b, fa, fb in zip(SCAN_SPEEDS, SCAN_SPEEDS[1:], abscissa, abscissa[1:]):
             if fa * fb < 0:
