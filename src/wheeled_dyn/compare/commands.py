@@ -243,10 +243,9 @@ def compare_report(files: Sequence[Path], samples: int, param_sets: int,
     workers = max(1, min(workers or os.cpu_count() or 1, len(derivations)))
     table_docs: set[str] = set()
     if table_group:
-        from ..derivations import builtin_tables
-        from ..derivations.table import table_documents
+        from ..derivations import builtin_tables, load_comparison_table
         for t in builtin_tables(table_group):
-            table_docs |= set(table_documents(t))
+            table_docs |= set(load_comparison_table(t).documents)
     bins = _bins(derivations, workers, frozenset(table_docs))
     owner = next((k for k, b in enumerate(bins) if any(paths[i].name in table_docs for i in b)), 0)
     jobs = [(paths, b, samples, param_sets, table_group if k == owner else None)

@@ -177,18 +177,6 @@ def _documents(ld: _Loader, raw: dict[str, Any]) -> tuple[str, ...]:
     return tuple(out)
 
 
-def table_documents(path: str | Path) -> tuple[str, ...]:
-    r"""The ``[documents]`` file names of a table file, read without parsing the rest (for
-    grouping work before the table is loaded); () when it names none or cannot be read."""
-    import tomllib
-    try:
-        raw = tomllib.loads(Path(path).read_text(encoding="utf-8")).get("documents", {})
-    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
-        return ()
-    names = tuple(raw.get(k) for k in DOCUMENT_KEYS) if isinstance(raw, dict) else ()
-    return names if all(isinstance(x, str) for x in names) and names else ()
-
-
 def _entry(ld: _Loader, raw: Any) -> TableEntry:
     if not isinstance(raw, dict) or not isinstance(raw.get("name"), str):
         raise ld.fail("element", "each [[element]] needs name = \"A11\"", ld.line("element"))
