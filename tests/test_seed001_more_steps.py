@@ -15,9 +15,15 @@ agree. The printed components that follow them are where the errors enter:
 - (65), (67), (69) take dv_xyz/dt = x-double-dot i and drop the x-dot psi-dot j from the
   turning of i. (65) also uses (61)'s alpha_B, which halves its psi-dot phi-dot j term.
 
-Not compared, because no step kind can express them: in (15), 0w0 (the angular velocity of
-frame 0, which is not a link), 0g, 0T1, 1e1 and q1-dot = phi-dot. U1 of (17) is compared as a
-potential energy, up to a constant.
+Not compared, because no step kind can express them: in (15), 0g, 0T1, 1e1 and
+q1-dot = phi-dot. 0w0 of (15), the angular velocity of frame 0, is compared with the heading
+frame as its body (body = "heading"). U1 of (17) is compared as a potential energy, up to a
+constant.
+
+The wheels' energies E_L (18), E_R (19) are worked out from the printed wheel velocities. These
+carry an L/2 where the geometry needs L: L is the half track, so the left wheel's centre moves at
+x-dot - L psi-dot and the right one's at x-dot + L psi-dot. The energies inherit the L/2, so
+they differ. With L for L/2 they agree.
 """
 
 from __future__ import annotations
@@ -75,9 +81,10 @@ def test_eq15_velocity_of_frame_0_agrees(s4):
     axis (forward). It is right. It is compared as the velocity of the body link's origin, which
     is frame 0's origin because 0P1 = 0."""
     _, records = s4
-    assert _verdicts(records, "(15)") == {"(15) 0V0 x0": "agrees", "(15) 0V0 y0": "agrees",
-                                          "(15) 0V0 z0": "agrees"}
-    assert {r.step for r in _by_equation(records, "(15)").values()} == {"velocity"}
+    got = {e: v for e, v in _verdicts(records, "(15)").items() if "0V0" in e}
+    assert got == {"(15) 0V0 x0": "agrees", "(15) 0V0 y0": "agrees", "(15) 0V0 z0": "agrees"}
+    assert {r.step for r in _by_equation(records, "(15)").values() if "0V0" in r.element} == \
+        {"velocity"}
 
 
 def test_eq17_kinetic_energy_of_the_body_agrees(s4):
@@ -123,6 +130,155 @@ def test_potential_energy_u1_agrees(tmp_path):
     is X sin(phi) + Y cos(phi) above the axle. A potential energy is compared as a value, up
     to a constant (the document measures it from the axle's height)."""
     assert _u1_record(tmp_path, "g*(MX1*sin(phi) + MY1*cos(phi))").verdict == "agrees"
+
+
+def _copy_records(tmp_path, text: str, name: str = "s4_copy_steps.toml"):
+    path = tmp_path / name
+    path.write_text(text)
+    return compare_steps(load_derivation(path), SEED)
+
+
+def _with_L(text: str) -> str:
+    r"""The s4 file with the wheels' L/2 read as L (in (18), (19) and in E_L, E_R)."""
+    out = text.replace("L/(2*R)", "L/R").replace("dpsi*L/2", "dpsi*L")
+    assert out != text and "L/2" not in out.split("[[step]]", 1)[1]
+    return out
+
+
+@pytest.mark.parametrize("equation, label, body, sign", [("(18)", "E_L", "wheel_left", -1),
+                                                         ("(19)", "E_R", "wheel_right", 1)])
+def test_wheel_energies_differ_by_the_printed_L_over_2(s4, equation, label, body, sign):
+    r"""E_L (E_R) worked out from the printed w_L, V_L (w_R, V_R) is the kinetic energy of the
+    link wheel_left (wheel_right) alone. The printed wheel-centre speed is
+    x-dot -+ psi-dot L/2. L is the half track, so the true speed is x-dot -+ L psi-dot, and the
+    spin follows by rolling, w_z = -V/R. The energy's x-dot psi-dot coefficient is
+    2 V_x V_psi (M_w + ZZw/R**2)/2 with V_psi = -+L/2 printed and -+L true: half the truth.
+    The velocity steps of the same equation differ by the same 1/2 on their psi-dot term."""
+    d, records = s4
+    s = next(x for x in d.steps if x.label == label)
+    assert s.bodies == (body,) and s.kind == "kinetic energy"
+    r = _by_equation(records, equation)[f"{equation} {label} value"]
+    assert r.verdict == "differs"
+    assert "term dx*dpsi: factor: the document is 1/2 × the truth" in r.diagnoses
+    assert any(x.startswith("term dpsi*dpsi") for x in r.diagnoses)
+    assert not any(x.startswith("term dx*dx") for x in r.diagnoses)     # x-dot alone is right
+    for e, rec in _by_equation(records, equation).items():
+        if rec.step in ("velocity", "angular velocity") and rec.verdict == "differs":
+            assert rec.diagnoses == ("term dpsi: factor: the document is 1/2 × the truth",), e
+    # by hand, in the document's symbols (wheel axisymmetric, centred: only YYw, ZZw, Mw)
+    dx, dpsi, L, R, Mw, YYw, ZZw = (d.symbol(n) for n in ("dx", "dpsi", "L", "R", "Mw", "YYw",
+                                                           "ZZw"))
+
+    def energy(V):
+        return sp.Rational(1, 2) * (YYw * dpsi**2 + ZZw * (V / R)**2 + Mw * V**2)
+
+    printed, true = energy(dx + sign * L / 2 * dpsi), energy(dx + sign * L * dpsi)
+    c = [sp.expand(e).coeff(dx, 1).coeff(dpsi, 1) for e in (printed, true)]
+    assert sp.simplify(c[0] - c[1] / 2) == 0
+    zero = {d.symbol(n): 0 for n in ("YZw", "MYw", "MZw")}
+    assert sp.simplify(s.components[0].xreplace(zero) - printed) == 0
+
+
+def test_wheel_energies_agree_with_L_for_L_over_2(tmp_path):
+    r"""The same file with the wheels' L/2 read as L: the wheel velocities, angular velocities
+    and energies of (18), (19) all agree. The wheel's spin sign, frame 0's axes and J_Gw at
+    the wheel's centre are right; only the L/2 is wrong."""
+    records = _copy_records(tmp_path, _with_L(S4.read_text()))
+    for equation in ("(18)", "(19)"):
+        got = _verdicts(records, equation)
+        assert len(got) == 7 and set(got.values()) == {"agrees"}, got
+
+
+def test_wheel_energy_without_its_translation_term_differs(tmp_path):
+    r"""E_L (L read as L) without M_w V_L^T V_L: the translational energy of the wheel is lost,
+    so the x-dot**2, x-dot psi-dot and psi-dot**2 terms all differ (each keeps its ZZw/R**2 and
+    YYw part, so none is missing outright)."""
+    text = _with_L(S4.read_text())
+    wrong = text.replace("  + Mw*(dx - dpsi*L)**2\n", "")
+    assert wrong != text
+    records = _copy_records(tmp_path, wrong)
+    r = _by_equation(records, "(18)")["(18) E_L value"]
+    assert r.verdict == "differs"
+    assert {x.split(":")[0] for x in r.diagnoses if x.startswith("term ")} == \
+        {"term dx*dx", "term dx*dpsi", "term dpsi*dpsi"}
+    assert _by_equation(records, "(19)")["(19) E_R value"].verdict == "agrees"
+
+
+def test_eq15_angular_velocity_of_frame_0_agrees(s4):
+    r"""0w0 = [0 psi-dot 0]: frame 0 turns with the heading only, about its y axis (up). It is
+    the angular velocity of the heading frame itself (body = "heading")."""
+    d, records = s4
+    s = next(x for x in d.steps if x.label == "0w0")
+    assert (s.body, s.kind) == ("heading", "angular velocity")
+    got = {e: v for e, v in _verdicts(records, "(15)").items() if "0w0" in e}
+    assert got == {"(15) 0w0 x0": "agrees", "(15) 0w0 y0": "agrees", "(15) 0w0 z0": "agrees"}
+
+
+def test_eq15_angular_velocity_with_the_pitch_rate_differs(tmp_path):
+    r"""0w0 = [0 psi-dot phi-dot] (the body's pitch rate given to frame 0): its z component
+    differs, and the extra phi-dot term is named."""
+    text = S4.read_text()
+    wrong = text.replace('components = ["0", "dpsi", "0"]', 'components = ["0", "dpsi", "dphi"]')
+    assert wrong.count('"dpsi", "dphi"]') == 1
+    got = _by_equation(_copy_records(tmp_path, wrong), "(15)")
+    assert [got[f"(15) 0w0 {n}"].verdict for n in ("x0", "y0", "z0")] == \
+        ["agrees", "agrees", "differs"]
+    assert "term dphi: extra term: the truth is 0" in got["(15) 0w0 z0"].diagnoses
+
+
+_HEADING_STEPS = """
+[[step]]
+equation = "(h)"
+label = "O"
+kind = "velocity"
+body = "heading"
+frame = "heading"
+components = ["{v}", "0", "0"]
+
+[[step]]
+equation = "(h)"
+label = "axle"
+kind = "acceleration"
+body = "heading"
+point = ["0", "0", "R"]
+frame = "heading"
+components = ["ddx", "{a}", "0"]
+"""
+
+
+def test_heading_frame_origin_and_points(tmp_path):
+    r"""The heading frame's origin (on the ground below the axle midpoint) moves at x-dot
+    forward; its point [0, 0, R] (the axle midpoint) accelerates at x-double-dot forward and
+    x-dot psi-dot to the left (the turning heading). Planted: a sideways L psi-dot in the
+    speed and the centripetal term dropped."""
+    head = S4.read_text().split("[[step]]")[0]
+    right = _copy_records(tmp_path, head + _HEADING_STEPS.format(v="dx", a="dx*dpsi"))
+    assert {r.verdict for r in right} == {"agrees"} and len(right) == 6
+    wrong = _copy_records(tmp_path, head + _HEADING_STEPS.format(v="dx + L*dpsi", a="0"),
+                          "s4_heading_wrong_steps.toml")
+    got = {r.element: r for r in wrong}
+    assert got["(h) O x"].verdict == "differs"
+    assert "term dpsi: extra term: the truth is 0" in got["(h) O x"].diagnoses
+    assert got["(h) axle y"].verdict == "differs"
+    assert "term dx*dpsi: missing: the document has 0" in got["(h) axle y"].diagnoses
+
+
+@pytest.mark.parametrize("step, item", [
+    ('kind = "velocity"\nbody = "heading"\npoint = "com"\ncomponents = ["dx", "0", "0"]',
+     "step 1 (h).point"),
+    ('kind = "velocity"\nbody = "world"\ncomponents = ["dx", "0", "0"]', "step 1 (h).body"),
+    ('kind = "kinetic energy"\nbodies = ["heading"]\nvalue = "0"', "step 1 (h).bodies"),
+])
+def test_heading_is_a_frame_not_a_link(tmp_path, step, item):
+    r"""The heading frame has no centre of mass or contact point, the world is no body, and
+    an energy is of links only: each is an error naming the step."""
+    from wheeled_dyn.errors import WheeledDynError
+    path = tmp_path / "s4_bad_steps.toml"
+    path.write_text(S4.read_text().split("[[step]]")[0] +
+                    f'[[step]]\nequation = "(h)"\n{step}\n')
+    with pytest.raises(WheeledDynError) as err:
+        load_derivation(path)
+    assert err.value.item == item
 
 
 # -- section 7.1 -------------------------------------------------------------------------------

@@ -24,7 +24,9 @@ the link frame; origin :math:`O`, angular velocity :math:`\omega`, spatial angul
     v_p = v_O + \omega\times p,\qquad a_p = a_O + \dot\omega\times p + \omega\times(\omega\times p),
 
 rotated into the frame the document writes them in (world; the heading frame, the ``psi``
-joint's frame, turning with :math:`\psi` only; or a link frame). Kinetic energy per link
+joint's frame, turning with :math:`\psi` only; or a link frame). The heading frame is also a body
+(``"heading"``): its angular velocity is :math:`\dot\psi` about the vertical, its origin the
+point on the ground below the axle midpoint. Kinetic energy per link
 :math:`\tfrac12 v_J^T I_J v_J` (spatial velocity and inertia of its joint), in total
 ``pin.computeKineticEnergy``; potential :math:`-m\,g^T c` per link, in total
 ``pin.computePotentialEnergy``; generalized forces from the reduced terms
@@ -51,6 +53,16 @@ def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
                      a[0] * b[1] - a[1] * b[0]])
 _AXIS = {"x": 0, "y": 1, "z": 2}
+#: The name of the heading frame (the ``psi`` joint's frame of a wheeled model) as a body.
+HEADING = "heading"
+
+
+def heading_frame(wm: WheeledModel) -> int:
+    r"""Frame id of the heading frame (the ``psi`` joint's), else :class:`UnknownNameError`."""
+    if "psi" not in wm.coordinate_names:
+        raise UnknownNameError("frame", HEADING, ["world", "a link"],
+                               where=f"model {wm.name} (it has no heading)")
+    return wm.model.getFrameId("psi", pin.FrameType.JOINT)
 
 
 class Motion:
@@ -100,6 +112,8 @@ class Motion:
     # -- frames ---------------------------------------------------------------------------
     def frame_id(self, link: str) -> int:
         model = self.wm.model
+        if link == HEADING:
+            return heading_frame(self.wm)
         if not model.existFrame(link):
             raise UnknownNameError("link", link, [f.name for f in model.frames
                                                   if f.type == pin.FrameType.BODY],
@@ -123,6 +137,9 @@ class Motion:
         frame = self.wm.model.frames[fid]
         if isinstance(point, np.ndarray):
             return point
+        if link == HEADING and point != "origin":
+            raise UnknownNameError("point", str(point), ["origin", "[x, y, z]"],
+                                   where="body heading")
         if point == "origin":
             return np.zeros(3)
         if point == "com":
@@ -187,8 +204,11 @@ def along(vector: np.ndarray, axes: Sequence[str]) -> np.ndarray:
 
 
 def check_links(wm: WheeledModel, links: Sequence[str]) -> None:
-    r"""Every name is a link (BODY frame) of the model, else :class:`UnknownNameError`."""
+    r"""Every name is a link (BODY frame) of the model or the heading frame (a model with a
+    ``psi`` joint), else :class:`UnknownNameError`."""
     names = [f.name for f in wm.model.frames if f.type == pin.FrameType.BODY]
     for link in links:
-        if link not in names:
+        if link == HEADING:
+            heading_frame(wm)
+        elif link not in names:
             raise UnknownNameError("link", link, names, where=f"model {wm.name}")

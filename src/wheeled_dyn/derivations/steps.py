@@ -23,14 +23,21 @@ printed, in the file's namespace (positions :math:`q`, velocities :math:`\nu`, a
                             ``about`` (velocities not named there are 0, positions random)
 ``first integral``          ``value``: a quantity the document says is constant in the
                             free motion (no inputs)
+``frequency``               ``value``: an angular frequency of small oscillations about the
+                            state ``about`` (a steady state)
+``critical speed``          ``value``: the value of the velocity ``speed`` (the others as in
+                            ``about``) at which the stability of ``about`` changes
 ``generalized force``       ``components`` of Kane's generalized inertia forces
                             (``quantity = "inertia"``: :math:`F^* = -(A\dot\nu + h)`) or of
                             the inertial left side (``quantity = "inertial terms"``:
                             :math:`A\dot\nu + h`), for the document's ``rows``
 =========================== ============================================================
 
-Vectors are expressed in ``frame`` (``"world"``, ``"heading"`` — turning with the heading
-angle only: x forward, y left, z up — or a link name) along the document's ``axes``
+A vector's ``body`` is a link of the model or ``"heading"``: the heading frame itself (the
+model's :math:`\psi` joint frame, turning with the heading only; its origin is the point on the
+ground below the axle midpoint, its points ``"origin"`` or ``[x, y, z]``, no ``"com"`` or
+``"contact"``). Vectors are expressed in ``frame`` (``"world"``, ``"heading"`` — turning with
+the heading angle only: x forward, y left, z up — or a link name) along the document's ``axes``
 (default ``["x", "y", "z"]``; e.g. ``["x", "z", "-y"]`` for a frame with x forward, y up and z
 to the right written over the heading frame). ``given`` names special parameter families of
 the model under which the document states the step (``"no_products"``, ``"disc_wheels"`` ...).
@@ -52,9 +59,12 @@ from ..errors import DerivationError
 STEP_KINDS: tuple[str, ...] = ("velocity", "angular velocity", "acceleration",
                                "angular acceleration", "kinetic energy", "potential energy",
                                "constraint", "claim", "generalized force",
-                               "linearised equations", "first integral")
+                               "linearised equations", "first integral", "frequency",
+                               "critical speed")
 VECTOR_KINDS = STEP_KINDS[:4]
 RELATION_KINDS = ("constraint", "claim", "linearised equations")
+#: Stated results judged on the linearisation of the true motion (:mod:`~wheeled_dyn.compare.results`).
+RESULT_KINDS = ("frequency", "critical speed")
 #: Named points of a body.
 POINTS: tuple[str, ...] = ("origin", "com", "contact")
 #: Frames every model has; any link name is a frame too.
@@ -63,7 +73,7 @@ AXES: tuple[str, ...] = ("x", "y", "z", "-x", "-y", "-z")
 QUANTITIES: tuple[str, ...] = ("inertia", "inertial terms")
 STEP_KEYS: tuple[str, ...] = ("equation", "kind", "label", "body", "bodies", "point", "frame",
                               "axes", "components", "value", "relations", "quantity", "rows",
-                              "given", "note", "names", "about")
+                              "given", "note", "names", "about", "speed")
 #: An element the extracted text lost.
 LOST = "?"
 
@@ -93,6 +103,7 @@ class Step:
     sides: tuple[tuple[sympy.Expr, sympy.Expr], ...] = ()    # relations: (lhs, rhs)
     names: tuple[str, ...] = ()          # the document's names of the components (i, j, k)
     about: tuple[tuple[str, sympy.Expr], ...] = ()   # linearised: (name, value) of the state
+    speed: str = ""                      # critical speed: the document velocity scanned
 
     @property
     def name(self) -> str:
@@ -140,6 +151,13 @@ def _strings(table: dict, key: str, item: str, line, fail) -> tuple[str, ...]:
     return tuple(str(v) for v in value)
 
 
+def _about(t: dict, item: str, line, expr, fail) -> tuple[tuple[str, sympy.Expr], ...]:
+    about = t.get("about", {})
+    if not isinstance(about, dict):
+        raise fail(f"{item}.about", "expected a table: name = \"value\"", line)
+    return tuple((str(k), expr(v, f"{item}.about.{k}")) for k, v in about.items())
+
+
 def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
     label = str(t.get("equation", ""))
     item = f"step {k + 1}" + (f" {label}" if label else "")
@@ -161,8 +179,9 @@ def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
     extra: dict[str, Any] = {}
     if kind in VECTOR_KINDS:
         body = t.get("body")
-        if not isinstance(body, str) or not body:
-            raise fail(f"{item}.body", "a vector step names its body (a link of the model)", line)
+        if not isinstance(body, str) or not body or body == "world":
+            raise fail(f"{item}.body", "a vector step names its body (a link of the model, or "
+                       "\"heading\": the heading frame)", line)
         axes = _strings(t, "axes", item, line, fail) or ("x", "y", "z")
         bad = [a for a in axes if a not in AXES]
         if bad or len(axes) != len(set(a.lstrip("-") for a in axes)):
@@ -178,6 +197,9 @@ def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
         elif point not in POINTS:
             raise fail(f"{item}.point", f"{point!r}: expected one of {', '.join(POINTS)} or "
                        "[x, y, z] in the body's frame", line)
+        if body == "heading" and point in ("com", "contact"):
+            raise fail(f"{item}.point", "the heading frame's points are \"origin\" (on the "
+                       "ground below the axle midpoint) or [x, y, z] in it", line)
         frame = t.get("frame", "world")
         if not isinstance(frame, str) or not frame:
             raise fail(f"{item}.frame", "expected world, heading or a link name", line)
@@ -186,14 +208,25 @@ def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
         if "value" not in t:
             raise fail(f"{item}.value", f"a {kind} step gives value = \"...\"", line)
         texts = (str(t["value"]),)
-        extra = dict(bodies=_strings(t, "bodies", item, line, fail))
+        bodies = _strings(t, "bodies", item, line, fail)
+        if any(b in FRAMES for b in bodies):
+            raise fail(f"{item}.bodies", "an energy is of links of the model (world and heading "
+                       "are frames)", line)
+        extra = dict(bodies=bodies)
+    elif kind in RESULT_KINDS:
+        if "value" not in t:
+            raise fail(f"{item}.value", f"a {kind} step gives value = \"...\"", line)
+        texts = (str(t["value"]),)
+        extra = dict(about=_about(t, item, line, expr, fail))
+        if kind == "critical speed":
+            speed = t.get("speed")
+            if not isinstance(speed, str) or not speed:
+                raise fail(f"{item}.speed", "a critical speed names the document velocity it "
+                           "is of: speed = \"dphi\"", line)
+            extra["speed"] = speed
     elif kind in RELATION_KINDS:
         if kind == "linearised equations":
-            about = t.get("about", {})
-            if not isinstance(about, dict):
-                raise fail(f"{item}.about", "expected a table: name = \"value\"", line)
-            extra = dict(about=tuple((str(k), expr(v, f"{item}.about.{k}"))
-                                     for k, v in about.items()))
+            extra = dict(about=_about(t, item, line, expr, fail))
         texts = _strings(t, "relations", item, line, fail)
         if not texts or any(s.count("=") != 1 for s in texts):
             raise fail(f"{item}.relations", "expected relations = [\"lhs = rhs\", ...], one "
@@ -225,4 +258,4 @@ def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
                 note=str(t.get("note", "")), line=line, sides=tuple(sides), names=names, **extra)
 
 
-__all__ = ["RELATION_KINDS", "Step", "STEP_KINDS", "read_steps"]
+__all__ = ["RELATION_KINDS", "RESULT_KINDS", "Step", "STEP_KINDS", "read_steps"]
