@@ -30,3 +30,21 @@ def test_the_complete_example_loads_in_both_forms(tmp_path):
     assert sympy.simplify(mat.C * sympy.Matrix(mat.velocities) - h) == sympy.zeros(2, 1)
     assert Q == mat.Q and B == mat.B
     assert mat.coordinates.configuration["hinge"] == -mat.symbol("th")
+
+
+def test_the_steps_example_is_judged_right(tmp_path):
+    r"""The complete steps-only example (energies, a first integral, linearised equations and
+    stated results) loads and every record agrees with its model; a planted frequency off by
+    √2 differs."""
+    from wheeled_dyn.compare.engine import ComparisonEngine
+    (block,) = [b for b in _toml_blocks() if 'kind = "critical speed"' in b]
+    for text, planted in ((block, False),
+                          (block.replace('value = "sqrt(3*g/(2*L))"', 'value = "sqrt(3*g/L)"', 1),
+                           True)):
+        path = tmp_path / "steps_example.toml"
+        path.write_text(text, encoding="utf-8")
+        result = ComparisonEngine(samples=20, param_sets=1, seed=1).compare(load_derivation(path))
+        verdicts = {r.element: r.verdict for r in result.records if r.key == "step"}
+        assert len(verdicts) == 7
+        wrong = {e for e, v in verdicts.items() if v != "agrees"}
+        assert wrong == ({"(e) frequency value"} if planted else set()), verdicts

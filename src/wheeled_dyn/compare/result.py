@@ -55,7 +55,7 @@ CAUSE_KINDS: tuple[str, ...] = (
 STEPS: tuple[str, ...] = ("equations of motion", "velocity", "angular velocity", "acceleration",
                           "angular acceleration", "kinetic energy", "potential energy",
                           "constraint", "claim", "generalized force", "newton-euler",
-                          "linearised equations")
+                          "linearised equations", "frequency", "critical speed")
 
 
 @dataclass(frozen=True)

@@ -29,7 +29,7 @@ import sympy as sp
 
 from ..constraints.reduction import CoordinateMap
 from ..derivations.schema import Derivation
-from ..derivations.steps import RELATION_KINDS, VECTOR_KINDS, Step
+from ..derivations.steps import RELATION_KINDS, RESULT_KINDS, VECTOR_KINDS, Step
 from ..errors import DerivationError
 from .diagnose import (agrees, max_error, nice_number, power_diagnoses, swap_diagnoses,
                        value_diagnoses)
@@ -37,6 +37,7 @@ from .elements import swap_groups
 from .evaluate import derivation_coordinate_set, document_symbol_values
 from .kinematics_truth import Motion, along, check_links
 from .result import ElementRecord
+from .results import compare_result
 from .samples import parameter_sets, random_states, special_cases
 from .units import DimensionChecker, format_dim
 
@@ -551,10 +552,13 @@ def _records(g: _Group, step: Step, index: int, T: np.ndarray) -> list[ElementRe
 def compare_steps(d: Derivation, seed: int = 2026) -> list[ElementRecord]:
     r"""Records of every ``[[step]]`` of ``d``, in the file's order."""
     by_given: dict[tuple, list[int]] = {}
+    out: dict[int, list[ElementRecord]] = {}
     for i, s in enumerate(d.steps):
+        if s.kind in RESULT_KINDS:
+            out[i] = [compare_result(d, s, i, seed)]
+            continue
         alone = (i,) if s.kind in ("linearised equations", "first integral") else ()
         by_given.setdefault((s.given, alone), []).append(i)
-    out: dict[int, list[ElementRecord]] = {}
     for (given, _), idx in by_given.items():
         g = _Group(d, given, seed)
         truths = g.truth([d.steps[i] for i in idx])

@@ -1,0 +1,270 @@
+r"""Stated results of a derivation — a natural frequency, a critical speed — against the
+linearisation of the true free motion.
+
+A document that has its equations of motion often goes on to a number: "for small θ,
+:math:`\omega_n = \sqrt{3g/2l}`", "the hanging rod becomes unstable above
+:math:`\omega_{crit} = \sqrt{3g/2L}`". Such a result is a ``[[step]]`` (``kind = "frequency"``
+or ``"critical speed"``) with its printed ``value`` and the state ``about`` which it is stated
+(document positions and velocities; velocities not named are 0, positions not named are drawn
+at random). The truth comes from the model's reduced equations in the document's coordinates,
+:math:`\dot\nu = f(q, \nu) = A^{-1}(-h - Q)`, with :math:`\dot q = \nu` (holonomic sets) or the
+least-squares rates of the document's positions that give the model's velocity :math:`S\nu`
+(quasi-velocities). The linearisation of the state field :math:`x = (q, \nu)` about the stated
+state :math:`x^*`,
+
+.. math::
+
+    \Delta\dot x = J\,\Delta x ,\qquad J = \frac{\partial(\dot q, \dot\nu)}{\partial(q, \nu)}
+    \Big|_{x^*}\quad\text{(central differences)},
+
+has eigenvalues :math:`\lambda`:
+
+- **frequency**: the document's value must equal :math:`|\operatorname{Im}\lambda|` of one
+  oscillatory mode (:math:`|\operatorname{Re}\lambda|` negligible) at every parameter set;
+- **critical speed**: the named velocity ``speed`` is scanned from 0 to :data:`SCAN_SPAN` × the
+  document's value; the document's value must be where the largest real part of
+  :math:`\lambda` changes sign (located by bisection).
+
+The stated state must be steady: :math:`\dot\nu(x^*) = 0`, and every position that moves there
+(a flywheel's angle turning at :math:`\omega_0`) must be ignorable (:math:`f` does not depend on
+it); otherwise the result is *undecided* with the reason.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+import sympy as sp
+
+from ..constraints.reduction import CoordinateMap
+from ..derivations.schema import Derivation
+from ..derivations.steps import RESULT_KINDS, Step
+from ..errors import DerivationError
+from .diagnose import nice_number
+from .evaluate import derivation_coordinate_set, document_symbol_values
+from .result import ElementRecord
+from .samples import parameter_sets, special_cases
+from .units import DimensionChecker, format_dim
+
+#: Parameter sets a result is checked on.
+RESULT_SETS = 3
+#: Relative agreement of a stated number with the truth's (finite-difference linearisation).
+RESULT_TOL = 1e-5
+#: Real parts below this fraction of the largest |λ| count as zero (neutral stability).
+NEUTRAL_TOL = 1e-6
+#: Relative size of ν̇ (against the field's scale) under which the stated state is steady.
+STEADY_TOL = 1e-8
+#: Central-difference steps of the linearisation (positions, velocities).
+FD_Q, FD_NU = 1e-5, 1e-4
+#: A critical speed is looked for between 0 and this multiple of the document's value.
+SCAN_SPAN = 3.0
+#: Points of the first scan for a change of stability.
+SCAN_POINTS = 60
+
+StateField = Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]
+
+
+def state_field(cmap: CoordinateMap, quasi: bool) -> StateField:
+    r""":math:`(q, \nu) \mapsto (\dot q, \dot\nu)` of the free motion in the document's
+    coordinates (see the module docstring)."""
+
+    def field(q: np.ndarray, nu: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        terms, _, v = cmap.reduce_at(cmap.model_configuration(q), nu, q)
+        nudot = np.linalg.solve(terms.A, -(terms.h + terms.Q))
+        if not quasi:
+            return nu.copy(), nudot
+        G = np.stack([(cmap.model_configuration(q + 1e-6 * e) -
+                       cmap.model_configuration(q - 1e-6 * e)) / 2e-6
+                      for e in np.eye(len(q))], 1)
+        return np.linalg.lstsq(G, v, rcond=None)[0], nudot
+    return field
+
+
+def linearisation(field: StateField, q0: np.ndarray, nu0: np.ndarray) -> tuple[np.ndarray, str]:
+    r"""The Jacobian :math:`J` of the state field at :math:`(q_0, \nu_0)`, and "" — or, if the
+    state is not steady, no matrix and the reason."""
+    n = len(q0)
+    qdot, nudot = field(q0, nu0)
+    cols = []
+    for i in range(2 * n):
+        e = np.zeros(2 * n)
+        e[i] = FD_Q if i < n else FD_NU
+        plus, minus = field(q0 + e[:n], nu0 + e[n:]), field(q0 - e[:n], nu0 - e[n:])
+        cols.append(np.concatenate([plus[0] - minus[0], plus[1] - minus[1]]) / (2 * e[i]))
+    J = np.stack(cols, 1)
+    scale = max(float(np.abs(J).max()), 1e-300)
+    if np.abs(nudot).max(initial=0.0) > STEADY_TOL * scale * (1 + np.abs(nu0).max(initial=0.0)):
+        return np.zeros((0, 0)), (f"the stated state is not steady: the true accelerations "
+                                  f"there are {np.round(nudot, 6).tolist()}")
+    moving = [i for i in range(n) if abs(qdot[i]) > STEADY_TOL * (1 + np.abs(nu0).max())]
+    bound = [i for i in moving if np.abs(J[:, i]).max() > np.sqrt(STEADY_TOL) * scale]
+    if bound:
+        return np.zeros((0, 0)), (f"the stated state is not steady: position {bound[0] + 1} "
+                                  "moves and the motion depends on it")
+    return J, ""
+
+
+def frequencies(J: np.ndarray) -> np.ndarray:
+    r"""The angular frequencies :math:`\operatorname{Im}\lambda > 0` of the neutral modes."""
+    lam = np.linalg.eigvals(J)
+    size = max(float(np.abs(lam).max(initial=0.0)), 1e-300)
+    keep = (np.abs(lam.real) <= NEUTRAL_TOL * size) & (lam.imag > NEUTRAL_TOL * size)
+    return np.sort(lam.imag[keep])
+
+
+def growth(J: np.ndarray) -> float:
+    r"""The largest real part of :math:`\lambda`, as a fraction of the largest :math:`|\lambda|`
+    (≤ :data:`NEUTRAL_TOL`: no mode grows)."""
+    lam = np.linalg.eigvals(J)
+    return float(lam.real.max() / max(float(np.abs(lam).max()), 1e-300))
+
+
+class _Setting:
+    r"""The document's coordinates on one parameter set, and the stated state."""
+
+    def __init__(self, d: Derivation, step: Step, ps, values: dict, rng) -> None:
+        self.d, self.step = d, step
+        cs = derivation_coordinate_set(d, ps)
+        if cs.rolling == "multipliers":
+            raise DerivationError(d.path, f"step {step.equation}", f"a {step.kind} needs "
+                                  "coordinates with the rolling eliminated (or none)")
+        self.cmap = CoordinateMap(ps.model, cs)
+        self.field = state_field(self.cmap, cs.kind == "quasi")
+        names = [str(p) for p in d.positions], [str(v) for v in d.velocities]
+        self.q0 = rng.uniform(-np.pi, np.pi, len(names[0]))
+        self.nu0 = np.zeros(len(names[1]))
+        self.speed_index = None
+        for name, value in step.about:
+            x = float(value.xreplace(values))
+            if name in names[0]:
+                self.q0[names[0].index(name)] = x
+            elif name in names[1]:
+                self.nu0[names[1].index(name)] = x
+            else:
+                raise DerivationError(d.path, f"step {step.equation}.about.{name}", "not a "
+                                      "position or velocity of the document")
+        if step.kind == "critical speed":
+            if step.speed not in names[1]:
+                raise DerivationError(d.path, f"step {step.equation}.speed", f"{step.speed!r} "
+                                      "is not a velocity of the document; valid: "
+                                      + ", ".join(names[1]))
+            self.speed_index = names[1].index(step.speed)
+
+    def at_speed(self, s: float) -> tuple[np.ndarray, str]:
+        nu = self.nu0.copy()
+        nu[self.speed_index] = s
+        return linearisation(self.field, self.q0, nu)
+
+
+def _critical(setting: _Setting, stated: float) -> tuple[float | None, str]:
+    r"""The speed in :math:`[0, \text{SCAN\_SPAN}\cdot\text{stated}]` where the stability
+    changes nearest to the stated one, or None and why."""
+    top = SCAN_SPAN * abs(stated)
+    grid = np.linspace(0.0, top, SCAN_POINTS + 1)
+    stable = []
+    for s in grid:
+        J, why = setting.at_speed(float(s))
+        if why:
+            return None, why + f" (at {setting.step.speed} = {s:.4g})"
+        stable.append(growth(J) <= NEUTRAL_TOL)
+    changes = [i for i in range(SCAN_POINTS) if stable[i] != stable[i + 1]]
+    if not changes:
+        return None, (f"the stability does not change for {setting.step.speed} between 0 and "
+                      f"{top:.4g} ({'stable' if stable[0] else 'unstable'} throughout)")
+    i = min(changes, key=lambda c: abs(grid[c] - abs(stated)))
+    lo, hi = grid[i], grid[i + 1]
+    while hi - lo > 0.01 * RESULT_TOL * max(abs(stated), 1e-300):
+        mid = 0.5 * (lo + hi)
+        if (growth(setting.at_speed(mid)[0]) <= NEUTRAL_TOL) == stable[i]:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi), ""
+
+
+def _dimension(d: Derivation, step: Step, expr: sp.Expr) -> list[str]:
+    r"""A mismatch between the value's dimension and the result's (1/s for a frequency, the
+    scanned velocity's for a critical speed), as a diagnosis; none where units are unknown."""
+    checker = DimensionChecker(d)
+    problems: list[str] = []
+    got = checker.dim(expr, problems)
+    if step.kind == "frequency":
+        want = (sp.Integer(0), sp.Integer(0), sp.Integer(-1))
+    else:
+        names = [str(v) for v in d.velocities]
+        want = checker.known.get(d.velocities[names.index(step.speed)]) \
+            if step.speed in names else None
+    out = [f"dimension: {x}" for x in problems]
+    if got is not None and want is not None and tuple(got) != tuple(want):
+        out.append(f"dimension: the value is {format_dim(got)}, a {step.kind} is "
+                   f"{format_dim(want)}")
+    return out
+
+
+def compare_result(d: Derivation, step: Step, index: int, seed: int) -> ElementRecord:
+    r"""The record of one stated result (see the module docstring)."""
+    cases = {c.name: c for c in special_cases(d.model)}
+    for name in step.given:
+        if name not in cases:
+            raise DerivationError(d.path, "step.given", f"{name!r} is not a parameter family "
+                                  f"of model {d.model}; valid: " + ", ".join(cases))
+    rng = np.random.default_rng([seed, 17, index])
+    sets = parameter_sets(d.model, RESULT_SETS, rng, tuple(cases[g] for g in step.given))
+    expr = step.components[0]
+    common = dict(element=f"{step.name} value", key="step", index=(index, 0),
+                  document=step.printed[0], document_model="", truth=None, residual=None,
+                  step=step.kind, equation=step.equation, document_latex=sp.latex(expr))
+    D, T, notes = [], [], []
+    dims = _dimension(d, step, expr)
+    for ps in sets:
+        values = document_symbol_values(d, ps, rng)
+        stated = complex(expr.xreplace(values).evalf())
+        if stated.imag != 0 or not np.isfinite(stated.real):
+            return ElementRecord(verdict="undecided", diagnoses=(
+                f"the document's value is not a finite real number ({stated:.4g})",),
+                max_error=float("nan"), scale=1.0, **common)
+        setting = _Setting(d, step, ps, values, rng)
+        if step.kind == "frequency":
+            J, why = linearisation(setting.field, setting.q0, setting.nu0)
+            if why:
+                return ElementRecord(verdict="undecided", diagnoses=(why,),
+                                     max_error=float("nan"), scale=1.0, **common)
+            modes = frequencies(J)
+            if not len(modes):
+                return ElementRecord(verdict="differs", diagnoses=(
+                    "the true motion about the stated state does not oscillate (no neutral "
+                    f"mode; largest growth rate {growth(J):.3g} × |λ|)",),
+                    max_error=float("nan"), scale=abs(stated.real), **common)
+            truth = float(modes[np.argmin(np.abs(modes - stated.real))])
+            notes.append("true frequencies " + ", ".join(f"{w:.6g}" for w in modes))
+        else:
+            truth, why = _critical(setting, stated.real)
+            if truth is None:
+                return ElementRecord(verdict="differs", diagnoses=(why,),
+                                     max_error=float("nan"), scale=abs(stated.real), **common)
+        D.append(stated.real)
+        T.append(truth)
+    D_arr, T_arr = np.array(D), np.array(T)
+    scale = float(np.abs(T_arr).max(initial=0.0)) or 1.0
+    ok = bool(np.all(np.abs(D_arr - T_arr) <= RESULT_TOL * np.abs(T_arr))) and not dims
+    diags: list[str] = list(dims)
+    if not ok:
+        ratios = D_arr / T_arr
+        if np.ptp(ratios) <= RESULT_TOL * np.abs(ratios).max():
+            diags.append(f"factor: the document is {nice_number(float(ratios[0]))} × the truth")
+            squared = float(ratios[0]) ** 2
+            if abs(squared - round(squared)) > 1e-6 or round(squared) not in (0, 1):
+                diags.append(f"its square is {nice_number(squared)} × the truth's")
+        else:
+            diags.append("the ratio to the truth changes with the parameters "
+                         f"({nice_number(float(ratios.min()))} to {nice_number(float(ratios.max()))})")
+        diags.append(f"at the first parameter set: document {D[0]:.6g}, truth {T[0]:.6g}"
+                     + (f" ({notes[0]})" if notes else ""))
+    return ElementRecord(verdict="agrees" if ok else "differs", diagnoses=tuple(diags),
+                         max_error=float(np.abs(D_arr - T_arr).max()), scale=scale,
+                         truth_sample=T[0], document_sample=D[0], **common)
+
+
+__all__ = ["RESULT_KINDS", "compare_result", "frequencies", "growth", "linearisation",
+           "state_field"]
