@@ -1,11 +1,16 @@
-r"""Rolling without slip of a ball on the ground plane or on a fixed sphere.
+r"""Rolling without slip of a ball on the ground plane, on a fixed sphere or in a fixed surface
+of revolution (a paraboloid bowl).
 
 A ball of radius :math:`r` has its centre :math:`c` at the origin of its link. It touches
 
 - the plane :math:`z = 0` at :math:`p = c - r\,n` with :math:`n = e_z`;
 - a fixed sphere of radius :math:`R_1` and centre :math:`o` (ball outside) on the line of
   centres, :math:`p = c - r\,n` with :math:`n = (c - o)/\lVert c - o\rVert` (the outward normal
-  of the fixed sphere at the contact).
+  of the fixed sphere at the contact);
+- a surface of revolution about the vertical axis through :math:`o` (the ball on its upper
+  side, e.g. inside a paraboloid bowl) at :math:`p = c - r\,n`, with :math:`n(c_x, c_y)` the
+  surface's normal at the point whose offset by :math:`r` is the centre
+  (:mod:`.surfaces`).
 
 The material point of the ball at :math:`p` must not move:
 
@@ -16,8 +21,9 @@ The material point of the ball at :math:`p` must not move:
 
 three rows in world axes, with the Jacobians of the ball's frame in ``LOCAL_WORLD_ALIGNED``
 (origin velocity and angular velocity in world axes). The normal row is the velocity form of
-the holonomic condition that the ball stays on the surface (:math:`\dot z = 0`, or
-:math:`\tfrac{d}{dt}\lVert c - o\rVert = 0`); the two tangential rows are the nonholonomic
+the holonomic condition that the ball stays on the surface (:math:`\dot z = 0`,
+:math:`\tfrac{d}{dt}\lVert c - o\rVert = 0`, or :math:`c` moving on the offset surface of the
+surface of revolution, whose normal is :math:`n`); the two tangential rows are the nonholonomic
 no-slip conditions. The time derivative, for :math:`\dot J_c v` in the constrained equations
 and :math:`\dot S` in the reduced ones, is
 
@@ -26,7 +32,9 @@ and :math:`\dot S` in the reduced ones, is
     \dot J_c = \dot J_{c,\text{lin}} + r\,[n]_\times\dot J_\omega + r\,[\dot n]_\times J_\omega,
     \qquad \dot n = \frac{(1 - n n^T)\,\dot c}{\lVert c - o\rVert},\quad \dot c = J_{c,\text{lin}}v
 
-(:math:`\dot n = 0` on the plane).
+(:math:`\dot n = 0` on the plane). In a surface of revolution with shape operator :math:`W`
+at the contact, :math:`\dot n = W(1 + rW)^{-1}\dot c_T` (:func:`.surfaces.normal_rate`), which
+is the sphere's rule above for :math:`W = (1 - nn^T)/R_1`.
 """
 
 from __future__ import annotations
@@ -35,6 +43,7 @@ import numpy as np
 import pinocchio as pin
 
 from ..models.builder import WheeledModel
+from .surfaces import Foot, foot, meridian_of, normal_rate
 
 _LWA = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
 _EZ = np.array([0.0, 0.0, 1.0])
@@ -46,11 +55,24 @@ def _cross(a: np.ndarray) -> np.ndarray:
     return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
 
 
+def _revolution_foot(wm: WheeledModel, centre: np.ndarray) -> Foot | None:
+    r"""The contact with a surface of revolution (:mod:`.surfaces`), or None for the plane
+    and the sphere."""
+    spec = wm.contact.spec
+    meridian = meridian_of(spec)
+    if meridian is None:
+        return None
+    return foot(meridian, np.asarray(spec.centre, dtype=float), centre, float(spec.radius))
+
+
 def contact_normal(wm: WheeledModel, centre: np.ndarray) -> np.ndarray:
     r"""The surface normal :math:`n` at the contact of a ball centred at ``centre``."""
     spec = wm.contact.spec
     if spec.surface == "plane":
         return _EZ.copy()
+    ft = _revolution_foot(wm, centre)
+    if ft is not None:
+        return ft.normal
     d = centre - np.asarray(spec.centre, dtype=float)
     return d / np.linalg.norm(d)
 
@@ -69,15 +91,18 @@ def ball_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = None,
     pin.updateFramePlacements(model, data)
     J = pin.getFrameJacobian(model, data, fid, _LWA)
     centre = data.oMf[fid].translation
-    n = contact_normal(wm, centre)
+    ft = _revolution_foot(wm, centre)
+    n = contact_normal(wm, centre) if ft is None else ft.normal
     Jc = J[:3] + r * _cross(n) @ J[3:]
     if v is None:
         return Jc, None
     dJ = pin.getFrameJacobianTimeVariation(model, data, fid, _LWA)
     dJc = dJ[:3] + r * _cross(n) @ dJ[3:]
-    if wm.contact.spec.surface == "sphere":
+    cdot = J[:3] @ v
+    if ft is not None:
+        dJc = dJc + r * _cross(normal_rate(ft, r, cdot)) @ J[3:]
+    elif wm.contact.spec.surface == "sphere":
         dist = np.linalg.norm(centre - np.asarray(wm.contact.spec.centre, dtype=float))
-        cdot = J[:3] @ v
         ndot = (cdot - n * (n @ cdot)) / dist
         dJc = dJc + r * _cross(ndot) @ J[3:]
     return Jc, dJc

@@ -21,8 +21,8 @@ Models without wheels (``fixed`` and ``free`` bases) offer
   with the yaw, pitch and roll angles as positions, and the other joints' coordinates.
   Without a contact the velocities of the origin ``dx0, dy0, dz0`` come first (rolling
   ``none``); with a rolling ball they are eliminated by the contact (rolling ``eliminate``)
-  and the representative configuration puts the ball on the ground at the origin, or on top
-  of the fixed sphere;
+  and the representative configuration puts the ball on the ground at the origin, on top
+  of the fixed sphere, or at the bottom of the paraboloid bowl;
 - ``world_rates`` (``free`` base): the same with the angular velocity's components in world
   axes (velocities ``wX, wY, wZ``). For a ball whose inertia is isotropic the reduced
   equations in these velocities do not depend on the ball's orientation, so a spinning ball
@@ -77,14 +77,17 @@ def _unwheeled_specs(wm: WheeledModel) -> dict[str, dict[str, Any]]:
     velocities = ["wx", "wy", "wz", *("d" + n for n in others)]
     if contact:
         spec = wm.contact.spec
-        config["z0"] = "r" if spec.surface == "plane" else "R1 + r"
-        if spec.surface == "sphere":
-            config["x0"], config["y0"] = (str(float(c)) for c in spec.centre[:2])
-            config["z0"] = f"{float(spec.centre[2])} + R1 + r"
+        cx, cy, cz = (str(float(c)) for c in spec.centre)
+        if spec.surface == "plane":
+            config["z0"], place = "r", "on the ground at the origin"
+        elif spec.surface == "sphere":
+            config.update(x0=cx, y0=cy, z0=f"{cz} + R1 + r")
+            place = "on top of the fixed sphere"
+        else:                                   # a bowl whose vertex is the centre
+            config.update(x0=cx, y0=cy, z0=f"{cz} + r")
+            place = f"at the bottom of the {spec.surface} bowl"
         description = ("body angular velocity components in the body frame; the ball's "
-                       "rolling eliminated (representative configuration: the ball "
-                       + ("on the ground at the origin)" if spec.surface == "plane"
-                          else "on top of the fixed sphere)"))
+                       f"rolling eliminated (representative configuration: the ball {place})")
         positions = [*angles, *others]
     else:
         config.update({"x0": "x0", "y0": "y0", "z0": "z0"})

@@ -24,6 +24,7 @@ free_body            seed 000, 7.1/2  a block, free in space (free base)
 gyroscope            seed 000, 7.7    rotor on an axle pivoted at one end
 sphere_plane         seed 002         uniform ball rolling on the ground
 sphere_sphere        seed 002         uniform ball rolling on a fixed sphere
+sphere_paraboloid    seed 002         uniform ball rolling inside a fixed paraboloid bowl
 offset_sphere_plane  seed 002         body of revolution bounded by a sphere, centre of mass on
                                       its axis off the centre, rolling on the ground
 offset_sphere_sphere seed 002         the same body rolling on a fixed sphere
@@ -44,6 +45,9 @@ if TYPE_CHECKING:       # the listing reads this module without Pinocchio
 
 #: Radius of the fixed sphere the ball of ``sphere_sphere`` rolls on (m) (``sphere_sphere.toml``).
 FIXED_SPHERE_RADIUS = 0.30
+#: Radius of curvature at the vertex of the paraboloid bowl of ``sphere_paraboloid`` (m)
+#: (``sphere_paraboloid.toml``).
+PARABOLOID_VERTEX_RADIUS = 0.50
 #: Radius of the ball of ``ball.urdf`` (m) (``sphere_plane.toml``, ``sphere_sphere.toml``).
 BALL_RADIUS = 0.109
 #: Radius of the thin disk of ``rolling_coin.urdf`` (m) (``rolling_coin.toml``).
@@ -53,7 +57,7 @@ COIN_RADIUS = 0.30
 BENCHMARK_NAMES: tuple[str, ...] = (
     "compound_pendulum", "rod_pendulum", "rolling_disk", "pendulum_support", "bounce_pitch",
     "differential", "flywheel_rod", "free_body", "gyroscope", "sphere_plane", "sphere_sphere",
-    "offset_sphere_plane", "offset_sphere_sphere", "rolling_coin", "bicycle")
+    "sphere_paraboloid", "offset_sphere_plane", "offset_sphere_sphere", "rolling_coin", "bicycle")
 
 #: Benchmark bodies written in Python instead of a model file: (name, one-line summary, spec
 #: function). A model defined here is registered like a file's.

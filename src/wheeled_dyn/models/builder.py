@@ -433,6 +433,8 @@ def _build_unwheeled(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
         geometry.setdefault("r", float(spec.contact.radius))
         if spec.contact.surface == "sphere":
             geometry.setdefault("R1", float(spec.contact.surface_radius))
+        elif spec.contact.surface == "paraboloid":      # vertex radius of curvature
+            geometry.setdefault("a", float(spec.contact.vertex_radius))
     rolling_wheels = []
     for wc in spec.rolling_wheels:
         source.link(wc.link)
