@@ -82,8 +82,11 @@ def state_field(cmap: CoordinateMap, quasi: bool) -> StateField:
 
 
 def linearisation(field: StateField, q0: np.ndarray, nu0: np.ndarray) -> tuple[np.ndarray, str]:
-    r"""The Jacobian :math:`J` of the state field at :math:`(q_0, \nu_0)`, and "" — or, if the
-    state is not steady, no matrix and the reason."""
+    r"""The Jacobian :math:`J` of the state field at :math:`(q_0, \nu_0)` without the rows and
+    columns of ignorable positions (the field does not depend on them: a flywheel's angle, a
+    heading; their zero eigenvalues would pair up into a defective block that rounding splits
+    into :math:`\pm\sqrt{\epsilon}`), and "" — or, if the state is not steady, no matrix and
+    the reason."""
     n = len(q0)
     qdot, nudot = field(q0, nu0)
     cols = []
@@ -97,12 +100,14 @@ def linearisation(field: StateField, q0: np.ndarray, nu0: np.ndarray) -> tuple[n
     if np.abs(nudot).max(initial=0.0) > STEADY_TOL * scale * (1 + np.abs(nu0).max(initial=0.0)):
         return np.zeros((0, 0)), (f"the stated state is not steady: the true accelerations "
                                   f"there are {np.round(nudot, 6).tolist()}")
+    ignorable = [i for i in range(n) if np.abs(J[:, i]).max() <= np.sqrt(STEADY_TOL) * scale]
     moving = [i for i in range(n) if abs(qdot[i]) > STEADY_TOL * (1 + np.abs(nu0).max())]
-    bound = [i for i in moving if np.abs(J[:, i]).max() > np.sqrt(STEADY_TOL) * scale]
+    bound = [i for i in moving if i not in ignorable]
     if bound:
         return np.zeros((0, 0)), (f"the stated state is not steady: position {bound[0] + 1} "
                                   "moves and the motion depends on it")
-    return J, ""
+    keep = [i for i in range(2 * n) if i not in ignorable]
+    return J[np.ix_(keep, keep)], ""
 
 
 def frequencies(J: np.ndarray) -> np.ndarray:
@@ -114,10 +119,13 @@ def frequencies(J: np.ndarray) -> np.ndarray:
 
 
 def growth(J: np.ndarray) -> float:
-    r"""The largest real part of :math:`\lambda`, as a fraction of the largest :math:`|\lambda|`
-    (≤ :data:`NEUTRAL_TOL`: no mode grows)."""
-    lam = np.linalg.eigvals(J)
-    return float(lam.real.max() / max(float(np.abs(lam).max()), 1e-300))
+    r"""The largest real part of :math:`\lambda` (1/s)."""
+    return float(np.linalg.eigvals(J).real.max(initial=0.0))
+
+
+def rate_scale(J: np.ndarray) -> float:
+    r"""The largest :math:`|\lambda|`: the rate against which a growth counts as zero."""
+    return float(np.abs(np.linalg.eigvals(J)).max(initial=0.0))
 
 
 class _Setting:
@@ -162,12 +170,15 @@ def _critical(setting: _Setting, stated: float) -> tuple[float | None, str]:
     changes nearest to the stated one, or None and why."""
     top = SCAN_SPAN * abs(stated)
     grid = np.linspace(0.0, top, SCAN_POINTS + 1)
-    stable = []
+    rates = []
     for s in grid:
         J, why = setting.at_speed(float(s))
         if why:
             return None, why + f" (at {setting.step.speed} = {s:.4g})"
-        stable.append(growth(J) <= NEUTRAL_TOL)
+        rates.append((growth(J), rate_scale(J)))
+    # the modes pass through 0 at a change of stability: compare with the scan's largest rate
+    floor = NEUTRAL_TOL * max(max(r[1] for r in rates), 1e-300)
+    stable = [r[0] <= floor for r in rates]
     changes = [i for i in range(SCAN_POINTS) if stable[i] != stable[i + 1]]
     if not changes:
         return None, (f"the stability does not change for {setting.step.speed} between 0 and "
@@ -176,7 +187,7 @@ def _critical(setting: _Setting, stated: float) -> tuple[float | None, str]:
     lo, hi = grid[i], grid[i + 1]
     while hi - lo > 0.01 * RESULT_TOL * max(abs(stated), 1e-300):
         mid = 0.5 * (lo + hi)
-        if (growth(setting.at_speed(mid)[0]) <= NEUTRAL_TOL) == stable[i]:
+        if (growth(setting.at_speed(mid)[0]) <= floor) == stable[i]:
             lo = mid
         else:
             hi = mid
@@ -234,7 +245,7 @@ def compare_result(d: Derivation, step: Step, index: int, seed: int) -> ElementR
             if not len(modes):
                 return ElementRecord(verdict="differs", diagnoses=(
                     "the true motion about the stated state does not oscillate (no neutral "
-                    f"mode; largest growth rate {growth(J):.3g} × |λ|)",),
+                    f"mode; largest growth rate {growth(J):.3g}/s)",),
                     max_error=float("nan"), scale=abs(stated.real), **common)
             truth = float(modes[np.argmin(np.abs(modes - stated.real))])
             notes.append("true frequencies " + ", ".join(f"{w:.6g}" for w in modes))

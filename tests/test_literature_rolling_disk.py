@@ -1,0 +1,262 @@
+r"""The textbook rolling disk (``literature/rolling_disk_euler_angles.toml``, model
+``rolling_coin``): the reduced equations in heading psi, lean theta (positive to the left) and
+spin phi, and their linearisation about upright straight rolling.
+
+- As written, every element of the equations of motion and every linearised relation agrees,
+  under the file's own reading of its maps (no other sign convention is needed). At the URDF's
+  own parameters (a uniform thin disk) the document's A, h, Q equal the reduced truth exactly,
+  without the engine.
+- One planted error in one printed term makes exactly that element differ. The planted errors
+  are a sign flip, a factor 2, a sin written for a cos, a dropped gyroscopic term, and a wrong
+  sign in the linearised equations. Every other element still agrees.
+- Correct rewrites are still judged right: a row multiplied through by a constant (undeclared
+  2, or 1/m declared under ``[rows]``), trigonometry rewritten with double angles, the
+  linearised relation divided through, and the whole file in the opposite lean sign convention
+  with its map changed to match.
+- The lean sign of the map matters. Flipped alone, the declared reading differs. The engine
+  then finds the equivalent spin flip, because (theta, phi) -> (-theta, -phi) is a symmetry of
+  the equations, and the linearised step differs.
+- The file's linearised equations give the critical speed of upright rolling,
+  Omega^2 = m g r I / (J (J + m r^2)); for the thin disk this is v^2 = g r / 3. The file states
+  it as a ``critical speed`` step, which agrees with the one found on the true linearisation.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from conftest import SEED
+from wheeled_dyn.compare.engine import ComparisonEngine
+from wheeled_dyn.compare.evaluate import derivation_coordinate_set, model_value
+from wheeled_dyn.compare.samples import ParameterSet, namespace_values
+from wheeled_dyn.constraints import CoordinateMap
+from wheeled_dyn.derivations import builtin_derivations, builtin_groups, load_derivation
+from wheeled_dyn.models.registry import load_model
+
+#: Engine grid (verdicts, not statistics).
+SAMPLES, PARAM_SETS = 40, 2
+#: Agreement of a document element with the reduced truth at the URDF's own parameters,
+#: relative to (1 + the largest element of the truth's row).
+AGREE_TOL = 1e-9
+#: States for the check at the URDF's parameters.
+N_STATES = 12
+#: The lean drawn where the disk stands above its contact (the file's declared range).
+LEAN_RANGE = (-1.3, 1.3)
+
+GROUP = "literature"
+FILE = "rolling_disk_euler_angles.toml"
+#: Keys of the equations-of-motion records.
+EOM_KEYS = ("A", "C", "Q", "B", "h", "G")
+#: The equations-of-motion elements the file gives: A 3x3, Q 3, h 3 rows x 6 velocity products.
+PRODUCTS = ("dpsi*dpsi", "dpsi*dtheta", "dpsi*dphi", "dtheta*dtheta", "dtheta*dphi",
+            "dphi*dphi")
+EOM_ELEMENTS = ({f"A[{i},{j}]" for i in (1, 2, 3) for j in (1, 2, 3)}
+                | {f"Q[{i}]" for i in (1, 2, 3)}
+                | {f"h[{i}]:{p}" for i in (1, 2, 3) for p in PRODUCTS})
+STEP = "upright straight rolling linearised equations relation {}"
+
+LEAN_ROW = ("(I + m*r**2)*ddtheta + (J + m*r**2)*cos(theta)*dpsi*dphi - (J + m*r**2 - I)"
+            "*sin(theta)*cos(theta)*dpsi**2 - m*g*r*sin(theta) = 0")
+
+#: The file in the opposite lean convention (theta positive to the right of the direction of
+#: travel): the lean is the model's phi itself. The rows are the true rows of the new
+#: coordinates. The lean row is written with its leading coefficient positive.
+OPPOSITE_MAP = (
+    'configuration = { psi = "psi", phi = "-theta", theta = "phi", z = "r*cos(theta)" }\n'
+    'velocity_map = { dpsi = "dpsi", dtheta = "-dphi", dphi = "dtheta" }',
+    'configuration = { psi = "psi", phi = "theta", theta = "phi", z = "r*cos(theta)" }\n'
+    'velocity_map = { dpsi = "dpsi", dtheta = "dphi", dphi = "dtheta" }')
+OPPOSITE_ROWS = [
+    ("- (J + m*r**2)*sin(theta)*ddphi", "+ (J + m*r**2)*sin(theta)*ddphi"),
+    ("- J*cos(theta)*dtheta*dphi", "+ J*cos(theta)*dtheta*dphi"),
+    ("+ (J + m*r**2)*cos(theta)*dpsi*dphi", "- (J + m*r**2)*cos(theta)*dpsi*dphi"),
+    ("(ddphi - sin(theta)*ddpsi) - (J + 2*m*r**2)", "(ddphi + sin(theta)*ddpsi) + (J + 2*m*r**2)"),
+    ("I*ddpsi - J*Omega*dtheta", "I*ddpsi + J*Omega*dtheta"),
+    ("+ (J + m*r**2)*Omega*dpsi", "- (J + m*r**2)*Omega*dpsi"),
+]
+
+
+def _source():
+    return next(p for p in builtin_derivations(GROUP) if p.name == FILE)
+
+
+def _copy(tmp_path, *replacements: tuple[str, str]):
+    r"""The shipped file under ``tmp_path`` with each (old, new) replaced once; each ``old``
+    occurs exactly once in the text it is applied to."""
+    text = _source().read_text()
+    for old, new in replacements:
+        assert text.count(old) == 1, old
+        text = text.replace(old, new)
+    path = tmp_path / FILE
+    path.write_text(text)
+    return path
+
+
+def _compare(path):
+    return ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED).compare(
+        load_derivation(path))
+
+
+def _verdicts(result) -> dict[str, str]:
+    return {r.element: r.verdict for r in result.records}
+
+
+def _assert_all_agree(result):
+    assert {r.element for r in result.records if r.key in EOM_KEYS} == EOM_ELEMENTS
+    assert {STEP.format(k) for k in (1, 2, 3)} <= set(_verdicts(result))
+    bad = {r.element: (r.verdict, r.diagnoses) for r in result.records if r.verdict != "agrees"}
+    assert not bad, bad
+    # under the file's own reading of its maps: no other sign convention was needed
+    assert result.conventions.best is None
+    assert result.conventions.declared.counts["differs"] == 0
+
+
+@pytest.fixture(scope="module")
+def as_written():
+    return _compare(_source())
+
+
+def test_the_file_is_in_the_literature_group():
+    assert GROUP in builtin_groups()
+    assert FILE in [p.name for p in builtin_derivations(GROUP)]
+    d = load_derivation(_source())
+    assert d.model == "rolling_coin"
+    assert [str(p) for p in d.positions] == ["psi", "theta", "phi"]
+    assert d.form == "equations" and len(d.equations) == 3
+    assert [s.kind for s in d.steps] == ["linearised equations", "critical speed"]
+
+
+def test_as_written_every_element_agrees(as_written):
+    _assert_all_agree(as_written)
+    eom = [r for r in as_written.records if r.key in EOM_KEYS]
+    assert len(eom) == len(EOM_ELEMENTS) == 30
+    assert all(r.step == "equations of motion" for r in eom)
+    steps = [r for r in as_written.records if r.key == "step"]
+    assert [r.equation for r in steps] == ["upright straight rolling"] * 3 + ["critical speed"]
+    assert [r.step for r in steps] == ["linearised equations"] * 3 + ["critical speed"]
+
+
+def test_exact_at_the_urdf_parameters():
+    r"""Without the engine: the document's A, h, Q at the URDF's own thin disk equal the
+    reduced truth of the file's coordinate map (Pinocchio, rolling eliminated)."""
+    d = load_derivation(_source())
+    wm = load_model(d.model)
+    ps = ParameterSet(wm, namespace_values(wm, None))
+    cmap = CoordinateMap(wm, derivation_coordinate_set(d, ps))
+    values = {s.symbol: model_value(s.value, ps.values) for s in d.symbols.values()
+              if s.value is not None}
+    doc = d.read_off(unscale=True)
+    parts = {k: sp.lambdify([d.positions, d.velocities], sp.Matrix(M).xreplace(values))
+             for k, M in (("A", doc.A), ("Q", doc.Q), ("h", doc.h))}
+    rng = np.random.default_rng(SEED)
+    for _ in range(N_STATES):
+        q = rng.uniform(-np.pi, np.pi, 3)
+        q[1] = rng.uniform(*LEAN_RANGE)
+        nu = rng.normal(size=3) * [1.0, 1.0, 6.0]
+        truth = cmap.terms(q, nu)
+        for key, fn in parts.items():
+            T = getattr(truth, key)
+            D = np.array(fn(q, nu), dtype=float).reshape(T.shape)
+            row = np.abs(T).reshape(3, -1).max(axis=1)
+            err = np.abs(D - T).reshape(3, -1) / (1 + row[:, None])
+            assert err.max() < AGREE_TOL, (key, q, nu, err)
+
+
+@pytest.mark.parametrize("old, new, element, diagnosis", [
+    ("- m*g*r*sin(theta) = 0", "+ m*g*r*sin(theta) = 0", "Q[2]", "sign"),
+    ("2*(J + m*r**2 - I)", "(J + m*r**2 - I)", "h[1]:dpsi*dtheta", "factor: the document is 1/2"),
+    ("(J + 2*m*r**2)*cos(theta)", "(J + 2*m*r**2)*sin(theta)", "h[3]:dpsi*dtheta", None),
+    ("- (J + m*r**2)*sin(theta)*ddphi", "- (J + m*r**2)*cos(theta)*ddphi", "A[1,3]", None),
+    (" + (J + m*r**2)*cos(theta)*dpsi*dphi", "", "h[2]:dpsi*dphi", "missing"),
+    (" - J*cos(theta)*dtheta*dphi", "", "h[1]:dtheta*dphi", "missing"),
+    ("+ (J + m*r**2)*Omega*dpsi", "- (J + m*r**2)*Omega*dpsi", STEP.format(2), "term dpsi: sign"),
+], ids=["gravity-sign", "coriolis-factor-2", "sin-for-cos-h", "cos-for-sin-A",
+        "dropped-gyroscopic-lean", "dropped-gyroscopic-heading", "linearised-sign"])
+def test_a_planted_error_differs_alone(tmp_path, as_written, old, new, element, diagnosis):
+    result = _compare(_copy(tmp_path, (old, new)))
+    verdicts = _verdicts(result)
+    assert verdicts[element] == "differs"
+    others = {e: v for e, v in verdicts.items() if e != element and v != "agrees"}
+    assert not others, others
+    assert set(verdicts) == set(_verdicts(as_written))
+    assert result.conventions.best is None
+    if diagnosis is not None:
+        record = next(r for r in result.records if r.element == element)
+        assert any(x.startswith(diagnosis) for x in record.diagnoses), record.diagnoses
+
+
+@pytest.mark.parametrize("replacements", [
+    # the lean row multiplied through by 2, undeclared (a constant row factor)
+    [(LEAN_ROW, "2*(I + m*r**2)*ddtheta + 2*(J + m*r**2)*cos(theta)*dpsi*dphi - 2*(J + m*r**2 - I)"
+                "*sin(theta)*cos(theta)*dpsi**2 - 2*m*g*r*sin(theta) = 0")],
+    # the lean row divided through by m, declared
+    [(LEAN_ROW, "(I/m + r**2)*ddtheta + (J/m + r**2)*cos(theta)*dpsi*dphi - (J/m + r**2 - I/m)"
+                "*sin(theta)*cos(theta)*dpsi**2 - g*r*sin(theta) = 0"),
+     ("[matrices]", '[rows]\nscale = ["1", "1/m", "1"]\n\n[matrices]')],
+    # double angles: sin cos = sin(2 theta)/2, cos^2 = (1 + cos(2 theta))/2, sin^2 = ...
+    [("(I*cos(theta)**2 + (J + m*r**2)*sin(theta)**2)*ddpsi",
+      "(I*(1 + cos(2*theta))/2 + (J + m*r**2)*(1 - cos(2*theta))/2)*ddpsi"),
+     ("2*(J + m*r**2 - I)*sin(theta)*cos(theta)*dpsi*dtheta",
+      "(J + m*r**2 - I)*sin(2*theta)*dpsi*dtheta"),
+     ("(J + m*r**2 - I)*sin(theta)*cos(theta)*dpsi**2", "(J + m*r**2 - I)*sin(2*theta)/2*dpsi**2")],
+    # the linearised heading relation divided through by I
+    [("I*ddpsi - J*Omega*dtheta = 0", "ddpsi = J/I*Omega*dtheta")],
+    # the opposite lean sign convention, the map changed to match
+    [OPPOSITE_MAP, *OPPOSITE_ROWS],
+], ids=["row-times-2", "row-over-m-declared", "double-angles", "linearised-divided",
+        "opposite-lean-convention"])
+def test_a_correct_rewrite_still_agrees(tmp_path, replacements):
+    _assert_all_agree(_compare(_copy(tmp_path, *replacements)))
+
+
+def test_the_lean_sign_of_the_map_matters(tmp_path):
+    r"""The map's lean flipped alone (the equations left in the left-positive convention): the
+    declared reading differs. The equations cannot tell a lean flip from a spin flip, since
+    (theta, phi) -> (-theta, -phi) leaves them unchanged, so the engine reads the file with
+    the spin flipped. The linearised step is judged under the declared map and differs in its
+    two gyroscopic couplings."""
+    result = _compare(_copy(tmp_path, OPPOSITE_MAP))
+    conv = result.conventions
+    assert conv.declared.counts["differs"] > 0
+    assert conv.best is not None and conv.best.counts["differs"] == 0
+    assert "theta = -phi" in conv.best.description
+    verdicts = _verdicts(result)
+    assert verdicts[STEP.format(1)] == verdicts[STEP.format(2)] == "differs"
+    assert verdicts[STEP.format(3)] == "agrees"
+
+
+def test_critical_speed_from_the_linearised_equations():
+    r"""From the file's linearised relations: psi' = (J Omega / I) theta after a lean
+    disturbance from straight rolling (relation 1 integrated), then the lean's stiffness in
+    relation 2 changes sign at Omega^2 = m g r I / (J (J + m r^2)), so v^2 = g r / 3 for
+    the uniform thin disk (and at the URDF's coin)."""
+    d = load_derivation(_source())
+    step, stated = d.steps
+    (lhs1, rhs1), (lhs2, rhs2), _ = step.sides
+    psi, theta, phi = d.positions
+    dpsi, dtheta, dphi = d.velocities
+    ddpsi, ddtheta, ddphi = d.accelerations
+    sym = {name: s.symbol for name, s in d.symbols.items()}
+    m, r, g, I, J, Omega = (sym[k] for k in ("m", "r", "g", "I", "J", "Omega"))
+    rel1, rel2 = sp.expand(lhs1 - rhs1), sp.expand(lhs2 - rhs2)
+    # relation 1 is a ddpsi + b dtheta = 0: integrated from straight rolling, dpsi = -b/a theta
+    a, b = rel1.coeff(ddpsi), rel1.coeff(dtheta)
+    assert sp.expand(rel1 - a * ddpsi - b * dtheta) == 0
+    lean = sp.expand(rel2.subs(dpsi, -b / a * theta))
+    stiffness = sp.simplify(lean.coeff(theta) / lean.coeff(ddtheta))
+    assert sp.expand(lean - lean.coeff(ddtheta) * ddtheta - lean.coeff(theta) * theta) == 0
+    (critical,) = sp.solve(sp.Eq(stiffness, 0), Omega ** 2, dict=True)
+    crit2 = critical[Omega ** 2]
+    assert sp.simplify(crit2 - m * g * r * I / (J * (J + m * r ** 2))) == 0
+    assert sp.simplify(stated.components[0] ** 2 - crit2) == 0      # the file's stated result
+    thin = {I: m * r ** 2 / 4, J: m * r ** 2 / 2}
+    assert sp.simplify((crit2.subs(thin) * r ** 2) - g * r / 3) == 0
+    # the URDF's coin is that thin disk
+    wm = load_model(d.model)
+    values = namespace_values(wm, None)
+    coin = {s.symbol: model_value(s.value, values) for s in d.symbols.values()
+            if s.value is not None}
+    assert np.isclose(float(coin[I]), float(coin[m]) * float(coin[r]) ** 2 / 4, rtol=1e-12)
+    assert np.isclose(float(coin[J]), float(coin[m]) * float(coin[r]) ** 2 / 2, rtol=1e-12)
