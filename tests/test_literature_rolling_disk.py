@@ -260,3 +260,13 @@ def test_critical_speed_from_the_linearised_equations():
             if s.value is not None}
     assert np.isclose(float(coin[I]), float(coin[m]) * float(coin[r]) ** 2 / 4, rtol=1e-12)
     assert np.isclose(float(coin[J]), float(coin[m]) * float(coin[r]) ** 2 / 2, rtol=1e-12)
+
+
+def test_steps_are_read_under_the_files_assumptions(tmp_path):
+    r"""Without their own ``given``, the linearised relations and the critical speed are read
+    under the file's ``[assumes]`` (the disk keeps its proportions): they still agree, and no
+    "agrees only if" repeats what the file states."""
+    path = _copy(tmp_path, ('about = { theta = "0", dphi = "Omega" }\ngiven = ["urdf_proportions"]\n',
+                            'about = { theta = "0", dphi = "Omega" }\n'),
+                 ('speed = "dphi"\ngiven = ["urdf_proportions"]\n', 'speed = "dphi"\n'))
+    _assert_all_agree(_compare(path))

@@ -37,6 +37,7 @@ from .elements import swap_groups
 from .evaluate import derivation_coordinate_set, document_symbol_values
 from .kinematics_truth import Motion, along, check_links
 from .result import ElementRecord
+from .assumptions import declared
 from .results import compare_result
 from .samples import parameter_sets, random_states, special_cases
 from .units import DimensionChecker, format_dim
@@ -550,10 +551,13 @@ def _records(g: _Group, step: Step, index: int, T: np.ndarray) -> list[ElementRe
 
 
 def compare_steps(d: Derivation, seed: int = 2026) -> list[ElementRecord]:
-    r"""Records of every ``[[step]]`` of ``d``, in the file's order."""
+    r"""Records of every ``[[step]]`` of ``d``, in the file's order. A step is read under the
+    parameter families the file ``[assumes]`` as well as its own ``given``."""
     by_given: dict[tuple, list[int]] = {}
     out: dict[int, list[ElementRecord]] = {}
-    for i, s in enumerate(d.steps):
+    assumed = tuple(c.name for c in declared(d).families)
+    steps = [replace(s, given=tuple(dict.fromkeys((*assumed, *s.given)))) for s in d.steps]
+    for i, s in enumerate(steps):
         if s.kind in RESULT_KINDS:
             out[i] = [compare_result(d, s, i, seed)]
             continue
@@ -561,11 +565,11 @@ def compare_steps(d: Derivation, seed: int = 2026) -> list[ElementRecord]:
         by_given.setdefault((s.given, alone), []).append(i)
     for (given, _), idx in by_given.items():
         g = _Group(d, given, seed)
-        truths = g.truth([d.steps[i] for i in idx])
+        truths = g.truth([steps[i] for i in idx])
         for i, T in zip(idx, truths):
-            out[i] = _records(g, d.steps[i], i, T)
+            out[i] = _records(g, steps[i], i, T)
             todo = [r for r in out[i] if r.verdict == "differs" and not _explained(r.diagnoses)]
-            special = _special(d, d.steps[i], seed) if todo else {}
+            special = _special(d, steps[i], seed) if todo else {}
             out[i] = [replace(r, verdict="agrees_if", diagnoses=(
                 f"agrees only if {special[r.index[1]]}", *r.diagnoses))
                 if r in todo and r.index[1] in special else r for r in out[i]]
