@@ -48,3 +48,20 @@ def test_the_steps_example_is_judged_right(tmp_path):
         assert len(verdicts) == 7
         wrong = {e for e, v in verdicts.items() if v != "agrees"}
         assert wrong == ({"(e) frequency value"} if planted else set()), verdicts
+
+
+def test_the_newton_euler_example_is_judged_right(tmp_path):
+    r"""The documented balance example agrees; its moment equation with one arm's sign flipped
+    names that force."""
+    from wheeled_dyn.compare.engine import ComparisonEngine
+    (block,) = [b for b in _toml_blocks() if 'kind = "newton-euler"' in b]
+    flipped = block.replace("-F_x*a*cos(theta) - F_y", "-F_x*a*cos(theta) + F_y", 1)
+    for text, wrong in ((block, set()), (flipped, {"(1)-(3) newton-euler (3)"})):
+        path = tmp_path / "balance.toml"
+        path.write_text(text, encoding="utf-8")
+        result = ComparisonEngine(samples=20, param_sets=1, seed=1).compare(load_derivation(path))
+        records = {r.element: r for r in result.records if r.key == "step"}
+        assert len(records) == 3
+        assert {e for e, r in records.items() if r.verdict != "agrees"} == wrong
+        if wrong:
+            assert any("term F_y: sign" in x for x in records[next(iter(wrong))].diagnoses)

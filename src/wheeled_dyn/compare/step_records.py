@@ -38,6 +38,7 @@ from .evaluate import derivation_coordinate_set, document_symbol_values
 from .kinematics_truth import Motion, along, check_links
 from .result import ElementRecord
 from .assumptions import declared
+from .balances import compare_balance
 from .results import compare_result
 from .samples import parameter_sets, random_states, special_cases
 from .units import DimensionChecker, format_dim
@@ -560,6 +561,9 @@ def compare_steps(d: Derivation, seed: int = 2026) -> list[ElementRecord]:
     for i, s in enumerate(steps):
         if s.kind in RESULT_KINDS:
             out[i] = [compare_result(d, s, i, seed)]
+            continue
+        if s.kind == "newton-euler":
+            out[i] = compare_balance(d, s, i, seed)
             continue
         alone = (i,) if s.kind in ("linearised equations", "first integral") else ()
         by_given.setdefault((s.given, alone), []).append(i)

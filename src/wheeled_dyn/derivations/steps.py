@@ -27,6 +27,9 @@ printed, in the file's namespace (positions :math:`q`, velocities :math:`\nu`, a
                             state ``about`` (a steady state)
 ``critical speed``          ``value``: the value of the velocity ``speed`` (the others as in
                             ``about``) at which the stability of ``about`` changes
+``newton-euler``            ``relations``: force and moment balances of ``body`` (moments
+                            about ``point``, components along ``frame``'s axes) with the
+                            applied ``forces`` (document symbols, ``free = true``)
 ``generalized force``       ``components`` of Kane's generalized inertia forces
                             (``quantity = "inertia"``: :math:`F^* = -(A\dot\nu + h)`) or of
                             the inertial left side (``quantity = "inertial terms"``:
@@ -60,9 +63,9 @@ STEP_KINDS: tuple[str, ...] = ("velocity", "angular velocity", "acceleration",
                                "angular acceleration", "kinetic energy", "potential energy",
                                "constraint", "claim", "generalized force",
                                "linearised equations", "first integral", "frequency",
-                               "critical speed")
+                               "critical speed", "newton-euler")
 VECTOR_KINDS = STEP_KINDS[:4]
-RELATION_KINDS = ("constraint", "claim", "linearised equations")
+RELATION_KINDS = ("constraint", "claim", "linearised equations", "newton-euler")
 #: Stated results judged on the linearisation of the true motion (:mod:`~wheeled_dyn.compare.results`).
 RESULT_KINDS = ("frequency", "critical speed")
 #: Named points of a body.
@@ -73,9 +76,26 @@ AXES: tuple[str, ...] = ("x", "y", "z", "-x", "-y", "-z")
 QUANTITIES: tuple[str, ...] = ("inertia", "inertial terms")
 STEP_KEYS: tuple[str, ...] = ("equation", "kind", "label", "body", "bodies", "point", "frame",
                               "axes", "components", "value", "relations", "quantity", "rows",
-                              "given", "note", "names", "about", "speed")
+                              "given", "note", "names", "about", "speed",
+                              "forces")
+#: Keys of one applied force (or couple) of a ``newton-euler`` step.
+FORCE_KEYS: tuple[str, ...] = ("point", "direction", "couple", "frame")
 #: An element the extracted text lost.
 LOST = "?"
+
+
+@dataclass(frozen=True)
+class Force:
+    r"""A force (or couple) of a ``newton-euler`` step: the document symbol ``name`` is its
+    magnitude along ``direction`` (three expressions in ``frame``'s axes), applied at ``point``
+    of the step's body (``"origin"``, ``"com"`` or three expressions in the body's frame);
+    a couple (``couple = [x, y, z]``) is a pure moment about that direction."""
+
+    name: str
+    direction: tuple[sympy.Expr, ...]
+    point: str | tuple[sympy.Expr, ...] = "com"
+    frame: str = "world"
+    couple: bool = False
 
 
 @dataclass(frozen=True)
@@ -104,6 +124,7 @@ class Step:
     names: tuple[str, ...] = ()          # the document's names of the components (i, j, k)
     about: tuple[tuple[str, sympy.Expr], ...] = ()   # linearised: (name, value) of the state
     speed: str = ""                      # critical speed: the document velocity scanned
+    forces: tuple["Force", ...] = ()     # newton-euler: the applied forces and couples
 
     @property
     def name(self) -> str:
@@ -156,6 +177,47 @@ def _about(t: dict, item: str, line, expr, fail) -> tuple[tuple[str, sympy.Expr]
     if not isinstance(about, dict):
         raise fail(f"{item}.about", "expected a table: name = \"value\"", line)
     return tuple((str(k), expr(v, f"{item}.about.{k}")) for k, v in about.items())
+
+
+def _point(value: Any, where: str, line, expr, fail) -> str | tuple[sympy.Expr, ...]:
+    if isinstance(value, list):
+        if len(value) != 3:
+            raise fail(where, "a point is [x, y, z] in the body's frame", line)
+        return tuple(expr(p, where) for p in value)
+    if value not in ("origin", "com"):
+        raise fail(where, f"{value!r}: expected origin, com or [x, y, z] in the body's frame",
+                   line)
+    return value
+
+
+def _balance(t: dict, item: str, line, expr, fail) -> dict[str, Any]:
+    r"""The ``body``, moment ``point``, ``frame`` and ``forces`` of a ``newton-euler`` step."""
+    body = t.get("body")
+    if not isinstance(body, str) or not body or body in FRAMES:
+        raise fail(f"{item}.body", "a balance names its body (a link of the model)", line)
+    frame = t.get("frame", "world")
+    if not isinstance(frame, str) or not frame:
+        raise fail(f"{item}.frame", "expected world, heading or a link name", line)
+    table = t.get("forces", {})
+    if not isinstance(table, dict) or not table:
+        raise fail(f"{item}.forces", "a balance lists its forces: forces = { F = { point = "
+                   "\"origin\", direction = [\"1\", \"0\", \"0\"] } }", line)
+    forces = []
+    for name, spec in table.items():
+        where = f"{item}.forces.{name}"
+        if not isinstance(spec, dict) or any(k not in FORCE_KEYS for k in spec):
+            raise fail(where, "expected a table with keys " + ", ".join(FORCE_KEYS), line)
+        if ("direction" in spec) == ("couple" in spec):
+            raise fail(where, "give its direction = [x, y, z] (a force) or couple = [x, y, z] "
+                       "(a pure moment)", line)
+        axis = spec.get("direction", spec.get("couple"))
+        if not isinstance(axis, list) or len(axis) != 3:
+            raise fail(where, "a direction is three expressions [x, y, z]", line)
+        forces.append(Force(str(name), tuple(expr(a, where) for a in axis),
+                            _point(spec.get("point", "com"), f"{where}.point", line, expr, fail),
+                            str(spec.get("frame", "world")), "couple" in spec))
+    return dict(body=body, frame=frame, forces=tuple(forces),
+                point=_point(t.get("point", "com"), f"{item}.point", line, expr, fail))
 
 
 def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
@@ -225,6 +287,8 @@ def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
                            "is of: speed = \"dphi\"", line)
             extra["speed"] = speed
     elif kind in RELATION_KINDS:
+        if kind == "newton-euler":
+            extra = _balance(t, item, line, expr, fail)
         if kind == "linearised equations":
             extra = dict(about=_about(t, item, line, expr, fail))
         texts = _strings(t, "relations", item, line, fail)
@@ -258,4 +322,4 @@ def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
                 note=str(t.get("note", "")), line=line, sides=tuple(sides), names=names, **extra)
 
 
-__all__ = ["RELATION_KINDS", "RESULT_KINDS", "Step", "STEP_KINDS", "read_steps"]
+__all__ = ["Force", "RELATION_KINDS", "RESULT_KINDS", "Step", "STEP_KINDS", "read_steps"]

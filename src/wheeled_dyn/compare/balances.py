@@ -1,0 +1,270 @@
+r"""Newton–Euler balances of a document (``kind = "newton-euler"`` steps) against the body's
+true motion.
+
+A balance is printed as a relation between the applied forces (document symbols, ``free =
+true``: tyre forces, a hinge's reaction) and the body's accelerations: "−F_hr − F_hl = m ẍ_g",
+"−F_x a cos θ − F_y a sin θ = I_g θ̈". Of a rigid body of mass :math:`m`, centre of mass
+:math:`G`, central inertia :math:`I_G`, angular velocity :math:`\omega`, with forces
+:math:`F_k d_k` at points :math:`p_k` and couples :math:`C_k c_k`, the six Newton–Euler
+residuals, moments about a point :math:`P` of the body, are
+
+.. math::
+
+    E(\dot\nu, F) = \begin{bmatrix} m a_G - m g - \sum_k F_k d_k \\
+      I_G\dot\omega + \omega\times I_G\omega + (G - P)\times(m a_G - m g)
+      - \sum_k (p_k - P)\times F_k d_k - \sum_k C_k c_k \end{bmatrix} ,
+
+affine in the accelerations :math:`\dot\nu` (through :math:`a_G, \dot\omega`) and in the
+forces, with :math:`a_G, \omega, \dot\omega` from Pinocchio at the document's state
+(:class:`~.kinematics_truth.Motion`). A printed relation :math:`R(\dot\nu, F) = 0`, affine in
+the same unknowns, is right when it is one fixed combination of the residuals written along the
+axes of the step's ``frame``:
+
+.. math::
+
+    R = \mu^T\,\mathrm{blockdiag}(R_f^T, R_f^T)\,E \quad\text{for one } \mu\in\mathbb R^6
+    \text{ per parameter set, at every state,}
+
+which is checked coefficient by coefficient (the constant term, each acceleration, each
+force) by least squares over the states. When it fails, each coefficient is left out in turn:
+if the others then fit, that term is named, with the sign or factor it is off by, or as a
+wrong moment arm or direction. A relation that fits in other axes (the body's, the world's)
+says so.
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Sequence
+
+import numpy as np
+import pinocchio as pin
+import sympy as sp
+
+from ..constraints.reduction import CoordinateMap
+from ..derivations.schema import Derivation
+from ..derivations.steps import Force, Step
+from ..errors import DerivationError
+from .diagnose import AGREE_TOL, nice_number
+from .evaluate import derivation_coordinate_set, document_symbol_values
+from .kinematics_truth import Motion, check_links
+from .result import ElementRecord
+from .samples import parameter_sets, random_states, special_cases
+from .units import DimensionChecker, format_dim
+
+#: Parameter sets and states per set on which a balance is checked.
+BALANCE_SETS, BALANCE_STATES = 2, 8
+
+
+def _world_point(m: Motion, body: str, point) -> np.ndarray:
+    fid = m.frame_id(body)
+    local = m.point_in_link(body, np.array([float(x) for x in point])
+                            if isinstance(point, np.ndarray) else point)
+    return m.data.oMf[fid].act(local)
+
+
+def residual_rows(m: Motion, body: str, point, frame: str, forces: Sequence[Force],
+                  geometry: Sequence[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
+    r"""Columns of :math:`E` at the motion ``m`` along ``frame``'s axes: the residual at the
+    motion's accelerations with no force, then :math:`\partial E/\partial F_k` for each force
+    (``geometry``: its application point and direction in the world, evaluated)."""
+    wm, data = m.wm, m.data
+    j = wm.model.frames[m.frame_id(body)].parentJoint
+    inertia = wm.model.inertias[j]
+    rot = data.oMi[j].rotation
+    mass, G = inertia.mass, data.oMi[j].act(inertia.lever)
+    I_G = rot @ np.asarray(inertia.inertia) @ rot.T
+    w = m.vector("angular velocity", body, "origin", "world")
+    dw = m.vector("angular acceleration", body, "origin", "world")
+    a_G = m.vector("acceleration", body, "com", "world")
+    P = _world_point(m, body, point)
+    lin = mass * a_G - mass * wm.model.gravity.linear
+    ang = I_G @ dw + np.cross(w, I_G @ w) + np.cross(G - P, lin)
+    cols = [np.concatenate([lin, ang])]
+    for force, (p, d) in zip(forces, geometry):
+        cols.append(-np.concatenate([np.zeros(3), d]) if force.couple
+                    else -np.concatenate([d, np.cross(p - P, d)]))
+    R_f = m.rotation(frame)
+    return np.kron(np.eye(2), R_f.T) @ np.stack(cols, 1)
+
+
+class _Balance:
+    r"""Samples of one ``newton-euler`` step: for every state the truth's coefficient columns
+    (constant, each acceleration, each force) and the document's."""
+
+    def __init__(self, d: Derivation, step: Step, index: int, seed: int) -> None:
+        self.d, self.step = d, step
+        cases = {c.name: c for c in special_cases(d.model)}
+        for name in step.given:
+            if name not in cases:
+                raise DerivationError(d.path, "step.given", f"{name!r} is not a parameter "
+                                      f"family of model {d.model}; valid: " + ", ".join(cases))
+        rng = np.random.default_rng([seed, 23, index])
+        self.sets = parameter_sets(d.model, BALANCE_SETS, rng,
+                                   tuple(cases[g] for g in step.given))
+        symbols = {str(s.symbol): s for s in d.symbols.values()}
+        for f in step.forces:
+            if f.name not in symbols or not symbols[f.name].free:
+                raise DerivationError(d.path, f"step {step.equation}.forces.{f.name}",
+                                      "a force is a symbol of the file declared free = true "
+                                      "(with units = \"N\", or \"N*m\" for a couple)")
+        self.F = [symbols[f.name].symbol for f in step.forces]
+        self.unknowns = [*d.accelerations, *self.F]
+        for j, expr in enumerate(step.components):
+            try:
+                degree = sp.Poly(sp.expand(expr), *self.unknowns).total_degree()
+            except sp.PolynomialError:
+                degree = 2
+            if degree > 1:
+                raise DerivationError(d.path, f"step {step.equation} relation {j + 1}",
+                                      "a balance is linear in the accelerations and forces")
+        ranges = [tuple(d.coordinates.raw.get("ranges", {}).get(str(p), (-np.pi, np.pi)))
+                  for p in d.positions]
+        self.q, self.nu = random_states(len(d.positions), BALANCE_SETS * BALANCE_STATES, rng,
+                                        ranges)
+        self.rng = rng
+
+    def samples(self, frame: str) -> tuple[list[np.ndarray], list[np.ndarray]]:
+        r"""Per parameter set: the truth's coefficients (states × 6 × columns) and the
+        document's (states × relations × columns), columns = constant, accelerations, forces."""
+        d, step = self.d, self.step
+        n = len(d.velocities)
+        params = [s.symbol for s in d.symbols.values() if not s.is_input]
+        zero = {u: 0 for u in self.unknowns}
+        exprs = [[e.xreplace(zero)] + [e.diff(u) for u in self.unknowns] for e in step.components]
+        args = [*d.positions, *d.velocities, *params]
+        fn = sp.lambdify(args, exprs, "numpy")
+        geo = sp.lambdify(args, [[*f.direction, *(f.point if isinstance(f.point, tuple) else ())]
+                                 for f in step.forces], "numpy")
+        truth, doc = [], []
+        for k, ps in enumerate(self.sets):
+            values = document_symbol_values(d, ps, self.rng)
+            cs = derivation_coordinate_set(d, ps)
+            cmap = CoordinateMap(ps.model, cs)
+            check_links(ps.model, [step.body, *([] if frame in ("world", "heading") else [frame])])
+            data = ps.model.model.createData()
+            T_k, D_k = [], []
+            for i in range(k * BALANCE_STATES, (k + 1) * BALANCE_STATES):
+                argv = [*self.q[i], *self.nu[i], *(values[p] for p in params)]
+                D_k.append(np.array(fn(*argv), dtype=float))
+                raw = geo(*argv)
+                rows = []
+                for nudot in (np.zeros(n), *np.eye(n)):
+                    m = Motion(cmap, data, self.q[i], self.nu[i], nudot)
+                    geometry = [(_world_point(m, step.body, np.array(r[3:], dtype=float)
+                                              if isinstance(f.point, tuple) else f.point),
+                                 m.rotation(f.frame) @ np.array(r[:3], dtype=float))
+                                for f, r in zip(step.forces, raw)]
+                    rows.append(residual_rows(m, step.body, step.point, frame, step.forces,
+                                              geometry))
+                accel = [r[:, 0] - rows[0][:, 0] for r in rows[1:]]
+                T_k.append(np.column_stack([rows[0][:, 0], *accel, rows[0][:, 1:]]))
+            truth.append(np.array(T_k))
+            doc.append(np.array(D_k))
+        return truth, doc
+
+
+def _fit(T: np.ndarray, D: np.ndarray, keep: np.ndarray) -> tuple[np.ndarray, float]:
+    r"""Least-squares :math:`\mu` with :math:`\mu^T T_i[:, c] = D_i[c]` over states i and kept
+    columns c; its largest residual."""
+    A = np.concatenate([T[i][:, keep].T for i in range(len(T))])
+    b = np.concatenate([D[i][keep] for i in range(len(D))])
+    mu = np.linalg.lstsq(A, b, rcond=None)[0]
+    return mu, float(np.abs(A @ mu - b).max(initial=0.0))
+
+
+def _term_names(d: Derivation, step: Step) -> list[str]:
+    return ["the terms without accelerations or forces (gravity, velocity products)",
+            *(f"term {a}" for a in d.accelerations), *(f"term {f.name}" for f in step.forces)]
+
+
+def _suspects(truth: list[np.ndarray], doc: list[np.ndarray], j: int,
+              scale: float) -> list[tuple[int, ...]]:
+    r"""The smallest sets of coefficient columns (one, else two) without which relation ``j``
+    fits the balances."""
+    cols = truth[0].shape[2]
+    everything = np.arange(cols)
+    for size in (1, 2):
+        found = []
+        for group in (itertools.combinations(range(cols), size)):
+            keep = np.array([c for c in everything if c not in group])
+            if len(keep) and max(_fit(T, D[:, j, :], keep)[1]
+                                 for T, D in zip(truth, doc)) <= AGREE_TOL * scale:
+                found.append(group)
+        if found:
+            return found
+    return []
+
+
+def _judge(truth: list[np.ndarray], doc: list[np.ndarray], j: int,
+           names: list[str]) -> tuple[bool, list[str], float, float]:
+    r"""Verdict and diagnoses of relation ``j``: one fit per parameter set."""
+    cols = truth[0].shape[2]
+    scale = max(max(float(np.abs(D[:, j, :]).max()) for D in doc), 1e-300)
+    everything = np.arange(cols)
+    fits = [_fit(T, D[:, j, :], everything) for T, D in zip(truth, doc)]
+    worst = max(r for _, r in fits)
+    if worst <= AGREE_TOL * scale:
+        return True, [], worst, scale
+    diags: list[str] = []
+    for group in _suspects(truth, doc, j, scale):
+        keep = np.array([c for c in everything if c not in group])
+        partial = [_fit(T, D[:, j, :], keep) for T, D in zip(truth, doc)]
+        c = group[0] if len(group) == 1 else None
+        if c is None:
+            diags.append(" and ".join(names[g] for g in group) + ": their coefficients are "
+                         "not the balance's (moment arms, directions, masses or inertias)")
+            continue
+        implied = np.concatenate([np.einsum("r,sr->s", mu, T[:, :, c])
+                                  for (mu, _), T in zip(partial, truth)])
+        printed = np.concatenate([D[:, j, c] for D in doc])
+        if np.abs(implied).max() <= AGREE_TOL * scale:
+            diags.append(f"{names[c]}: extra: the balance has none")
+            continue
+        if np.abs(printed).max() <= AGREE_TOL * scale:
+            diags.append(f"{names[c]}: missing: the document has none")
+            continue
+        ratio = printed / np.where(implied == 0, np.nan, implied)
+        if np.nanmax(ratio) - np.nanmin(ratio) <= 1e-6 * np.nanmax(np.abs(ratio)):
+            r = float(np.nanmean(ratio))
+            diags.append(f"{names[c]}: sign: the document has the opposite sign" if
+                         abs(r + 1) < 1e-6 else
+                         f"{names[c]}: factor: the document is {nice_number(r)} × the balance")
+        else:
+            diags.append(f"{names[c]}: its coefficient is not the balance's (a moment arm, "
+                         "a direction, a mass or an inertia)")
+    if not diags:
+        diags.append("not a combination of the body's force and moment balances")
+    return False, diags, worst, scale
+
+
+def compare_balance(d: Derivation, step: Step, index: int, seed: int) -> list[ElementRecord]:
+    r"""One record per relation of a ``newton-euler`` step (see the module docstring)."""
+    b = _Balance(d, step, index, seed)
+    truth, doc = b.samples(step.frame)
+    names = _term_names(d, step)
+    labels = step.component_names()
+    out = []
+    dims = DimensionChecker(d)
+    for j in range(len(step.components)):
+        ok, diags, worst, scale = _judge(truth, doc, j, names)
+        lhs, rhs = (dims.dim(side, []) for side in step.sides[j])
+        if lhs is not None and rhs is not None and lhs != rhs and 0 not in step.sides[j]:
+            ok = False
+            diags.insert(0, f"dimension: the left side is {format_dim(lhs)}, the right side "
+                            f"{format_dim(rhs)}")
+        if not ok:
+            for frame in dict.fromkeys(("world", step.body)):
+                if frame != step.frame and _judge(*b.samples(frame), j, names)[0]:
+                    diags.insert(0, f"frame: it is a balance along the axes of {frame}, "
+                                    f"not {step.frame}")
+        out.append(ElementRecord(
+            element=f"{step.name} {labels[j]}", key="step", index=(index, j),
+            verdict="agrees" if ok else "differs", diagnoses=tuple(diags),
+            document=step.printed[j], document_model="", truth=None, residual=None,
+            max_error=worst, scale=scale, step=step.kind, equation=step.equation,
+            document_latex=sp.latex(step.components[j])))
+    return out
+
+
+__all__ = ["BALANCE_SETS", "BALANCE_STATES", "compare_balance", "residual_rows"]
