@@ -11,6 +11,8 @@ model's ``geometry``.
 ==================== ================ ==========================================================
 model                document         body
 ==================== ================ ==========================================================
+car4                 seed 000, 1.11/  car body on four wheels rolling without side slip, both
+                     1.12             front wheels steered (steer_fl, steer_fr)
 compound_pendulum    seed 000, 2.6    a bar on a pivot (I_g, a)
 rod_pendulum         seed 000, 4.4    uniform slender rod hinged at one end
 rolling_disk         seed 000, 4.8    disk with a point mass, rolling (x = R theta imposed by
@@ -55,9 +57,10 @@ COIN_RADIUS = 0.30
 
 #: The benchmark bodies described by model files, in the table's order.
 BENCHMARK_NAMES: tuple[str, ...] = (
-    "compound_pendulum", "rod_pendulum", "rolling_disk", "pendulum_support", "bounce_pitch",
-    "differential", "flywheel_rod", "free_body", "gyroscope", "sphere_plane", "sphere_sphere",
-    "sphere_paraboloid", "offset_sphere_plane", "offset_sphere_sphere", "rolling_coin", "bicycle")
+    "car4", "compound_pendulum", "rod_pendulum", "rolling_disk", "pendulum_support",
+    "bounce_pitch", "differential", "flywheel_rod", "free_body", "gyroscope", "sphere_plane",
+    "sphere_sphere", "sphere_paraboloid", "offset_sphere_plane", "offset_sphere_sphere",
+    "rolling_coin", "bicycle")
 
 #: Benchmark bodies written in Python instead of a model file: (name, one-line summary, spec
 #: function). A model defined here is registered like a file's.
