@@ -25,7 +25,7 @@ from wheeled_dyn.errors import DerivationError
 SAMPLES, PARAM_SETS = 20, 1
 
 PENDULUM = "p2_6_compound_pendulum.toml"
-VEHICLE = "p2_7_vehicle_steps.toml"
+VEHICLE = "p2_7_vehicle.toml"
 ARM_3 = "-F_x*a*cos(theta) - F_y*a*sin(theta) = I_g*ddtheta"
 PIVOT = '"-m*g*a*sin(theta) = (I_g + m*a**2)*ddtheta"'
 

@@ -49,6 +49,9 @@ STEP_SETS, STEP_STATES = 2, 10
 DECOMPOSE_STATES = 3
 #: Smaller grid on which special parameter families are tried.
 SPECIAL_SETS, SPECIAL_STATES = 2, 6
+#: A relation whose every term stays below this (relative to the sampled velocities) on the
+#: admissible motions has nothing to check.
+VACUOUS_TOL = 1e-9
 #: Kinds whose components are polynomial in the velocities and accelerations (decomposable).
 _TERMED = (*VECTOR_KINDS, "kinetic energy", "generalized force")
 _TRIG_SWAP = {sp.sin: sp.cos, sp.cos: sp.sin}
@@ -332,6 +335,19 @@ def _trig_swaps(expr: sp.Expr, g: _Group, T: np.ndarray, scale: float) -> list[s
         if not found and expr.has(s) and expr.has(c) and agrees(g.document(both), T, scale):
             found.append(f"swap: {sp.sstr(s)} and {sp.sstr(c)} exchanged (sin written for cos "
                          "and cos for sin)")
+    if found:
+        return found
+    # one occurrence only: a sin written for a cos in one term of the expanded expression
+    for terms in (sp.Add.make_args(expr), sp.Add.make_args(sp.expand(expr))):
+        for k, term in enumerate(terms):
+            for f in sorted(term.atoms(sp.sin, sp.cos), key=sp.default_sort_key):
+                other = _TRIG_SWAP[f.func](*f.args)
+                trial = sp.Add(*terms[:k], term.xreplace({f: other}), *terms[k + 1:])
+                if agrees(g.document(trial), T, scale):
+                    found.append(f"swap: {sp.sstr(f)} where {sp.sstr(other)} fits in the "
+                                 f"term {sp.sstr(term)}")
+        if found:
+            return found
     return found
 
 
@@ -507,6 +523,13 @@ def _records(g: _Group, step: Step, index: int, T: np.ndarray) -> list[ElementRe
                 "not finite at some samples"
             recs.append(ElementRecord(verdict="undecided", diagnoses=(why,), max_error=float("nan"),
                                       scale=scale, **common))
+            continue
+        size = 1.0 + float(np.abs(g.nu).max(initial=0.0))
+        if step.kind == "constraint" and scale <= VACUOUS_TOL * size:
+            recs.append(ElementRecord(verdict="undecided", diagnoses=(
+                "every term of the relation vanishes on the model's admissible motions: "
+                "nothing to check",),
+                max_error=float("nan"), scale=scale, **common))
             continue
         diags: list[str] = []
         expr = g._rate(step.components[j], step.kind)
