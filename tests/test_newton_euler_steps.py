@@ -1,8 +1,10 @@
 r"""Newton–Euler balances as derivation steps (``kind = "newton-euler"``, compare/balances.py).
 
-Seed 000 prints two sets: 2.6 (a) the compound pendulum with the pivot force (F_x, F_y) and
-(c) its moments about the pivot, and 2.7 (c) a vehicle in the plane with four tyre forces. As
-printed they are balances of the body and must agree; planted errors — a wrong moment arm, a
+Seed 000 prints three sets: 2.6 (a) the compound pendulum with the pivot force (F_x, F_y) and
+(c) its moments about the pivot, 2.7 (c) a vehicle in the plane with four tyre forces, and
+2.13 (c) a four-wheeled vehicle with steered front wheels in body axes. As printed the first
+two are balances of the body and must agree; 2.13's moment equation puts the front wheels'
+a sin(delta) arm on the rear wheels' forces, and the four forces involved must be named; planted errors — a wrong moment arm, a
 flipped force, an inertia written as a mass, two arms swapped — must be named, and correct
 rewrites (a relation multiplied through, moments about another point declared, a balance along
 the body's axes declared) must still agree. The residual rows themselves are checked against
@@ -26,6 +28,7 @@ SAMPLES, PARAM_SETS = 20, 1
 
 PENDULUM = "p2_6_compound_pendulum.toml"
 VEHICLE = "p2_7_vehicle.toml"
+CAR = "p2_13_vehicle.toml"
 ARM_3 = "-F_x*a*cos(theta) - F_y*a*sin(theta) = I_g*ddtheta"
 PIVOT = '"-m*g*a*sin(theta) = (I_g + m*a**2)*ddtheta"'
 
@@ -180,3 +183,20 @@ def test_residual_rows_against_the_pendulum():
     a_G = np.array([a * (ddth * np.cos(th) - dth**2 * np.sin(th)), 0.0,
                     a * (ddth * np.sin(th) + dth**2 * np.cos(th))])
     assert np.allclose(rows[:3, 0], m * a_G + m * g * np.array([0.0, 0.0, 1.0]), atol=1e-9)
+
+
+def test_car_moment_equation_names_the_moved_arm(tmp_path):
+    r"""2.13 (c): the force equations agree; the moment equation's (F_xrr + F_xlr) a sin(delta)
+    belongs to the front wheels. Its motion side (I_g omega-dot) fixes the combination, so the
+    four forces whose coefficients change are named; with the front wheels' forces there the
+    relation agrees."""
+    records = _balances(_copy(tmp_path, CAR))
+    assert records["2.13 (c) newton-euler x"].verdict == "agrees"
+    assert records["2.13 (c) newton-euler y"].verdict == "agrees"
+    moment = records["2.13 (c) newton-euler moment"]
+    assert moment.verdict == "differs"
+    named = {x.split(":")[0] for x in moment.diagnoses}
+    assert named == {"term F_xrf", "term F_xlf", "term F_xrr", "term F_xlr"}, moment.diagnoses
+    fixed = _balances(_copy(tmp_path, CAR, ("(F_xrr + F_xlr)*a*sin(delta)",
+                                            "(F_xrf + F_xlf)*a*sin(delta)")))
+    assert fixed["2.13 (c) newton-euler moment"].verdict == "agrees"

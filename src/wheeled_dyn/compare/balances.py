@@ -196,8 +196,8 @@ def _suspects(truth: list[np.ndarray], doc: list[np.ndarray], j: int,
     return []
 
 
-def _judge(truth: list[np.ndarray], doc: list[np.ndarray], j: int,
-           names: list[str]) -> tuple[bool, list[str], float, float]:
+def _judge(truth: list[np.ndarray], doc: list[np.ndarray], j: int, names: list[str],
+           n_forces: int) -> tuple[bool, list[str], float, float]:
     r"""Verdict and diagnoses of relation ``j``: one fit per parameter set."""
     cols = truth[0].shape[2]
     scale = max(max(float(np.abs(D[:, j, :]).max()) for D in doc), 1e-300)
@@ -234,8 +234,33 @@ def _judge(truth: list[np.ndarray], doc: list[np.ndarray], j: int,
             diags.append(f"{names[c]}: its coefficient is not the balance's (a moment arm, "
                          "a direction, a mass or an inertia)")
     if not diags:
+        diags += _forces_against_the_motion(truth, doc, j, names, n_forces, scale)
+    if not diags:
         diags.append("not a combination of the body's force and moment balances")
     return False, diags, worst, scale
+
+
+def _forces_against_the_motion(truth: list[np.ndarray], doc: list[np.ndarray], j: int,
+                               names: list[str], n_forces: int, scale: float) -> list[str]:
+    r"""When the relation's motion side (the terms without forces and the accelerations)
+    fixes the combination :math:`\mu` on its own, the forces whose coefficients differ from
+    what that combination gives — several at once (an arm moved from one force to another)."""
+    cols = len(names)
+    forces = list(range(cols - n_forces, cols))
+    motion = np.arange(cols - n_forces)
+    fits = [_fit(T, D[:, j, :], motion) for T, D in zip(truth, doc)]
+    if max(r for _, r in fits) > AGREE_TOL * scale:
+        return []
+    out = []
+    for c in forces:
+        implied = np.concatenate([np.einsum("r,sr->s", mu, T[:, :, c])
+                                  for (mu, _), T in zip(fits, truth)])
+        printed = np.concatenate([D[:, j, c] for D in doc])
+        if np.abs(printed - implied).max() > AGREE_TOL * scale:
+            out.append(f"{names[c]}: its coefficient is not what the motion side gives "
+                       f"(document {printed[0]:.6g}, balance {implied[0]:.6g} at the first "
+                       "state)")
+    return out
 
 
 def compare_balance(d: Derivation, step: Step, index: int, seed: int) -> list[ElementRecord]:
@@ -247,7 +272,7 @@ def compare_balance(d: Derivation, step: Step, index: int, seed: int) -> list[El
     out = []
     dims = DimensionChecker(d)
     for j in range(len(step.components)):
-        ok, diags, worst, scale = _judge(truth, doc, j, names)
+        ok, diags, worst, scale = _judge(truth, doc, j, names, len(step.forces))
         lhs, rhs = (dims.dim(side, []) for side in step.sides[j])
         if lhs is not None and rhs is not None and lhs != rhs and 0 not in step.sides[j]:
             ok = False
@@ -255,7 +280,8 @@ def compare_balance(d: Derivation, step: Step, index: int, seed: int) -> list[El
                             f"{format_dim(rhs)}")
         if not ok:
             for frame in dict.fromkeys(("world", step.body)):
-                if frame != step.frame and _judge(*b.samples(frame), j, names)[0]:
+                if frame != step.frame and _judge(*b.samples(frame), j, names,
+                                                  len(step.forces))[0]:
                     diags.insert(0, f"frame: it is a balance along the axes of {frame}, "
                                     f"not {step.frame}")
         out.append(ElementRecord(
