@@ -29,6 +29,7 @@ SAMPLES, PARAM_SETS = 20, 1
 PENDULUM = "p2_6_compound_pendulum.toml"
 VEHICLE = "p2_7_vehicle.toml"
 CAR = "p2_13_vehicle.toml"
+PARTICLE = "p1_15_particle.toml"
 ARM_3 = "-F_x*a*cos(theta) - F_y*a*sin(theta) = I_g*ddtheta"
 PIVOT = '"-m*g*a*sin(theta) = (I_g + m*a**2)*ddtheta"'
 
@@ -200,3 +201,21 @@ def test_car_moment_equation_names_the_moved_arm(tmp_path):
     fixed = _balances(_copy(tmp_path, CAR, ("(F_xrr + F_xlr)*a*sin(delta)",
                                             "(F_xrf + F_xlf)*a*sin(delta)")))
     assert fixed["2.13 (c) newton-euler moment"].verdict == "agrees"
+
+
+def test_particle_on_a_string_through_a_hole(tmp_path):
+    r"""1.15: the balance across the string (b), the angular momentum about the hole as a first
+    integral and its rate as the moment balance about the hole (c) agree as printed; a lost
+    factor 2 in (b), m r theta' for m r^2 theta', and the moments taken about the ball instead
+    of the hole each differ."""
+    records = _balances(_copy(tmp_path, PARTICLE))
+    assert len(records) == 4 and all(r.verdict == "agrees" for r in records.values()), records
+    for old, new, element in (
+            ('["r*ddtheta + 2*dr*dtheta = 0"]', '["r*ddtheta + dr*dtheta = 0"]',
+             "1.15 (b) newton-euler relation 1"),
+            ('value = "m*r**2*dtheta"', 'value = "m*r*dtheta"', "1.15 (c) |r x p| value"),
+            ('point = ["-r", "0", "0"]           # the hole', 'point = "com"',
+             "1.15 (c) its rate boxed")):
+        wrong = {e for e, r in _balances(_copy(tmp_path, PARTICLE, (old, new))).items()
+                 if r.verdict != "agrees"}
+        assert element in wrong, (old, wrong)

@@ -136,6 +136,8 @@ class _Balance:
         fn = sp.lambdify(args, exprs, "numpy")
         geo = sp.lambdify(args, [[*f.direction, *(f.point if isinstance(f.point, tuple) else ())]
                                  for f in step.forces], "numpy")
+        about = sp.lambdify(args, list(step.point), "numpy") \
+            if isinstance(step.point, tuple) else None
         truth, doc = [], []
         for k, ps in enumerate(self.sets):
             values = document_symbol_values(d, ps, self.rng)
@@ -148,6 +150,7 @@ class _Balance:
                 argv = [*self.q[i], *self.nu[i], *(values[p] for p in params)]
                 D_k.append(np.array(fn(*argv), dtype=float))
                 raw = geo(*argv)
+                point = np.array(about(*argv), dtype=float) if about else step.point
                 rows = []
                 for nudot in (np.zeros(n), *np.eye(n)):
                     m = Motion(cmap, data, self.q[i], self.nu[i], nudot)
@@ -155,7 +158,7 @@ class _Balance:
                                               if isinstance(f.point, tuple) else f.point),
                                  m.rotation(f.frame) @ np.array(r[:3], dtype=float))
                                 for f, r in zip(step.forces, raw)]
-                    rows.append(residual_rows(m, step.body, step.point, frame, step.forces,
+                    rows.append(residual_rows(m, step.body, point, frame, step.forces,
                                               geometry))
                 accel = [r[:, 0] - rows[0][:, 0] for r in rows[1:]]
                 T_k.append(np.column_stack([rows[0][:, 0], *accel, rows[0][:, 1:]]))
