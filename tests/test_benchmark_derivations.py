@@ -29,7 +29,7 @@ N_STATES = 12
 #: Engine grid (small: verdicts, not statistics).
 SAMPLES, PARAM_SETS = 60, 2
 
-SEED000 = {"p2_6_compound_pendulum", "p4_4_rod_pendulum", "p4_8_rolling_disk",
+SEED000 = {"p2_2b_eccentric_disk", "p2_6_compound_pendulum", "p4_4_rod_pendulum", "p4_8_rolling_disk",
            "p4_9_pendulum_support", "p4_12_bounce_pitch", "p4_13_differential",
            "p4_13_differential_theta1", "p4_17_flywheel_rod", "p7_2_euler_equations"}
 SEED002 = {"s3_3_sphere_plane", "s3_12_sphere_sphere"}

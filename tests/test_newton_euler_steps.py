@@ -30,6 +30,7 @@ PENDULUM = "p2_6_compound_pendulum.toml"
 VEHICLE = "p2_7_vehicle.toml"
 CAR = "p2_13_vehicle.toml"
 PARTICLE = "p1_15_particle.toml"
+DISK = "p2_2b_eccentric_disk.toml"
 ARM_3 = "-F_x*a*cos(theta) - F_y*a*sin(theta) = I_g*ddtheta"
 PIVOT = '"-m*g*a*sin(theta) = (I_g + m*a**2)*ddtheta"'
 
@@ -219,3 +220,20 @@ def test_particle_on_a_string_through_a_hole(tmp_path):
         wrong = {e for e, r in _balances(_copy(tmp_path, PARTICLE, (old, new))).items()
                  if r.verdict != "agrees"}
         assert element in wrong, (old, wrong)
+
+
+def test_rolling_eccentric_disk_with_contact_forces(tmp_path):
+    r"""The second 2.2: a rolling disk with its centre of mass off its centre, pushed by F, with
+    the friction H and normal force N at the contact point (a point of the disk given by
+    document expressions). (1)-(3) agree as printed; a cos written for the sin of H's moment
+    arm is named as that swap, and a flipped weight as the force-free terms."""
+    records = _balances(_copy(tmp_path, DISK))
+    assert [r.verdict for r in records.values()] == ["agrees"] * 3
+    moment = _balances(_copy(tmp_path, DISK, ("H*(R + a*sin(theta))", "H*(R + a*cos(theta))")))[
+        "(1)-(3) newton-euler (3)"]
+    assert moment.verdict == "differs"
+    assert "swap: cos(theta) where sin(theta) fits in the term H*(R + a*cos(theta))" in \
+        moment.diagnoses, moment.diagnoses
+    weight = _balances(_copy(tmp_path, DISK, ("N - m*g =", "N + m*g =")))["(1)-(3) newton-euler (2)"]
+    assert weight.verdict == "differs"
+    assert weight.diagnoses[0].startswith("the terms without accelerations or forces")

@@ -122,33 +122,49 @@ class _Balance:
                   for p in d.positions]
         self.q, self.nu = random_states(len(d.positions), BALANCE_SETS * BALANCE_STATES, rng,
                                         ranges)
-        self.rng = rng
+        self.params = [s.symbol for s in d.symbols.values() if not s.is_input]
+        self.args = [*d.positions, *d.velocities, *self.params]
+        self.values = [document_symbol_values(d, ps, rng) for ps in self.sets]
+        self._truth: dict[str, list[np.ndarray]] = {}
 
-    def samples(self, frame: str) -> tuple[list[np.ndarray], list[np.ndarray]]:
-        r"""Per parameter set: the truth's coefficients (states × 6 × columns) and the
-        document's (states × relations × columns), columns = constant, accelerations, forces."""
+    def _argv(self, k: int, i: int) -> list[float]:
+        return [*self.q[i], *self.nu[i], *(self.values[k][p] for p in self.params)]
+
+    def document(self, exprs: Sequence[sp.Expr]) -> list[np.ndarray]:
+        r"""Per parameter set, the coefficients of ``exprs`` (states × relations × columns:
+        the constant, each acceleration, each force)."""
+        zero = {u: 0 for u in self.unknowns}
+        fn = sp.lambdify(self.args, [[e.xreplace(zero)] + [e.diff(u) for u in self.unknowns]
+                                     for e in exprs], "numpy")
+        out = []
+        for k in range(len(self.sets)):
+            rows = range(k * BALANCE_STATES, (k + 1) * BALANCE_STATES)
+            out.append(np.array([np.array(fn(*self._argv(k, i)), dtype=float) for i in rows]))
+        return out
+
+    def truth(self, frame: str) -> list[np.ndarray]:
+        r"""Per parameter set, the columns of the residuals along ``frame``'s axes (states ×
+        6 × columns), computed once per frame."""
+        if frame not in self._truth:
+            self._truth[frame] = self._residuals(frame)
+        return self._truth[frame]
+
+    def _residuals(self, frame: str) -> list[np.ndarray]:
         d, step = self.d, self.step
         n = len(d.velocities)
-        params = [s.symbol for s in d.symbols.values() if not s.is_input]
-        zero = {u: 0 for u in self.unknowns}
-        exprs = [[e.xreplace(zero)] + [e.diff(u) for u in self.unknowns] for e in step.components]
-        args = [*d.positions, *d.velocities, *params]
-        fn = sp.lambdify(args, exprs, "numpy")
-        geo = sp.lambdify(args, [[*f.direction, *(f.point if isinstance(f.point, tuple) else ())]
-                                 for f in step.forces], "numpy")
-        about = sp.lambdify(args, list(step.point), "numpy") \
+        geo = sp.lambdify(self.args, [[*f.direction,
+                                       *(f.point if isinstance(f.point, tuple) else ())]
+                                      for f in step.forces], "numpy")
+        about = sp.lambdify(self.args, list(step.point), "numpy") \
             if isinstance(step.point, tuple) else None
-        truth, doc = [], []
+        truth = []
         for k, ps in enumerate(self.sets):
-            values = document_symbol_values(d, ps, self.rng)
-            cs = derivation_coordinate_set(d, ps)
-            cmap = CoordinateMap(ps.model, cs)
+            cmap = CoordinateMap(ps.model, derivation_coordinate_set(d, ps))
             check_links(ps.model, [step.body, *([] if frame in ("world", "heading") else [frame])])
             data = ps.model.model.createData()
-            T_k, D_k = [], []
+            T_k = []
             for i in range(k * BALANCE_STATES, (k + 1) * BALANCE_STATES):
-                argv = [*self.q[i], *self.nu[i], *(values[p] for p in params)]
-                D_k.append(np.array(fn(*argv), dtype=float))
+                argv = self._argv(k, i)
                 raw = geo(*argv)
                 point = np.array(about(*argv), dtype=float) if about else step.point
                 rows = []
@@ -163,8 +179,7 @@ class _Balance:
                 accel = [r[:, 0] - rows[0][:, 0] for r in rows[1:]]
                 T_k.append(np.column_stack([rows[0][:, 0], *accel, rows[0][:, 1:]]))
             truth.append(np.array(T_k))
-            doc.append(np.array(D_k))
-        return truth, doc
+        return truth
 
 
 def _fit(T: np.ndarray, D: np.ndarray, keep: np.ndarray) -> tuple[np.ndarray, float]:
@@ -266,10 +281,29 @@ def _forces_against_the_motion(truth: list[np.ndarray], doc: list[np.ndarray], j
     return out
 
 
+def _trig_swaps(b: _Balance, j: int, names: list[str]) -> list[str]:
+    r"""A sin written for a cos (or the reverse) in one printed term of relation ``j``: the
+    swaps that make it a balance."""
+    expr = b.step.components[j]
+    truth = b.truth(b.step.frame)
+    for terms in (sp.Add.make_args(expr), sp.Add.make_args(sp.expand(expr))):
+        found = []
+        for k, term in enumerate(terms):
+            for f in sorted(term.atoms(sp.sin, sp.cos), key=sp.default_sort_key):
+                other = (sp.cos if f.func == sp.sin else sp.sin)(*f.args)
+                trial = sp.Add(*terms[:k], term.xreplace({f: other}), *terms[k + 1:])
+                if _judge(truth, b.document([trial]), 0, names, len(b.step.forces))[0]:
+                    found.append(f"swap: {sp.sstr(f)} where {sp.sstr(other)} fits in the term "
+                                 f"{sp.sstr(term)}")
+        if found:
+            return found
+    return []
+
+
 def compare_balance(d: Derivation, step: Step, index: int, seed: int) -> list[ElementRecord]:
     r"""One record per relation of a ``newton-euler`` step (see the module docstring)."""
     b = _Balance(d, step, index, seed)
-    truth, doc = b.samples(step.frame)
+    truth, doc = b.truth(step.frame), b.document(step.components)
     names = _term_names(d, step)
     labels = step.component_names()
     out = []
@@ -282,8 +316,9 @@ def compare_balance(d: Derivation, step: Step, index: int, seed: int) -> list[El
             diags.insert(0, f"dimension: the left side is {format_dim(lhs)}, the right side "
                             f"{format_dim(rhs)}")
         if not ok:
+            diags += _trig_swaps(b, j, names)
             for frame in dict.fromkeys(("world", step.body)):
-                if frame != step.frame and _judge(*b.samples(frame), j, names,
+                if frame != step.frame and _judge(b.truth(frame), doc, j, names,
                                                   len(step.forces))[0]:
                     diags.insert(0, f"frame: it is a balance along the axes of {frame}, "
                                     f"not {step.frame}")
