@@ -360,3 +360,38 @@ def test_shipped_u1_agrees():
     records = compare_steps(load_derivation(S4), SEED)
     (u1,) = [r for r in records if r.equation == "(17)" and "U1" in r.element]
     assert u1.verdict == "agrees", u1.diagnoses
+
+
+def test_eq15_gravity_and_orientation_of_frame_1_agree(s4):
+    r"""(15)'s 0g = [0 -g 0] along frame 0's axes (y up) and the rotation part 0A1 of 0T1 (a
+    rotation by phi about the axle z) agree: nine entries and three components."""
+    _, records = s4
+    got = {e: r.verdict for e, r in _by_equation(records, "(15)").items()
+           if e.startswith(("(15) 0g", "(15) 0A1"))}
+    assert len(got) == 12 and set(got.values()) == {"agrees"}, got
+
+
+@pytest.mark.parametrize("old,new,element", [
+    ('components = ["cos(phi)", "-sin(phi)", "0",', 'components = ["cos(phi)", "sin(phi)", "0",',
+     "(15) 0A1 [1,2]"),
+    ('components = ["0", "-g", "0"]', 'components = ["0", "g", "0"]', "(15) 0g y0"),
+])
+def test_eq15_planted_sign_in_0A1_or_0g_is_named(tmp_path, old, new, element):
+    text = S4.read_text()
+    assert text.count(old) == 1
+    records = {r.element: r for r in _copy_records(tmp_path, text.replace(old, new))}
+    r = records[element]
+    assert r.verdict == "differs" and r.diagnoses[0].startswith("sign"), r.diagnoses
+    others = [e for e, x in records.items() if e.startswith("(15)") and x.verdict != "agrees"]
+    assert others == [element]
+
+
+def test_an_orientation_is_nine_components(tmp_path):
+    from wheeled_dyn.errors import DerivationError
+    text = S4.read_text().replace('"0", "0", "1"]', '"0", "0"]', 1)
+    path = tmp_path / "s4_bad_steps.toml"
+    path.write_text(text)
+    with pytest.raises(DerivationError) as err:
+        load_derivation(path)
+    assert "step 4 (15).components" in str(err.value) and "nine components" in str(err.value)
+    assert err.value.line is not None

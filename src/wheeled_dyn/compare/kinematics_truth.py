@@ -173,6 +173,19 @@ class Motion:
         world = data.oMf[fid].rotation @ local
         return self.rotation(frame).T @ world
 
+    def orientation(self, body: str, frame: str, axes: Sequence[str],
+                    body_axes: Sequence[str]) -> np.ndarray:
+        r"""The matrix whose column j is ``body``'s axis ``body_axes[j]`` along ``frame``'s
+        ``axes``: :math:`{}^fA_b` as a document writes it."""
+        R = self.rotation(frame).T @ self.rotation(body)
+        unit = {"x": 0, "y": 1, "z": 2}
+        cols = []
+        for a in body_axes:
+            v = np.zeros(3)
+            v[unit[a.lstrip("-")]] = -1.0 if a.startswith("-") else 1.0
+            cols.append(along(R @ v, axes))
+        return np.column_stack(cols)
+
     # -- energies ---------------------------------------------------------------------------
     def _joints(self, links: Sequence[str]) -> list[int]:
         return sorted({self.wm.model.frames[self.frame_id(link)].parentJoint for link in links})

@@ -29,7 +29,8 @@ import sympy as sp
 
 from ..constraints.reduction import CoordinateMap
 from ..derivations.schema import Derivation
-from ..derivations.steps import RELATION_KINDS, RESULT_KINDS, VECTOR_KINDS, Step
+from ..derivations.steps import (FRAME_KINDS, RELATION_KINDS, RESULT_KINDS, VECTOR_KINDS,
+                                 Step)
 from ..errors import DerivationError
 from .diagnose import (agrees, max_error, nice_number, power_diagnoses, swap_diagnoses,
                        value_diagnoses)
@@ -236,6 +237,11 @@ class _Group:
             if isinstance(point, tuple):
                 point = np.array([float(sp.sympify(p).xreplace(self.values[k])) for p in point])
             return along(m.vector(s.kind, s.body, point, s.frame), s.axes)
+        if s.kind == "orientation":
+            return m.orientation(s.body, s.frame, s.axes, s.body_axes).ravel()
+        if s.kind == "gravity":
+            g = self.cmap.wm.model.gravity.linear
+            return along(m.rotation(s.frame).T @ g, s.axes)
         if s.kind == "kinetic energy":
             return np.array([m.kinetic_energy(s.bodies)])
         if s.kind == "potential energy":
@@ -250,7 +256,7 @@ class _Group:
         (holonomic sets); velocity relations and parameter claims as they are; a potential
         energy (``kind``) is a value, not a relation, compared as it is (up to a constant)."""
         d = self.d
-        if kind == "potential energy":
+        if kind in ("potential energy", *FRAME_KINDS):     # values of the positions
             return expr
         if self.integral:                 # its rate along the free motion
             return sum((expr.diff(p) * r for p, r in zip(d.positions, self.rates)),

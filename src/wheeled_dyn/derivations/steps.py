@@ -27,6 +27,10 @@ printed, in the file's namespace (positions :math:`q`, velocities :math:`\nu`, a
                             state ``about`` (a steady state)
 ``critical speed``          ``value``: the value of the velocity ``speed`` (the others as in
                             ``about``) at which the stability of ``about`` changes
+``orientation``             ``components``: the nine entries (row by row) of the matrix whose
+                            columns are ``body``'s axes (``body_axes``) along ``frame``'s
+                            ``axes`` (a rotation matrix such as :math:`{}^0A_1`)
+``gravity``                 ``components``: the gravity vector along ``frame``'s ``axes``
 ``newton-euler``            ``relations``: force and moment balances of ``body`` (moments
                             about ``point``, components along ``frame``'s axes) with the
                             applied ``forces`` (document symbols, ``free = true``)
@@ -63,9 +67,11 @@ STEP_KINDS: tuple[str, ...] = ("velocity", "angular velocity", "acceleration",
                                "angular acceleration", "kinetic energy", "potential energy",
                                "constraint", "claim", "generalized force",
                                "linearised equations", "first integral", "frequency",
-                               "critical speed", "newton-euler")
+                               "critical speed", "newton-euler", "orientation", "gravity")
 VECTOR_KINDS = STEP_KINDS[:4]
 RELATION_KINDS = ("constraint", "claim", "linearised equations", "newton-euler")
+#: A frame's orientation and the gravity vector: functions of the positions alone.
+FRAME_KINDS = ("orientation", "gravity")
 #: Stated results judged on the linearisation of the true motion (:mod:`~wheeled_dyn.compare.results`).
 RESULT_KINDS = ("frequency", "critical speed")
 #: Named points of a body.
@@ -77,7 +83,7 @@ QUANTITIES: tuple[str, ...] = ("inertia", "inertial terms")
 STEP_KEYS: tuple[str, ...] = ("equation", "kind", "label", "body", "bodies", "point", "frame",
                               "axes", "components", "value", "relations", "quantity", "rows",
                               "given", "note", "names", "about", "speed",
-                              "forces")
+                              "forces", "body_axes")
 #: Keys of one applied force (or couple) of a ``newton-euler`` step.
 FORCE_KEYS: tuple[str, ...] = ("point", "direction", "couple", "frame")
 #: An element the extracted text lost.
@@ -125,6 +131,7 @@ class Step:
     about: tuple[tuple[str, sympy.Expr], ...] = ()   # linearised: (name, value) of the state
     speed: str = ""                      # critical speed: the document velocity scanned
     forces: tuple["Force", ...] = ()     # newton-euler: the applied forces and couples
+    body_axes: tuple[str, ...] = ("x", "y", "z")   # orientation: the body's axes as labelled
 
     @property
     def name(self) -> str:
@@ -140,6 +147,10 @@ class Step:
             return self.axes
         if self.kind == "generalized force":
             return tuple(f"row {r + 1}" for r in self.rows)
+        if self.kind == "orientation":
+            return tuple(f"[{i},{j}]" for i in (1, 2, 3) for j in (1, 2, 3))
+        if self.kind == "gravity":
+            return self.axes
         if self.kind in RELATION_KINDS:
             return tuple(f"relation {i + 1}" for i in range(len(self.components)))
         return ("value",)
@@ -220,6 +231,39 @@ def _balance(t: dict, item: str, line, expr, fail) -> dict[str, Any]:
                 point=_point(t.get("point", "com"), f"{item}.point", line, expr, fail))
 
 
+def _axes(t: dict, key: str, item: str, line, fail) -> tuple[str, ...]:
+    axes = _strings(t, key, item, line, fail) or ("x", "y", "z")
+    if any(a not in AXES for a in axes) or len(axes) != len(set(a.lstrip("-") for a in axes)):
+        raise fail(f"{item}.{key}", f"axes are distinct among {', '.join(AXES)}", line)
+    return axes
+
+
+def _frame_step(t: dict, kind: str, item: str, line, fail) -> tuple[dict[str, Any],
+                                                                    tuple[str, ...]]:
+    r"""``frame``, ``axes`` (and ``body``, ``body_axes``) and the printed components of an
+    ``orientation`` or ``gravity`` step."""
+    frame = t.get("frame", "world")
+    if not isinstance(frame, str) or not frame:
+        raise fail(f"{item}.frame", "expected world, heading or a link name", line)
+    axes = _axes(t, "axes", item, line, fail)
+    texts = _strings(t, "components", item, line, fail)
+    extra: dict[str, Any] = dict(frame=frame, axes=axes)
+    if kind == "gravity":
+        if len(texts) != len(axes):
+            raise fail(f"{item}.components", f"{len(texts)} components for {len(axes)} axes",
+                       line)
+        return extra, texts
+    body = t.get("body")
+    if not isinstance(body, str) or not body or body == "world":
+        raise fail(f"{item}.body", "an orientation names its body (a link, or \"heading\")",
+                   line)
+    body_axes = _axes(t, "body_axes", item, line, fail)
+    if len(axes) != 3 or len(body_axes) != 3 or len(texts) != 9:
+        raise fail(f"{item}.components", "an orientation is a 3 x 3 matrix: nine components, "
+                   "row by row, with three axes and three body axes", line)
+    return dict(extra, body=body, body_axes=body_axes), texts
+
+
 def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
     label = str(t.get("equation", ""))
     item = f"step {k + 1}" + (f" {label}" if label else "")
@@ -239,7 +283,9 @@ def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
         return expr(text, where)
 
     extra: dict[str, Any] = {}
-    if kind in VECTOR_KINDS:
+    if kind in FRAME_KINDS:
+        extra, texts = _frame_step(t, kind, item, line, fail)
+    elif kind in VECTOR_KINDS:
         body = t.get("body")
         if not isinstance(body, str) or not body or body == "world":
             raise fail(f"{item}.body", "a vector step names its body (a link of the model, or "
