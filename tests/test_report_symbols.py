@@ -74,3 +74,13 @@ def test_displayed_difference_is_simplified_and_equal():
     assert short == 2 * sp.Symbol("I_a") * sp.Symbol("L") ** 2 / sp.Symbol("R") ** 2
     assert difference_latex(raw, Notation(("phi",))) == r"\frac{2 I_{a} L^{2}}{R^{2}}"
     assert difference_latex("0", Notation()) == ""
+
+
+def test_a_printed_relation_is_rendered_side_by_side():
+    r"""A step's printed relation "lhs = rhs" renders each side in the document's notation
+    (accelerations with two dots), joined by "="."""
+    from wheeled_dyn.report.symbols import notation, text_latex
+    names = notation(("theta",), ("dtheta",), ("ddtheta",), quasi=False)
+    latex = text_latex("-F*a*cos(theta) = I_g*ddtheta", names, "fallback")
+    assert latex.count("=") == 1 and r"\ddot" in latex and "ddtheta" not in latex
+    assert text_latex("a = b = c", names, "fallback") == "fallback"

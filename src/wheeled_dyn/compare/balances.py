@@ -191,6 +191,14 @@ def _fit(T: np.ndarray, D: np.ndarray, keep: np.ndarray) -> tuple[np.ndarray, fl
     return mu, float(np.abs(A @ mu - b).max(initial=0.0))
 
 
+def _off_balance(truth: list[np.ndarray], doc: list[np.ndarray], j: int) -> float:
+    r"""How far relation ``j`` is, at the first state, from the nearest combination of the
+    balances (0 when it is one): the report's "document" number beside the truth's 0."""
+    everything = np.arange(truth[0].shape[2])
+    mu, _ = _fit(truth[0], doc[0][:, j, :], everything)
+    return float(np.abs(truth[0][0].T @ mu - doc[0][0, j, :]).max())
+
+
 def _term_names(d: Derivation, step: Step) -> list[str]:
     return ["the terms without accelerations or forces (gravity, velocity products)",
             *(f"term {a}" for a in d.accelerations), *(f"term {f.name}" for f in step.forces)]
@@ -327,7 +335,8 @@ def compare_balance(d: Derivation, step: Step, index: int, seed: int) -> list[El
             verdict="agrees" if ok else "differs", diagnoses=tuple(diags),
             document=step.printed[j], document_model="", truth=None, residual=None,
             max_error=worst, scale=scale, step=step.kind, equation=step.equation,
-            document_latex=sp.latex(step.components[j])))
+            document_latex=sp.latex(step.components[j]), truth_sample=0.0,
+            document_sample=_off_balance(truth, doc, j)))
     return out
 
 

@@ -223,10 +223,13 @@ def expression_latex(expr: sp.Basic, names: Notation) -> str:
 
 
 def text_latex(text: str | None, names: Notation, fallback: str = "") -> str:
-    r"""LaTeX of an expression given as text; ``fallback`` (e.g. the engine's own LaTeX)
-    when the text cannot be read."""
+    r"""LaTeX of an expression (or a relation ``lhs = rhs``) given as text; ``fallback`` (e.g.
+    the engine's own LaTeX) when the text cannot be read."""
     if not text:
         return fallback
+    if text.count("=") == 1:                 # a printed relation: each side
+        sides = [text_latex(side, names) for side in text.split("=")]
+        return " = ".join(sides) if all(sides) else fallback
     key = ("text", text)
     if key not in names.cache:
         expr = parse(text)
