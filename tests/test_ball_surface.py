@@ -356,3 +356,35 @@ def test_bad_bowl_in_a_model_file(tmp_path):
         path.write_text(bad.replace('name = "sphere_paraboloid"', f'name = "bad{k}"'))
         with pytest.raises(ParameterError, match=word):
             load_model(str(path))
+
+
+# -- seed 002, (3.8): the force function of gravity in the paraboloid -----------------------------
+def test_paraboloid_force_function_3_8(tmp_path):
+    r"""s3_8_paraboloid.toml: its configuration map puts the ball on the bowl (checked here with
+    an independent distance, not the map's formula), so its printed (3.8), read as the potential
+    -U, is compared with the true potential of a ball that touches the paraboloid: it agrees;
+    with the ball's centre offset on the other side of the surface (+R p/sqrt for -R p/sqrt,
+    the convex side) it differs."""
+    from wheeled_dyn.compare.step_records import compare_steps
+    from wheeled_dyn.constraints.reduction import CoordinateMap as Map
+    from wheeled_dyn.compare.evaluate import derivation_coordinate_set
+    from wheeled_dyn.compare.samples import ParameterSet, namespace_values
+    from wheeled_dyn.derivations import builtin_derivations, load_derivation
+    folder = builtin_derivations("seed002")[0].parent
+    path = folder / "s3_8_paraboloid.toml"
+    d = load_derivation(path)
+    wm = load_model(d.model)
+    a, vertex, _ = _bowl(wm)
+    cmap = Map(wm, derivation_coordinate_set(d, ParameterSet(wm, namespace_values(wm, None))))
+    rng = np.random.default_rng(SEED)
+    for _ in range(N_STATES):
+        q_doc = np.array([rng.uniform(0.0, 0.4), rng.uniform(-np.pi, np.pi), 0.3])
+        centre = cmap.model_configuration(q_doc)[:3]
+        assert abs(_distance_to_bowl(a, vertex, centre) - BALL_RADIUS) < EXACT_TOL
+    (r,) = compare_steps(d, SEED)
+    assert r.verdict == "agrees", r.diagnoses
+    text = path.read_text().replace('value = "M*g*(u1**2/(2*p) + R*p/sqrt(p**2 + u1**2))"',
+                                    'value = "M*g*(u1**2/(2*p) - R*p/sqrt(p**2 + u1**2))"')
+    planted = tmp_path / "s3_8_paraboloid.toml"
+    planted.write_text(text)
+    assert compare_steps(load_derivation(planted), SEED)[0].verdict == "differs"
