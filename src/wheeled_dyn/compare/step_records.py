@@ -253,11 +253,12 @@ class _Group:
 
     def _rate(self, expr: sp.Expr, kind: str | None = None) -> sp.Expr:
         r"""A configuration relation's rate :math:`\sum_i \partial f/\partial q_i\,\dot q_i`
-        (holonomic sets); velocity relations and parameter claims as they are; a potential
-        energy (``kind``) is a value, not a relation, compared as it is (up to a constant)."""
+        (holonomic sets); velocity relations and parameter claims as they are. A value of a
+        step that is not a relation (``kind``: a vector, even one without velocities such as
+        :math:`\ddot x\cos\theta`, an energy, an orientation) is compared as it is."""
         d = self.d
-        if kind in ("potential energy", *FRAME_KINDS):     # values of the positions
-            return expr
+        if kind is not None and kind not in (*RELATION_KINDS, "first integral"):
+            return expr                   # a value (a vector, an energy, a force), not a relation
         if self.integral:                 # its rate along the free motion
             return sum((expr.diff(p) * r for p, r in zip(d.positions, self.rates)),
                        sp.Integer(0)) + sum((expr.diff(v) * a for v, a in
