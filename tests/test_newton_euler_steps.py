@@ -155,6 +155,8 @@ def test_bad_balances_name_the_place(tmp_path, old, new, item):
      'names', "forces"),
     ('F_y = { point = "origin", direction = ["0", "0", "1"] } }\nnames',
      'F_y = { point = "origin" } }\nnames', "forces.F_y"),
+    ('F_y = { point = "origin", direction = ["0", "0", "1"] } }\nnames',
+     'F_y = { point = "origin", direction = ["0", "0", "0"] } }\nnames', "forces.F_y"),
 ])
 def test_bad_force_tables_are_refused_on_load(tmp_path, old, new, item):
     with pytest.raises(DerivationError) as err:
@@ -237,3 +239,15 @@ def test_rolling_eccentric_disk_with_contact_forces(tmp_path):
     weight = _balances(_copy(tmp_path, DISK, ("N - m*g =", "N + m*g =")))["(1)-(3) newton-euler (2)"]
     assert weight.verdict == "differs"
     assert weight.diagnoses[0].startswith("the terms without accelerations or forces")
+
+
+def test_a_balance_not_finite_somewhere_is_undecided(tmp_path):
+    r"""A force applied at a point the document writes with a logarithm of a negative number
+    (not finite at the samples): no verdict is computed, the record says why."""
+    path = _copy(tmp_path, PENDULUM, (
+        'F_x = { point = "origin", direction = ["1", "0", "0"] }, F_y = { point = "origin", direction = ["0", "0", "1"] } }\nnames',
+        'F_x = { point = ["log(-1 - theta**2)", "0", "0"], direction = ["1", "0", "0"] }, F_y = { point = "origin", direction = ["0", "0", "1"] } }\nnames'))
+    records = _balances(path)
+    bad = [r for e, r in records.items() if e.startswith("2.6 (a)")]
+    assert bad and all(r.verdict == "undecided" for r in bad)
+    assert all(r.diagnoses == ("not finite at some samples",) for r in bad)

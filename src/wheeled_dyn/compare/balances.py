@@ -137,9 +137,11 @@ class _Balance:
         fn = sp.lambdify(self.args, [[e.xreplace(zero)] + [e.diff(u) for u in self.unknowns]
                                      for e in exprs], "numpy")
         out = []
-        for k in range(len(self.sets)):
-            rows = range(k * BALANCE_STATES, (k + 1) * BALANCE_STATES)
-            out.append(np.array([np.array(fn(*self._argv(k, i)), dtype=float) for i in rows]))
+        with np.errstate(all="ignore"):          # a value that is not finite is a verdict's
+            for k in range(len(self.sets)):     # business (undecided), not a warning
+                rows = range(k * BALANCE_STATES, (k + 1) * BALANCE_STATES)
+                out.append(np.array([np.array(fn(*self._argv(k, i)), dtype=float)
+                                     for i in rows]))
         return out
 
     def truth(self, frame: str) -> list[np.ndarray]:
@@ -165,8 +167,9 @@ class _Balance:
             T_k = []
             for i in range(k * BALANCE_STATES, (k + 1) * BALANCE_STATES):
                 argv = self._argv(k, i)
-                raw = geo(*argv)
-                point = np.array(about(*argv), dtype=float) if about else step.point
+                with np.errstate(all="ignore"):
+                    raw = geo(*argv)
+                    point = np.array(about(*argv), dtype=float) if about else step.point
                 rows = []
                 for nudot in (np.zeros(n), *np.eye(n)):
                     m = Motion(cmap, data, self.q[i], self.nu[i], nudot)
@@ -317,6 +320,16 @@ def compare_balance(d: Derivation, step: Step, index: int, seed: int) -> list[El
     out = []
     dims = DimensionChecker(d)
     for j in range(len(step.components)):
+        common = dict(element=f"{step.name} {labels[j]}", key="step", index=(index, j),
+                      document=step.printed[j], document_model="", truth=None, residual=None,
+                      step=step.kind, equation=step.equation,
+                      document_latex=sp.latex(step.components[j]))
+        if not all(np.all(np.isfinite(D[:, j, :])) for D in doc) or \
+                not all(np.all(np.isfinite(T)) for T in truth):
+            out.append(ElementRecord(verdict="undecided", diagnoses=(
+                "not finite at some samples",), max_error=float("nan"), scale=float("nan"),
+                **common))
+            continue
         ok, diags, worst, scale = _judge(truth, doc, j, names, len(step.forces))
         lhs, rhs = (dims.dim(side, []) for side in step.sides[j])
         if lhs is not None and rhs is not None and lhs != rhs and 0 not in step.sides[j]:
@@ -330,13 +343,9 @@ def compare_balance(d: Derivation, step: Step, index: int, seed: int) -> list[El
                                                   len(step.forces))[0]:
                     diags.insert(0, f"frame: it is a balance along the axes of {frame}, "
                                     f"not {step.frame}")
-        out.append(ElementRecord(
-            element=f"{step.name} {labels[j]}", key="step", index=(index, j),
-            verdict="agrees" if ok else "differs", diagnoses=tuple(diags),
-            document=step.printed[j], document_model="", truth=None, residual=None,
-            max_error=worst, scale=scale, step=step.kind, equation=step.equation,
-            document_latex=sp.latex(step.components[j]), truth_sample=0.0,
-            document_sample=_off_balance(truth, doc, j)))
+        out.append(ElementRecord(verdict="agrees" if ok else "differs", diagnoses=tuple(diags),
+                                 max_error=worst, scale=scale, truth_sample=0.0,
+                                 document_sample=_off_balance(truth, doc, j), **common))
     return out
 
 

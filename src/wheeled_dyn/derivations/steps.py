@@ -224,7 +224,10 @@ def _balance(t: dict, item: str, line, expr, fail) -> dict[str, Any]:
         axis = spec.get("direction", spec.get("couple"))
         if not isinstance(axis, list) or len(axis) != 3:
             raise fail(where, "a direction is three expressions [x, y, z]", line)
-        forces.append(Force(str(name), tuple(expr(a, where) for a in axis),
+        parsed = tuple(expr(a, where) for a in axis)
+        if all(x == 0 for x in parsed):
+            raise fail(where, "a direction is not the zero vector", line)
+        forces.append(Force(str(name), parsed,
                             _point(spec.get("point", "com"), f"{where}.point", line, expr, fail),
                             str(spec.get("frame", "world")), "couple" in spec))
     return dict(body=body, frame=frame, forces=tuple(forces),
