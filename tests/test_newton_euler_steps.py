@@ -13,7 +13,6 @@ the pendulum's closed form.
 
 from __future__ import annotations
 
-import shutil
 
 import numpy as np
 import pytest

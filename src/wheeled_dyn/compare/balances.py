@@ -38,7 +38,6 @@ import itertools
 from collections.abc import Sequence
 
 import numpy as np
-import pinocchio as pin
 import sympy as sp
 
 from ..constraints.reduction import CoordinateMap
@@ -46,10 +45,11 @@ from ..derivations.schema import Derivation
 from ..derivations.steps import Force, Step
 from ..errors import DerivationError
 from .diagnose import AGREE_TOL, nice_number
-from .evaluate import derivation_coordinate_set, document_symbol_values
+from .evaluate import (derivation_coordinate_set, document_symbol_values,
+                       given_parameter_sets)
 from .kinematics_truth import Motion, check_links
 from .result import ElementRecord
-from .samples import parameter_sets, random_states, special_cases
+from .samples import random_states
 from .units import DimensionChecker, format_dim
 
 #: Parameter sets and states per set on which a balance is checked.
@@ -94,14 +94,8 @@ class _Balance:
 
     def __init__(self, d: Derivation, step: Step, index: int, seed: int) -> None:
         self.d, self.step = d, step
-        cases = {c.name: c for c in special_cases(d.model)}
-        for name in step.given:
-            if name not in cases:
-                raise DerivationError(d.path, "step.given", f"{name!r} is not a parameter "
-                                      f"family of model {d.model}; valid: " + ", ".join(cases))
         rng = np.random.default_rng([seed, 23, index])
-        self.sets = parameter_sets(d.model, BALANCE_SETS, rng,
-                                   tuple(cases[g] for g in step.given))
+        self.sets = given_parameter_sets(d, step.given, BALANCE_SETS, rng)
         symbols = {str(s.symbol): s for s in d.symbols.values()}
         for f in step.forces:
             if f.name not in symbols or not symbols[f.name].free:

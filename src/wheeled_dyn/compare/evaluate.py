@@ -23,7 +23,7 @@ from ..constraints.reduction import CoordinateMap
 from ..coordinates import CoordinateSet, builtin_coordinate_set, parse_coordinate_set
 from ..derivations.schema import Derivation
 from ..errors import DerivationError
-from .samples import ParameterSet
+from .samples import ParameterSet, parameter_sets, special_cases
 
 #: States per parameter set on which the coefficient tensor H of h is compared (h itself, A,
 #: C, Q, B are compared on all of them).
@@ -223,3 +223,16 @@ class DocumentFunctions:
         if (key, pos) not in self._element_fns:
             self._element_fns[(key, pos)] = sp.lambdify(self.args, flat[pos], "numpy")
         return self._element_fns[(key, pos)]
+
+
+def given_parameter_sets(d: Derivation, given: Sequence[str], k: int,
+                         rng: np.random.Generator) -> list[ParameterSet]:
+    r"""``k`` random parameter sets of ``d``'s model restricted by the special families named
+    in a step's ``given``; an unknown name is a :class:`DerivationError` listing the model's."""
+    cases = {c.name: c for c in special_cases(d.model)}
+    for name in given:
+        if name not in cases:
+            raise DerivationError(d.path, "step.given", f"{name!r} is not a parameter family "
+                                  f"of model {d.model}; valid: " + ", ".join(cases))
+    return parameter_sets(d.model, k, rng, tuple(cases[g] for g in given))
+

@@ -42,9 +42,9 @@ from ..derivations.schema import Derivation
 from ..derivations.steps import RESULT_KINDS, Step
 from ..errors import DerivationError
 from .diagnose import nice_number
-from .evaluate import derivation_coordinate_set, document_symbol_values
+from .evaluate import (derivation_coordinate_set, document_symbol_values,
+                       given_parameter_sets)
 from .result import ElementRecord
-from .samples import parameter_sets, special_cases
 from .units import DimensionChecker, format_dim
 
 #: Parameter sets a result is checked on.
@@ -215,13 +215,8 @@ def _dimension(d: Derivation, step: Step, expr: sp.Expr) -> list[str]:
 
 def compare_result(d: Derivation, step: Step, index: int, seed: int) -> ElementRecord:
     r"""The record of one stated result (see the module docstring)."""
-    cases = {c.name: c for c in special_cases(d.model)}
-    for name in step.given:
-        if name not in cases:
-            raise DerivationError(d.path, "step.given", f"{name!r} is not a parameter family "
-                                  f"of model {d.model}; valid: " + ", ".join(cases))
     rng = np.random.default_rng([seed, 17, index])
-    sets = parameter_sets(d.model, RESULT_SETS, rng, tuple(cases[g] for g in step.given))
+    sets = given_parameter_sets(d, step.given, RESULT_SETS, rng)
     expr = step.components[0]
     common = dict(element=f"{step.name} value", key="step", index=(index, 0),
                   document=step.printed[0], document_model="", truth=None, residual=None,

@@ -29,19 +29,19 @@ import sympy as sp
 
 from ..constraints.reduction import CoordinateMap
 from ..derivations.schema import Derivation
-from ..derivations.steps import (FRAME_KINDS, RELATION_KINDS, RESULT_KINDS, VECTOR_KINDS,
-                                 Step)
+from ..derivations.steps import RELATION_KINDS, RESULT_KINDS, VECTOR_KINDS, Step
 from ..errors import DerivationError
 from .diagnose import (agrees, max_error, nice_number, power_diagnoses, swap_diagnoses,
                        value_diagnoses)
 from .elements import swap_groups
-from .evaluate import derivation_coordinate_set, document_symbol_values
+from .evaluate import (derivation_coordinate_set, document_symbol_values,
+                       given_parameter_sets)
 from .kinematics_truth import Motion, along, check_links
 from .result import ElementRecord
 from .assumptions import declared
 from .balances import compare_balance
 from .results import compare_result
-from .samples import parameter_sets, random_states, special_cases
+from .samples import random_states, special_cases
 from .units import DimensionChecker, format_dim
 
 #: Parameter sets and states per set on which the steps are compared.
@@ -72,13 +72,8 @@ class _Group:
         self.linearised = False
         self.integral = False
         self._argv: list[np.ndarray] | None = None
-        cases = {c.name: c for c in special_cases(d.model)}
-        for name in given:
-            if name not in cases:
-                raise DerivationError(d.path, "step.given", f"{name!r} is not a parameter family "
-                                      f"of model {d.model}; valid: " + ", ".join(cases))
         rng = np.random.default_rng([seed, 11, len(given)])
-        self.sets = parameter_sets(d.model, sets, rng, tuple(cases[g] for g in given))
+        self.sets = given_parameter_sets(d, given, sets, rng)
         ckey = (str(d.path), repr(d.coordinates.raw), d.coordinates.use)
         if ckey not in _SETS:
             _SETS[ckey] = derivation_coordinate_set(d, self.sets[0])
