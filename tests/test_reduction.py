@@ -184,3 +184,31 @@ def test_batch_equals_single_state(coords):
                 assert a is None
             else:
                 assert np.allclose(a[i], b, atol=EXACT_TOL), key
+
+
+@pytest.mark.parametrize("model,cset", [*QUASI_SETS, ("wip", "absolute_wheels"),
+                                         ("sphere_sphere", "body_rates"),
+                                         ("rolling_coin", None)])
+def test_dynamics_at_equals_the_reduced_terms(model, cset):
+    r"""The simulation's right-hand side (:meth:`CoordinateMap.dynamics_at`: A, h + Q, B from
+    ``nonLinearEffects`` and the vector S-dot nu) equals the reduced terms of
+    :meth:`CoordinateMap.reduce_at` (the Coriolis matrix and S-dot as matrices)."""
+    rng = np.random.default_rng(SEED)
+    wm = load_model(model)
+    cmap = CoordinateMap(wm, builtin_coordinate_set(wm, cset))
+    holonomic = cmap.cs.kind == "holonomic"
+    for _ in range(N_STATES):
+        q_doc = rng.uniform(-1.0, 1.0, cmap.n)
+        nu = rng.normal(size=cmap.n)
+        if holonomic:
+            q = cmap.model_configuration(q_doc)
+        else:                     # any configuration: both sides are the same algebra
+            q = rng.uniform(-1.0, 1.0, wm.model.nq)
+            q_doc = None
+        terms, S, _ = cmap.reduce_at(q, nu, q_doc)
+        A, hQ, B, S2 = cmap.dynamics_at(q, nu, q_doc)
+        scale = 1.0 + np.abs(terms.A).max() + np.abs(terms.h).max() + np.abs(terms.Q).max()
+        assert np.abs(A - terms.A).max() < EXACT_TOL * scale
+        assert np.abs(hQ - terms.h - terms.Q).max() < EXACT_TOL * scale
+        assert np.abs(B - terms.B).max(initial=0.0) < EXACT_TOL * scale
+        assert np.abs(S - S2).max() < EXACT_TOL

@@ -166,6 +166,42 @@ class CoordinateMap:
                       St @ Q, St @ self._B, C_nu @ nu, G)
         return terms, S, v
 
+    def dynamics_at(self, q: np.ndarray, nu: np.ndarray, q_doc: np.ndarray | None = None
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        r"""What the equations of motion need and no more: :math:`(A_\nu,\ h_\nu + Q_\nu,
+        B_\nu, S)` at model configuration ``q``, with
+
+        .. math::
+
+            h_\nu + Q_\nu = S^T\big(n(q, v) + A\,\dot S\nu\big),\qquad v = S\nu,
+
+        :math:`n = C v + g` from ``pin.nonLinearEffects`` (no Coriolis matrix) and
+        :math:`\dot S\nu` as a vector (:meth:`reduce_at` gives the matrices C, Q apart)."""
+        nu = np.asarray(nu, dtype=float).reshape(-1)
+        model, data = self.wm.model, self._data
+        if self.cs.kind == "holonomic":
+            S = np.asarray(self._S(q_doc, self._p), dtype=float)
+            Sdot_nu = np.asarray(self._Sdot(q_doc, nu, self._p), dtype=float) @ nu
+            v = S @ nu
+        else:
+            T = np.asarray(self._T(q, self._p), dtype=float)
+            if self.cs.rolling == "eliminate":
+                J, _ = contact_jacobian(self.wm, q, data=data)
+                Mp = np.linalg.pinv(np.vstack([J, T]))
+                S = Mp[:, J.shape[0]:]
+                v = S @ nu
+                _, dJ = contact_jacobian(self.wm, q, v, data=data)
+                Tdot = np.asarray(self._Tdot(q, v, self._p), dtype=float)
+                Sdot_nu = -Mp @ np.concatenate([dJ @ v, Tdot @ v])
+            else:
+                S = np.linalg.inv(T)
+                v = S @ nu
+                Sdot_nu = -S @ (np.asarray(self._Tdot(q, v, self._p), dtype=float) @ v)
+        A = pin.crba(model, data, q)
+        A = np.triu(A) + np.triu(A, 1).T
+        force = S.T @ (pin.nonLinearEffects(model, data, q, v) + A @ Sdot_nu)
+        return S.T @ A @ S, force, S.T @ self._B, S
+
     def terms_batch(self, q_doc: np.ndarray, nu: np.ndarray) -> Terms:
         r"""The terms at N document states (``q_doc``: N × n positions, ``nu``: N × n
         velocities), as arrays with a leading axis N; the same numbers as :meth:`terms`."""

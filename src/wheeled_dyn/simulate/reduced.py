@@ -26,6 +26,7 @@ import numpy as np
 import pinocchio as pin
 from scipy.integrate import solve_ivp
 
+from ..constraints.batch import reduce_batch
 from ..constraints.reduction import CoordinateMap
 from ..errors import StateError
 
@@ -63,6 +64,17 @@ def energy(cmap: CoordinateMap, q: np.ndarray, nu: np.ndarray,
                  + pin.computePotentialEnergy(cmap.wm.model, cmap.wm.model.createData(), q))
 
 
+def energies(cmap: CoordinateMap, q: np.ndarray, nu: np.ndarray,
+             q_doc: np.ndarray | None = None) -> np.ndarray:
+    r""":func:`energy` at N samples at once (``q``: N model configurations, ``nu``: N × n
+    document velocities, ``q_doc`` the document positions of holonomic sets): :math:`A_\nu`
+    from the batched reduction (:func:`~wheeled_dyn.constraints.batch.reduce_batch`)."""
+    A = reduce_batch(cmap, q, nu, q_doc).A
+    data = cmap.wm.model.createData()
+    potential = np.array([pin.computePotentialEnergy(cmap.wm.model, data, x) for x in q])
+    return 0.5 * np.einsum("ni,nij,nj->n", nu, A, nu) + potential
+
+
 def simulate(cmap: CoordinateMap, q0: np.ndarray, nu0: np.ndarray, duration: float,
              rate: float = 1000.0, u: Input | None = None, rtol: float = RTOL,
              atol: float = ATOL) -> Trajectory:
@@ -86,14 +98,14 @@ def simulate(cmap: CoordinateMap, q0: np.ndarray, nu0: np.ndarray, duration: flo
         if holonomic:
             q_doc, nu = y[:nq], y[nq:]
             q = cmap.model_configuration(q_doc)
-            terms, _, _ = cmap.reduce_at(q, nu, q_doc)
+            A, hQ, B, _ = cmap.dynamics_at(q, nu, q_doc)
             qdot = nu
         else:
             q, nu = y[:nq], y[nq:]
-            terms, S, _ = cmap.reduce_at(q, nu)
+            A, hQ, B, S = cmap.dynamics_at(q, nu)
             qdot = S @ nu
-        force = terms.B @ control(t, q, nu) - terms.h - terms.Q
-        return np.concatenate([qdot, np.linalg.solve(terms.A, force)])
+        force = B @ control(t, q, nu) - hQ
+        return np.concatenate([qdot, np.linalg.solve(A, force)])
 
     y0 = np.concatenate([np.asarray(q0, float).reshape(-1), np.asarray(nu0, float).reshape(-1)])
     if y0.shape != (nq + n,) or not np.all(np.isfinite(y0)):
@@ -110,8 +122,6 @@ def simulate(cmap: CoordinateMap, q0: np.ndarray, nu0: np.ndarray, duration: flo
         qs, nus = sol.y[:nq].T, sol.y[nq:].T
     us = np.array([control(t, q, nu) for t, q, nu in zip(sol.t, qs, nus)]).reshape(len(sol.t),
                                                                                 n_inputs)
-    docs = positions if holonomic else [None] * len(qs)
-    es = np.array([energy(cmap, q, nu, p) for q, nu, p in zip(qs, nus, docs)]) if u is None else \
-        np.full(len(sol.t), np.nan)
+    es = energies(cmap, qs, nus, positions) if u is None else np.full(len(sol.t), np.nan)
     return Trajectory(sol.t, qs, nus, us, es, cmap.cs.velocities, cmap.wm.coordinate_names,
                       positions)
