@@ -35,6 +35,10 @@ and :math:`\dot S` in the reduced ones, is
 (:math:`\dot n = 0` on the plane). In a surface of revolution with shape operator :math:`W`
 at the contact, :math:`\dot n = W(1 + rW)^{-1}\dot c_T` (:func:`.surfaces.normal_rate`), which
 is the sphere's rule above for :math:`W = (1 - nn^T)/R_1`.
+
+A contact declared with ``polar_radius`` is a spheroid on the plane, not a ball: the three
+functions below hand it to :mod:`.spheroid_contact` (same rows: world x, y, z of the material
+contact point's velocity).
 """
 
 from __future__ import annotations
@@ -43,6 +47,8 @@ import numpy as np
 import pinocchio as pin
 
 from ..models.builder import WheeledModel
+from .spheroid_contact import (spheroid_contact_point, spheroid_contact_velocity,
+                               spheroid_jacobian)
 from .surfaces import Foot, foot, meridian_of, normal_rate
 
 _LWA = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
@@ -80,6 +86,8 @@ def contact_normal(wm: WheeledModel, centre: np.ndarray) -> np.ndarray:
 def ball_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = None,
                   data: pin.Data | None = None) -> tuple[np.ndarray, np.ndarray | None]:
     r""":math:`J_c(q)` (3 × nv) of the ball and, if ``v`` is given, :math:`\dot J_c(q, v)`."""
+    if wm.contact.spec.spheroid:
+        return spheroid_jacobian(wm, q, v, data)
     model = wm.model
     data = data or model.createData()
     fid, r = wm.contact.frame_id, wm.contact.radius
@@ -110,6 +118,8 @@ def ball_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = None,
 
 def ball_contact_point(wm: WheeledModel, q: np.ndarray) -> np.ndarray:
     r"""World position of the contact point :math:`p = c - r\,n`."""
+    if wm.contact.spec.spheroid:
+        return spheroid_contact_point(wm, q)
     data = wm.model.createData()
     pin.framesForwardKinematics(wm.model, data, q)
     centre = data.oMf[wm.contact.frame_id].translation
@@ -119,6 +129,8 @@ def ball_contact_point(wm: WheeledModel, q: np.ndarray) -> np.ndarray:
 def ball_contact_velocity(wm: WheeledModel, q: np.ndarray, v: np.ndarray) -> np.ndarray:
     r"""Velocity (world axes) of the ball's material point at the contact, from the frame
     velocity of the ball (independently of :func:`ball_jacobian`)."""
+    if wm.contact.spec.spheroid:
+        return spheroid_contact_velocity(wm, q, v)
     data = wm.model.createData()
     pin.forwardKinematics(wm.model, data, q, v)
     pin.updateFramePlacements(wm.model, data)

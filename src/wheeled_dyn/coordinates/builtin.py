@@ -22,7 +22,9 @@ Models without wheels (``fixed`` and ``free`` bases) offer
   Without a contact the velocities of the origin ``dx0, dy0, dz0`` come first (rolling
   ``none``); with a rolling ball they are eliminated by the contact (rolling ``eliminate``)
   and the representative configuration puts the ball on the ground at the origin, on top
-  of the fixed sphere, or at the bottom of the paraboloid bowl;
+  of the fixed sphere, or at the bottom of the paraboloid bowl (a spheroid: on the ground at
+  the origin, its centre at the height of :data:`SPHEROID_HEIGHT` for the given angles, so
+  that the representative configuration touches the ground at every orientation);
 - ``world_rates`` (``free`` base): the same with the angular velocity's components in world
   axes (velocities ``wX, wY, wZ``). For a ball whose inertia is isotropic the reduced
   equations in these velocities do not depend on the ball's orientation, so a spinning ball
@@ -61,6 +63,12 @@ WORLD_RATES = {"wX": "-sin(yaw)*dpitch + cos(yaw)*cos(pitch)*droll",
                "wZ": "dyaw - sin(pitch)*droll"}
 
 
+#: Height of the centre of a spheroid (radii a, c, axis the body's z) touching the ground in the
+#: ZYX angles of a free base: s = sqrt(a^2 - (a^2 - c^2) (e_3.e_z)^2) with
+#: e_3.e_z = cos(pitch) cos(roll) (constraints/spheroid_contact.py).
+SPHEROID_HEIGHT = "sqrt(a**2 - (a**2 - c**2)*cos(pitch)**2*cos(roll)**2)"
+
+
 def _unwheeled_specs(wm: WheeledModel) -> dict[str, dict[str, Any]]:
     contact = wm.contact is not None
     specs: dict[str, dict[str, Any]] = {"full": {
@@ -78,7 +86,10 @@ def _unwheeled_specs(wm: WheeledModel) -> dict[str, dict[str, Any]]:
     if contact:
         spec = wm.contact.spec
         cx, cy, cz = (str(float(c)) for c in spec.centre)
-        if spec.surface == "plane":
+        if spec.spheroid:                       # centre at the height s of the lowest point
+            config["z0"] = SPHEROID_HEIGHT
+            place = "on the ground at the origin"
+        elif spec.surface == "plane":
             config["z0"], place = "r", "on the ground at the origin"
         elif spec.surface == "sphere":
             config.update(x0=cx, y0=cy, z0=f"{cz} + R1 + r")
@@ -86,8 +97,9 @@ def _unwheeled_specs(wm: WheeledModel) -> dict[str, dict[str, Any]]:
         else:                                   # a bowl whose vertex is the centre
             config.update(x0=cx, y0=cy, z0=f"{cz} + r")
             place = f"at the bottom of the {spec.surface} bowl"
-        description = ("body angular velocity components in the body frame; the ball's "
-                       f"rolling eliminated (representative configuration: the ball {place})")
+        body = "spheroid" if spec.spheroid else "ball"
+        description = (f"body angular velocity components in the body frame; the {body}'s "
+                       f"rolling eliminated (representative configuration: the {body} {place})")
         positions = [*angles, *others]
     else:
         config.update({"x0": "x0", "y0": "y0", "z0": "z0"})

@@ -32,6 +32,8 @@ sphere_paraboloid    seed 002         uniform ball rolling inside a fixed parabo
 offset_sphere_plane  seed 002         body of revolution bounded by a sphere, centre of mass on
                                       its axis off the centre, rolling on the ground
 offset_sphere_sphere seed 002         the same body rolling on a fixed sphere
+spheroid_plane       textbook         uniform oblate spheroid (ellipsoid of revolution) rolling
+                                      on the ground; rocking on its flat side
 rolling_coin         textbook         uniform thin disk rolling and leaning on the ground
 bicycle              Meijaard 2007    Whipple bicycle at the benchmark parameters (Table 1)
 ==================== ================ ==========================================================
@@ -54,6 +56,9 @@ FIXED_SPHERE_RADIUS = 0.30
 PARABOLOID_VERTEX_RADIUS = 0.50
 #: Radius of the ball of ``ball.urdf`` (m) (``sphere_plane.toml``, ``sphere_sphere.toml``).
 BALL_RADIUS = 0.109
+#: Equatorial and polar radii (m) of the uniform spheroid of ``spheroid.urdf``
+#: (``spheroid_plane.toml``).
+SPHEROID_RADII = (0.10, 0.06)
 #: Radius of the thin disk of ``rolling_coin.urdf`` (m) (``rolling_coin.toml``).
 COIN_RADIUS = 0.30
 
@@ -62,7 +67,7 @@ BENCHMARK_NAMES: tuple[str, ...] = (
     "car4", "particle_table", "compound_pendulum", "rod_pendulum", "rolling_disk", "pendulum_support",
     "bounce_pitch", "differential", "flywheel_rod", "free_body", "gyroscope", "sphere_plane",
     "sphere_sphere", "sphere_paraboloid", "offset_sphere_plane", "offset_sphere_sphere",
-    "rolling_coin", "bicycle")
+    "spheroid_plane", "rolling_coin", "bicycle")
 
 #: Benchmark bodies written in Python instead of a model file: (name, one-line summary, spec
 #: function). A model defined here is registered like a file's.

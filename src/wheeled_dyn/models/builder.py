@@ -45,8 +45,9 @@ centre (an exact change of frame: a rotation about an axis commutes with a trans
 it), so the rolling constraint acts at the tyre. Motors: the wheel joints of a planar model; on the other bases, the joints listed in
 ``actuated`` (a torque or force along each joint axis, reaction on the parent). ``geometry``
 names constants that coordinate sets and derivation files may use (a rolling radius, a gear
-ratio); a ball rolling without slip on the ground or on a fixed sphere is declared by
-``contact`` (:class:`~wheeled_dyn.models.contact.SphereContact`).
+ratio); a ball rolling without slip on the ground, on a fixed sphere or inside a paraboloid
+bowl, or a spheroid on the ground, is declared by ``contact``
+(:class:`~wheeled_dyn.models.contact.SphereContact`).
 """
 
 from __future__ import annotations
@@ -430,7 +431,11 @@ def _build_unwheeled(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
     if spec.contact is not None:
         source.link(spec.contact.link)
         contact = BallContact(spec.contact, model.getFrameId(spec.contact.link))
-        geometry.setdefault("r", float(spec.contact.radius))
+        if spec.contact.spheroid:                   # equatorial and polar radii
+            geometry.setdefault("a", float(spec.contact.radius))
+            geometry.setdefault("c", float(spec.contact.polar_radius))
+        else:
+            geometry.setdefault("r", float(spec.contact.radius))
         if spec.contact.surface == "sphere":
             geometry.setdefault("R1", float(spec.contact.surface_radius))
         elif spec.contact.surface == "paraboloid":      # vertex radius of curvature

@@ -48,7 +48,8 @@ KEYS: Mapping[str | None, tuple[str, ...]] = MappingProxyType({
     "base": ("type", "body", "up", "pitch"),
     "wheels": ("links", "radius", "inputs"),
     "joints": ("lock", "locked", "actuated", "inputs", "aliases"),
-    "contact": ("link", "radius", "surface", "surface_radius", "centre", "vertex_radius"),
+    "contact": ("link", "radius", "surface", "surface_radius", "centre", "vertex_radius",
+                "polar_radius"),
     "rolling_wheel": ("link", "radius", "axis", "centre", "tyre_radius"),
     "checks": ("accept_inertia",),
 })
