@@ -339,15 +339,19 @@ def _trig_swaps(expr: sp.Expr, g: _Group, T: np.ndarray, scale: float) -> list[s
                          "and cos for sin)")
     if found:
         return found
-    # one occurrence only: a sin written for a cos in one term of the expanded expression
+    # one occurrence only: a sin written for a cos in one printed (else expanded) term; the
+    # terms and their swapped forms are evaluated in one compiled call
     for terms in (sp.Add.make_args(expr), sp.Add.make_args(sp.expand(expr))):
-        for k, term in enumerate(terms):
-            for f in sorted(term.atoms(sp.sin, sp.cos), key=sp.default_sort_key):
-                other = _TRIG_SWAP[f.func](*f.args)
-                trial = sp.Add(*terms[:k], term.xreplace({f: other}), *terms[k + 1:])
-                if agrees(g.document(trial), T, scale):
-                    found.append(f"swap: {sp.sstr(f)} where {sp.sstr(other)} fits in the "
-                                 f"term {sp.sstr(term)}")
+        trials = [(k, f, _TRIG_SWAP[f.func](*f.args)) for k, term in enumerate(terms)
+                  for f in sorted(term.atoms(sp.sin, sp.cos), key=sp.default_sort_key)]
+        if not trials:
+            continue
+        values = g.documents([*terms, *(terms[k].xreplace({f: o}) for k, f, o in trials)])
+        total = sum(values[:len(terms)])
+        for (k, f, other), swapped in zip(trials, values[len(terms):]):
+            if agrees(total - values[k] + swapped, T, scale):
+                found.append(f"swap: {sp.sstr(f)} where {sp.sstr(other)} fits in the "
+                             f"term {sp.sstr(terms[k])}")
         if found:
             return found
     return found
