@@ -63,6 +63,9 @@ def test_printed_vehicle_balances_agree_and_v_hl_differs(tmp_path):
     records = _balances(_copy(tmp_path, VEHICLE))
     verdicts = {e: r.verdict for e, r in records.items()}
     assert verdicts.pop("2.7 (b) left wheel v_hl") == "differs"
+    # v_hl is printed with v_hr's -(w/2) theta' sin(theta): the left wheel's is +
+    assert records["2.7 (b) left wheel v_hl"].diagnoses == (
+        "term dtheta: sign: the term -w*sin(theta)/2 has the wrong sign",)
     assert len(verdicts) == 6 and set(verdicts.values()) == {"agrees"}, verdicts
 
 

@@ -213,7 +213,9 @@ def test_diagnoses_name_the_wrong_terms(shipped):
     for element in ("1.12 wheel 1 side slip", "1.12 wheel 2 side slip"):
         assert "term dtheta: sign: the document has the opposite sign" in \
             shipped[element].diagnoses
-    assert shipped["1.12 wheel 3 side slip"].diagnoses == ("term dtheta: differs",)
+    # printed "- W/2 theta' sin(delta)" where the wheel at y = +W/2 has "+": that part's sign
+    assert shipped["1.12 wheel 3 side slip"].diagnoses == (
+        "term dtheta: sign: the term -W*sin(delta)/2 has the wrong sign",)
     assert {d.split(":")[0] for d in shipped["1.11 wheel 3 side slip"].diagnoses} == \
         {"term dX", "term dY", "term dtheta"}
     second = shipped["1.12 wheel 2, second form side slip"].diagnoses

@@ -32,7 +32,7 @@ from ..derivations.schema import Derivation
 from ..derivations.steps import RELATION_KINDS, RESULT_KINDS, VECTOR_KINDS, Step
 from ..errors import DerivationError
 from .diagnose import (agrees, max_error, nice_number, power_diagnoses, swap_diagnoses,
-                       value_diagnoses)
+                       term_diagnoses, value_diagnoses)
 from .elements import swap_groups
 from .evaluate import (derivation_coordinate_set, document_symbol_values,
                        given_parameter_sets)
@@ -430,7 +430,9 @@ def _term_diagnoses(g: _Group, step: Step, j: int, expr: sp.Expr, scale: float) 
     for m, (D, T) in values.items():
         if not np.all(np.isfinite(T)) or agrees(D, T, cscale):
             continue
-        why = value_diagnoses(D, T, cscale) or ["differs"]
+        why = value_diagnoses(D, T, cscale) or term_diagnoses(
+            doc.get(m, sp.Integer(0)), lambda e: g.documents([e], rows)[0], D, T, cscale) or \
+            ["differs"]
         out.append(f"term {_monomial_name(m, gens)}: {why[0]}")
     return out
 
