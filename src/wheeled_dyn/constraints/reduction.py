@@ -187,7 +187,8 @@ class CoordinateMap:
             T = np.asarray(self._T(q, self._p), dtype=float)
             if self.cs.rolling == "eliminate":
                 J, _ = contact_jacobian(self.wm, q, data=data)
-                Mp = np.linalg.pinv(np.vstack([J, T]))
+                M = np.vstack([J, T])        # full column rank: M+ = (M^T M)^-1 M^T
+                Mp = np.linalg.solve(M.T @ M, M.T)
                 S = Mp[:, J.shape[0]:]
                 v = S @ nu
                 _, dJ = contact_jacobian(self.wm, q, v, data=data)

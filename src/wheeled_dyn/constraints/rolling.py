@@ -44,8 +44,7 @@ def contact_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = Non
     if v is None:
         pin.computeJointJacobians(model, data, q)
     else:
-        pin.computeJointJacobiansTimeVariation(model, data, q, v)
-        pin.computeJointJacobians(model, data, q)
+        pin.computeJointJacobiansTimeVariation(model, data, q, v)   # fills data.J too
     rows, drows = [np.zeros((0, model.nv))], [np.zeros((0, model.nv))]
     for wheel in wm.wheels:
         J = pin.getJointJacobian(model, data, wheel.joint_id, _LWA)

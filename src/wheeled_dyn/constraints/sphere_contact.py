@@ -94,8 +94,7 @@ def ball_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = None,
     if v is None:
         pin.computeJointJacobians(model, data, q)
     else:
-        pin.computeJointJacobiansTimeVariation(model, data, q, v)
-        pin.computeJointJacobians(model, data, q)
+        pin.computeJointJacobiansTimeVariation(model, data, q, v)   # fills data.J too
     pin.updateFramePlacements(model, data)
     J = pin.getFrameJacobian(model, data, fid, _LWA)
     centre = data.oMf[fid].translation

@@ -154,8 +154,7 @@ def spheroid_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = No
     if v is None:
         pin.computeJointJacobians(model, data, q)
     else:
-        pin.computeJointJacobiansTimeVariation(model, data, q, v)
-        pin.computeJointJacobians(model, data, q)
+        pin.computeJointJacobiansTimeVariation(model, data, q, v)   # fills data.J too
     g = spheroid_point(wm, data)
     J = pin.getFrameJacobian(model, data, fid, _LWA)
     Jw = J[3:]
