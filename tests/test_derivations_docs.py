@@ -65,3 +65,28 @@ def test_the_newton_euler_example_is_judged_right(tmp_path):
         assert {e for e, r in records.items() if r.verdict != "agrees"} == wrong
         if wrong:
             assert any("term F_y: sign" in x for x in records[next(iter(wrong))].diagnoses)
+
+
+def test_steps_accept_latex(tmp_path):
+    r"""A step's value, components or relations pasted as LaTeX (``{ latex = '...' }``, or a
+    list) read as the same expressions as the SymPy text, and are judged the same."""
+    from wheeled_dyn.compare.engine import ComparisonEngine
+    (block,) = [b for b in _toml_blocks() if 'kind = "critical speed"' in b]
+    plain = 'value = "I*dphi**2/2 + m*L**2/6*(dtheta**2 + dphi**2*sin(theta)**2)"'
+    relations = 'relations = ["m*L**2/3*ddtheta = -(m*g*L/2 - m*L**2*W**2/3)*theta", "ddphi = 0"]'
+    assert plain in block and relations in block
+    latex = block.replace(plain, r"value = { latex = '\frac{1}{2} I \dot{\phi}^2 + \frac{m L^2}{6}"
+                                 r"\left(\dot{\theta}^2 + \dot{\phi}^2 \sin^2\theta\right)' }")
+    latex = latex.replace(relations, r"relations = { latex = ['\frac{m L^2}{3}\ddot{\theta} = "
+                                     r"-\left(\frac{m g L}{2} - \frac{m L^2 W^2}{3}\right)\theta', "
+                                     r"'\ddot{\phi} = 0'] }")
+    paths = []
+    for name, text in (("plain.toml", block), ("latex.toml", latex)):
+        paths.append(tmp_path / name)
+        paths[-1].write_text(text, encoding="utf-8")
+    a, b = (load_derivation(p) for p in paths)
+    for s, t in zip(a.steps, b.steps):
+        assert all(sympy.simplify(x - y) == 0 for x, y in zip(s.components, t.components))
+    assert b.steps[0].printed[0].startswith(r"\frac{1}{2}")
+    result = ComparisonEngine(samples=20, param_sets=1, seed=1).compare(b)
+    assert all(r.verdict == "agrees" for r in result.records if r.key == "step")

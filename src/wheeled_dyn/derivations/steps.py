@@ -61,6 +61,7 @@ from typing import Any
 import sympy
 
 from ..errors import DerivationError
+from .latex.nodes import LatexSource, unwrap_latex
 
 #: Kinds of steps a file can record (a subset of :data:`wheeled_dyn.compare.result.STEPS`).
 STEP_KINDS: tuple[str, ...] = ("velocity", "angular velocity", "acceleration",
@@ -183,6 +184,26 @@ def _strings(table: dict, key: str, item: str, line, fail) -> tuple[str, ...]:
     return tuple(str(v) for v in value)
 
 
+def _texts(t: dict, key: str, item: str, line, fail, single: bool = False) -> tuple[str, ...]:
+    r"""The printed texts of ``key``: strings, or LaTeX as written (``{ latex = '...' }`` for
+    one, ``{ latex = ['...', ...] }`` for a list), kept as :class:`LatexSource` to be read by
+    the file's LaTeX reader."""
+    raw = unwrap_latex(t.get(key, None if single else []))
+    items = [raw] if single or isinstance(raw, str) else raw
+    if not isinstance(items, list):
+        raise fail(f"{item}.{key}", "expected a list of strings or { latex = [...] }", line)
+    out = []
+    for value in items:
+        value = unwrap_latex(value)
+        if isinstance(value, LatexSource):
+            out.append(value)
+        elif isinstance(value, (str, int, float)) and not isinstance(value, bool):
+            out.append(str(value))
+        else:
+            raise fail(f"{item}.{key}", "expected strings or { latex = '...' }", line)
+    return tuple(out)
+
+
 def _about(t: dict, item: str, line, expr, fail) -> tuple[tuple[str, sympy.Expr], ...]:
     about = t.get("about", {})
     if not isinstance(about, dict):
@@ -249,7 +270,7 @@ def _frame_step(t: dict, kind: str, item: str, line, fail) -> tuple[dict[str, An
     if not isinstance(frame, str) or not frame:
         raise fail(f"{item}.frame", "expected world, heading or a link name", line)
     axes = _axes(t, "axes", item, line, fail)
-    texts = _strings(t, "components", item, line, fail)
+    texts = _texts(t, "components", item, line, fail)
     extra: dict[str, Any] = dict(frame=frame, axes=axes)
     if kind == "gravity":
         if len(texts) != len(axes):
@@ -297,7 +318,7 @@ def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
         bad = [a for a in axes if a not in AXES]
         if bad or len(axes) != len(set(a.lstrip("-") for a in axes)):
             raise fail(f"{item}.axes", f"axes are distinct among {', '.join(AXES)}", line)
-        texts = _strings(t, "components", item, line, fail)
+        texts = _texts(t, "components", item, line, fail)
         if len(texts) != len(axes):
             raise fail(f"{item}.components", f"{len(texts)} components for {len(axes)} axes", line)
         point = t.get("point", "origin")
@@ -318,7 +339,7 @@ def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
     elif kind in ("kinetic energy", "potential energy", "first integral"):
         if "value" not in t:
             raise fail(f"{item}.value", f"a {kind} step gives value = \"...\"", line)
-        texts = (str(t["value"]),)
+        texts = _texts(t, "value", item, line, fail, single=True)
         bodies = _strings(t, "bodies", item, line, fail)
         if any(b in FRAMES for b in bodies):
             raise fail(f"{item}.bodies", "an energy is of links of the model (world and heading "
@@ -327,7 +348,7 @@ def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
     elif kind in RESULT_KINDS:
         if "value" not in t:
             raise fail(f"{item}.value", f"a {kind} step gives value = \"...\"", line)
-        texts = (str(t["value"]),)
+        texts = _texts(t, "value", item, line, fail, single=True)
         extra = dict(about=_about(t, item, line, expr, fail))
         if kind == "critical speed":
             speed = t.get("speed")
@@ -340,7 +361,7 @@ def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
             extra = _balance(t, item, line, expr, fail)
         if kind == "linearised equations":
             extra = dict(about=_about(t, item, line, expr, fail))
-        texts = _strings(t, "relations", item, line, fail)
+        texts = _texts(t, "relations", item, line, fail)
         if not texts or any(s.count("=") != 1 for s in texts):
             raise fail(f"{item}.relations", "expected relations = [\"lhs = rhs\", ...], one "
                        "'=' each", line)
@@ -348,7 +369,7 @@ def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
         quantity = t.get("quantity", "inertia")
         if quantity not in QUANTITIES:
             raise fail(f"{item}.quantity", f"expected one of {', '.join(QUANTITIES)}", line)
-        texts = _strings(t, "components", item, line, fail)
+        texts = _texts(t, "components", item, line, fail)
         rows = t.get("rows", list(range(1, len(texts) + 1)))
         if not isinstance(rows, list) or len(rows) != len(texts) or not all(
                 isinstance(r, int) and not isinstance(r, bool) and 1 <= r <= n for r in rows):
@@ -361,7 +382,8 @@ def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
     for i, text in enumerate(texts):
         where = f"{item} component {i + 1}"
         if kind in RELATION_KINDS:
-            lhs, rhs = (parse(side, where) for side in text.split("="))
+            wrap = LatexSource if isinstance(text, LatexSource) else str
+            lhs, rhs = (parse(wrap(side), where) for side in text.split("="))
             sides.append((lhs, rhs))
             components.append(lhs - rhs)
         else:
