@@ -21,6 +21,7 @@ import pinocchio as pin
 import pytest
 
 from conftest import N_STATES, SEED
+from rolling_checks import assert_power_identity
 from wheeled_dyn import CoordinateMap, builtin_coordinate_set, load_model, multipliers, simulate
 from wheeled_dyn.constraints import contact_jacobian, contact_points, contact_velocities
 from wheeled_dyn.constraints.surfaces import foot, normal_rate
@@ -146,24 +147,9 @@ def test_contact_jacobian_derivative():
 
 def test_reduced_power_identity():
     r"""nu^T h_nu = 1/2 nu^T (dA_nu/dt) nu in the body rates, with a random (non-uniform)
-    ball inertia so that A_nu varies along the motion."""
-    rng = np.random.default_rng(SEED)
-    base = load_model(MODEL)
-    model = pin.Model(base.model)
-    jid = base.joint_id_of_link("ball")
-    model.inertias[jid] = pin.Inertia.FromLogCholeskyParameters(
-        pin.LogCholeskyParameters(rng.normal(size=10) * 0.3))
-    wm = base.with_model(model)
-    cmap = CoordinateMap(wm, builtin_coordinate_set(wm, "body_rates"))
-    for _ in range(N_STATES):
-        q, nu = _random_ball_state(wm, rng), rng.normal(size=3)
-        terms, S, v = cmap.reduce_at(q, nu)
-        plus = cmap.terms_at(pin.integrate(wm.model, q, v * FD_STEP), nu).A
-        minus = cmap.terms_at(pin.integrate(wm.model, q, -v * FD_STEP), nu).A
-        Adot = (plus - minus) / (2 * FD_STEP)
-        lhs, rhs = nu @ terms.h, 0.5 * nu @ Adot @ nu
-        assert abs(lhs - rhs) < FD_TOL * (1 + abs(lhs) + np.abs(Adot).max()), (lhs, rhs)
-        assert np.abs(terms.h).max() > 1e-6         # the identity is not trivially 0 = 0
+    ball inertia so that A_nu varies along the motion (tests/rolling_checks.py)."""
+    assert_power_identity(load_model(MODEL), "ball", _random_ball_state,
+                          np.random.default_rng(SEED))
 
 
 def test_zero_input_keeps_energy_and_the_bowl():

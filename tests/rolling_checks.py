@@ -1,0 +1,47 @@
+r"""Checks every rolling body's reduction must pass, shared by the rolling tests.
+
+:func:`assert_power_identity`: with the body's link given a random, non-uniform inertia (so
+that :math:`A_\nu` varies along the motion), the reduced terms in the body rates satisfy
+
+.. math::
+
+    \nu^T h_\nu = \tfrac12\,\nu^T \dot A_\nu\,\nu ,
+
+:math:`\dot A_\nu` by central differences along :math:`v = S\nu` on the manifold.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+import pinocchio as pin
+
+from conftest import N_STATES
+from wheeled_dyn import CoordinateMap, builtin_coordinate_set
+
+#: Step and relative tolerance of the central differences.
+FD_STEP = 1e-6
+FD_TOL = 1e-6
+#: h must be larger than this somewhere, or the identity would be 0 = 0.
+NONTRIVIAL = 1e-6
+
+
+def assert_power_identity(base, link: str, random_state: Callable, rng: np.random.Generator,
+                          coordinates: str = "body_rates") -> None:
+    r"""The power identity (module docstring) at :data:`N_STATES` states ``random_state(wm,
+    rng)`` of ``base`` with ``link``'s inertia replaced by a random one."""
+    model = pin.Model(base.model)
+    model.inertias[base.joint_id_of_link(link)] = pin.Inertia.FromLogCholeskyParameters(
+        pin.LogCholeskyParameters(rng.normal(size=10) * 0.3))
+    wm = base.with_model(model)
+    cmap = CoordinateMap(wm, builtin_coordinate_set(wm, coordinates))
+    for _ in range(N_STATES):
+        q, nu = random_state(wm, rng), rng.normal(size=cmap.n)
+        terms, _, v = cmap.reduce_at(q, nu)
+        plus = cmap.terms_at(pin.integrate(wm.model, q, v * FD_STEP), nu).A
+        minus = cmap.terms_at(pin.integrate(wm.model, q, -v * FD_STEP), nu).A
+        Adot = (plus - minus) / (2 * FD_STEP)
+        lhs, rhs = nu @ terms.h, 0.5 * nu @ Adot @ nu
+        assert abs(lhs - rhs) < FD_TOL * (1 + abs(lhs) + np.abs(Adot).max()), (lhs, rhs)
+        assert np.abs(terms.h).max() > NONTRIVIAL
