@@ -140,7 +140,8 @@ class _Balance:
 
     def truth(self, frame: str) -> list[np.ndarray]:
         r"""Per parameter set, the columns of the residuals along ``frame``'s axes (states ×
-        6 × columns), computed once per frame."""
+        6 × columns), computed once per frame; the sampled velocities are made admissible on
+        the way (before the document is evaluated at them)."""
         if frame not in self._truth:
             self._truth[frame] = self._residuals(frame)
         return self._truth[frame]
@@ -167,6 +168,7 @@ class _Balance:
                 rows = []
                 for nudot in (np.zeros(n), *np.eye(n)):
                     m = Motion(cmap, data, self.q[i], self.nu[i], nudot)
+                    self.nu[i] = m.nu      # made admissible (rolling kept): the document too
                     geometry = [(_world_point(m, step.body, np.array(r[3:], dtype=float)
                                               if isinstance(f.point, tuple) else f.point),
                                  m.rotation(f.frame) @ np.array(r[:3], dtype=float))
