@@ -314,10 +314,7 @@ def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
         if not isinstance(body, str) or not body or body == "world":
             raise fail(f"{item}.body", "a vector step names its body (a link of the model, or "
                        "\"heading\": the heading frame)", line)
-        axes = _strings(t, "axes", item, line, fail) or ("x", "y", "z")
-        bad = [a for a in axes if a not in AXES]
-        if bad or len(axes) != len(set(a.lstrip("-") for a in axes)):
-            raise fail(f"{item}.axes", f"axes are distinct among {', '.join(AXES)}", line)
+        axes = _axes(t, "axes", item, line, fail)
         texts = _texts(t, "components", item, line, fail)
         if len(texts) != len(axes):
             raise fail(f"{item}.components", f"{len(texts)} components for {len(axes)} axes", line)
