@@ -281,7 +281,7 @@ def _build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
     if len(spec.wheels) != 2:
         raise ModelError(spec.name, None, f"a planar model needs two drive wheels (left, right), "
                                           f"got {len(spec.wheels)}")
-    body_link = source.link(spec.body).name
+    body_link = source.link(spec.body)
     for w in spec.wheels:
         source.link(w)
     data = urdf_model.createData()

@@ -1,7 +1,9 @@
 r"""Reading a URDF: validation, inventory of links and joints, wheel radii.
 
 The file is parsed once as XML (so a malformed file is reported with its line and column), then
-inspected with :mod:`yourdfpy` (links, joints, geometry). Pinocchio later builds its model from
+inspected with :mod:`yourdfpy` (links, joints, geometry), whose outline of the file is kept in
+the disk cache (:mod:`wheeled_dyn.disk_cache`) so that a file read before is not inspected
+again. Pinocchio later builds its model from
 the same text after one rewrite: ``continuous`` joints become ``revolute`` joints without
 limits, so that every wheel angle is one coordinate (Pinocchio would otherwise use the pair
 (cos θ, sin θ), which has no Christoffel symbols).
@@ -9,57 +11,109 @@ limits, so that every wheel angle is one coordinate (Pinocchio would otherwise u
 
 from __future__ import annotations
 
+import hashlib
+import importlib.metadata
 import io
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
-from functools import cached_property
 from pathlib import Path
 
-import yourdfpy
-
+from ..disk_cache import cache_root, load, store
 from ..errors import InputFileError, ModelError, UnknownNameError
 from .urdf_checks import check_urdf_tree
 
 #: Limits written for ``continuous`` joints turned ``revolute`` (radians): wheels never reach them.
 UNBOUNDED_LIMIT = 1.0e6
+#: Version of :class:`UrdfOutline`: entries of another version are not read.
+OUTLINE_VERSION = "1"
+
+
+@dataclass(frozen=True)
+class JointInfo:
+    r"""A joint of a URDF as yourdfpy reads it: name, type, parent and child links."""
+
+    name: str
+    type: str
+    parent: str
+    child: str
+
+
+@dataclass(frozen=True)
+class UrdfOutline:
+    r"""What the builder needs of a URDF beyond Pinocchio's model: its links, its joints and
+    each link's first cylinder (collision, then visual geometry) as (link, radius, length)."""
+
+    links: tuple[str, ...]
+    joints: tuple[JointInfo, ...]
+    cylinders: tuple[tuple[str, float, float], ...]
+
+
+def _outline(path: Path, text: str) -> UrdfOutline:
+    r"""The outline of a URDF text, read with :mod:`yourdfpy` (which also rejects what it
+    cannot read, as :class:`InputFileError` naming ``path``) and kept in the disk cache
+    (``urdf/``), keyed by the text: a file read before is not parsed again, and yourdfpy is
+    then not even imported."""
+    reader = importlib.metadata.version("yourdfpy")
+    key = hashlib.sha256(f"{OUTLINE_VERSION}\0{reader}\0{text}".encode()).hexdigest()
+    entry = cache_root() / "urdf" / f"{key}.pickle"
+    cached = load(entry, UrdfOutline)
+    if cached is not None:
+        return cached
+    import yourdfpy
+    try:
+        robot = yourdfpy.URDF.load(io.BytesIO(text.encode("utf-8")), build_scene_graph=False,
+                                   load_meshes=False, load_collision_meshes=False).robot
+    except Exception as exc:  # yourdfpy raises assorted types for invalid content
+        raise InputFileError(path, f"invalid URDF: {exc}") from None
+    cylinders = []
+    for link in robot.links:
+        shapes = [s for group in (link.collisions, link.visuals) for s in group
+                  if s.geometry is not None and s.geometry.cylinder is not None]
+        if shapes:
+            cyl = shapes[0].geometry.cylinder
+            cylinders.append((link.name, float(cyl.radius), float(cyl.length)))
+    outline = UrdfOutline(tuple(link.name for link in robot.links),
+                          tuple(JointInfo(j.name, j.type, j.parent, j.child)
+                                for j in robot.joints), tuple(cylinders))
+    try:
+        store(entry, outline)
+    except OSError:                     # a cache that cannot be written is only slower
+        pass
+    return outline
 
 
 @dataclass(frozen=True)
 class UrdfSource:
-    r"""A URDF file that parsed, with its text and its yourdfpy description."""
+    r"""A URDF file that parsed, with its text and its :class:`UrdfOutline`."""
 
     path: Path
     text: str
-
-    @cached_property
-    def robot(self) -> yourdfpy.URDF:
-        return yourdfpy.URDF.load(io.BytesIO(self.text.encode("utf-8")), build_scene_graph=False,
-                                  load_meshes=False, load_collision_meshes=False)
+    outline: UrdfOutline
 
     @property
     def link_names(self) -> tuple[str, ...]:
-        return tuple(link.name for link in self.robot.robot.links)
+        return self.outline.links
 
     @property
     def joint_names(self) -> tuple[str, ...]:
-        return tuple(j.name for j in self.robot.robot.joints)
+        return tuple(j.name for j in self.outline.joints)
 
-    def link(self, name: str) -> yourdfpy.Link:
-        for link in self.robot.robot.links:
-            if link.name == name:
-                return link
-        raise UnknownNameError("link", name, self.link_names, where=str(self.path))
+    def link(self, name: str) -> str:
+        r"""``name`` if it is a link of the file, else :class:`UnknownNameError`."""
+        if name not in self.outline.links:
+            raise UnknownNameError("link", name, self.link_names, where=str(self.path))
+        return name
 
-    def joint_to(self, child_link: str) -> yourdfpy.Joint:
+    def joint_to(self, child_link: str) -> JointInfo:
         """The joint whose child is ``child_link``."""
         self.link(child_link)
-        for joint in self.robot.robot.joints:
+        for joint in self.outline.joints:
             if joint.child == child_link:
                 return joint
         raise ModelError(self.path.stem, child_link, "this link is the root: it has no joint")
 
     def root_link(self) -> str:
-        children = {j.child for j in self.robot.robot.joints}
+        children = {j.child for j in self.outline.joints}
         roots = [n for n in self.link_names if n not in children]
         if len(roots) != 1:
             raise InputFileError(self.path, f"expected one root link, found {roots}")
@@ -68,13 +122,9 @@ class UrdfSource:
     def cylinder(self, link_name: str) -> tuple[float, float] | None:
         r"""(radius, length) of the first cylinder among the link's collision, then visual,
         geometries; None if it has none."""
-        link = self.link(link_name)
-        for shapes in (link.collisions, link.visuals):
-            for shape in shapes:
-                cyl = shape.geometry.cylinder if shape.geometry is not None else None
-                if cyl is not None:
-                    return float(cyl.radius), float(cyl.length)
-        return None
+        self.link(link_name)
+        return next(((r, length) for name, r, length in self.outline.cylinders
+                     if name == link_name), None)
 
     def pinocchio_text(self) -> str:
         r"""The URDF text with ``continuous`` joints rewritten as unlimited ``revolute`` ones."""
@@ -117,12 +167,8 @@ def read_urdf(path: str | Path, locked: tuple[str, ...] = (),
     if root.tag != "robot":
         raise InputFileError(path, f"root element is <{root.tag}>, expected <robot>", line=1)
     check_urdf_tree(path, text, root, tuple(locked), tuple(accept_inertia))
-    source = UrdfSource(path=path, text=text)
-    try:
-        _ = source.robot
-    except Exception as exc:  # yourdfpy raises assorted types for invalid content
-        raise InputFileError(path, f"invalid URDF: {exc}") from None
-    for joint in source.robot.robot.joints:
+    source = UrdfSource(path=path, text=text, outline=_outline(path, text))
+    for joint in source.outline.joints:
         if joint.parent not in source.link_names or joint.child not in source.link_names:
             raise InputFileError(path, f"joint {joint.name!r} connects unknown links "
                                        f"{joint.parent!r} -> {joint.child!r}")

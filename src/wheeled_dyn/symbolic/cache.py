@@ -11,9 +11,7 @@ if set, else ``~/.cache/wheeled_dyn``; entries live under ``symbolic/``.
 from __future__ import annotations
 
 import hashlib
-import os
 import pickle
-import tempfile
 import warnings
 from collections.abc import Mapping, Sequence
 from functools import lru_cache
@@ -23,19 +21,14 @@ import numpy as np
 import pinocchio as pin
 import sympy as sp
 
+from ..disk_cache import CACHE_ENV, cache_root, store
 from .kinematics import joint_kind, resolve_translations
 from .model import SymbolicModel, symbolic_model
 from .parameters import resolve_parameters
 
-#: Environment variable naming the cache directory.
-CACHE_ENV: str = "WHEELED_DYN_CACHE"
-
-
 def cache_dir(root: str | Path | None = None) -> Path:
     """The directory of cached symbolic models (not created here)."""
-    if root is None:
-        root = os.environ.get(CACHE_ENV) or Path.home() / ".cache" / "wheeled_dyn"
-    return Path(root) / "symbolic"
+    return cache_root(root) / "symbolic"
 
 
 @lru_cache(maxsize=1)
@@ -115,19 +108,6 @@ def cached_symbolic_model(model: pin.Model, params: Mapping[int, Sequence] | Non
     return sym
 
 
-def store(path: Path, obj: object) -> None:
-    """Pickle ``obj`` to ``path`` atomically (a temporary file in the same folder, renamed)."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-", suffix=".pickle")
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            pickle.dump(obj, fh, protocol=pickle.HIGHEST_PROTOCOL)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-
-
 def clear_cache(root: str | Path | None = None) -> int:
     """Delete every cached symbolic model; returns how many files were removed."""
     d = cache_dir(root)
@@ -137,3 +117,7 @@ def clear_cache(root: str | Path | None = None) -> int:
             path.unlink()
             removed += 1
     return removed
+
+
+__all__ = ["CACHE_ENV", "cache_dir", "cached_symbolic_model", "clear_cache", "model_fingerprint",
+           "store"]
