@@ -23,7 +23,6 @@ import tomllib
 from pathlib import Path
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..constraints.linear_document import LinearDocument, load_linear_document
 from .diagnose import value_diagnoses
@@ -116,6 +115,7 @@ class LinearTruth:
         out = []
         for a, b, fa, fb in zip(SCAN_SPEEDS, SCAN_SPEEDS[1:], abscissa, abscissa[1:]):
             if fa * fb < 0:
+                from scipy.optimize import brentq    # stability boundaries only
                 out.append(brentq(lambda v: self.eigenvalues(v).real.max(), a, b,
                                   xtol=ROOT_XTOL))
         return out

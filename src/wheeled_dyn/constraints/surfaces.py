@@ -74,7 +74,6 @@ from dataclasses import dataclass
 from typing import Protocol
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..models.contact import SphereContact
 
@@ -157,6 +156,7 @@ def foot(meridian: Meridian, vertex: np.ndarray, centre: np.ndarray, radius: flo
             s = meridian.df(rho)
             return rho - radius * s / math.sqrt(1.0 + s * s) - rho_c
 
+        from scipy.optimize import brentq    # only for surfaces of revolution (0.3 s import)
         rho = brentq(residual, max(0.0, rho_c - radius), rho_c + radius,
                      xtol=1e-15 * (rho_c + radius))
     s = meridian.df(rho)

@@ -122,13 +122,15 @@ def random_wip_parameters(rng: np.random.Generator) -> WipParameters:
 
     The body's central inertia is built from positive second moments :math:`(a, b, c)` as
     :math:`Q\,\mathrm{diag}(b+c, a+c, a+b)\,Q^T` with a random rotation :math:`Q`, so the triangle
-    inequality holds by construction; likewise the wheel's.
+    inequality holds by construction; likewise the wheel's. :math:`Q` comes from a quaternion
+    of four standard normal draws, normalised (uniform on the rotations).
     """
-    from scipy.spatial.transform import Rotation
+    import pinocchio as pin
 
     m_S = rng.uniform(20.0, 100.0)
     a, b, c = rng.uniform(0.005, 0.1, size=3) * m_S
-    Q = Rotation.random(random_state=rng).as_matrix()
+    x, y, z, w = rng.normal(size=4)          # a uniformly random rotation: a normalised
+    Q = pin.Quaternion(w, x, y, z).normalized().toRotationMatrix()   # Gaussian quaternion
     IG = Q @ np.diag([b + c, a + c, a + b]) @ Q.T
     m_C = rng.uniform(1.0, 10.0)
     R = rng.uniform(0.1, 0.4)
