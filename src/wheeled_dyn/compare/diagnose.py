@@ -118,3 +118,44 @@ def term_diagnoses(expr: sp.Expr, evaluate: Callable[[sp.Expr], np.ndarray], D: 
             found.append(f"factor: the term {sp.sstr(t)} is {nice_number(1 / (1 + k))} × what "
                          "fits")
     return found
+
+
+_TRIG_SWAP = {sp.sin: sp.cos, sp.cos: sp.sin}
+
+
+def trig_swap_diagnoses(expr: sp.Expr, evaluate_many: Callable[[list], list[np.ndarray]],
+                        T: np.ndarray, scale: float) -> list[str]:
+    r"""A sin written for a cos (or the reverse): everywhere it occurs, both exchanged for one
+    argument, or — when neither fits — in one printed (else expanded) additive term only.
+    ``evaluate_many`` evaluates a list of expressions at the samples in one compiled call."""
+    atoms = sorted(expr.atoms(sp.sin, sp.cos), key=sp.default_sort_key)
+    if not atoms:
+        return []
+    args = sorted({f.args[0] for f in atoms}, key=sp.default_sort_key)
+    whole = [(f"swap: {sp.sstr(f)} where {sp.sstr(_TRIG_SWAP[f.func](*f.args))} fits",
+              expr.xreplace({f: _TRIG_SWAP[f.func](*f.args)})) for f in atoms]
+    whole += [(f"swap: {sp.sstr(sp.sin(a))} and {sp.sstr(sp.cos(a))} exchanged (sin written "
+               "for cos and cos for sin)", expr.xreplace({sp.sin(a): sp.cos(a),
+                                                          sp.cos(a): sp.sin(a)}))
+              for a in args if expr.has(sp.sin(a)) and expr.has(sp.cos(a))]
+    values = evaluate_many([e for _, e in whole])
+    found = [text for (text, _), v in zip(whole, values) if agrees(v, T, scale)]
+    singles = [x for x in found if x.endswith("fits")]
+    if found:
+        return singles or found
+    for terms in (sp.Add.make_args(expr), sp.Add.make_args(sp.expand(expr))):
+        if len(terms) > MAX_TERMS:
+            continue
+        trials = [(k, f, _TRIG_SWAP[f.func](*f.args)) for k, term in enumerate(terms)
+                  for f in sorted(term.atoms(sp.sin, sp.cos), key=sp.default_sort_key)]
+        if not trials:
+            continue
+        values = evaluate_many([*terms, *(terms[k].xreplace({f: o}) for k, f, o in trials)])
+        total = sum(values[:len(terms)])
+        found = [f"swap: {sp.sstr(f)} where {sp.sstr(o)} fits in the term {sp.sstr(terms[k])}"
+                 for (k, f, o), v in zip(trials, values[len(terms):])
+                 if agrees(total - values[k] + v, T, scale)]
+        if found:
+            return found
+    return []
+

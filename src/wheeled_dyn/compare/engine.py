@@ -38,6 +38,7 @@ from .diagnose import (
     power_diagnoses,
     swap_diagnoses,
     term_diagnoses,
+    trig_swap_diagnoses,
     value_diagnoses,
 )
 from .document_checks import asymmetry, constraint_rows, energy_check
@@ -482,7 +483,8 @@ def _term_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.n
                     has_factor: bool) -> list[str]:
     r"""A parameter to the wrong power (also where a constant factor fits: with a geometry
     constant the sets do not vary, G for G² *is* a factor), then, when the element has no
-    diagnosis yet, one additive term with the wrong sign or factor (:mod:`.diagnose`)."""
+    diagnosis yet, one additive term with the wrong sign or factor, then a sin written for a
+    cos (:mod:`.diagnose`)."""
     c = 1.0 if factor is None else factor
 
     def evaluate(e: sp.Expr) -> np.ndarray:
@@ -490,7 +492,13 @@ def _term_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.n
             out = funcs.compiled(e)(*argv)
         return np.broadcast_to(np.asarray(out, float), D.shape) / c
 
+    def evaluate_many(exprs: list) -> list[np.ndarray]:
+        return [np.broadcast_to(np.asarray(v, float), D.shape) / c
+                for v in funcs.compiled(tuple(exprs))(*argv)]
+
     found = power_diagnoses(expr, funcs.params, evaluate, T, scale)
     if not found and not has_factor:
         found = term_diagnoses(expr, evaluate, D, T, scale)
+    if not found and not has_factor:
+        found = trig_swap_diagnoses(expr, evaluate_many, T, scale)
     return found

@@ -32,7 +32,7 @@ from ..derivations.schema import Derivation
 from ..derivations.steps import RELATION_KINDS, RESULT_KINDS, VECTOR_KINDS, Step
 from ..errors import DerivationError
 from .diagnose import (agrees, max_error, nice_number, power_diagnoses, swap_diagnoses,
-                       term_diagnoses, value_diagnoses)
+                       term_diagnoses, trig_swap_diagnoses, value_diagnoses)
 from .elements import swap_groups
 from .evaluate import (derivation_coordinate_set, document_symbol_values,
                        given_parameter_sets)
@@ -55,7 +55,6 @@ SPECIAL_SETS, SPECIAL_STATES = 2, 6
 VACUOUS_TOL = 1e-9
 #: Kinds whose components are polynomial in the velocities and accelerations (decomposable).
 _TERMED = (*VECTOR_KINDS, "kinetic energy", "generalized force")
-_TRIG_SWAP = {sp.sin: sp.cos, sp.cos: sp.sin}
 
 
 _MAPS: dict[tuple[str, str], CoordinateMap] = {}
@@ -326,35 +325,7 @@ def _terms(expr: sp.Expr, gens: Sequence[sp.Symbol]) -> dict[tuple[int, ...], sp
 
 
 def _trig_swaps(expr: sp.Expr, g: _Group, T: np.ndarray, scale: float) -> list[str]:
-    found = []
-    for f in sorted(expr.atoms(sp.sin, sp.cos), key=sp.default_sort_key):
-        other = _TRIG_SWAP[f.func](*f.args)
-        if agrees(g.document(expr.xreplace({f: other})), T, scale):
-            found.append(f"swap: {sp.sstr(f)} where {sp.sstr(other)} fits")
-    for arg in sorted({f.args[0] for f in expr.atoms(sp.sin, sp.cos)}, key=sp.default_sort_key):
-        s, c = sp.sin(arg), sp.cos(arg)
-        both = expr.xreplace({s: c, c: s})
-        if not found and expr.has(s) and expr.has(c) and agrees(g.document(both), T, scale):
-            found.append(f"swap: {sp.sstr(s)} and {sp.sstr(c)} exchanged (sin written for cos "
-                         "and cos for sin)")
-    if found:
-        return found
-    # one occurrence only: a sin written for a cos in one printed (else expanded) term; the
-    # terms and their swapped forms are evaluated in one compiled call
-    for terms in (sp.Add.make_args(expr), sp.Add.make_args(sp.expand(expr))):
-        trials = [(k, f, _TRIG_SWAP[f.func](*f.args)) for k, term in enumerate(terms)
-                  for f in sorted(term.atoms(sp.sin, sp.cos), key=sp.default_sort_key)]
-        if not trials:
-            continue
-        values = g.documents([*terms, *(terms[k].xreplace({f: o}) for k, f, o in trials)])
-        total = sum(values[:len(terms)])
-        for (k, f, other), swapped in zip(trials, values[len(terms):]):
-            if agrees(total - values[k] + swapped, T, scale):
-                found.append(f"swap: {sp.sstr(f)} where {sp.sstr(other)} fits in the "
-                             f"term {sp.sstr(terms[k])}")
-        if found:
-            return found
-    return found
+    return trig_swap_diagnoses(expr, g.documents, T, scale)
 
 
 def _power_swaps(expr: sp.Expr, g: _Group, T: np.ndarray, scale: float) -> list[str]:
