@@ -173,8 +173,11 @@ def test_exact_at_the_urdf_parameters():
     (" + (J + m*r**2)*cos(theta)*dpsi*dphi", "", "h[2]:dpsi*dphi", "missing"),
     (" - J*cos(theta)*dtheta*dphi", "", "h[1]:dtheta*dphi", "missing"),
     ("+ (J + m*r**2)*Omega*dpsi", "- (J + m*r**2)*Omega*dpsi", STEP.format(2), "term dpsi: sign"),
+    ("*dpsi - m*g*r*theta = 0", "*dpsi = 0", STEP.format(2), "term theta: missing"),
+    ('"I*ddpsi - J*Omega*dtheta = 0"', '"I*ddpsi = 0"', STEP.format(1), "term dtheta: missing"),
 ], ids=["gravity-sign", "coriolis-factor-2", "sin-for-cos-h", "cos-for-sin-A",
-        "dropped-gyroscopic-lean", "dropped-gyroscopic-heading", "linearised-sign"])
+        "dropped-gyroscopic-lean", "dropped-gyroscopic-heading", "linearised-sign",
+        "linearised-dropped-gravity", "linearised-dropped-gyroscopic"])
 def test_a_planted_error_differs_alone(tmp_path, as_written, old, new, element, diagnosis):
     result = _compare(_copy(tmp_path, (old, new)))
     verdicts = _verdicts(result)

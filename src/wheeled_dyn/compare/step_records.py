@@ -349,10 +349,14 @@ def _side_factor(g: _Group, sides: tuple[sp.Expr, sp.Expr], scale: float) -> lis
 def _linear_terms(g: _Group, expr: sp.Expr) -> list[str]:
     r"""A linearised relation :math:`\sum c_a\Delta\dot\nu_a + \sum c_x\Delta x` that does
     not hold: its residual on the true deviations is :math:`\sum\kappa_x\Delta x`
-    (:math:`\kappa` fitted per parameter set over the deviations the relation names); the
-    document's :math:`c_x` against the needed :math:`c_x - \kappa_x`."""
+    (:math:`\kappa` fitted per parameter set over every deviation when the samples suffice,
+    else over those the relation names); the document's :math:`c_x` (0 for a deviation it
+    lacks) against the needed :math:`c_x - \kappa_x`."""
     d = g.d
-    xs = [x for x in (*d.positions, *d.velocities) if expr.has(x)]
+    everything = [*d.positions, *d.velocities]
+    # every deviation when the samples of a set determine the fit (a dropped term is named),
+    # else those the relation names
+    xs = everything if g.N >= len(everything) + 2 else [x for x in everything if expr.has(x)]
     if not xs:
         return []
     R = g.document(expr)
@@ -366,7 +370,9 @@ def _linear_terms(g: _Group, expr: sp.Expr) -> list[str]:
         kappa[rows] = fit
     out = []
     coefficients = g.documents([expr.diff(x) for x in xs])
-    scale = max(float(np.abs(c).max(initial=0.0)) for c in coefficients)
+    scale = max(max(float(np.abs(c).max(initial=0.0)),
+                    float(np.abs(c - kappa[:, i]).max(initial=0.0)))
+                for i, c in enumerate(coefficients))
     for i, (x, c) in enumerate(zip(xs, coefficients)):
         needed = c - kappa[:, i]
         if not agrees(c, needed, scale):
