@@ -167,7 +167,8 @@ def test_exact_at_the_urdf_parameters():
 @pytest.mark.parametrize("old, new, element, diagnosis", [
     ("- m*g*r*sin(theta) = 0", "+ m*g*r*sin(theta) = 0", "Q[2]", "sign"),
     ("2*(J + m*r**2 - I)", "(J + m*r**2 - I)", "h[1]:dpsi*dtheta", "factor: the document is 1/2"),
-    ("(J + 2*m*r**2)*cos(theta)", "(J + 2*m*r**2)*sin(theta)", "h[3]:dpsi*dtheta", None),
+    ("(J + 2*m*r**2)*cos(theta)", "(J + 2*m*r**2)*sin(theta)", "h[3]:dpsi*dtheta",
+     "swap: sin(theta) where cos(theta) fits"),
     ("- (J + m*r**2)*sin(theta)*ddphi", "- (J + m*r**2)*cos(theta)*ddphi", "A[1,3]",
      "swap: cos(theta) where sin(theta) fits"),
     (" + (J + m*r**2)*cos(theta)*dpsi*dphi", "", "h[2]:dpsi*dphi", "missing"),

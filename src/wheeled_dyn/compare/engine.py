@@ -272,6 +272,9 @@ class ComparisonEngine:
                         x.startswith(("sign", "factor", "extra")) for x in diags):
                     diags += swap_diagnoses(expr, groups, lambda a, b: swapped(key, index, a, b),
                                             T, scale)
+                if expr is not None and key == "h" and not diags:     # a velocity product's
+                    diags += _trig_diagnoses(expr, funcs, argv, row_factor[i], D, T, scale,
+                                             check=True)
             verdict = ("undecided" if not finite.all() else
                        "agrees" if ok and not problems else "differs")
             records.append(dict(element=element_label(key, index, d.velocities), key=key, index=index,
@@ -478,6 +481,25 @@ class _Evaluation(causes.Evaluation):
                                                       expressions=False))
 
 
+def _trig_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.ndarray],
+                    factor: float | None, D: np.ndarray, T: np.ndarray, scale: float,
+                    check: bool = False) -> list[str]:
+    r"""A sin written for a cos in ``expr`` (:func:`.diagnose.trig_swap_diagnoses`), the
+    document's values divided by its row ``factor``. ``check``: only when ``expr`` evaluated on
+    ``argv`` gives the element's own values ``D`` (a velocity product's coefficient is sampled
+    on its own grid)."""
+    c = 1.0 if factor is None else factor
+
+    def evaluate_many(exprs: list) -> list[np.ndarray]:
+        return [np.broadcast_to(np.asarray(v, float), np.shape(argv[0])) / c
+                for v in funcs.compiled(tuple(exprs))(*argv)]
+    if len(np.shape(argv[0])) != 1 or np.shape(argv[0])[0] != len(D):
+        return []
+    if check and not agrees(evaluate_many([expr])[0], D, scale):
+        return []
+    return trig_swap_diagnoses(expr, evaluate_many, T, scale)
+
+
 def _term_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.ndarray],
                     factor: float | None, D: np.ndarray, T: np.ndarray, scale: float,
                     has_factor: bool) -> list[str]:
@@ -492,13 +514,9 @@ def _term_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.n
             out = funcs.compiled(e)(*argv)
         return np.broadcast_to(np.asarray(out, float), D.shape) / c
 
-    def evaluate_many(exprs: list) -> list[np.ndarray]:
-        return [np.broadcast_to(np.asarray(v, float), D.shape) / c
-                for v in funcs.compiled(tuple(exprs))(*argv)]
-
     found = power_diagnoses(expr, funcs.params, evaluate, T, scale)
     if not found and not has_factor:
         found = term_diagnoses(expr, evaluate, D, T, scale)
     if not found and not has_factor:
-        found = trig_swap_diagnoses(expr, evaluate_many, T, scale)
+        found = _trig_diagnoses(expr, funcs, argv, factor, D, T, scale)
     return found
