@@ -232,8 +232,8 @@ def text_latex(text: str | None, names: Notation, fallback: str = "") -> str:
         return " = ".join(sides) if all(sides) else fallback
     key = ("text", text)
     if key not in names.cache:
-        expr = parse(text)
-        names.cache[key] = None if expr is None else expression_latex(expr, names)
+        names.cache[key] = _remembered(key, names, lambda: None if (expr := parse(text)) is None
+                                       else expression_latex(expr, names))
     return names.cache[key] if names.cache[key] is not None else fallback
 
 
@@ -243,9 +243,52 @@ def difference_latex(text: str | None, names: Notation, fallback: str = "") -> s
         return ""
     key = ("difference", text)
     if key not in names.cache:
-        expr = parse(text)
-        names.cache[key] = fallback if expr is None else expression_latex(simplified(expr), names)
+        latex = _remembered(key, names, lambda: None if (expr := parse(text)) is None
+                            else expression_latex(simplified(expr), names))
+        names.cache[key] = fallback if latex is None else latex
     return names.cache[key]
+
+
+#: Version of the rendered-LaTeX entries kept on disk (another version's are not read).
+RENDER_CACHE_VERSION = "1"
+_RENDERED: dict | None = None       # (version, kind, text, notation) -> LaTeX or None
+_RENDERED_NEW = False
+
+
+def _rendered() -> dict:
+    global _RENDERED
+    if _RENDERED is None:
+        from ..disk_cache import cache_root, load
+        _RENDERED = load(cache_root() / "report" / "latex.pickle", dict) or {}
+    return _RENDERED
+
+
+def _remembered(key: tuple, names: Notation, compute) -> str | None:
+    r"""``compute()`` — the LaTeX of a text in a derivation's notation — remembered across
+    runs (the disk cache's ``report/latex.pickle``, written by :func:`save_rendered`): a report
+    rendered again does not simplify and print the same differences again."""
+    global _RENDERED_NEW
+    full = (RENDER_CACHE_VERSION, *key, names.positions, tuple(sorted(names.special.items())))
+    store = _rendered()
+    if full not in store:
+        store[full] = compute()
+        _RENDERED_NEW = True
+    return store[full]
+
+
+def save_rendered(limit: int = 20000) -> None:
+    r"""Write the remembered LaTeX to the disk cache (the newest ``limit`` entries) when this
+    run added any; a cache that cannot be written is only slower."""
+    global _RENDERED_NEW
+    if not _RENDERED_NEW or _RENDERED is None:
+        return
+    from ..disk_cache import cache_root, store
+    entries = dict(list(_RENDERED.items())[-limit:])
+    try:
+        store(cache_root() / "report" / "latex.pickle", entries)
+    except OSError:
+        pass
+    _RENDERED_NEW = False
 
 
 def simplified(expr: sp.Expr) -> sp.Expr:

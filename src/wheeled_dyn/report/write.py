@@ -17,6 +17,7 @@ from ..output import write_files_atomic
 from .html import report_html
 from .markdown import report_markdown
 from .summary import ordered, summary_entry
+from .symbols import save_rendered
 
 
 #: The version of the JSON report's contract (``docs/report-schema.json``).
@@ -30,9 +31,11 @@ def render(results: Sequence[DerivationResult], title: str, extra_md: Sequence[s
     results = ordered(results)
     data = {"schema": SCHEMA, "title": title, "summary": [summary_entry(r) for r in results],
             "derivations": [r.as_dict() for r in results], **(extra_json or {})}
-    return {"report.md": report_markdown(results, title, extra_md),
-            "report.html": report_html(results, title, extra_html),
-            "report.json": json.dumps(data, indent=1, default=str, allow_nan=True)}
+    texts = {"report.md": report_markdown(results, title, extra_md),
+             "report.html": report_html(results, title, extra_html),
+             "report.json": json.dumps(data, indent=1, default=str, allow_nan=True)}
+    save_rendered()
+    return texts
 
 
 def write_reports(texts: dict[str, str | bytes], out: str | Path) -> list[Path]:

@@ -1,0 +1,33 @@
+r"""Rendered LaTeX is remembered across runs (the disk cache's report/latex.pickle): a report
+rendered from the remembered entries is the same text as one rendered from scratch."""
+
+from __future__ import annotations
+
+from conftest import SEED
+from wheeled_dyn.compare.engine import ComparisonEngine
+from wheeled_dyn.derivations import builtin_derivations, load_derivation
+from wheeled_dyn.disk_cache import CACHE_ENV
+from wheeled_dyn.report import symbols
+from wheeled_dyn.report.write import render
+
+
+def _results():
+    path = next(p for p in builtin_derivations("seed000") if p.name == "p4_8_rolling_disk.toml")
+    return [ComparisonEngine(samples=50, param_sets=2, seed=SEED).compare(load_derivation(path))]
+
+
+def test_remembered_latex_renders_the_same_report(tmp_path, monkeypatch):
+    monkeypatch.setenv(CACHE_ENV, str(tmp_path))
+    results = _results()
+    monkeypatch.setattr(symbols, "_RENDERED", None)
+    symbols._notation_cached.cache_clear()
+    cold = render(results, "t")
+    entry = tmp_path / "report" / "latex.pickle"
+    assert entry.is_file()
+    # a new process: nothing in memory, the entries on disk
+    monkeypatch.setattr(symbols, "_RENDERED", None)
+    symbols._notation_cached.cache_clear()
+    warm = render(results, "t")
+    assert warm["report.md"] == cold["report.md"]
+    assert warm["report.html"] == cold["report.html"]
+    assert len(symbols._rendered()) > 0
