@@ -1,9 +1,17 @@
-"""Shared fixtures: seeded random generators, models with random physical parameters."""
+"""Shared fixtures: seeded random generators, models with random physical parameters.
+
+Comparison results are not reused from the disk cache in the tests (each test computes what it
+checks); tests/test_result_cache.py turns reuse on where it tests it.
+"""
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 import pytest
+
+os.environ["WHEELED_DYN_REUSE"] = "0"           # also for the CLI subprocesses the tests start
 
 #: Seed of every random generator in the tests.
 SEED = 20261122

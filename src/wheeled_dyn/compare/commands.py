@@ -121,7 +121,7 @@ def run_comparison(files: Sequence[Path], samples: int, param_sets: int, seed: i
     by_path = {}
     with progress(len(files), "comparing") as bar:
         for d in derivations:
-            by_path[d.path] = engine.compare(d)
+            by_path[d.path] = _compared(engine, d)
             bar.update()
         for p in linear:                        # published linearised equations
             by_path[p] = compare_linear(p)
@@ -208,6 +208,15 @@ def _run_pool(ctx, jobs: list, bar) -> list:
         return [p.get() for p in pending]
 
 
+def _compared(engine: ComparisonEngine, d) -> DerivationResult:
+    r"""``engine.compare(d)``, reused from the results cache when nothing it depends on
+    changed (:mod:`.result_cache`)."""
+    from .result import DerivationResult
+    from .result_cache import result_key, reused
+    key = result_key(d.path, d.model, (engine.samples, engine.param_sets, engine.seed))
+    return reused(key, DerivationResult, lambda: engine.compare(d))
+
+
 def _work(args, tick=None):
     from ..derivations import load_derivation
     from .engine import ComparisonEngine
@@ -215,12 +224,12 @@ def _work(args, tick=None):
     engine = ComparisonEngine(samples=samples, param_sets=param_sets)
     results = []
     for i in indices:
-        results.append((i, engine.compare(load_derivation(files[i]))))
+        results.append((i, _compared(engine, load_derivation(files[i]))))
         if tick is not None:
             tick()
         elif _PROGRESS is not None:
             _PROGRESS.put(1)
-    sections = _table_sections(engine, table_group) if table_group else None
+    sections = _reused_tables(engine, table_group) if table_group else None
     return results, sections
 
 
@@ -279,6 +288,23 @@ def print_summary(results: Sequence[DerivationResult]) -> None:
         print(f"{r.path.name} — {src.get('document', '')} eqs {src.get('equations', '')}: {r.title}")
         for line in summary_lines(r):
             print(f"    {line}")
+
+
+def _reused_tables(engine: ComparisonEngine, group: str) -> tuple[list[str], list[str], dict]:
+    r""":func:`_table_sections`, reused from the results cache while no file of the group and
+    nothing else it depends on changed."""
+    from ..derivations import builtin_tables, load_comparison_table
+    from ..derivations.builtin import builtin_derivations
+    from .result_cache import result_key, reused
+    tables = builtin_tables(group)
+    if not tables:
+        return [], [], {}
+    model = load_comparison_table(tables[0]).model
+    folder = tables[0].parent
+    key = result_key(tables[0], model, ("tables", engine.samples, engine.param_sets,
+                                        engine.seed), [*folder.glob("*.toml"),
+                                                       *builtin_derivations(group)])
+    return reused(key, tuple, lambda: tuple(_table_sections(engine, group)))
 
 
 def _table_sections(engine: ComparisonEngine, group: str) -> tuple[list[str], list[str], dict]:
