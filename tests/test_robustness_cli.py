@@ -292,10 +292,10 @@ def test_ctrl_c_during_report(tmp_path):
     out.mkdir()
     (out / "report.md").write_text("previous")
     proc = subprocess.Popen([sys.executable, "-m", "wheeled_dyn.cli", "report", "--samples",
-                             "200", "--param-sets", "2", "--out", str(out)],
+                             "1000", "--param-sets", "5", "--out", str(out)],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             start_new_session=True)
-    time.sleep(4.0)                       # imports done, workers comparing
+    time.sleep(2.5)                       # imports done (about 1 s), workers comparing (3 s+)
     os.killpg(proc.pid, signal.SIGINT)    # as a terminal's Ctrl-C: the whole process group
     _, err = proc.communicate(timeout=SUBPROCESS_TIMEOUT)
     assert proc.returncode == 130, err
