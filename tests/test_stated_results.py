@@ -137,3 +137,57 @@ def test_linearisation_against_closed_forms():
         J, why = linearisation(field, np.zeros(len(names)), nu)
         assert not why
         assert (growth(J) <= NEUTRAL_TOL * rate_scale(J)) == stable, (factor, growth(J))
+
+
+# -- stability claims --------------------------------------------------------------------------
+STABLE_AT_0 = '''label = "theta_0 = 0 (stable)"
+kind = "stability"
+given = ["urdf_structure"]
+about = { theta = "0" }
+speed = "dphi"                 # "phi' = omega_0 = constant": claimed for any omega_0
+value = "stable"'''
+
+
+def _claims(tmp_path, *replacements):
+    result = ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED).compare(
+        load_derivation(_copy(tmp_path, FLYWHEEL, *replacements)))
+    return {r.element: r for r in result.records if r.step == "stability"}
+
+
+def test_4_17_stability_claims(tmp_path):
+    r"""4.17 (d) calls the hanging rod stable for any flywheel rate: the truth makes it unstable
+    above omega_crit, which the claim's record says; the upside-down rod is unstable at every
+    rate, as claimed."""
+    records = _claims(tmp_path)
+    hanging = records["4.17 (d) theta_0 = 0 (stable) claim"]
+    assert hanging.verdict == "differs"
+    assert hanging.diagnoses[0].startswith("unstable for dphi from"), hanging.diagnoses
+    assert records["4.17 (d) theta_0 = N pi (unstable), N = 1 claim"].verdict == "agrees"
+
+
+@pytest.mark.parametrize("new,verdict,said", [
+    (STABLE_AT_0.replace('speed = "dphi"                 # "phi\' = omega_0 = constant": '
+                         'claimed for any omega_0\n', ''), "agrees", None),
+    (STABLE_AT_0.replace('speed = "dphi"                 # "phi\' = omega_0 = constant": '
+                         'claimed for any omega_0\n', '').replace('value = "stable"',
+                                                                   'value = "unstable"'),
+     "differs", "stable at the stated state"),
+])
+def test_a_claim_at_one_state(tmp_path, new, verdict, said):
+    r"""Without a scanned velocity the claim is about the stated state alone: the hanging rod
+    at rest is stable (agrees), so "unstable" there differs."""
+    record = _claims(tmp_path, (STABLE_AT_0, new))["4.17 (d) theta_0 = 0 (stable) claim"]
+    assert record.verdict == verdict
+    assert said is None or record.diagnoses[0].startswith(said)
+
+
+@pytest.mark.parametrize("old,new,item", [
+    ('value = "stable"', 'value = "stabel"', "value"),
+    ('about = { theta = "0" }\nspeed = "dphi"                 #',
+     'about = { theta = "0", dphi = "1" }\nspeed = "dphi"                 #', "about.dphi"),
+])
+def test_bad_stability_claims(tmp_path, old, new, item):
+    with pytest.raises(DerivationError) as err:
+        ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED).compare(
+            load_derivation(_copy(tmp_path, FLYWHEEL, (old, new))))
+    assert item in str(err.value)

@@ -23,7 +23,10 @@ has eigenvalues :math:`\lambda`:
   oscillatory mode (:math:`|\operatorname{Re}\lambda|` negligible) at every parameter set;
 - **critical speed**: the named velocity ``speed`` is scanned from 0 to :data:`SCAN_SPAN` × the
   document's value; the document's value must be where the largest real part of
-  :math:`\lambda` changes sign (located by bisection).
+  :math:`\lambda` changes sign (located by bisection);
+- **stability** (``value = "stable"`` or ``"unstable"``): the claim must hold at the stated
+  state — or, with a ``speed``, at every value of that velocity from 0 to :data:`SCAN_SPAN` ×
+  the largest :math:`|\lambda|` of the state at rest (a claim "for any speed").
 
 The stated state must be steady: :math:`\dot\nu(x^*) = 0`, and every position that moves there
 (a flywheel's angle turning at :math:`\omega_0`) must be ignorable (:math:`f` does not depend on
@@ -152,11 +155,15 @@ class _Setting:
             else:
                 raise DerivationError(d.path, f"step {step.equation}.about.{name}", "not a "
                                       "position or velocity of the document")
-        if step.kind == "critical speed":
+        if step.speed:
             if step.speed not in names[1]:
                 raise DerivationError(d.path, f"step {step.equation}.speed", f"{step.speed!r} "
                                       "is not a velocity of the document; valid: "
                                       + ", ".join(names[1]))
+            if step.kind == "stability" and dict(step.about).get(step.speed) is not None:
+                raise DerivationError(d.path, f"step {step.equation}.about.{step.speed}",
+                                      "the velocity a stability claim is for at every value is "
+                                      "scanned: it is not also given in about")
             self.speed_index = names[1].index(step.speed)
 
     def at_speed(self, s: float) -> tuple[np.ndarray, str]:
@@ -213,10 +220,57 @@ def _dimension(d: Derivation, step: Step, expr: sp.Expr) -> list[str]:
     return out
 
 
+def _stability(setting: _Setting, claim: str) -> str:
+    r"""Where the truth contradicts the claimed stability of the stated state ("" if
+    nowhere): the state itself, or — with a ``speed`` — the scan of that velocity from 0 to
+    :data:`SCAN_SPAN` × the largest rate of the state at rest."""
+    def stable(J: np.ndarray, floor: float) -> bool:
+        return growth(J) <= floor
+
+    if not setting.step.speed:
+        J, why = linearisation(setting.field, setting.q0, setting.nu0)
+        if why:
+            return why
+        ok = stable(J, NEUTRAL_TOL * max(rate_scale(J), 1e-300)) == (claim == "stable")
+        return "" if ok else (f"{'un' if claim == 'stable' else ''}stable at the stated state "
+                              f"(largest growth rate {growth(J):.3g}/s)")
+    J0, why = setting.at_speed(0.0)
+    if why:
+        return why
+    top = SCAN_SPAN * max(rate_scale(J0), 1.0)
+    grid = np.linspace(0.0, top, SCAN_POINTS + 1)
+    mats = []
+    for s in grid:
+        J, why = setting.at_speed(float(s))
+        if why:
+            return why + f" (at {setting.step.speed} = {s:.4g})"
+        mats.append(J)
+    floor = NEUTRAL_TOL * max(max(rate_scale(J) for J in mats), 1e-300)
+    wrong = [s for s, J in zip(grid, mats) if stable(J, floor) != (claim == "stable")]
+    if not wrong:
+        return ""
+    return (f"{'un' if claim == 'stable' else ''}stable for {setting.step.speed} from "
+            f"{min(wrong):.4g} to {max(wrong):.4g} (scanned 0 to {top:.4g})")
+
+
 def compare_result(d: Derivation, step: Step, index: int, seed: int) -> ElementRecord:
     r"""The record of one stated result (see the module docstring)."""
     rng = np.random.default_rng([seed, 17, index])
     sets = given_parameter_sets(d, step.given, RESULT_SETS, rng)
+    if step.kind == "stability":
+        claim = step.printed[0]
+        found = ""
+        for ps in sets:
+            values = document_symbol_values(d, ps, rng)
+            found = _stability(_Setting(d, step, ps, values, rng), claim) or found
+            if found:
+                break
+        verdict = "undecided" if "not steady" in found else "differs" if found else "agrees"
+        return ElementRecord(element=f"{step.name} claim", key="step", index=(index, 0),
+                             verdict=verdict, diagnoses=(found,) if found else (),
+                             document=claim, document_model="", truth=None, residual=None,
+                             max_error=float("nan") if found else 0.0, scale=1.0,
+                             step=step.kind, equation=step.equation, document_latex=claim)
     expr = step.components[0]
     common = dict(element=f"{step.name} value", key="step", index=(index, 0),
                   document=step.printed[0], document_model="", truth=None, residual=None,

@@ -27,6 +27,8 @@ printed, in the file's namespace (positions :math:`q`, velocities :math:`\nu`, a
                             state ``about`` (a steady state)
 ``critical speed``          ``value``: the value of the velocity ``speed`` (the others as in
                             ``about``) at which the stability of ``about`` changes
+``stability``               ``value``: ``"stable"`` or ``"unstable"``, claimed for the state
+                            ``about`` (for every value of the velocity ``speed``, if named)
 ``orientation``             ``components``: the nine entries (row by row) of the matrix whose
                             columns are ``body``'s axes (``body_axes``) along ``frame``'s
                             ``axes`` (a rotation matrix such as :math:`{}^0A_1`)
@@ -68,13 +70,16 @@ STEP_KINDS: tuple[str, ...] = ("velocity", "angular velocity", "acceleration",
                                "angular acceleration", "kinetic energy", "potential energy",
                                "constraint", "claim", "generalized force",
                                "linearised equations", "first integral", "frequency",
-                               "critical speed", "newton-euler", "orientation", "gravity")
+                               "critical speed", "newton-euler", "orientation", "gravity",
+                               "stability")
 VECTOR_KINDS = STEP_KINDS[:4]
 RELATION_KINDS = ("constraint", "claim", "linearised equations", "newton-euler")
 #: A frame's orientation and the gravity vector: functions of the positions alone.
 FRAME_KINDS = ("orientation", "gravity")
 #: Stated results judged on the linearisation of the true motion (:mod:`~wheeled_dyn.compare.results`).
-RESULT_KINDS = ("frequency", "critical speed")
+RESULT_KINDS = ("frequency", "critical speed", "stability")
+#: What a ``stability`` step can claim.
+STABILITY_CLAIMS = ("stable", "unstable")
 #: Named points of a body.
 POINTS: tuple[str, ...] = ("origin", "com", "contact")
 #: Frames every model has; any link name is a frame too.
@@ -347,6 +352,15 @@ def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
             raise fail(f"{item}.value", f"a {kind} step gives value = \"...\"", line)
         texts = _texts(t, "value", item, line, fail, single=True)
         extra = dict(about=_about(t, item, line, expr, fail))
+        if kind == "stability":
+            if texts[0] not in STABILITY_CLAIMS:
+                raise fail(f"{item}.value", "a stability step claims value = \"stable\" or "
+                           "\"unstable\"", line)
+            if "speed" in t:
+                if not isinstance(t["speed"], str) or not t["speed"]:
+                    raise fail(f"{item}.speed", "the document velocity the claim is for at "
+                               "every value: speed = \"dphi\"", line)
+                extra["speed"] = t["speed"]
         if kind == "critical speed":
             speed = t.get("speed")
             if not isinstance(speed, str) or not speed:
@@ -378,7 +392,9 @@ def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
     components, sides = [], []
     for i, text in enumerate(texts):
         where = f"{item} component {i + 1}"
-        if kind in RELATION_KINDS:
+        if kind == "stability":                # a word, not an expression
+            components.append(sympy.Integer(int(text == "stable")))
+        elif kind in RELATION_KINDS:
             wrap = LatexSource if isinstance(text, LatexSource) else str
             lhs, rhs = (parse(wrap(side), where) for side in text.split("="))
             sides.append((lhs, rhs))
