@@ -37,7 +37,7 @@ SEED002 = {"s3_3_sphere_plane", "s3_12_sphere_sphere"}
 #: tests/test_seed000_car_constraints.py, tests/test_newton_euler_steps.py (seed 002's
 #: s3_8_paraboloid: tests/test_ball_surface.py).
 STEPS_ONLY = {"p1_11_car_constraints", "p1_15_particle", "p2_7_vehicle", "p2_13_vehicle",
-              "p5_1_body_axes"}
+              "p5_1_body_axes", "p7_7_gyroscope"}
 
 #: Elements each document gets wrong (1-based labels); every other element agrees.
 WRONG = {

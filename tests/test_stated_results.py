@@ -191,3 +191,29 @@ def test_bad_stability_claims(tmp_path, old, new, item):
         ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED).compare(
             load_derivation(_copy(tmp_path, FLYWHEEL, (old, new))))
     assert item in str(err.value)
+
+
+# -- a steady motion -----------------------------------------------------------------------------
+GYRO = "p7_7_gyroscope.toml"
+PRECESSION = 'dpsi = "tau/(I_yy*w_s)"'
+
+
+@pytest.mark.parametrize("new,verdict", [(PRECESSION, "agrees"),
+                                         ('dpsi = "tau/(2*I_yy*w_s)"', "differs"),
+                                         ('dpsi = "-tau/(I_yy*w_s)"', "differs")])
+def test_7_7_steady_precession(tmp_path, new, verdict):
+    r"""7.7: with the axle horizontal, Omega = tau/(I_yy omega_s) is a steady motion of the
+    symmetric gyroscope at any spin (the torque balance about the pivot is exactly the rate of
+    the spin's angular momentum); half that rate, or the other sense, is not: the record gives
+    the true accelerations there."""
+    folder = next(p for p in builtin_derivations("seed000") if p.name == ROD).parent
+    text = (folder / GYRO).read_text()
+    assert text.count(PRECESSION) == 1
+    path = tmp_path / GYRO
+    path.write_text(text.replace(PRECESSION, new))
+    result = ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED).compare(
+        load_derivation(path))
+    (record,) = [r for r in result.records if r.step == "steady motion"]
+    assert record.verdict == verdict, record.diagnoses
+    if verdict == "differs":
+        assert record.diagnoses[0].startswith("the stated state is not steady")

@@ -55,7 +55,8 @@ CAUSE_KINDS: tuple[str, ...] = (
 STEPS: tuple[str, ...] = ("equations of motion", "velocity", "angular velocity", "acceleration",
                           "angular acceleration", "kinetic energy", "potential energy",
                           "constraint", "claim", "generalized force", "newton-euler",
-                          "linearised equations", "frequency", "critical speed")
+                          "linearised equations", "frequency", "critical speed", "stability",
+                          "steady motion", "orientation", "gravity")
 
 
 @dataclass(frozen=True)

@@ -24,6 +24,8 @@ has eigenvalues :math:`\lambda`:
 - **critical speed**: the named velocity ``speed`` is scanned from 0 to :data:`SCAN_SPAN` × the
   document's value; the document's value must be where the largest real part of
   :math:`\lambda` changes sign (located by bisection);
+- **steady motion**: the stated state itself must be steady (a steady precession whose rate
+  the document gives);
 - **stability** (``value = "stable"`` or ``"unstable"``): the claim must hold at the stated
   state — or, with a ``speed``, at every value of that velocity from 0 to :data:`SCAN_SPAN` ×
   the largest :math:`|\lambda|` of the state at rest (a claim "for any speed").
@@ -257,6 +259,19 @@ def compare_result(d: Derivation, step: Step, index: int, seed: int) -> ElementR
     r"""The record of one stated result (see the module docstring)."""
     rng = np.random.default_rng([seed, 17, index])
     sets = given_parameter_sets(d, step.given, RESULT_SETS, rng)
+    if step.kind == "steady motion":
+        found = ""
+        for ps in sets:
+            setting = _Setting(d, step, ps, document_symbol_values(d, ps, rng), rng)
+            found = linearisation(setting.field, setting.q0, setting.nu0)[1]
+            if found:
+                break
+        return ElementRecord(element=f"{step.name} claim", key="step", index=(index, 0),
+                             verdict="differs" if found else "agrees",
+                             diagnoses=(found,) if found else (), document="steady",
+                             document_model="", truth=None, residual=None,
+                             max_error=float("nan") if found else 0.0, scale=1.0,
+                             step=step.kind, equation=step.equation, document_latex="")
     if step.kind == "stability":
         claim = step.printed[0]
         found = ""

@@ -29,6 +29,8 @@ printed, in the file's namespace (positions :math:`q`, velocities :math:`\nu`, a
                             ``about``) at which the stability of ``about`` changes
 ``stability``               ``value``: ``"stable"`` or ``"unstable"``, claimed for the state
                             ``about`` (for every value of the velocity ``speed``, if named)
+``steady motion``           the state ``about`` (positions, velocities: a steady precession's
+                            rate, say) claimed to be a steady motion of the free motion
 ``orientation``             ``components``: the nine entries (row by row) of the matrix whose
                             columns are ``body``'s axes (``body_axes``) along ``frame``'s
                             ``axes`` (a rotation matrix such as :math:`{}^0A_1`)
@@ -71,13 +73,13 @@ STEP_KINDS: tuple[str, ...] = ("velocity", "angular velocity", "acceleration",
                                "constraint", "claim", "generalized force",
                                "linearised equations", "first integral", "frequency",
                                "critical speed", "newton-euler", "orientation", "gravity",
-                               "stability")
+                               "stability", "steady motion")
 VECTOR_KINDS = STEP_KINDS[:4]
 RELATION_KINDS = ("constraint", "claim", "linearised equations", "newton-euler")
 #: A frame's orientation and the gravity vector: functions of the positions alone.
 FRAME_KINDS = ("orientation", "gravity")
 #: Stated results judged on the linearisation of the true motion (:mod:`~wheeled_dyn.compare.results`).
-RESULT_KINDS = ("frequency", "critical speed", "stability")
+RESULT_KINDS = ("frequency", "critical speed", "stability", "steady motion")
 #: What a ``stability`` step can claim.
 STABILITY_CLAIMS = ("stable", "unstable")
 #: Named points of a body.
@@ -348,10 +350,15 @@ def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
                        "are frames)", line)
         extra = dict(bodies=bodies)
     elif kind in RESULT_KINDS:
+        if kind == "steady motion":            # the claim is the state itself
+            t = {**t, "value": t.get("value", "steady")}
         if "value" not in t:
             raise fail(f"{item}.value", f"a {kind} step gives value = \"...\"", line)
         texts = _texts(t, "value", item, line, fail, single=True)
         extra = dict(about=_about(t, item, line, expr, fail))
+        if kind == "steady motion" and texts[0] != "steady":
+            raise fail(f"{item}.value", "a steady motion claims its state (about), no value",
+                       line)
         if kind == "stability":
             if texts[0] not in STABILITY_CLAIMS:
                 raise fail(f"{item}.value", "a stability step claims value = \"stable\" or "
@@ -392,8 +399,8 @@ def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
     components, sides = [], []
     for i, text in enumerate(texts):
         where = f"{item} component {i + 1}"
-        if kind == "stability":                # a word, not an expression
-            components.append(sympy.Integer(int(text == "stable")))
+        if kind in ("stability", "steady motion"):      # a word, not an expression
+            components.append(sympy.Integer(int(text in ("stable", "steady"))))
         elif kind in RELATION_KINDS:
             wrap = LatexSource if isinstance(text, LatexSource) else str
             lhs, rhs = (parse(wrap(side), where) for side in text.split("="))
