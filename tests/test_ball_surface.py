@@ -347,8 +347,8 @@ def test_bad_bowl_in_a_model_file(tmp_path):
 # -- seed 002, (3.8): the force function of gravity in the paraboloid -----------------------------
 def test_paraboloid_force_function_3_8(tmp_path):
     r"""s3_8_paraboloid.toml: its configuration map puts the ball on the bowl (checked here with
-    an independent distance, not the map's formula), so its printed (3.8), read as the potential
-    -U, is compared with the true potential of a ball that touches the paraboloid: it agrees;
+    an independent distance, not the map's formula), so its printed force function (3.8),
+    U = -V, is compared with the true potential of a ball that touches the paraboloid: it agrees;
     with the ball's centre offset on the other side of the surface (+R p/sqrt for -R p/sqrt,
     the convex side) it differs."""
     from wheeled_dyn.compare.step_records import compare_steps
@@ -369,8 +369,14 @@ def test_paraboloid_force_function_3_8(tmp_path):
         assert abs(_distance_to_bowl(a, vertex, centre) - BALL_RADIUS) < EXACT_TOL
     (r,) = compare_steps(d, SEED)
     assert r.verdict == "agrees", r.diagnoses
-    text = path.read_text().replace('value = "M*g*(u1**2/(2*p) + R*p/sqrt(p**2 + u1**2))"',
-                                    'value = "M*g*(u1**2/(2*p) - R*p/sqrt(p**2 + u1**2))"')
+    printed = 'value = "-M*g*(u1**2/(2*p) + R*p/sqrt(p**2 + u1**2))"'
+    assert path.read_text().count(printed) == 1
+    text = path.read_text().replace(printed,
+                                    'value = "-M*g*(u1**2/(2*p) - R*p/sqrt(p**2 + u1**2))"')
     planted = tmp_path / "s3_8_paraboloid.toml"
     planted.write_text(text)
     assert compare_steps(load_derivation(planted), SEED)[0].verdict == "differs"
+    # read as a potential V instead of the force function U = -V, the printed value differs
+    planted.write_text(path.read_text().replace('quantity = "force function"\n', ""))
+    (r,) = compare_steps(load_derivation(planted), SEED)
+    assert r.verdict == "differs" and r.diagnoses[0].startswith("sign"), r.diagnoses

@@ -239,7 +239,8 @@ class _Group:
         if s.kind == "kinetic energy":
             return np.array([m.kinetic_energy(s.bodies)])
         if s.kind == "potential energy":
-            return np.array([m.potential_energy(s.bodies)])
+            sign = -1.0 if s.quantity == "force function" else 1.0      # U = -V
+            return np.array([sign * m.potential_energy(s.bodies)])
         if s.kind == "generalized force":
             f = m.inertial_terms()[list(s.rows)]
             return -f if s.quantity == "inertia" else f
@@ -462,6 +463,17 @@ def _document_values(g: _Group, step: Step, T: np.ndarray):
     return D_all, scale
 
 
+def _levelled(g: _Group, step: Step, D: np.ndarray, T: np.ndarray
+              ) -> tuple[np.ndarray, np.ndarray]:
+    r"""A potential energy is measured from any level: both sides taken from their mean per
+    parameter set (so a wrong sign or factor still shows as such); other steps as they are."""
+    if step.kind != "potential energy":
+        return D, T
+    k = len(g.sets)
+    return tuple((x.reshape(k, -1) - x.reshape(k, -1).mean(axis=1, keepdims=True)).ravel()
+                 for x in (D, T))
+
+
 def _special(d: Derivation, step: Step, seed: int) -> dict[int, str]:
     r"""For the components that differ, the smallest combination of the model's special
     parameter families (beyond the step's ``given``) under which they agree."""
@@ -474,7 +486,8 @@ def _special(d: Derivation, step: Step, seed: int) -> dict[int, str]:
             T = g.truth([step])[0]
             D_all, scale = _document_values(g, step, T)
             memo[names] = {j for j, D in enumerate(D_all) if D is not None
-                           and np.all(np.isfinite(D)) and agrees(D, T[:, j], scale)}
+                           and np.all(np.isfinite(D))
+                           and agrees(*_levelled(g, step, D, T[:, j]), scale)}
         return memo[names]
 
     full = tuple(c.name for c in cases)
@@ -518,9 +531,7 @@ def _records(g: _Group, step: Step, index: int, T: np.ndarray) -> list[ElementRe
             continue
         diags: list[str] = []
         expr = g._rate(step.components[j], step.kind)
-        if step.kind == "potential energy":          # measured from any level: up to a
-            k = len(g.sets)                           # constant per parameter set
-            D = (D.reshape(k, -1) - (D - Tj).reshape(k, -1).mean(axis=1, keepdims=True)).ravel()
+        D, Tj = _levelled(g, step, D, Tj)
         relation = step.kind in RELATION_KINDS
         if relation:
             lhs, rhs = step.sides[j]

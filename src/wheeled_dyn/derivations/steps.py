@@ -14,7 +14,9 @@ printed, in the file's namespace (positions :math:`q`, velocities :math:`\nu`, a
 ``angular velocity``        angular velocity :math:`\omega` of ``body``
 ``angular acceleration``    :math:`\dot\omega` (inertial derivative)
 ``kinetic energy``          ``value``: kinetic energy of ``bodies`` (default: all)
-``potential energy``        ``value``: gravity potential of ``bodies`` (up to a constant)
+``potential energy``        ``value``: gravity potential of ``bodies`` (up to a constant), or
+                            with ``quantity = "force function"`` the force function
+                            :math:`U = -V` as some texts print it
 ``constraint``              ``relations``: velocity constraints ``"lhs = rhs"`` (linear in
                             :math:`\nu`) or configuration constraints (no velocities)
 ``claim``                   ``relations`` between coordinates or between parameters
@@ -88,6 +90,9 @@ POINTS: tuple[str, ...] = ("origin", "com", "contact")
 FRAMES: tuple[str, ...] = ("world", "heading")
 AXES: tuple[str, ...] = ("x", "y", "z", "-x", "-y", "-z")
 QUANTITIES: tuple[str, ...] = ("inertia", "inertial terms")
+#: What a ``potential energy`` step's value is: the potential V, or the force function U = -V
+#: (the work function some texts write instead).
+POTENTIAL_QUANTITIES: tuple[str, ...] = ("potential", "force function")
 STEP_KEYS: tuple[str, ...] = ("equation", "kind", "label", "body", "bodies", "point", "frame",
                               "axes", "components", "value", "relations", "quantity", "rows",
                               "given", "note", "names", "about", "speed",
@@ -349,6 +354,12 @@ def _step(t: dict, k: int, line: int | None, n: int, expr, fail) -> Step:
             raise fail(f"{item}.bodies", "an energy is of links of the model (world and heading "
                        "are frames)", line)
         extra = dict(bodies=bodies)
+        if kind == "potential energy":
+            quantity = t.get("quantity", "potential")
+            if quantity not in POTENTIAL_QUANTITIES:
+                raise fail(f"{item}.quantity", "expected one of "
+                           + ", ".join(POTENTIAL_QUANTITIES), line)
+            extra["quantity"] = quantity
     elif kind in RESULT_KINDS:
         if kind == "steady motion":            # the claim is the state itself
             t = {**t, "value": t.get("value", "steady")}
