@@ -119,7 +119,8 @@ class _Balance:
         self.params = [s.symbol for s in d.symbols.values() if not s.is_input]
         self.args = [*d.positions, *d.velocities, *self.params]
         self.values = [document_symbol_values(d, ps, rng) for ps in self.sets]
-        self._truth: dict[str, list[np.ndarray]] = {}
+        self._world: list[np.ndarray] | None = None        # residual columns, world axes
+        self._rotations: dict[str, list[np.ndarray]] = {}  # frame -> per set, states x 3 x 3
 
     def _argv(self, k: int, i: int) -> list[float]:
         return [*self.q[i], *self.nu[i], *(self.values[k][p] for p in self.params)]
@@ -140,13 +141,15 @@ class _Balance:
 
     def truth(self, frame: str) -> list[np.ndarray]:
         r"""Per parameter set, the columns of the residuals along ``frame``'s axes (states ×
-        6 × columns), computed once per frame; the sampled velocities are made admissible on
-        the way (before the document is evaluated at them)."""
-        if frame not in self._truth:
-            self._truth[frame] = self._residuals(frame)
-        return self._truth[frame]
+        6 × columns): the world's residuals, computed once (the sampled velocities made
+        admissible on the way, before the document is evaluated at them), turned into the
+        frame's axes (``frame``: the step's, the world, or the body)."""
+        if self._world is None:
+            self._world = self._residuals()
+        return [np.einsum("sij,sjc->sic", _blocks(R), W)
+                for R, W in zip(self._rotations[frame], self._world)]
 
-    def _residuals(self, frame: str) -> list[np.ndarray]:
+    def _residuals(self) -> list[np.ndarray]:
         d, step = self.d, self.step
         n = len(d.velocities)
         geo = sp.lambdify(self.args, [[*f.direction,
@@ -155,11 +158,14 @@ class _Balance:
         about = sp.lambdify(self.args, list(step.point), "numpy") \
             if isinstance(step.point, tuple) else None
         truth = []
+        frames = tuple(dict.fromkeys((step.frame, "world", step.body)))
+        self._rotations = {f: [] for f in frames}
         for k, ps in enumerate(self.sets):
             cmap = CoordinateMap(ps.model, derivation_coordinate_set(d, ps))
-            check_links(ps.model, [step.body, *([] if frame in ("world", "heading") else [frame])])
+            check_links(ps.model, [step.body, *(f for f in frames
+                                                if f not in ("world", "heading"))])
             data = ps.model.model.createData()
-            T_k = []
+            T_k, R_k = [], {f: [] for f in frames}
             for i in range(k * BALANCE_STATES, (k + 1) * BALANCE_STATES):
                 argv = self._argv(k, i)
                 with np.errstate(all="ignore"):
@@ -173,12 +179,25 @@ class _Balance:
                                               if isinstance(f.point, tuple) else f.point),
                                  m.rotation(f.frame) @ np.array(r[:3], dtype=float))
                                 for f, r in zip(step.forces, raw)]
-                    rows.append(residual_rows(m, step.body, point, frame, step.forces,
+                    rows.append(residual_rows(m, step.body, point, "world", step.forces,
                                               geometry))
+                    if len(rows) == 1:                 # the frames' rotations: q only
+                        for f in frames:
+                            R_k[f].append(np.array(m.rotation(f)))   # a copy: data is reused
                 accel = [r[:, 0] - rows[0][:, 0] for r in rows[1:]]
                 T_k.append(np.column_stack([rows[0][:, 0], *accel, rows[0][:, 1:]]))
             truth.append(np.array(T_k))
+            for f in frames:
+                self._rotations[f].append(np.array(R_k[f]))
         return truth
+
+
+def _blocks(R: np.ndarray) -> np.ndarray:
+    r"""Per state, :math:`\mathrm{blockdiag}(R^T, R^T)` (states × 6 × 6): world components to
+    a frame's."""
+    out = np.zeros((len(R), 6, 6))
+    out[:, :3, :3] = out[:, 3:, 3:] = np.transpose(R, (0, 2, 1))
+    return out
 
 
 def _fit(T: np.ndarray, D: np.ndarray, keep: np.ndarray) -> tuple[np.ndarray, float]:
