@@ -175,15 +175,17 @@ class _Balance:
                 for nudot in (np.zeros(n), *np.eye(n)):
                     m = Motion(cmap, data, self.q[i], self.nu[i], nudot)
                     self.nu[i] = m.nu      # made admissible (rolling kept): the document too
+                    if rows:               # an acceleration's column: no force columns again
+                        rows.append(residual_rows(m, step.body, point, "world", (), ()))
+                        continue
                     geometry = [(_world_point(m, step.body, np.array(r[3:], dtype=float)
                                               if isinstance(f.point, tuple) else f.point),
                                  m.rotation(f.frame) @ np.array(r[:3], dtype=float))
                                 for f, r in zip(step.forces, raw)]
                     rows.append(residual_rows(m, step.body, point, "world", step.forces,
                                               geometry))
-                    if len(rows) == 1:                 # the frames' rotations: q only
-                        for f in frames:
-                            R_k[f].append(np.array(m.rotation(f)))   # a copy: data is reused
+                    for f in frames:                   # the frames' rotations: q only
+                        R_k[f].append(np.array(m.rotation(f)))       # a copy: data is reused
                 accel = [r[:, 0] - rows[0][:, 0] for r in rows[1:]]
                 T_k.append(np.column_stack([rows[0][:, 0], *accel, rows[0][:, 1:]]))
             truth.append(np.array(T_k))
