@@ -255,37 +255,34 @@ def _stability(setting: _Setting, claim: str) -> str:
             f"{min(wrong):.4g} to {max(wrong):.4g} (scanned 0 to {top:.4g})")
 
 
+def _claim_record(d: Derivation, step: Step, index: int, sets, rng) -> ElementRecord:
+    r"""The record of a steady-motion or stability claim: where the truth first contradicts
+    it over the parameter sets (a stability claim at a state that is not steady is
+    undecided)."""
+    claim = step.printed[0]
+    found = ""
+    for ps in sets:
+        setting = _Setting(d, step, ps, document_symbol_values(d, ps, rng), rng)
+        found = (linearisation(setting.field, setting.q0, setting.nu0)[1]
+                 if step.kind == "steady motion" else _stability(setting, claim))
+        if found:
+            break
+    verdict = ("undecided" if step.kind == "stability" and "not steady" in found
+               else "differs" if found else "agrees")
+    return ElementRecord(element=f"{step.name} claim", key="step", index=(index, 0),
+                         verdict=verdict, diagnoses=(found,) if found else (), document=claim,
+                         document_model="", truth=None, residual=None,
+                         max_error=float("nan") if found else 0.0, scale=1.0, step=step.kind,
+                         equation=step.equation,
+                         document_latex="" if step.kind == "steady motion" else claim)
+
+
 def compare_result(d: Derivation, step: Step, index: int, seed: int) -> ElementRecord:
     r"""The record of one stated result (see the module docstring)."""
     rng = np.random.default_rng([seed, 17, index])
     sets = given_parameter_sets(d, step.given, RESULT_SETS, rng)
-    if step.kind == "steady motion":
-        found = ""
-        for ps in sets:
-            setting = _Setting(d, step, ps, document_symbol_values(d, ps, rng), rng)
-            found = linearisation(setting.field, setting.q0, setting.nu0)[1]
-            if found:
-                break
-        return ElementRecord(element=f"{step.name} claim", key="step", index=(index, 0),
-                             verdict="differs" if found else "agrees",
-                             diagnoses=(found,) if found else (), document="steady",
-                             document_model="", truth=None, residual=None,
-                             max_error=float("nan") if found else 0.0, scale=1.0,
-                             step=step.kind, equation=step.equation, document_latex="")
-    if step.kind == "stability":
-        claim = step.printed[0]
-        found = ""
-        for ps in sets:
-            values = document_symbol_values(d, ps, rng)
-            found = _stability(_Setting(d, step, ps, values, rng), claim) or found
-            if found:
-                break
-        verdict = "undecided" if "not steady" in found else "differs" if found else "agrees"
-        return ElementRecord(element=f"{step.name} claim", key="step", index=(index, 0),
-                             verdict=verdict, diagnoses=(found,) if found else (),
-                             document=claim, document_model="", truth=None, residual=None,
-                             max_error=float("nan") if found else 0.0, scale=1.0,
-                             step=step.kind, equation=step.equation, document_latex=claim)
+    if step.kind in ("steady motion", "stability"):
+        return _claim_record(d, step, index, sets, rng)
     expr = step.components[0]
     common = dict(element=f"{step.name} value", key="step", index=(index, 0),
                   document=step.printed[0], document_model="", truth=None, residual=None,

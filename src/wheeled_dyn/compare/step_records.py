@@ -325,10 +325,6 @@ def _terms(expr: sp.Expr, gens: Sequence[sp.Symbol]) -> dict[tuple[int, ...], sp
         return None
 
 
-def _trig_swaps(expr: sp.Expr, g: _Group, T: np.ndarray, scale: float) -> list[str]:
-    return trig_swap_diagnoses(expr, g.documents, T, scale)
-
-
 def _power_swaps(expr: sp.Expr, g: _Group, T: np.ndarray, scale: float) -> list[str]:
     return power_diagnoses(expr, g.params, g.document, T, scale)
 
@@ -559,7 +555,7 @@ def _records(g: _Group, step: Step, index: int, T: np.ndarray) -> list[ElementRe
             diags += swap_diagnoses(expr, groups,
                                     lambda a, b: g.documents(together, read=(a, b))[at], Tj, scale)
             if not _explained(diags):
-                diags += _trig_swaps(expr, g, Tj, scale)
+                diags += trig_swap_diagnoses(expr, g.documents, Tj, scale)
             if step.kind == "first integral" or (
                     step.kind == "claim" and not expr.has(*d.positions, *d.velocities)):
                 diags += _power_swaps(expr, g, Tj, scale)
