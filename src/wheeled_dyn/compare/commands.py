@@ -256,6 +256,8 @@ def compare_report(files: Sequence[Path], samples: int, param_sets: int,
         for t in builtin_tables(table_group):
             table_docs |= set(load_comparison_table(t).documents)
     bins = _bins(derivations, workers, frozenset(table_docs))
+    from .result_cache import package_digest
+    package_digest()                     # once, in the parent: the forked workers inherit it
     owner = next((k for k, b in enumerate(bins) if any(paths[i].name in table_docs for i in b)), 0)
     jobs = [(paths, b, samples, param_sets, table_group if k == owner else None)
             for k, b in enumerate(bins)]
