@@ -107,3 +107,16 @@ def test_api_bad_input_is_one_error(model, tables, words):
     message = str(info.value)
     assert "\n" not in message and all(w in message for w in words), message
     assert "/tmp" not in message and "wheeled-dyn-" not in message      # no temporary path
+
+
+def test_a_submodule_imported_first_does_not_hide_the_api_function():
+    r"""``wd.simulate`` is the function even after ``wheeled_dyn.simulate.reduced`` (a module
+    of the sub-package of the same name) was imported: in a fresh interpreter."""
+    import subprocess
+    import sys
+    code = ("import wheeled_dyn.simulate.reduced\nfrom wheeled_dyn import simulate\n"
+            "import wheeled_dyn as wd\nprint(callable(simulate), type(simulate).__name__, "
+            "callable(wd.compare))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.split()
+    assert out == ["True", "function", "True"]

@@ -14,7 +14,10 @@ and the command line's ``--help`` do not load Pinocchio, SymPy or matplotlib.
 from __future__ import annotations
 
 import importlib
+import sys
 from typing import Any
+
+from ._lazy import _LazyPackage
 
 __version__ = "0.1.0"
 
@@ -56,5 +59,11 @@ def __getattr__(name: str) -> Any:
 def __dir__() -> list[str]:
     return sorted(set(globals()) | set(_EXPORTS))
 
+
+# A function named as a sub-package (``simulate``) stays the function when the sub-package is
+# imported first (``import wheeled_dyn.simulate.reduced``): the import machinery's setattr
+# of the sub-package on this module is ignored for those names.
+sys.modules[__name__].__class__ = _LazyPackage
+object.__setattr__(sys.modules[__name__], "_exports", {k: v for k, v in _EXPORTS.items() if v})
 
 __all__ = sorted(_EXPORTS)
