@@ -29,7 +29,7 @@ joint's frame, turning with :math:`\psi` only; or a link frame). The heading fra
 point on the ground below the axle midpoint. Kinetic energy per link
 :math:`\tfrac12 v_J^T I_J v_J` (spatial velocity and inertia of its joint), in total
 ``pin.computeKineticEnergy``; potential :math:`-m\,g^T c` per link, in total
-``pin.computePotentialEnergy``; generalized forces from the reduced terms
+``pin.computePotentialEnergy`` plus the springs'; generalized forces from the reduced terms
 :math:`A_\nu\dot\nu + h_\nu` of the coordinate map.
 """
 
@@ -199,7 +199,7 @@ class Motion:
     def potential_energy(self, links: Sequence[str]) -> float:
         model, data = self.wm.model, self.data
         if not links:
-            return float(pin.computePotentialEnergy(model, data, self.q))
+            return self.wm.potential_energy(data, self.q)
         g = model.gravity.linear
         return float(sum(-model.inertias[j].mass * g @ data.oMi[j].act(model.inertias[j].lever)
                          for j in self._joints(links)))

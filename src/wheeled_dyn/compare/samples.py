@@ -23,6 +23,7 @@ import pinocchio as pin
 from ..errors import ParameterError
 from ..models.builder import WheeledModel
 from ..models.registry import load_model, model_entry, model_parameters
+from ..models.springs import with_stiffness
 from ..models.wip_parameters import WipParameters, random_wip_parameters
 
 
@@ -84,7 +85,8 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
     r"""Random, physically consistent inertias (log-Cholesky parameters) for every joint
     that carries mass; a random gravity. With ``keep_structure`` the URDF's inertias are
     rescaled instead: mass and each centre-of-mass coordinate by random factors, the principal
-    moments by random factors keeping the triangle inequality, the principal axes unchanged."""
+    moments by random factors keeping the triangle inequality, the principal axes unchanged.
+    Each spring's stiffness is scaled by a random factor in [0.5, 2]."""
     model = pin.Model(wm.model)
     for jid in range(1, model.njoints):
         if model.inertias[jid].mass > 0 and proportional:
@@ -110,7 +112,9 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
                 pin.LogCholeskyParameters(theta))
     _alike_wheels(wm, model, rng)
     model.gravity = pin.Motion(np.array([0.0, 0.0, -rng.uniform(5.0, 15.0)]), np.zeros(3))
-    return wm.with_model(model)
+    springs = with_stiffness(wm.springs, rng.uniform(0.5, 2.0, len(wm.springs))) \
+        if wm.springs else None
+    return wm.with_model(model, springs)
 
 
 def _alike_wheels(wm: WheeledModel, model: pin.Model, rng: np.random.Generator) -> None:

@@ -17,6 +17,7 @@ import pinocchio as pin
 import sympy as sp
 
 from ..dynamics.terms import Terms
+from ..models.springs import spring_force_batch
 from .rolling import _LWA
 from .sphere_contact import ball_jacobian
 from .wheel_contact import wheel_jacobian
@@ -61,7 +62,6 @@ def reduce_batch_multi(cmap, q: np.ndarray, nus: list[np.ndarray],
     wm, cs = cmap.wm, cmap.cs
     model, data = wm.model, cmap._data
     N = q.shape[0]
-    n = nus[0].shape[1]
     p = cmap._p
     need_J = cs.rolling in ("eliminate", "multipliers")
     A = np.empty((N, model.nv, model.nv))
@@ -77,6 +77,8 @@ def reduce_batch_multi(cmap, q: np.ndarray, nus: list[np.ndarray],
             jacobians(model, data, q[i])
             for k, jid in enumerate(ids):
                 raw[i, k] = get_jacobian(model, data, jid, _LWA)
+    if wm.springs:
+        Q += spring_force_batch(wm.springs, q, model.nv)
     J = _rolling_rows(wm, raw) if need_J else None
     if need_J and wm.contact is not None:
         ball = np.stack([ball_jacobian(wm, q[i], None, data)[0] for i in range(N)])

@@ -156,7 +156,7 @@ class CoordinateMap:
         A = pin.crba(model, data, q)
         A = np.triu(A) + np.triu(A, 1).T
         C = pin.computeCoriolisMatrix(model, data, q, v)
-        Q = pin.computeGeneralizedGravity(model, data, q)
+        Q = self.wm.potential_force(data, q)
         St = S.T
         AS = A @ S
         A_nu = St @ AS
@@ -175,7 +175,7 @@ class CoordinateMap:
 
             h_\nu + Q_\nu = S^T\big(n(q, v) + A\,\dot S\nu\big),\qquad v = S\nu,
 
-        :math:`n = C v + g` from ``pin.nonLinearEffects`` (no Coriolis matrix) and
+        :math:`n = C v + Q` from ``pin.nonLinearEffects`` (plus the springs) (no Coriolis matrix) and
         :math:`\dot S\nu` as a vector (:meth:`reduce_at` gives the matrices C, Q apart)."""
         nu = np.asarray(nu, dtype=float).reshape(-1)
         model, data = self.wm.model, self._data
@@ -200,7 +200,7 @@ class CoordinateMap:
                 Sdot_nu = -S @ (np.asarray(self._Tdot(q, v, self._p), dtype=float) @ v)
         A = pin.crba(model, data, q)
         A = np.triu(A) + np.triu(A, 1).T
-        force = S.T @ (pin.nonLinearEffects(model, data, q, v) + A @ Sdot_nu)
+        force = S.T @ (self.wm.nonlinear_effects(data, q, v) + A @ Sdot_nu)
         return S.T @ A @ S, force, S.T @ self._B, S
 
     def terms_batch(self, q_doc: np.ndarray, nu: np.ndarray) -> Terms:
@@ -255,7 +255,7 @@ def multipliers(wm: WheeledModel, q: np.ndarray, v: np.ndarray, u: np.ndarray) -
     data = model.createData()
     A = pin.crba(model, data, q)
     A = np.triu(A) + np.triu(A, 1).T
-    nle = pin.nonLinearEffects(model, data, q, v)
+    nle = wm.nonlinear_effects(data, q, v)
     J, dJ = contact_jacobian(wm, q, v)
     m = J.shape[0]
     K = np.block([[A, -J.T], [J, np.zeros((m, m))]])

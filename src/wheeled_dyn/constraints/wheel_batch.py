@@ -15,6 +15,7 @@ import pinocchio as pin
 
 from ..dynamics.terms import Terms
 from ..errors import StateError
+from ..models.springs import spring_force_batch
 from .wheel_contact import FLAT_TOL
 from .wheel_reduction import (PARAMETRISATION_TOL, RollingReduction,
                               normalised_determinant)
@@ -93,6 +94,8 @@ def terms_batch(red: RollingReduction, q: np.ndarray, nu: np.ndarray) -> Terms:
         A[i] = crba(model, data, q[i])
         C[i] = coriolis(model, data, q[i], v[i])
         Q[i] = gravity(model, data, q[i])
+    if wm.springs:
+        Q += spring_force_batch(wm.springs, q, nv)
     drows = np.empty((N, m, nv))
     for j, wc in enumerate(wheels):
         a, offset, s, d, rho = geo[j]

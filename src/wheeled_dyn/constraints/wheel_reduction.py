@@ -37,6 +37,7 @@ import pinocchio as pin
 from ..dynamics.terms import Terms, check_vector
 from ..errors import StateError
 from ..models.builder import WheeledModel
+from ..models.springs import spring_force
 from .wheel_contact import (WheelRows, solve_contact, wheel_heights, wheel_jacobian,
                             wheel_rows, wheel_rows_rate)
 
@@ -133,7 +134,7 @@ class RollingReduction:
         A = pin.crba(model, data, q)
         A = np.triu(A) + np.triu(A, 1).T
         C = pin.computeCoriolisMatrix(model, data, q, v)
-        Q = pin.computeGeneralizedGravity(model, data, q)
+        Q = self.wm.potential_force(data, q)
         A_nu = S.T @ A @ S
         C_nu = S.T @ C @ S + S.T @ A @ Sdot
         return Terms(self.velocities, self.wm.input_names, 0.5 * (A_nu + A_nu.T), C_nu,
@@ -146,7 +147,8 @@ class RollingReduction:
         S, v, _, sdot_nu = self.kinematics(q, nu)
         A = pin.crba(model, data, q)
         A = np.triu(A) + np.triu(A, 1).T
-        force = -S.T @ pin.rnea(model, data, q, v, sdot_nu)
+        force = -S.T @ (pin.rnea(model, data, q, v, sdot_nu)
+                        + spring_force(self.wm.springs, q, model.nv))
         if u is not None and len(u):
             force = force + S.T @ (self.B @ u)
         return S.T @ A @ S, force, v
@@ -166,7 +168,7 @@ class RollingReduction:
         J, dJ = wheel_jacobian(self.wm, q, v, data=data)
         A = pin.crba(model, data, q)
         A = np.triu(A) + np.triu(A, 1).T
-        nle = pin.nonLinearEffects(model, data, q, v)
+        nle = self.wm.nonlinear_effects(data, q, v)
         m = self.m
         K = np.block([[A, -J.T], [J, np.zeros((m, m))]])
         tau = self.B @ u if u is not None and len(u) else np.zeros(model.nv)
@@ -178,7 +180,7 @@ class RollingReduction:
         model, data = self.wm.model, self._data
         v = self.velocity_matrix(q) @ nu
         return float(pin.computeKineticEnergy(model, data, q, v)
-                     + pin.computePotentialEnergy(model, data, q))
+                     + self.wm.potential_energy(data, q))
 
     # -- states -----------------------------------------------------------------------------
     def on_ground(self, q: np.ndarray) -> np.ndarray:

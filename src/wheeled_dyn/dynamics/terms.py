@@ -4,7 +4,8 @@ r"""The terms of :math:`A(q)\ddot q + C(q,\dot q)\dot q + Q(q) = B u` of a model
 - :math:`C` = ``computeCoriolisMatrix``. Every joint of a wheeled model has one degree of
   freedom and the base is fixed to the world, so this is the Christoffel-consistent matrix
   :math:`C_{ij} = \sum_k c_{i,jk}\dot q_k` (checked against :mod:`.christoffel` in the tests);
-- :math:`Q = \partial U/\partial q` = ``computeGeneralizedGravity``;
+- :math:`Q = \partial U/\partial q` = ``computeGeneralizedGravity`` plus the joint springs'
+  :math:`k(q_j - q_{j,0})` (:mod:`~wheeled_dyn.models.springs`);
 - :math:`B`: each wheel motor acts on its wheel joint (reaction on the body is implied by the
   joint being relative);
 - :math:`h = C\dot q` (unique, whatever C).
@@ -67,5 +68,5 @@ def full_terms(wm: WheeledModel, q: np.ndarray, v: np.ndarray, data: pin.Data | 
     A = pin.crba(model, data, q)
     A = np.triu(A) + np.triu(A, 1).T
     C = pin.computeCoriolisMatrix(model, data, q, v).copy()
-    Q = pin.computeGeneralizedGravity(model, data, q).copy()
+    Q = wm.potential_force(data, q)
     return Terms(tuple("d" + n for n in names), wm.input_names, A, C, Q, wm.input_matrix(), C @ v)

@@ -15,7 +15,11 @@ car4                 seed 000, 1.11/  car body on four wheels rolling without si
                      1.12             front wheels steered (steer_fl, steer_fr)
 particle_table       seed 000, 1.15   ball (a particle) on a smooth table, polar r, theta about
                                       the hole its string runs through
+spring_table         seed 000, 4.6    the same particle tied to the origin by a linear spring
+                                      along r (k, free length l0)
 compound_pendulum    seed 000, 2.6    a bar on a pivot (I_g, a)
+spring_block         seed 000, 2.19   block on a pin riding a horizontal slider, a horizontal
+                                      spring K and a torsional spring K_T at the pin
 rod_pendulum         seed 000, 4.4    uniform slender rod hinged at one end
 rolling_disk         seed 000, 4.8    disk with a point mass, rolling (x = R theta imposed by
                                       the coordinate map)
@@ -64,7 +68,7 @@ COIN_RADIUS = 0.30
 
 #: The benchmark bodies described by model files, in the table's order.
 BENCHMARK_NAMES: tuple[str, ...] = (
-    "car4", "particle_table", "compound_pendulum", "rod_pendulum", "rolling_disk", "pendulum_support",
+    "car4", "particle_table", "spring_table", "compound_pendulum", "spring_block", "rod_pendulum", "rolling_disk", "pendulum_support",
     "bounce_pitch", "differential", "flywheel_rod", "free_body", "gyroscope", "sphere_plane",
     "sphere_sphere", "sphere_paraboloid", "offset_sphere_plane", "offset_sphere_sphere",
     "spheroid_plane", "rolling_coin", "bicycle")

@@ -47,7 +47,8 @@ it), so the rolling constraint acts at the tyre. Motors: the wheel joints of a p
 names constants that coordinate sets and derivation files may use (a rolling radius, a gear
 ratio); a ball rolling without slip on the ground, on a fixed sphere or inside a paraboloid
 bowl, or a spheroid on the ground, is declared by ``contact``
-(:class:`~wheeled_dyn.models.contact.SphereContact`).
+(:class:`~wheeled_dyn.models.contact.SphereContact`); a linear spring along or about a joint by
+``springs`` (:mod:`.springs`: :math:`Q` and :math:`U` then include it).
 """
 
 from __future__ import annotations
@@ -62,6 +63,7 @@ import pinocchio as pin
 from ..errors import ModelError, UnknownNameError
 from .contact import BallContact, SphereContact
 from .rolling_wheel import BoundWheelContact, WheelContact
+from .springs import SPRING_JOINTS, BoundSpring, JointSpring, spring_energy, spring_force
 from .urdf_source import UrdfSource, read_urdf
 
 #: Largest |cos| between the axle and the up direction for the axle to count as horizontal.
@@ -111,6 +113,7 @@ class ModelSpec:
     coordinate_sets: Mapping[str, Mapping] = field(default_factory=dict)  # declared sets
     default_coordinates: str | None = None       # the default coordinate set's name
     source: Path | None = None                   # the model file, if the spec came from one
+    springs: tuple[JointSpring, ...] = ()        # linear springs along or about joints
 
 
 @dataclass(frozen=True)
@@ -150,6 +153,7 @@ class WheeledModel:
     actuated: tuple[int, ...] = ()
     contact: BallContact | None = None
     rolling_wheels: tuple[BoundWheelContact, ...] = ()
+    springs: tuple[BoundSpring, ...] = ()
 
     @property
     def nv(self) -> int:
@@ -182,10 +186,28 @@ class WheeledModel:
             B[i, k] = 1.0
         return B
 
-    def with_model(self, model: pin.Model) -> "WheeledModel":
+    def with_model(self, model: pin.Model, springs: tuple[BoundSpring, ...] | None = None
+                   ) -> "WheeledModel":
         r"""The same conventions on another Pinocchio model of identical structure (e.g. other
-        inertial parameters)."""
-        return replace(self, model=model)
+        inertial parameters), and other spring stiffnesses if ``springs`` is given."""
+        return replace(self, model=model, springs=self.springs if springs is None else springs)
+
+    def potential_force(self, data: pin.Data, q: np.ndarray) -> np.ndarray:
+        r""":math:`Q(q) = \partial U/\partial q`: Pinocchio's generalised gravity plus the
+        joint springs' :math:`k (q_j - q_{j,0})` (:mod:`.springs`)."""
+        Q = pin.computeGeneralizedGravity(self.model, data, q).copy()
+        return Q + spring_force(self.springs, q, self.nv) if self.springs else Q
+
+    def potential_energy(self, data: pin.Data, q: np.ndarray) -> float:
+        r""":math:`U(q)`: gravity (Pinocchio) plus the springs' :math:`\tfrac12 k (q_j -
+        q_{j,0})^2`."""
+        U = float(pin.computePotentialEnergy(self.model, data, q))
+        return U + spring_energy(self.springs, q) if self.springs else U
+
+    def nonlinear_effects(self, data: pin.Data, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+        r""":math:`C(q, v) v + Q(q)` by ``pin.nonLinearEffects``, springs included."""
+        n = pin.nonLinearEffects(self.model, data, q, v).copy()
+        return n + spring_force(self.springs, q, self.nv) if self.springs else n
 
 
 def _joint_axis(jmodel: pin.JointModel) -> np.ndarray:
@@ -345,7 +367,8 @@ def _build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
     if len(inputs) != 2:
         raise ModelError(spec.name, None, f"{len(inputs)} input names for two wheel motors")
     return WheeledModel(spec.name, spec, model, geom, tuple(wheels), coordinate_names, inputs,
-                        {"R": rl, "L": half_track, **spec.geometry}, body_jid)
+                        {"R": rl, "L": half_track, **spec.geometry}, body_jid,
+                        springs=_bind_springs(spec, model, coordinate_names))
 
 
 def _move_joint_to(model: pin.Model, geom: pin.GeometryModel, jid: int, frame: pin.Frame) -> None:
@@ -448,7 +471,32 @@ def _build_unwheeled(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
         rolling_wheels.append(BoundWheelContact(wc, frame, axis / np.linalg.norm(axis),
                                                 np.asarray(wc.centre, dtype=float)))
     return WheeledModel(spec.name, spec, model, geom, (), coordinate_names, inputs, geometry,
-                        body_jid, tuple(actuated), contact, tuple(rolling_wheels))
+                        body_jid, tuple(actuated), contact, tuple(rolling_wheels),
+                        _bind_springs(spec, model, coordinate_names))
+
+
+def _bind_springs(spec: ModelSpec, model: pin.Model, coordinate_names: Sequence[str]
+                  ) -> tuple[BoundSpring, ...]:
+    r"""Each spring of ``spec`` on its joint, named by its URDF joint name or its coordinate
+    name; the joint must be prismatic or revolute, and carry one spring at most."""
+    out: list[BoundSpring] = []
+    for s in spec.springs:
+        if s.joint in coordinate_names:
+            jid = 1 + list(coordinate_names).index(s.joint)
+        elif model.existJointName(s.joint):
+            jid = model.getJointId(s.joint)
+        else:
+            raise UnknownNameError("joint", s.joint, list(coordinate_names),
+                                   where=f"model {spec.name}, spring {s.name}")
+        if model.joints[jid].shortname() not in SPRING_JOINTS:
+            raise ModelError(spec.name, s.joint, f"spring {s.name}: joint type "
+                             f"{model.joints[jid].shortname()}; expected prismatic or revolute")
+        if any(b.v_index == model.joints[jid].idx_v or b.spec.name == s.name for b in out):
+            raise ModelError(spec.name, s.joint, f"spring {s.name}: a second spring on this "
+                                                 "joint, or a repeated spring name")
+        out.append(BoundSpring(s, model.joints[jid].idx_q, model.joints[jid].idx_v,
+                               float(s.stiffness)))
+    return tuple(out)
 
 
 def build_wheeled_model(spec: ModelSpec) -> WheeledModel:

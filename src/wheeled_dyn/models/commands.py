@@ -6,7 +6,7 @@ import argparse
 import json
 from typing import TYPE_CHECKING
 
-from ..errors import ParameterError, StateError, UnknownNameError
+from ..errors import ParameterError, StateError
 
 if TYPE_CHECKING:       # NumPy, Pinocchio and the registry load in the handlers
     import numpy as np

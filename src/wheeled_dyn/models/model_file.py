@@ -42,8 +42,8 @@ if TYPE_CHECKING:
 #: Keys of a model file, by table (None: the top level).
 KEYS: Mapping[str | None, tuple[str, ...]] = MappingProxyType({
     None: ("name", "summary", "description", "parameters", "default_coordinates", "urdf",
-           "base", "wheels", "joints", "geometry", "contact", "rolling_wheel", "coordinates",
-           "checks"),
+           "base", "wheels", "joints", "geometry", "contact", "rolling_wheel", "spring",
+           "coordinates", "checks"),
     "urdf": ("path", "package", "package_dirs"),
     "base": ("type", "body", "up", "pitch"),
     "wheels": ("links", "radius", "inputs"),
@@ -51,6 +51,7 @@ KEYS: Mapping[str | None, tuple[str, ...]] = MappingProxyType({
     "contact": ("link", "radius", "surface", "surface_radius", "centre", "vertex_radius",
                 "polar_radius"),
     "rolling_wheel": ("link", "radius", "axis", "centre", "tyre_radius"),
+    "spring": ("name", "joint", "stiffness", "rest"),
     "checks": ("accept_inertia",),
 })
 #: Physical-parameter records a model file may name (``parameters = "wip"``).
@@ -101,6 +102,7 @@ class ModelFile:
         from .builder import ModelSpec
         from .contact import SphereContact
         from .rolling_wheel import WheelContact
+        from .springs import JointSpring
         d = self.data
         urdf, package_dirs = self.urdf_path()
         base = d.get("base", {})
@@ -127,6 +129,7 @@ class ModelFile:
             rolling_wheels=tuple(WheelContact(**{k: tuple(v) if isinstance(v, list) else v
                                                  for k, v in w.items()})
                                  for w in d.get("rolling_wheel", ())),
+            springs=tuple(JointSpring(**w) for w in d.get("spring", ())),
             accept_inertia=tuple(d.get("checks", {}).get("accept_inertia", ())),
             coordinate_sets=self.coordinate_sets,
             default_coordinates=d.get("default_coordinates"), source=self.path)
@@ -219,11 +222,33 @@ def _validate(mf: ModelFile) -> None:
         raise mf.fail("rolling_wheel", "expected [[rolling_wheel]] tables")
     for w in wheel_list:
         _check_table(mf, "rolling_wheel", w)
+    _validate_springs(mf, d.get("spring", []))
     sets = d.get("coordinates", {})
     if not isinstance(sets, dict) or not all(isinstance(v, dict) for v in sets.values()):
         raise mf.fail("coordinates", "expected [coordinates.<set name>] tables")
     if "parameters" in d and d["parameters"] not in PARAMETER_RECORDS:
         raise mf.fail("parameters", "expected one of " + ", ".join(PARAMETER_RECORDS))
+
+
+def _validate_springs(mf: ModelFile, springs: Any) -> None:
+    r"""``[[spring]]`` tables: a name, a joint (name or coordinate), a positive stiffness and
+    a rest position (default 0)."""
+    if not isinstance(springs, list):
+        raise mf.fail("spring", "expected [[spring]] tables")
+    for s in springs:
+        _check_table(mf, "spring", s)
+        for key in ("name", "joint"):
+            if not isinstance(s.get(key), str) or not s[key].isidentifier():
+                raise mf.fail(key if key in s else "spring", f"spring {key}: expected a name",
+                              "spring" if key in s else None)
+        if "stiffness" not in s:
+            raise mf.fail("spring", f"spring {s['name']}: give its stiffness")
+        _number(mf, "spring", "stiffness", s["stiffness"])
+        if s["stiffness"] <= 0:
+            raise mf.fail("stiffness", f"spring {s['name']}: expected a positive stiffness, "
+                          f"got {s['stiffness']!r}", "spring")
+        if "rest" in s:
+            _number(mf, "spring", "rest", s["rest"])
 
 
 def read_model_file(path: str | Path) -> ModelFile:

@@ -26,6 +26,7 @@ from .benchmarks import PYTHON_BENCHMARKS
 from .builder import ModelSpec, WheeledModel, build_wheeled_model
 from .listing import shipped_model_files
 from .model_file import ModelFile, is_model_path, read_model_file
+from .springs import spring_parameters
 from .wip_parameters import STANDARD_NAMES, WipParameters, standard_parameters
 
 
@@ -147,9 +148,10 @@ def apply_wip_parameters(wm: WheeledModel, p: WipParameters) -> WheeledModel:
 def model_parameters(wm: WheeledModel) -> dict[str, float]:
     r"""Numeric values of the model's named parameters: its geometry (R, L for a wheeled
     model; the spec's named constants otherwise), g and, per link with mass, Khalil's standard
-    parameters keyed ``XX(link)`` etc. (in the link frame)."""
+    parameters keyed ``XX(link)`` etc. (in the link frame), and each spring's ``k_<name>``,
+    ``rest_<name>``."""
     out = {**{k: float(v) for k, v in wm.geometry.items()},
-           "g": float(-wm.model.gravity.linear[2])}
+           "g": float(-wm.model.gravity.linear[2]), **spring_parameters(wm.springs)}
     for frame in wm.model.frames:
         if frame.type != pin.FrameType.BODY:
             continue

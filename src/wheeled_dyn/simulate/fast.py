@@ -141,7 +141,7 @@ def _model_key(wm: WheeledModel, cs: CoordinateSet) -> tuple:
     from ..symbolic.wheeled import coordinate_set_key
     inertias = tuple(x for pi in numeric_parameters(wm.model).values() for x in pi)
     return (wm.name, model_fingerprint(wm.model), inertias, tuple(wm.model.armature),
-            tuple(wm.model.gravity.linear), tuple(w.radius for w in wm.wheels),
+            tuple(wm.model.gravity.linear), tuple(w.radius for w in wm.wheels), wm.springs,
             coordinate_set_key(cs))
 
 

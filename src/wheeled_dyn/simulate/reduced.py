@@ -23,7 +23,6 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-import pinocchio as pin
 from scipy.integrate import solve_ivp
 
 from ..constraints.batch import reduce_batch
@@ -61,7 +60,7 @@ def energy(cmap: CoordinateMap, q: np.ndarray, nu: np.ndarray,
     holonomic sets)."""
     terms, _, _ = cmap.reduce_at(q, nu, q_doc)
     return float(0.5 * nu @ terms.A @ nu
-                 + pin.computePotentialEnergy(cmap.wm.model, cmap.wm.model.createData(), q))
+                 + cmap.wm.potential_energy(cmap.wm.model.createData(), q))
 
 
 def energies(cmap: CoordinateMap, q: np.ndarray, nu: np.ndarray,
@@ -71,7 +70,7 @@ def energies(cmap: CoordinateMap, q: np.ndarray, nu: np.ndarray,
     from the batched reduction (:func:`~wheeled_dyn.constraints.batch.reduce_batch`)."""
     A = reduce_batch(cmap, q, nu, q_doc).A
     data = cmap.wm.model.createData()
-    potential = np.array([pin.computePotentialEnergy(cmap.wm.model, data, x) for x in q])
+    potential = np.array([cmap.wm.potential_energy(data, x) for x in q])
     return 0.5 * np.einsum("ni,nij,nj->n", nu, A, nu) + potential
 
 

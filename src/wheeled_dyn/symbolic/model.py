@@ -34,7 +34,7 @@ import sympy as sp
 
 from ..errors import ModelError
 from .exact import exact_length, exact_translation
-from .kinematics import JointKinematics, exact_matrix, exact_number, joint_kinematics, \
+from .kinematics import JointKinematics, exact_matrix, joint_kinematics, \
     kinematics_in_ring
 from .lagrange import lagrange_terms
 from .parameters import kinetic_energy_body, potential_energy_body, resolve_parameters

@@ -27,6 +27,7 @@ from ..models.builder import WheeledModel
 from .exact import exact_model
 from .kinematics import forward_kinematics
 from .model import _gravity
+from .springs import spring_terms, with_springs
 from .tree import TreeDynamics, _Namer, tree_dynamics
 from .wheeled import _setup, velocity_basis
 
@@ -135,6 +136,7 @@ def tree_wheeled(wm: WheeledModel, cs: CoordinateSet, parameters: str = "standar
     g = _gravity(model, setup["gravity"])
     td = tree_dynamics(model, setup["params"], wm.coordinate_names, gravity=list(g),
                        armature=setup["armature"], translations=setup["translations"])
+    td = with_springs(td, spring_terms(wm, parameters))
     J = _wheel_rows(wm, model, td, setup["radius"], setup["translations"]) \
         if cs.rolling != "none" else None
     S, Sdot, config, pos, nu = velocity_basis(wm, cs, setup, td.q, td.qd, J)

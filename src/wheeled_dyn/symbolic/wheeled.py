@@ -67,6 +67,7 @@ from .kinematics import exact_number
 from .model import SymbolicModel
 from .parameters import PARAMETER_NAMES, numeric_parameters
 from .simplify import canonical_trig, simplify_expr
+from .springs import spring_terms, with_springs
 from .transform import ReducedSymbolic, time_derivative, transform
 
 #: Parameter modes of :func:`wheeled_symbolic`.
@@ -350,12 +351,12 @@ def symbolic_parts(wm: WheeledModel, cs: CoordinateSet, parameters: str = "physi
     sym = cached_symbolic_model(exact_model(wm.model), setup["params"], wm.coordinate_names,
                                 setup["gravity"], simplify, translations=setup["translations"],
                                 armature=setup["armature"], real=True)
+    sym = with_springs(sym, spring_terms(wm, parameters))
     if model_coordinates and cs.kind != "quasi":
         raise ModelError(wm.name, cs.name, "terms in model coordinates need a quasi-velocity "
                                            "set (kind = 'quasi')")
     J = contact_rows(sym, wm, setup["radius"]) if cs.rolling != "none" else None
     S, Sdot, config, pos, nu = velocity_basis(wm, cs, setup, sym.q, sym.qd, J)
-    n = sym.n
     B = sp.Matrix(wm.input_matrix().astype(int)) if wm.input_matrix().size else None
     if model_coordinates:
         subs, coords = {}, sym.q
@@ -449,7 +450,8 @@ def _true_key(model: str, cs: CoordinateSet, wm: WheeledModel) -> str:
     h = hashlib.sha256()
     for part in ("true_expressions", model, sp.__version__, _code_digest(),
                  model_fingerprint(wm.model, coordinate_names=wm.coordinate_names),
-                 repr(wm.geometry), repr(wm.input_names), coordinate_set_key(cs)):
+                 repr(wm.geometry), repr(wm.input_names), repr(wm.springs),
+                 coordinate_set_key(cs)):
         h.update(str(part).encode())
         h.update(b"\x00")
     return h.hexdigest()
