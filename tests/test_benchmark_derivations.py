@@ -30,14 +30,16 @@ N_STATES = 12
 SAMPLES, PARAM_SETS = 60, 2
 
 SEED000 = {"p2_2b_eccentric_disk", "p2_6_compound_pendulum", "p4_4_rod_pendulum", "p4_8_rolling_disk",
+           "p4_6_spring_particle",
            "p4_9_pendulum_support", "p4_12_bounce_pitch", "p4_13_differential",
            "p4_13_differential_theta1", "p4_17_flywheel_rod", "p7_2_euler_equations"}
 SEED002 = {"s3_3_sphere_plane", "s3_12_sphere_sphere"}
 #: Seed 000 files of steps only (kinematics, constraints, balances; no equations of motion):
-#: tests/test_seed000_car_constraints.py, tests/test_newton_euler_steps.py (seed 002's
+#: tests/test_seed000_car_constraints.py, tests/test_newton_euler_steps.py,
+#: tests/test_springs.py (seed 002's
 #: s3_8_paraboloid: tests/test_ball_surface.py).
 STEPS_ONLY = {"p1_11_car_constraints", "p1_15_particle", "p2_7_vehicle", "p2_13_vehicle",
-              "p5_1_body_axes", "p7_7_gyroscope"}
+              "p2_19_spring_block", "p5_1_body_axes", "p7_7_gyroscope"}
 
 #: Elements each document gets wrong (1-based labels); every other element agrees.
 WRONG = {
