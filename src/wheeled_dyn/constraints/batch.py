@@ -1,7 +1,8 @@
 r"""The reduction of :mod:`.reduction` for many states at once.
 
-Pinocchio is called per state (``crba``, joint Jacobians and their time variation,
-``computeCoriolisMatrix``, ``computeGeneralizedGravity``); everything else — the coordinate
+Pinocchio is called per state (``crba`` in the world convention, which leaves the joint
+Jacobians in ``data``, ``computeCoriolisMatrix``, which leaves their time variation there too,
+and ``computeGeneralizedGravity``); everything else — the coordinate
 map's expressions, the pseudo-inverse of :math:`[J_c; T]`, :math:`\dot S` and the projections
 :math:`S^TAS`, :math:`S^TCS + S^TA\dot S`, :math:`S^TQ`, :math:`S^TB` — is done on stacked
 arrays. The result is a :class:`~wheeled_dyn.dynamics.terms.Terms` whose arrays have a leading
@@ -68,13 +69,12 @@ def reduce_batch_multi(cmap, q: np.ndarray, nus: list[np.ndarray],
     Q = np.empty((N, model.nv))
     ids = [wheel.joint_id for wheel in wm.wheels]
     raw = np.empty((N, len(ids), 6, model.nv))
-    crba, gravity = pin.crba, pin.computeGeneralizedGravity
-    jacobians, get_jacobian = pin.computeJointJacobians, pin.getJointJacobian
+    crba, gravity, world = pin.crba, pin.computeGeneralizedGravity, pin.Convention.WORLD
+    get_jacobian = pin.getJointJacobian
     for i in range(N):
-        A[i] = crba(model, data, q[i])
+        A[i] = crba(model, data, q[i], world)       # fills the joint Jacobians data.J too
         Q[i] = gravity(model, data, q[i])
         if need_J:
-            jacobians(model, data, q[i])
             for k, jid in enumerate(ids):
                 raw[i, k] = get_jacobian(model, data, jid, _LWA)
     if wm.springs:
@@ -93,8 +93,10 @@ def reduce_batch_multi(cmap, q: np.ndarray, nus: list[np.ndarray],
         S = cmap._S_batch(N, *q_doc.T, *p)
     else:
         T = cmap._T_batch(N, *q.T, *p)
-        if cs.rolling == "eliminate":
-            Mp = np.linalg.pinv(np.concatenate([J, T], axis=1))
+        if cs.rolling == "eliminate":         # full column rank: M+ = (M^T M)^-1 M^T
+            M = np.concatenate([J, T], axis=1)
+            Mt = np.swapaxes(M, 1, 2)
+            Mp = np.linalg.solve(Mt @ M, Mt)
             S = Mp[:, :, w:]
         else:
             S = np.linalg.inv(T)
@@ -105,16 +107,14 @@ def reduce_batch_multi(cmap, q: np.ndarray, nus: list[np.ndarray],
     B_nu = St @ cmap._B
     G = J @ S if cs.rolling == "multipliers" else None
     need_dJ = cs.kind == "quasi" and cs.rolling == "eliminate"
-    coriolis = pin.computeCoriolisMatrix
-    variation, get_variation = pin.computeJointJacobiansTimeVariation, pin.getJointJacobianTimeVariation
+    coriolis, get_variation = pin.computeCoriolisMatrix, pin.getJointJacobianTimeVariation
     out = []
     for nu in nus:
         v = np.einsum("nij,nj->ni", S, nu)
         C = np.empty_like(A)
         for i in range(N):
-            C[i] = coriolis(model, data, q[i], v[i])
+            C[i] = coriolis(model, data, q[i], v[i])     # fills data.J and data.dJ too
             if need_dJ:
-                variation(model, data, q[i], v[i])
                 for k, jid in enumerate(ids):
                     raw[i, k] = get_variation(model, data, jid, _LWA)
         if cs.kind == "holonomic":
