@@ -4,7 +4,8 @@ Pinocchio-backed one (``simulate``), in one run.
 Scenario: seed 001's WIP (default parameters) released from a tilt of 0.3 rad at rest, zero
 input, 10 s of motion sampled at 1 kHz (10 001 samples): the body falls and swings under the
 axle, the wheels roll. Reported for each integrator: wall time (including the energy of every
-sample), speed as a multiple of real time (target >= 100x for the fast one), relative energy
+sample), speed as a multiple of real time (target >= 100x for the fast one, >= 30x for the
+Pinocchio-backed one), relative energy
 drift (target <= 1e-6 over 10 s); then the agreement of the two trajectories. The fast one's
 one-off cost (symbolic derivation into an empty cache, compilation) is reported apart.
 
@@ -29,6 +30,8 @@ from wheeled_dyn.simulate.reduced import ATOL, RTOL
 DURATION, RATE, TILT = 10.0, 1000.0, 0.3
 #: Targets of the issue.
 SPEED_TARGET, DRIFT_TARGET = 100.0, 1e-6
+#: The Pinocchio-backed simulation's target (times real time).
+PINOCCHIO_TARGET = 30.0
 REPEAT = 3
 
 
@@ -91,14 +94,15 @@ def main() -> int:
           f"{t_same:7.3f} s wall, {DURATION / t_same:7.1f}x real time, energy drift "
           f"{same.relative_energy_drift():.1e}")
     print(f"  Pinocchio (simulate, DOP853 rtol={RTOL:g} atol={ATOL:g}):         "
-          f"{t_slow:7.3f} s wall, {speed_slow:7.1f}x real time, energy drift {d_slow:.1e}")
+          f"{t_slow:7.3f} s wall, {speed_slow:7.1f}x real time (target >= "
+          f"{PINOCCHIO_TARGET:g}x), energy drift {d_slow:.1e}")
     print(f"  speed fast / Pinocchio: {speed_fast / speed_slow:6.1f}x (same tolerances: "
           f"{t_slow / t_same:6.1f}x)")
     for label, a in (("fast", fast), ("fast, same tolerances", same)):
         dq, dnu, dE = agreement(a, slow)
         print(f"  agreement with Pinocchio over {DURATION:.0f} s ({label}): max |dq| {dq:.1e}, "
               f"max |dnu| {dnu:.1e}, max |dE|/E0 {dE:.1e}")
-    ok = speed_fast >= SPEED_TARGET and d_fast <= DRIFT_TARGET
+    ok = speed_fast >= SPEED_TARGET and d_fast <= DRIFT_TARGET and speed_slow >= PINOCCHIO_TARGET
     print(f"  targets: {'met' if ok else 'NOT met'}")
     return 0 if ok else 1
 

@@ -12,6 +12,7 @@ axis of length N.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import NamedTuple
 
 import numpy as np
 import pinocchio as pin
@@ -56,28 +57,39 @@ def reduce_batch(cmap, q: np.ndarray, nu: np.ndarray, q_doc: np.ndarray | None =
     return reduce_batch_multi(cmap, q, [nu], q_doc)[0]
 
 
-def reduce_batch_multi(cmap, q: np.ndarray, nus: list[np.ndarray],
-                       q_doc: np.ndarray | None = None) -> list[Terms]:
-    r"""As :func:`reduce_batch` for several velocity arrays at the same configurations: what
-    depends on q only (A, Q, J_c, S) is computed once."""
+class _Configuration(NamedTuple):
+    r"""What depends on the configurations only: A (symmetric), Q, J_c, the velocity basis S
+    and, with rolling eliminated, :math:`[J_c; T]^+` (its first ``w`` columns: J_c's)."""
+
+    A: np.ndarray
+    Q: np.ndarray | None
+    J: np.ndarray | None
+    S: np.ndarray
+    Mp: np.ndarray | None
+    raw: np.ndarray
+
+
+def _configuration(cmap, q: np.ndarray, q_doc: np.ndarray | None,
+                   with_gravity: bool = True) -> _Configuration:
     wm, cs = cmap.wm, cmap.cs
     model, data = wm.model, cmap._data
     N = q.shape[0]
     p = cmap._p
     need_J = cs.rolling in ("eliminate", "multipliers")
     A = np.empty((N, model.nv, model.nv))
-    Q = np.empty((N, model.nv))
+    Q = np.empty((N, model.nv)) if with_gravity else None
     ids = [wheel.joint_id for wheel in wm.wheels]
     raw = np.empty((N, len(ids), 6, model.nv))
     crba, gravity, world = pin.crba, pin.computeGeneralizedGravity, pin.Convention.WORLD
     get_jacobian = pin.getJointJacobian
     for i in range(N):
         A[i] = crba(model, data, q[i], world)       # fills the joint Jacobians data.J too
-        Q[i] = gravity(model, data, q[i])
+        if with_gravity:
+            Q[i] = gravity(model, data, q[i])
         if need_J:
             for k, jid in enumerate(ids):
                 raw[i, k] = get_jacobian(model, data, jid, _LWA)
-    if wm.springs:
+    if wm.springs and with_gravity:
         Q += spring_force_batch(wm.springs, q, model.nv)
     J = _rolling_rows(wm, raw) if need_J else None
     if need_J and wm.contact is not None:
@@ -86,7 +98,6 @@ def reduce_batch_multi(cmap, q: np.ndarray, nus: list[np.ndarray],
     if need_J and wm.rolling_wheels:
         tilt = np.stack([wheel_jacobian(wm, q[i], None, data)[0] for i in range(N)])
         J = np.concatenate([J, tilt], axis=1)
-    w = J.shape[1] if J is not None else 0
     A = np.triu(A) + np.swapaxes(np.triu(A, 1), 1, 2)
     Mp = None
     if cs.kind == "holonomic":
@@ -97,12 +108,36 @@ def reduce_batch_multi(cmap, q: np.ndarray, nus: list[np.ndarray],
             M = np.concatenate([J, T], axis=1)
             Mt = np.swapaxes(M, 1, 2)
             Mp = np.linalg.solve(Mt @ M, Mt)
-            S = Mp[:, :, w:]
+            S = Mp[:, :, J.shape[1]:]
         else:
             S = np.linalg.inv(T)
+    return _Configuration(A, Q, J, S, Mp, raw)
+
+
+def _project(A: np.ndarray, S: np.ndarray) -> np.ndarray:
+    A_nu = np.swapaxes(S, 1, 2) @ A @ S
+    return 0.5 * (A_nu + np.swapaxes(A_nu, 1, 2))
+
+
+def reduced_mass_batch(cmap, q: np.ndarray, q_doc: np.ndarray | None = None) -> np.ndarray:
+    r""":math:`A_\nu = S^TAS` at N configurations (no velocities: the kinetic energies of
+    a trajectory's samples need nothing else)."""
+    c = _configuration(cmap, q, q_doc, with_gravity=False)
+    return _project(c.A, c.S)
+
+
+def reduce_batch_multi(cmap, q: np.ndarray, nus: list[np.ndarray],
+                       q_doc: np.ndarray | None = None) -> list[Terms]:
+    r"""As :func:`reduce_batch` for several velocity arrays at the same configurations: what
+    depends on q only (A, Q, J_c, S) is computed once."""
+    wm, cs = cmap.wm, cmap.cs
+    model, data = wm.model, cmap._data
+    N = q.shape[0]
+    p = cmap._p
+    A, Q, J, S, Mp, raw = _configuration(cmap, q, q_doc)
+    ids = [wheel.joint_id for wheel in wm.wheels]
     St = np.swapaxes(S, 1, 2)
-    A_nu = St @ A @ S
-    A_nu = 0.5 * (A_nu + np.swapaxes(A_nu, 1, 2))
+    A_nu = _project(A, S)
     Q_nu = np.einsum("nji,nj->ni", S, Q)
     B_nu = St @ cmap._B
     G = J @ S if cs.rolling == "multipliers" else None

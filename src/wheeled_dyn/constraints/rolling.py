@@ -66,6 +66,32 @@ def contact_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = Non
     return np.vstack(rows), (np.vstack(drows) if v is not None else None)
 
 
+def planar_rows(wm: WheeledModel, data: pin.Data) -> np.ndarray:
+    r""":math:`J_c` of the drive wheels (2·wheels × nv) from the joint Jacobians already in
+    ``data`` (left there by ``crba`` in the world convention, or ``computeJointJacobians``):
+    per wheel the world x row :math:`J_x - R J_{\omega_y}` and y row
+    :math:`J_y + R J_{\omega_x}` of :math:`J_{lin} + R [e_z]_\times J_\omega`."""
+    rows = []
+    for wheel in wm.wheels:
+        J = pin.getJointJacobian(wm.model, data, wheel.joint_id, _LWA)
+        rows += [J[0] - wheel.radius * J[4], J[1] + wheel.radius * J[3]]
+    return np.array(rows).reshape(-1, wm.model.nv)
+
+
+def planar_drift(wm: WheeledModel, data: pin.Data, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+    r""":math:`\dot J_c v` of the drive wheels: with :math:`\ddot q = 0` the classical
+    acceleration of each wheel joint's origin and its angular acceleration are
+    :math:`\dot J v` (``forwardKinematics(q, v, 0)``), taken through the same rows."""
+    model = wm.model
+    pin.forwardKinematics(model, data, q, v, np.zeros(model.nv))
+    out = []
+    for wheel in wm.wheels:
+        a = pin.getClassicalAcceleration(model, data, wheel.joint_id, _LWA)
+        lin, ang = a.linear, a.angular
+        out += [lin[0] - wheel.radius * ang[1], lin[1] + wheel.radius * ang[0]]
+    return np.array(out)
+
+
 def contact_points(wm: WheeledModel, q: np.ndarray) -> np.ndarray:
     r"""World positions of the contact points (one row per wheel)."""
     data = wm.model.createData()

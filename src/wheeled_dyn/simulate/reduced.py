@@ -25,8 +25,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ..constraints.batch import reduce_batch
-from ..constraints.reduction import CoordinateMap
+from ..constraints.batch import reduced_mass_batch
+from ..constraints.reduction import CoordinateMap, spd_solve
 from ..errors import StateError
 
 #: Default integration tolerances (relative, absolute).
@@ -67,8 +67,8 @@ def energies(cmap: CoordinateMap, q: np.ndarray, nu: np.ndarray,
              q_doc: np.ndarray | None = None) -> np.ndarray:
     r""":func:`energy` at N samples at once (``q``: N model configurations, ``nu``: N × n
     document velocities, ``q_doc`` the document positions of holonomic sets): :math:`A_\nu`
-    from the batched reduction (:func:`~wheeled_dyn.constraints.batch.reduce_batch`)."""
-    A = reduce_batch(cmap, q, nu, q_doc).A
+    from the batched reduction (:func:`~wheeled_dyn.constraints.batch.reduced_mass_batch`)."""
+    A = reduced_mass_batch(cmap, q, q_doc)
     data = cmap.wm.model.createData()
     potential = np.array([cmap.wm.potential_energy(data, x) for x in q])
     return 0.5 * np.einsum("ni,nij,nj->n", nu, A, nu) + potential
@@ -104,7 +104,7 @@ def simulate(cmap: CoordinateMap, q0: np.ndarray, nu0: np.ndarray, duration: flo
             A, hQ, B, S = cmap.dynamics_at(q, nu)
             qdot = S @ nu
         force = B @ control(t, q, nu) - hQ
-        return np.concatenate([qdot, np.linalg.solve(A, force)])
+        return np.concatenate([qdot, spd_solve(A, force)])
 
     y0 = np.concatenate([np.asarray(q0, float).reshape(-1), np.asarray(nu0, float).reshape(-1)])
     if y0.shape != (nq + n,) or not np.all(np.isfinite(y0)):
