@@ -147,6 +147,8 @@ def engine():
 
 
 def test_seed000_4_6_agrees(engine):
+    r"""Every element agrees (the boxed theta equation is the printed one divided by m r^2,
+    a factor the comparison finds: tests/test_row_functions.py)."""
     result = engine.compare(load_derivation(_seed_file()))
     assert result.records and all(r.verdict == "agrees" for r in result.records), \
         [(r.element, r.verdict, r.diagnoses) for r in result.records if r.verdict != "agrees"]

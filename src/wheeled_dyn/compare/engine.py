@@ -30,7 +30,7 @@ import sympy as sp
 
 from ..constraints.reduction import CoordinateMap
 from ..derivations.schema import Derivation, equation_labels
-from . import causes, closed_form, conventions
+from . import causes, closed_form, conventions, row_functions
 from .diagnose import (
     agrees,
     max_error,
@@ -66,6 +66,7 @@ from .samples import (
     SpecialCase,
     parameter_sets,
     random_states,
+    regular_states,
     special_cases,
 )
 from .assumptions import Assumptions, apply_to_truth, declared, position_ranges
@@ -75,6 +76,8 @@ from .units import DimensionChecker
 SPECIAL_SAMPLES, SPECIAL_SETS = 40, 2
 #: Samples the convention search scores each reading on (spread over the parameter sets).
 SEARCH_SAMPLES = 400
+#: The grid a row divided by a function is identified on: states per set, parameter sets.
+ROW_FUNCTION_STATES, ROW_FUNCTION_SETS = 8, 16
 
 
 class ComparisonEngine:
@@ -113,6 +116,7 @@ class ComparisonEngine:
             n = len(cs.positions)
             ranges = position_ranges(d, cs.positions, assumed)
             q, nu = random_states(n, k * n_states, rng, ranges)
+            q = regular_states(cmap, q, rng, ranges)
             q, nu = q.reshape(k, n_states, n), nu.reshape(k, n_states, n)
             truth = truth_for(cmap, sets, q, nu)
             apply_to_truth(truth, assumed)
@@ -128,6 +132,20 @@ class ComparisonEngine:
         if doc.H is not None and H_rows is not None:
             doc.H = doc.H[H_rows]
         return doc, per_set
+
+    def _row_functions(self, d: Derivation, ev: "_Evaluation") -> dict[int, sp.Expr]:
+        r"""Rows the document divided by a function of the state or of the parameters
+        (:mod:`.row_functions`), identified on a grid of :data:`ROW_FUNCTION_SETS` parameter
+        sets (a quantity of the parameters alone takes one value per set)."""
+        rows = row_functions.candidate_rows(ev.doc, ev.truth, ev.row_factor)
+        if not rows:
+            return {}
+        truth, sets, q, nu, _ = self._grid(d, (), ROW_FUNCTION_STATES, ROW_FUNCTION_SETS,
+                                           declared(d))
+        doc, per_set = self._document(d, ev.funcs, sets, q, nu, truth.H_rows)
+        values = {s: np.repeat([v[s] for v in per_set], ROW_FUNCTION_STATES)
+                  for s in ev.funcs.params}
+        return row_functions.state_row_factors(d, doc, truth, q.reshape(-1, d.n), values, rows)
 
     # -- main ----------------------------------------------------------------------------
     def compare(self, d: Derivation) -> DerivationResult:
@@ -154,6 +172,17 @@ class ComparisonEngine:
                     "the equations are printed in another order than the coordinates ("
                     f"{conventions.describe_rows(d, rows[0])}): compared in that order")))
                 result, ev = again, ev2
+        factors = self._row_functions(d, ev)
+        if factors:
+            scaled = row_functions.with_row_factors(d, factors)
+            again, ev2 = self._judge(scaled)
+            if again.counts()["agrees"] > result.counts()["agrees"]:
+                first.append(Cause(kind="convention", elements=(), explanation=(
+                    f"{row_functions.describe_factors(d, factors)}: compared so (an equation "
+                    "divided by a quantity that does not vanish is as right as before)")))
+                d, ev = scaled, ev2
+                result = replace(again, row_functions=tuple(
+                    sp.sstr(factors[i]) if i in factors else None for i in range(d.n)))
         declared_counts = result.counts()
         summary = None
         best = conventions.best_reading(d, ev.doc_at, ev.score)

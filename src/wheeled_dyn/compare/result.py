@@ -182,6 +182,9 @@ class DerivationResult:
     order: tuple = field(default=())
     #: values the file gives as LaTeX: item → (the LaTeX as written, the text it was read as)
     latex_input: Mapping[str, tuple[str, str]] = field(default_factory=dict)
+    #: per equation, the function of the state or parameters the document multiplied it by,
+    #: found by the comparison (:mod:`.row_functions`; SymPy text), None where none
+    row_functions: tuple[str | None, ...] = field(default=())
 
     def counts(self) -> dict[str, int]:
         out = {v: 0 for v in VERDICTS}
@@ -206,6 +209,7 @@ class DerivationResult:
                 "conventions": None if self.conventions is None else self.conventions.as_dict(),
                 "causes": [c.as_dict() for c in self.causes],
                 "counts": self.counts(), "row_factors": list(self.row_factors),
+                "row_functions": list(self.row_functions),
                 "energy": self.energy.as_dict() if self.energy else None,
                 "asymmetric": list(self.asymmetric), "constraints": list(self.constraints),
                 "reconstructed": dict(self.reconstructed), "samples": self.samples,

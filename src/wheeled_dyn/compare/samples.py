@@ -163,6 +163,21 @@ def special_cases(model_name: str) -> tuple[SpecialCase, ...]:
         else (URDF_STRUCTURE, URDF_PROPORTIONS)
 
 
+def regular_states(cmap, q: np.ndarray, rng: np.random.Generator,
+                   ranges: Sequence[tuple[float, float]] | None = None) -> np.ndarray:
+    r"""``q`` (N × n document positions) with every position where the coordinate map's
+    condition number exceeds :data:`MAX_CONDITION` drawn again (at most
+    :data:`REDRAWS` times): the truth there is rounding. Positions that stay singular are
+    kept (a document whose coordinates are singular everywhere is judged as it is)."""
+    q = np.array(q, dtype=float)
+    for _ in range(REDRAWS):
+        bad = np.flatnonzero(cmap.conditioning(q) > MAX_CONDITION)
+        if not bad.size:
+            break
+        q[bad] = random_states(q.shape[1], len(bad), rng, ranges)[0]
+    return q
+
+
 def random_states(n_positions: int, n: int, rng: np.random.Generator,
                   ranges: Sequence[tuple[float, float]] | None = None) -> tuple[np.ndarray, np.ndarray]:
     r"""``n`` states: positions uniform in [-π, π] (or in the document's declared ``ranges``,
@@ -171,5 +186,12 @@ def random_states(n_positions: int, n: int, rng: np.random.Generator,
     return rng.uniform(low, high, (n, n_positions)), rng.normal(size=(n, n_positions))
 
 
-__all__ = ["ParameterSet", "SpecialCase", "WIP_SPECIAL_CASES", "namespace_values",
-           "parameter_sets", "random_states", "special_cases", "replace"]
+#: Largest condition number of the coordinate map at a sampled state: near a singularity of
+#: the document's coordinates the reduced terms carry errors of order cond³ × rounding.
+MAX_CONDITION = 100.0
+#: Times a singular sample is drawn again.
+REDRAWS = 5
+
+__all__ = ["MAX_CONDITION", "ParameterSet", "SpecialCase", "WIP_SPECIAL_CASES",
+           "namespace_values", "parameter_sets", "random_states", "regular_states",
+           "special_cases", "replace"]

@@ -35,6 +35,7 @@ from .causes import claim_causes
 from .diagnose import agrees, max_error, value_diagnoses
 from .evaluate import document_symbol_values
 from .result import Cause, DerivationResult, ElementRecord
+from .row_functions import with_row_functions
 from .samples import parameter_sets
 from .step_records import STEP_SETS, STEP_STATES, compare_steps
 
@@ -208,8 +209,9 @@ def with_steps(d: Derivation, compare: Callable[[Derivation], DerivationResult],
     if not own and not fed:
         return base
     steps = own + [r for _, recs in fed for r in recs]
-    consistency = energy_consistency(d, d, seed) + [r for sd, _ in fed
-                                                   for r in energy_consistency(sd, d, seed)]
+    eom = with_row_functions(d, base.row_functions)   # equations divided as found
+    consistency = energy_consistency(d, eom, seed) + [r for sd, _ in fed
+                                                     for r in energy_consistency(sd, eom, seed)]
     causes = claim_causes(steps) + upstream_causes(steps, base.records, d)
     return replace(base, records=tuple(base.records) + tuple(steps) + tuple(consistency),
                    causes=tuple(base.causes) + tuple(causes))

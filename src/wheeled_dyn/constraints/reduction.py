@@ -219,6 +219,23 @@ class CoordinateMap:
         q = self._config_batch(len(q_doc), *q_doc.T, *self._p)[:, :, 0]
         return reduce_batch(self, q, nu, q_doc)
 
+    def conditioning(self, q_doc: np.ndarray) -> np.ndarray:
+        r"""The condition number, at N document positions, of the map between the document's
+        velocities and the model's: :math:`S(q)` of a holonomic set, :math:`T(q)` of a
+        quasi-velocity set. Near a singularity of the document's coordinates (the pitch
+        :math:`\pm\pi/2` of ZYX angles) it grows without bound, and so do the rounding
+        errors of :math:`S^TAS`, :math:`\dot S`, ..."""
+        q_doc = np.atleast_2d(np.asarray(q_doc, dtype=float))
+        N = len(q_doc)
+        if self.cs.kind == "holonomic":
+            M = self._S_batch(N, *q_doc.T, *self._p)
+        else:
+            q = self._config_batch(N, *q_doc.T, *self._p)[:, :, 0]
+            M = self._T_batch(N, *q.T, *self._p)
+        with np.errstate(all="ignore"):
+            out = np.linalg.cond(M)
+        return np.where(np.isfinite(out), out, np.inf)
+
     def terms(self, q_doc: np.ndarray, nu: np.ndarray) -> Terms:
         r"""The terms at a document state (positions ``q_doc``, velocities ``nu``)."""
         q_doc = check_vector("q", q_doc, self.n, self.cs.positions)
