@@ -24,7 +24,8 @@ from wheeled_dyn.constraints.batch import reduce_batch
 from wheeled_dyn.coordinates.builtin import builtin_coordinate_set
 from wheeled_dyn.derivations import builtin_derivations, load_derivation
 from wheeled_dyn.dynamics.terms import full_terms
-from wheeled_dyn.errors import InputFileError, ModelError, ParameterError, UnknownNameError
+from wheeled_dyn.errors import (DerivationError, InputFileError, ModelError, ParameterError,
+                                 UnknownNameError)
 from wheeled_dyn.models.builder import build_wheeled_model
 from wheeled_dyn.models.model_file import read_model_file
 from wheeled_dyn.models.registry import load_model, model_parameters
@@ -185,6 +186,41 @@ def test_seed000_2_19_small_motions(engine):
     verdict, diagnoses = by_name["x2' = theta''"]
     assert verdict == "differs" and diagnoses == ("term x: factor: the document is 2 × the truth",)
     assert by_name["row 1"][0] == by_name["row 2"][0] == "differs"
+
+
+def test_seed000_2_19_balances_with_the_springs_laws_agree(engine):
+    r"""(1A)-(3A): the pin's spring force and the torsional spring's moment are given by their
+    laws, the normal force N is unknown; all three balances agree."""
+    verdicts = _verdicts(engine, _seed_file("p2_19_spring_block"))
+    balances = {e: v for e, v in verdicts.items() if e.startswith("(1A)-(3A)")}
+    assert len(balances) == 3 and all(v[0] == "agrees" for v in balances.values()), balances
+
+
+@pytest.mark.parametrize("printed, planted, named", [
+    ("-K*l*theta + N*H/2*sin(theta)", "K*l*theta + N*H/2*sin(theta)",
+     "sign: the term K*l*theta has the wrong sign"),               # the spring's moment
+    ("- K*(x_in - x)*H/2*cos(theta) = I_cg", "- K*(x_in - x)*H/2*sin(theta) = I_cg",
+     "swap: sin(theta) where cos(theta) fits"),
+    ("-K*l*theta + N*H/2*sin(theta)", "-K*l*theta + N*H*sin(theta)", "term N"),   # arm of N
+])
+def test_planted_errors_in_a_balance_with_laws_are_named(engine, tmp_path, printed, planted,
+                                                         named):
+    text = _seed_file("p2_19_spring_block").read_text()
+    assert printed in text
+    path = tmp_path / "planted.toml"
+    path.write_text(text.replace(printed, planted, 1))
+    verdict, diagnoses = _verdicts(engine, path)["(1A)-(3A) newton-euler (3A)"]
+    assert verdict == "differs" and any(named in x for x in diagnoses), diagnoses
+
+
+def test_a_law_with_an_acceleration_is_refused(engine, tmp_path):
+    text = _seed_file("p2_19_spring_block").read_text()
+    printed = 'law = "K*(x_in - x)"'
+    assert printed in text
+    path = tmp_path / "bad.toml"
+    path.write_text(text.replace(printed, 'law = "K*(x_in - x) + m*ddx"', 1))
+    with pytest.raises(DerivationError, match="not of the accelerations"):
+        engine.compare(load_derivation(path))
 
 
 def test_seed000_2_19_rewritten_rows_agree(engine, tmp_path):

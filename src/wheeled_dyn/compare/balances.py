@@ -97,14 +97,24 @@ class _Balance:
         rng = np.random.default_rng([seed, 23, index])
         self.sets = given_parameter_sets(d, step.given, BALANCE_SETS, rng)
         symbols = {str(s.symbol): s for s in d.symbols.values()}
+        self.free = [f for f in step.forces if f.law is None]
         for f in step.forces:
-            if f.name not in symbols or not symbols[f.name].free:
-                raise DerivationError(d.path, f"step {step.equation}.forces.{f.name}",
-                                      "a force is a symbol of the file declared free = true "
-                                      "(with units = \"N\", or \"N*m\" for a couple)")
-        self.F = [symbols[f.name].symbol for f in step.forces]
+            where = f"step {step.equation}.forces.{f.name}"
+            if f.law is not None and f.law.has(*d.accelerations):
+                raise DerivationError(d.path, f"{where}.law", "a force's law is a function of "
+                                      "the positions, velocities and symbols, not of the "
+                                      "accelerations")
+            if f.law is None and (f.name not in symbols or not symbols[f.name].free):
+                raise DerivationError(d.path, where, "a force is a symbol of the file declared "
+                                      "free = true (with units = \"N\", or \"N*m\" for a "
+                                      "couple), or is given by its law = \"...\"")
+        self.F = [symbols[f.name].symbol for f in self.free]
+        #: a known force's symbol, where the file declares one, stands for its law
+        self.laws = {symbols[f.name].symbol: f.law for f in step.forces
+                     if f.law is not None and f.name in symbols}
         self.unknowns = [*d.accelerations, *self.F]
         for j, expr in enumerate(step.components):
+            expr = expr.xreplace(self.laws)
             try:
                 degree = sp.Poly(sp.expand(expr), *self.unknowns).total_degree()
             except sp.PolynomialError:
@@ -129,6 +139,7 @@ class _Balance:
         r"""Per parameter set, the coefficients of ``exprs`` (states × relations × columns:
         the constant, each acceleration, each force)."""
         zero = {u: 0 for u in self.unknowns}
+        exprs = [e.xreplace(self.laws) for e in exprs]
         fn = sp.lambdify(self.args, [[e.xreplace(zero)] + [e.diff(u) for u in self.unknowns]
                                      for e in exprs], "numpy")
         out = []
@@ -157,6 +168,9 @@ class _Balance:
                                       for f in step.forces], "numpy")
         about = sp.lambdify(self.args, list(step.point), "numpy") \
             if isinstance(step.point, tuple) else None
+        known = [k for k, f in enumerate(step.forces) if f.law is not None]
+        unknown = [k for k, f in enumerate(step.forces) if f.law is None]
+        law = sp.lambdify(self.args, [step.forces[k].law for k in known], "numpy")
         truth = []
         frames = tuple(dict.fromkeys((step.frame, "world", step.body)))
         self._rotations = {f: [] for f in frames}
@@ -187,7 +201,11 @@ class _Balance:
                     for f in frames:                   # the frames' rotations: q only
                         R_k[f].append(np.array(m.rotation(f)))       # a copy: data is reused
                 accel = [r[:, 0] - rows[0][:, 0] for r in rows[1:]]
-                T_k.append(np.column_stack([rows[0][:, 0], *accel, rows[0][:, 1:]]))
+                with np.errstate(all="ignore"):          # the velocities made admissible
+                    values = np.array(law(*self._argv(k, i)), dtype=float).reshape(-1)
+                forces = rows[0][:, 1:]
+                constant = rows[0][:, 0] + forces[:, known] @ values   # known forces' share
+                T_k.append(np.column_stack([constant, *accel, forces[:, unknown]]))
             truth.append(np.array(T_k))
             for f in frames:
                 self._rotations[f].append(np.array(R_k[f]))
@@ -219,9 +237,10 @@ def _off_balance(truth: list[np.ndarray], doc: list[np.ndarray], j: int) -> floa
     return float(np.abs(truth[0][0].T @ mu - doc[0][0, j, :]).max())
 
 
-def _term_names(d: Derivation, step: Step) -> list[str]:
-    return ["the terms without accelerations or forces (gravity, velocity products)",
-            *(f"term {a}" for a in d.accelerations), *(f"term {f.name}" for f in step.forces)]
+def _term_names(d: Derivation, step: Step, free: Sequence[Force]) -> list[str]:
+    known = ", the forces given by their laws" if len(free) < len(step.forces) else ""
+    return [f"the terms without accelerations or forces (gravity, velocity products{known})",
+            *(f"term {a}" for a in d.accelerations), *(f"term {f.name}" for f in free)]
 
 
 def _suspects(truth: list[np.ndarray], doc: list[np.ndarray], j: int,
@@ -309,18 +328,23 @@ def _forces_against_the_motion(truth: list[np.ndarray], doc: list[np.ndarray], j
     return out
 
 
-def _trig_swaps(b: _Balance, j: int, names: list[str]) -> list[str]:
-    r"""A sin written for a cos (or the reverse) in one printed term of relation ``j``: the
-    swaps that make it a balance."""
+def _term_fixes(b: _Balance, j: int, names: list[str]) -> list[str]:
+    r"""One printed term of relation ``j`` with the wrong sign, or a sin written for a cos
+    (or the reverse) in it: the edits that make the relation a balance."""
     expr = b.step.components[j]
     truth = b.truth(b.step.frame)
+
+    def fits(trial: sp.Expr) -> bool:
+        return _judge(truth, b.document([trial]), 0, names, len(b.free))[0]
+
     for terms in (sp.Add.make_args(expr), sp.Add.make_args(sp.expand(expr))):
-        found = []
+        found = [f"sign: the term {sp.sstr(term)} has the wrong sign" for k, term in
+                 enumerate(terms) if len(terms) > 1
+                 and fits(sp.Add(*terms[:k], -term, *terms[k + 1:]))]
         for k, term in enumerate(terms):
             for f in sorted(term.atoms(sp.sin, sp.cos), key=sp.default_sort_key):
                 other = (sp.cos if f.func == sp.sin else sp.sin)(*f.args)
-                trial = sp.Add(*terms[:k], term.xreplace({f: other}), *terms[k + 1:])
-                if _judge(truth, b.document([trial]), 0, names, len(b.step.forces))[0]:
+                if fits(sp.Add(*terms[:k], term.xreplace({f: other}), *terms[k + 1:])):
                     found.append(f"swap: {sp.sstr(f)} where {sp.sstr(other)} fits in the term "
                                  f"{sp.sstr(term)}")
         if found:
@@ -332,7 +356,7 @@ def compare_balance(d: Derivation, step: Step, index: int, seed: int) -> list[El
     r"""One record per relation of a ``newton-euler`` step (see the module docstring)."""
     b = _Balance(d, step, index, seed)
     truth, doc = b.truth(step.frame), b.document(step.components)
-    names = _term_names(d, step)
+    names = _term_names(d, step, b.free)
     labels = step.component_names()
     out = []
     dims = DimensionChecker(d)
@@ -347,17 +371,17 @@ def compare_balance(d: Derivation, step: Step, index: int, seed: int) -> list[El
                 "not finite at some samples",), max_error=float("nan"), scale=float("nan"),
                 **common))
             continue
-        ok, diags, worst, scale = _judge(truth, doc, j, names, len(step.forces))
+        ok, diags, worst, scale = _judge(truth, doc, j, names, len(b.free))
         lhs, rhs = (dims.dim(side, []) for side in step.sides[j])
         if lhs is not None and rhs is not None and lhs != rhs and 0 not in step.sides[j]:
             ok = False
             diags.insert(0, f"dimension: the left side is {format_dim(lhs)}, the right side "
                             f"{format_dim(rhs)}")
         if not ok:
-            diags += _trig_swaps(b, j, names)
+            diags += _term_fixes(b, j, names)
             for frame in dict.fromkeys(("world", step.body)):
                 if frame != step.frame and _judge(b.truth(frame), doc, j, names,
-                                                  len(step.forces))[0]:
+                                                  len(b.free))[0]:
                     diags.insert(0, f"frame: it is a balance along the axes of {frame}, "
                                     f"not {step.frame}")
         out.append(ElementRecord(verdict="agrees" if ok else "differs", diagnoses=tuple(diags),

@@ -98,7 +98,7 @@ STEP_KEYS: tuple[str, ...] = ("equation", "kind", "label", "body", "bodies", "po
                               "given", "note", "names", "about", "speed",
                               "forces", "body_axes")
 #: Keys of one applied force (or couple) of a ``newton-euler`` step.
-FORCE_KEYS: tuple[str, ...] = ("point", "direction", "couple", "frame")
+FORCE_KEYS: tuple[str, ...] = ("point", "direction", "couple", "frame", "law")
 #: An element the extracted text lost.
 LOST = "?"
 
@@ -108,13 +108,16 @@ class Force:
     r"""A force (or couple) of a ``newton-euler`` step: the document symbol ``name`` is its
     magnitude along ``direction`` (three expressions in ``frame``'s axes), applied at ``point``
     of the step's body (``"origin"``, ``"com"`` or three expressions in the body's frame);
-    a couple (``couple = [x, y, z]``) is a pure moment about that direction."""
+    a couple (``couple = [x, y, z]``) is a pure moment about that direction. A force given
+    by its ``law`` (a spring's :math:`K(x_{in} - x)`, a damper's :math:`-c\dot x`: an
+    expression of the state and the symbols) is known, not an unknown of the balance."""
 
     name: str
     direction: tuple[sympy.Expr, ...]
     point: str | tuple[sympy.Expr, ...] = "com"
     frame: str = "world"
     couple: bool = False
+    law: sympy.Expr | None = None
 
 
 @dataclass(frozen=True)
@@ -260,9 +263,10 @@ def _balance(t: dict, item: str, line, expr, fail) -> dict[str, Any]:
         parsed = tuple(expr(a, where) for a in axis)
         if all(x == 0 for x in parsed):
             raise fail(where, "a direction is not the zero vector", line)
+        law = expr(spec["law"], f"{where}.law") if "law" in spec else None
         forces.append(Force(str(name), parsed,
                             _point(spec.get("point", "com"), f"{where}.point", line, expr, fail),
-                            str(spec.get("frame", "world")), "couple" in spec))
+                            str(spec.get("frame", "world")), "couple" in spec, law))
     return dict(body=body, frame=frame, forces=tuple(forces),
                 point=_point(t.get("point", "com"), f"{item}.point", line, expr, fail))
 
