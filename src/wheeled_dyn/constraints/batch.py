@@ -103,13 +103,14 @@ def _configuration(cmap, q: np.ndarray, q_doc: np.ndarray | None,
     raw = np.empty((N, len(ids), 6, model.nv))
     crba, gravity, world = pin.crba, pin.computeGeneralizedGravity, pin.Convention.WORLD
     get_jacobian = pin.getJointJacobian
-    for i in range(N):
-        A[i] = crba(model, data, q[i], world)       # fills the joint Jacobians data.J too
+    wheels = tuple(enumerate(ids)) if need_J else ()
+    for i, qi in enumerate(q):                      # rows as views: no indexing per call
+        A[i] = crba(model, data, qi, world)         # fills the joint Jacobians data.J too
         if with_gravity:
-            Q[i] = gravity(model, data, q[i])
-        if need_J:
-            for k, jid in enumerate(ids):
-                raw[i, k] = get_jacobian(model, data, jid, _LWA)
+            Q[i] = gravity(model, data, qi)
+        rows = raw[i]
+        for k, jid in wheels:
+            rows[k] = get_jacobian(model, data, jid, _LWA)
     if wm.springs and with_gravity:
         Q += spring_force_batch(wm.springs, q, model.nv)
     J = _rolling_rows(wm, raw) if need_J else None
@@ -166,11 +167,12 @@ def reduce_batch_multi(cmap, q: np.ndarray, nus: list[np.ndarray],
     for nu in nus:
         v = np.einsum("nij,nj->ni", S, nu)
         C = np.empty_like(A)
-        for i in range(N):
-            C[i] = coriolis(model, data, q[i], v[i])     # fills data.J and data.dJ too
-            if need_dJ:
-                for k, jid in enumerate(ids):
-                    raw[i, k] = get_variation(model, data, jid, _LWA)
+        wheels = tuple(enumerate(ids)) if need_dJ else ()
+        for i, (qi, vi) in enumerate(zip(q, v)):
+            C[i] = coriolis(model, data, qi, vi)     # fills data.J and data.dJ too
+            rows = raw[i]
+            for k, jid in wheels:
+                rows[k] = get_variation(model, data, jid, _LWA)
         if cs.kind == "holonomic":
             Sdot = cmap._Sdot_batch(N, *q_doc.T, *nu.T, *p)
         else:
