@@ -15,7 +15,7 @@ not one constant, it is fitted as a monomial
 
 first by least squares on :math:`\log|\rho|` (exponents rounded to integers), else by a search
 over products of at most :data:`MAX_FACTORS` of them; :math:`c_0` must be a simple rational.
-Failing that, :math:`1/\rho` is fitted as a short sum of such products with rational
+Failing that, :math:`1/\rho` is fitted as one such product or a sum of two with rational
 coefficients (:func:`fit_sum`: a row divided by the coefficient of its acceleration,
 :math:`I_g + m a^2`). A
 factor is accepted only if it reproduces every sample's ratio to :data:`RATIO_TOL`; the engine
@@ -44,8 +44,9 @@ MAX_FACTORS = 2
 EXPONENTS = (-2, -1, 1, 2)
 #: Largest denominator of the constant c0.
 MAX_DENOMINATOR = 12
-#: Most terms, and most bases in a term, of a sum a row was divided by; most sums tried.
-MAX_TERMS, SUM_DEGREE, MAX_TRIALS = 3, 3, 20000
+#: Most bases in a term of a sum a row was divided by; the fraction of the target's square
+#: a fit's residual may leave to be checked exactly; most fits checked.
+SUM_DEGREE, SCREEN_TOL, MAX_CANDIDATES = 3, 1e-12, 20
 #: An element of A takes part when its size is above this fraction of the row's largest.
 ELEMENT_FLOOR = 1e-6
 
@@ -95,7 +96,7 @@ def _bases(d: Derivation, q: np.ndarray, values: Mapping[sp.Symbol, np.ndarray]
 
 def _constant(ratio: np.ndarray, product: np.ndarray) -> sp.Rational | None:
     c = ratio / product
-    c0 = float(np.median(c))
+    c0 = float(c[0])
     if not np.isfinite(c0) or c0 == 0 or np.abs(c - c0).max() > RATIO_TOL * abs(c0):
         return None
     rational = sp.Rational(c0).limit_denominator(MAX_DENOMINATOR)
@@ -133,43 +134,63 @@ def fit_factor(ratio: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -
 
 
 def _products(bases: Sequence[tuple[sp.Expr, np.ndarray]], degree: int
-              ) -> list[tuple[sp.Expr, np.ndarray]]:
-    r"""Every product of at most ``degree`` of the bases (repetitions allowed)."""
-    out = []
-    for k in range(1, degree + 1):
-        for group in itertools.combinations_with_replacement(range(len(bases)), k):
-            values = np.prod([bases[g][1] for g in group], axis=0)
-            out.append((sp.Mul(*(bases[g][0] for g in group)), values))
-    return out
+              ) -> tuple[list[tuple[int, ...]], np.ndarray]:
+    r"""Every product of at most ``degree`` of the bases (repetitions allowed): the bases'
+    indices of each, and their values (samples × products)."""
+    groups = [g for k in range(1, degree + 1)
+              for g in itertools.combinations_with_replacement(range(len(bases)), k)]
+    values = np.column_stack([np.prod([bases[i][1] for i in g], axis=0) for g in groups])
+    return groups, values
+
+
+def _exact_sum(X: np.ndarray, y: np.ndarray, chosen: Sequence[int],
+               terms: Sequence[sp.Expr]) -> sp.Expr | None:
+    r"""The sum of the ``chosen`` columns (``terms``) with simple rational coefficients equal
+    to ``y``, or None."""
+    sub = X[:, list(chosen)]
+    coef = np.linalg.lstsq(sub, y, rcond=None)[0]
+    exact = [sp.Rational(c).limit_denominator(MAX_DENOMINATOR) for c in coef]
+    if any(c == 0 for c in exact):
+        return None
+    if np.abs(sub @ np.array([float(c) for c in exact]) - y).max() > RATIO_TOL * np.abs(y).max():
+        return None
+    return sp.Add(*(c * t for c, t in zip(exact, terms)))
 
 
 def fit_sum(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> sp.Expr | None:
-    r"""A sum of at most :data:`MAX_TERMS` products of at most :data:`SUM_DEGREE` bases with
-    simple rational coefficients equal to ``target`` at every sample (the quantity a row was
-    divided by when it is a sum, :math:`I_g + m a^2`): every choice of terms is tried, the
-    fewest first (on the distinct samples only), at most :data:`MAX_TRIALS` of them."""
-    columns = _products(bases, SUM_DEGREE)
-    if not columns:
+    r"""One product, or a sum of two, of at most :data:`SUM_DEGREE` bases with simple rational
+    coefficients equal to ``target`` at every sample (the quantity a row was divided by when
+    it is a sum, :math:`I_g + m a^2`). Every pair is tried at once through the Gram matrix
+    (the residual of each 2 × 2 least-squares fit), and the few that fit are checked
+    exactly."""
+    if not bases:
         return None
-    X = np.column_stack([v for _, v in columns])
+    groups, X = _products(bases, SUM_DEGREE)
+
+    def term(k: int) -> sp.Expr:
+        return sp.Mul(*(bases[i][0] for i in groups[k]))
+
     X = np.unique(np.column_stack([X, target]), axis=0)
     X, y = X[:, :-1], X[:, -1]
-    scale = np.abs(y).max()
-    trials = 0
-    for size in range(1, MAX_TERMS + 1):
-        for chosen in itertools.combinations(range(len(columns)), size):
-            trials += 1
-            if trials > MAX_TRIALS or len(y) <= size:
-                return None
-            sub = X[:, chosen]
-            coef = np.linalg.lstsq(sub, y, rcond=None)[0]
-            if np.abs(sub @ coef - y).max() > RATIO_TOL * scale:
-                continue
-            exact = [sp.Rational(c).limit_denominator(MAX_DENOMINATOR) for c in coef]
-            if any(c == 0 for c in exact):
-                continue
-            if np.abs(sub @ np.array([float(c) for c in exact]) - y).max() <= RATIO_TOL * scale:
-                return sp.Add(*(c * columns[j][0] for c, j in zip(exact, chosen)))
+    norms = np.linalg.norm(X, axis=0)
+    Xn = X / np.where(norms > 0, norms, 1.0)           # unit columns: a well-scaled Gram
+    G, c, yy = Xn.T @ Xn, Xn.T @ y, float(y @ y)
+    floor = SCREEN_TOL * yy
+    for k in np.flatnonzero(yy - c ** 2 <= floor)[:MAX_CANDIDATES]:
+        found = _exact_sum(X, y, (int(k),), (term(k),))
+        if found is not None:
+            return found
+    i, j = np.triu_indices(len(groups), 1)
+    det = 1.0 - G[i, j] ** 2
+    with np.errstate(all="ignore"):
+        a = (c[i] - c[j] * G[i, j]) / det
+        b = (c[j] - c[i] * G[i, j]) / det
+        residual = yy - a * c[i] - b * c[j]
+    fits = np.flatnonzero((residual <= floor) & (det > SCREEN_TOL))
+    for k in fits[np.argsort(residual[fits])][:MAX_CANDIDATES]:
+        found = _exact_sum(X, y, (int(i[k]), int(j[k])), (term(i[k]), term(j[k])))
+        if found is not None:
+            return found
     return None
 
 
