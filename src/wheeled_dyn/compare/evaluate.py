@@ -6,8 +6,9 @@ Truth, in the document's coordinates (:class:`~wheeled_dyn.constraints.Coordinat
 if the model's inputs are :math:`\tau = f(u_{doc})`, :math:`B_{doc} = B\,\partial f/\partial u`.
 
 Document: each element of its A, C, Q, B (matrix form) or of the read-off A, h, Q, B (equation
-form) is compiled with ``sympy.lambdify`` in its coordinates, velocities and symbols; every
-symbol takes the value its declaration gives in the model namespace, at each parameter set.
+form) is compiled as ``sympy.lambdify`` compiles it (:mod:`.compiled`) in its coordinates,
+velocities and symbols; every symbol takes the value its declaration gives in the model
+namespace, at each parameter set.
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ from ..constraints.reduction import CoordinateMap
 from ..coordinates import CoordinateSet, builtin_coordinate_set, parse_coordinate_set
 from ..derivations.schema import Derivation
 from ..errors import DerivationError
+from .compiled import numpy_function
 from .samples import ParameterSet, parameter_sets, special_cases
 
 #: States per parameter set on which the coefficient tensor H of h is compared (h itself, A,
@@ -161,7 +163,7 @@ def _h_tensor(h: sp.MatrixBase, velocities: Sequence[sp.Symbol]) -> sp.Array:
 
 
 class DocumentFunctions:
-    r"""The document's elements compiled once (one ``lambdify`` per matrix); evaluated at any
+    r"""The document's elements compiled once (one function per matrix); evaluated at any
     samples."""
 
     def __init__(self, d: Derivation, A, C, Q, B, h, G) -> None:
@@ -178,7 +180,7 @@ class DocumentFunctions:
                 continue
             arr = sp.Array(M) if not isinstance(M, sp.Array) else M
             flat = sp.flatten(arr.tolist())
-            self._fns[key] = (arr.shape, flat, sp.lambdify(self.args, flat, "numpy", cse=True))
+            self._fns[key] = (arr.shape, flat, numpy_function(self.args, flat, cse=True))
 
     def evaluate(self, q: np.ndarray, nu: np.ndarray, values: Mapping[sp.Symbol, np.ndarray]
                  ) -> Arrays:
@@ -205,7 +207,7 @@ class DocumentFunctions:
         the function returned evaluates without floating-point warnings (an overflow gives
         inf, a value outside the reals NaN)."""
         if expr not in self._compiled:
-            fn = sp.lambdify(self.args, expr, "numpy", docstring_limit=0)
+            fn = numpy_function(self.args, expr)
 
             def quiet(*argv: np.ndarray, _fn=fn) -> np.ndarray:
                 with np.errstate(all="ignore"):
@@ -221,7 +223,7 @@ class DocumentFunctions:
         index = tuple(index) + (0,) * (len(shape) - len(index))
         pos = int(np.ravel_multi_index(index, shape))
         if (key, pos) not in self._element_fns:
-            self._element_fns[(key, pos)] = sp.lambdify(self.args, flat[pos], "numpy")
+            self._element_fns[(key, pos)] = numpy_function(self.args, flat[pos])
         return self._element_fns[(key, pos)]
 
 

@@ -40,6 +40,7 @@ from .kinematics_truth import Motion, along, check_links
 from .result import ElementRecord
 from .assumptions import declared
 from .balances import compare_balance
+from .compiled import numpy_function
 from .results import compare_result
 from .samples import random_states, special_cases
 from .units import DimensionChecker, format_dim
@@ -270,7 +271,7 @@ class _Group:
     def _fn(self, expr: sp.Expr) -> Callable:
         key = (tuple(self.args), expr)
         if key not in _Group._fns:
-            _Group._fns[key] = sp.lambdify(self.args, expr, "numpy", docstring_limit=0)
+            _Group._fns[key] = numpy_function(self.args, expr)
         return _Group._fns[key]
 
     def argv(self, rows: np.ndarray | None = None) -> list[np.ndarray]:
@@ -289,7 +290,7 @@ class _Group:
 
     def documents(self, exprs: Sequence[sp.Expr], rows: np.ndarray | None = None,
                   read: tuple[sp.Symbol, sp.Symbol] | None = None) -> list[np.ndarray]:
-        r"""Several expressions at the samples, compiled together (one ``lambdify``);
+        r"""Several expressions at the samples, compiled together (one function);
         ``read`` as in :meth:`document`."""
         if not exprs:
             return []
