@@ -29,7 +29,7 @@ def main() -> None:
     files = builtin_derivations("seed001")
     with_steps = step_module.with_steps
     run = lambda: run_comparison(files, DEFAULT_SAMPLES, DEFAULT_PARAM_SETS)   # noqa: E731
-    no_steps = lambda d, compare, seed=0: compare(d)                          # noqa: E731
+    no_steps = lambda d, compare, seed=0, parallel=False: compare(d)          # noqa: E731
     step_module.with_steps = no_steps
     run()                                    # warm-up: model loading, closed-form cache
     step_module.with_steps = with_steps

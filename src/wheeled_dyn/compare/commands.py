@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from typing import TYPE_CHECKING
@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING
 from ..errors import DerivationError, WheeledDynError
 
 if TYPE_CHECKING:       # the heavy modules load in the handlers (a quick --help and list)
+    from ..derivations.schema import Derivation
     from .engine import ComparisonEngine
     from .result import DerivationResult
 
@@ -130,8 +131,9 @@ def run_comparison(files: Sequence[Path], samples: int, param_sets: int, seed: i
 
 
 #: Relative cost of a derivation with n coordinates (measured: n**3), and of reproducing a
-#: hand-made table (in the same units; it compares two documents again under its assumptions).
-TABLE_COST = 110
+#: hand-made table (in the same units; it compares two documents again under its assumptions;
+#: measured: seed 001's takes twice the time of one of its derivations, 0.97 s against 0.5 s).
+TABLE_COST = 50
 
 
 def _bins(derivations, workers: int, heavy: frozenset[str] = frozenset()) -> list[list[int]]:
@@ -155,59 +157,6 @@ def _bins(derivations, workers: int, heavy: frozenset[str] = frozenset()) -> lis
     return [b for b in bins if b]
 
 
-#: In a worker: where it reports each derivation done (a queue inherited from the parent).
-_PROGRESS = None
-
-
-def _start_worker() -> None:
-    r"""Workers leave Ctrl-C to the parent, which ends them (no traceback from each), and
-    announce their process id (so that the parent notices one that dies)."""
-    import os
-    import signal
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    if _PROGRESS is not None:
-        _PROGRESS.put(("pid", os.getpid()))
-
-
-def _alive(pid: int) -> bool:
-    import os
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:
-        pass
-    return True
-
-
-def _run_pool(ctx, jobs: list, bar) -> list:
-    r"""Run ``_work`` on each job in its own process; progress and worker ids come through
-    the queue :data:`_PROGRESS`. A worker's error is raised here (the project's errors
-    survive pickling); a worker that dies (a crash in compiled code) raises
-    :class:`~wheeled_dyn.errors.WorkerError` naming the files it may have been comparing,
-    instead of waiting forever."""
-    from ..errors import WorkerError
-    workers: set[int] = set()
-    with ctx.Pool(len(jobs), initializer=_start_worker) as pool:
-        pending = [pool.apply_async(_work, (job,)) for job in jobs]
-        while waiting := [p for p in pending if not p.ready()]:
-            waiting[0].wait(0.2)
-            while not _PROGRESS.empty():
-                message = _PROGRESS.get()
-                if isinstance(message, tuple):
-                    workers.add(message[1])
-                else:
-                    bar.update(message)
-            for p in pending:
-                if p.ready() and not p.successful():
-                    p.get()                          # raises the worker's error
-            if any(not _alive(pid) for pid in workers):
-                files = sorted({jobs[k][0][i].name for k, p in enumerate(pending)
-                                if not p.ready() for i in jobs[k][1]})
-                raise WorkerError("a comparison process ended abruptly", files)
-        return [p.get() for p in pending]
-
-
 def _compared(engine: ComparisonEngine, d) -> DerivationResult:
     r"""``engine.compare(d)``, reused from the results cache when nothing it depends on
     changed (:mod:`.result_cache`)."""
@@ -217,38 +166,52 @@ def _compared(engine: ComparisonEngine, d) -> DerivationResult:
     return reused(key, DerivationResult, lambda: engine.compare(d))
 
 
-def _work(args, tick=None):
-    from ..derivations import load_derivation
+#: The derivations :func:`compare_report` parsed, by file: its forked workers inherit them.
+_PARSED: dict[Path, Derivation] = {}
+
+
+def _work(args, tick: Callable[[], object] | None = None):
+    r"""Compare the derivations ``files[i]`` for ``i`` in ``indices`` (and reproduce the
+    tables of ``table_group``); ``tick()`` after each (default: in a worker, tell the parent).
+    Returns the results, the tables' sections and the results' HTML sections (made here, in
+    parallel, rather than one after the other in the parent)."""
+    from ..report.html import derivation_html
+    from ..report.symbols import save_rendered
     from .engine import ComparisonEngine
+    from .workers import tick as worker_tick
+    tick = tick or worker_tick
     files, indices, samples, param_sets, table_group = args
     engine = ComparisonEngine(samples=samples, param_sets=param_sets)
     results = []
     for i in indices:
-        results.append((i, _compared(engine, load_derivation(files[i]))))
-        if tick is not None:
-            tick()
-        elif _PROGRESS is not None:
-            _PROGRESS.put(1)
+        results.append((i, _compared(engine, _PARSED[files[i]])))
+        tick()
     sections = _reused_tables(engine, table_group) if table_group else None
-    return results, sections
+    html = {files[i]: derivation_html(r) for i, r in results}
+    save_rendered()                      # the LaTeX this process rendered, for the next run
+    return results, sections, html
 
 
 def compare_report(files: Sequence[Path], samples: int, param_sets: int,
                    table_group: str | None = None, workers: int | None = None
-                   ) -> tuple[list[DerivationResult], tuple[list[str], list[str], dict]]:
+                   ) -> tuple[list[DerivationResult], tuple[list[str], list[str], dict],
+                              dict[Path, str]]:
     r"""Compare ``files`` (and reproduce the shipped comparison tables of ``table_group``) on
     up to ``workers`` processes (default: the machine's cores, at most 2 per derivation group);
-    results in the order of ``files``. Processes are forked, so nothing is imported twice."""
-    import multiprocessing
+    results in the order of ``files``, the tables' sections, and each result's HTML section
+    by file (for :func:`~wheeled_dyn.report.render`). Processes are forked, so nothing is
+    imported or parsed twice."""
     import os
 
     from ..derivations import load_derivations
     from ..models.registry import model_entry
+    from .workers import Workers, can_fork
     derivations = load_derivations(files)
     for d in derivations:
         model_entry(d.model)
         check_model_names(d)
     paths = [d.path for d in derivations]
+    _PARSED.update(zip(paths, derivations))
     workers = max(1, min(workers or os.cpu_count() or 1, len(derivations)))
     table_docs: set[str] = set()
     if table_group:
@@ -261,26 +224,27 @@ def compare_report(files: Sequence[Path], samples: int, param_sets: int,
     owner = next((k for k, b in enumerate(bins) if any(paths[i].name in table_docs for i in b)), 0)
     jobs = [(paths, b, samples, param_sets, table_group if k == owner else None)
             for k, b in enumerate(bins)]
-    global _PROGRESS
-    with progress(len(paths), "comparing") as bar:
-        if len(jobs) == 1 or "fork" not in multiprocessing.get_all_start_methods():
-            outputs = [_work(job, bar.update) for job in jobs]
-        else:
-            ctx = multiprocessing.get_context("fork")
-            _PROGRESS = ctx.SimpleQueue()
-            try:
-                outputs = _run_pool(ctx, jobs, bar)
-            finally:
-                _PROGRESS.close()
-                _PROGRESS = None
+    try:
+        with progress(len(paths), "comparing") as bar:
+            if len(jobs) == 1 or not can_fork():
+                outputs = [_work(job, bar.update) for job in jobs]
+            else:
+                with Workers(len(jobs)) as workers:
+                    for job in jobs:
+                        workers.submit(_work, (job,), [paths[i].name for i in job[1]])
+                    outputs = workers.wait(bar.update)
+    finally:
+        _PARSED.clear()
     results: list[DerivationResult | None] = [None] * len(paths)
     sections: tuple[list[str], list[str], dict] = ([], [], {})
-    for found, sec in outputs:
+    html: dict[Path, str] = {}
+    for found, sec, parts in outputs:
         for i, r in found:
             results[i] = r
         if sec is not None:
             sections = sec
-    return results, sections
+        html.update(parts)
+    return results, sections, html
 
 
 def print_summary(results: Sequence[DerivationResult]) -> None:
@@ -377,14 +341,16 @@ def eval_fraction(text: str) -> float:
 
 
 def _write(results, title: str, out: Path, plots: bool = False,
-           sections: tuple[list[str], list[str], dict] = ([], [], {})) -> None:
+           sections: tuple[list[str], list[str], dict] = ([], [], {}),
+           html_sections: dict[Path, str] | None = None) -> None:
     from ..report import render, write_reports
     md, html, js = sections
     files: dict[str, bytes] = {}
     if plots:
         pmd, phtml, files = _plots(results)
         md, html = [*md, *pmd], [*html, *phtml]
-    paths = write_reports({**render(results, title, md, html, js), **files}, out)
+    paths = write_reports({**render(results, title, md, html, js, html_sections), **files},
+                          out)
     print("reports: " + ", ".join(str(p) for p in paths))
 
 
@@ -394,15 +360,15 @@ def _cmd_report(args: argparse.Namespace) -> int:
     check_grid(args.samples, args.param_sets)
     check_output_folder(args.out)
     t0 = time.perf_counter()
-    results, sections = compare_report(builtin_derivations(args.group), args.samples,
-                                       args.param_sets, table_group=args.group)
+    results, sections, html = compare_report(builtin_derivations(args.group), args.samples,
+                                             args.param_sets, table_group=args.group)
     print_summary(results)
     for entry in sections[2].get("tables", []):
         print(f"{entry['table']}: mismatched per the seed's table: "
               f"{', '.join(entry['table_mismatched'])}; per the machine: "
               f"{', '.join(entry['machine_mismatched'])}")
     _write(results, f"wheeled_dyn: the derivations of {args.group} against the truth",
-           Path(args.out), args.plots, sections)
+           Path(args.out), args.plots, sections, html)
     print(f"{len(results)} derivations, {args.samples} states × {args.param_sets} parameter "
           f"sets each, in {time.perf_counter() - t0:.1f} s")
     return 0
@@ -414,7 +380,8 @@ def _cmd_compare(args: argparse.Namespace) -> int:
     check_output_folder(args.out)
     files = input_files(args.files)
     from .engine import ComparisonEngine
-    engine = ComparisonEngine(samples=args.samples, param_sets=args.param_sets, seed=2026)
+    engine = ComparisonEngine(samples=args.samples, param_sets=args.param_sets, seed=2026,
+                              parallel_steps=True)
 
     def check() -> None:
         results = run_comparison(files, args.samples, args.param_sets, model=args.model,

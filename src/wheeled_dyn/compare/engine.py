@@ -82,12 +82,16 @@ ROW_FUNCTION_STATES, ROW_FUNCTION_SETS = 8, 16
 
 class ComparisonEngine:
     r"""Compares derivations; caches the truth per (model, coordinate set, parameter family)
-    so derivations sharing coordinates share the work."""
+    so derivations sharing coordinates share the work. ``parallel_steps``: the step files
+    feeding a derivation are compared in a forked process while the derivation itself is
+    (the command line's ``compare``; :func:`~.steps.with_steps`)."""
 
-    def __init__(self, samples: int = 1000, param_sets: int = 5, seed: int = 2026) -> None:
+    def __init__(self, samples: int = 1000, param_sets: int = 5, seed: int = 2026,
+                 parallel_steps: bool = False) -> None:
         self.samples = samples
         self.param_sets = param_sets
         self.seed = seed
+        self.parallel_steps = parallel_steps
         self._truth: dict[tuple, tuple] = {}      # (truth, sets, q, nu, coordinate set)
         self._maps: dict[tuple, CoordinateMap] = {}
         self._sets: dict[tuple, object] = {}
@@ -153,7 +157,7 @@ class ComparisonEngine:
         key = (str(d.path), d.path.stat().st_mtime_ns if d.path.exists() else 0)
         if key not in self._results:
             from .steps import with_steps          # earlier steps, upstream causes
-            self._results[key] = with_steps(d, self._compare, self.seed)
+            self._results[key] = with_steps(d, self._compare, self.seed, self.parallel_steps)
         return self._results[key]
 
     def _compare(self, d: Derivation) -> DerivationResult:

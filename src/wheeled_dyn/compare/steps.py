@@ -32,12 +32,13 @@ from ..derivations.schema import Derivation
 from ..derivations.steps import STEP_KINDS
 from .assumptions import declared
 from .causes import claim_causes
+from .compiled import numpy_function
 from .diagnose import agrees, max_error, value_diagnoses
 from .evaluate import document_symbol_values
 from .result import Cause, DerivationResult, ElementRecord
 from .row_functions import with_row_functions
 from .samples import parameter_sets
-from .step_records import STEP_SETS, STEP_STATES, compare_steps
+from .workers import Workers, can_fork
 
 def energy_consistency(steps_d: Derivation, eom: Derivation, seed: int = 2026
                        ) -> list[ElementRecord]:
@@ -73,12 +74,11 @@ def energy_consistency(steps_d: Derivation, eom: Derivation, seed: int = 2026
         for label, a, b, what in pairs:
             if a.has(sp.nan):
                 continue
-            fa = sp.lambdify(eom.positions, a.xreplace(_values(eom, sets, 0)), "numpy")
             Da, Db = [], []
             for k in range(len(sets)):
                 va, vb = _values(eom, sets, k), _values(steps_d, sets, k)
-                fa = sp.lambdify(eom.positions, a.xreplace(va), "numpy")
-                fb = sp.lambdify(eom.positions, b.xreplace(vb), "numpy")
+                fa = numpy_function(eom.positions, a.xreplace(va))
+                fb = numpy_function(eom.positions, b.xreplace(vb))
                 Da.append(np.broadcast_to(fa(*states.T), (len(states),)))
                 Db.append(np.broadcast_to(fb(*states.T), (len(states),)))
             Da, Db = np.concatenate(Da).astype(float), np.concatenate(Db).astype(float)
@@ -155,7 +155,7 @@ def upstream_causes(steps: Sequence[ElementRecord], eom_records: Sequence[Elemen
     return out
 
 
-_STEP_CACHE: dict[tuple, tuple[Derivation, list[ElementRecord]]] = {}
+_STEP_CACHE: dict[tuple[str, int, int], list[ElementRecord]] = {}
 
 
 _LOADED: dict[tuple[str, int], Derivation] = {}
@@ -170,21 +170,62 @@ def _load(path: Path) -> Derivation:
     return _LOADED[key]
 
 
-def _step_file(path: Path, seed: int):
-    key = (str(path), path.stat().st_mtime_ns, seed)
+def _step_key(path: Path, seed: int) -> tuple[str, int, int]:
+    return str(path), path.stat().st_mtime_ns, seed
+
+
+def _step_records(d: Derivation, seed: int) -> list[ElementRecord]:
+    r"""The records of the steps of ``d`` (:mod:`.step_records`, imported only here: the
+    parent of the worker that compares the step files needs none of it)."""
+    from .step_records import compare_steps
+    return compare_steps(d, seed)
+
+
+def _step_file(path: Path, seed: int) -> tuple[Derivation, list[ElementRecord]]:
+    r"""A step file and its records, compared once per content."""
+    key = _step_key(path, seed)
     if key not in _STEP_CACHE:
-        sd = _load(path)
-        _STEP_CACHE[key] = (sd, compare_steps(sd, seed))
-    return _STEP_CACHE[key]
+        _STEP_CACHE[key] = _step_records(_load(path), seed)
+    return _load(path), _STEP_CACHE[key]
+
+
+def _neighbours(path: Path) -> list[Path]:
+    r"""The ``*_steps.toml`` files in the folder of ``path``, other than it (sorted)."""
+    folder = path.parent
+    if not path.is_file() or not folder.is_dir():      # a derivation built in Python
+        return []
+    return [p for p in sorted(folder.glob("*" + STEPS_SUFFIX)) if p != path]
 
 
 def feeding_files(d: Derivation) -> list[Path]:
     r"""The ``*_steps.toml`` files beside ``d`` whose ``feeds`` name it (sorted)."""
-    folder = d.path.parent
-    if not d.path.is_file() or not folder.is_dir():      # a derivation built in Python
-        return []
-    return [p for p in sorted(folder.glob("*" + STEPS_SUFFIX))
-            if p != d.path and d.path.stem in _load(p).feeds]
+    return _feeding(d.path)
+
+
+def _feeding(path: Path) -> list[Path]:
+    return [p for p in _neighbours(path) if path.stem in _load(p).feeds]
+
+
+def _fed_records(path: Path, seed: int) -> list[tuple[Path, list[ElementRecord]]]:
+    r"""The step files feeding the derivation file ``path`` and their records (in a worker:
+    see :func:`_beside`)."""
+    return [(p, _step_file(p, seed)[1]) for p in _feeding(path)]
+
+
+def _beside(d: Derivation, seed: int, compare: Callable[[Derivation], DerivationResult]
+            ) -> tuple[DerivationResult, list[Path]]:
+    r"""``compare(d)`` and the step files feeding ``d``, found and compared meanwhile by a
+    forked worker (:mod:`.workers`; one after the other where it cannot fork)."""
+    neighbours = _neighbours(d.path)
+    if not neighbours or not can_fork():
+        return compare(d), feeding_files(d)
+    with Workers(1) as worker:          # it inherits what is cached here: unchanged files
+        worker.submit(_fed_records, (d.path, seed), [p.name for p in neighbours])
+        base = compare(d)
+        (fed,) = worker.wait()
+    for p, records in fed:
+        _STEP_CACHE[_step_key(p, seed)] = records
+    return base, [p for p, _ in fed]
 
 
 def has_equations(d: Derivation) -> bool:
@@ -192,20 +233,22 @@ def has_equations(d: Derivation) -> bool:
 
 
 def with_steps(d: Derivation, compare: Callable[[Derivation], DerivationResult],
-               seed: int = 2026) -> DerivationResult:
+               seed: int = 2026, parallel: bool = False) -> DerivationResult:
     r"""``compare(d)`` (the equations of motion, when the file has them) with the records of
     its steps and of the step files that feed it, the consistency of its A and Q with the
-    document's own energies, and the ``upstream_step`` causes."""
-    own = compare_steps(d, seed) if d.steps else []
-    fed = [_step_file(p, seed) for p in feeding_files(d)]
+    document's own energies, and the ``upstream_step`` causes. ``parallel``: the step files
+    are compared in a forked worker meanwhile."""
+    own = _step_records(d, seed) if d.steps else []
     if not has_equations(d):
+        from .step_records import STEP_SETS, STEP_STATES
         return DerivationResult(
             path=d.path, title=d.title, model=d.model, source=dict(d.source),
             coordinates=d.coordinates.use or "inline",
             velocities=tuple(str(v) for v in d.velocities), form="steps", records=tuple(own),
             row_factors=(), energy=None, asymmetric=(), constraints=(),
             reconstructed=dict(d.reconstructed), samples=STEP_STATES, parameter_sets=STEP_SETS)
-    base = compare(d)
+    base, paths = _beside(d, seed, compare) if parallel else (compare(d), feeding_files(d))
+    fed = [_step_file(p, seed) for p in paths]
     if not own and not fed:
         return base
     steps = own + [r for _, recs in fed for r in recs]
@@ -217,4 +260,4 @@ def with_steps(d: Derivation, compare: Callable[[Derivation], DerivationResult],
                    causes=tuple(base.causes) + tuple(causes))
 
 
-__all__ = ["compare_steps", "energy_consistency", "feeding_files", "upstream_causes", "with_steps"]
+__all__ = ["energy_consistency", "feeding_files", "upstream_causes", "with_steps"]

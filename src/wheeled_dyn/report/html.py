@@ -22,7 +22,8 @@ from __future__ import annotations
 import functools
 import html
 import re
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
+from pathlib import Path
 
 import sympy as sp
 from latex2mathml.converter import convert
@@ -396,15 +397,19 @@ def derivation_html(result: DerivationResult, names: Notation | None = None) -> 
             + "</section>")
 
 
-def report_html(results: Sequence[DerivationResult], title: str, extra_html: Sequence[str] = ()) -> str:
-    r"""The whole report: summary, contents, derivations in the document's order, extras."""
+def report_html(results: Sequence[DerivationResult], title: str, extra_html: Sequence[str] = (),
+                sections: Mapping[Path, str] | None = None) -> str:
+    r"""The whole report: summary, contents, derivations in the document's order, extras.
+    ``sections``: derivations' :func:`derivation_html` made already (by the processes that
+    compared them), by file."""
     results = S.ordered(results)
+    sections = sections or {}
     legend = "".join(f'<span class="pill v-{v}">{_e(VERDICT_TEXT[v])}</span>' for v in SHORT)
     titles = _extra_titles(extra_html)
     extras = "".join(f'<div class="wide" id="extra-{k + 1}">{text}</div>'
                      for k, text in enumerate(extra_html))
     grid = "; ".join(sorted({_grid_text(r) for r in results}))
-    body = "".join(derivation_html(r) for r in results)
+    body = "".join(sections.get(r.path) or derivation_html(r) for r in results)
     return ("<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>"
             "<meta name='viewport' content='width=device-width, initial-scale=1'>"
             f"<title>{_e(title)}</title><style>{CSS}</style></head><body>"

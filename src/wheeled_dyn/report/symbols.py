@@ -278,14 +278,16 @@ def _remembered(key: tuple, names: Notation, compute) -> str | None:
 
 def save_rendered(limit: int = 20000) -> None:
     r"""Write the remembered LaTeX to the disk cache (the newest ``limit`` entries) when this
-    run added any; a cache that cannot be written is only slower."""
+    run added any, with what other processes wrote there meanwhile (the report's workers each
+    render their derivations); a cache that cannot be written is only slower."""
     global _RENDERED_NEW
     if not _RENDERED_NEW or _RENDERED is None:
         return
-    from ..disk_cache import cache_root, store
-    entries = dict(list(_RENDERED.items())[-limit:])
+    from ..disk_cache import cache_root, load, store
+    path = cache_root() / "report" / "latex.pickle"
+    entries = {**(load(path, dict) or {}), **_RENDERED}
     try:
-        store(cache_root() / "report" / "latex.pickle", entries)
+        store(path, dict(list(entries.items())[-limit:]))
     except OSError:
         pass
     _RENDERED_NEW = False

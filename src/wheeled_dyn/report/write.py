@@ -9,7 +9,7 @@ either the previous reports or none, never half a file, and no temporary file
 from __future__ import annotations
 
 import json
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 from ..compare.result import DerivationResult
@@ -25,14 +25,17 @@ SCHEMA = "wheeled-dyn-report/1"
 
 
 def render(results: Sequence[DerivationResult], title: str, extra_md: Sequence[str] = (),
-           extra_html: Sequence[str] = (), extra_json: dict | None = None) -> dict[str, str]:
+           extra_html: Sequence[str] = (), extra_json: dict | None = None,
+           html_sections: Mapping[Path, str] | None = None) -> dict[str, str]:
     r"""The three reports as texts keyed by file name; derivations in the document's order,
-    the JSON's ``summary`` first (one entry per derivation: id, counts, causes in one line)."""
+    the JSON's ``summary`` first (one entry per derivation: id, counts, causes in one line).
+    ``html_sections``: derivations' HTML sections made already, by file
+    (:func:`~.html.report_html`)."""
     results = ordered(results)
     data = {"schema": SCHEMA, "title": title, "summary": [summary_entry(r) for r in results],
             "derivations": [r.as_dict() for r in results], **(extra_json or {})}
     texts = {"report.md": report_markdown(results, title, extra_md),
-             "report.html": report_html(results, title, extra_html),
+             "report.html": report_html(results, title, extra_html, html_sections),
              "report.json": json.dumps(data, indent=1, default=str, allow_nan=True)}
     save_rendered()
     return texts

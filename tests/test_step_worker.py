@@ -1,0 +1,55 @@
+"""`compare` compares the step files feeding a derivation in a forked worker while it compares
+the derivation: the same result as one process, a step file's error as the project's own
+error, a worker that dies as WorkerError naming the step files."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import signal
+import sys
+from pathlib import Path
+
+import pytest
+
+from wheeled_dyn.compare import steps
+from wheeled_dyn.compare.engine import ComparisonEngine
+from wheeled_dyn.derivations import load_derivation
+from wheeled_dyn.errors import DerivationError, WorkerError
+
+SEED001 = Path(__file__).resolve().parents[1] / "src/wheeled_dyn/data/derivations/seed001"
+pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="the worker is forked")
+
+
+def _copy(tmp_path: Path, planted: str = "") -> Path:
+    shutil.copy(SEED001 / "eq25_lagrange.toml", tmp_path)
+    text = (SEED001 / "s4_energy_steps.toml").read_text()
+    (tmp_path / "s4_energy_steps.toml").write_text(text.replace("[[step]]", "[[step]]" + planted,
+                                                                1))
+    return tmp_path / "eq25_lagrange.toml"
+
+
+def _compare(path: Path, parallel: bool):
+    steps._STEP_CACHE.clear()
+    return ComparisonEngine(samples=40, param_sets=2, parallel_steps=parallel).compare(
+        load_derivation(path))
+
+
+def test_same_result_as_one_process(tmp_path):
+    path = _copy(tmp_path)
+    one, two = _compare(path, False), _compare(path, True)
+    assert one.as_dict() == two.as_dict()
+    assert any(r.key == "step" for r in two.records)
+
+
+def test_error_in_a_step_file_is_the_projects(tmp_path):
+    path = _copy(tmp_path, '\ngiven = ["no_such_family"]')
+    with pytest.raises(DerivationError, match="no_such_family"):
+        _compare(path, True)
+
+
+def test_a_worker_that_dies_is_named(tmp_path, monkeypatch):
+    path = _copy(tmp_path)
+    monkeypatch.setattr(steps, "_step_file", lambda *a: os.kill(os.getpid(), signal.SIGKILL))
+    with pytest.raises(WorkerError, match="s4_energy_steps.toml"):
+        _compare(path, True)
