@@ -50,6 +50,7 @@ def _command_times(*args: str) -> list[float]:
 
 
 def main() -> None:
+    os.environ["WHEELED_DYN_REUSE"] = "0"      # every figure is a first check: no results reused
     files = builtin_derivations("seed001")
     t0 = time.perf_counter()
     results, _, _ = compare_report(files, DEFAULT_SAMPLES, DEFAULT_PARAM_SETS,

@@ -25,6 +25,8 @@ neither has no rows (:math:`J_c` is 0 × nv).
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 import pinocchio as pin
 
@@ -66,16 +68,24 @@ def contact_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = Non
     return np.vstack(rows), (np.vstack(drows) if v is not None else None)
 
 
+@lru_cache(maxsize=None)
+def _rolling_select(radius: float) -> np.ndarray:
+    r"""The rows x and y of :math:`[I_3\;\; R[e_z]_\times]`: a wheel joint's 6-row Jacobian
+    (or its acceleration) to its rolling rows (:math:`J_x - R J_{\omega_y}`,
+    :math:`J_y + R J_{\omega_x}`)."""
+    return np.array([[1.0, 0.0, 0.0, 0.0, -radius, 0.0], [0.0, 1.0, 0.0, radius, 0.0, 0.0]])
+
+
 def planar_rows(wm: WheeledModel, data: pin.Data) -> np.ndarray:
     r""":math:`J_c` of the drive wheels (2·wheels × nv) from the joint Jacobians already in
     ``data`` (left there by ``crba`` in the world convention, or ``computeJointJacobians``):
-    per wheel the world x row :math:`J_x - R J_{\omega_y}` and y row
-    :math:`J_y + R J_{\omega_x}` of :math:`J_{lin} + R [e_z]_\times J_\omega`."""
-    rows = []
-    for wheel in wm.wheels:
-        J = pin.getJointJacobian(wm.model, data, wheel.joint_id, _LWA)
-        rows += [J[0] - wheel.radius * J[4], J[1] + wheel.radius * J[3]]
-    return np.array(rows).reshape(-1, wm.model.nv)
+    per wheel the world x and y rows of :math:`J_{lin} + R [e_z]_\times J_\omega`."""
+    model = wm.model
+    out = np.empty((2 * len(wm.wheels), model.nv))
+    for k, wheel in enumerate(wm.wheels):
+        np.matmul(_rolling_select(wheel.radius),
+                  pin.getJointJacobian(model, data, wheel.joint_id, _LWA), out=out[2 * k:2 * k + 2])
+    return out
 
 
 def planar_drift(wm: WheeledModel, data: pin.Data, q: np.ndarray, v: np.ndarray) -> np.ndarray:
@@ -84,12 +94,11 @@ def planar_drift(wm: WheeledModel, data: pin.Data, q: np.ndarray, v: np.ndarray)
     :math:`\dot J v` (``forwardKinematics(q, v, 0)``), taken through the same rows."""
     model = wm.model
     pin.forwardKinematics(model, data, q, v, np.zeros(model.nv))
-    out = []
-    for wheel in wm.wheels:
-        a = pin.getClassicalAcceleration(model, data, wheel.joint_id, _LWA)
-        lin, ang = a.linear, a.angular
-        out += [lin[0] - wheel.radius * ang[1], lin[1] + wheel.radius * ang[0]]
-    return np.array(out)
+    out = np.empty(2 * len(wm.wheels))
+    for k, wheel in enumerate(wm.wheels):
+        a = pin.getClassicalAcceleration(model, data, wheel.joint_id, _LWA).vector
+        np.matmul(_rolling_select(wheel.radius), a, out=out[2 * k:2 * k + 2])
+    return out
 
 
 def contact_points(wm: WheeledModel, q: np.ndarray) -> np.ndarray:
