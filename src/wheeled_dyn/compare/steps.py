@@ -246,7 +246,8 @@ def with_steps(d: Derivation, compare: Callable[[Derivation], DerivationResult],
             coordinates=d.coordinates.use or "inline",
             velocities=tuple(str(v) for v in d.velocities), form="steps", records=tuple(own),
             row_factors=(), energy=None, asymmetric=(), constraints=(),
-            reconstructed=dict(d.reconstructed), samples=STEP_STATES, parameter_sets=STEP_SETS)
+            reconstructed=dict(d.reconstructed), samples=STEP_STATES, parameter_sets=STEP_SETS,
+            assumes=declared(d).describe())
     base, paths = _beside(d, seed, compare) if parallel else (compare(d), feeding_files(d))
     fed = [_step_file(p, seed) for p in paths]
     if not own and not fed:
