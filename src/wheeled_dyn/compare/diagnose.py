@@ -79,11 +79,18 @@ MAX_TERMS = 16
 
 def power_diagnoses(expr: sp.Expr, params: Sequence[sp.Symbol],
                     evaluate: Callable[[sp.Expr], np.ndarray], T: np.ndarray,
-                    scale: float) -> list[str]:
+                    scale: float,
+                    powered: Callable[[sp.Symbol, float], np.ndarray] | None = None
+                    ) -> list[str]:
     r"""A parameter :math:`s` written to the power :math:`e` where :math:`e'` fits
     (:math:`e' \in \{-e, e \pm 1, 2e\}`, e.g. G where G² fits, R⁻² where R² fits):
     ``expr`` with :math:`s \to s^{e'/e}` agrees. ``evaluate(e)`` gives an expression's values
-    at the samples."""
+    at the samples; ``powered(s, k)``, where given, the values of ``expr`` itself with the
+    values of :math:`s` raised to the power k (the same numbers, without compiling a trial
+    expression)."""
+    if powered is None:
+        def powered(s: sp.Symbol, k: float) -> np.ndarray:
+            return evaluate(expr.xreplace({s: s ** sp.nsimplify(k)}))
     found = []
     factors = [f for term in sp.Add.make_args(sp.expand(expr)) for f in sp.Mul.make_args(term)]
     for s in sorted(expr.free_symbols & set(params), key=str):
@@ -91,7 +98,7 @@ def power_diagnoses(expr: sp.Expr, params: Sequence[sp.Symbol],
         if e == 0 or not e.is_Rational:
             continue
         for new in dict.fromkeys((-e, e - 1, e + 1, 2 * e)):
-            if new != 0 and agrees(evaluate(expr.xreplace({s: s ** (new / e)})), T, scale):
+            if new != 0 and agrees(powered(s, new / e), T, scale):
                 found.append(f"power: {sp.sstr(s ** e)} where {sp.sstr(s ** new)} fits")
     return found
 

@@ -547,7 +547,16 @@ def _term_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.n
             out = funcs.compiled(e)(*argv)
         return np.broadcast_to(np.asarray(out, float), D.shape) / c
 
-    found = power_diagnoses(expr, funcs.params, evaluate, T, scale)
+    compiled, position = funcs.compiled(expr), funcs.args.index
+
+    def powered(s: sp.Symbol, k) -> np.ndarray:
+        trial = list(argv)
+        with np.errstate(all="ignore"):           # a trial power may leave the reals: NaN
+            trial[position(s)] = np.asarray(trial[position(s)], float) ** float(k)
+            out = compiled(*trial)
+        return np.broadcast_to(np.asarray(out, float), D.shape) / c
+
+    found = power_diagnoses(expr, funcs.params, evaluate, T, scale, powered)
     if not found and not has_factor:
         found = term_diagnoses(expr, evaluate, D, T, scale)
     if not found and not has_factor:
