@@ -35,13 +35,11 @@ from .diagnose import (
     agrees,
     max_error,
     nice_number,
-    power_diagnoses,
     swap_diagnoses,
-    term_diagnoses,
-    trig_swap_diagnoses,
     value_diagnoses,
 )
 from .document_checks import asymmetry, constraint_rows, energy_check
+from .element_terms import element_term_diagnoses, trig_diagnoses
 from .elements import (
     apply_row_factors,
     element_expr,
@@ -56,12 +54,12 @@ from .elements import (
     truth_for,
 )
 from .evaluate import (
-    Arrays,
     DocumentFunctions,
     derivation_coordinate_set,
     document_symbol_values,
 )
 from .result import Cause, Convention, ConventionSummary, DerivationResult, ElementRecord
+from .search_evaluation import SearchEvaluation
 from .samples import (
     SpecialCase,
     parameter_sets,
@@ -74,8 +72,6 @@ from .units import DimensionChecker
 
 #: Smaller grid used to test special parameter families.
 SPECIAL_SAMPLES, SPECIAL_SETS = 40, 2
-#: Samples the convention search scores each reading on (spread over the parameter sets).
-SEARCH_SAMPLES = 400
 #: The grid a row divided by a function is identified on: states per set, parameter sets.
 ROW_FUNCTION_STATES, ROW_FUNCTION_SETS = 8, 16
 
@@ -137,7 +133,7 @@ class ComparisonEngine:
             doc.H = doc.H[H_rows]
         return doc, per_set
 
-    def _row_functions(self, d: Derivation, ev: "_Evaluation") -> dict[int, sp.Expr]:
+    def _row_functions(self, d: Derivation, ev: SearchEvaluation) -> dict[int, sp.Expr]:
         r"""Rows the document divided by a function of the state or of the parameters
         (:mod:`.row_functions`), identified on a grid of :data:`ROW_FUNCTION_SETS` parameter
         sets (a quantity of the parameters alone takes one value per set)."""
@@ -299,14 +295,14 @@ class ComparisonEngine:
                 diags += value_diagnoses(D, T, scale)
                 if expr is not None and key != "h" and not any(
                         x.startswith(("sign", "extra", "missing")) for x in diags):
-                    diags[:0] = _term_diagnoses(expr, funcs, argv, row_factor[i], D, T, scale,
+                    diags[:0] = element_term_diagnoses(expr, funcs, argv, row_factor[i], D, T, scale,
                                                 any(x.startswith("factor") for x in diags))
                 if expr is not None and key != "h" and not any(
                         x.startswith(("sign", "factor", "extra")) for x in diags):
                     diags += swap_diagnoses(expr, groups, lambda a, b: swapped(key, index, a, b),
                                             T, scale)
                 if expr is not None and key == "h" and not diags:     # a velocity product's
-                    diags += _trig_diagnoses(expr, funcs, argv, row_factor[i], D, T, scale,
+                    diags += trig_diagnoses(expr, funcs, argv, row_factor[i], D, T, scale,
                                              check=True)
             verdict = ("undecided" if not finite.all() else
                        "agrees" if ok and not problems else "differs")
@@ -328,7 +324,7 @@ class ComparisonEngine:
         energy = energy_check(funcs, doc, row_factor, flat_q, flat_nu, values, d)
         asym = asymmetry(doc, scales, n)
         constraints = constraint_rows(doc, truth, scales)
-        ev = _Evaluation(funcs=funcs, doc=doc, truth=truth, B_true=B_true, scales=scales,
+        ev = SearchEvaluation(funcs=funcs, doc=doc, truth=truth, B_true=B_true, scales=scales,
                          q=flat_q, nu=flat_nu, values=values, row_factor=tuple(row_factor),
                          kind=cs.kind)
         return DerivationResult(
@@ -469,96 +465,3 @@ class ComparisonEngine:
                     b = r_miss["element"].split(":")[1]
                     r_extra["diagnoses"].append(f"swap: the document's {a} term is the true {b} term")
                     r_miss["diagnoses"].append(f"swap: written as {a} in the document")
-
-
-class _Evaluation(causes.Evaluation):
-    r"""The engine's evaluation, with what the convention search needs: the document at
-    sign-flipped states and the number of elements agreeing in a set of arrays."""
-
-    def _subset(self) -> tuple[np.ndarray, Arrays, np.ndarray | None]:
-        r"""The samples the search scores on: those where the truth has H (the first
-        :data:`~.evaluate.H_SAMPLES` states of every parameter set), at most
-        :data:`SEARCH_SAMPLES`; the truth and its B there."""
-        if not hasattr(self, "_sub"):
-            rows = self.truth.H_rows if self.truth.H_rows is not None \
-                else np.arange(len(self.q))
-            keep = np.arange(len(rows))
-            if len(rows) > SEARCH_SAMPLES:
-                keep = np.linspace(0, len(rows) - 1, SEARCH_SAMPLES).astype(int)
-            rows = rows[keep]
-            sub = Arrays(**{k: (None if getattr(self.truth, k) is None
-                                else getattr(self.truth, k)[rows]) for k in "ACQBhG"})
-            sub.H = None if self.truth.H is None else self.truth.H[keep]
-            B = None if self.B_true is None else self.B_true[rows]
-            self._sub = (rows, sub, B)
-        return self._sub
-
-    def doc_at(self, s: Sequence[int]) -> Arrays:
-        r"""The document's arrays at :math:`(Sp, S\nu)` on the search's samples (rows not
-        yet divided by factors)."""
-        rows, _, _ = self._subset()
-        S = np.asarray(s, float)
-        values = {p: np.asarray(v)[rows] if np.ndim(v) else v for p, v in self.values.items()}
-        return self.funcs.evaluate(self.q[rows] * S, self.nu[rows] * S, values)
-
-    def score(self, doc: Arrays) -> int:
-        r"""Elements of ``doc`` (on the search's samples) that agree with the truth, after
-        its own row factors."""
-        n = self.q.shape[1]
-        _, truth, B_true = self._subset()
-        factors = row_factors(doc, truth, B_true, n)
-        apply_row_factors(doc, factors)
-        scales = row_scales(doc, truth, n)
-        return sum(bool(np.isfinite(D).all()) and agrees(D, T, scales[index[0]])
-                   for _, D, T, index, _ in element_values(self.funcs, doc, truth, B_true, n,
-                                                      expressions=False))
-
-
-def _trig_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.ndarray],
-                    factor: float | None, D: np.ndarray, T: np.ndarray, scale: float,
-                    check: bool = False) -> list[str]:
-    r"""A sin written for a cos in ``expr`` (:func:`.diagnose.trig_swap_diagnoses`), the
-    document's values divided by its row ``factor``. ``check``: only when ``expr`` evaluated on
-    ``argv`` gives the element's own values ``D`` (a velocity product's coefficient is sampled
-    on its own grid)."""
-    c = 1.0 if factor is None else factor
-
-    def evaluate_many(exprs: list) -> list[np.ndarray]:
-        return [np.broadcast_to(np.asarray(v, float), np.shape(argv[0])) / c
-                for v in funcs.compiled(tuple(exprs))(*argv)]
-    if len(np.shape(argv[0])) != 1 or np.shape(argv[0])[0] != len(D):
-        return []
-    if check and not agrees(evaluate_many([expr])[0], D, scale):
-        return []
-    return trig_swap_diagnoses(expr, evaluate_many, T, scale)
-
-
-def _term_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.ndarray],
-                    factor: float | None, D: np.ndarray, T: np.ndarray, scale: float,
-                    has_factor: bool) -> list[str]:
-    r"""A parameter to the wrong power (also where a constant factor fits: with a geometry
-    constant the sets do not vary, G for G² *is* a factor), then, when the element has no
-    diagnosis yet, one additive term with the wrong sign or factor, then a sin written for a
-    cos (:mod:`.diagnose`)."""
-    c = 1.0 if factor is None else factor
-
-    def evaluate(e: sp.Expr) -> np.ndarray:
-        with np.errstate(all="ignore"):           # a trial power may leave the reals: NaN
-            out = funcs.compiled(e)(*argv)
-        return np.broadcast_to(np.asarray(out, float), D.shape) / c
-
-    compiled, position = funcs.compiled(expr), funcs.args.index
-
-    def powered(s: sp.Symbol, k) -> np.ndarray:
-        trial = list(argv)
-        with np.errstate(all="ignore"):           # a trial power may leave the reals: NaN
-            trial[position(s)] = np.asarray(trial[position(s)], float) ** float(k)
-            out = compiled(*trial)
-        return np.broadcast_to(np.asarray(out, float), D.shape) / c
-
-    found = power_diagnoses(expr, funcs.params, evaluate, T, scale, powered)
-    if not found and not has_factor:
-        found = term_diagnoses(expr, evaluate, D, T, scale)
-    if not found and not has_factor:
-        found = _trig_diagnoses(expr, funcs, argv, factor, D, T, scale)
-    return found
