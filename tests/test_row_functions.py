@@ -98,3 +98,22 @@ def test_fit_factor_finds_a_monomial_and_refuses_a_sum():
     assert fit_factor(2 / (vm * vr**2), bases) == 2 / (m * r**2)
     assert fit_factor(np.cos(vt) ** 2 / 3, bases) == sp.cos(th) ** 2 / 3
     assert fit_factor(vm + vr, bases) is None
+
+
+#: Relative energy drift of the document's own simulation over 1 s, and its largest distance
+#: from the true positions (both integrated to the simulations' default tolerances).
+DOCUMENT_DRIFT_TOL, TRAJECTORY_TOL = 1e-7, 1e-6
+
+
+def test_the_documents_simulation_uses_the_factor_found():
+    r"""Simulated from its own equations, seed 000's 4.6 (its theta equation divided by m r^2)
+    conserves its own energy and follows the truth: its kinetic energy is read from the
+    equations multiplied back."""
+    from wheeled_dyn.simulate.documented import side_by_side
+    d = load_derivation(next(p for p in builtin_derivations("seed000")
+                             if p.stem == "p4_6_spring_particle"))
+    s = side_by_side(d, {"r": 0.7, "dtheta": 1.0}, duration=1.0)
+    energy = s.document.energy
+    assert s.document.has_potential
+    assert np.abs(energy - energy[0]).max() < DOCUMENT_DRIFT_TOL * abs(energy[0])
+    assert np.abs(s.document.q - s.truth.positions).max() < TRAJECTORY_TOL
