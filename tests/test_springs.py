@@ -223,6 +223,16 @@ def test_a_law_with_an_acceleration_is_refused(engine, tmp_path):
         engine.compare(load_derivation(path))
 
 
+def test_a_law_named_as_a_parameter_is_refused(engine, tmp_path):
+    text = _seed_file("p2_19_spring_block").read_text()
+    printed = 'F_s = { point = "origin"'
+    assert printed in text
+    path = tmp_path / "bad.toml"
+    path.write_text(text.replace(printed, 'K = { point = "origin"', 1))
+    with pytest.raises(DerivationError, match="not by one of the file's parameters"):
+        engine.compare(load_derivation(path))
+
+
 def test_seed000_2_19_rewritten_rows_agree(engine, tmp_path):
     r"""The first-order form's theta'' row, corrected and written as (3C) solved otherwise,
     agrees: the relation holds on the true small motions whatever its arrangement."""

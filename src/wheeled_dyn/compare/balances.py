@@ -104,6 +104,10 @@ class _Balance:
                 raise DerivationError(d.path, f"{where}.law", "a force's law is a function of "
                                       "the positions, velocities and symbols, not of the "
                                       "accelerations")
+            if f.law is not None and f.name in symbols and not symbols[f.name].free:
+                raise DerivationError(d.path, where, "a force given by its law is named by a "
+                                      "label, or by a symbol declared free = true, not by one "
+                                      "of the file's parameters")
             if f.law is None and (f.name not in symbols or not symbols[f.name].free):
                 raise DerivationError(d.path, where, "a force is a symbol of the file declared "
                                       "free = true (with units = \"N\", or \"N*m\" for a "

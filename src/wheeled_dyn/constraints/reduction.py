@@ -176,7 +176,7 @@ class CoordinateMap:
 
             h_\nu + Q_\nu = S^T\big(n(q, v) + A\,\dot S\nu\big),\qquad v = S\nu,
 
-        :math:`n = C v + Q` from ``pin.nonLinearEffects`` (plus the springs) (no Coriolis matrix) and
+        :math:`n = C v + Q` from ``pin.nonLinearEffects`` and the springs (no Coriolis matrix), and
         :math:`\dot S\nu` as a vector (:meth:`reduce_at` gives the matrices C, Q apart)."""
         nu = np.asarray(nu, dtype=float).reshape(-1)
         wm, model, data = self.wm, self.wm.model, self._data
