@@ -212,3 +212,24 @@ def test_dynamics_at_equals_the_reduced_terms(model, cset):
         assert np.abs(hQ - terms.h - terms.Q).max() < EXACT_TOL * scale
         assert np.abs(B - terms.B).max(initial=0.0) < EXACT_TOL * scale
         assert np.abs(S - S2).max() < EXACT_TOL
+
+
+def test_singular_samples_are_drawn_again():
+    r"""ZYX angles are singular at pitch = +-pi/2: the body-rate map's condition number grows
+    there without bound, and the comparison's samples avoid it (rounding there is amplified
+    by the cube of the condition number)."""
+    from wheeled_dyn.compare.samples import MAX_CONDITION, random_states, regular_states
+    wm = load_model("free_body")
+    cmap = CoordinateMap(wm, builtin_coordinate_set(wm, "body_rates"))
+    pitch = wm.index("pitch")
+    q = np.zeros((3, cmap.n))
+    q[:, pitch] = [0.0, np.pi / 2 - 1e-3, np.pi / 2 - 1e-6]
+    cond = cmap.conditioning(q)
+    assert cond[0] < 10 and cond[1] > 1e2 and cond[2] > 1e5
+    rng = np.random.default_rng(SEED)
+    drawn, _ = random_states(cmap.n, 2000, rng)
+    drawn[:20, pitch] = np.pi / 2                     # planted singular samples
+    regular = regular_states(cmap, drawn, rng)
+    assert cmap.conditioning(regular).max() <= MAX_CONDITION
+    kept = cmap.conditioning(drawn) <= MAX_CONDITION
+    assert np.array_equal(regular[kept], drawn[kept])  # the regular ones are left as drawn
