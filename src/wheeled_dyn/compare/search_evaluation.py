@@ -10,8 +10,8 @@ from collections.abc import Sequence
 import numpy as np
 
 from . import causes
-from .diagnose import agrees
-from .elements import apply_row_factors, element_values, row_factors, row_scales
+from .diagnose import AGREE_TOL
+from .elements import apply_row_factors, row_factors, row_scales
 from .evaluate import Arrays
 
 #: Samples the convention search scores each reading on (spread over the parameter sets).
@@ -56,9 +56,29 @@ class SearchEvaluation(causes.Evaluation):
         factors = row_factors(doc, truth, B_true, n)
         apply_row_factors(doc, factors)
         scales = row_scales(doc, truth, n)
-        return sum(bool(np.isfinite(D).all()) and agrees(D, T, scales[index[0]])
-                   for _, D, T, index, _ in element_values(self.funcs, doc, truth, B_true, n,
-                                                      expressions=False))
+        pairs = [(doc.A, truth.A), (doc.C, truth.C), (doc.Q, truth.Q)]
+        if B_true is not None:
+            pairs.append((doc.B, B_true))
+        count = sum(_agreeing(D, T, scales) for D, T in pairs if D is not None)
+        if doc.H is not None:            # the velocity products j <= k (2 H_ijk for j < k)
+            upper = np.triu(np.ones((n, n), dtype=bool))
+            weight = np.where(np.eye(n, dtype=bool), 1.0, 2.0)
+            count += _agreeing(doc.H * weight, truth.H * weight, scales, upper)
+        return count
+
+
+def _agreeing(D: np.ndarray, T: np.ndarray, scales: np.ndarray,
+              mask: np.ndarray | None = None) -> int:
+    r"""How many elements of ``D`` (samples × rows × ...) are finite at every sample and
+    agree with ``T`` (:func:`~.diagnose.agrees` with their row's scale), all at once;
+    ``mask`` keeps some of each row's entries."""
+    with np.errstate(invalid="ignore"):
+        error = np.abs(D - T).max(axis=0, initial=0.0)
+        ok = np.isfinite(D).all(axis=0) & (
+            error <= AGREE_TOL * scales.reshape((-1,) + (1,) * (error.ndim - 1)))
+    if mask is not None:
+        ok = ok & mask
+    return int(ok.sum())
 
 
 __all__ = ["SEARCH_SAMPLES", "SearchEvaluation"]
