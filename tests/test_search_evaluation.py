@@ -1,0 +1,40 @@
+"""The convention search counts a reading's agreeing elements matrix by matrix: the same count
+as judging every element on its own (:func:`wheeled_dyn.compare.diagnose.agrees`)."""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+import pytest
+
+from conftest import SEED
+from wheeled_dyn.compare.diagnose import agrees
+from wheeled_dyn.compare.elements import (apply_row_factors, element_values, row_factors,
+                                          row_scales)
+from wheeled_dyn.compare.engine import ComparisonEngine
+from wheeled_dyn.derivations import builtin_derivations, load_derivation
+
+#: Readings (sign patterns) scored per file.
+READINGS = 8
+
+
+@pytest.mark.parametrize("group, stem", [("seed001", "eq25_lagrange"),
+                                         ("seed001", "sec5_nonholonomic"),
+                                         ("seed000", "p4_9_pendulum_support")])
+def test_score_counts_what_element_by_element_counts(group, stem):
+    d = load_derivation(next(p for p in builtin_derivations(group) if p.stem == stem))
+    _, ev = ComparisonEngine(samples=60, param_sets=2, seed=SEED)._judge(d)
+    n = ev.q.shape[1]
+    _, truth, B_true = ev._subset()
+    counts = set()
+    for signs in itertools.islice(itertools.product((1, -1), repeat=n), READINGS):
+        one = ev.doc_at(signs)
+        apply_row_factors(one, row_factors(one, truth, B_true, n))
+        scales = row_scales(one, truth, n)
+        expected = sum(bool(np.isfinite(D).all()) and agrees(D, T, scales[index[0]])
+                       for _, D, T, index, _ in element_values(ev.funcs, one, truth, B_true, n,
+                                                               expressions=False))
+        assert ev.score(ev.doc_at(signs)) == expected, signs
+        counts.add(expected)
+    assert len(counts) > 1                      # the readings do differ
