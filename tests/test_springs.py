@@ -142,6 +142,15 @@ def _seed_file(stem: str = "p4_6_spring_particle") -> Path:
     return next(p for p in builtin_derivations("seed000") if p.stem == stem)
 
 
+def _rewritten(tmp_path: Path, stem: str, printed: str, replacement: str) -> Path:
+    r"""The shipped file ``stem`` with its first ``printed`` replaced, in ``tmp_path``."""
+    text = _seed_file(stem).read_text()
+    assert printed in text
+    path = tmp_path / f"{stem}.toml"
+    path.write_text(text.replace(printed, replacement, 1))
+    return path
+
+
 @pytest.fixture(scope="module")
 def engine():
     return ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED)
@@ -162,11 +171,8 @@ def test_seed000_4_6_agrees(engine):
     ("1/2*K*(r - l0)**2", "K*(r - l0)**2", "V value"),
 ])
 def test_planted_spring_errors_are_named(engine, tmp_path, printed, planted, named):
-    text = _seed_file().read_text()
-    assert printed in text
-    path = tmp_path / "planted.toml"
-    path.write_text(text.replace(printed, planted, 1))
-    result = engine.compare(load_derivation(path))
+    result = engine.compare(load_derivation(_rewritten(tmp_path, "p4_6_spring_particle",
+                                                       printed, planted)))
     differ = {r.element for r in result.records if r.verdict == "differs"}
     assert any(named in e for e in differ), differ
     assert all(("Q[" in e or "V" in e) for e in differ), differ
@@ -205,30 +211,21 @@ def test_seed000_2_19_balances_with_the_springs_laws_agree(engine):
 ])
 def test_planted_errors_in_a_balance_with_laws_are_named(engine, tmp_path, printed, planted,
                                                          named):
-    text = _seed_file("p2_19_spring_block").read_text()
-    assert printed in text
-    path = tmp_path / "planted.toml"
-    path.write_text(text.replace(printed, planted, 1))
+    path = _rewritten(tmp_path, "p2_19_spring_block", printed, planted)
     verdict, diagnoses = _verdicts(engine, path)["(1A)-(3A) newton-euler (3A)"]
     assert verdict == "differs" and any(named in x for x in diagnoses), diagnoses
 
 
 def test_a_law_with_an_acceleration_is_refused(engine, tmp_path):
-    text = _seed_file("p2_19_spring_block").read_text()
-    printed = 'law = "K*(x_in - x)"'
-    assert printed in text
-    path = tmp_path / "bad.toml"
-    path.write_text(text.replace(printed, 'law = "K*(x_in - x) + m*ddx"', 1))
+    path = _rewritten(tmp_path, "p2_19_spring_block", 'law = "K*(x_in - x)"',
+                      'law = "K*(x_in - x) + m*ddx"')
     with pytest.raises(DerivationError, match="not of the accelerations"):
         engine.compare(load_derivation(path))
 
 
 def test_a_law_named_as_a_parameter_is_refused(engine, tmp_path):
-    text = _seed_file("p2_19_spring_block").read_text()
-    printed = 'F_s = { point = "origin"'
-    assert printed in text
-    path = tmp_path / "bad.toml"
-    path.write_text(text.replace(printed, 'K = { point = "origin"', 1))
+    path = _rewritten(tmp_path, "p2_19_spring_block", 'F_s = { point = "origin"',
+                      'K = { point = "origin"')
     with pytest.raises(DerivationError, match="not by one of the file's parameters"):
         engine.compare(load_derivation(path))
 
@@ -236,11 +233,9 @@ def test_a_law_named_as_a_parameter_is_refused(engine, tmp_path):
 def test_seed000_2_19_rewritten_rows_agree(engine, tmp_path):
     r"""The first-order form's theta'' row, corrected and written as (3C) solved otherwise,
     agrees: the relation holds on the true small motions whatever its arrangement."""
-    text = _seed_file("p2_19_spring_block").read_text()
-    printed = '"ddtheta = -(K_T/I_g - m*g/I_g*H/2)*theta + K*H/I_g*x",'
-    assert printed in text
-    path = tmp_path / "rewritten.toml"
-    path.write_text(text.replace(printed, '"2*I_g*ddtheta + (2*K_T - m*g*H)*theta = K*H*x",'))
+    path = _rewritten(tmp_path, "p2_19_spring_block",
+                      '"ddtheta = -(K_T/I_g - m*g/I_g*H/2)*theta + K*H/I_g*x",',
+                      '"2*I_g*ddtheta + (2*K_T - m*g*H)*theta = K*H*x",')
     verdicts = {e.rsplit(" equations ", 1)[-1]: v for e, v in _verdicts(engine, path).items()}
     assert verdicts["x2' = theta''"][0] == "agrees", verdicts["x2' = theta''"]
 
