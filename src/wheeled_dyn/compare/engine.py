@@ -30,7 +30,7 @@ import sympy as sp
 
 from ..constraints.reduction import CoordinateMap
 from ..derivations.schema import Derivation, equation_labels
-from . import causes, closed_form, conventions, row_functions
+from . import causes, closed_form, conventions, row_combinations, row_functions
 from .diagnose import (
     agrees,
     max_error,
@@ -72,7 +72,8 @@ from .units import DimensionChecker
 
 #: Smaller grid used to test special parameter families.
 SPECIAL_SAMPLES, SPECIAL_SETS = 40, 2
-#: The grid a row divided by a function is identified on: states per set, parameter sets.
+#: The grid a row divided by a function, or a combination of rows, is identified on: states
+#: per set, parameter sets.
 ROW_FUNCTION_STATES, ROW_FUNCTION_SETS = 8, 16
 
 
@@ -133,19 +134,41 @@ class ComparisonEngine:
             doc.H = doc.H[H_rows]
         return doc, per_set
 
-    def _row_functions(self, d: Derivation, ev: SearchEvaluation) -> dict[int, sp.Expr]:
-        r"""Rows the document divided by a function of the state or of the parameters
-        (:mod:`.row_functions`), identified on a grid of :data:`ROW_FUNCTION_SETS` parameter
-        sets (a quantity of the parameters alone takes one value per set)."""
-        rows = row_functions.candidate_rows(ev.doc, ev.truth, ev.row_factor)
-        if not rows:
-            return {}
+    def _identification(self, d: Derivation, ev: SearchEvaluation):
+        r"""``(document, truth, positions, symbol values, true B)`` on the grid functions of
+        the state are identified on: :data:`ROW_FUNCTION_SETS` parameter sets (a quantity of
+        the parameters alone takes one value per set)."""
         truth, sets, q, nu, _ = self._grid(d, (), ROW_FUNCTION_STATES, ROW_FUNCTION_SETS,
                                            declared(d))
         doc, per_set = self._document(d, ev.funcs, sets, q, nu, truth.H_rows)
         values = {s: np.repeat([v[s] for v in per_set], ROW_FUNCTION_STATES)
                   for s in ev.funcs.params}
-        return row_functions.state_row_factors(d, doc, truth, q.reshape(-1, d.n), values, rows)
+        B_true = input_map(d, truth, per_set, ROW_FUNCTION_STATES, [])
+        return doc, truth, q.reshape(-1, d.n), values, B_true
+
+    def _row_functions(self, d: Derivation, ev: SearchEvaluation) -> dict[int, sp.Expr]:
+        r"""Rows the document divided by a function of the state or of the parameters
+        (:mod:`.row_functions`)."""
+        rows = row_functions.candidate_rows(ev.doc, ev.truth, ev.row_factor)
+        if not rows:
+            return {}
+        doc, truth, q, values, _ = self._identification(d, ev)
+        return row_functions.state_row_factors(d, doc, truth, q, values, rows)
+
+    def _row_combination(self, d: Derivation, ev: SearchEvaluation
+                         ) -> tuple[Derivation, str] | None:
+        r"""``d`` with the combination of the true equations its rows are undone, and what
+        that combination is (:mod:`.row_combinations`); None when its rows are no such
+        combination."""
+        if row_combinations.combination(ev.doc, ev.truth, ev.B_true) is None:
+            return None
+        doc, truth, q, values, B_true = self._identification(d, ev)
+        W = row_combinations.combination(doc, truth, B_true)
+        if W is None:
+            return None
+        W = row_combinations.fit_combination(W, row_functions.bases(d, q, values))
+        undone = None if W is None else row_combinations.separated(d, W)
+        return None if undone is None else (undone, row_combinations.describe(W))
 
     # -- main ----------------------------------------------------------------------------
     def compare(self, d: Derivation) -> DerivationResult:
@@ -183,6 +206,14 @@ class ComparisonEngine:
                 d, ev = scaled, ev2
                 result = replace(again, row_functions=tuple(
                     sp.sstr(factors[i]) if i in factors else None for i in range(d.n)))
+        combined = self._row_combination(d, ev) if result.counts()["differs"] else None
+        if combined is not None:
+            again, ev2 = self._judge(combined[0])
+            if again.counts()["agrees"] > result.counts()["agrees"]:
+                first.append(Cause(kind="convention", elements=(), explanation=(
+                    f"{combined[1]}: compared with the combination undone (an equivalent "
+                    "system: the same motions)")))
+                d, result, ev = combined[0], again, ev2
         declared_counts = result.counts()
         summary = None
         best = conventions.best_reading(d, ev.doc_at, ev.score)

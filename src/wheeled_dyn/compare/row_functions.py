@@ -73,7 +73,7 @@ def _ratio(doc: Arrays, truth: Arrays, i: int) -> np.ndarray | None:
     return first
 
 
-def _bases(d: Derivation, q: np.ndarray, values: Mapping[sp.Symbol, np.ndarray]
+def bases(d: Derivation, q: np.ndarray, values: Mapping[sp.Symbol, np.ndarray]
            ) -> list[tuple[sp.Expr, np.ndarray]]:
     r"""The candidate bases with their sample values (one of each set of equal columns)."""
     out: list[tuple[sp.Expr, np.ndarray]] = []
@@ -208,14 +208,14 @@ def state_row_factors(d: Derivation, doc: Arrays, truth: Arrays, q: np.ndarray,
     of the state or of the parameters found on these samples (a grid of many parameter sets:
     a function of the parameters alone is told apart only by their variety)."""
     out: dict[int, sp.Expr] = {}
-    bases = _bases(d, q, values)
+    candidates = bases(d, q, values)
     for i in rows:
         ratio = _ratio(doc, truth, i)
         if ratio is None:
             continue
-        found = fit_factor(ratio, bases)
+        found = fit_factor(ratio, candidates)
         if found is None:
-            divisor = fit_sum(1.0 / ratio, bases)
+            divisor = fit_sum(1.0 / ratio, candidates)
             found = None if divisor is None else 1 / divisor
         if found is not None:
             out[i] = found
@@ -255,6 +255,6 @@ def describe_factors(d: Derivation, factors: Mapping[int, sp.Expr]) -> str:
     return ", ".join(parts)
 
 
-__all__ = ["candidate_rows", "describe_factors", "fit_factor", "fit_sum", "state_row_factors",
+__all__ = ["bases", "candidate_rows", "describe_factors", "fit_factor", "fit_sum", "state_row_factors",
            "with_row_factors",
            "with_row_functions"]
