@@ -96,3 +96,25 @@ def test_the_combination_is_found_only_when_it_carries_every_part():
     assert combination(diagonal, truth, None) is None
     wrong = Arrays(A=doc.A, Q=doc.Q, h=doc.h + 1e-3)              # h not carried
     assert combination(wrong, truth, None) is None
+
+
+#: Relative energy drift of the document's own simulation over 1 s.
+DOCUMENT_DRIFT_TOL = 1e-7
+
+
+def test_the_documents_own_simulation_reads_the_equations_separated(engine, tmp_path):
+    r"""Simulated from its own equations (with the combination undone, as compared), the
+    Newton–Euler form conserves its own energy: its A is then symmetric."""
+    import sympy as sp
+    from wheeled_dyn.compare.row_combinations import as_compared
+    from wheeled_dyn.simulate.documented import side_by_side
+    path = tmp_path / "ne.toml"
+    path.write_text(FILE)
+    d = load_derivation(path)
+    result = engine.compare(d)
+    assert result.row_combination
+    A = as_compared(d, result).read_off().A
+    assert sp.simplify(A - A.T) == sp.zeros(2, 2)
+    s = side_by_side(d, {"x": 0.05, "theta": 0.2}, duration=1.0)
+    energy = s.document.energy
+    assert np.abs(energy - energy[0]).max() < DOCUMENT_DRIFT_TOL * abs(energy[0])

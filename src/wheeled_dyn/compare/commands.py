@@ -313,13 +313,13 @@ def _plots(results: Sequence[DerivationResult]) -> tuple[list[str], list[str], d
     from ..simulate.commands import default_start
     from ..simulate.documented import side_by_side
     from ..simulate.plots import plot_side_by_side
-    from .row_functions import with_row_functions
+    from .row_combinations import as_compared
     md, html, files = ["## Simulations: truth and document from the same start", ""], [
         "<section><h2>Simulations: truth and document from the same start</h2>"], {}
     for r in results:
         if r.form == "linearised":              # published linear equations: nothing to run
             continue
-        d = with_row_functions(load_derivation(r.path), r.row_functions)   # as compared
+        d = as_compared(load_derivation(r.path), r)
         try:
             factors = tuple(None if c is None else float(eval_fraction(c)) for c in r.row_factors)
             s = side_by_side(d, default_start(d), 4.0, row_factors=factors)

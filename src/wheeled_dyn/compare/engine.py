@@ -156,9 +156,9 @@ class ComparisonEngine:
         return row_functions.state_row_factors(d, doc, truth, q, values, rows)
 
     def _row_combination(self, d: Derivation, ev: SearchEvaluation
-                         ) -> tuple[Derivation, str] | None:
-        r"""``d`` with the combination of the true equations its rows are undone, and what
-        that combination is (:mod:`.row_combinations`); None when its rows are no such
+                         ) -> tuple[Derivation, sp.Matrix] | None:
+        r"""``d`` with the combination of the true equations its rows are undone, and that
+        combination :math:`W` (:mod:`.row_combinations`); None when its rows are no such
         combination."""
         if row_combinations.combination(ev.doc, ev.truth, ev.B_true) is None:
             return None
@@ -168,7 +168,7 @@ class ComparisonEngine:
             return None
         W = row_combinations.fit_combination(W, row_functions.bases(d, q, values))
         undone = None if W is None else row_combinations.separated(d, W)
-        return None if undone is None else (undone, row_combinations.describe(W))
+        return None if undone is None else (undone, W)
 
     # -- main ----------------------------------------------------------------------------
     def compare(self, d: Derivation) -> DerivationResult:
@@ -211,9 +211,11 @@ class ComparisonEngine:
             again, ev2 = self._judge(combined[0])
             if again.counts()["agrees"] > result.counts()["agrees"]:
                 first.append(Cause(kind="convention", elements=(), explanation=(
-                    f"{combined[1]}: compared with the combination undone (an equivalent "
-                    "system: the same motions)")))
-                d, result, ev = combined[0], again, ev2
+                    f"{row_combinations.describe(combined[1])}: compared with the combination "
+                    "undone (an equivalent system: the same motions)")))
+                d, ev = combined[0], ev2
+                result = replace(again, row_functions=result.row_functions,
+                                 row_combination=row_combinations.as_text(combined[1]))
         declared_counts = result.counts()
         summary = None
         best = conventions.best_reading(d, ev.doc_at, ev.score)

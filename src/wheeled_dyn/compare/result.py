@@ -185,6 +185,9 @@ class DerivationResult:
     #: per equation, the function of the state or parameters the document multiplied it by,
     #: found by the comparison (:mod:`.row_functions`; SymPy text), None where none
     row_functions: tuple[str | None, ...] = field(default=())
+    #: the combination of the true equations the document's are, found by the comparison
+    #: (:mod:`.row_combinations`; rows of SymPy text), () where none
+    row_combination: tuple[tuple[str, ...], ...] = field(default=())
 
     def counts(self) -> dict[str, int]:
         out = {v: 0 for v in VERDICTS}
@@ -210,6 +213,7 @@ class DerivationResult:
                 "causes": [c.as_dict() for c in self.causes],
                 "counts": self.counts(), "row_factors": list(self.row_factors),
                 "row_functions": list(self.row_functions),
+                "row_combination": [list(r) for r in self.row_combination],
                 "energy": self.energy.as_dict() if self.energy else None,
                 "asymmetric": list(self.asymmetric), "constraints": list(self.constraints),
                 "reconstructed": dict(self.reconstructed), "samples": self.samples,

@@ -29,7 +29,7 @@ import sympy as sp
 
 from ..derivations.schema import Derivation
 from .evaluate import Arrays
-from .row_functions import fit_factor, fit_sum
+from .row_functions import document_names, fit_factor, fit_sum, with_row_functions
 
 #: Relative agreement of :math:`W h`, :math:`W Q`, :math:`W B` with the document's.
 COMBINATION_TOL = 1e-8
@@ -106,6 +106,28 @@ def separated(d: Derivation, W: sp.Matrix) -> Derivation | None:
                          for k, m in mats.items()})
 
 
+def as_text(W: sp.Matrix) -> tuple[tuple[str, ...], ...]:
+    r""":math:`W` as rows of SymPy text (a result's ``row_combination``)."""
+    return tuple(tuple(sp.sstr(W[i, k]) for k in range(W.cols)) for i in range(W.rows))
+
+
+def undone(d: Derivation, texts: Sequence[Sequence[str]]) -> Derivation:
+    r"""``d`` with the combination a result found (:func:`as_text`; none: ``d`` itself)
+    undone, as it was compared."""
+    if not texts:
+        return d
+    names = document_names(d)
+    W = sp.Matrix([[sp.sympify(t, locals=names) for t in row] for row in texts])
+    return separated(d, W) or d
+
+
+def as_compared(d: Derivation, result) -> Derivation:
+    r"""``d`` read as its comparison ``result`` read it: the functions its rows were divided
+    by (:mod:`.row_functions`) and the combination of the true equations they are undone
+    (for its own energies' consistency, its own simulation)."""
+    return undone(with_row_functions(d, result.row_functions), result.row_combination)
+
+
 def describe(W: sp.Matrix) -> str:
     r"""``"equation 2 = H*cos(theta)*eq1/2 - eq2 (eq k: the true equation k)"``."""
     eq = [sp.Symbol(f"eq{k + 1}") for k in range(W.cols)]
@@ -114,4 +136,5 @@ def describe(W: sp.Matrix) -> str:
     return ", ".join(parts) + " (eq k: the true equation k)"
 
 
-__all__ = ["COMBINATION_TOL", "combination", "describe", "fit_combination", "separated"]
+__all__ = ["COMBINATION_TOL", "as_compared", "as_text", "combination", "describe",
+           "fit_combination", "separated", "undone"]

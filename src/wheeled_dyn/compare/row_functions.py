@@ -236,10 +236,15 @@ def with_row_functions(d: Derivation, texts: Sequence[str | None]) -> Derivation
     row_functions`, SymPy text in ``d``'s symbols) multiplied into its rows' scales."""
     if not any(texts):
         return d
-    names = {str(s.symbol): s.symbol for s in d.symbols.values()}
-    names |= {str(p): p for p in d.positions}
+    names = document_names(d)
     return with_row_factors(d, {i: sp.sympify(t, locals=names)
                                 for i, t in enumerate(texts) if t})
+
+
+def document_names(d: Derivation) -> dict[str, sp.Symbol]:
+    r"""The document's symbols and positions by name (to read back a function found)."""
+    return {str(s.symbol): s.symbol for s in d.symbols.values()} | \
+        {str(p): p for p in d.positions}
 
 
 def describe_factors(d: Derivation, factors: Mapping[int, sp.Expr]) -> str:
@@ -255,6 +260,6 @@ def describe_factors(d: Derivation, factors: Mapping[int, sp.Expr]) -> str:
     return ", ".join(parts)
 
 
-__all__ = ["bases", "candidate_rows", "describe_factors", "fit_factor", "fit_sum", "state_row_factors",
+__all__ = ["bases", "candidate_rows", "document_names", "describe_factors", "fit_factor", "fit_sum", "state_row_factors",
            "with_row_factors",
            "with_row_functions"]

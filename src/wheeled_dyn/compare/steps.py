@@ -36,7 +36,7 @@ from .compiled import numpy_function
 from .diagnose import agrees, max_error, value_diagnoses
 from .evaluate import document_symbol_values
 from .result import Cause, DerivationResult, ElementRecord
-from .row_functions import with_row_functions
+from .row_combinations import as_compared
 from .samples import parameter_sets
 from .workers import Workers, can_fork
 
@@ -253,7 +253,7 @@ def with_steps(d: Derivation, compare: Callable[[Derivation], DerivationResult],
     if not own and not fed:
         return base
     steps = own + [r for _, recs in fed for r in recs]
-    eom = with_row_functions(d, base.row_functions)   # equations divided as found
+    eom = as_compared(d, base)              # rows divided or combined as found
     consistency = energy_consistency(d, eom, seed) + [r for sd, _ in fed
                                                      for r in energy_consistency(sd, eom, seed)]
     causes = claim_causes(steps) + upstream_causes(steps, base.records, d)

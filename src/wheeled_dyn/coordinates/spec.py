@@ -30,8 +30,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import sympy as sp
-from sympy.parsing.sympy_parser import (parse_expr, standard_transformations,
-                                        implicit_multiplication_application)
+from sympy.parsing.sympy_parser import parse_expr, standard_transformations
 
 from ..errors import DerivationError, UnknownNameError, WheeledDynError
 

@@ -3,7 +3,6 @@ r"""CLI: ``wheeled-dyn simulate FILE...``: the true and the documented model sid
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
 
 from ..errors import LimitError
 from ..models.commands import parse_assignments

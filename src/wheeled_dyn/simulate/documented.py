@@ -111,15 +111,15 @@ def side_by_side(d: Derivation, q0: dict[str, float], duration: float = 5.0,
                  ) -> SideBySide:
     r"""Both models from the document state ``q0`` (names of the document's positions and
     velocities; missing are 0), zero input, the model's default parameters. ``row_factors``:
-    see :func:`simulate_document` (default: found by a quick comparison, with any function of
-    the state an equation was divided by, :mod:`~wheeled_dyn.compare.row_functions`)."""
+    see :func:`simulate_document` (default: found by a quick comparison, with the equations
+    read as it read them: :func:`~wheeled_dyn.compare.row_combinations.as_compared`)."""
     if row_factors is None:
         from ..compare.engine import ComparisonEngine
-        from ..compare.row_functions import with_row_functions
+        from ..compare.row_combinations import as_compared
         found = ComparisonEngine(samples=50, param_sets=2).compare(d)
         row_factors = tuple(None if c is None else float(sp.Rational(c))
                             for c in found.row_factors)
-        d = with_row_functions(d, found.row_functions)
+        d = as_compared(d, found)
     wm = load_model(d.model)
     physical = model_entry(d.model).parameters() if model_entry(d.model).parameters else None
     params = ParameterSet(wm, namespace_values(wm, physical), physical)
