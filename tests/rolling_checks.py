@@ -1,5 +1,8 @@
 r"""Checks every rolling body's reduction must pass, shared by the rolling tests.
 
+:func:`assert_contact_at_rest`: the material point at the contact does not move for the
+velocities the reduction gives (:math:`v = S\nu`), and :math:`J_c v = 0`.
+
 :func:`assert_power_identity`: with the body's link given a random, non-uniform inertia (so
 that :math:`A_\nu` varies along the motion), the reduced terms in the body rates satisfy
 
@@ -19,12 +22,34 @@ import pinocchio as pin
 
 from conftest import N_STATES
 from wheeled_dyn import CoordinateMap, builtin_coordinate_set
+from wheeled_dyn.constraints import contact_jacobian, contact_velocities
 
 #: Step and relative tolerance of the central differences.
 FD_STEP = 1e-6
 FD_TOL = 1e-6
 #: h must be larger than this somewhere, or the identity would be 0 = 0.
 NONTRIVIAL = 1e-6
+#: Tolerance of identities exact to rounding.
+EXACT_TOL = 1e-9
+#: The ball's centre moves at least this fast (m/s), or "at rest" would be trivial.
+MOVING = 1e-3
+
+
+def assert_contact_at_rest(wm, coordinates: str, random_state: Callable,
+                           rng: np.random.Generator, moving: bool = False) -> None:
+    r"""At :data:`N_STATES` states ``random_state(wm, rng)`` with random velocities in the
+    coordinate set ``coordinates``: one contact, its material point at rest, :math:`J_c v = 0`
+    (and, with ``moving``, the body's origin moving: the identity is not 0 = 0)."""
+    cmap = CoordinateMap(wm, builtin_coordinate_set(wm, coordinates))
+    for _ in range(N_STATES):
+        q = random_state(wm, rng)
+        _, _, v = cmap.reduce_at(q, rng.normal(size=cmap.n))
+        vc = contact_velocities(wm, q, v)
+        assert vc.shape == (1, 3)
+        assert np.abs(vc).max() < EXACT_TOL * (1 + np.abs(v).max()), vc
+        assert np.abs(contact_jacobian(wm, q)[0] @ v).max() < EXACT_TOL * (1 + np.abs(v).max())
+        if moving:
+            assert np.abs(v[:3]).max() > MOVING
 
 
 def assert_power_identity(base, link: str, random_state: Callable, rng: np.random.Generator,

@@ -17,7 +17,7 @@ import pinocchio as pin
 import pytest
 
 from conftest import N_STATES, SEED
-from rolling_checks import assert_power_identity
+from rolling_checks import assert_contact_at_rest, assert_power_identity
 from wheeled_dyn import CoordinateMap, builtin_coordinate_set, load_model, simulate
 from wheeled_dyn.constraints import contact_jacobian, contact_points, contact_velocities
 
@@ -64,16 +64,8 @@ def _ball_constants(wm):
 @pytest.mark.parametrize("name", BALLS)
 @pytest.mark.parametrize("coords", ["body_rates", "world_rates"])
 def test_contact_point_does_not_move(name, coords):
-    rng = np.random.default_rng(SEED)
-    wm = load_model(name)
-    cmap = CoordinateMap(wm, builtin_coordinate_set(wm, coords))
-    for _ in range(N_STATES):
-        q = _random_ball_state(wm, rng)
-        _, S, v = cmap.reduce_at(q, rng.normal(size=3))
-        vc = contact_velocities(wm, q, v)
-        assert vc.shape == (1, 3)
-        assert np.abs(vc).max() < EXACT_TOL * (1 + np.abs(v).max()), vc
-        assert np.abs(contact_jacobian(wm, q)[0] @ v).max() < EXACT_TOL * (1 + np.abs(v).max())
+    assert_contact_at_rest(load_model(name), coords, _random_ball_state,
+                           np.random.default_rng(SEED))
 
 
 @pytest.mark.parametrize("name", BALLS)

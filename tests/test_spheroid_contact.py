@@ -33,7 +33,7 @@ import pytest
 from scipy.optimize import minimize
 
 from conftest import N_STATES, SEED
-from rolling_checks import assert_power_identity
+from rolling_checks import assert_contact_at_rest, assert_power_identity
 from wheeled_dyn import CoordinateMap, builtin_coordinate_set, load_model, simulate
 from wheeled_dyn.constraints import contact_jacobian, contact_points, contact_velocities
 from wheeled_dyn.constraints.spheroid_contact import (lowest_point, lowest_point_rate,
@@ -205,17 +205,8 @@ def test_representative_configuration_touches_the_ground(shape):
 @pytest.mark.parametrize("shape", SHAPES)
 @pytest.mark.parametrize("coords", ["body_rates", "world_rates"])
 def test_contact_point_does_not_move(shape, coords):
-    rng = np.random.default_rng(SEED)
-    wm = _model(shape)
-    cmap = CoordinateMap(wm, builtin_coordinate_set(wm, coords))
-    for _ in range(N_STATES):
-        q = _random_state(wm, rng)
-        _, S, v = cmap.reduce_at(q, rng.normal(size=3))
-        vc = contact_velocities(wm, q, v)
-        assert vc.shape == (1, 3)
-        assert np.abs(vc).max() < EXACT_TOL * (1 + np.abs(v).max()), vc
-        assert np.abs(contact_jacobian(wm, q)[0] @ v).max() < EXACT_TOL * (1 + np.abs(v).max())
-        assert np.abs(v[:3]).max() > 1e-3                     # the body does move
+    assert_contact_at_rest(_model(shape), coords, _random_state, np.random.default_rng(SEED),
+                           moving=True)
 
 
 # -- the rows and their derivative --------------------------------------------------------------
