@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import numpy as np
 import pinocchio as pin
-import pytest
 
 from conftest import SEED
 from wheeled_dyn import CoordinateMap, builtin_coordinate_set, load_model, simulate

@@ -28,6 +28,7 @@ import pytest
 import sympy as sp
 
 from conftest import SEED
+from shipped_copies import rewritten_copy
 from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.compare.evaluate import derivation_coordinate_set, model_value
 from wheeled_dyn.compare.samples import ParameterSet, namespace_values
@@ -83,15 +84,7 @@ def _source():
 
 
 def _copy(tmp_path, *replacements: tuple[str, str]):
-    r"""The shipped file under ``tmp_path`` with each (old, new) replaced once; each ``old``
-    occurs exactly once in the text it is applied to."""
-    text = _source().read_text()
-    for old, new in replacements:
-        assert text.count(old) == 1, old
-        text = text.replace(old, new)
-    path = tmp_path / FILE
-    path.write_text(text)
-    return path
+    return rewritten_copy(_source(), tmp_path, *replacements)
 
 
 def _compare(path):

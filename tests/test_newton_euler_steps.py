@@ -18,8 +18,9 @@ import numpy as np
 import pytest
 
 from conftest import SEED
+from shipped_copies import rewritten_copy, shipped
 from wheeled_dyn.compare.engine import ComparisonEngine
-from wheeled_dyn.derivations import builtin_derivations, load_derivation
+from wheeled_dyn.derivations import load_derivation
 from wheeled_dyn.errors import DerivationError
 
 #: Engine grid (verdicts, not statistics).
@@ -35,15 +36,7 @@ PIVOT = '"-m*g*a*sin(theta) = (I_g + m*a**2)*ddtheta"'
 
 
 def _copy(tmp_path, name, *replacements):
-    folder = next(p for p in builtin_derivations("seed000") if p.name == PENDULUM).parent
-    src = folder / name                      # step files are not listed as derivations
-    text = src.read_text()
-    for old, new in replacements:
-        assert text.count(old) == 1, old
-        text = text.replace(old, new)
-    path = tmp_path / name
-    path.write_text(text)
-    return path
+    return rewritten_copy(shipped("seed000", name), tmp_path, *replacements)
 
 
 def _balances(path) -> dict[str, object]:

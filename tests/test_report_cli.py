@@ -3,9 +3,7 @@
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
-import pytest
 
 from wheeled_dyn.cli import main
 from wheeled_dyn.derivations import builtin_derivations

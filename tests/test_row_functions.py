@@ -16,6 +16,7 @@ import pytest
 import sympy as sp
 
 from conftest import SEED
+from shipped_copies import rewritten_copy, shipped
 from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.compare.row_functions import fit_factor, fit_sum
 from wheeled_dyn.derivations import builtin_derivations, load_derivation
@@ -30,12 +31,8 @@ def engine():
 
 
 def _rewritten(tmp_path: Path, stem: str, printed: str, rewritten: str) -> Path:
-    source = next(p for p in builtin_derivations("seed000") if p.stem == stem)
-    text = source.read_text()
-    assert printed in text
-    path = tmp_path / f"{stem}.toml"
-    path.write_text(text.replace(printed, rewritten, 1))
-    return path
+    return rewritten_copy(shipped("seed000", stem), tmp_path,
+                          *(((printed, rewritten),) if printed else ()))
 
 
 def _convention(result) -> str:

@@ -17,6 +17,7 @@ import pytest
 import sympy as sp
 
 from conftest import SEED
+from shipped_copies import rewritten_copy
 from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.compare.samples import parameter_sets
 from wheeled_dyn.constraints import CoordinateMap
@@ -143,12 +144,7 @@ def _seed_file(stem: str = "p4_6_spring_particle") -> Path:
 
 
 def _rewritten(tmp_path: Path, stem: str, printed: str, replacement: str) -> Path:
-    r"""The shipped file ``stem`` with its first ``printed`` replaced, in ``tmp_path``."""
-    text = _seed_file(stem).read_text()
-    assert printed in text
-    path = tmp_path / f"{stem}.toml"
-    path.write_text(text.replace(printed, replacement, 1))
-    return path
+    return rewritten_copy(_seed_file(stem), tmp_path, (printed, replacement))
 
 
 @pytest.fixture(scope="module")

@@ -11,12 +11,12 @@ linearisation.
 
 from __future__ import annotations
 
-import shutil
 
 import numpy as np
 import pytest
 
 from conftest import SEED
+from shipped_copies import rewritten_copy, shipped
 from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.compare.results import (NEUTRAL_TOL, frequencies, growth, linearisation,
                                          rate_scale, state_field)
@@ -35,14 +35,8 @@ FLYWHEEL = "p4_17_flywheel_rod.toml"
 
 
 def _copy(tmp_path, name, replace=None):
-    src = next(p for p in builtin_derivations("seed000") if p.name == name)
-    dst = tmp_path / name
-    shutil.copy(src, dst)
-    if replace is not None:
-        text = dst.read_text()
-        assert replace[0] in text, replace[0]
-        dst.write_text(text.replace(replace[0], replace[1], 1))
-    return dst
+    return rewritten_copy(shipped("seed000", name), tmp_path,
+                          *(() if replace is None else (replace,)), first=True)
 
 
 def _result(path):
