@@ -1,5 +1,8 @@
 r"""Checks every rolling body's reduction must pass, shared by the rolling tests.
 
+:func:`stability_threshold`: the spin at which a body's largest growth rate falls to zero, by
+bisection about its closed form.
+
 :func:`assert_contact_at_rest`: the material point at the contact does not move for the
 velocities the reduction gives (:math:`v = S\nu`), and :math:`J_c v = 0`.
 
@@ -70,3 +73,15 @@ def assert_power_identity(base, link: str, random_state: Callable, rng: np.rando
         lhs, rhs = nu @ terms.h, 0.5 * nu @ Adot @ nu
         assert abs(lhs - rhs) < FD_TOL * (1 + abs(lhs) + np.abs(Adot).max()), (lhs, rhs)
         assert np.abs(terms.h).max() > NONTRIVIAL
+
+
+def stability_threshold(growth: Callable[[float], float], expected: float, neutral: float,
+                        tolerance: float) -> float:
+    r"""The spin in [0.5, 1.5] × ``expected`` above which ``growth(spin)`` (the largest growth
+    rate of the linearised motion) stays below ``neutral`` × ``expected``, by bisection to
+    ``tolerance`` / 10 relative."""
+    lo, hi = 0.5 * expected, 1.5 * expected
+    while hi - lo > 0.1 * tolerance * expected:
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if growth(mid) < neutral * expected else (mid, hi)
+    return 0.5 * (lo + hi)

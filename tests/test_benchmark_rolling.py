@@ -17,7 +17,7 @@ import pinocchio as pin
 import pytest
 
 from conftest import N_STATES, SEED
-from rolling_checks import assert_contact_at_rest, assert_power_identity
+from rolling_checks import assert_contact_at_rest, assert_power_identity, stability_threshold
 from wheeled_dyn import CoordinateMap, builtin_coordinate_set, load_model, simulate
 from wheeled_dyn.constraints import contact_jacobian, contact_points, contact_velocities
 
@@ -227,11 +227,7 @@ def test_sphere_on_sphere_stability_threshold():
 
     assert growth(0.8 * n_suff) > 0.1
     assert growth(1.2 * n_suff) < NEUTRAL_TOL * n_suff
-    lo, hi = 0.5 * n_suff, 1.5 * n_suff
-    while hi - lo > 0.1 * THRESHOLD_TOL * n_suff:
-        mid = 0.5 * (lo + hi)
-        lo, hi = (lo, mid) if growth(mid) < NEUTRAL_TOL * n_suff else (mid, hi)
-    n_crit = 0.5 * (lo + hi)
+    n_crit = stability_threshold(growth, n_suff, NEUTRAL_TOL, THRESHOLD_TOL)
     assert n_crit <= n_suff * (1 + THRESHOLD_TOL), (n_crit, n_suff)
     assert abs(n_crit / n_suff - 1) < THRESHOLD_TOL, (n_crit, n_suff)
 

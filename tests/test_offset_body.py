@@ -33,6 +33,7 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
+from rolling_checks import stability_threshold
 from wheeled_dyn import CoordinateMap, builtin_coordinate_set, load_model, simulate
 
 #: Largest relative drift of a conserved quantity over the simulation (DOP853, rtol 1e-10).
@@ -140,11 +141,8 @@ def test_upright_spin_threshold_of_the_inverted_body():
     assert growth(0.0, roll=0.0) < NEUTRAL_TOL             # bottom heavy: stable at rest
     assert growth(0.8 * n_cf) > 0.1
     assert growth(1.2 * n_cf) < NEUTRAL_TOL * n_cf
-    lo, hi = 0.5 * n_cf, 1.5 * n_cf
-    while hi - lo > 0.1 * THRESHOLD_TOL * n_cf:
-        mid = 0.5 * (lo + hi)
-        lo, hi = (lo, mid) if growth(mid) < NEUTRAL_TOL * n_cf else (mid, hi)
-    assert abs(0.5 * (lo + hi) / n_cf - 1) < THRESHOLD_TOL, (0.5 * (lo + hi), n_cf)
+    n_crit = stability_threshold(growth, n_cf, NEUTRAL_TOL, THRESHOLD_TOL)
+    assert abs(n_crit / n_cf - 1) < THRESHOLD_TOL, (n_crit, n_cf)
 
 
 @pytest.mark.parametrize("factor,stable", [(1.3, True), (0.7, False)])
