@@ -85,3 +85,14 @@ def stability_threshold(growth: Callable[[float], float], expected: float, neutr
         mid = 0.5 * (lo + hi)
         lo, hi = (lo, mid) if growth(mid) < neutral * expected else (mid, hi)
     return 0.5 * (lo + hi)
+
+
+def ball_centre_dynamics(cmap) -> Callable[[np.ndarray], np.ndarray]:
+    r"""f(c, omega) of a uniform ball's reduced equations in world rates, its orientation held
+    at zero (the uniform ball's equations do not depend on it): the state is the centre c and
+    the angular velocity omega."""
+    def f(x):
+        q = np.concatenate([x[:3], np.zeros(3)])
+        terms, S, _ = cmap.reduce_at(q, x[3:])
+        return np.concatenate([S[:3] @ x[3:], np.linalg.solve(terms.A, -terms.h - terms.Q)])
+    return f

@@ -21,7 +21,7 @@ import pinocchio as pin
 import pytest
 
 from conftest import N_STATES, SEED
-from rolling_checks import assert_contact_at_rest, assert_power_identity
+from rolling_checks import assert_contact_at_rest, assert_power_identity, ball_centre_dynamics
 from wheeled_dyn import CoordinateMap, builtin_coordinate_set, load_model, multipliers, simulate
 from wheeled_dyn.constraints import contact_jacobian, contact_points, contact_velocities
 from wheeled_dyn.constraints.surfaces import foot, normal_rate
@@ -258,22 +258,12 @@ def _small_oscillation_frequency(wm):
     return math.sqrt(g / ((a - r) * (1 + A / (M * r**2))))
 
 
-def _bottom_dynamics(cmap):
-    r"""f(c, omega) of the reduced equations in world rates (orientation fixed at zero: the
-    uniform ball's equations do not depend on it)."""
-    def f(x):
-        q = np.concatenate([x[:3], np.zeros(3)])
-        terms, S, _ = cmap.reduce_at(q, x[3:])
-        return np.concatenate([S[:3] @ x[3:], np.linalg.solve(terms.A, -terms.h - terms.Q)])
-    return f
-
-
 def test_small_oscillation_frequency_by_linearisation():
     wm = load_model(MODEL)
     M, A, _ = _ball_constants(wm)
     assert abs(A / (M * wm.geometry["r"] ** 2) - 0.4) < 1e-6        # the uniform ball
     cmap = CoordinateMap(wm, builtin_coordinate_set(wm, "world_rates"))
-    f = _bottom_dynamics(cmap)
+    f = ball_centre_dynamics(cmap)
     bottom = np.concatenate([cmap.model_configuration(np.zeros(3))[:3], np.zeros(3)])
     assert np.abs(f(bottom)).max() < EXACT_TOL                        # an equilibrium
     J = np.array([(f(bottom + FD_STEP * e) - f(bottom - FD_STEP * e)) / (2 * FD_STEP)

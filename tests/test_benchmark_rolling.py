@@ -17,7 +17,8 @@ import pinocchio as pin
 import pytest
 
 from conftest import N_STATES, SEED
-from rolling_checks import assert_contact_at_rest, assert_power_identity, stability_threshold
+from rolling_checks import (assert_contact_at_rest, assert_power_identity, ball_centre_dynamics,
+                            stability_threshold)
 from wheeled_dyn import CoordinateMap, builtin_coordinate_set, load_model, simulate
 from wheeled_dyn.constraints import contact_jacobian, contact_points, contact_velocities
 
@@ -191,16 +192,6 @@ def test_sphere_on_sphere_first_integrals():
     assert np.abs(flipped - flipped[0]).max() > 1e-3 * np.abs(flipped).max()
 
 
-def _top_dynamics(cmap):
-    r"""f(c, omega) of the reduced equations in world rates (orientation fixed at zero: the
-    uniform ball's equations do not depend on it)."""
-    def f(x):
-        q = np.concatenate([x[:3], np.zeros(3)])
-        terms, S, _ = cmap.reduce_at(q, x[3:])
-        return np.concatenate([S[:3] @ x[3:], np.linalg.solve(terms.A, -terms.h - terms.Q)])
-    return f
-
-
 def _max_growth(f, x, step=FD_STEP):
     J = np.array([(f(x + step * e) - f(x - step * e)) / (2 * step) for e in np.eye(len(x))]).T
     return np.linalg.eigvals(J).real.max()
@@ -216,7 +207,7 @@ def test_sphere_on_sphere_stability_threshold():
     M, A, R, R1 = _ball_constants(wm)
     g = float(-wm.model.gravity.linear[2])
     n_suff = 2 * np.sqrt((M * R**2 + A) * M * g * (R + R1)) / A
-    f = _top_dynamics(cmap)
+    f = ball_centre_dynamics(cmap)
     top = np.array([0.0, 0.0, R + R1, 0.0, 0.0, 0.0])
 
     def growth(n0):
