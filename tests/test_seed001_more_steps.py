@@ -355,6 +355,15 @@ def test_potential_energy_with_a_wrong_term_differs(tmp_path):
     assert _u1_record(tmp_path, "g*(MX1*sin(phi) + MY1*sin(phi))").verdict == "differs"
 
 
+def test_a_swap_in_a_potential_energy_is_named(tmp_path):
+    r"""U1 with sin and cos exchanged: the trial readings are levelled as the truth is (a
+    potential is measured from any level), so the swap that fits is named."""
+    r = _u1_record(tmp_path, "g*(MX1*cos(phi) + MY1*sin(phi))")
+    assert r.verdict == "differs"
+    assert any(x.startswith("swap:") and "sin(phi)" in x and "cos(phi)" in x
+               for x in r.diagnoses), r.diagnoses
+
+
 def test_shipped_u1_agrees():
     r"""The shipped step file compares U1 of (17) as well: it agrees up to a constant."""
     records = compare_steps(load_derivation(S4), SEED)

@@ -460,15 +460,19 @@ def _document_values(g: _Group, step: Step, T: np.ndarray):
     return D_all, scale
 
 
+def _level(g: _Group, step: Step, x: np.ndarray) -> np.ndarray:
+    r"""A potential energy is measured from any level: its values (every sample of the
+    group) taken from their mean per parameter set; other steps' values as they are."""
+    if step.kind != "potential energy":
+        return x
+    k = len(g.sets)
+    return (x.reshape(k, -1) - x.reshape(k, -1).mean(axis=1, keepdims=True)).ravel()
+
+
 def _levelled(g: _Group, step: Step, D: np.ndarray, T: np.ndarray
               ) -> tuple[np.ndarray, np.ndarray]:
-    r"""A potential energy is measured from any level: both sides taken from their mean per
-    parameter set (so a wrong sign or factor still shows as such); other steps as they are."""
-    if step.kind != "potential energy":
-        return D, T
-    k = len(g.sets)
-    return tuple((x.reshape(k, -1) - x.reshape(k, -1).mean(axis=1, keepdims=True)).ravel()
-                 for x in (D, T))
+    r"""Both sides levelled (:func:`_level`: a wrong sign or factor still shows as such)."""
+    return _level(g, step, D), _level(g, step, T)
 
 
 def _special(d: Derivation, step: Step, seed: int) -> dict[int, str]:
@@ -553,10 +557,12 @@ def _records(g: _Group, step: Step, index: int, T: np.ndarray) -> list[ElementRe
                 diags += _term_diagnoses(g, step, j, expr, scale)
             together, at = _compiled(g, step), sum(1 for e in step.components[:j]
                                                     if not e.has(sp.nan))
-            diags += swap_diagnoses(expr, groups,
-                                    lambda a, b: g.documents(together, read=(a, b))[at], Tj, scale)
-            if not _explained(diags):
-                diags += trig_swap_diagnoses(expr, g.documents, Tj, scale)
+            diags += swap_diagnoses(
+                expr, groups,
+                lambda a, b: _level(g, step, g.documents(together, read=(a, b))[at]), Tj, scale)
+            if not _explained(diags):                 # trials levelled as the truth is
+                diags += trig_swap_diagnoses(
+                    expr, lambda es: [_level(g, step, v) for v in g.documents(es)], Tj, scale)
             if step.kind == "first integral" or (
                     step.kind == "claim" and not expr.has(*d.positions, *d.velocities)):
                 diags += _power_swaps(expr, g, Tj, scale)
