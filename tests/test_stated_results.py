@@ -66,8 +66,9 @@ def test_lost_length_is_a_dimension_error(tmp_path):
     assert any(x.startswith("dimension") and "m^1/2" in x for x in r.diagnoses), r.diagnoses
 
 
-def test_a_state_that_is_not_steady_is_undecided(tmp_path):
-    r = _result(_copy(tmp_path, ROD, ('about = { theta = "0" }', 'about = { theta = "1" }')))
+@pytest.mark.parametrize("name", [ROD, FLYWHEEL])
+def test_a_state_that_is_not_steady_is_undecided(tmp_path, name):
+    r = _result(_copy(tmp_path, name, ('about = { theta = "0" }', 'about = { theta = "1" }')))
     assert r.verdict == "undecided"
     assert "not steady" in r.diagnoses[0]
 

@@ -312,9 +312,10 @@ def compare_result(d: Derivation, step: Step, index: int, seed: int) -> ElementR
             notes.append("true frequencies " + ", ".join(f"{w:.6g}" for w in modes))
         else:
             truth, why = _critical(setting, stated.real)
-            if truth is None:
-                return ElementRecord(verdict="differs", diagnoses=(why,),
-                                     max_error=float("nan"), scale=abs(stated.real), **common)
+            if truth is None:                 # a state that is not steady: undecided
+                return ElementRecord(verdict="undecided" if "not steady" in why else "differs",
+                                     diagnoses=(why,), max_error=float("nan"),
+                                     scale=abs(stated.real), **common)
         D.append(stated.real)
         T.append(truth)
     D_arr, T_arr = np.array(D), np.array(T)
