@@ -33,8 +33,7 @@ def test_score_counts_what_element_by_element_counts(group, stem):
         apply_row_factors(one, row_factors(one, truth, B_true, n))
         scales = row_scales(one, truth, n)
         expected = sum(bool(np.isfinite(D).all()) and agrees(D, T, scales[index[0]])
-                       for _, D, T, index, _ in element_values(ev.funcs, one, truth, B_true, n,
-                                                               expressions=False))
+                       for _, D, T, index, _ in element_values(ev.funcs, one, truth, B_true, n))
         assert ev.score(ev.doc_at(signs)) == expected, signs
         counts.add(expected)
     assert len(counts) > 1                      # the readings do differ

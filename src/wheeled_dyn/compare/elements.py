@@ -107,13 +107,9 @@ def expanded(expr: sp.Expr) -> sp.Expr:
     return _EXPANDED[expr]
 
 
-def element_values(funcs: DocumentFunctions, doc: Arrays, truth: Arrays, B_true, n: int,
-              expressions: bool = True):
-    r"""(key, document values, true values, index, document expression) of every element
-    (the expression None without ``expressions``)."""
+def element_values(funcs: DocumentFunctions, doc: Arrays, truth: Arrays, B_true, n: int):
+    r"""(key, document values, true values, index, document expression) of every element."""
     ex, vel = funcs.exprs, funcs.d.velocities
-    if not expressions:
-        ex = {k: (None if v is None else Nones()) for k, v in ex.items()}
     if doc.A is not None:
         for i in range(n):
             for j in range(n):
@@ -135,14 +131,7 @@ def element_values(funcs: DocumentFunctions, doc: Arrays, truth: Arrays, B_true,
                 for k in range(j, n):
                     w = 1.0 if j == k else 2.0
                     yield ("h", w * doc.H[:, i, j, k], w * truth.H[:, i, j, k], (i, j, k),
-                           element_expr(ex, "h", (i, j, k), vel) if expressions else None)
-
-
-class Nones:
-    r"""Stands for a matrix of expressions that are not needed: every element is None."""
-
-    def __getitem__(self, index) -> None:
-        return None
+                           element_expr(ex, "h", (i, j, k), vel))
 
 
 def row_factors(doc: Arrays, truth: Arrays, B_true, n: int) -> list[float | None]:
@@ -230,6 +219,6 @@ def swap_groups(d: Derivation) -> list[list[sp.Symbol]]:
     return [list(d.velocities), list(d.positions), *[g for g in by_units.values() if len(g) > 1]]
 
 
-__all__ = ["ROW_FACTORS", "ROW_FACTOR_SPREAD", "Nones", "apply_row_factors", "element_expr",
+__all__ = ["ROW_FACTORS", "ROW_FACTOR_SPREAD", "apply_row_factors", "element_expr",
            "element_label", "element_values", "expanded", "expr_text", "input_map",
            "latex_names", "row_factors", "row_scales", "swap_groups", "truth_for"]

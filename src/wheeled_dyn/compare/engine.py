@@ -159,8 +159,9 @@ class ComparisonEngine:
                          ) -> tuple[Derivation, sp.Matrix] | None:
         r"""``d`` with the combination of the true equations its rows are undone, and that
         combination :math:`W` (:mod:`.row_combinations`); None when its rows are no such
-        combination."""
-        if row_combinations.combination(ev.doc, ev.truth, ev.B_true) is None:
+        combination (or declares, or was found to have, rows scaled: not combined here)."""
+        if d.row_scale is not None or \
+                row_combinations.combination(ev.doc, ev.truth, ev.B_true) is None:
             return None
         doc, truth, q, values, B_true = self._identification(d, ev)
         W = row_combinations.combination(doc, truth, B_true)

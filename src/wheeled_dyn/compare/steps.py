@@ -71,12 +71,12 @@ def energy_consistency(steps_d: Derivation, eom: Derivation, seed: int = 2026
         for k, p in enumerate(eom.positions):          # a linearised A: at its point
             if str(p) in point:
                 states[:, k] = point[str(p)]
+        per_set = [(_values(eom, sets, k), _values(steps_d, sets, k)) for k in range(len(sets))]
         for label, a, b, what in pairs:
             if a.has(sp.nan):
                 continue
             Da, Db = [], []
-            for k in range(len(sets)):
-                va, vb = _values(eom, sets, k), _values(steps_d, sets, k)
+            for va, vb in per_set:
                 fa = numpy_function(eom.positions, a.xreplace(va))
                 fb = numpy_function(eom.positions, b.xreplace(vb))
                 Da.append(np.broadcast_to(fa(*states.T), (len(states),)))
