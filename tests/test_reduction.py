@@ -233,3 +233,17 @@ def test_singular_samples_are_drawn_again():
     assert cmap.conditioning(regular).max() <= MAX_CONDITION
     kept = cmap.conditioning(drawn) <= MAX_CONDITION
     assert np.array_equal(regular[kept], drawn[kept])  # the regular ones are left as drawn
+
+
+def test_pseudo_inverse_by_normal_equations_or_svd():
+    r"""The normal equations' M+ where M has full column rank, the SVD's where it has not: one
+    matrix or a stack, the same as NumPy's pinv either way."""
+    from wheeled_dyn.constraints.linalg import pseudo_inverse
+    rng = np.random.default_rng(SEED)
+    full = rng.normal(size=(4, 7, 6))
+    deficient = full.copy()
+    deficient[:, :, 5] = deficient[:, :, 4]                 # two equal columns: rank 5
+    for stack in (full, deficient, np.concatenate([full, deficient])):
+        assert np.allclose(pseudo_inverse(stack), np.linalg.pinv(stack), atol=EXACT_TOL)
+        for M in stack:
+            assert np.allclose(pseudo_inverse(M), np.linalg.pinv(M), atol=EXACT_TOL)

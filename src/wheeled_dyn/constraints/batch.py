@@ -20,13 +20,10 @@ import sympy as sp
 
 from ..dynamics.terms import Terms
 from ..models.springs import spring_force_batch
+from .linalg import pseudo_inverse
 from .rolling import _LWA
 from .sphere_contact import ball_jacobian
 from .wheel_contact import wheel_jacobian
-
-
-#: Largest entry of :math:`M^+M - I` for the normal equations' pseudo-inverse to stand.
-PSEUDO_INVERSE_TOL = 1e-9
 
 
 def lambdify_batch(matrix: sp.Matrix, args: Sequence) -> callable:
@@ -59,23 +56,6 @@ def reduce_batch(cmap, q: np.ndarray, nu: np.ndarray, q_doc: np.ndarray | None =
     r"""Terms in document velocities at N model configurations ``q`` (N × nq) and velocities
     ``nu`` (N × n); ``q_doc`` (N × n) is needed for holonomic sets."""
     return reduce_batch_multi(cmap, q, [nu], q_doc)[0]
-
-
-def pseudo_inverse(M: np.ndarray) -> np.ndarray:
-    r""":math:`M^+` of a stack of matrices: :math:`(M^TM)^{-1}M^T` where :math:`M` has full
-    column rank (a fraction of an SVD's time), the SVD's pseudo-inverse at the samples where
-    it has not (:math:`M^+M \ne I` there, or :math:`M^TM` singular)."""
-    Mt = np.swapaxes(M, 1, 2)
-    eye = np.eye(M.shape[2])
-    try:
-        with np.errstate(all="ignore"):
-            Mp = np.linalg.solve(Mt @ M, Mt)
-        bad = ~(np.abs(Mp @ M - eye).max(axis=(1, 2)) <= PSEUDO_INVERSE_TOL)
-    except np.linalg.LinAlgError:
-        Mp, bad = np.empty_like(Mt), np.ones(len(M), dtype=bool)
-    if bad.any():
-        Mp[bad] = np.linalg.pinv(M[bad])
-    return Mp
 
 
 class _Configuration(NamedTuple):

@@ -36,6 +36,7 @@ from ..coordinates.spec import CoordinateSet, CoordinateSpecError, model_symbols
 from ..dynamics.terms import Terms, check_vector
 from ..models.builder import WheeledModel
 from .batch import lambdify_batch, reduce_batch
+from .linalg import pseudo_inverse
 from .rolling import contact_jacobian, planar_drift, planar_rows
 
 #: Largest residual of [J_c; T] S = [0; 1] for the velocities to parametrise the motions.
@@ -192,8 +193,7 @@ class CoordinateMap:
             if self.cs.rolling == "eliminate":
                 planar = wm.contact is None and not wm.rolling_wheels
                 J = planar_rows(wm, data) if planar else contact_jacobian(wm, q, data=data)[0]
-                M = np.vstack([J, T])        # full column rank: M+ = (M^T M)^-1 M^T
-                Mp = spd_solve(M.T @ M, M.T)
+                Mp = pseudo_inverse(np.vstack([J, T]))
                 S = Mp[:, J.shape[0]:]
                 v = S @ nu
                 drift = planar_drift(wm, data, q, v) if planar else \
@@ -255,22 +255,6 @@ class CoordinateMap:
         check_vector("q", q, self.n, self.cs.positions)
         check_vector("velocity", nu, self.n, self.cs.velocities)
         return q, nu
-
-
-def spd_solve(K: np.ndarray, R: np.ndarray) -> np.ndarray:
-    r""":math:`X = K^{-1}R` for a symmetric positive definite ``K`` (a mass matrix, the
-    normal equations :math:`M^TM`) by LAPACK's Cholesky solver ``dposv`` (SciPy, imported on
-    first use): on the small matrices of a simulation step a third of the time of
-    ``numpy.linalg.solve``. Where ``K`` is not positive definite, NumPy's LU solve (which
-    raises ``LinAlgError`` when ``K`` is singular)."""
-    global _dposv
-    if _dposv is None:
-        from scipy.linalg.lapack import dposv as _dposv
-    _, x, info = _dposv(K, R)
-    return x if info == 0 else np.linalg.solve(K, R)
-
-
-_dposv = None
 
 
 def multipliers(wm: WheeledModel, q: np.ndarray, v: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

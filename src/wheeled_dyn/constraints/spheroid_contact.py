@@ -32,7 +32,7 @@ contact is defined everywhere). The holonomic condition that the body touches th
     g(q) = o_z - s = 0 ,
 
 so the touching configurations have the centre at the height :math:`s` of the given orientation
-(:func:`centre_height`, :func:`place_on_ground`).
+(:func:`spheroid_height`, :func:`place_on_ground`).
 
 **Rows** (three, world x, y, z): the velocity of the body's *material* point at the contact,
 with :math:`\rho = R\,p` (world axes, from :math:`o`),
@@ -84,8 +84,6 @@ from ..errors import ModelError
 from ..models.builder import WheeledModel
 
 _LWA = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
-#: Rows of the contact Jacobian of one spheroid (world x, y, z).
-ROWS = 3
 
 
 def _cross(x: np.ndarray) -> np.ndarray:
@@ -109,13 +107,6 @@ def lowest_point_rate(a: float, c: float, u: np.ndarray, udot: np.ndarray) -> np
     p, s = lowest_point(a, c, u)
     udot = np.asarray(udot, dtype=float)
     return (diag * udot - p * (p @ udot)) / s
-
-
-def centre_height(a: float, c: float, rotation: np.ndarray) -> float:
-    r"""The height :math:`s` of the centre of the spheroid (radii ``a``, ``c``) turned by
-    ``rotation`` (body axes to world) when it touches the ground."""
-    u = -np.asarray(rotation, dtype=float)[2]          # R^T (-e_z): the third row of R
-    return lowest_point(a, c, u)[1]
 
 
 @dataclass(frozen=True)

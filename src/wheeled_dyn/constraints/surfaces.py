@@ -84,10 +84,8 @@ AXIS_TOL = 1e-14
 
 
 class Meridian(Protocol):
-    r"""The height :math:`f(\rho)` of a surface of revolution above its vertex, with
-    :math:`f(0) = f'(0) = 0`, and its derivatives."""
-
-    def f(self, rho: float) -> float: ...
+    r"""The derivatives of the height :math:`f(\rho)` of a surface of revolution above its
+    vertex, with :math:`f(0) = f'(0) = 0` (the contact needs its slope and curvature)."""
 
     def df(self, rho: float) -> float: ...
 
@@ -105,9 +103,6 @@ class Paraboloid:
     :math:`\kappa_2 = 1/\sqrt{a^2+\rho^2}` are largest, :math:`1/a`, at the vertex."""
 
     vertex_radius: float
-
-    def f(self, rho: float) -> float:
-        return rho * rho / (2.0 * self.vertex_radius)
 
     def df(self, rho: float) -> float:
         return rho / self.vertex_radius

@@ -147,8 +147,9 @@ class RollingReduction:
         S, v, _, sdot_nu = self.kinematics(q, nu)
         A = pin.crba(model, data, q)
         A = np.triu(A) + np.triu(A, 1).T
-        force = -S.T @ (pin.rnea(model, data, q, v, sdot_nu)
-                        + spring_force(self.wm.springs, q, model.nv))
+        force = -S.T @ pin.rnea(model, data, q, v, sdot_nu)
+        if self.wm.springs:
+            force -= S.T @ spring_force(self.wm.springs, q, model.nv)
         if u is not None and len(u):
             force = force + S.T @ (self.B @ u)
         return S.T @ A @ S, force, v

@@ -26,7 +26,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from ..constraints.batch import reduced_mass_batch
-from ..constraints.reduction import CoordinateMap, spd_solve
+from ..constraints.linalg import spd_solve
+from ..constraints.reduction import CoordinateMap
 from ..errors import StateError
 
 #: Default integration tolerances (relative, absolute).
