@@ -1,4 +1,4 @@
-r"""Rendered LaTeX is remembered across runs (the disk cache's report/latex.pickle): a report
+r"""Rendered LaTeX is remembered across runs (the disk cache's report/latex-<code>.pickle): a report
 rendered from the remembered entries is the same text as one rendered from scratch."""
 
 from __future__ import annotations
@@ -22,8 +22,8 @@ def test_remembered_latex_renders_the_same_report(tmp_path, monkeypatch):
     monkeypatch.setattr(symbols, "_RENDERED", None)
     symbols._notation_cached.cache_clear()
     cold = render(results, "t")
-    entry = tmp_path / "report" / "latex.pickle"
-    assert entry.is_file()
+    entry = symbols._rendered_path()
+    assert entry.is_file() and entry.parent == tmp_path / "report"
     # a new process: nothing in memory, the entries on disk
     monkeypatch.setattr(symbols, "_RENDERED", None)
     symbols._notation_cached.cache_clear()
@@ -31,3 +31,12 @@ def test_remembered_latex_renders_the_same_report(tmp_path, monkeypatch):
     assert warm["report.md"] == cold["report.md"]
     assert warm["report.html"] == cold["report.html"]
     assert len(symbols._rendered()) > 0
+
+
+def test_remembered_latex_is_named_by_the_code_that_rendered_it(tmp_path, monkeypatch):
+    r"""Another SymPy (or other report code) reads another file: LaTeX it did not render is
+    not served."""
+    monkeypatch.setenv(CACHE_ENV, str(tmp_path))
+    here = symbols._rendered_path()
+    monkeypatch.setattr(symbols.sp, "__version__", "0.0-other")
+    assert symbols._rendered_path() != here

@@ -255,17 +255,31 @@ _RENDERED: dict | None = None       # (version, kind, text, notation) -> LaTeX o
 _RENDERED_NEW = False
 
 
+def _rendered_path():
+    r"""The disk file of the remembered LaTeX, named by what renders it: SymPy's version and
+    the report package's code (LaTeX made by other code is not read)."""
+    import hashlib
+    from pathlib import Path
+
+    from ..disk_cache import cache_root
+    h = hashlib.sha256(sp.__version__.encode())
+    for path in sorted(Path(__file__).parent.glob("*.py")):
+        h.update(path.read_bytes())
+    return cache_root() / "report" / f"latex-{h.hexdigest()[:16]}.pickle"
+
+
 def _rendered() -> dict:
     global _RENDERED
     if _RENDERED is None:
-        from ..disk_cache import cache_root, load
-        _RENDERED = load(cache_root() / "report" / "latex.pickle", dict) or {}
+        from ..disk_cache import load
+        _RENDERED = load(_rendered_path(), dict) or {}
     return _RENDERED
 
 
 def _remembered(key: tuple, names: Notation, compute) -> str | None:
     r"""``compute()`` — the LaTeX of a text in a derivation's notation — remembered across
-    runs (the disk cache's ``report/latex.pickle``, written by :func:`save_rendered`): a report
+    runs (the disk cache's ``report/latex-<code>.pickle``, :func:`_rendered_path`, written by
+    :func:`save_rendered`): a report
     rendered again does not simplify and print the same differences again."""
     global _RENDERED_NEW
     full = (RENDER_CACHE_VERSION, *key, names.positions, tuple(sorted(names.special.items())))
@@ -278,13 +292,15 @@ def _remembered(key: tuple, names: Notation, compute) -> str | None:
 
 def save_rendered(limit: int = 20000) -> None:
     r"""Write the remembered LaTeX to the disk cache (the newest ``limit`` entries) when this
-    run added any, with what other processes wrote there meanwhile (the report's workers each
-    render their derivations); a cache that cannot be written is only slower."""
+    run added any, merged with what the file holds when it is written (the report's workers
+    each render their derivations). Best effort: two processes writing at once keep the last
+    one's merge (the other's new entries are rendered again next time), and a cache that
+    cannot be written is only slower."""
     global _RENDERED_NEW
     if not _RENDERED_NEW or _RENDERED is None:
         return
-    from ..disk_cache import cache_root, load, store
-    path = cache_root() / "report" / "latex.pickle"
+    from ..disk_cache import load, store
+    path = _rendered_path()
     entries = {**(load(path, dict) or {}), **_RENDERED}
     try:
         store(path, dict(list(entries.items())[-limit:]))
