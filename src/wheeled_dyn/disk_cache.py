@@ -10,6 +10,7 @@ from __future__ import annotations
 import os
 import pickle
 import tempfile
+import warnings
 from pathlib import Path
 
 #: Environment variable naming the cache directory.
@@ -36,15 +37,25 @@ def store(path: Path, obj: object) -> None:
         raise
 
 
-def load(path: Path, kind: type) -> object | None:
-    r"""The entry at ``path`` if it is a readable pickle of a ``kind``, else None."""
+def load(path: Path, kind: type, warn: bool = False) -> object | None:
+    r"""The entry at ``path`` if it is a readable pickle of a ``kind``, else None; with
+    ``warn``, an entry that exists but cannot be used says so (it is then made again)."""
     try:
         with path.open("rb") as fh:
             obj = pickle.load(fh)
-    except (OSError, EOFError, pickle.UnpicklingError, AttributeError, ImportError,
-            TypeError, ValueError):
+    except FileNotFoundError:
         return None
-    return obj if isinstance(obj, kind) else None
+    except (OSError, EOFError, pickle.UnpicklingError, AttributeError, ImportError,
+            TypeError, ValueError) as exc:
+        if warn:
+            warnings.warn(f"cache entry {path} is unreadable ({exc}); made again", stacklevel=3)
+        return None
+    if isinstance(obj, kind):
+        return obj
+    if warn:
+        warnings.warn(f"cache entry {path} holds {type(obj).__name__}; made again",
+                      stacklevel=3)
+    return None
 
 
 __all__ = ["CACHE_ENV", "cache_root", "load", "store"]

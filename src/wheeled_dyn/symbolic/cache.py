@@ -11,8 +11,6 @@ if set, else ``~/.cache/wheeled_dyn``; entries live under ``symbolic/``.
 from __future__ import annotations
 
 import hashlib
-import pickle
-import warnings
 from collections.abc import Mapping, Sequence
 from functools import lru_cache
 from pathlib import Path
@@ -21,7 +19,7 @@ import numpy as np
 import pinocchio as pin
 import sympy as sp
 
-from ..disk_cache import CACHE_ENV, cache_root, store
+from ..disk_cache import CACHE_ENV, cache_root, load, store
 from .kinematics import joint_kind, resolve_translations
 from .model import SymbolicModel, symbolic_model
 from .parameters import resolve_parameters
@@ -90,18 +88,8 @@ def cached_symbolic_model(model: pin.Model, params: Mapping[int, Sequence] | Non
     key = model_fingerprint(model, params, coordinate_names, gravity, simplify,
                             translations, armature, real)
     path = cache_dir(root) / f"{key}.pickle"
-    if path.is_file() and not refresh:
-        try:
-            with path.open("rb") as fh:
-                obj = pickle.load(fh)
-            if isinstance(obj, SymbolicModel):
-                return obj
-            warnings.warn(f"symbolic cache entry {path} holds {type(obj).__name__}; "
-                          "re-deriving", stacklevel=2)
-        except (OSError, EOFError, pickle.UnpicklingError, AttributeError, ImportError,
-                TypeError, ValueError) as exc:
-            warnings.warn(f"symbolic cache entry {path} is unreadable ({exc}); re-deriving",
-                          stacklevel=2)
+    if not refresh and (found := load(path, SymbolicModel, warn=True)) is not None:
+        return found
     sym = symbolic_model(model, params, coordinate_names, gravity, simplify, translations,
                          armature, real)
     store(path, sym)
@@ -119,5 +107,4 @@ def clear_cache(root: str | Path | None = None) -> int:
     return removed
 
 
-__all__ = ["CACHE_ENV", "cache_dir", "cached_symbolic_model", "clear_cache", "model_fingerprint",
-           "store"]
+__all__ = ["CACHE_ENV", "cache_dir", "cached_symbolic_model", "clear_cache", "model_fingerprint"]

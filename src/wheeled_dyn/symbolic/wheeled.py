@@ -48,8 +48,6 @@ engine labels them, cached in memory and on disk.
 from __future__ import annotations
 
 import hashlib
-import pickle
-import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import fields, replace
 
@@ -62,7 +60,8 @@ from ..coordinates.spec import CoordinateSet
 from ..errors import ModelError, UnknownNameError
 from ..models.builder import WheeledModel
 from .exact import exact_length, exact_model
-from .cache import _code_digest, cache_dir, cached_symbolic_model, model_fingerprint, store
+from ..disk_cache import load, store
+from .cache import _code_digest, cache_dir, cached_symbolic_model, model_fingerprint
 from .kinematics import exact_number
 from .model import SymbolicModel
 from .parameters import PARAMETER_NAMES, numeric_parameters
@@ -479,18 +478,9 @@ def true_expressions(model: str, cs: CoordinateSet, refresh: bool = False
     if key in _MEMORY and not refresh:
         return _MEMORY[key]
     path = cache_dir() / f"true-{key}.pickle"
-    if path.is_file() and not refresh:
-        try:
-            with path.open("rb") as fh:
-                obj = pickle.load(fh)
-            if isinstance(obj, dict):
-                _MEMORY[key] = obj
-                return obj
-            warnings.warn(f"cache entry {path} holds {type(obj).__name__}; re-deriving",
-                          stacklevel=2)
-        except (OSError, EOFError, pickle.UnpicklingError, AttributeError, ImportError,
-                TypeError, ValueError) as exc:
-            warnings.warn(f"cache entry {path} is unreadable ({exc}); re-deriving", stacklevel=2)
+    if not refresh and (found := load(path, dict, warn=True)) is not None:
+        _MEMORY[key] = found
+        return found
     try:
         red = wheeled_symbolic(wm, cs, mode)
     except ModelError:                        # a model the standard mode does not fit
