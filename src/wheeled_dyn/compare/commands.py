@@ -200,7 +200,8 @@ def compare_report(files: Sequence[Path], samples: int, param_sets: int,
     up to ``workers`` processes (default: the machine's cores, at most 2 per derivation group);
     results in the order of ``files``, the tables' sections, and each result's HTML section
     by file (for :func:`~wheeled_dyn.report.render`). Processes are forked, so nothing is
-    imported or parsed twice."""
+    imported twice and the derivations are parsed once (the tables' files are read again where
+    they are reproduced)."""
     import os
 
     from ..derivations import load_derivations

@@ -125,6 +125,7 @@ class ComparisonEngine:
         return self._truth[key]
 
     def _document(self, d: Derivation, funcs: DocumentFunctions, sets, q, nu, H_rows=None):
+        r"""``(document arrays, symbol values per set, symbol values per sample)`` on a grid."""
         rng = np.random.default_rng(self.seed + 1)
         k, n_states, n = q.shape
         per_set = [document_symbol_values(d, ps, rng) for ps in sets]
@@ -132,7 +133,7 @@ class ComparisonEngine:
         doc = funcs.evaluate(q.reshape(-1, n), nu.reshape(-1, n), values)
         if doc.H is not None and H_rows is not None:
             doc.H = doc.H[H_rows]
-        return doc, per_set
+        return doc, per_set, values
 
     def _identification(self, d: Derivation, ev: SearchEvaluation):
         r"""``(document, truth, positions, symbol values, true B)`` on the grid functions of
@@ -140,9 +141,7 @@ class ComparisonEngine:
         the parameters alone takes one value per set)."""
         truth, sets, q, nu, _ = self._grid(d, (), ROW_FUNCTION_STATES, ROW_FUNCTION_SETS,
                                            declared(d))
-        doc, per_set = self._document(d, ev.funcs, sets, q, nu, truth.H_rows)
-        values = {s: np.repeat([v[s] for v in per_set], ROW_FUNCTION_STATES)
-                  for s in ev.funcs.params}
+        doc, per_set, values = self._document(d, ev.funcs, sets, q, nu, truth.H_rows)
         B_true = input_map(d, truth, per_set, ROW_FUNCTION_STATES, [])
         return doc, truth, q.reshape(-1, d.n), values, B_true
 
@@ -266,7 +265,7 @@ class ComparisonEngine:
         assumed = declared(d)
         truth, sets, q, nu, cs = self._grid(d, (), self.samples, self.param_sets, assumed)
         cs_name = cs.name
-        doc, per_set = self._document(d, funcs, sets, q, nu, truth.H_rows)
+        doc, per_set, values = self._document(d, funcs, sets, q, nu, truth.H_rows)
         notes: list[str] = []
         B_true = input_map(d, truth, per_set, self.samples, notes)
         row_factor = row_factors(doc, truth, B_true, n)
@@ -276,7 +275,7 @@ class ComparisonEngine:
             # of inertia ...): there its rows match the truth up to their factor exactly
             t2, sets2, q2, nu2, _ = self._grid(d, tuple(cases), SPECIAL_SAMPLES, SPECIAL_SETS,
                                                assumed)
-            doc2, per2 = self._document(d, funcs, sets2, q2, nu2, t2.H_rows)
+            doc2, per2, _ = self._document(d, funcs, sets2, q2, nu2, t2.H_rows)
             special = row_factors(doc2, t2, input_map(d, t2, per2, SPECIAL_SAMPLES, []), n)
             row_factor = [f if f is not None else m for f, m in zip(special, row_factor)]
         apply_row_factors(doc, row_factor)
@@ -287,7 +286,6 @@ class ComparisonEngine:
         label = equation_labels(str(d.source.get("equations", "")))
         groups = swap_groups(d)
         flat_q, flat_nu = q.reshape(-1, n), nu.reshape(-1, n)
-        values = {s: np.repeat([v[s] for v in per_set], self.samples) for s in funcs.params}
 
         argv = [*flat_q.T, *flat_nu.T, *(values[p] for p in funcs.params)]
         position = {a: k for k, a in enumerate(funcs.args)}
@@ -410,7 +408,7 @@ class ComparisonEngine:
 
         def _agreeing(combo):
             truth, sets, q, nu, _ = self._grid(d, combo, SPECIAL_SAMPLES, SPECIAL_SETS, assumed)
-            doc, per_set = self._document(d, funcs, sets, q, nu, truth.H_rows)
+            doc, per_set, _ = self._document(d, funcs, sets, q, nu, truth.H_rows)
             B_true = input_map(d, truth, per_set, SPECIAL_SAMPLES, [])
             apply_row_factors(doc, row_factor)
             scales = row_scales(doc, truth, d.n)

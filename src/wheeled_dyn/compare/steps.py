@@ -175,8 +175,9 @@ def _step_key(path: Path, seed: int) -> tuple[str, int, int]:
 
 
 def _step_records(d: Derivation, seed: int) -> list[ElementRecord]:
-    r"""The records of the steps of ``d`` (:mod:`.step_records`, imported only here: the
-    parent of the worker that compares the step files needs none of it)."""
+    r"""The records of the steps of ``d`` (:mod:`.step_records`, imported on first use: a
+    derivation without steps of its own, whose step files a worker compares, needs none of
+    it in the parent)."""
     from .step_records import compare_steps
     return compare_steps(d, seed)
 
