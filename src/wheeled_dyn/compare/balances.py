@@ -44,6 +44,7 @@ from ..constraints.reduction import CoordinateMap
 from ..derivations.schema import Derivation
 from ..derivations.steps import Force, Step
 from ..errors import DerivationError
+from .assumptions import Assumptions, position_ranges
 from .diagnose import AGREE_TOL, nice_number
 from .evaluate import (derivation_coordinate_set, document_symbol_values,
                        given_parameter_sets)
@@ -126,8 +127,7 @@ class _Balance:
             if degree > 1:
                 raise DerivationError(d.path, f"step {step.equation} relation {j + 1}",
                                       "a balance is linear in the accelerations and forces")
-        ranges = [tuple(d.coordinates.raw.get("ranges", {}).get(str(p), (-np.pi, np.pi)))
-                  for p in d.positions]
+        ranges = position_ranges(d, [str(p) for p in d.positions], Assumptions())
         self.q, self.nu = random_states(len(d.positions), BALANCE_SETS * BALANCE_STATES, rng,
                                         ranges)
         self.params = [s.symbol for s in d.symbols.values() if not s.is_input]

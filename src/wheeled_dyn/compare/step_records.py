@@ -38,7 +38,7 @@ from .evaluate import (derivation_coordinate_set, document_symbol_values,
                        given_parameter_sets)
 from .kinematics_truth import Motion, along, check_links
 from .result import ElementRecord
-from .assumptions import declared
+from .assumptions import Assumptions, declared, position_ranges
 from .balances import compare_balance
 from .compiled import numpy_function
 from .results import compare_result
@@ -83,8 +83,7 @@ class _Group:
             _MAPS[key] = CoordinateMap(self.sets[0].model, self.cs)
         self.cmap = _MAPS[key]
         n = len(self.cs.positions)
-        declared = dict(d.coordinates.raw.get("ranges", {}))
-        ranges = [tuple(declared.get(p, (-np.pi, np.pi))) for p in self.cs.positions]
+        ranges = position_ranges(d, self.cs.positions, Assumptions())
         q, nu = random_states(n, sets * states, rng, ranges)
         self.q, self.nu, self.nudot = q, nu, rng.normal(size=nu.shape)
         self.rng = rng
