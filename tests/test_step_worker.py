@@ -53,3 +53,27 @@ def test_a_worker_that_dies_is_named(tmp_path, monkeypatch):
     monkeypatch.setattr(steps, "_step_file", lambda *a: os.kill(os.getpid(), signal.SIGKILL))
     with pytest.raises(WorkerError, match="s4_energy_steps.toml"):
         _compare(path, True)
+
+
+def test_ctrl_c_while_the_workers_are_forked_is_not_lost():
+    r"""A Ctrl-C that arrives inside the fork's callbacks (an exception raised there is
+    swallowed) is held back and raised once the workers are forked: in a fresh interpreter
+    whose at-fork callback sends the interrupt."""
+    import subprocess
+    import sys
+    code = (
+        "import os, signal\n"
+        "from wheeled_dyn.compare.workers import Workers\n"
+        "def on_interrupt(s, f):\n"
+        "    raise KeyboardInterrupt\n"
+        "signal.signal(signal.SIGINT, on_interrupt)\n"
+        "os.register_at_fork(after_in_parent=lambda: os.kill(os.getpid(), signal.SIGINT))\n"
+        "try:\n"
+        "    with Workers(1):\n"
+        "        pass\n"
+        "    print('lost')\n"
+        "except KeyboardInterrupt:\n"
+        "    print('raised')\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         timeout=60)
+    assert out.stdout.strip() == "raised", (out.stdout, out.stderr)

@@ -7,7 +7,8 @@ parent computed before is there already). A worker's error is raised in the pare
 result is collected (the project's errors survive pickling, :mod:`wheeled_dyn.errors`); a
 worker that dies (a crash in compiled code) raises
 :class:`~wheeled_dyn.errors.WorkerError` naming the files its unfinished jobs were comparing,
-instead of waiting forever. Workers leave Ctrl-C to the parent, which ends them.
+instead of waiting forever. Workers leave Ctrl-C to the parent, which ends them; a Ctrl-C
+that comes while they are forked is held back until they are, then raised in the parent.
 """
 
 from __future__ import annotations
@@ -67,7 +68,21 @@ class Workers:
         global _PROGRESS
         ctx = multiprocessing.get_context("fork")
         self._queue = _PROGRESS = ctx.SimpleQueue()     # set before the fork: inherited
+        # Ctrl-C is held back while the processes are forked: one arriving inside the fork's
+        # callbacks (logging's lock release) would be swallowed there and the command would
+        # run on; held back, it is raised here once they are forked (the workers, which
+        # inherit it blocked, ignore it anyway)
+        held = hasattr(signal, "pthread_sigmask")
+        before = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT}) if held else None
         self._pool = ctx.Pool(count, initializer=_start_worker)
+        try:
+            if held:
+                signal.pthread_sigmask(signal.SIG_SETMASK, before)
+        except BaseException:
+            self._pool.terminate()
+            self._queue.close()
+            _PROGRESS = None
+            raise
         self._jobs: list[tuple[AsyncResult, tuple[str, ...]]] = []
         self._pids: set[int] = set()
 
