@@ -90,7 +90,7 @@ class SphereContact:
 
     def _check_paraboloid(self) -> None:
         a = self.vertex_radius
-        if not (isinstance(a, (int, float)) and math.isfinite(a) and a > 0):
+        if not _positive(a):
             raise ParameterError("paraboloid vertex_radius (radius of curvature at the vertex)",
                                  a, "a positive number")
         if self.surface_radius:

@@ -82,10 +82,7 @@ class BoundSpring:
 
 def spring_force(springs: Sequence[BoundSpring], q: np.ndarray, nv: int) -> np.ndarray:
     r""":math:`\partial U_s/\partial q` (length ``nv``) at one configuration ``q``."""
-    out = np.zeros(nv)
-    for s in springs:
-        out[s.v_index] += s.stiffness * (q[s.q_index] - s.rest)
-    return out
+    return spring_force_batch(springs, np.asarray(q, dtype=float)[None], nv)[0]
 
 
 def spring_force_batch(springs: Sequence[BoundSpring], q: np.ndarray, nv: int) -> np.ndarray:
