@@ -1,4 +1,4 @@
-"""compare/compiled.py writes the code sympy.lambdify writes (so the comparison's numbers do not
+"""compiled.py writes the code sympy.lambdify writes (so the comparison's numbers do not
 change), reuses what it printed before, and hands unusual arguments to lambdify itself."""
 
 from __future__ import annotations
@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from wheeled_dyn.compare import compiled
-from wheeled_dyn.compare.compiled import numpy_function
+from wheeled_dyn import compiled
+from wheeled_dyn.compiled import numpy_function
 
 x, y, phi = sp.symbols("x y phi", real=True)
 m, d = sp.symbols("m d", positive=True)

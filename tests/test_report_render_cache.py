@@ -19,24 +19,25 @@ def _results():
 def test_remembered_latex_renders_the_same_report(tmp_path, monkeypatch):
     monkeypatch.setenv(CACHE_ENV, str(tmp_path))
     results = _results()
-    monkeypatch.setattr(symbols, "_RENDERED", None)
-    symbols._notation_cached.cache_clear()
+    symbols.RENDERED.forget()
+    symbols._NOTATIONS.clear()
     cold = render(results, "t")
-    entry = symbols._rendered_path()
+    entry = symbols.RENDERED.path()
     assert entry.is_file() and entry.parent == tmp_path / "report"
     # a new process: nothing in memory, the entries on disk
-    monkeypatch.setattr(symbols, "_RENDERED", None)
-    symbols._notation_cached.cache_clear()
+    symbols.RENDERED.forget()
+    symbols._NOTATIONS.clear()
     warm = render(results, "t")
     assert warm["report.md"] == cold["report.md"]
     assert warm["report.html"] == cold["report.html"]
-    assert len(symbols._rendered()) > 0
+    assert len(symbols.RENDERED.entries()) > 0
+    symbols.RENDERED.forget()
 
 
 def test_remembered_latex_is_named_by_the_code_that_rendered_it(tmp_path, monkeypatch):
     r"""Another SymPy (or other report code) reads another file: LaTeX it did not render is
     not served."""
     monkeypatch.setenv(CACHE_ENV, str(tmp_path))
-    here = symbols._rendered_path()
+    here = symbols.RENDERED.path()
     monkeypatch.setattr(symbols.sp, "__version__", "0.0-other")
-    assert symbols._rendered_path() != here
+    assert symbols.RENDERED.path() != here

@@ -3,14 +3,21 @@ else ``~/.cache/wheeled_dyn``, one folder per kind of entry (``symbolic/`` close
 ``urdf/`` outlines of URDF files). Entries are pickles written atomically (a temporary file in
 the same folder, renamed), so a reader never sees half an entry; an entry that cannot be read
 is treated as missing.
+
+A :class:`DiskMemo` is a dictionary of printed forms (LaTeX, simplified display text) kept
+there between runs: printing the same expression again gives the same text, so a report
+made again does not print it again. Its file is named by SymPy's version and the code that
+prints, so text printed by other code is never served.
 """
 
 from __future__ import annotations
 
+import hashlib
 import os
 import pickle
 import tempfile
 import warnings
+from collections.abc import Callable, Hashable, Iterable
 from pathlib import Path
 
 #: Environment variable naming the cache directory.
@@ -58,4 +65,80 @@ def load(path: Path, kind: type, warn: bool = False) -> object | None:
     return None
 
 
-__all__ = ["CACHE_ENV", "cache_root", "load", "store"]
+class DiskMemo:
+    r"""Values computed from keys (an expression, its printed text ...), remembered in
+    memory and in the file ``<cache>/<kind>/<name>-<digest>.pickle``, the digest over SymPy's
+    version and the bytes of the ``code`` files that compute the values (:meth:`path`).
+
+    :meth:`save` writes the entries made in this process, merged with what the file holds
+    then, keeping the newest :data:`MEMO_LIMIT`. Best effort: two processes writing at once
+    keep the last one's merge (the other's new entries are computed again next time), and a
+    file that cannot be read or written is only slower.
+    """
+
+    def __init__(self, kind: str, name: str, code: Callable[[], Iterable[Path]]) -> None:
+        self.kind, self.name, self._code = kind, name, code
+        self._entries: dict | None = None
+        self._new = False
+        _MEMOS.append(self)
+
+    def path(self) -> Path:
+        import sympy
+        h = hashlib.sha256(sympy.__version__.encode())
+        for code in sorted(self._code()):
+            h.update(code.read_bytes())
+        return cache_root() / self.kind / f"{self.name}-{h.hexdigest()[:16]}.pickle"
+
+    def entries(self) -> dict:
+        r"""The remembered entries (read from the file on first use)."""
+        if self._entries is None:
+            self._entries = load(self.path(), dict) or {}
+        return self._entries
+
+    def get(self, key: Hashable, compute: Callable[[], object]) -> object:
+        r"""The value remembered under ``key``, else ``compute()``, remembered. Entries are
+        kept under a digest of the key's pickle (a SymPy expression pickles to the same bytes
+        in every process, and the file then holds no expressions to rebuild when read); a
+        key that cannot be pickled is computed every time."""
+        try:
+            digest = hashlib.sha1(pickle.dumps(key, protocol=4)).digest()
+        except (pickle.PicklingError, TypeError, AttributeError, RecursionError):
+            return compute()
+        store_ = self.entries()
+        if digest not in store_:
+            store_[digest] = compute()
+            self._new = True
+        return store_[digest]
+
+    def forget(self) -> None:
+        r"""Drop what is in memory (the next use reads the file again)."""
+        self._entries, self._new = None, False
+
+    def save(self) -> None:
+        r"""Write the entries to the file when this process added any."""
+        if not self._new or self._entries is None:
+            return
+        path = self.path()
+        entries = {**(load(path, dict) or {}), **self._entries}
+        try:
+            store(path, dict(list(entries.items())[-MEMO_LIMIT:]))
+            for old in path.parent.glob(f"{self.name}-*.pickle"):
+                if old != path:               # made by other code: never read again
+                    old.unlink(missing_ok=True)
+        except (OSError, pickle.PicklingError, TypeError, AttributeError):
+            pass
+        self._new = False
+
+
+#: Entries a :class:`DiskMemo` file keeps (the newest).
+MEMO_LIMIT = 20000
+_MEMOS: list[DiskMemo] = []
+
+
+def save_memos() -> None:
+    r""":meth:`DiskMemo.save` for every memo of the process."""
+    for memo in _MEMOS:
+        memo.save()
+
+
+__all__ = ["CACHE_ENV", "DiskMemo", "cache_root", "load", "save_memos", "store"]

@@ -40,6 +40,7 @@ from collections.abc import Sequence
 import numpy as np
 import sympy as sp
 
+from ..compiled import numpy_function
 from ..constraints.reduction import CoordinateMap
 from ..derivations.schema import Derivation
 from ..derivations.steps import Force, Step
@@ -144,8 +145,8 @@ class _Balance:
         the constant, each acceleration, each force)."""
         zero = {u: 0 for u in self.unknowns}
         exprs = [e.xreplace(self.laws) for e in exprs]
-        fn = sp.lambdify(self.args, [[e.xreplace(zero)] + [e.diff(u) for u in self.unknowns]
-                                     for e in exprs], "numpy")
+        fn = numpy_function(self.args, [[e.xreplace(zero)] + [e.diff(u) for u in self.unknowns]
+                                         for e in exprs])
         out = []
         with np.errstate(all="ignore"):          # a value that is not finite is a verdict's
             for k in range(len(self.sets)):     # business (undecided), not a warning
@@ -167,14 +168,14 @@ class _Balance:
     def _residuals(self) -> list[np.ndarray]:
         d, step = self.d, self.step
         n = len(d.velocities)
-        geo = sp.lambdify(self.args, [[*f.direction,
-                                       *(f.point if isinstance(f.point, tuple) else ())]
-                                      for f in step.forces], "numpy")
-        about = sp.lambdify(self.args, list(step.point), "numpy") \
+        geo = numpy_function(self.args, [[*f.direction,
+                                          *(f.point if isinstance(f.point, tuple) else ())]
+                                         for f in step.forces])
+        about = numpy_function(self.args, list(step.point)) \
             if isinstance(step.point, tuple) else None
         known = [k for k, f in enumerate(step.forces) if f.law is not None]
         unknown = [k for k, f in enumerate(step.forces) if f.law is None]
-        law = sp.lambdify(self.args, [step.forces[k].law for k in known], "numpy")
+        law = numpy_function(self.args, [step.forces[k].law for k in known])
         truth = []
         frames = tuple(dict.fromkeys((step.frame, "world", step.body)))
         self._rotations = {f: [] for f in frames}

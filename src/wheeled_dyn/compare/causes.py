@@ -43,6 +43,7 @@ from dataclasses import dataclass
 import numpy as np
 import sympy as sp
 
+from ..compiled import numpy_function
 from .diagnose import AGREE_TOL, agrees
 from .evaluate import Arrays, DocumentFunctions, _h_tensor
 from .result import Cause
@@ -110,7 +111,7 @@ def _own_christoffel(ev: Evaluation, d) -> dict[tuple[int, int, int], bool] | No
     chr_h = scale * christoffel_h(sp.Matrix(A), d.positions, d.velocities)
     H = _h_tensor(chr_h, d.velocities)
     flat = sp.flatten(H.tolist())
-    fn = sp.lambdify(ev.funcs.args, flat, "numpy")
+    fn = numpy_function(ev.funcs.args, flat)
     rows = ev.truth.H_rows if ev.truth.H_rows is not None else np.arange(len(ev.q))
     argv = [*ev.q[rows].T, *ev.nu[rows].T, *(np.asarray(ev.values[p])[rows]
                                             for p in ev.funcs.params)]

@@ -10,13 +10,16 @@ document written with XX1, MY1 ... reads, after the parameter map, in m_S, d, I1
 from __future__ import annotations
 
 from collections.abc import Callable
+from pathlib import Path
 
 import sympy as sp
 from sympy.core.function import AppliedUndef
 
 from ..derivations.schema import Derivation
+from ..disk_cache import DiskMemo
 from ..models.registry import model_entry
 from ..models.wip_parameters import WipParameters, standard_parameters
+from .printing import printed
 
 #: Residuals up to this many operations are expanded with trigonometric identities for display
 #: (larger ones, e.g. in seed 001 section 5's wheel-angle coordinates, are shown as they are).
@@ -92,8 +95,7 @@ def document_in_model(d: Derivation, families: tuple[str, ...] = ()
         out = to_model(expr)
         if out is None:
             return "", ""
-        out = out.xreplace(assumed)
-        return sp.sstr(out), sp.latex(out, symbol_names=dots)
+        return printed(out.xreplace(assumed), dots)
 
     return convert
 
@@ -142,14 +144,13 @@ def annotate(d: Derivation, records: list[dict], cs, exprs: dict[int, sp.Expr | 
             out = plain(e)
             return None if out is None else out.xreplace(assumed)
     dots = {v: rf"\dot{{{sp.latex(q)}}}" for q, v in zip(d.positions, d.velocities)}
+    by_name = {str(v): text for v, text in dots.items()}
     for r in records:
         expr = truth.get(r["element"])
         if expr is None or r["key"] == "B":
             continue
-        r["truth"] = sp.sstr(expr)
-        by_name = {str(v): text for v, text in dots.items()}
         names = {sym: by_name[sym.name] for sym in expr.free_symbols if sym.name in by_name}
-        r["truth_latex"] = sp.latex(expr, symbol_names=names)
+        r["truth"], r["truth_latex"] = printed(expr, names)
         if r["verdict"] != "agrees":
             doc = to_model(exprs.get(id(r)))
             if doc is None:
@@ -157,12 +158,32 @@ def annotate(d: Derivation, records: list[dict], cs, exprs: dict[int, sp.Expr | 
             i = r["index"][0]
             if i < len(row_factors) and row_factors[i]:
                 doc = doc / sp.nsimplify(row_factors[i])
-            residual = expr - doc
-            if sp.count_ops(residual) <= TRIG_EXPAND_LIMIT:
-                residual = sp.expand(sp.expand_trig(residual))
-            if not physical and (sp.count_ops(residual) > STANDARD_RESIDUAL_LIMIT or any(
-                    not p.exp.is_Integer for p in residual.atoms(sp.Pow))):
-                continue                      # roots of Khalil's parameters: not shown
-            r["residual"] = sp.sstr(residual)
-            if residual != 0:
-                r["diagnoses"].append(f"truth − document = {sp.sstr(residual)}")
+            text = residual_text(expr, doc, physical)
+            if text is None:
+                continue
+            r["residual"] = text
+            if text != "0":
+                r["diagnoses"].append(f"truth − document = {text}")
+
+
+#: The texts of :func:`residual_text`, remembered across runs (the disk cache's
+#: ``compare/residual-<code>.pickle``): a function of the two expressions only.
+RESIDUALS = DiskMemo("compare", "residual", lambda: [Path(__file__)])
+
+
+def residual_text(truth: sp.Expr, doc: sp.Expr, physical: bool) -> str | None:
+    r"""The text of truth − document, expanded with trigonometric identities when it has at
+    most :data:`TRIG_EXPAND_LIMIT` operations; None where it is not shown (a model without a
+    physical record: longer than :data:`STANDARD_RESIDUAL_LIMIT`, or with roots of Khalil's
+    parameters). Remembered: :data:`RESIDUALS`."""
+    return RESIDUALS.get((truth, doc, physical), lambda: _residual_text(truth, doc, physical))
+
+
+def _residual_text(truth: sp.Expr, doc: sp.Expr, physical: bool) -> str | None:
+    residual = truth - doc
+    if sp.count_ops(residual) <= TRIG_EXPAND_LIMIT:
+        residual = sp.expand(sp.expand_trig(residual))
+    if not physical and (sp.count_ops(residual) > STANDARD_RESIDUAL_LIMIT or any(
+            not p.exp.is_Integer for p in residual.atoms(sp.Pow))):
+        return None                           # roots of Khalil's parameters: not shown
+    return sp.sstr(residual)

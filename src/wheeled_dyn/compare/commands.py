@@ -176,7 +176,7 @@ def _work(args, tick: Callable[[], object] | None = None):
     Returns the results, the tables' sections and the results' HTML sections (made here, in
     parallel, rather than one after the other in the parent)."""
     from ..report.html import derivation_html
-    from ..report.symbols import save_rendered
+    from ..disk_cache import save_memos
     from .engine import ComparisonEngine
     from .workers import tick as worker_tick
     tick = tick or worker_tick
@@ -188,7 +188,7 @@ def _work(args, tick: Callable[[], object] | None = None):
         tick()
     sections = _reused_tables(engine, table_group) if table_group else None
     html = {files[i]: derivation_html(r) for i, r in results}
-    save_rendered()                      # the LaTeX this process rendered, for the next run
+    save_memos()               # the LaTeX and display forms this process made, for the next run
     return results, sections, html
 
 
@@ -206,11 +206,13 @@ def compare_report(files: Sequence[Path], samples: int, param_sets: int,
 
     from ..derivations import load_derivations
     from ..models.registry import model_entry
+    from ..report.symbols import remember_notation
     from .workers import Workers, can_fork
     derivations = load_derivations(files)
     for d in derivations:
         model_entry(d.model)
         check_model_names(d)
+        remember_notation(d)             # the workers and the parent render without re-reading
     paths = [d.path for d in derivations]
     _PARSED.update(zip(paths, derivations))
     workers = max(1, min(workers or os.cpu_count() or 1, len(derivations)))

@@ -18,6 +18,7 @@ from collections.abc import Sequence
 import numpy as np
 import sympy as sp
 
+from ..compiled import numpy_function
 from ..derivations.schema import Derivation
 from .diagnose import AGREE_TOL, agrees
 from .evaluate import Arrays, DocumentFunctions
@@ -42,12 +43,12 @@ def energy_check(funcs: DocumentFunctions, doc: Arrays, row_factor, q, nu, value
     Adot = sum((A.diff(p) * rates[p] for p in d.positions if rates[p] is not None),
                sp.zeros(d.n, d.n))
     power = (v.T * h)[0] - (v.T * Adot * v)[0] / 2
-    fn = sp.lambdify(funcs.args, power, "numpy")
-    fh = sp.lambdify(funcs.args, (v.T * h)[0], "numpy")
+    fn = numpy_function(funcs.args, power)
+    fh = numpy_function(funcs.args, (v.T * h)[0])
     argv = [*q.T, *nu.T, *(values[p] for p in funcs.params)]
     # scale: the power's parts, and (when both vanish, e.g. Euler's gyroscopic terms) the
     # kinetic-energy rate scale |A| |nu|^2 |nu|
-    kinetic = sp.lambdify(funcs.args, (v.T * A * v)[0], "numpy")
+    kinetic = numpy_function(funcs.args, (v.T * A * v)[0])
     speed = np.linalg.norm(nu, axis=1)
     with np.errstate(all="ignore"):          # an overflowing document: no verdict, below
         P = np.broadcast_to(fn(*argv), (len(q),)).astype(float)

@@ -38,10 +38,6 @@ def latex_names(d: Derivation) -> dict[sp.Symbol, str]:
     return out
 
 
-def expr_text(expr: sp.Expr | None) -> str:
-    return "" if expr is None else sp.sstr(expr)
-
-
 def element_label(key: str, index: tuple[int, ...], velocities: Sequence[sp.Symbol]) -> str:
     if key in ("Q",):
         return f"Q[{index[0] + 1}]"
@@ -151,33 +147,41 @@ def row_factors(doc: Arrays, truth: Arrays, B_true, n: int) -> list[float | None
             other_pairs.append((doc.Q[:, i], truth.Q[:, i]))
         if doc.B is not None and B_true is not None:
             other_pairs += [(doc.B[:, i, j], B_true[:, i, j]) for j in range(doc.B.shape[2])]
-
-        def vote(pairs):
-            votes = []
-            for D, T in pairs:
-                if not (np.isfinite(D).all() and np.isfinite(T).all()):
-                    continue                  # an element that overflows does not vote
-                tt = float(T @ T)
-                if tt <= 0 or float(D @ D) <= 0:
-                    continue
-                c = float(D @ T / tt)
-                best = min(ROW_FACTORS, key=lambda f: abs(c - f))
-                votes.append(best if abs(c - best) <= ROW_FACTOR_SPREAD * abs(best) else None)
-            return votes
-
         # A's entries decide; Q and B only confirm (a wrong input map must not scale a row)
-        votes_a, votes_all = vote(a_pairs), vote(a_pairs + other_pairs)
+        votes_a = _votes(a_pairs)
+        votes_all = np.concatenate([votes_a, _votes(other_pairs)])
+        votes_a, votes_all = votes_a[~np.isnan(votes_a)], votes_all[~np.isnan(votes_all)]
         winner = None
         for f in ROW_FACTORS:
-            if f == 1.0 or not votes_a:
+            if f == 1.0 or not len(votes_a):
                 continue
-            if sum(v == f for v in votes_a) * 2 > len(votes_a) and \
-                    sum(v == f for v in votes_all) * 2 > len(votes_all):
+            if np.count_nonzero(votes_a == f) * 2 > len(votes_a) and \
+                    np.count_nonzero(votes_all == f) * 2 > len(votes_all):
                 winner = f
         if winner is not None and not _explains(winner, a_pairs + other_pairs):
             winner = None
         out.append(winner)
     return out
+
+
+_CANDIDATES = np.array(ROW_FACTORS)
+
+
+def _votes(pairs: Sequence[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
+    r"""Each pair's vote (:func:`row_factors`): the candidate of :data:`ROW_FACTORS` nearest
+    its ratio :math:`D\cdot T / T\cdot T`, or ``inf`` (a vote for none) when none is within
+    :data:`ROW_FACTOR_SPREAD`; NaN (no vote) for a pair not finite or with a zero side."""
+    if not pairs:
+        return np.empty(0)
+    D = np.stack([p[0] for p in pairs], axis=1)
+    T = np.stack([p[1] for p in pairs], axis=1)
+    with np.errstate(all="ignore"):
+        finite = np.isfinite(D).all(axis=0) & np.isfinite(T).all(axis=0)
+        tt, dd = np.einsum("nk,nk->k", T, T), np.einsum("nk,nk->k", D, D)
+        c = np.einsum("nk,nk->k", D, T) / tt
+        best = _CANDIDATES[np.argmin(np.abs(c[:, None] - _CANDIDATES[None, :]), axis=1)]
+        out = np.where(np.abs(c - best) <= ROW_FACTOR_SPREAD * np.abs(best), best, np.inf)
+    return np.where(finite & (tt > 0) & (dd > 0), out, np.nan)
 
 
 def _explains(factor: float, pairs: Sequence[tuple[np.ndarray, np.ndarray]]) -> bool:
@@ -220,5 +224,5 @@ def swap_groups(d: Derivation) -> list[list[sp.Symbol]]:
 
 
 __all__ = ["ROW_FACTORS", "ROW_FACTOR_SPREAD", "apply_row_factors", "element_expr",
-           "element_label", "element_values", "expanded", "expr_text", "input_map",
+           "element_label", "element_values", "expanded", "input_map",
            "latex_names", "row_factors", "row_scales", "swap_groups", "truth_for"]

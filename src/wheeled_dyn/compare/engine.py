@@ -45,7 +45,6 @@ from .elements import (
     element_expr,
     element_label,
     element_values,
-    expr_text,
     input_map,
     latex_names,
     row_factors,
@@ -58,6 +57,7 @@ from .evaluate import (
     derivation_coordinate_set,
     document_symbol_values,
 )
+from .printing import printed
 from .result import Cause, Convention, ConventionSummary, DerivationResult, ElementRecord
 from .search_evaluation import SearchEvaluation
 from .samples import (
@@ -259,9 +259,8 @@ class ComparisonEngine:
             C = sp.ImmutableMatrix(d.apply_assumptions(C))
         G = d.G if d.G is not None else d.constraint_matrix()
         funcs = DocumentFunctions(d, terms.A, C, terms.Q, terms.B, terms.h, G)
-        as_printed = d.read_off(assume=True, unscale=False)
-        printed = {"A": as_printed.A, "Q": as_printed.Q, "B": as_printed.B, "h": as_printed.h,
-                   "C": d.C}
+        read = d.read_off(assume=True, unscale=False)
+        as_printed = {"A": read.A, "Q": read.Q, "B": read.B, "h": read.h, "C": d.C}
         assumed = declared(d)
         truth, sets, q, nu, cs = self._grid(d, (), self.samples, self.param_sets, assumed)
         cs_name = cs.name
@@ -338,10 +337,11 @@ class ComparisonEngine:
                                              check=True)
             verdict = ("undecided" if not finite.all() else
                        "agrees" if ok and not problems else "differs")
+            shown = element_expr(as_printed, key, index, d.velocities)
+            text, latex = ("", "") if shown is None else printed(shown, names)
             records.append(dict(element=element_label(key, index, d.velocities), key=key, index=index,
-                                verdict=verdict, diagnoses=diags,
-                                document=expr_text(shown := element_expr(printed, key, index, d.velocities)),
-                                document_latex="" if shown is None else sp.latex(shown, symbol_names=names),
+                                verdict=verdict, diagnoses=diags, document=text,
+                                document_latex=latex,
                                 **dict(zip(("document_model", "model_latex"), mapped(expr))),
                                 truth=None, residual=None, max_error=max_error(D, T),
                                 scale=float(scale), truth_sample=float(T[0]),

@@ -24,7 +24,7 @@ from ..constraints.reduction import CoordinateMap
 from ..coordinates import CoordinateSet, builtin_coordinate_set, parse_coordinate_set
 from ..derivations.schema import Derivation
 from ..errors import DerivationError
-from .compiled import numpy_function
+from ..compiled import numpy_function
 from .samples import ParameterSet, parameter_sets, special_cases
 
 #: States per parameter set on which the coefficient tensor H of h is compared (h itself, A,

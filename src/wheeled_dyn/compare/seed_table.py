@@ -40,8 +40,10 @@ from pathlib import Path
 import numpy as np
 import sympy as sp
 
+from ..compiled import numpy_function
 from ..constraints.reduction import CoordinateMap
 from ..derivations.parse import load_derivation
+from ..disk_cache import DiskMemo
 from ..derivations.schema import Derivation
 from ..derivations.table import ComparisonTable, TableEntry
 from ..errors import DerivationError
@@ -258,7 +260,7 @@ def _numbers(d: Derivation | ComparisonTable, A: sp.Matrix, C: sp.Matrix, sets, 
     r"""A and C in the namespace of ``d`` (a document or the table) over sets × states."""
     params = [s for s in d.symbols.values() if not s.is_input and s.value is not None]
     args = [*d.positions, *d.velocities, *(s.symbol for s in params)]
-    fA, fC = sp.lambdify(args, A, "numpy"), sp.lambdify(args, C, "numpy")
+    fA, fC = numpy_function(args, A), numpy_function(args, C)
     n = len(d.positions)
     out: dict[str, list[np.ndarray]] = {"A": [], "C": []}
     for k, ps in enumerate(sets):
@@ -332,10 +334,20 @@ def _simplest(expr: sp.Expr) -> sp.Expr:
     return min(candidates, key=lambda e: (sp.count_ops(e), len(sp.sstr(e))))
 
 
+#: The short texts of :func:`_show`, remembered across runs (the disk cache's
+#: ``compare/table-text-<code>.pickle``): simplifying a cell again gives the same text.
+SHOWN = DiskMemo("compare", "table-text", lambda: [Path(__file__)])
+
+
 def _show(expr: sp.Expr, gens: Sequence[sp.Symbol] = ()) -> str:
     r"""Short text of ``expr``: grouped by the monomials in ``gens`` (velocities,
-    accelerations), each coefficient in its simplest form."""
-    expr = sp.expand(sp.sympify(expr))
+    accelerations), each coefficient in its simplest form (remembered: :data:`SHOWN`)."""
+    expr = sp.sympify(expr)
+    return SHOWN.get((expr, tuple(gens)), lambda: _shown(expr, gens))
+
+
+def _shown(expr: sp.Expr, gens: Sequence[sp.Symbol]) -> str:
+    expr = sp.expand(expr)
     gens = [g for g in gens if expr.has(g)]
     if not gens:
         return sp.sstr(_simplest(expr))
@@ -353,7 +365,7 @@ def _same(a: sp.Expr, b: sp.Expr, rng: np.random.Generator) -> bool:
     symbols = sorted(a.free_symbols | b.free_symbols, key=str)
     if not symbols:
         return abs(float(a - b)) <= CHECK_TOL * max(1.0, abs(float(a)), abs(float(b)))
-    fa, fb = sp.lambdify(symbols, a, "numpy"), sp.lambdify(symbols, b, "numpy")
+    fa, fb = numpy_function(symbols, a), numpy_function(symbols, b)
     for _ in range(CHECK_POINTS):
         x = rng.uniform(0.3, 1.7, len(symbols))
         va, vb = float(fa(*x)), float(fb(*x))

@@ -40,7 +40,7 @@ from .kinematics_truth import Motion, along, check_links
 from .result import ElementRecord
 from .assumptions import Assumptions, declared, position_ranges
 from .balances import compare_balance
-from .compiled import numpy_function
+from ..compiled import numpy_function
 from .results import compare_result
 from .samples import random_states, special_cases
 from .units import DimensionChecker, format_dim

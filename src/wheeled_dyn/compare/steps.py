@@ -32,7 +32,7 @@ from ..derivations.schema import Derivation
 from ..derivations.steps import STEP_KINDS
 from .assumptions import declared
 from .causes import claim_causes
-from .compiled import numpy_function
+from ..compiled import numpy_function
 from .diagnose import agrees, max_error, value_diagnoses
 from .evaluate import document_symbol_values
 from .result import Cause, DerivationResult, ElementRecord

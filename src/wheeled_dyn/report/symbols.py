@@ -34,6 +34,8 @@ from pathlib import Path
 
 import sympy as sp
 
+from ..disk_cache import DiskMemo
+
 #: Names written as Greek letters (lower case; a capitalised one is the capital letter).
 GREEK = ("alpha", "beta", "gamma", "delta", "epsilon", "varepsilon", "zeta", "eta", "theta",
          "vartheta", "iota", "kappa", "lambda", "mu", "nu", "xi", "pi", "rho", "sigma", "tau",
@@ -158,29 +160,42 @@ def notation(positions: tuple[str, ...], velocities: tuple[str, ...],
     return Notation(tuple(positions), special)
 
 
-@functools.lru_cache(maxsize=64)
-def _notation_cached(path: str, mtime: float) -> Notation:
-    return _load_notation(path)
+_NOTATIONS: dict[tuple[str, float], Notation] = {}       # (file, mtime) -> its notation
+
+
+def _mtime(path: str | Path) -> float | None:
+    try:
+        return Path(path).stat().st_mtime
+    except OSError:
+        return None
 
 
 def derivation_notation(path: str | Path) -> Notation:
-    r"""The :class:`Notation` of a derivation file (read once per file and version)."""
-    try:
-        mtime = Path(path).stat().st_mtime
-    except OSError:
-        return Notation()
-    return _notation_cached(str(path), mtime)
-
-
-def _load_notation(path: str | Path) -> Notation:
-    r"""The :class:`Notation` of a derivation file; plain names (rule 1 only) when the file
-    cannot be read any more."""
+    r"""The :class:`Notation` of a derivation file (read once per file and version); plain
+    names (rule 1 only) when the file cannot be read any more."""
     from ..derivations import load_derivation
     from ..errors import WheeledDynError
-    try:
-        d = load_derivation(Path(path))
-    except (WheeledDynError, OSError):
+    mtime = _mtime(path)
+    if mtime is None:
         return Notation()
+    key = (str(path), mtime)
+    if key not in _NOTATIONS:
+        try:
+            _NOTATIONS[key] = notation_of(load_derivation(Path(path)))
+        except (WheeledDynError, OSError):
+            return Notation()
+    return _NOTATIONS[key]
+
+
+def remember_notation(d) -> None:
+    r"""Keep the notation of the parsed derivation ``d`` for :func:`derivation_notation` of
+    its file (a report renders the derivations it has parsed without reading them again)."""
+    if (mtime := _mtime(d.path)) is not None:
+        _NOTATIONS[(str(d.path), mtime)] = notation_of(d)
+
+
+def notation_of(d) -> Notation:
+    r"""The :class:`Notation` of a parsed derivation ``d``."""
     names = lambda xs: tuple(str(x) for x in xs)    # noqa: E731
     declared = {s.name: s.latex for s in d.symbols.values() if s.latex}
     out = notation(names(d.positions), names(d.velocities), names(d.accelerations),
@@ -251,62 +266,18 @@ def difference_latex(text: str | None, names: Notation, fallback: str = "") -> s
 
 #: Version of the rendered-LaTeX entries kept on disk (another version's are not read).
 RENDER_CACHE_VERSION = "1"
-_RENDERED: dict | None = None       # (version, kind, text, notation) -> LaTeX or None
-_RENDERED_NEW = False
-
-
-def _rendered_path():
-    r"""The disk file of the remembered LaTeX, named by what renders it: SymPy's version and
-    the report package's code (LaTeX made by other code is not read)."""
-    import hashlib
-    from pathlib import Path
-
-    from ..disk_cache import cache_root
-    h = hashlib.sha256(sp.__version__.encode())
-    for path in sorted(Path(__file__).parent.glob("*.py")):
-        h.update(path.read_bytes())
-    return cache_root() / "report" / f"latex-{h.hexdigest()[:16]}.pickle"
-
-
-def _rendered() -> dict:
-    global _RENDERED
-    if _RENDERED is None:
-        from ..disk_cache import load
-        _RENDERED = load(_rendered_path(), dict) or {}
-    return _RENDERED
+#: The LaTeX of texts in a derivation's notation, remembered across runs (the disk cache's
+#: ``report/latex-<code>.pickle``, named by SymPy's version and this package's code: LaTeX
+#: made by other code is not read).
+RENDERED = DiskMemo("report", "latex", lambda: Path(__file__).parent.glob("*.py"))
 
 
 def _remembered(key: tuple, names: Notation, compute) -> str | None:
     r"""``compute()`` — the LaTeX of a text in a derivation's notation — remembered across
-    runs (the disk cache's ``report/latex-<code>.pickle``, :func:`_rendered_path`, written by
-    :func:`save_rendered`): a report
-    rendered again does not simplify and print the same differences again."""
-    global _RENDERED_NEW
+    runs (:data:`RENDERED`): a report rendered again does not simplify and print the same
+    differences again."""
     full = (RENDER_CACHE_VERSION, *key, names.positions, tuple(sorted(names.special.items())))
-    store = _rendered()
-    if full not in store:
-        store[full] = compute()
-        _RENDERED_NEW = True
-    return store[full]
-
-
-def save_rendered(limit: int = 20000) -> None:
-    r"""Write the remembered LaTeX to the disk cache (the newest ``limit`` entries) when this
-    run added any, merged with what the file holds when it is written (the report's workers
-    each render their derivations). Best effort: two processes writing at once keep the last
-    one's merge (the other's new entries are rendered again next time), and a cache that
-    cannot be written is only slower."""
-    global _RENDERED_NEW
-    if not _RENDERED_NEW or _RENDERED is None:
-        return
-    from ..disk_cache import load, store
-    path = _rendered_path()
-    entries = {**(load(path, dict) or {}), **_RENDERED}
-    try:
-        store(path, dict(list(entries.items())[-limit:]))
-    except OSError:
-        pass
-    _RENDERED_NEW = False
+    return RENDERED.get(full, compute)
 
 
 def simplified(expr: sp.Expr) -> sp.Expr:

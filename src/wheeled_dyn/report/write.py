@@ -13,11 +13,11 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 from ..compare.result import DerivationResult
+from ..disk_cache import save_memos
 from ..output import write_files_atomic
 from .html import report_html
 from .markdown import report_markdown
 from .summary import ordered, summary_entry
-from .symbols import save_rendered
 
 
 #: The version of the JSON report's contract (``docs/report-schema.json``).
@@ -37,7 +37,7 @@ def render(results: Sequence[DerivationResult], title: str, extra_md: Sequence[s
     texts = {"report.md": report_markdown(results, title, extra_md),
              "report.html": report_html(results, title, extra_html, html_sections),
              "report.json": json.dumps(data, indent=1, default=str, allow_nan=True)}
-    save_rendered()
+    save_memos()
     return texts
 
 

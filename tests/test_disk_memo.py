@@ -1,0 +1,128 @@
+r"""Printed forms remembered on disk (:class:`wheeled_dyn.disk_cache.DiskMemo`): a value is
+computed once per key, read back by a new process, never served to other code, and a
+comparison made from remembered forms is the comparison made from scratch."""
+
+from __future__ import annotations
+
+import pickle
+
+import numpy as np
+import sympy as sp
+
+from conftest import SEED
+from wheeled_dyn import compiled
+from wheeled_dyn.compare import closed_form, printing, seed_table
+from wheeled_dyn.compare.engine import ComparisonEngine
+from wheeled_dyn.derivations import builtin_derivations, load_derivation
+from wheeled_dyn.disk_cache import CACHE_ENV, DiskMemo, save_memos
+
+x, phi = sp.symbols("x phi", real=True)
+#: The memos a comparison fills (all of them are emptied between the two runs below).
+MEMOS = (printing.PRINTED, closed_form.RESIDUALS, compiled.SOURCES, seed_table.SHOWN)
+
+
+def _memo(tmp_path, name="t", code_text="a = 1\n"):
+    code = tmp_path / f"{name}.py"
+    code.write_text(code_text)
+    return DiskMemo("test", name, lambda: [code]), code
+
+
+def test_a_value_is_computed_once_and_read_back_by_a_new_memo(tmp_path, monkeypatch):
+    monkeypatch.setenv(CACHE_ENV, str(tmp_path / "cache"))
+    memo, code = _memo(tmp_path)
+    calls = []
+    expr = x * sp.cos(phi) ** 2 + sp.Rational(1, 3)
+
+    def compute():
+        calls.append(1)
+        return sp.sstr(expr)
+
+    assert memo.get((expr, "names"), compute) == sp.sstr(expr)
+    assert memo.get((x * sp.cos(phi) ** 2 + sp.Rational(1, 3), "names"), compute) \
+        == sp.sstr(expr)
+    assert len(calls) == 1
+    memo.save()
+    assert memo.path().is_file()
+    again = DiskMemo("test", "t", lambda: [code])          # another process: only the file
+    assert again.get((expr, "names"), compute) == sp.sstr(expr)
+    assert len(calls) == 1
+    assert again.get((expr, "other names"), compute) == sp.sstr(expr)
+    assert len(calls) == 2
+
+
+def test_values_of_other_code_are_not_served_and_their_file_goes(tmp_path, monkeypatch):
+    monkeypatch.setenv(CACHE_ENV, str(tmp_path / "cache"))
+    memo, code = _memo(tmp_path)
+    memo.get("key", lambda: "old code's value")
+    memo.save()
+    old_file = memo.path()
+    code.write_text("a = 2\n")                             # the code that computes changed
+    fresh = DiskMemo("test", "t", lambda: [code])
+    assert fresh.path() != old_file
+    assert fresh.get("key", lambda: "new code's value") == "new code's value"
+    fresh.save()
+    assert fresh.path().is_file() and not old_file.exists()
+
+
+def test_a_key_that_cannot_be_pickled_is_computed_each_time(tmp_path, monkeypatch):
+    monkeypatch.setenv(CACHE_ENV, str(tmp_path / "cache"))
+    memo, _ = _memo(tmp_path)
+    key = ("unpicklable", lambda: None)
+    calls = []
+    for _ in range(2):
+        assert memo.get(key, lambda: calls.append(1) or "v") == "v"
+    assert len(calls) == 2
+
+
+def test_an_unreadable_file_is_only_slower(tmp_path, monkeypatch):
+    monkeypatch.setenv(CACHE_ENV, str(tmp_path / "cache"))
+    memo, _ = _memo(tmp_path)
+    memo.path().parent.mkdir(parents=True)
+    memo.path().write_bytes(b"not a pickle")
+    assert memo.get("k", lambda: "v") == "v"
+    memo.save()
+    with memo.path().open("rb") as fh:
+        assert len(pickle.load(fh)) == 1
+
+
+def test_compiled_code_read_back_is_lambdify_code(tmp_path, monkeypatch):
+    monkeypatch.setenv(CACHE_ENV, str(tmp_path))
+    compiled.SOURCES.forget()
+    expr = [x * sp.sin(phi), sp.Integer(2), sp.sqrt(x ** 2 + 1) * sp.cos(phi) ** 2]
+    rng = np.random.default_rng(SEED)
+    argv = [rng.uniform(0.5, 2.0, 20) for _ in range(2)]
+    reference = sp.lambdify([x, phi], expr, "numpy")(*argv)
+    fresh = compiled.numpy_function([x, phi], expr)(*argv)
+    save_memos()
+    compiled.SOURCES.forget()                              # a new process: the file only
+    remembered = compiled.numpy_function([x, phi], expr)(*argv)
+    assert len(compiled.SOURCES.entries()) == 1
+    for a, b, c in zip(reference, fresh, remembered):
+        assert np.array_equal(np.broadcast_to(a, (20,)), np.broadcast_to(b, (20,)))
+        assert np.array_equal(np.broadcast_to(a, (20,)), np.broadcast_to(c, (20,)))
+    compiled.SOURCES.forget()
+
+
+def test_a_comparison_from_remembered_forms_is_the_comparison_from_scratch(tmp_path,
+                                                                           monkeypatch):
+    r"""Seed 001's Kim eq. (6)-(8) (a derivation with differing elements, so residuals are
+    printed): the records computed with every memo empty, and again in a 'new process'
+    reading them from disk, are equal."""
+    monkeypatch.setenv(CACHE_ENV, str(tmp_path))
+    path = next(p for p in builtin_derivations("seed001") if p.name == "kim_eq6_8.toml")
+
+    def compared():
+        for memo in MEMOS:
+            memo.forget()
+        return ComparisonEngine(samples=60, param_sets=2, seed=SEED).compare(
+            load_derivation(path))
+
+    cold = compared()
+    save_memos()
+    assert [memo.path().is_file() for memo in MEMOS[:3]] == [True] * 3
+    warm = compared()
+    assert warm.records == cold.records
+    assert warm.causes == cold.causes
+    assert any(r.residual not in (None, "0") for r in cold.records)
+    for memo in MEMOS:
+        memo.forget()
