@@ -138,48 +138,57 @@ def row_factors(doc: Arrays, truth: Arrays, B_true, n: int) -> list[float | None
     own least-squares ratio (within :data:`ROW_FACTOR_SPREAD`); a candidate other than 1 needs
     a strict majority among A's entries and among all of the row's (A, Q, B). Voting keeps a
     single wrong coefficient (e.g. 3(m_c + m_s)) from scaling a row."""
+    votes_a = _votes(doc.A, truth.A) if doc.A is not None else np.empty((n, 0))
+    others = [votes_a]
+    if doc.Q is not None:
+        others.append(_votes(doc.Q[:, :, None], truth.Q[:, :, None]))
+    if doc.B is not None and B_true is not None:
+        others.append(_votes(doc.B, B_true))
+    votes_all = np.concatenate(others, axis=1)
     out: list[float | None] = []
     for i in range(n):
-        a_pairs, other_pairs = [], []
-        if doc.A is not None:
-            a_pairs = [(doc.A[:, i, j], truth.A[:, i, j]) for j in range(doc.A.shape[2])]
-        if doc.Q is not None:
-            other_pairs.append((doc.Q[:, i], truth.Q[:, i]))
-        if doc.B is not None and B_true is not None:
-            other_pairs += [(doc.B[:, i, j], B_true[:, i, j]) for j in range(doc.B.shape[2])]
         # A's entries decide; Q and B only confirm (a wrong input map must not scale a row)
-        votes_a = _votes(a_pairs)
-        votes_all = np.concatenate([votes_a, _votes(other_pairs)])
-        votes_a, votes_all = votes_a[~np.isnan(votes_a)], votes_all[~np.isnan(votes_all)]
+        row_a, row_all = votes_a[i], votes_all[i]
+        row_a, row_all = row_a[~np.isnan(row_a)], row_all[~np.isnan(row_all)]
         winner = None
         for f in ROW_FACTORS:
-            if f == 1.0 or not len(votes_a):
+            if f == 1.0 or not len(row_a):
                 continue
-            if np.count_nonzero(votes_a == f) * 2 > len(votes_a) and \
-                    np.count_nonzero(votes_all == f) * 2 > len(votes_all):
+            if np.count_nonzero(row_a == f) * 2 > len(row_a) and \
+                    np.count_nonzero(row_all == f) * 2 > len(row_all):
                 winner = f
-        if winner is not None and not _explains(winner, a_pairs + other_pairs):
+        if winner is not None and not _explains(winner, _row_pairs(doc, truth, B_true, i)):
             winner = None
         out.append(winner)
     return out
 
 
+def _row_pairs(doc: Arrays, truth: Arrays, B_true, i: int) -> list[tuple[np.ndarray, np.ndarray]]:
+    r"""Row i's (document, truth) sample pairs: A's entries, Q, B's entries."""
+    pairs = []
+    if doc.A is not None:
+        pairs += [(doc.A[:, i, j], truth.A[:, i, j]) for j in range(doc.A.shape[2])]
+    if doc.Q is not None:
+        pairs.append((doc.Q[:, i], truth.Q[:, i]))
+    if doc.B is not None and B_true is not None:
+        pairs += [(doc.B[:, i, j], B_true[:, i, j]) for j in range(doc.B.shape[2])]
+    return pairs
+
+
 _CANDIDATES = np.array(ROW_FACTORS)
 
 
-def _votes(pairs: Sequence[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
-    r"""Each pair's vote (:func:`row_factors`): the candidate of :data:`ROW_FACTORS` nearest
-    its ratio :math:`D\cdot T / T\cdot T`, or ``inf`` (a vote for none) when none is within
-    :data:`ROW_FACTOR_SPREAD`; NaN (no vote) for a pair not finite or with a zero side."""
-    if not pairs:
-        return np.empty(0)
-    D = np.stack([p[0] for p in pairs], axis=1)
-    T = np.stack([p[1] for p in pairs], axis=1)
+def _votes(D: np.ndarray, T: np.ndarray) -> np.ndarray:
+    r"""The votes (:func:`row_factors`) of the entries of ``D`` against ``T`` (samples ×
+    rows × entries): the candidate of :data:`ROW_FACTORS` nearest each entry's ratio
+    :math:`D\cdot T / T\cdot T`, or ``inf`` (a vote for none) when none is within
+    :data:`ROW_FACTOR_SPREAD`; NaN (no vote) for an entry not finite or with a zero side.
+    Rows × entries."""
     with np.errstate(all="ignore"):
         finite = np.isfinite(D).all(axis=0) & np.isfinite(T).all(axis=0)
-        tt, dd = np.einsum("nk,nk->k", T, T), np.einsum("nk,nk->k", D, D)
-        c = np.einsum("nk,nk->k", D, T) / tt
-        best = _CANDIDATES[np.argmin(np.abs(c[:, None] - _CANDIDATES[None, :]), axis=1)]
+        tt, dd = np.einsum("nij,nij->ij", T, T), np.einsum("nij,nij->ij", D, D)
+        c = np.einsum("nij,nij->ij", D, T) / tt
+        best = _CANDIDATES[np.argmin(np.abs(c[..., None] - _CANDIDATES), axis=-1)]
         out = np.where(np.abs(c - best) <= ROW_FACTOR_SPREAD * np.abs(best), best, np.inf)
     return np.where(finite & (tt > 0) & (dd > 0), out, np.nan)
 
@@ -205,14 +214,23 @@ def apply_row_factors(doc: Arrays, factors) -> None:
                 M[:, i] = M[:, i] / c
 
 
-def row_scales(doc: Arrays, truth: Arrays, n: int) -> np.ndarray:
-    s = np.zeros(n)
-    for arrays in (doc, truth):
-        for name in ("A", "C", "Q", "H"):
-            M = getattr(arrays, name)
-            if M is not None:
-                s = np.maximum(s, np.abs(M.reshape(M.shape[0], n, -1)).max(axis=(0, 2)))
+def row_scales(doc: Arrays, truth: Arrays, n: int, truth_sizes: np.ndarray | None = None
+               ) -> np.ndarray:
+    r"""Each row's scale: the largest magnitude in its A, C, Q and H, document or truth (1
+    for a row of zeros); ``truth_sizes``: :func:`row_sizes` of ``truth``, known already."""
+    s = np.maximum(row_sizes(doc, n), row_sizes(truth, n) if truth_sizes is None
+                   else truth_sizes)
     return np.where(s > 0, s, 1.0)
+
+
+def row_sizes(arrays: Arrays, n: int) -> np.ndarray:
+    r"""The largest magnitude in each row of ``arrays``' A, C, Q and H (0 where none)."""
+    s = np.zeros(n)
+    for name in ("A", "C", "Q", "H"):
+        M = getattr(arrays, name)
+        if M is not None:
+            s = np.maximum(s, np.abs(M.reshape(M.shape[0], n, -1)).max(axis=(0, 2)))
+    return s
 
 
 def swap_groups(d: Derivation) -> list[list[sp.Symbol]]:
@@ -224,5 +242,5 @@ def swap_groups(d: Derivation) -> list[list[sp.Symbol]]:
 
 
 __all__ = ["ROW_FACTORS", "ROW_FACTOR_SPREAD", "apply_row_factors", "element_expr",
-           "element_label", "element_values", "expanded", "input_map",
+           "element_label", "element_values", "expanded", "input_map", "row_sizes",
            "latex_names", "row_factors", "row_scales", "swap_groups", "truth_for"]

@@ -11,7 +11,7 @@ import numpy as np
 
 from . import causes
 from .diagnose import AGREE_TOL
-from .elements import apply_row_factors, row_factors, row_scales
+from .elements import apply_row_factors, row_factors, row_scales, row_sizes
 from .evaluate import Arrays
 
 #: Samples the convention search scores each reading on (spread over the parameter sets).
@@ -40,6 +40,16 @@ class SearchEvaluation(causes.Evaluation):
             self._sub = (rows, sub, B)
         return self._sub
 
+    def _truth_parts(self) -> tuple[np.ndarray, np.ndarray | None]:
+        r"""What :meth:`score` needs of the truth on the search's samples at every reading:
+        its rows' sizes and its H weighted as the velocity products' coefficients."""
+        if not hasattr(self, "_parts"):
+            n = self.q.shape[1]
+            _, truth, _ = self._subset()
+            H = None if truth.H is None else truth.H * _product_weights(n)
+            self._parts = (row_sizes(truth, n), H)
+        return self._parts
+
     def doc_at(self, s: Sequence[int]) -> Arrays:
         r"""The document's arrays at :math:`(Sp, S\nu)` on the search's samples (rows not
         yet divided by factors)."""
@@ -53,18 +63,24 @@ class SearchEvaluation(causes.Evaluation):
         its own row factors."""
         n = self.q.shape[1]
         _, truth, B_true = self._subset()
+        truth_sizes, truth_H = self._truth_parts()
         factors = row_factors(doc, truth, B_true, n)
         apply_row_factors(doc, factors)
-        scales = row_scales(doc, truth, n)
+        scales = row_scales(doc, truth, n, truth_sizes)
         pairs = [(doc.A, truth.A), (doc.C, truth.C), (doc.Q, truth.Q)]
         if B_true is not None:
             pairs.append((doc.B, B_true))
         count = sum(_agreeing(D, T, scales) for D, T in pairs if D is not None)
         if doc.H is not None:            # the velocity products j <= k (2 H_ijk for j < k)
             upper = np.triu(np.ones((n, n), dtype=bool))
-            weight = np.where(np.eye(n, dtype=bool), 1.0, 2.0)
-            count += _agreeing(doc.H * weight, truth.H * weight, scales, upper)
+            count += _agreeing(doc.H * _product_weights(n), truth_H, scales, upper)
         return count
+
+
+def _product_weights(n: int) -> np.ndarray:
+    r"""The weights of H's entries as coefficients of h's velocity products: 1 for
+    :math:`\nu_j^2`, 2 for :math:`\nu_j\nu_k` (:math:`j \ne k`)."""
+    return np.where(np.eye(n, dtype=bool), 1.0, 2.0)
 
 
 def _agreeing(D: np.ndarray, T: np.ndarray, scales: np.ndarray,
