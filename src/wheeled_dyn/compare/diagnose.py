@@ -55,10 +55,13 @@ def value_diagnoses(D: np.ndarray, T: np.ndarray, scale: float) -> list[str]:
 
 def swap_diagnoses(expr: sp.Expr, candidates: Sequence[Sequence[sp.Symbol]],
                    evaluate: Callable[[sp.Symbol, sp.Symbol], np.ndarray], T: np.ndarray,
-                   scale: float) -> list[str]:
+                   scale: float, screen: Callable[[sp.Symbol, sp.Symbol], bool] | None = None
+                   ) -> list[str]:
     r"""Replace one symbol of ``expr`` by another of the same group (velocities with velocities,
     positions with positions, symbols of equal units with each other); report the replacements
-    that make it agree. ``evaluate(a, b)`` gives the element's values with ``a`` read as ``b``."""
+    that make it agree. ``evaluate(a, b)`` gives the element's values with ``a`` read as ``b``;
+    ``screen(a, b)``, where given, False rules the replacement out without evaluating it (it
+    disagrees already on some of the samples)."""
     found = []
     present = expr.free_symbols
     for group in candidates:
@@ -66,7 +69,7 @@ def swap_diagnoses(expr: sp.Expr, candidates: Sequence[Sequence[sp.Symbol]],
             if a not in present:
                 continue
             for b in group:
-                if b == a:
+                if b == a or (screen is not None and not screen(a, b)):
                     continue
                 if agrees(evaluate(a, b), T, scale):
                     found.append(f"swap: {sp.sstr(a)} where {sp.sstr(b)} fits")

@@ -72,6 +72,10 @@ from .units import DimensionChecker
 
 #: Smaller grid used to test special parameter families.
 SPECIAL_SAMPLES, SPECIAL_SETS = 40, 2
+#: Samples a trial reading of a differing element (one symbol read as another) is first
+#: evaluated on, spread over the parameter sets: only one that agrees there is evaluated on
+#: every sample (it must agree at all of them), so the verdicts are those of the full grid.
+SCREEN_SAMPLES = 64
 #: The grid a row divided by a function, or a combination of rows, is identified on: states
 #: per set, parameter sets.
 ROW_FUNCTION_STATES, ROW_FUNCTION_SETS = 8, 16
@@ -289,11 +293,17 @@ class ComparisonEngine:
         argv = [*flat_q.T, *flat_nu.T, *(values[p] for p in funcs.params)]
         position = {a: k for k, a in enumerate(funcs.args)}
 
-        def swapped(key, index, a, b):
-            r"""The element with symbol ``a`` read as ``b`` (argument arrays permuted)."""
+        screen = np.linspace(0, len(flat_q) - 1, min(SCREEN_SAMPLES, len(flat_q))).astype(int)
+
+        def swapped(key, index, a, b, rows: np.ndarray | None = None):
+            r"""The element with symbol ``a`` read as ``b`` (argument arrays permuted), at
+            every sample or at the samples ``rows``."""
             trial = list(argv)
             trial[position[a]] = argv[position[b]]
-            out = np.broadcast_to(funcs.element_function(key, index)(*trial), (len(flat_q),))
+            if rows is not None:
+                trial = [x[rows] if np.ndim(x) and len(x) == len(flat_q) else x for x in trial]
+            out = np.broadcast_to(funcs.element_function(key, index)(*trial),
+                                  (len(flat_q) if rows is None else len(rows),))
             c = row_factor[index[0]]
             return out.astype(float) / (c if c is not None else 1.0)
 
@@ -330,8 +340,9 @@ class ComparisonEngine:
                                                 any(x.startswith("factor") for x in diags))
                 if expr is not None and key != "h" and not any(
                         x.startswith(("sign", "factor", "extra")) for x in diags):
-                    diags += swap_diagnoses(expr, groups, lambda a, b: swapped(key, index, a, b),
-                                            T, scale)
+                    diags += swap_diagnoses(
+                        expr, groups, lambda a, b: swapped(key, index, a, b), T, scale,
+                        lambda a, b: agrees(swapped(key, index, a, b, screen), T[screen], scale))
                 if expr is not None and key == "h" and not diags:     # a velocity product's
                     diags += trig_diagnoses(expr, funcs, argv, row_factor[i], D, T, scale,
                                              check=True)
