@@ -25,10 +25,12 @@ import re
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
+import latex2mathml.converter as latex2mathml
 import sympy as sp
 from latex2mathml.converter import convert
 
 from ..compare.result import DerivationResult, ElementRecord
+from ..disk_cache import DiskMemo
 from . import summary as S
 from .markdown import VERDICT_TEXT, check_lines
 from .symbols import (
@@ -108,10 +110,19 @@ def _num(x: float, digits: int = 4) -> str:
     return "≈0" if abs(x) < ROUNDING else f"{x:.{digits}g}"
 
 
+#: The MathML of LaTeX texts, remembered across runs (the disk cache's
+#: ``report/mathml-<code>.pickle``, named by SymPy's version, this file and latex2mathml's
+#: converter: MathML made by other code is not read).
+MATHML = DiskMemo("report", "mathml", lambda: [Path(__file__), Path(latex2mathml.__file__)])
+
+
 @functools.lru_cache(maxsize=8192)
 def _mathml(latex: str) -> str:
-    if not latex:
-        return ""
+    r"""The MathML of ``latex`` (:data:`MATHML`); code for LaTeX latex2mathml cannot read."""
+    return MATHML.get(latex, lambda: _converted(latex)) if latex else ""
+
+
+def _converted(latex: str) -> str:
     try:
         return convert(latex)
     except Exception:          # an expression latex2mathml cannot read is shown as text
