@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from conftest import SEED
+from wheeled_dyn.compare.conventions import flip_arrays, readings
 from wheeled_dyn.compare.diagnose import agrees
 from wheeled_dyn.compare.elements import (apply_row_factors, element_values, row_factors,
                                           row_scales)
@@ -37,3 +38,27 @@ def test_score_counts_what_element_by_element_counts(group, stem):
         assert ev.score(ev.doc_at(signs)) == expected, signs
         counts.add(expected)
     assert len(counts) > 1                      # the readings do differ
+
+
+@pytest.mark.parametrize("group, stem", [("seed001", "sec5_nonholonomic"),
+                                         ("seed001", "kim_eq6_8"),
+                                         ("seed001", "book_eq9_11"),
+                                         ("seed000", "p4_9_pendulum_support")])
+def test_readings_scored_together_score_as_each_alone(group, stem):
+    r"""The convention search scores the readings of the inputs at one sign pattern of the
+    positions together (what they share found once): the same numbers as scoring each
+    reading's arrays on their own."""
+    d = load_derivation(next(p for p in builtin_derivations(group) if p.stem == stem))
+    _, ev = ComparisonEngine(samples=60, param_sets=2, seed=SEED)._judge(d)
+    options = readings(d)
+    if not options:
+        pytest.skip(f"{stem}: no readings to search")
+    values = set()
+    for s, group_ in itertools.islice(itertools.groupby(options, key=lambda o: o[0]),
+                                      READINGS):
+        group_ = list(group_)
+        together = ev.score_readings(ev.doc_at(s), s, [(t, o) for _, t, o in group_])
+        alone = [ev.score(flip_arrays(ev.doc_at(s), s, t, o)) for _, t, o in group_]
+        assert together == alone, s
+        values.update(alone)
+    assert len(values) > 1                      # the readings do differ

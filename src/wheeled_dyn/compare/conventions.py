@@ -96,23 +96,28 @@ def flip_arrays(doc: Arrays, s: Sequence[int], t: Sequence[int],
 
 
 def best_reading(d: Derivation, evaluate: Callable[[Sequence[int]], Arrays],
-                 score: Callable[[Arrays], int]) -> tuple[Reading, int, int] | None:
+                 score: Callable[[Arrays], int],
+                 score_readings: Callable[[Arrays, Sequence[int], list], list[int]] | None = None
+                 ) -> tuple[Reading, int, int] | None:
     r"""``((s, t, order), declared score, best score)`` when a reading beats the declared one
     by at least :data:`MIN_GAIN` agreeing elements, else None. ``evaluate(s)`` gives the
     document's arrays at the flipped states, ``score(arrays)`` the number of agreeing
-    elements."""
+    elements; ``score_readings(arrays, s, [(t, order), ...])``, where given, the scores of
+    several readings of the inputs at once (the same numbers)."""
     options = readings(d)
     if not options:
         return None
     declared = score(evaluate((1,) * d.n))
-    cache: dict[tuple[int, ...], Arrays] = {}
+    if score_readings is None:
+        def score_readings(base, s, rest):
+            return [score(flip_arrays(base, s, t, order)) for t, order in rest]
     best: tuple[Reading | None, int] = (None, declared)
-    for s, t, order in options:
-        if s not in cache:
-            cache[s] = evaluate(s)
-        value = score(flip_arrays(cache[s], s, t, order))
-        if value > best[1]:
-            best = ((s, t, order), value)
+    for s, group in itertools.groupby(options, key=lambda o: o[0]):   # each s's consecutive
+        group = list(group)
+        values = score_readings(evaluate(s), s, [(t, order) for _, t, order in group])
+        for reading, value in zip(group, values):
+            if value > best[1]:
+                best = (reading, value)
     if best[0] is None or best[1] < declared + (
             MIN_GAIN_ORDER if is_permutation_only(best[0]) else MIN_GAIN):
         return None

@@ -13,7 +13,7 @@ r"""Element by element: both sides' numbers per element, labels, and undeclared 
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 
 import numpy as np
 import sympy as sp
@@ -138,32 +138,47 @@ def row_factors(doc: Arrays, truth: Arrays, B_true, n: int) -> list[float | None
     own least-squares ratio (within :data:`ROW_FACTOR_SPREAD`); a candidate other than 1 needs
     a strict majority among A's entries and among all of the row's (A, Q, B). Voting keeps a
     single wrong coefficient (e.g. 3(m_c + m_s)) from scaling a row."""
-    votes_a = _votes(doc.A, truth.A) if doc.A is not None else np.empty((n, 0))
-    others = [votes_a]
-    if doc.Q is not None:
-        others.append(_votes(doc.Q[:, :, None], truth.Q[:, :, None]))
+    votes_a, votes_all = row_votes(doc, truth, B_true, n)
+    return [decided_factor(votes_a[i], votes_all[i],
+                           lambda f, i=i: explains(f, row_pairs(doc, truth, B_true, i)))
+            for i in range(n)]
+
+
+def row_votes(doc: Arrays, truth: Arrays, B_true, n: int,
+              fixed: tuple[np.ndarray, np.ndarray] | None = None
+              ) -> tuple[np.ndarray, np.ndarray]:
+    r"""The votes of :func:`row_factors`: A's entries' (rows × columns) and all of each row's
+    (A's, Q's, B's; rows × entries). ``fixed``: the votes of A and of Q, known already (only
+    B's are counted then)."""
+    if fixed is None:
+        votes_a = _votes(doc.A, truth.A) if doc.A is not None else np.empty((n, 0))
+        votes_q = _votes(doc.Q[:, :, None], truth.Q[:, :, None]) if doc.Q is not None \
+            else np.empty((n, 0))
+    else:
+        votes_a, votes_q = fixed
+    parts = [votes_a, votes_q]
     if doc.B is not None and B_true is not None:
-        others.append(_votes(doc.B, B_true))
-    votes_all = np.concatenate(others, axis=1)
-    out: list[float | None] = []
-    for i in range(n):
-        # A's entries decide; Q and B only confirm (a wrong input map must not scale a row)
-        row_a, row_all = votes_a[i], votes_all[i]
-        row_a, row_all = row_a[~np.isnan(row_a)], row_all[~np.isnan(row_all)]
-        winner = None
-        for f in ROW_FACTORS:
-            if f == 1.0 or not len(row_a):
-                continue
-            if np.count_nonzero(row_a == f) * 2 > len(row_a) and \
-                    np.count_nonzero(row_all == f) * 2 > len(row_all):
-                winner = f
-        if winner is not None and not _explains(winner, _row_pairs(doc, truth, B_true, i)):
-            winner = None
-        out.append(winner)
-    return out
+        parts.append(_votes(doc.B, B_true))
+    return votes_a, np.concatenate(parts, axis=1)
 
 
-def _row_pairs(doc: Arrays, truth: Arrays, B_true, i: int) -> list[tuple[np.ndarray, np.ndarray]]:
+def decided_factor(votes_a: np.ndarray, votes_all: np.ndarray,
+                   explains: Callable[[float], bool]) -> float | None:
+    r"""One row's factor from its votes (:func:`row_factors`): A's entries decide, Q and B only
+    confirm (a wrong input map must not scale a row); ``explains(f)``: dividing by ``f``
+    makes an element of the row agree."""
+    row_a, row_all = votes_a[~np.isnan(votes_a)], votes_all[~np.isnan(votes_all)]
+    winner = None
+    for f in ROW_FACTORS:
+        if f == 1.0 or not len(row_a):
+            continue
+        if np.count_nonzero(row_a == f) * 2 > len(row_a) and \
+                np.count_nonzero(row_all == f) * 2 > len(row_all):
+            winner = f
+    return winner if winner is not None and explains(winner) else None
+
+
+def row_pairs(doc: Arrays, truth: Arrays, B_true, i: int) -> list[tuple[np.ndarray, np.ndarray]]:
     r"""Row i's (document, truth) sample pairs: A's entries, Q, B's entries."""
     pairs = []
     if doc.A is not None:
@@ -193,7 +208,7 @@ def _votes(D: np.ndarray, T: np.ndarray) -> np.ndarray:
     return np.where(finite & (tt > 0) & (dd > 0), out, np.nan)
 
 
-def _explains(factor: float, pairs: Sequence[tuple[np.ndarray, np.ndarray]]) -> bool:
+def explains(factor: float, pairs: Sequence[tuple[np.ndarray, np.ndarray]]) -> bool:
     r"""A row factor is only taken when dividing by it makes at least one nonzero element
     of the row agree exactly (near-ratios of elements that differ anyway explain nothing)."""
     finite = [(D, T) for D, T in pairs if np.isfinite(D).all() and np.isfinite(T).all()]
@@ -241,6 +256,8 @@ def swap_groups(d: Derivation) -> list[list[sp.Symbol]]:
     return [list(d.velocities), list(d.positions), *[g for g in by_units.values() if len(g) > 1]]
 
 
-__all__ = ["ROW_FACTORS", "ROW_FACTOR_SPREAD", "apply_row_factors", "element_expr",
-           "element_label", "element_values", "expanded", "input_map", "row_sizes",
-           "latex_names", "row_factors", "row_scales", "swap_groups", "truth_for"]
+__all__ = ["ROW_FACTORS", "ROW_FACTOR_SPREAD", "apply_row_factors", "decided_factor",
+           "element_expr", "element_label", "element_values", "expanded", "explains", "input_map",
+           "latex_names", "row_factors", "row_pairs", "row_scales", "row_sizes", "row_votes",
+           "swap_groups",
+           "truth_for"]

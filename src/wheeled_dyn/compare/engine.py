@@ -222,7 +222,7 @@ class ComparisonEngine:
                                  row_combination=row_combinations.as_text(combined[1]))
         declared_counts = result.counts()
         summary = None
-        best = conventions.best_reading(d, ev.doc_at, ev.score)
+        best = conventions.best_reading(d, ev.doc_at, ev.score, ev.score_readings)
         if best is not None:
             reading = best[0]
             flipped = conventions.flipped(d, *reading)

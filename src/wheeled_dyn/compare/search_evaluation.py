@@ -11,7 +11,9 @@ import numpy as np
 
 from . import causes
 from .diagnose import AGREE_TOL
-from .elements import apply_row_factors, row_factors, row_scales, row_sizes
+from .conventions import flip_arrays
+from .elements import (apply_row_factors, decided_factor, explains, row_factors, row_pairs,
+                       row_scales, row_sizes, row_votes)
 from .evaluate import Arrays
 
 #: Samples the convention search scores each reading on (spread over the parameter sets).
@@ -75,6 +77,72 @@ class SearchEvaluation(causes.Evaluation):
             upper = np.triu(np.ones((n, n), dtype=bool))
             count += _agreeing(doc.H * _product_weights(n), truth_H, scales, upper)
         return count
+
+
+    def score_readings(self, base: Arrays, s: Sequence[int],
+                       readings: Sequence[tuple[Sequence[int], Sequence[int]]]) -> list[int]:
+        r""":meth:`score` of ``flip_arrays(base, s, t, order)`` for each ``(t, order)`` of
+        ``readings``: the document at one sign pattern :math:`s` of its positions, its inputs
+        read in several ways. The readings differ in B only and every part of the score is a
+        row's, so the votes of A and Q, and per row and factor the number of agreeing A, C, Q
+        and H elements and the row's scale, are found once; per reading only B's votes, the
+        rows' factors and B's agreement (the row factors are powers of two: dividing by one
+        is exact, and so is a row's largest magnitude divided by it)."""
+        n = self.q.shape[1]
+        _, truth, B_true = self._subset()
+        doc = flip_arrays(base, s, (), ())
+        if doc.B is None or B_true is None:
+            return [self.score(flip_arrays(base, s, t, order)) for t, order in readings]
+        votes_a, every = row_votes(Arrays(A=doc.A, Q=doc.Q), truth, None, n)
+        fixed = (votes_a, every[:, votes_a.shape[1]:])
+        rows = _RowParts(doc, truth, *self._truth_parts(), n)
+        out = []
+        for t, order in readings:
+            B = doc.B[:, :, list(order)] if len(order) else doc.B
+            B = B * np.asarray(t, float)[None, None, :] if len(t) else B
+            variant = Arrays(A=doc.A, Q=doc.Q, B=B)
+            votes_a, votes_all = row_votes(variant, truth, B_true, n, fixed)
+            total = 0
+            for i in range(n):
+                f = decided_factor(votes_a[i], votes_all[i], lambda f, i=i: explains(
+                    f, row_pairs(variant, truth, B_true, i)))
+                count, scale = rows.part(i, f)
+                Bi = B[:, i:i + 1] if f is None else B[:, i:i + 1] / f
+                total += count + _agreeing(Bi, B_true[:, i:i + 1], np.array([scale]))
+            out.append(total)
+        return out
+
+
+class _RowParts:
+    r"""Per row i and factor f of a document's arrays (samples × rows × ...): the number of
+    its A, C, Q and H elements that agree with the truth once the row is divided by f, and
+    the row's scale then (:meth:`SearchEvaluation.score`'s, row by row)."""
+
+    def __init__(self, doc: Arrays, truth: Arrays, truth_sizes: np.ndarray,
+                 truth_H: np.ndarray | None, n: int) -> None:
+        self.doc, self.truth, self.truth_H, self.n = doc, truth, truth_H, n
+        self.sizes, self.truth_sizes = row_sizes(doc, n), truth_sizes
+        self._parts: dict[tuple[int, float | None], tuple[int, float]] = {}
+
+    def part(self, i: int, f: float | None) -> tuple[int, float]:
+        if (i, f) not in self._parts:
+            size = self.sizes[i] if f is None else self.sizes[i] / abs(f)
+            scale = float(np.maximum(size, self.truth_sizes[i]))      # NaN as row_scales:
+            scale = scale if scale > 0 else 1.0                          # a scale of 1
+            one = np.array([scale])
+            count = 0
+            for name in ("A", "C", "Q"):
+                D, T = getattr(self.doc, name), getattr(self.truth, name)
+                if D is not None:
+                    D = D[:, i:i + 1] if f is None else D[:, i:i + 1] / f
+                    count += _agreeing(D, T[:, i:i + 1], one)
+            if self.doc.H is not None:
+                H = self.doc.H[:, i:i + 1] if f is None else self.doc.H[:, i:i + 1] / f
+                upper = np.triu(np.ones((self.n, self.n), dtype=bool))
+                count += _agreeing(H * _product_weights(self.n), self.truth_H[:, i:i + 1], one,
+                                   upper)
+            self._parts[(i, f)] = (count, scale)
+        return self._parts[(i, f)]
 
 
 def _product_weights(n: int) -> np.ndarray:
