@@ -12,6 +12,7 @@ prints, so text printed by other code is never served.
 
 from __future__ import annotations
 
+import atexit
 import hashlib
 import os
 import pickle
@@ -71,7 +72,8 @@ class DiskMemo:
     version and the bytes of the ``code`` files that compute the values (:meth:`path`).
 
     :meth:`save` writes the entries made in this process, merged with what the file holds
-    then, keeping the newest :data:`MEMO_LIMIT`. Best effort: two processes writing at once
+    then, keeping the newest :data:`MEMO_LIMIT` (the commands save when they write their
+    reports, and every process at its exit). Best effort: two processes writing at once
     keep the last one's merge (the other's new entries are computed again next time), and a
     file that cannot be read or written is only slower.
     """
@@ -80,6 +82,8 @@ class DiskMemo:
         self.kind, self.name, self._code = kind, name, code
         self._entries: dict | None = None
         self._new = False
+        if not _MEMOS:                        # a program using the API saves on exit
+            atexit.register(save_memos)
         _MEMOS.append(self)
 
     def path(self) -> Path:
