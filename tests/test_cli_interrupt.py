@@ -25,6 +25,10 @@ from wheeled_dyn.derivations import builtin_derivations
 KIM = {p.name: p for p in builtin_derivations("seed001")}["kim_eq1_3.toml"]
 #: Seconds after start at which Ctrl-C is sent: during the imports and just after them.
 INSTANTS = (0.3, 0.5, 0.7, 1.0)
+#: Random states per parameter set of the interrupted comparison: enough that it is still
+#: comparing at the last instant (about 2.5 s in all here; with the default 1000 states one
+#: derivation is checked in about 1 s, and the Ctrl-C could come after its reports).
+STATES = "40000"
 #: Seconds an interrupted command may take to end (it ends within a second here).
 END_TIMEOUT = 30
 #: Seconds the in-process command may take after its swallowed interrupt (a few retries).
@@ -38,7 +42,7 @@ def test_ctrl_c_early_in_compare(tmp_path, instant):
     out.mkdir()
     (out / "report.md").write_text("previous")
     proc = subprocess.Popen([sys.executable, "-m", "wheeled_dyn.cli", "compare", "wip",
-                             str(KIM), "--out", str(out)],
+                             str(KIM), "--samples", STATES, "--out", str(out)],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             start_new_session=True)
     time.sleep(instant)

@@ -247,3 +247,27 @@ def test_pseudo_inverse_by_normal_equations_or_svd():
         assert np.allclose(pseudo_inverse(stack), np.linalg.pinv(stack), atol=EXACT_TOL)
         for M in stack:
             assert np.allclose(pseudo_inverse(M), np.linalg.pinv(M), atol=EXACT_TOL)
+
+
+@pytest.mark.parametrize("by_reference", [True, False])
+def test_batch_across_blocks_equals_single_state(monkeypatch, by_reference):
+    r"""More states than one block of the stacked algebra (:data:`~wheeled_dyn.constraints.
+    batch.BLOCK`), the states on both sides of a block's edge against the one-state terms;
+    also as with a Pinocchio binding that returns copies of ``data.J`` (read after each
+    call instead of through views)."""
+    from wheeled_dyn.constraints import batch
+    if not by_reference:
+        plain = batch._context
+        monkeypatch.setattr(batch, "_context",
+                            lambda cmap: plain(cmap)._replace(by_reference=False))
+    wm = random_wip_models(1)[0]
+    cmap = CoordinateMap(wm, builtin_coordinate_set(wm, "seed001"))
+    rng = np.random.default_rng(SEED)
+    N = batch.BLOCK + 9
+    q, nu = rng.uniform(-2, 2, (N, cmap.n)), rng.normal(size=(N, cmap.n))
+    terms = cmap.terms_batch(q, nu)
+    for i in (0, batch.BLOCK - 1, batch.BLOCK, N - 1):
+        single = cmap.terms(q[i], nu[i])
+        for key in ("A", "C", "Q", "B", "h"):
+            assert np.allclose(getattr(terms, key)[i], getattr(single, key), atol=EXACT_TOL), \
+                (key, i)

@@ -292,10 +292,12 @@ def test_ctrl_c_during_report(tmp_path):
     out.mkdir()
     (out / "report.md").write_text("previous")
     proc = subprocess.Popen([sys.executable, "-m", "wheeled_dyn.cli", "report", "--samples",
-                             "1000", "--param-sets", "5", "--out", str(out)],
+                             "4000", "--param-sets", "5", "--out", str(out)],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             start_new_session=True)
-    time.sleep(2.5)                       # imports done (about 1 s), workers comparing (3 s+)
+    # imports done (about 0.5 s), workers comparing: the default report ends in about 2.5 s
+    # here, this one (4000 states per set) in about 4.3 s
+    time.sleep(2.5)
     os.killpg(proc.pid, signal.SIGINT)    # as a terminal's Ctrl-C: the whole process group
     _, err = proc.communicate(timeout=SUBPROCESS_TIMEOUT)
     assert proc.returncode == 130, err

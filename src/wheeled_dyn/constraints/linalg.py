@@ -42,11 +42,13 @@ def pseudo_inverse(M: np.ndarray) -> np.ndarray:
         ok = np.abs(Mp @ M - np.eye(M.shape[1])).max() <= PSEUDO_INVERSE_TOL
         return Mp if ok else np.linalg.pinv(M)
     Mt = np.swapaxes(M, 1, 2)
-    eye = np.eye(M.shape[2])
     try:
         with np.errstate(all="ignore"):
             Mp = np.linalg.solve(Mt @ M, Mt)
-        bad = ~(np.abs(Mp @ M - eye).max(axis=(1, 2)) <= PSEUDO_INVERSE_TOL)
+            residual = Mp @ M                       # M^+ M - I, in place
+            residual -= np.eye(M.shape[2])
+            np.abs(residual, out=residual)
+            bad = ~(residual.max(axis=(1, 2)) <= PSEUDO_INVERSE_TOL)
     except np.linalg.LinAlgError:
         Mp, bad = np.empty_like(Mt), np.ones(len(M), dtype=bool)
     if bad.any():
