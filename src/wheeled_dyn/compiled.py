@@ -24,6 +24,7 @@ namespace (a SymPy release without them gets ``lambdify`` itself);
 from __future__ import annotations
 
 import builtins
+import itertools
 import keyword
 from collections.abc import Callable, Hashable, Sequence
 from pathlib import Path
@@ -112,6 +113,17 @@ def numpy_function(args: Sequence[sp.Symbol], expr, cse: bool = False) -> Callab
     return local["_lambdifygenerated"]
 
 
+def grouped_function(groups: Sequence[Sequence[sp.Symbol]], expr) -> Callable:
+    r"""``sympy.lambdify(groups, expr, "numpy")`` for arguments in groups — ``f(q, p)`` with
+    ``q`` and ``p`` sequences of values — as :func:`numpy_function` of the symbols in order."""
+    flat = numpy_function([s for group in groups for s in group], expr)
+
+    def grouped(*values) -> object:
+        return flat(*itertools.chain.from_iterable(values))
+
+    return grouped
+
+
 def _written(args: Sequence[sp.Symbol], expr, cse: bool) -> tuple[str, tuple]:
     r"""The code ``lambdify`` writes for ``expr`` and the names it imports, by module."""
     printer = _RememberingPrinter(dict(_PRINTER_SETTINGS))
@@ -121,4 +133,4 @@ def _written(args: Sequence[sp.Symbol], expr, cse: bool) -> tuple[str, tuple]:
     return source, tuple((m, tuple(sorted(n))) for m, n in printer.module_imports.items())
 
 
-__all__ = ["SOURCES", "numpy_function"]
+__all__ = ["SOURCES", "grouped_function", "numpy_function"]

@@ -22,6 +22,7 @@ import numpy as np
 import pinocchio as pin
 import sympy as sp
 
+from ..compiled import numpy_function
 from ..dynamics.terms import Terms
 from ..models.springs import spring_force_batch
 from .linalg import pseudo_inverse
@@ -40,7 +41,7 @@ def lambdify_batch(matrix: sp.Matrix, args: Sequence) -> callable:
     varying = []
     for i, row in enumerate(matrix.tolist()):
         for j, e in enumerate(row):
-            f = sp.lambdify(args, e, "numpy")
+            f = numpy_function(args, e)
             if e.free_symbols:
                 varying.append((i, j, f))
             else:

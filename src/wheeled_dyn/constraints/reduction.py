@@ -32,6 +32,7 @@ import numpy as np
 import pinocchio as pin
 import sympy as sp
 
+from ..compiled import grouped_function
 from ..coordinates.spec import CoordinateSet, CoordinateSpecError, model_symbols
 from ..dynamics.terms import Terms, check_vector
 from ..models.builder import WheeledModel
@@ -46,8 +47,9 @@ PARAMETRISATION_TOL = 1e-9
 class CoordinateMap:
     r"""A coordinate set bound to a model: numbers in, document-coordinate terms out.
 
-    Expressions are compiled once (SymPy ``lambdify``); the model's parameters enter as
-    arguments, so the same map serves every parameter set of the same model structure.
+    Expressions are compiled once (as SymPy's ``lambdify`` does: :mod:`~wheeled_dyn.compiled`);
+    the model's parameters enter as arguments, so the same map serves every parameter set of
+    the same model structure.
     """
 
     def __init__(self, wm: WheeledModel, cs: CoordinateSet) -> None:
@@ -59,13 +61,13 @@ class CoordinateMap:
         doc_q = list(cs.position_symbols())
         doc_v = list(cs.velocity_symbols())
         config = sp.Matrix([cs.configuration[c] for c in wm.coordinate_names])
-        self._config = sp.lambdify([doc_q, params], config, "numpy")
+        self._config = grouped_function([doc_q, params], config)
         self._config_batch = lambdify_batch(config, [*doc_q, *params])
         if cs.kind == "holonomic":
             S = config.jacobian(doc_q)
             Sdot = sum((S.diff(s) * ds for s, ds in zip(doc_q, doc_v)), sp.zeros(*S.shape))
-            self._S = sp.lambdify([doc_q, params], S, "numpy")
-            self._Sdot = sp.lambdify([doc_q, doc_v, params], Sdot, "numpy")
+            self._S = grouped_function([doc_q, params], S)
+            self._Sdot = grouped_function([doc_q, doc_v, params], Sdot)
             self._S_batch = lambdify_batch(S, [*doc_q, *params])
             self._Sdot_batch = lambdify_batch(Sdot, [*doc_q, *doc_v, *params])
         else:
@@ -73,8 +75,8 @@ class CoordinateMap:
             nu = sp.Matrix([cs.velocity_map[v] for v in cs.velocities])
             T = nu.jacobian(mv)
             Tdot = sum((T.diff(s) * ds for s, ds in zip(mq, mv)), sp.zeros(*T.shape))
-            self._T = sp.lambdify([list(mq), params], T, "numpy")
-            self._Tdot = sp.lambdify([list(mq), list(mv), params], Tdot, "numpy")
+            self._T = grouped_function([list(mq), params], T)
+            self._Tdot = grouped_function([list(mq), list(mv), params], Tdot)
             self._T_batch = lambdify_batch(T, [*mq, *params])
             self._Tdot_batch = lambdify_batch(Tdot, [*mq, *mv, *params])
             if cs.rolling != "eliminate" and T.shape[0] != T.shape[1]:
