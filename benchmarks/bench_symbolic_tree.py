@@ -63,13 +63,14 @@ from wheeled_dyn.models.registry import model_parameters
 from wheeled_dyn.paths import example_robot_data_share
 from wheeled_dyn.symbolic.exact import exact_model, exact_rotation, exact_translation
 from wheeled_dyn.symbolic.kinematics import joint_kind
-from wheeled_dyn.symbolic.parameters import PARAMETER_NAMES, numeric_parameters
+from wheeled_dyn.symbolic.parameters import named_parameters, numeric_parameters
 from wheeled_dyn.symbolic.tree import TreeDynamics, tree_dynamics
 from wheeled_dyn.symbolic.tree_code import (
     OperationCount, compile_assignments, compile_terms, operation_count)
 from wheeled_dyn.symbolic.tree_wheeled import tree_wheeled
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_core import per_call  # noqa: E402  (seconds per call, best of passes)
 from bench_symbolic import (  # noqa: E402  (the SymPy bodies and checks of the WIP benchmark)
     MechanicsSystem, body_parameters, kane_equations, lagrange_equations, numeric_equations)
 
@@ -97,17 +98,6 @@ def timed(f: Callable, *args, **kw) -> tuple[object, float]:
     return out, time.perf_counter() - t0
 
 
-def per_call(fn: Callable, args_list: Sequence[tuple], repeat: int = REPEAT) -> float:
-    """Seconds per call of ``fn(*args)``, best of ``repeat`` passes over ``args_list``."""
-    best = np.inf
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        for args in args_list:
-            fn(*args)
-        best = min(best, (time.perf_counter() - t0) / len(args_list))
-    return best
-
-
 def relative_error(a, b) -> float:
     """Largest difference of ``a`` from ``b``, relative to the largest entry of ``b`` (or 1)."""
     a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
@@ -118,15 +108,6 @@ def verdict(errors: dict[str, float]) -> str:
     worst = max(errors.values())
     return (", ".join(f"{k} {e:.1e}" for k, e in errors.items())
             + f" -> {'OK' if worst <= TOLERANCE else 'MISMATCH'}")
-
-
-def joint_parameter_values(model: pin.Model) -> dict[str, float]:
-    """``{"M_<joint>": value, ...}``: the model's own standard parameters by symbol name."""
-    out = {}
-    for j, pi in numeric_parameters(model).items():
-        for k, x in zip(PARAMETER_NAMES, pi):
-            out[f"{k}_{model.names[j]}"] = x
-    return out
 
 
 def pinocchio_terms(model: pin.Model, data: pin.Data) -> Callable:
@@ -185,7 +166,7 @@ def bench_tree(title: str, model: pin.Model, names: Sequence[str] | None = None
     f_acq = compile_assignments(td.assignments, td.q, td.qd, td.parameters,
                                 [("A", list(td.A)), ("C", Cmat), ("Q", list(td.Q))])
     t_compile = time.perf_counter() - t0
-    values = joint_parameter_values(model)
+    values = named_parameters(model)
     p = np.array([values[str(s)] for s in td.parameters])
     pl = [float(x) for x in p]
 
@@ -196,9 +177,9 @@ def bench_tree(title: str, model: pin.Model, names: Sequence[str] | None = None
 
     erng = np.random.default_rng(SEED + 1)
     states = [(erng.uniform(-np.pi, np.pi, n), erng.uniform(-1.0, 1.0, n)) for _ in range(N_EVAL)]
-    t_raw = per_call(pinocchio_terms(model, data), states)
-    t_acq = per_call(f_acq, [(list(q), list(v), pl) for q, v in states])
-    t_terms = per_call(f_terms, [(q, v, p) for q, v in states])
+    t_raw = per_call(pinocchio_terms(model, data), states, REPEAT)
+    t_acq = per_call(f_acq, [(list(q), list(v), pl) for q, v in states], REPEAT)
+    t_terms = per_call(f_terms, [(q, v, p) for q, v in states], REPEAT)
 
     print(f"{title}: {n} joints, {len(td.parameters)} parameters")
     print(f"   tree_dynamics (A, Q, Christoffel symbols): {t_derive:6.2f} s; code generated and "
@@ -370,9 +351,9 @@ def bench_reduction(tiago: wd.WheeledModel) -> tuple[bool, float]:
             for _ in range(N_EVAL)]
     doc = [(erng.uniform(-np.pi, np.pi, len(red.q)), erng.uniform(-1.0, 1.0, m))
            for _ in range(N_EVAL)]
-    t_raw = per_call(pinocchio_terms(model, data), full)
-    t_code = per_call(f, [(list(q), list(v), pl) for q, v in doc])
-    t_num = per_call(cmap.terms, doc)
+    t_raw = per_call(pinocchio_terms(model, data), full, REPEAT)
+    t_code = per_call(f, [(list(q), list(v), pl) for q, v in doc], REPEAT)
+    t_num = per_call(cmap.terms, doc, REPEAT)
 
     print(f"3. TIAGo's rolling reduction (wheeled-dyn symbolic tiago: {cs.name} coordinates, "
           f"{len(red.q)} positions, {m} velocities, {len(red.parameters)} parameters)")

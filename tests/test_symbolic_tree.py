@@ -19,7 +19,7 @@ from wheeled_dyn.dynamics import christoffel_tensor
 from wheeled_dyn.models.registry import model_parameters
 from wheeled_dyn.paths import example_robot_data_share
 from wheeled_dyn.symbolic.exact import exact_length, exact_rotation
-from wheeled_dyn.symbolic.parameters import PARAMETER_NAMES, numeric_parameters
+from wheeled_dyn.symbolic.parameters import named_parameters
 from wheeled_dyn.symbolic.tree import tree_dynamics
 from wheeled_dyn.symbolic.tree_code import compile_assignments, compile_terms, operation_count
 from wheeled_dyn.symbolic.tree_wheeled import tree_wheeled
@@ -40,17 +40,9 @@ def _close(a, b, what):
     assert err <= TOLERANCE * scale, f"{what}: max difference {err:.3e} (scale {scale:.3g})"
 
 
-def _values(model: pin.Model) -> dict[str, float]:
-    out = {}
-    for j, pi in numeric_parameters(model).items():
-        for k, x in zip(PARAMETER_NAMES, pi):
-            out[f"{k}_{model.names[j]}"] = x
-    return out
-
-
 def _check_tree(model: pin.Model, names=None):
     td = tree_dynamics(model, coordinate_names=names)
-    values = _values(model)
+    values = named_parameters(model)
     p = [values[str(s)] for s in td.parameters]
     f = compile_terms(td)
     rng = np.random.default_rng(SEED)

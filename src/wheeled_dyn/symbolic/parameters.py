@@ -45,6 +45,13 @@ def numeric_parameters(model: pin.Model) -> dict[int, tuple[float, ...]]:
             for j in range(1, model.njoints)}
 
 
+def named_parameters(model: pin.Model) -> dict[str, float]:
+    """The model's own parameters by the names of their symbols in the closed forms of
+    :mod:`.tree`: ``{"M_<joint>": m, "MX_<joint>": ..., ..., "ZZ_<joint>": ...}``."""
+    return {f"{k}_{model.names[j]}": x for j, pi in numeric_parameters(model).items()
+            for k, x in zip(PARAMETER_NAMES, pi)}
+
+
 def resolve_parameters(model: pin.Model, params: Mapping[int, Sequence] | None
                        ) -> dict[int, tuple[sp.Expr, ...]]:
     """Ten SymPy expressions per joint: ``params[j]`` where given, else the default symbols
