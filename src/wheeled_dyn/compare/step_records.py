@@ -42,7 +42,7 @@ from .assumptions import Assumptions, declared, position_ranges
 from .balances import compare_balance
 from ..compiled import numpy_function
 from .results import compare_result
-from .samples import random_states, special_cases
+from .samples import random_states, regular_states, special_cases
 from .units import DimensionChecker, format_dim
 
 #: Parameter sets and states per set on which the steps are compared.
@@ -85,6 +85,7 @@ class _Group:
         n = len(self.cs.positions)
         ranges = position_ranges(d, self.cs.positions, Assumptions())
         q, nu = random_states(n, sets * states, rng, ranges)
+        q = regular_states(self.cmap, q, rng, ranges)    # not where the coordinates are singular
         self.q, self.nu, self.nudot = q, nu, rng.normal(size=nu.shape)
         self.rng = rng
         self.params = tuple(s.symbol for s in d.symbols.values() if not s.is_input)
