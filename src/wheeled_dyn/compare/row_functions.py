@@ -25,6 +25,7 @@ only if more elements agree (:meth:`~.engine.ComparisonEngine._compare`).
 
 from __future__ import annotations
 
+import functools
 import itertools
 from collections.abc import Mapping, Sequence
 
@@ -157,6 +158,15 @@ def _exact_sum(X: np.ndarray, y: np.ndarray, chosen: Sequence[int],
     return sp.Add(*(c * t for c, t in zip(exact, terms)))
 
 
+@functools.lru_cache(maxsize=8)
+def _pairs(n: int) -> tuple[np.ndarray, np.ndarray]:
+    r"""The index pairs :math:`i < j` of ``n`` columns (``numpy.triu_indices(n, 1)``, made
+    once per size: the same bases recur from row to row and file to file)."""
+    i, j = np.triu_indices(n, 1)
+    i.flags.writeable = j.flags.writeable = False
+    return i, j
+
+
 def fit_sum(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> sp.Expr | None:
     r"""One product, or a sum of two, of at most :data:`SUM_DEGREE` bases with simple rational
     coefficients equal to ``target`` at every sample (the quantity a row was divided by when
@@ -180,7 +190,7 @@ def fit_sum(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> 
         found = _exact_sum(X, y, (int(k),), (term(k),))
         if found is not None:
             return found
-    i, j = np.triu_indices(len(groups), 1)
+    i, j = _pairs(len(groups))
     det = 1.0 - G[i, j] ** 2
     with np.errstate(all="ignore"):
         a = (c[i] - c[j] * G[i, j]) / det

@@ -78,7 +78,6 @@ class SearchEvaluation(causes.Evaluation):
             count += _agreeing(doc.H * _product_weights(n), truth_H, scales, upper)
         return count
 
-
     def score_readings(self, base: Arrays, s: Sequence[int],
                        readings: Sequence[tuple[Sequence[int], Sequence[int]]]) -> list[int]:
         r""":meth:`score` of ``flip_arrays(base, s, t, order)`` for each ``(t, order)`` of
