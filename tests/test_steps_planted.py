@@ -341,3 +341,26 @@ def test_steps_are_not_sampled_where_the_coordinates_are_singular(monkeypatch):
     compare_steps(load_derivation(path), 2026)
     assert drawn and max(before for before, _ in drawn) > MAX_CONDITION
     assert all(after <= MAX_CONDITION for _, after in drawn)
+
+
+def test_balances_are_sampled_away_from_singular_coordinates(monkeypatch):
+    r"""A balance's samples go through the same redraw of singular positions (seed 000's
+    2.19: one grid per balance, every position left regular)."""
+    from wheeled_dyn.compare import balances
+    from wheeled_dyn.compare.samples import MAX_CONDITION
+    from wheeled_dyn.derivations import builtin_derivations
+    drawn = []
+    plain = balances.regular_states
+
+    def recorded(cmap, q, rng, ranges=None):
+        out = plain(cmap, q, rng, ranges)
+        drawn.append((q.shape, cmap.conditioning(out).max()))
+        return out
+
+    monkeypatch.setattr(balances, "regular_states", recorded)
+    path = next(p for p in builtin_derivations("seed000") if p.name == "p2_19_spring_block.toml")
+    d = load_derivation(path)
+    compare_steps(d, 2026)
+    kinds = [s.kind for s in d.steps]
+    assert len(drawn) == kinds.count("newton-euler") > 0, kinds
+    assert all(shape[1] == len(d.positions) and c <= MAX_CONDITION for shape, c in drawn)

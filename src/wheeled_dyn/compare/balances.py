@@ -51,7 +51,7 @@ from .evaluate import (derivation_coordinate_set, document_symbol_values,
                        given_parameter_sets)
 from .kinematics_truth import Motion, check_links
 from .result import ElementRecord
-from .samples import random_states
+from .samples import random_states, regular_states
 from .units import DimensionChecker, format_dim
 
 #: Parameter sets and states per set on which a balance is checked.
@@ -129,8 +129,10 @@ class _Balance:
                 raise DerivationError(d.path, f"step {step.equation} relation {j + 1}",
                                       "a balance is linear in the accelerations and forces")
         ranges = position_ranges(d, [str(p) for p in d.positions], Assumptions())
-        self.q, self.nu = random_states(len(d.positions), BALANCE_SETS * BALANCE_STATES, rng,
-                                        ranges)
+        #: the coordinate map, compiled once and bound to each parameter set in turn
+        self._map = CoordinateMap(self.sets[0].model, derivation_coordinate_set(d, self.sets[0]))
+        q, self.nu = random_states(len(d.positions), BALANCE_SETS * BALANCE_STATES, rng, ranges)
+        self.q = regular_states(self._map, q, rng, ranges)   # not where coordinates are singular
         self.params = [s.symbol for s in d.symbols.values() if not s.is_input]
         self.args = [*d.positions, *d.velocities, *self.params]
         self.values = [document_symbol_values(d, ps, rng) for ps in self.sets]
@@ -180,7 +182,7 @@ class _Balance:
         frames = tuple(dict.fromkeys((step.frame, "world", step.body)))
         self._rotations = {f: [] for f in frames}
         for k, ps in enumerate(self.sets):
-            cmap = CoordinateMap(ps.model, derivation_coordinate_set(d, ps))
+            cmap = self._map.bind(ps.model)
             check_links(ps.model, [step.body, *(f for f in frames
                                                 if f not in ("world", "heading"))])
             data = ps.model.model.createData()
