@@ -26,7 +26,7 @@ KIM = {p.name: p for p in builtin_derivations("seed001")}["kim_eq1_3.toml"]
 #: Seconds after start at which Ctrl-C is sent: during the imports and just after them.
 INSTANTS = (0.3, 0.5, 0.7, 1.0)
 #: Random states per parameter set of the interrupted comparison: enough that it is still
-#: comparing at the last instant (about 2.5 s in all here; with the default 1000 states one
+#: comparing at the last instant (2.7–3.0 s in all here; with the default 1000 states one
 #: derivation is checked in about 1 s, and the Ctrl-C could come after its reports).
 STATES = "40000"
 #: Seconds an interrupted command may take to end (it ends within a second here).

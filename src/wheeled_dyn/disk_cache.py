@@ -4,9 +4,9 @@ else ``~/.cache/wheeled_dyn``, one folder per kind of entry (``symbolic/`` close
 the same folder, renamed), so a reader never sees half an entry; an entry that cannot be read
 is treated as missing.
 
-A :class:`DiskMemo` is a dictionary of printed forms (LaTeX, simplified display text) kept
-there between runs: printing the same expression again gives the same text, so a report
-made again does not print it again. Its file is named by SymPy's version and the code that
+A :class:`DiskMemo` is a dictionary of printed forms (compiled code, text, LaTeX, MathML,
+simplified display text) kept there between runs: printing the same expression again gives
+the same text, so a check made again does not print it again. Its file is named by SymPy's version and the code that
 prints, so text printed by other code is never served.
 """
 

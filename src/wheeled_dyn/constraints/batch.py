@@ -128,17 +128,9 @@ class _Context(NamedTuple):
     centres: tuple[np.ndarray, ...]
     by_reference: bool
 
-    def joint_jacobians(self, data) -> np.ndarray:
-        r"""``data.J`` after an algorithm call (the view, or a fresh copy from a binding that
-        returns copies)."""
-        return self.J if self.by_reference else data.J
-
-    def variations(self, data) -> np.ndarray:
-        return self.dJ if self.by_reference else data.dJ
-
     def positions(self, data) -> tuple[np.ndarray, ...]:
-        return self.centres if self.by_reference else tuple(
-            data.oMi[j].translation for j in self.wheels.ids[:len(self.centres)])
+        r"""The wheel joints' translations read again (a binding that returns copies)."""
+        return tuple(data.oMi[j].translation for j in self.wheels.ids[:len(self.centres)])
 
 
 def _context(cmap) -> _Context:
@@ -191,7 +183,7 @@ def _configuration(cmap, ctx: _Context, q: np.ndarray, q_doc: np.ndarray | None,
     for qi, Ai, Qi, Ji, Pi in zip(q, A, Q, Jw, pos):
         Ai[...] = crba(model, data, qi, world)
         if centres:
-            Ji[...] = J_view if by_reference else ctx.joint_jacobians(data)
+            Ji[...] = J_view if by_reference else data.J
             Pi[...] = centres if by_reference else ctx.positions(data)
         if with_gravity:
             Qi[...] = gravity(model, data, qi)
@@ -282,7 +274,7 @@ def _reduce_block(cmap, ctx: _Context, q: np.ndarray, nus: list[np.ndarray],
         for qi, vi, Ci, Di in zip(q, v, C, dJw):
             Ci[...] = coriolis(model, data, qi, vi)
             if rolling:
-                Di[...] = dJ_view if by_reference else ctx.variations(data)
+                Di[...] = dJ_view if by_reference else data.dJ
         if cs.kind == "holonomic":
             Sdot = cmap._Sdot_batch(N, *q_doc.T, *nu.T, *p)
         else:
