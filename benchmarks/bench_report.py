@@ -32,7 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from wheeled_dyn import CoordinateMap, builtin_coordinate_set, load_model
-from wheeled_dyn.compare.commands import (DEFAULT_PARAM_SETS, DEFAULT_SAMPLES, compare_report,
+from wheeled_dyn.cli.compare_cmd import (DEFAULT_PARAM_SETS, DEFAULT_SAMPLES, compare_report,
                                           run_comparison)
 from wheeled_dyn.derivations import builtin_derivations
 from wheeled_dyn.derivations.builtin import BUILTIN_DIR
@@ -71,7 +71,7 @@ def _check_after_saving(derivation: Path) -> list[float]:
     the command keeps, so the truth is computed at the first check only."""
     import shutil
 
-    from wheeled_dyn.compare.commands import _write
+    from wheeled_dyn.cli.compare_cmd import _write
     from wheeled_dyn.compare.engine import ComparisonEngine
     out = []
     with tempfile.TemporaryDirectory() as folder:

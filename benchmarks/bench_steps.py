@@ -12,9 +12,9 @@ from __future__ import annotations
 
 import time
 
-from wheeled_dyn.compare import steps as step_module
-from wheeled_dyn.compare.commands import DEFAULT_PARAM_SETS, DEFAULT_SAMPLES, run_comparison
-from wheeled_dyn.compare.step_records import compare_steps
+from wheeled_dyn.compare.steps import chain as step_module
+from wheeled_dyn.cli.compare_cmd import DEFAULT_PARAM_SETS, DEFAULT_SAMPLES, run_comparison
+from wheeled_dyn.compare.steps.records import compare_steps
 from wheeled_dyn.derivations import builtin_derivations, load_derivation
 from wheeled_dyn.derivations.builtin import BUILTIN_DIR, STEPS_SUFFIX
 

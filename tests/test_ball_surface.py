@@ -332,10 +332,10 @@ def test_paraboloid_force_function_3_8(tmp_path):
     U = -V, is compared with the true potential of a ball that touches the paraboloid: it agrees;
     with the ball's centre offset on the other side of the surface (+R p/sqrt for -R p/sqrt,
     the convex side) it differs."""
-    from wheeled_dyn.compare.step_records import compare_steps
+    from wheeled_dyn.compare.steps.records import compare_steps
     from wheeled_dyn.constraints.reduction import CoordinateMap as Map
-    from wheeled_dyn.compare.evaluate import derivation_coordinate_set
-    from wheeled_dyn.compare.samples import ParameterSet, namespace_values
+    from wheeled_dyn.compare.sides.evaluate import derivation_coordinate_set
+    from wheeled_dyn.compare.grid.samples import ParameterSet, namespace_values
     from wheeled_dyn.derivations import builtin_derivations, load_derivation
     folder = builtin_derivations("seed002")[0].parent
     path = folder / "s3_8_paraboloid.toml"

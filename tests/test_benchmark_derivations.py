@@ -14,9 +14,9 @@ import sympy as sp
 
 from conftest import SEED
 from wheeled_dyn.compare.engine import ComparisonEngine
-from wheeled_dyn.compare.evaluate import derivation_coordinate_set, model_value
-from wheeled_dyn.compare.row_functions import with_row_functions
-from wheeled_dyn.compare.samples import ParameterSet, namespace_values
+from wheeled_dyn.compare.sides.evaluate import derivation_coordinate_set, model_value
+from wheeled_dyn.compare.readings.row_functions import with_row_functions
+from wheeled_dyn.compare.grid.samples import ParameterSet, namespace_values
 from wheeled_dyn.constraints import CoordinateMap
 from wheeled_dyn.derivations import builtin_derivations, load_derivation
 from wheeled_dyn.models.registry import load_model, model_parameters

@@ -9,7 +9,7 @@ import pytest
 
 from conftest import N_STATES, SEED
 from wheeled_dyn import CoordinateMap, builtin_coordinate_set, coordinate_set_names, load_model
-from wheeled_dyn.cli import main
+from wheeled_dyn.cli.main import main
 from wheeled_dyn.errors import ModelError, ParameterError, UnknownNameError
 from wheeled_dyn.models import ModelSpec, build_wheeled_model
 from wheeled_dyn.models.benchmarks import BENCHMARKS

@@ -21,7 +21,7 @@ import pytest
 from scipy.optimize import brentq
 
 from conftest import SEED
-from wheeled_dyn.constraints.linear_document import load_linear_document
+from wheeled_dyn.derivations.linear_document import load_linear_document
 from wheeled_dyn.constraints.rolling_linear import linearise, speed_form
 from wheeled_dyn.constraints.wheel_contact import wheel_contact_velocities, wheel_heights
 from wheeled_dyn.constraints.wheel_reduction import RollingReduction

@@ -19,7 +19,7 @@ import time
 
 import pytest
 
-from wheeled_dyn import cli
+from wheeled_dyn.cli import main as cli
 from wheeled_dyn.derivations import builtin_derivations
 
 KIM = {p.name: p for p in builtin_derivations("seed001")}["kim_eq1_3.toml"]
@@ -41,7 +41,7 @@ def test_ctrl_c_early_in_compare(tmp_path, instant):
     out = tmp_path / "out"
     out.mkdir()
     (out / "report.md").write_text("previous")
-    proc = subprocess.Popen([sys.executable, "-m", "wheeled_dyn.cli", "compare", "wip",
+    proc = subprocess.Popen([sys.executable, "-m", "wheeled_dyn.cli.main", "compare", "wip",
                              str(KIM), "--samples", STATES, "--out", str(out)],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             start_new_session=True)

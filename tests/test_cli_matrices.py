@@ -7,7 +7,7 @@ import json
 import numpy as np
 
 from wheeled_dyn import matrices
-from wheeled_dyn.cli import main
+from wheeled_dyn.cli.main import main
 
 #: Tolerance of a JSON round trip of floats.
 JSON_TOL = 1e-12

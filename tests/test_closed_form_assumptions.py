@@ -12,8 +12,8 @@ import pytest
 import sympy as sp
 
 from wheeled_dyn.compare import ComparisonEngine
-from wheeled_dyn.compare.closed_form import family_substitution
-from wheeled_dyn.compare.samples import WIP_SPECIAL_CASES
+from wheeled_dyn.compare.presentation.closed_form import family_substitution
+from wheeled_dyn.compare.grid.samples import WIP_SPECIAL_CASES
 from wheeled_dyn.derivations import load_derivation
 from wheeled_dyn.models.wip_parameters import random_wip_parameters
 

@@ -18,7 +18,7 @@ import pytest
 import sympy as sp
 
 from wheeled_dyn.compare import ComparisonEngine
-from wheeled_dyn.compare.causes import christoffel_h
+from wheeled_dyn.compare.causes.root import christoffel_h
 from wheeled_dyn.derivations import load_derivation
 
 from conftest import SEED

@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
-from wheeled_dyn.compare.document_checks import position_rates
+from wheeled_dyn.compare.judge.document_checks import position_rates
 from wheeled_dyn.derivations import builtin_derivations, load_derivation
 
 from test_compare_planted import _others_agree, _planted, _records, engine  # noqa: F401

@@ -4,7 +4,7 @@ A shipped derivation with one element replaced by a triple exponential of a mass
 sample) is compared through the command line: the element's verdict in report.json is
 'undecided', and stderr carries no NumPy ``RuntimeWarning`` (with the generated code of the
 compiled expression). The document's compiled functions themselves
-(:class:`~wheeled_dyn.compare.evaluate.DocumentFunctions`) give inf without a warning.
+(:class:`~wheeled_dyn.compare.sides.evaluate.DocumentFunctions`) give inf without a warning.
 """
 
 from __future__ import annotations
@@ -55,7 +55,7 @@ def compared(tmp_path_factory) -> dict[str, tuple[subprocess.CompletedProcess, d
     out = {}
     for case in CASES:
         folder = tmp_path_factory.mktemp(case)
-        proc = subprocess.run([sys.executable, "-m", "wheeled_dyn.cli", "compare", "wip",
+        proc = subprocess.run([sys.executable, "-m", "wheeled_dyn.cli.main", "compare", "wip",
                                str(_mutated(folder, case)), "--out", str(folder / "out")],
                               capture_output=True, text=True, timeout=CLI_TIMEOUT)
         report = json.loads((folder / "out" / "report.json").read_text()) \
@@ -83,7 +83,7 @@ def test_overflow_prints_no_runtime_warning(compared, case):
 
 
 def test_document_functions_give_inf_without_a_warning(tmp_path):
-    from wheeled_dyn.compare.evaluate import DocumentFunctions
+    from wheeled_dyn.compare.sides.evaluate import DocumentFunctions
     from wheeled_dyn.derivations import load_derivation
     d = load_derivation(_mutated(tmp_path, "matrix"))
     funcs = DocumentFunctions(d, d.A, d.C, d.Q, None, None, None)

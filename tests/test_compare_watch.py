@@ -13,7 +13,7 @@ import threading
 import time
 from pathlib import Path
 
-from wheeled_dyn.compare.watch import watch
+from wheeled_dyn.cli.watch import watch
 from wheeled_dyn.derivations.builtin import builtin_derivations
 from wheeled_dyn.errors import InputFileError
 
@@ -54,7 +54,7 @@ def test_watch_rechecks_saved_file_and_stops_on_ctrl_c(tmp_path):
     shutil.copy(_eq25(), doc)
     original = doc.read_text(encoding="utf-8")
     proc = subprocess.Popen(
-        [sys.executable, "-m", "wheeled_dyn.cli", "compare", "wip", str(doc), "--watch",
+        [sys.executable, "-m", "wheeled_dyn.cli.main", "compare", "wip", str(doc), "--watch",
          "--out", str(tmp_path / "out"), *GRID],
         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, bufsize=1,
         env={**os.environ, "PYTHONUNBUFFERED": "1"})

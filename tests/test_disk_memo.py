@@ -11,7 +11,8 @@ import sympy as sp
 
 from conftest import SEED
 from wheeled_dyn import compiled
-from wheeled_dyn.compare import closed_form, printing, seed_table
+from wheeled_dyn.compare.other_documents import tables as seed_table
+from wheeled_dyn.compare.presentation import closed_form, printing
 from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.derivations import builtin_derivations, load_derivation
 from wheeled_dyn.disk_cache import CACHE_ENV, DiskMemo, save_memos

@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from wheeled_dyn import WipParameters, builtin_coordinate_set, load_model, matrices
-from wheeled_dyn.cli import main
+from wheeled_dyn.cli.main import main
 from wheeled_dyn.errors import (InputFileError, ModelError, ParameterError, StateError,
                                 UnknownNameError, WheeledDynError)
 from wheeled_dyn.models import ModelSpec, build_wheeled_model

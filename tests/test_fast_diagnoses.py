@@ -8,9 +8,9 @@ import numpy as np
 import sympy as sp
 
 from conftest import SEED
-from wheeled_dyn.compare.diagnose import agrees, swap_diagnoses
-from wheeled_dyn.compare.elements import ROW_FACTOR_SPREAD, ROW_FACTORS, row_factors
-from wheeled_dyn.compare.evaluate import Arrays
+from wheeled_dyn.compare.judge.diagnose import agrees, swap_diagnoses
+from wheeled_dyn.compare.sides.elements import ROW_FACTOR_SPREAD, ROW_FACTORS, row_factors
+from wheeled_dyn.compare.sides.evaluate import Arrays
 
 #: Samples, rows, inputs and random cases of the row-factor check.
 N, ROWS, INPUTS, CASES = 40, 4, 2, 60

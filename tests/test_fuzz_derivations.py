@@ -21,7 +21,7 @@ hypothesis = pytest.importorskip("hypothesis", reason="property tests need hypot
 from hypothesis import HealthCheck, given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
-from wheeled_dyn.cli import main  # noqa: E402
+from wheeled_dyn.cli.main import main  # noqa: E402
 from wheeled_dyn.derivations import builtin_derivations  # noqa: E402
 
 #: Examples per run, and the longest one example may take (a hang fails the test).

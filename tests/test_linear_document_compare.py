@@ -12,8 +12,8 @@ from pathlib import Path
 
 import pytest
 
-from wheeled_dyn.compare.linear import compare_linear, half_unit, is_linear_document
-from wheeled_dyn.constraints.linear_document import MEIJAARD_2007
+from wheeled_dyn.compare.other_documents.linear import compare_linear, half_unit, is_linear_document
+from wheeled_dyn.derivations.linear_document import MEIJAARD_2007
 
 SHIPPED = Path(__file__).parents[1] / "src" / "wheeled_dyn" / "data" / "derivations"
 
@@ -58,7 +58,7 @@ def test_only_linear_files_are_linear_documents():
 
 def test_compare_command_on_the_benchmark(tmp_path):
     out = tmp_path / "out"
-    done = subprocess.run([sys.executable, "-m", "wheeled_dyn.cli", "compare", "bicycle",
+    done = subprocess.run([sys.executable, "-m", "wheeled_dyn.cli.main", "compare", "bicycle",
                            str(MEIJAARD_2007), "--out", str(out)], capture_output=True,
                           text=True, timeout=300)
     assert done.returncode == 0, done.stderr
@@ -69,7 +69,7 @@ def test_compare_command_on_the_benchmark(tmp_path):
     jsonschema = pytest.importorskip("jsonschema", reason="jsonschema is in the [test] extra")
     schema = json.loads((Path(__file__).parents[1] / "docs" / "report-schema.json").read_text())
     jsonschema.validate(data, schema)
-    wrong = subprocess.run([sys.executable, "-m", "wheeled_dyn.cli", "compare", "wip",
+    wrong = subprocess.run([sys.executable, "-m", "wheeled_dyn.cli.main", "compare", "wip",
                             str(MEIJAARD_2007), "--out", str(tmp_path / "x")],
                            capture_output=True, text=True, timeout=300)
     assert wrong.returncode == 2 and "not 'wip'" in wrong.stderr

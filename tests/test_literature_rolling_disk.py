@@ -30,8 +30,8 @@ import sympy as sp
 from conftest import SEED
 from shipped_copies import rewritten_copy
 from wheeled_dyn.compare.engine import ComparisonEngine
-from wheeled_dyn.compare.evaluate import derivation_coordinate_set, model_value
-from wheeled_dyn.compare.samples import ParameterSet, namespace_values
+from wheeled_dyn.compare.sides.evaluate import derivation_coordinate_set, model_value
+from wheeled_dyn.compare.grid.samples import ParameterSet, namespace_values
 from wheeled_dyn.constraints import CoordinateMap
 from wheeled_dyn.derivations import builtin_derivations, builtin_groups, load_derivation
 from wheeled_dyn.models.registry import load_model

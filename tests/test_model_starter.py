@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from conftest import SEED
-from wheeled_dyn.cli import main
+from wheeled_dyn.cli.main import main
 from wheeled_dyn.constraints import CoordinateMap
 from wheeled_dyn.coordinates import builtin_coordinate_set
 from wheeled_dyn.models.registry import load_model

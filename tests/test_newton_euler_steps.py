@@ -164,8 +164,8 @@ def test_residual_rows_against_the_pendulum():
     closed form: about the pivot, with no force, the moment row is
     I_O theta'' + m g a sin(theta) (I_O = I_g + m a^2) and the force rows m a_G - m g."""
     from wheeled_dyn import builtin_coordinate_set, load_model
-    from wheeled_dyn.compare.balances import residual_rows
-    from wheeled_dyn.compare.kinematics_truth import Motion
+    from wheeled_dyn.compare.steps.balances import residual_rows
+    from wheeled_dyn.compare.sides.kinematics import Motion
     from wheeled_dyn.constraints.reduction import CoordinateMap
     wm = load_model("compound_pendulum")
     cmap = CoordinateMap(wm, builtin_coordinate_set(wm, "full"))

@@ -218,7 +218,7 @@ def test_singular_samples_are_drawn_again():
     r"""ZYX angles are singular at pitch = +-pi/2: the body-rate map's condition number grows
     there without bound, and the comparison's samples avoid it (rounding there is amplified
     by the cube of the condition number)."""
-    from wheeled_dyn.compare.samples import MAX_CONDITION, random_states, regular_states
+    from wheeled_dyn.compare.grid.samples import MAX_CONDITION, random_states, regular_states
     wm = load_model("free_body")
     cmap = CoordinateMap(wm, builtin_coordinate_set(wm, "body_rates"))
     pitch = wm.index("pitch")

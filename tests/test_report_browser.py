@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 from browser import INSTALL_HINT, find_chromium
-from wheeled_dyn.cli import main
+from wheeled_dyn.cli.main import main
 
 playwright_api = pytest.importorskip(
     "playwright.sync_api", reason="playwright not installed (pip install -e '.[test]')")

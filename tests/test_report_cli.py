@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 
 
-from wheeled_dyn.cli import main
+from wheeled_dyn.cli.main import main
 from wheeled_dyn.derivations import builtin_derivations
 
 #: A small grid keeps these tests fast; the engine's numbers are tested elsewhere.

@@ -9,8 +9,8 @@ import re
 
 import pytest
 
-from wheeled_dyn.compare.commands import run_comparison
-from wheeled_dyn.compare.result import Cause
+from wheeled_dyn.cli.compare_cmd import run_comparison
+from wheeled_dyn.compare.records import Cause
 from wheeled_dyn.derivations import builtin_derivations
 from wheeled_dyn.report import render
 from wheeled_dyn.report.summary import anchor, cause_lines, element_anchor, ordered

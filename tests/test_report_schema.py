@@ -38,7 +38,7 @@ def test_report_json_validates(rendered):
 
 
 def test_schema_names_every_cause_kind():
-    from wheeled_dyn.compare.result import CAUSE_KINDS, VERDICTS
+    from wheeled_dyn.compare.records import CAUSE_KINDS, VERDICTS
     schema = json.loads((ROOT / "docs" / "report-schema.json").read_text())
     assert set(schema["$defs"]["cause"]["properties"]["kind"]["enum"]) == set(CAUSE_KINDS)
     assert set(schema["$defs"]["verdict"]["enum"]) == set(VERDICTS)

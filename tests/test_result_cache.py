@@ -8,9 +8,9 @@ import shutil
 
 import pytest
 
-from wheeled_dyn.compare import commands
+from wheeled_dyn.cli import compare_cmd as commands
 from wheeled_dyn.compare.engine import ComparisonEngine
-from wheeled_dyn.compare.result_cache import REUSE_ENV
+from wheeled_dyn.compare.runtime.result_cache import REUSE_ENV
 from wheeled_dyn.derivations import builtin_derivations
 from wheeled_dyn.disk_cache import CACHE_ENV
 

@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from wheeled_dyn.cli import main
+from wheeled_dyn.cli.main import main
 from wheeled_dyn.derivations import builtin_derivations
 
 SEED001 = {p.name: p for p in builtin_derivations("seed001")}
@@ -214,14 +214,14 @@ def test_expression_limits_through_the_command(element, reason, tmp_path, capsys
 
 # -- simulate: honest energy figures ----------------------------------------------------------
 def test_energy_deviation_is_the_largest_over_the_run():
-    from wheeled_dyn.simulate.commands import energy_deviation
+    from wheeled_dyn.cli.simulate_cmd import energy_deviation
     assert energy_deviation(np.array([1.0, 3.0, -2.0, 1.0])) == 3.0
     assert np.isnan(energy_deviation(np.array([1.0, np.inf])))
 
 
 def test_simulate_prints_what_the_plot_shows(tmp_path, capsys):
     from wheeled_dyn.derivations import load_derivation
-    from wheeled_dyn.simulate.commands import default_start
+    from wheeled_dyn.cli.simulate_cmd import default_start
     from wheeled_dyn.simulate.documented import side_by_side
     assert main(["simulate", str(KIM), "--duration", "2", "--out", str(tmp_path)]) == 0
     printed = capsys.readouterr().out
@@ -243,7 +243,7 @@ def test_report_with_a_model_urdf_missing(tmp_path):
         import sys, wheeled_dyn.models.urdf_packages as packages
         from pathlib import Path
         packages.urdf_dir = lambda: Path(sys.argv[1])
-        from wheeled_dyn.cli import main
+        from wheeled_dyn.cli.main import main
         sys.exit(main(["report", "--samples", "20", "--param-sets", "1", "--out", sys.argv[2]]))
         """, str(tmp_path), str(tmp_path / "out"))
     assert done.returncode == 2, done.stderr
@@ -265,7 +265,7 @@ _IN_WORKER = """
             os.kill(os.getpid(), signal.SIGSEGV)
         return original(self, d)
     engine.ComparisonEngine.compare = compare
-    from wheeled_dyn.cli import main
+    from wheeled_dyn.cli.main import main
     sys.exit(main(["report", "--samples", "20", "--param-sets", "1", "--out", sys.argv[2]]))
     """
 
@@ -291,7 +291,7 @@ def test_ctrl_c_during_report(tmp_path):
     out = tmp_path / "out"
     out.mkdir()
     (out / "report.md").write_text("previous")
-    proc = subprocess.Popen([sys.executable, "-m", "wheeled_dyn.cli", "report", "--samples",
+    proc = subprocess.Popen([sys.executable, "-m", "wheeled_dyn.cli.main", "report", "--samples",
                              "4000", "--param-sets", "5", "--out", str(out)],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             start_new_session=True)

@@ -16,8 +16,8 @@ import pytest
 
 from conftest import SEED
 from wheeled_dyn.compare.engine import ComparisonEngine
-from wheeled_dyn.compare.evaluate import Arrays
-from wheeled_dyn.compare.row_combinations import combination
+from wheeled_dyn.compare.sides.evaluate import Arrays
+from wheeled_dyn.compare.readings.row_combinations import combination
 from wheeled_dyn.derivations import load_derivation
 
 #: Engine grid.
@@ -106,7 +106,7 @@ def test_the_documents_own_simulation_reads_the_equations_separated(engine, tmp_
     r"""Simulated from its own equations (with the combination undone, as compared), the
     Newton–Euler form conserves its own energy: its A is then symmetric."""
     import sympy as sp
-    from wheeled_dyn.compare.row_combinations import as_compared
+    from wheeled_dyn.compare.readings.row_combinations import as_compared
     from wheeled_dyn.simulate.documented import side_by_side
     path = tmp_path / "ne.toml"
     path.write_text(FILE)

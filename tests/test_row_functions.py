@@ -18,7 +18,7 @@ import sympy as sp
 from conftest import SEED
 from shipped_copies import rewritten_copy, shipped
 from wheeled_dyn.compare.engine import ComparisonEngine
-from wheeled_dyn.compare.row_functions import fit_factor, fit_sum
+from wheeled_dyn.compare.readings.row_functions import fit_factor, fit_sum
 from wheeled_dyn.derivations import builtin_derivations, load_derivation
 
 #: Engine grid.

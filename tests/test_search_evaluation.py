@@ -1,5 +1,5 @@
 """The convention search counts a reading's agreeing elements matrix by matrix: the same count
-as judging every element on its own (:func:`wheeled_dyn.compare.diagnose.agrees`)."""
+as judging every element on its own (:func:`wheeled_dyn.compare.judge.diagnose.agrees`)."""
 
 from __future__ import annotations
 
@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 
 from conftest import SEED
-from wheeled_dyn.compare.conventions import flip_arrays, readings
-from wheeled_dyn.compare.diagnose import agrees
-from wheeled_dyn.compare.elements import (apply_row_factors, element_values, row_factors,
+from wheeled_dyn.compare.readings.signs import flip_arrays, readings
+from wheeled_dyn.compare.judge.diagnose import agrees
+from wheeled_dyn.compare.sides.elements import (apply_row_factors, element_values, row_factors,
                                           row_scales)
 from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.derivations import builtin_derivations, load_derivation

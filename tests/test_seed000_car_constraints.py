@@ -25,7 +25,7 @@ import pytest
 
 from conftest import N_STATES, SEED
 from wheeled_dyn import load_model
-from wheeled_dyn.compare.step_records import compare_steps
+from wheeled_dyn.compare.steps.records import compare_steps
 from wheeled_dyn.constraints.rolling import contact_jacobian, contact_velocities
 from wheeled_dyn.constraints.wheel_contact import wheel_heights
 from wheeled_dyn.derivations import load_derivation

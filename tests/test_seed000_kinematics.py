@@ -12,7 +12,7 @@ from __future__ import annotations
 import pytest
 
 from conftest import SEED
-from wheeled_dyn.compare.step_records import compare_steps
+from wheeled_dyn.compare.steps.records import compare_steps
 from wheeled_dyn.derivations import builtin_derivations, load_derivation
 
 FILE = "p5_1_body_axes.toml"

@@ -33,7 +33,7 @@ from pathlib import Path
 import pytest
 import sympy as sp
 
-from wheeled_dyn.compare.step_records import compare_steps
+from wheeled_dyn.compare.steps.records import compare_steps
 from wheeled_dyn.derivations import load_derivation
 
 from conftest import SEED

@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 
 from wheeled_dyn.compare import ComparisonEngine
-from wheeled_dyn.compare.seed_table import TableReproduction, reproduce_table
+from wheeled_dyn.compare.other_documents.tables import TableReproduction, reproduce_table
 from wheeled_dyn.derivations import builtin_tables, load_comparison_table
 from wheeled_dyn.errors import DerivationError
 
@@ -125,7 +125,7 @@ def test_engine_verdicts_and_truth_under_the_assumptions_are_consistent(reproduc
 
 
 def _conditions(text: str) -> list[str]:
-    from wheeled_dyn.compare.samples import WIP_SPECIAL_CASES
+    from wheeled_dyn.compare.grid.samples import WIP_SPECIAL_CASES
     return [c.description for c in WIP_SPECIAL_CASES if c.description in text]
 
 

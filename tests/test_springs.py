@@ -19,7 +19,7 @@ import sympy as sp
 from conftest import SEED
 from shipped_copies import rewritten_copy
 from wheeled_dyn.compare.engine import ComparisonEngine
-from wheeled_dyn.compare.samples import parameter_sets
+from wheeled_dyn.compare.grid.samples import parameter_sets
 from wheeled_dyn.constraints import CoordinateMap
 from wheeled_dyn.constraints.batch import reduce_batch
 from wheeled_dyn.coordinates.builtin import builtin_coordinate_set

@@ -18,7 +18,7 @@ import pytest
 from conftest import SEED
 from shipped_copies import rewritten_copy, shipped
 from wheeled_dyn.compare.engine import ComparisonEngine
-from wheeled_dyn.compare.results import (NEUTRAL_TOL, frequencies, growth, linearisation,
+from wheeled_dyn.compare.steps.stated import (NEUTRAL_TOL, frequencies, growth, linearisation,
                                          rate_scale, state_field)
 from wheeled_dyn.constraints.reduction import CoordinateMap
 from wheeled_dyn.derivations import builtin_derivations, load_derivation

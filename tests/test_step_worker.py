@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from wheeled_dyn.compare import steps
+from wheeled_dyn.compare.steps import chain as steps
 from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.derivations import load_derivation
 from wheeled_dyn.errors import DerivationError, WorkerError
@@ -63,7 +63,7 @@ def test_ctrl_c_while_the_workers_are_forked_is_not_lost():
     import sys
     code = (
         "import os, signal\n"
-        "from wheeled_dyn.compare.workers import Workers\n"
+        "from wheeled_dyn.compare.runtime.workers import Workers\n"
         "def on_interrupt(s, f):\n"
         "    raise KeyboardInterrupt\n"
         "signal.signal(signal.SIGINT, on_interrupt)\n"

@@ -15,8 +15,8 @@ from pathlib import Path
 import pytest
 import sympy as sp
 
-from wheeled_dyn.compare.step_records import compare_steps
-from wheeled_dyn.compare.steps import energy_consistency
+from wheeled_dyn.compare.steps.records import compare_steps
+from wheeled_dyn.compare.steps.chain import energy_consistency
 from wheeled_dyn.derivations import load_derivation
 from wheeled_dyn.errors import WheeledDynError
 
@@ -325,8 +325,8 @@ def test_steps_are_not_sampled_where_the_coordinates_are_singular(monkeypatch):
     r"""A step file's samples avoid the positions where its coordinate map is singular (as
     the equations' grid does): seed 002's paraboloid draws one sample of condition number
     above the bound, which is drawn again."""
-    from wheeled_dyn.compare import step_records
-    from wheeled_dyn.compare.samples import MAX_CONDITION
+    from wheeled_dyn.compare.steps import records as step_records
+    from wheeled_dyn.compare.grid.samples import MAX_CONDITION
     from wheeled_dyn.derivations import builtin_derivations
     drawn = []
     plain = step_records.regular_states
@@ -346,8 +346,8 @@ def test_steps_are_not_sampled_where_the_coordinates_are_singular(monkeypatch):
 def test_balances_are_sampled_away_from_singular_coordinates(monkeypatch):
     r"""A balance's samples go through the same redraw of singular positions (seed 000's
     2.19: one grid per balance, every position left regular)."""
-    from wheeled_dyn.compare import balances
-    from wheeled_dyn.compare.samples import MAX_CONDITION
+    from wheeled_dyn.compare.steps import balances
+    from wheeled_dyn.compare.grid.samples import MAX_CONDITION
     from wheeled_dyn.derivations import builtin_derivations
     drawn = []
     plain = balances.regular_states

@@ -13,7 +13,7 @@ import pytest
 import sympy as sp
 
 import wheeled_dyn as wd
-from wheeled_dyn.cli import main
+from wheeled_dyn.cli.main import main
 from wheeled_dyn.coordinates import builtin_coordinate_set
 from wheeled_dyn.dynamics import christoffel_tensor
 from wheeled_dyn.models.registry import model_parameters

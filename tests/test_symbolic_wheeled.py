@@ -23,7 +23,7 @@ from wheeled_dyn.errors import ModelError, OptionalDependencyError, UnknownNameE
 from wheeled_dyn.symbolic import (
     element_expressions, lambdify_terms, parameter_vector, physical_symbols, simplify_expr,
     true_expressions, velocity_products, wheeled_symbolic)
-from wheeled_dyn.symbolic import commands as symbolic_commands
+from wheeled_dyn.cli import symbolic_cmd as symbolic_commands
 from wheeled_dyn.symbolic import wheeled as wheeled_module
 
 #: Agreement required between closed forms and the numeric reduction (relative to the

@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 
 from conftest import SEED
-from wheeled_dyn.cli import main
+from wheeled_dyn.cli.main import main
 from wheeled_dyn.errors import InputFileError, ModelError
 from wheeled_dyn.models import ModelSpec, build_wheeled_model, read_urdf
 from wheeled_dyn.models.urdf_checks import INERTIA_TOL
@@ -267,7 +267,7 @@ def test_cli_model_starter_of_a_bad_urdf(tmp_path, capsys):
 def test_cli_cycle_is_an_error_not_a_crash(tmp_path):
     r"""The cycle that used to crash the model builder (segmentation fault), as a process."""
     model = _model_file(tmp_path, "cycle", TREE_CASES["cycle"][0])
-    proc = subprocess.run([sys.executable, "-m", "wheeled_dyn.cli", "matrices", str(model)],
+    proc = subprocess.run([sys.executable, "-m", "wheeled_dyn.cli.main", "matrices", str(model)],
                           capture_output=True, text=True, timeout=CLI_TIMEOUT)
     assert proc.returncode == 2, proc.stderr
     lines = proc.stderr.strip().splitlines()

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from wheeled_dyn.cli import main
+from wheeled_dyn.cli.main import main
 
 
 def test_export_writes_one_offline_file(tmp_path, capsys):

@@ -24,7 +24,7 @@ def matrices(model: WheeledModel | str, coords: str | None = None, **state: floa
 def compare(model: str | Path, *, samples: int = 1000, param_sets: int = 5, seed: int = 2026,
             **tables: Any):
     r"""Compare a derivation given as SymPy objects with the truth; the same
-    :class:`~wheeled_dyn.compare.result.DerivationResult` a file gives.
+    :class:`~wheeled_dyn.compare.records.DerivationResult` a file gives.
 
     ``tables``: ``coordinates`` (a built-in set's name or an inline table), ``symbols``
     (document name → value in the model), ``inputs``, ``A``, ``C``, ``Q``, ``B``, ``G`` or
@@ -35,7 +35,7 @@ def compare(model: str | Path, *, samples: int = 1000, param_sets: int = 5, seed
         result = wd.compare("wip", coordinates="seed001", A=A, C=C, Q=Q, symbols={...})
         assert not [r for r in result.records if r.verdict == "differs"]
     """
-    from .compare.commands import check_model_names
+    from .cli.compare_cmd import check_model_names
     from .compare.engine import ComparisonEngine
     from .derivations.from_python import derivation_from_sympy
     from .models.registry import model_entry

@@ -8,11 +8,11 @@ from .._lazy import attach, callable_package
 
 __getattr__, __dir__, __all__ = attach(__name__, {
     "ComparisonEngine": ".engine",
-    "Cause": ".result",
-    "Convention": ".result",
-    "ConventionSummary": ".result",
-    "DerivationResult": ".result",
-    "ElementRecord": ".result",
-    "EnergyCheck": ".result",
+    "Cause": ".records",
+    "Convention": ".records",
+    "ConventionSummary": ".records",
+    "DerivationResult": ".records",
+    "ElementRecord": ".records",
+    "EnergyCheck": ".records",
 })
 callable_package(__name__, ".api:compare")

@@ -30,17 +30,19 @@ import sympy as sp
 
 from ..constraints.reduction import CoordinateMap
 from ..derivations.schema import Derivation, equation_labels
-from . import causes, closed_form, conventions, row_combinations, row_functions
-from .diagnose import (
+from .causes import root as causes
+from .presentation import closed_form
+from .readings import signs as conventions, row_combinations, row_functions
+from .judge.diagnose import (
     agrees,
     max_error,
     nice_number,
     swap_diagnoses,
     value_diagnoses,
 )
-from .document_checks import asymmetry, constraint_rows, energy_check
-from .element_terms import element_term_diagnoses, trig_diagnoses
-from .elements import (
+from .judge.document_checks import asymmetry, constraint_rows, energy_check
+from .judge.terms import element_term_diagnoses, trig_diagnoses
+from .sides.elements import (
     apply_row_factors,
     element_expr,
     element_label,
@@ -52,23 +54,23 @@ from .elements import (
     swap_groups,
     truth_for,
 )
-from .evaluate import (
+from .sides.evaluate import (
     DocumentFunctions,
     derivation_coordinate_set,
     document_symbol_values,
 )
-from .printing import printed
-from .result import Cause, Convention, ConventionSummary, DerivationResult, ElementRecord
-from .search_evaluation import SearchEvaluation
-from .samples import (
+from .presentation.printing import printed
+from .records import Cause, Convention, ConventionSummary, DerivationResult, ElementRecord
+from .readings.search import SearchEvaluation
+from .grid.samples import (
     SpecialCase,
     parameter_sets,
     random_states,
     regular_states,
     special_cases,
 )
-from .assumptions import Assumptions, apply_to_truth, declared, position_ranges
-from .units import DimensionChecker
+from .grid.assumptions import Assumptions, apply_to_truth, declared, position_ranges
+from .judge.units import DimensionChecker
 
 #: Smaller grid used to test special parameter families.
 SPECIAL_SAMPLES, SPECIAL_SETS = 40, 2
@@ -179,7 +181,7 @@ class ComparisonEngine:
         r"""The comparison of one derivation (memoised per file and content)."""
         key = (str(d.path), d.path.stat().st_mtime_ns if d.path.exists() else 0)
         if key not in self._results:
-            from .steps import with_steps          # earlier steps, upstream causes
+            from .steps.chain import with_steps          # earlier steps, upstream causes
             self._results[key] = with_steps(d, self._compare, self.seed, self.parallel_steps)
         return self._results[key]
 

@@ -69,7 +69,7 @@ import sympy
 from ..errors import DerivationError
 from .latex.nodes import LatexSource, unwrap_latex
 
-#: Kinds of steps a file can record (a subset of :data:`wheeled_dyn.compare.result.STEPS`).
+#: Kinds of steps a file can record (a subset of :data:`wheeled_dyn.compare.records.STEPS`).
 STEP_KINDS: tuple[str, ...] = ("velocity", "angular velocity", "acceleration",
                                "angular acceleration", "kinetic energy", "potential energy",
                                "constraint", "claim", "generalized force",
@@ -80,7 +80,7 @@ VECTOR_KINDS = STEP_KINDS[:4]
 RELATION_KINDS = ("constraint", "claim", "linearised equations", "newton-euler")
 #: A frame's orientation and the gravity vector: functions of the positions alone.
 FRAME_KINDS = ("orientation", "gravity")
-#: Stated results judged on the linearisation of the true motion (:mod:`~wheeled_dyn.compare.results`).
+#: Stated results judged on the linearisation of the true motion (:mod:`~wheeled_dyn.compare.steps.stated`).
 RESULT_KINDS = ("frequency", "critical speed", "stability", "steady motion")
 #: What a ``stability`` step can claim.
 STABILITY_CLAIMS = ("stable", "unstable")

@@ -17,7 +17,7 @@ potential_force`, :meth:`~.builder.WheeledModel.potential_energy`).
 
 Each spring is named; derivation files refer to its stiffness and rest position as the model
 parameters ``k_<name>`` and ``rest_<name>`` (``K = { value = "k_radial" }``). Random parameter
-sets scale every stiffness (:mod:`wheeled_dyn.compare.samples`).
+sets scale every stiffness (:mod:`wheeled_dyn.compare.grid.samples`).
 """
 
 from __future__ import annotations

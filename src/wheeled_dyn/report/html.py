@@ -29,7 +29,7 @@ import latex2mathml.converter as latex2mathml
 import sympy as sp
 from latex2mathml.converter import convert
 
-from ..compare.result import DerivationResult, ElementRecord
+from ..compare.records import DerivationResult, ElementRecord
 from ..disk_cache import DiskMemo
 from . import summary as S
 from .markdown import VERDICT_TEXT, check_lines

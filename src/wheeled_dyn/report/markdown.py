@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from ..compare.result import DerivationResult, ElementRecord
+from ..compare.records import DerivationResult, ElementRecord
 from . import summary as S
 from .symbols import derivation_notation, difference_latex, product_latex, text_latex
 

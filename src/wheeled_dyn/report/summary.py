@@ -8,7 +8,7 @@ Order
     (4)–(5), (6)–(8), (9)–(11), (12)–(14), (25), (33)–(35), the appendix — as the document does.
 
 Causes
-    The result's own root causes (:class:`~wheeled_dyn.compare.result.Cause`), most important
+    The result's own root causes (:class:`~wheeled_dyn.compare.records.Cause`), most important
     first; then the elements no cause explains (all of them when none was computed), grouped by
     their first diagnosis — one line per distinct diagnosis, naming the elements — so a reader
     sees a few reasons, not a list of names; then the causes found in earlier steps.
@@ -20,10 +20,10 @@ import re
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
-from ..compare.result import DerivationResult, ElementRecord
+from ..compare.records import DerivationResult, ElementRecord
 from ..derivations.schema import equation_labels
 
-#: Words for the cause kinds of :data:`wheeled_dyn.compare.result.CAUSE_KINDS`.
+#: Words for the cause kinds of :data:`wheeled_dyn.compare.records.CAUSE_KINDS`.
 KIND_TEXT = {
     "convention": "convention", "quasi_coordinate_christoffel": "quasi-coordinate Christoffel",
     "constraint_in_lagrangian": "constraint substituted into the Lagrangian",

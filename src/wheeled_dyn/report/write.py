@@ -12,7 +12,7 @@ import json
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
-from ..compare.result import DerivationResult
+from ..compare.records import DerivationResult
 from ..disk_cache import save_memos
 from ..output import write_files_atomic
 from .html import report_html

@@ -22,8 +22,8 @@ import numpy as np
 import sympy as sp
 from scipy.integrate import solve_ivp
 
-from ..compare.evaluate import derivation_coordinate_set, document_symbol_values
-from ..compare.samples import ParameterSet, namespace_values
+from ..compare.sides.evaluate import derivation_coordinate_set, document_symbol_values
+from ..compare.grid.samples import ParameterSet, namespace_values
 from ..constraints.reduction import CoordinateMap
 from ..derivations.schema import Derivation
 from ..errors import StateError
@@ -112,10 +112,10 @@ def side_by_side(d: Derivation, q0: dict[str, float], duration: float = 5.0,
     r"""Both models from the document state ``q0`` (names of the document's positions and
     velocities; missing are 0), zero input, the model's default parameters. ``row_factors``:
     see :func:`simulate_document` (default: found by a quick comparison, with the equations
-    read as it read them: :func:`~wheeled_dyn.compare.row_combinations.as_compared`)."""
+    read as it read them: :func:`~wheeled_dyn.compare.readings.row_combinations.as_compared`)."""
     if row_factors is None:
         from ..compare.engine import ComparisonEngine
-        from ..compare.row_combinations import as_compared
+        from ..compare.readings.row_combinations import as_compared
         found = ComparisonEngine(samples=50, param_sets=2).compare(d)
         row_factors = tuple(None if c is None else float(sp.Rational(c))
                             for c in found.row_factors)

@@ -1,0 +1,93 @@
+r"""What a document assumes, declared in its file (``[assumes]``), and how the comparison uses it.
+
+A document usually simplifies the body: a symmetric body (products of inertia zero, centre of
+mass above the axle), identical disc wheels, no motor inertia, equations linearised about a
+state, a potential measured from an equilibrium. Declared, these are the document's own
+assumptions: the comparison judges it under them first (the truth is computed on parameter sets
+of the declared families, at the linearisation point), reports them once in one "assumes:" line,
+and names as "agrees only if ..." only a condition the document did not state.
+
+- ``families``: names of the model's special parameter families (:mod:`.samples`);
+- ``linearised_about``: position = value. The linearised equations are compared at that state
+  (positions drawn there, velocities random): A and B there, the velocity products of h zero
+  (a linearisation about rest has none);
+- ``potential = "equilibrium"``: the potential is measured from the equilibrium at that state
+  (springs the model lacks balance gravity there): the truth's Q at the state is subtracted.
+  The stiffness (Q's first-order terms) is not compared;
+- ``text``: other assumptions, in words (reported, not used).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ...derivations.schema import Derivation
+from ...errors import DerivationError
+from .samples import SpecialCase, special_cases
+
+
+@dataclass(frozen=True)
+class Assumptions:
+    r"""The declared assumptions of one derivation, resolved against its model."""
+
+    families: tuple[SpecialCase, ...] = ()
+    linearised_about: tuple[tuple[str, float], ...] = ()
+    equilibrium_potential: bool = False
+    text: tuple[str, ...] = field(default=())
+
+    def describe(self) -> tuple[str, ...]:
+        r"""The "assumes:" items, in words."""
+        out = [c.description for c in self.families]
+        if self.linearised_about:
+            point = ", ".join(f"{k} = {v:g}" for k, v in self.linearised_about)
+            out.append(f"the equations are linearised about {point}")
+        if self.equilibrium_potential:
+            out.append("the potential is measured from the equilibrium at that state")
+        return (*out, *self.text)
+
+    def key(self) -> tuple:
+        r"""Hashable identity (cache key of the truth)."""
+        return (tuple(c.name for c in self.families), self.linearised_about,
+                self.equilibrium_potential)
+
+
+def declared(d: Derivation) -> Assumptions:
+    r"""The assumptions ``d`` declares; an unknown family name is a
+    :class:`~wheeled_dyn.errors.DerivationError` naming the file and the valid names."""
+    raw = d.assumes or {}
+    available = {c.name: c for c in special_cases(d.model)}
+    families = []
+    for name in raw.get("families", ()):
+        if name not in available:
+            raise DerivationError(d.path, f"assumes.families.{name}",
+                                  f"not a parameter family of model {d.model!r}; valid: "
+                                  + ", ".join(available))
+        families.append(available[name])
+    point = tuple((k, float(v)) for k, v in dict(raw.get("linearised_about", {})).items())
+    return Assumptions(tuple(families), point, raw.get("potential") == "equilibrium",
+                       tuple(raw.get("text", ())))
+
+
+def position_ranges(d: Derivation, positions: Sequence[str],
+                    assumptions: Assumptions) -> list[tuple[float, float]]:
+    r"""Where each position is drawn: the linearisation point, else the file's declared
+    range, else [−π, π]."""
+    ranges = dict(d.coordinates.raw.get("ranges", {}))
+    point = dict(assumptions.linearised_about)
+    return [(point[p], point[p]) if p in point else tuple(ranges.get(p, (-np.pi, np.pi)))
+            for p in positions]
+
+
+def apply_to_truth(truth, assumptions: Assumptions) -> None:
+    r"""The truth as the document's assumptions read it (in place): linearised about rest, no
+    velocity products; measured from the equilibrium, no Q at the equilibrium state."""
+    if assumptions.linearised_about:
+        for name in ("C", "h", "H"):
+            M = getattr(truth, name)
+            if M is not None:
+                setattr(truth, name, np.zeros_like(M))
+    if assumptions.equilibrium_potential and truth.Q is not None:
+        truth.Q = np.zeros_like(truth.Q)      # every position is at the equilibrium

@@ -1,0 +1,197 @@
+r"""Random, physically consistent parameter sets and the values of a model's parameter names.
+
+A comparison evaluates the document and the truth over K parameter sets × N states. Agreement
+at one set of numbers can hide errors (a product of inertia that happens to be 0 hides every
+term it multiplies), so the sets are random with every product of inertia and centre-of-mass
+offset nonzero, except where the model declares a symmetry: the two drive wheels of a wheeled
+model stay alike (one shared random scaling of the URDF's wheels). *Special cases* restrict them (e.g. products of inertia zero): an element that
+agrees under a special case only is reported as "agrees only if ...".
+
+The model namespace a derivation's symbols are written in: the physical parameters of the
+model's record (``m_S, d, I1, ...`` for the WIP), the geometric ``R`` (wheel radius), ``L``
+(half track), ``g``, and Khalil's standard parameters of each link, keyed ``XX(body)``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, replace
+
+import numpy as np
+import pinocchio as pin
+
+from ...errors import ParameterError
+from ...models.builder import WheeledModel
+from ...models.registry import load_model, model_entry, model_parameters
+from ...models.springs import with_stiffness
+from ...models.wip_parameters import WipParameters, random_wip_parameters
+
+
+@dataclass(frozen=True)
+class SpecialCase:
+    r"""A named restriction of the parameters (applied to a random set)."""
+
+    name: str
+    description: str
+    apply: Callable[[WipParameters], WipParameters]
+
+
+WIP_SPECIAL_CASES: tuple[SpecialCase, ...] = (
+    SpecialCase("no_products", "the body's products of inertia are zero (Ixy = Ixz = Iyz = 0)",
+                lambda p: p.replace(Ixy=0.0, Ixz=0.0, Iyz=0.0)),
+    SpecialCase("com_on_axis", "the body's centre of mass is straight above the axle midpoint "
+                "(d_x = d_z = 0)", lambda p: p.replace(d_x=0.0, d_z=0.0)),
+    SpecialCase("disc_wheels", "the wheels are uniform thin discs (Iw3 = m_C R²/2, "
+                "Iw2 = m_C R²/4)", lambda p: p.replace(Iw3=p.m_C * p.R**2 / 2,
+                                                        Iw2=p.m_C * p.R**2 / 4)),
+    SpecialCase("I1_eq_I2", "the body's moments about the forward and vertical axes are equal "
+                "(I1 = I2)", lambda p: p.replace(I2=p.I1)),
+    SpecialCase("no_armature", "the motors add no rotor inertia (I_a = 0)",
+                lambda p: p.replace(I_a=0.0)),
+)
+
+
+#: Generic models (no physical record): random inertias keeping the URDF's inertial structure.
+URDF_STRUCTURE = SpecialCase(
+    "urdf_structure", "every link's centre of mass and principal axes are as in the URDF "
+    "(coordinates and products of inertia that are zero there stay zero)", lambda p: p)
+
+
+#: Generic models: each link scaled as a whole (mass by one factor, lengths by another), so its
+#: shape stays the URDF's (a uniform sphere stays uniform, a rod stays a uniform rod).
+URDF_PROPORTIONS = SpecialCase(
+    "urdf_proportions", "every link keeps the URDF's proportions (its mass and size scaled "
+    "as a whole: a uniform body stays uniform)", lambda p: p)
+
+
+@dataclass(frozen=True)
+class ParameterSet:
+    r"""A model with its parameters, and the values of every name of its namespace."""
+
+    model: WheeledModel
+    values: dict[str, float]
+    physical: WipParameters | None = None
+
+
+def namespace_values(wm: WheeledModel, physical: WipParameters | None) -> dict[str, float]:
+    values = model_parameters(wm)
+    if physical is not None:
+        values.update(physical.as_dict())
+    return values
+
+
+def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
+                          keep_structure: bool = False, proportional: bool = False) -> WheeledModel:
+    r"""Random, physically consistent inertias (log-Cholesky parameters) for every joint
+    that carries mass; a random gravity. With ``keep_structure`` the URDF's inertias are
+    rescaled instead: mass and each centre-of-mass coordinate by random factors, the principal
+    moments by random factors keeping the triangle inequality, the principal axes unchanged.
+    Each spring's stiffness is scaled by a random factor in [0.5, 2]."""
+    model = pin.Model(wm.model)
+    for jid in range(1, model.njoints):
+        if model.inertias[jid].mass > 0 and proportional:
+            old = model.inertias[jid]
+            mass, size = rng.uniform(0.5, 2.0), rng.uniform(0.8, 1.25)
+            model.inertias[jid] = pin.Inertia(old.mass * mass, old.lever * size,
+                                              old.inertia * mass * size**2)
+        elif model.inertias[jid].mass > 0 and keep_structure:
+            old = model.inertias[jid]
+            eig, axes = np.linalg.eigh(old.inertia)
+            second = 0.5 * (eig.sum() - 2 * eig)           # second moments along the axes
+            second = np.maximum(second, 0.0) * rng.uniform(0.5, 2.0, 3)
+            moments = np.array([second[1] + second[2], second[0] + second[2], second[0] + second[1]])
+            model.inertias[jid] = pin.Inertia(old.mass * rng.uniform(0.5, 2.0),
+                                              old.lever * rng.uniform(0.5, 2.0, 3),
+                                              axes @ np.diag(moments) @ axes.T)
+        elif model.inertias[jid].mass > 0:
+            base = model.inertias[jid].toDynamicParameters()
+            scale = np.log(max(base[0], 1e-3))
+            theta = rng.normal(size=10) * 0.3
+            theta[0] += 0.5 * scale / 3
+            model.inertias[jid] = pin.Inertia.FromLogCholeskyParameters(
+                pin.LogCholeskyParameters(theta))
+    _alike_wheels(wm, model, rng)
+    model.gravity = pin.Motion(np.array([0.0, 0.0, -rng.uniform(5.0, 15.0)]), np.zeros(3))
+    springs = with_stiffness(wm.springs, rng.uniform(0.5, 2.0, len(wm.springs))) \
+        if wm.springs else None
+    return wm.with_model(model, springs)
+
+
+def _alike_wheels(wm: WheeledModel, model: pin.Model, rng: np.random.Generator) -> None:
+    r"""The two drive wheels of a wheeled model stay alike, as the model declares them: each
+    is its URDF inertia scaled by one shared random mass factor and size factor (a centred,
+    axisymmetric wheel stays so; the two stay equal)."""
+    wheels = tuple(getattr(wm.spec, "wheels", ()) or ())
+    if len(wheels) != 2:
+        return
+    mass, size = rng.uniform(0.5, 2.0), rng.uniform(0.8, 1.25)
+    for link in wheels:
+        jid = wm.joint_id_of_link(link)
+        old = wm.model.inertias[jid]
+        if old.mass > 0:
+            model.inertias[jid] = pin.Inertia(old.mass * mass, old.lever * size,
+                                              old.inertia * mass * size**2)
+
+
+def parameter_sets(model_name: str, k: int, rng: np.random.Generator,
+                   special: tuple[SpecialCase, ...] = ()) -> list[ParameterSet]:
+    r"""``k`` random parameter sets of the model, restricted by the ``special`` cases."""
+    entry = model_entry(model_name)
+    out: list[ParameterSet] = []
+    if entry.parameters is WipParameters:
+        while len(out) < k:
+            p = random_wip_parameters(rng)
+            try:
+                for case in special:
+                    p = case.apply(p)
+            except ParameterError:
+                continue                      # the restriction made it non-physical: redraw
+            wm = load_model(model_name, p)
+            out.append(ParameterSet(wm, namespace_values(wm, p), p))
+        return out
+    base = load_model(model_name)
+    keep = URDF_STRUCTURE in special
+    proportional = URDF_PROPORTIONS in special
+    for _ in range(k):
+        wm = _random_link_inertias(base, rng, keep, proportional)
+        out.append(ParameterSet(wm, namespace_values(wm, None)))
+    return out
+
+
+def special_cases(model_name: str) -> tuple[SpecialCase, ...]:
+    return WIP_SPECIAL_CASES if model_entry(model_name).parameters is WipParameters \
+        else (URDF_STRUCTURE, URDF_PROPORTIONS)
+
+
+def regular_states(cmap, q: np.ndarray, rng: np.random.Generator,
+                   ranges: Sequence[tuple[float, float]] | None = None) -> np.ndarray:
+    r"""``q`` (N × n document positions) with every position where the coordinate map's
+    condition number exceeds :data:`MAX_CONDITION` drawn again (at most
+    :data:`REDRAWS` times): the truth there is rounding. Positions that stay singular are
+    kept (a document whose coordinates are singular everywhere is judged as it is)."""
+    q = np.array(q, dtype=float)
+    for _ in range(REDRAWS):
+        bad = np.flatnonzero(cmap.conditioning(q) > MAX_CONDITION)
+        if not bad.size:
+            break
+        q[bad] = random_states(q.shape[1], len(bad), rng, ranges)[0]
+    return q
+
+
+def random_states(n_positions: int, n: int, rng: np.random.Generator,
+                  ranges: Sequence[tuple[float, float]] | None = None) -> tuple[np.ndarray, np.ndarray]:
+    r"""``n`` states: positions uniform in [-π, π] (or in the document's declared ``ranges``,
+    one (low, high) per position), velocities standard normal."""
+    low, high = (np.array(r, dtype=float) for r in zip(*ranges)) if ranges else (-np.pi, np.pi)
+    return rng.uniform(low, high, (n, n_positions)), rng.normal(size=(n, n_positions))
+
+
+#: Largest condition number of the coordinate map at a sampled state: near a singularity of
+#: the document's coordinates the reduced terms carry errors of order cond³ × rounding.
+MAX_CONDITION = 100.0
+#: Times a singular sample is drawn again.
+REDRAWS = 5
+
+__all__ = ["MAX_CONDITION", "ParameterSet", "SpecialCase", "WIP_SPECIAL_CASES",
+           "namespace_values", "parameter_sets", "random_states", "regular_states",
+           "special_cases", "replace"]

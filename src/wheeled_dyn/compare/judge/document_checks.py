@@ -1,0 +1,198 @@
+r"""The document on its own, without the truth: energy, symmetry and definiteness of A, and
+what its constraint rows are.
+
+- :func:`energy_check`: the power identity :math:`\nu^T h = \tfrac12\nu^T\dot A\nu`
+  (gyroscopic forces do no work), with :math:`\dot A` along the motion: each position's rate
+  from :func:`position_rates` (for quasi-velocities, solved from the file's maps); a model that
+  fails it does not conserve energy;
+- :func:`asymmetry`: pairs :math:`A_{ij} \ne A_{ji}` and samples where A is not positive
+  definite;
+- :func:`constraint_rows`: whether each row of the document's G is a rolling constraint of the
+  model.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import sympy as sp
+
+from ...compiled import numpy_function
+from ...derivations.schema import Derivation
+from .diagnose import AGREE_TOL, agrees
+from ..sides.evaluate import Arrays, DocumentFunctions
+from ..records import EnergyCheck
+
+#: Power residuals up to this many operations are factorised for display.
+FACTOR_LIMIT = 120
+
+
+def energy_check(funcs: DocumentFunctions, doc: Arrays, row_factor, q, nu, values, d: Derivation):
+    r"""Power identity of the document on its own (rows divided by their detected factors)."""
+    A, h = funcs.exprs["A"], funcs.exprs["h"]
+    if A is None or h is None or A.has(sp.nan) or h.has(sp.nan):
+        return None
+    scale = sp.diag(*[1 if c is None else sp.nsimplify(1 / c) for c in row_factor])
+    A = scale * sp.Matrix(A)
+    h = scale * sp.Matrix(h)
+    v = sp.Matrix(d.velocities)
+    rates = position_rates(d)
+    if any(rates[p] is None for p in d.positions if A.diff(p) != sp.zeros(d.n, d.n)):
+        return None                       # A depends on a position whose rate is not known
+    Adot = sum((A.diff(p) * rates[p] for p in d.positions if rates[p] is not None),
+               sp.zeros(d.n, d.n))
+    power = (v.T * h)[0] - (v.T * Adot * v)[0] / 2
+    fn = numpy_function(funcs.args, power)
+    fh = numpy_function(funcs.args, (v.T * h)[0])
+    argv = [*q.T, *nu.T, *(values[p] for p in funcs.params)]
+    # scale: the power's parts, and (when both vanish, e.g. Euler's gyroscopic terms) the
+    # kinetic-energy rate scale |A| |nu|^2 |nu|
+    kinetic = numpy_function(funcs.args, (v.T * A * v)[0])
+    speed = np.linalg.norm(nu, axis=1)
+    with np.errstate(all="ignore"):          # an overflowing document: no verdict, below
+        P = np.broadcast_to(fn(*argv), (len(q),)).astype(float)
+        parts = (np.abs(np.broadcast_to(fh(*argv), (len(q),))).astype(float),
+                 np.abs(np.broadcast_to(kinetic(*argv), (len(q),)) * speed).astype(float))
+    if not (np.isfinite(P).all() and all(np.isfinite(x).all() for x in parts)):
+        return None                           # values not finite: the identity is undecided
+    ref = max(float(parts[0].max()), float(parts[1].max()), 1e-300)
+    conserves = bool(np.abs(P).max() <= AGREE_TOL * ref * 10)
+    residual = "0"
+    if not conserves:
+        expr = sp.expand(sp.expand_trig(power))
+        residual = sp.sstr(sp.factor(expr) if sp.count_ops(expr) <= FACTOR_LIMIT else expr)
+    return EnergyCheck(conserves, float(np.abs(P).max()), residual)
+
+
+def position_rates(d: Derivation) -> dict[sp.Symbol, sp.Expr | None]:
+    r"""The rate of each document position along the motion, in the document's velocities.
+
+    Holonomic sets: :math:`\dot q_k` is the k-th velocity. Quasi-velocity sets: with the
+    configuration :math:`c = e(p)` (model coordinates of the document's positions) and the
+    velocity map :math:`\nu = V(c)\,\dot c`, the rates solve
+    :math:`\nu_i = \sum_c V_{ic}\,\sum_k \partial e_c/\partial p_k\,\dot p_k` for the
+    velocities whose map involves configured coordinates only. A position no equation fixes
+    (the distance x travelled along the heading) gets None. Built-in sets: the velocity
+    ``d<position>`` is the position's rate when the set has it (the built-in quasi set's
+    heading speed ``dx`` is not the rate of any coordinate the matrices depend on)."""
+    spec = d.coordinates
+    if spec.kind != "quasi" or spec.use:
+        return dict(zip(d.positions, d.velocities))
+    rates = sp.symbols(f"rate_0:{d.n}")
+    model_rate = {}
+    for name, e in spec.configuration.items():
+        e = sp.sympify(e).xreplace(d.model_values)
+        model_rate[f"d{name}"] = sum((e.diff(p) * r for p, r in zip(d.positions, rates)),
+                                     sp.Integer(0))
+    eqs = []
+    for vel in d.velocities:
+        expr = spec.velocity_map.get(str(vel))
+        if expr is None:
+            continue
+        if any(s.name.startswith("d") and s.name not in model_rate
+               and s.name not in spec.configuration for s in expr.free_symbols):
+            continue                      # involves a model velocity no position fixes
+        sub = {s: model_rate[s.name] for s in expr.free_symbols if s.name in model_rate}
+        sub.update({s: sp.sympify(spec.configuration[s.name]).xreplace(d.model_values)
+                    for s in expr.free_symbols if s.name in spec.configuration})
+        eqs.append(expr.xreplace(sub) - vel)
+    found = solve_rates(eqs, rates, d) if eqs else {}
+    return {p: found.get(r) for p, r in zip(d.positions, rates)}
+
+
+#: Seed of the generic point at which the rank of the rate equations is read.
+RATE_POINT_SEED = 4099
+#: Relative size below which a singular value of the rate equations counts as zero.
+RATE_RANK_TOL = 1e-9
+
+
+def solve_rates(eqs: Sequence[sp.Expr], rates: Sequence[sp.Symbol], d: Derivation
+                 ) -> dict[sp.Symbol, sp.Expr]:
+    r"""The rates the linear equations :math:`M(p)\,r = b` fix, as expressions.
+
+    A rate :math:`r_k` is fixed when :math:`e_k` lies in the row space of :math:`M`, read at
+    a generic point (numbers for every symbol). Independent rows and pivot columns found
+    there give a square system solved by LU without simplification (``sp.solve`` on
+    trigonometric coefficients can run for hours); rates outside the pivots are set to 0."""
+    M = sp.Matrix(eqs).jacobian(list(rates))
+    b = -sp.Matrix(eqs).xreplace({r: 0 for r in rates})
+    symbols = sorted(M.free_symbols | b.free_symbols, key=str)
+    rng = np.random.default_rng(RATE_POINT_SEED)
+    point = dict(zip(symbols, rng.uniform(0.3, 1.2, len(symbols))))
+    try:
+        Mn = np.array(M.xreplace(point).evalf(), dtype=float)
+    except (TypeError, ValueError):
+        return {}
+    if not np.all(np.isfinite(Mn)) or not Mn.size:
+        return {}
+    _, s, vt = np.linalg.svd(Mn)
+    rank = int((s > RATE_RANK_TOL * max(s[0], 1e-300)).sum())
+    if rank == 0:
+        return {}
+    null = vt[rank:]
+    fixed = [k for k in range(len(rates)) if not null.size or
+             np.abs(null[:, k]).max() <= RATE_RANK_TOL]
+    rows = independent_rows(Mn, rank)
+    cols = independent_rows(Mn[rows].T, rank)
+    sol = M.extract(rows, cols).LUsolve(b.extract(rows, [0]))
+    value = dict(zip((rates[c] for c in cols), sol))
+    return {rates[k]: value.get(rates[k], sp.Integer(0)) for k in fixed}
+
+
+def independent_rows(Mn: np.ndarray, rank: int) -> list[int]:
+    r"""``rank`` linearly independent rows of ``Mn`` (greedy, in order)."""
+    chosen: list[int] = []
+    for i in range(Mn.shape[0]):
+        trial = Mn[chosen + [i]]
+        if np.linalg.matrix_rank(trial, tol=RATE_RANK_TOL * max(np.abs(Mn).max(), 1e-300)) \
+                > len(chosen):
+            chosen.append(i)
+        if len(chosen) == rank:
+            break
+    return chosen
+
+
+def asymmetry(doc: Arrays, scales, n: int) -> tuple[str, ...]:
+    r"""Pairs A[i,j] ≠ A[j,i], and whether A is positive definite (elements lost in the
+    extracted text, NaN, are left out; A with a lost element is not tested for definiteness)."""
+    if doc.A is None:
+        return ()
+    out = []
+    lost = ~np.isfinite(doc.A).all(axis=0)
+    for i in range(n):
+        for j in range(i + 1, n):
+            if lost[i, j] or lost[j, i]:
+                continue
+            if not agrees(doc.A[:, i, j], doc.A[:, j, i], max(scales[i], scales[j])):
+                out.append(f"A[{i + 1},{j + 1}] ≠ A[{j + 1},{i + 1}]")
+    if lost.any():
+        return tuple(out)
+    sym = 0.5 * (doc.A + np.swapaxes(doc.A, 1, 2))
+    lowest = np.linalg.eigvalsh(sym)[:, 0] / np.maximum(np.abs(sym).max(axis=(1, 2)), 1e-300)
+    if (lowest <= AGREE_TOL).any():
+        out.append(f"A is not positive definite at {int((lowest <= AGREE_TOL).sum())} of "
+                   f"{len(lowest)} samples (smallest eigenvalue {lowest.min():.2g} × its largest entry)")
+    return tuple(out)
+
+
+def constraint_rows(doc: Arrays, truth: Arrays, scales) -> tuple[str, ...]:
+    r"""Is each row of the document's G a combination of the true constraint rows?"""
+    if doc.G is None:
+        return ()
+    if truth.G is None:
+        return ("the document keeps constraints the coordinate set eliminates: G not compared",)
+    out = []
+    Gt = truth.G
+    proj = np.linalg.pinv(Gt) @ Gt                      # projector on the true row space
+    for r in range(doc.G.shape[1]):
+        row = doc.G[:, r, :]
+        off = np.einsum("si,sij->sj", row, proj) - row
+        worst = float((np.abs(off).max(axis=1) / np.maximum(np.abs(row).max(axis=1), 1e-12)).max())
+        out.append(f"G row {r + 1}: " + ("a rolling constraint of the model" if worst < 1e-6 else
+                                          f"not a rolling constraint of the model (off by {worst:.2g})"))
+    return tuple(out)
+
+
+__all__ = ["FACTOR_LIMIT", "RATE_POINT_SEED", "RATE_RANK_TOL", "asymmetry", "constraint_rows",
+           "energy_check", "independent_rows", "position_rates", "solve_rates"]

@@ -1,0 +1,67 @@
+r"""Diagnoses of one element that differs, from its printed expression: a parameter to the
+wrong power, one additive term with the wrong sign or factor, a sin written for a cos
+(:mod:`.diagnose`), evaluated with the document's compiled functions on the engine's samples.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import sympy as sp
+
+from .diagnose import agrees, power_diagnoses, term_diagnoses, trig_swap_diagnoses
+from ..sides.evaluate import DocumentFunctions
+
+
+def trig_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.ndarray],
+                    factor: float | None, D: np.ndarray, T: np.ndarray, scale: float,
+                    check: bool = False) -> list[str]:
+    r"""A sin written for a cos in ``expr`` (:func:`.diagnose.trig_swap_diagnoses`), the
+    document's values divided by its row ``factor``. ``check``: only when ``expr`` evaluated on
+    ``argv`` gives the element's own values ``D`` (a velocity product's coefficient is sampled
+    on its own grid)."""
+    c = 1.0 if factor is None else factor
+
+    def evaluate_many(exprs: list) -> list[np.ndarray]:
+        return [np.broadcast_to(np.asarray(v, float), np.shape(argv[0])) / c
+                for v in funcs.compiled(tuple(exprs))(*argv)]
+    if len(np.shape(argv[0])) != 1 or np.shape(argv[0])[0] != len(D):
+        return []
+    if check and not agrees(evaluate_many([expr])[0], D, scale):
+        return []
+    return trig_swap_diagnoses(expr, evaluate_many, T, scale)
+
+
+def element_term_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.ndarray],
+                    factor: float | None, D: np.ndarray, T: np.ndarray, scale: float,
+                    has_factor: bool) -> list[str]:
+    r"""A parameter to the wrong power (also where a constant factor fits: with a geometry
+    constant the sets do not vary, G for G² *is* a factor), then, when the element has no
+    diagnosis yet, one additive term with the wrong sign or factor, then a sin written for a
+    cos (:mod:`.diagnose`)."""
+    c = 1.0 if factor is None else factor
+
+    def evaluate(e: sp.Expr) -> np.ndarray:
+        with np.errstate(all="ignore"):           # a trial power may leave the reals: NaN
+            out = funcs.compiled(e)(*argv)
+        return np.broadcast_to(np.asarray(out, float), D.shape) / c
+
+    compiled, position = funcs.compiled(expr), funcs.args.index
+
+    def powered(s: sp.Symbol, k) -> np.ndarray:
+        trial = list(argv)
+        with np.errstate(all="ignore"):           # a trial power may leave the reals: NaN
+            trial[position(s)] = np.asarray(trial[position(s)], float) ** float(k)
+            out = compiled(*trial)
+        return np.broadcast_to(np.asarray(out, float), D.shape) / c
+
+    found = power_diagnoses(expr, funcs.params, evaluate, T, scale, powered)
+    if not found and not has_factor:
+        found = term_diagnoses(expr, evaluate, D, T, scale)
+    if not found and not has_factor:
+        found = trig_diagnoses(expr, funcs, argv, factor, D, T, scale)
+    return found
+
+
+__all__ = ["element_term_diagnoses", "trig_diagnoses"]

@@ -1,0 +1,168 @@
+r"""Dimensional analysis of a document's elements, term by term.
+
+Each symbol has units (``[symbols]``), each coordinate too (``[coordinates] units``; metres or
+radians, radians counting as dimensionless). Row :math:`i` of the equations is a generalised
+force dual to :math:`q_i`, of dimension :math:`[F_i] = \mathrm{J}/[q_i]` (checked after a declared
+row scale is divided out, so an undeclared scale shows as a wrong dimension). Then
+
+.. math::
+
+    [A_{ij}] = [F_i]\,\mathrm{s}^2/[q_j],\quad [C_{ij}] = [F_i]\,\mathrm{s}/[q_j],\quad
+    [Q_i] = [h_i] = [F_i],\quad [B_{ij}] = [F_i]/[u_j],
+
+and every additive term of an element must have its element's dimension; the argument of a
+function (sin, cos, ...) must be dimensionless, except for functions homogeneous in their
+arguments (``atan2(y, x)``, ``Abs``, ``Max``, ``Min``, ``sign``), whose arguments must share one
+dimension. Dimensions are exponent vectors over
+(kg, m, s).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import sympy as sp
+
+from ...derivations.expressions import parse_units
+from ...derivations.schema import Derivation
+
+Dim = tuple[sp.Rational, sp.Rational, sp.Rational]
+ZERO: Dim = (sp.Integer(0),) * 3
+_BASE: Mapping[str, Dim] = {
+    "kg": (1, 0, 0), "m": (0, 1, 0), "s": (0, 0, 1), "N": (1, 1, -2), "J": (1, 2, -2),
+    "W": (1, 2, -3), "rad": (0, 0, 0), "A": (0, 0, 0), "V": (1, 2, -3), "K": (0, 0, 0),
+    "mol": (0, 0, 0),
+}
+
+
+#: Functions homogeneous in their arguments, which must share one dimension: degree 0 (the
+#: value is dimensionless, e.g. the angle atan2(y, x) of a point) or 1 (the value has the
+#: arguments' dimension: |x|, max, min).
+_HOMOGENEOUS: Mapping[type, int] = {sp.atan2: 0, sp.sign: 0, sp.Abs: 1, sp.Max: 1, sp.Min: 1}
+
+
+def _add(a: Dim, b: Dim, k=1) -> Dim:
+    return tuple(sp.nsimplify(x + k * y) for x, y in zip(a, b))
+
+
+def units_dim(text: str | None) -> Dim | None:
+    r"""The dimension of a units text, or None when not given."""
+    if text is None:
+        return None
+    expr = parse_units(str(text))
+    dim = ZERO
+    for base, exp in expr.as_powers_dict().items():
+        if base.is_Number:
+            continue
+        dim = _add(dim, tuple(sp.Integer(v) for v in _BASE[str(base)]), exp)
+    return dim
+
+
+def format_dim(d: Dim) -> str:
+    parts = [f"{n}" if e == 1 else f"{n}^{e}" for n, e in zip(("kg", "m", "s"), d) if e != 0]
+    return "·".join(parts) if parts else "dimensionless"
+
+
+class DimensionChecker:
+    r"""Dimensions of the document's names, and the check of an element's terms."""
+
+    def __init__(self, d: Derivation) -> None:
+        self.known: dict[sp.Symbol, Dim] = {}
+        for spec in d.symbols.values():
+            dim = units_dim(spec.units)
+            if dim is not None:
+                self.known[spec.symbol] = dim
+        units = d.coordinates.units
+        self.q_dims: list[Dim | None] = []
+        for q, v, a in zip(d.positions, d.velocities, d.accelerations):
+            dim = units_dim(units.get(str(q))) if str(q) in units else None
+            self.q_dims.append(dim)
+            if dim is not None:
+                self.known[q] = dim
+                self.known[v] = _add(dim, (0, 0, -1))
+                self.known[a] = _add(dim, (0, 0, -2))
+        self.input_dims = [self.known.get(u) for u in d.input_symbols]
+        # rows are checked after a declared row scale is divided out
+        joule = tuple(sp.Integer(v) for v in _BASE["J"])
+        self.row_dims: list[Dim | None] = [None if qd is None else _add(joule, qd, -1)
+                                           for qd in self.q_dims]
+
+    def dim(self, expr: sp.Expr, problems: list[str]) -> Dim | None:
+        r"""Dimension of ``expr``; inconsistent sums and dimensioned function arguments are
+        appended to ``problems``. None where a name has no declared units."""
+        expr = sp.sympify(expr)
+        if expr.is_Number or expr is sp.pi or expr.is_NumberSymbol:
+            return ZERO
+        if expr.is_Symbol:
+            return self.known.get(expr)
+        if expr.is_Add:
+            dims = [(t, self.dim(t, problems)) for t in expr.args]
+            known = [(t, dd) for t, dd in dims if dd is not None]
+            if not known:
+                return None
+            ref = max(known, key=lambda td: sum(1 for t2, d2 in known if d2 == td[1]))[1]
+            for t, dd in known:
+                if dd != ref:
+                    problems.append(f"term {sp.sstr(t)} is {format_dim(dd)} beside "
+                                    f"{format_dim(ref)}")
+            return ref
+        if expr.is_Mul:
+            total = ZERO
+            for f in expr.args:
+                fd = self.dim(f, problems)
+                if fd is None:
+                    return None
+                total = _add(total, fd)
+            return total
+        if expr.is_Pow:
+            base, exp = expr.args
+            bd = self.dim(base, problems)
+            if bd is None:
+                return None
+            if not exp.is_Number:
+                return ZERO if bd == ZERO else None
+            return tuple(sp.nsimplify(x * exp) for x in bd)
+        if expr.func in _HOMOGENEOUS:
+            # atan2(y, x), Max, Min: homogeneous of degree 0 or 1 in arguments of one dimension
+            dims = [self.dim(a, problems) for a in expr.args]
+            known = [(a, dd) for a, dd in zip(expr.args, dims) if dd is not None]
+            for a, dd in known[1:]:
+                if dd != known[0][1]:
+                    problems.append(f"arguments of {expr.func.__name__}: {sp.sstr(a)} is "
+                                    f"{format_dim(dd)} beside {format_dim(known[0][1])}")
+            if _HOMOGENEOUS[expr.func] == 0:
+                return ZERO
+            return known[0][1] if len(known) == len(dims) else None
+        if isinstance(expr, sp.Function):
+            for arg in expr.args:
+                ad = self.dim(arg, problems)
+                if ad is not None and ad != ZERO:
+                    problems.append(f"argument of {expr.func.__name__}: {sp.sstr(arg)} is "
+                                    f"{format_dim(ad)}")
+            return ZERO
+        return None
+
+    def expected(self, key: str, index: tuple[int, ...]) -> Dim | None:
+        i = index[0]
+        row = self.row_dims[i]
+        if row is None:
+            return None
+        if key in ("Q", "h"):
+            return row
+        j = index[1]
+        if key == "B":
+            u = self.input_dims[j] if j < len(self.input_dims) else None
+            return None if u is None else _add(row, u, -1)
+        qj = self.q_dims[j]
+        if qj is None:
+            return None
+        return _add(_add(row, qj, -1), (0, 0, 2 if key == "A" else 1))
+
+    def check(self, key: str, index: tuple[int, ...], expr: sp.Expr) -> list[str]:
+        r"""Problems of one element: inconsistent terms, or a dimension other than expected."""
+        problems: list[str] = []
+        got = self.dim(expr, problems)
+        want = self.expected(key, index)
+        if got is not None and want is not None and got != want and sp.sympify(expr) != 0:
+            problems.append(f"has {format_dim(got)}, expected {format_dim(want)}")
+        return problems

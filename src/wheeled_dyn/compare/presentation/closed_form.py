@@ -1,0 +1,189 @@
+r"""Closed forms for the reports: the document's elements in the model's own parameters, and
+(when the symbolic engine provides them) the true expressions and simplified residuals.
+
+For the WIP, Khalil's standard parameters are functions of the physical ones
+(:func:`~wheeled_dyn.models.wip_parameters.standard_parameters` applied to SymPy symbols), so a
+document written with XX1, MY1 ... reads, after the parameter map, in m_S, d, I1 ... — the
+"equivalent form" column of seed 001's own table.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+
+import sympy as sp
+from sympy.core.function import AppliedUndef
+
+from ...derivations.schema import Derivation
+from ...disk_cache import DiskMemo
+from ...models.registry import model_entry
+from ...models.wip_parameters import WipParameters, standard_parameters
+from .printing import printed
+
+#: Residuals up to this many operations are expanded with trigonometric identities for display
+#: (larger ones, e.g. in seed 001 section 5's wheel-angle coordinates, are shown as they are).
+TRIG_EXPAND_LIMIT = 40
+#: Models without a physical record: residuals in Khalil's parameters longer than this many
+#: operations, or with roots of them (a document's mass or length read as an algebraic function
+#: of the link's parameters), are not shown; the truth is.
+STANDARD_RESIDUAL_LIMIT = 60
+
+
+def _physical_symbols() -> dict[str, sp.Symbol]:
+    from dataclasses import fields
+    return {f.name: sp.Symbol(f.name, real=True) for f in fields(WipParameters)}
+
+
+def _standard_names(model: str) -> Callable[[sp.Expr], sp.Expr]:
+    r"""For a model without a physical record: Khalil calls ``XX(link)`` → the symbolic
+    engine's symbols ``XX_link``, and the model's other names (geometry, gravity) → their
+    values as exact numbers, as in its closed forms."""
+    from ...models.registry import load_model, model_parameters
+    numbers = {sp.Symbol(k, real=True): sp.nsimplify(v, rational=True)
+               for k, v in model_parameters(load_model(model)).items() if "(" not in k}
+    plain = {sp.Symbol(s.name): v for s, v in numbers.items()}
+
+    def convert(out: sp.Expr) -> sp.Expr:
+        calls = {c: sp.Symbol(f"{c.func.__name__}_{c.args[0]}", real=True)
+                 for c in out.atoms(AppliedUndef)}
+        return out.xreplace(calls).xreplace(numbers).xreplace(plain)
+
+    return convert
+
+
+def model_expression(d: Derivation, standard: bool = False
+                     ) -> Callable[[sp.Expr | None], sp.Expr | None]:
+    r"""A function: document expression → the same in the model's parameters (for the WIP,
+    Khalil calls replaced by the physical parameters; with ``standard``, for a model without a
+    physical record, in the symbols of its standard-parameter closed forms)."""
+    mapping = {s.symbol: s.value for s in d.symbols.values() if s.value is not None}
+    physical = model_entry(d.model).parameters is WipParameters
+    names = _physical_symbols()
+    std = standard_parameters(names) if physical else None
+    to_standard = _standard_names(d.model) if standard and not physical else None
+
+    def convert(expr: sp.Expr | None) -> sp.Expr | None:
+        if expr is None:
+            return None
+        out = sp.sympify(expr).xreplace(mapping)
+        if to_standard is not None:
+            return to_standard(out)
+        if std is not None:
+            calls = {}
+            for call in out.atoms(AppliedUndef):
+                link = str(call.args[0])
+                if link in std and call.func.__name__ in std[link]:
+                    calls[call] = std[link][call.func.__name__]
+            out = out.xreplace(calls)
+            out = out.xreplace({s: names.get(s.name, s) for s in out.free_symbols})
+        return out
+
+    return convert
+
+
+def document_in_model(d: Derivation, families: tuple[str, ...] = ()
+                      ) -> Callable[[sp.Expr | None], tuple[str, str]]:
+    r"""A function: document expression → (text, LaTeX) in the model's parameters, read under
+    the parameter ``families`` the document assumes (as the truth beside it is)."""
+    to_model = model_expression(d)
+    dots = {v: rf"\dot{{{sp.latex(q)}}}" for q, v in zip(d.positions, d.velocities)}
+    assumed = family_substitution(families) \
+        if model_entry(d.model).parameters is WipParameters else {}
+
+    def convert(expr: sp.Expr | None) -> tuple[str, str]:
+        out = to_model(expr)
+        if out is None:
+            return "", ""
+        return printed(out.xreplace(assumed), dots)
+
+    return convert
+
+
+def family_substitution(families: tuple[str, ...]) -> dict[sp.Symbol, sp.Expr]:
+    r"""The WIP's special parameter families (:data:`~.samples.WIP_SPECIAL_CASES`) as a
+    substitution of its physical symbols, so a closed-form truth reads under what a document
+    assumes (``com_on_axis``: :math:`d_x = d_z = 0` ...)."""
+    p = _physical_symbols()
+    table = {
+        "no_products": {p["Ixy"]: 0, p["Ixz"]: 0, p["Iyz"]: 0},
+        "com_on_axis": {p["d_x"]: 0, p["d_z"]: 0},
+        "disc_wheels": {p["Iw3"]: p["m_C"] * p["R"] ** 2 / 2, p["Iw2"]: p["m_C"] * p["R"] ** 2 / 4},
+        "I1_eq_I2": {p["I2"]: p["I1"]},
+        "no_armature": {p["I_a"]: 0},
+    }
+    out: dict[sp.Symbol, sp.Expr] = {}
+    for name in families:
+        out.update({k: sp.sympify(v) for k, v in table.get(name, {}).items()})
+    return out
+
+
+def annotate(d: Derivation, records: list[dict], cs, exprs: dict[int, sp.Expr | None],
+             row_factors: tuple[float | None, ...] = (), families: tuple[str, ...] = ()
+             ) -> None:
+    r"""Fill ``truth`` (every element) and ``residual`` (truth − document, expanded, for the
+    elements that do not agree; document rows divided by their detected ``row_factors``) where
+    the symbolic engine provides closed forms; without them the records keep their numeric
+    verdicts. The truth and the document are both read under the parameter ``families`` the
+    document assumes (:func:`family_substitution`)."""
+    try:
+        from ...symbolic import true_expressions
+    except ImportError:
+        return
+    truth = true_expressions(d.model, cs)
+    if not truth:
+        return
+    physical = model_entry(d.model).parameters is WipParameters
+    to_model = model_expression(d, standard=not physical)
+    assumed = family_substitution(families) if physical else {}
+    if assumed:
+        truth = {k: sp.sympify(v).xreplace(assumed) for k, v in truth.items()}
+        plain = to_model
+
+        def to_model(e: sp.Expr | None) -> sp.Expr | None:
+            out = plain(e)
+            return None if out is None else out.xreplace(assumed)
+    dots = {v: rf"\dot{{{sp.latex(q)}}}" for q, v in zip(d.positions, d.velocities)}
+    by_name = {str(v): text for v, text in dots.items()}
+    for r in records:
+        expr = truth.get(r["element"])
+        if expr is None or r["key"] == "B":
+            continue
+        names = {sym: by_name[sym.name] for sym in expr.free_symbols if sym.name in by_name}
+        r["truth"], r["truth_latex"] = printed(expr, names)
+        if r["verdict"] != "agrees":
+            doc = to_model(exprs.get(id(r)))
+            if doc is None:
+                continue
+            i = r["index"][0]
+            if i < len(row_factors) and row_factors[i]:
+                doc = doc / sp.nsimplify(row_factors[i])
+            text = residual_text(expr, doc, physical)
+            if text is None:
+                continue
+            r["residual"] = text
+            if text != "0":
+                r["diagnoses"].append(f"truth − document = {text}")
+
+
+#: The texts of :func:`residual_text`, remembered across runs (the disk cache's
+#: ``compare/residual-<code>.pickle``): a function of the two expressions only.
+RESIDUALS = DiskMemo("compare", "residual", lambda: [Path(__file__)])
+
+
+def residual_text(truth: sp.Expr, doc: sp.Expr, physical: bool) -> str | None:
+    r"""The text of truth − document, expanded with trigonometric identities when it has at
+    most :data:`TRIG_EXPAND_LIMIT` operations; None where it is not shown (a model without a
+    physical record: longer than :data:`STANDARD_RESIDUAL_LIMIT`, or with roots of Khalil's
+    parameters). Remembered: :data:`RESIDUALS`."""
+    return RESIDUALS.get((truth, doc, physical), lambda: _residual_text(truth, doc, physical))
+
+
+def _residual_text(truth: sp.Expr, doc: sp.Expr, physical: bool) -> str | None:
+    residual = truth - doc
+    if sp.count_ops(residual) <= TRIG_EXPAND_LIMIT:
+        residual = sp.expand(sp.expand_trig(residual))
+    if not physical and (sp.count_ops(residual) > STANDARD_RESIDUAL_LIMIT or any(
+            not p.exp.is_Integer for p in residual.atoms(sp.Pow))):
+        return None                           # roots of Khalil's parameters: not shown
+    return sp.sstr(residual)

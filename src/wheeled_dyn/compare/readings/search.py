@@ -1,0 +1,167 @@
+r"""The engine's evaluation of one derivation, with what the convention search needs
+(:mod:`.conventions`): the document at sign-flipped states, and how many elements agree in a
+set of arrays, on a subset of the samples.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from ..causes import root as causes
+from ..judge.diagnose import AGREE_TOL
+from .signs import flip_arrays
+from ..sides.elements import (apply_row_factors, decided_factor, explains, row_factors, row_pairs,
+                       row_scales, row_sizes, row_votes)
+from ..sides.evaluate import Arrays
+
+#: Samples the convention search scores each reading on (spread over the parameter sets).
+SEARCH_SAMPLES = 400
+
+
+class SearchEvaluation(causes.Evaluation):
+    r"""The engine's evaluation, with what the convention search needs: the document at
+    sign-flipped states and the number of elements agreeing in a set of arrays."""
+
+    def _subset(self) -> tuple[np.ndarray, Arrays, np.ndarray | None]:
+        r"""The samples the search scores on: those where the truth has H (the first
+        :data:`~.evaluate.H_SAMPLES` states of every parameter set), at most
+        :data:`SEARCH_SAMPLES`; the truth and its B there."""
+        if not hasattr(self, "_sub"):
+            rows = self.truth.H_rows if self.truth.H_rows is not None \
+                else np.arange(len(self.q))
+            keep = np.arange(len(rows))
+            if len(rows) > SEARCH_SAMPLES:
+                keep = np.linspace(0, len(rows) - 1, SEARCH_SAMPLES).astype(int)
+            rows = rows[keep]
+            sub = Arrays(**{k: (None if getattr(self.truth, k) is None
+                                else getattr(self.truth, k)[rows]) for k in "ACQBhG"})
+            sub.H = None if self.truth.H is None else self.truth.H[keep]
+            B = None if self.B_true is None else self.B_true[rows]
+            self._sub = (rows, sub, B)
+        return self._sub
+
+    def _truth_parts(self) -> tuple[np.ndarray, np.ndarray | None]:
+        r"""What :meth:`score` needs of the truth on the search's samples at every reading:
+        its rows' sizes and its H weighted as the velocity products' coefficients."""
+        if not hasattr(self, "_parts"):
+            n = self.q.shape[1]
+            _, truth, _ = self._subset()
+            H = None if truth.H is None else truth.H * _product_weights(n)
+            self._parts = (row_sizes(truth, n), H)
+        return self._parts
+
+    def doc_at(self, s: Sequence[int]) -> Arrays:
+        r"""The document's arrays at :math:`(Sp, S\nu)` on the search's samples (rows not
+        yet divided by factors)."""
+        rows, _, _ = self._subset()
+        S = np.asarray(s, float)
+        values = {p: np.asarray(v)[rows] if np.ndim(v) else v for p, v in self.values.items()}
+        return self.funcs.evaluate(self.q[rows] * S, self.nu[rows] * S, values)
+
+    def score(self, doc: Arrays) -> int:
+        r"""Elements of ``doc`` (on the search's samples) that agree with the truth, after
+        its own row factors."""
+        n = self.q.shape[1]
+        _, truth, B_true = self._subset()
+        truth_sizes, truth_H = self._truth_parts()
+        factors = row_factors(doc, truth, B_true, n)
+        apply_row_factors(doc, factors)
+        scales = row_scales(doc, truth, n, truth_sizes)
+        pairs = [(doc.A, truth.A), (doc.C, truth.C), (doc.Q, truth.Q)]
+        if B_true is not None:
+            pairs.append((doc.B, B_true))
+        count = sum(_agreeing(D, T, scales) for D, T in pairs if D is not None)
+        if doc.H is not None:            # the velocity products j <= k (2 H_ijk for j < k)
+            upper = np.triu(np.ones((n, n), dtype=bool))
+            count += _agreeing(doc.H * _product_weights(n), truth_H, scales, upper)
+        return count
+
+    def score_readings(self, base: Arrays, s: Sequence[int],
+                       readings: Sequence[tuple[Sequence[int], Sequence[int]]]) -> list[int]:
+        r""":meth:`score` of ``flip_arrays(base, s, t, order)`` for each ``(t, order)`` of
+        ``readings``: the document at one sign pattern :math:`s` of its positions, its inputs
+        read in several ways. The readings differ in B only and every part of the score is a
+        row's, so the votes of A and Q, and per row and factor the number of agreeing A, C, Q
+        and H elements and the row's scale, are found once; per reading only B's votes, the
+        rows' factors and B's agreement (the row factors are powers of two: dividing by one
+        is exact, and so is a row's largest magnitude divided by it)."""
+        n = self.q.shape[1]
+        _, truth, B_true = self._subset()
+        doc = flip_arrays(base, s, (), ())
+        if doc.B is None or B_true is None:
+            return [self.score(flip_arrays(base, s, t, order)) for t, order in readings]
+        votes_a, every = row_votes(Arrays(A=doc.A, Q=doc.Q), truth, None, n)
+        fixed = (votes_a, every[:, votes_a.shape[1]:])
+        rows = _RowParts(doc, truth, *self._truth_parts(), n)
+        out = []
+        for t, order in readings:
+            B = doc.B[:, :, list(order)] if len(order) else doc.B
+            B = B * np.asarray(t, float)[None, None, :] if len(t) else B
+            variant = Arrays(A=doc.A, Q=doc.Q, B=B)
+            votes_a, votes_all = row_votes(variant, truth, B_true, n, fixed)
+            total = 0
+            for i in range(n):
+                f = decided_factor(votes_a[i], votes_all[i], lambda f, i=i: explains(
+                    f, row_pairs(variant, truth, B_true, i)))
+                count, scale = rows.part(i, f)
+                Bi = B[:, i:i + 1] if f is None else B[:, i:i + 1] / f
+                total += count + _agreeing(Bi, B_true[:, i:i + 1], np.array([scale]))
+            out.append(total)
+        return out
+
+
+class _RowParts:
+    r"""Per row i and factor f of a document's arrays (samples × rows × ...): the number of
+    its A, C, Q and H elements that agree with the truth once the row is divided by f, and
+    the row's scale then (:meth:`SearchEvaluation.score`'s, row by row)."""
+
+    def __init__(self, doc: Arrays, truth: Arrays, truth_sizes: np.ndarray,
+                 truth_H: np.ndarray | None, n: int) -> None:
+        self.doc, self.truth, self.truth_H, self.n = doc, truth, truth_H, n
+        self.sizes, self.truth_sizes = row_sizes(doc, n), truth_sizes
+        self._parts: dict[tuple[int, float | None], tuple[int, float]] = {}
+
+    def part(self, i: int, f: float | None) -> tuple[int, float]:
+        if (i, f) not in self._parts:
+            size = self.sizes[i] if f is None else self.sizes[i] / abs(f)
+            scale = float(np.maximum(size, self.truth_sizes[i]))      # NaN as row_scales:
+            scale = scale if scale > 0 else 1.0                          # a scale of 1
+            one = np.array([scale])
+            count = 0
+            for name in ("A", "C", "Q"):
+                D, T = getattr(self.doc, name), getattr(self.truth, name)
+                if D is not None:
+                    D = D[:, i:i + 1] if f is None else D[:, i:i + 1] / f
+                    count += _agreeing(D, T[:, i:i + 1], one)
+            if self.doc.H is not None:
+                H = self.doc.H[:, i:i + 1] if f is None else self.doc.H[:, i:i + 1] / f
+                upper = np.triu(np.ones((self.n, self.n), dtype=bool))
+                count += _agreeing(H * _product_weights(self.n), self.truth_H[:, i:i + 1], one,
+                                   upper)
+            self._parts[(i, f)] = (count, scale)
+        return self._parts[(i, f)]
+
+
+def _product_weights(n: int) -> np.ndarray:
+    r"""The weights of H's entries as coefficients of h's velocity products: 1 for
+    :math:`\nu_j^2`, 2 for :math:`\nu_j\nu_k` (:math:`j \ne k`)."""
+    return np.where(np.eye(n, dtype=bool), 1.0, 2.0)
+
+
+def _agreeing(D: np.ndarray, T: np.ndarray, scales: np.ndarray,
+              mask: np.ndarray | None = None) -> int:
+    r"""How many elements of ``D`` (samples × rows × ...) are finite at every sample and
+    agree with ``T`` (:func:`~.diagnose.agrees` with their row's scale), all at once;
+    ``mask`` keeps some of each row's entries."""
+    with np.errstate(invalid="ignore"):
+        error = np.abs(D - T).max(axis=0, initial=0.0)
+        ok = np.isfinite(D).all(axis=0) & (
+            error <= AGREE_TOL * scales.reshape((-1,) + (1,) * (error.ndim - 1)))
+    if mask is not None:
+        ok = ok & mask
+    return int(ok.sum())
+
+
+__all__ = ["SEARCH_SAMPLES", "SearchEvaluation"]

@@ -1,0 +1,237 @@
+r"""Sign conventions: the reading of a document's coordinates and inputs that fits it best.
+
+A document rewritten "in the symbols of" another, or with an axis the other way round, differs
+from the truth in many elements that share one reason: a coordinate or an input taken with the
+opposite sign. With positions :math:`p = S p'` (:math:`S = \mathrm{diag}(s)`, :math:`s_i = \pm1`)
+and inputs :math:`u = T u'`, the document's equations read in :math:`p'` are
+
+.. math::
+
+    A' = S\,A(Sp)\,S,\quad h'_i = s_i\,h_i(Sp, S\nu),\quad Q' = S\,Q(Sp),\quad
+    B' = S\,B(Sp)\,T
+
+(row :math:`i` times :math:`s_i` is the equation of :math:`p'_i`; whole-row factors are found
+afterwards as for any document). Every :math:`(s, t)` is scored on the truth already computed
+(the document's compiled functions evaluated at flipped states: no new truth), and the one with
+the most agreeing elements wins; the declared reading is kept on a tie. The winner is applied
+to the *file's maps* (:func:`flipped`) — the position :math:`p_i` read as :math:`s_i p_i` in
+``configuration``, the velocity map of :math:`\nu_i` times :math:`s_i`, each input :math:`u_k`
+read as :math:`t_k u_k` in ``[inputs]`` — which is the same comparison, so the records shown
+are the ordinary ones under the better reading, and the convention is one cause.
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Callable, Sequence
+from dataclasses import replace
+
+import numpy as np
+import sympy as sp
+
+from ...derivations.schema import Derivation
+from ..sides.evaluate import Arrays
+
+#: Most signs searched (positions + inputs): 2**8 readings, each one evaluation of the document.
+MAX_SIGNS = 8
+#: Inputs permuted when there are at most this many (3! = 6 orders).
+MAX_PERMUTED = 3
+#: Equations reordered when there are at most this many (4! = 24 orders).
+MAX_ROWS = 4
+#: The key marking a derivation whose equations were reordered.
+ROWS_KEY = "_row_order"
+#: A reading replaces the declared one only if this many more elements agree under it ...
+MIN_GAIN = 3
+#: ... or this many, for a reading that only reorders the inputs (a swap of two symmetric
+#: motors shows in the two elements of the turning row alone).
+MIN_GAIN_ORDER = 2
+#: The key marking a derivation whose maps a convention has flipped (no search in it again).
+FLIPPED_KEY = "_convention"
+
+
+Reading = tuple[tuple[int, ...], tuple[int, ...], tuple[int, ...]]
+
+
+def readings(d: Derivation) -> list[Reading]:
+    r"""Every reading :math:`(s, t, \pi)` of ``d``'s positions and inputs but the declared one
+    (with a built-in coordinate set, of its inputs only; none when ``d`` was flipped already
+    or has more than :data:`MAX_SIGNS` signs)."""
+    n, m = d.n, len(d.input_symbols) if d.inputs else 0
+    flips = 0 if d.coordinates.use else n        # a built-in set's positions are the model's
+    if FLIPPED_KEY in d.coordinates.raw or flips + m > MAX_SIGNS or flips + m == 0:
+        return []
+    orders = list(itertools.permutations(range(m))) if m <= MAX_PERMUTED else [tuple(range(m))]
+    identity = tuple(range(m))
+    out = []
+    for signs in itertools.product((1, -1), repeat=flips + m):
+        s = tuple(signs[:flips]) if flips else (1,) * n
+        for order in orders:
+            if any(x < 0 for x in signs) or order != identity:
+                out.append((s, tuple(signs[flips:]), tuple(order)))
+    return out
+
+
+def flip_arrays(doc: Arrays, s: Sequence[int], t: Sequence[int],
+                order: Sequence[int] = ()) -> Arrays:
+    r"""The document's arrays (evaluated at flipped states :math:`Sp, S\nu`) read in
+    :math:`p'`, its input columns in the ``order`` :math:`\pi`: the module's formulas."""
+    s_, t_ = np.asarray(s, float), np.asarray(t, float)
+    out = Arrays(H_rows=doc.H_rows)
+    if doc.A is not None:
+        out.A = doc.A * s_[None, :, None] * s_[None, None, :]
+    if doc.C is not None:
+        out.C = doc.C * s_[None, :, None] * s_[None, None, :]
+    if doc.Q is not None:
+        out.Q = doc.Q * s_[None, :]
+    if doc.B is not None:
+        B = doc.B[:, :, list(order)] if len(order) else doc.B
+        out.B = B * s_[None, :, None] * (t_[None, None, :] if len(t_) else 1.0)
+    if doc.h is not None:
+        out.h = doc.h * s_[None, :]
+    if doc.H is not None:
+        out.H = doc.H * s_[None, :, None, None] * s_[None, None, :, None] * s_[None, None, None, :]
+    if doc.G is not None:
+        out.G = doc.G * s_[None, None, :]
+    return out
+
+
+def best_reading(d: Derivation, evaluate: Callable[[Sequence[int]], Arrays],
+                 score: Callable[[Arrays], int],
+                 score_readings: Callable[[Arrays, Sequence[int], list], list[int]] | None = None
+                 ) -> tuple[Reading, int, int] | None:
+    r"""``((s, t, order), declared score, best score)`` when a reading beats the declared one
+    by at least :data:`MIN_GAIN` agreeing elements, else None. ``evaluate(s)`` gives the
+    document's arrays at the flipped states, ``score(arrays)`` the number of agreeing
+    elements; ``score_readings(arrays, s, [(t, order), ...])``, where given, the scores of
+    several readings of the inputs at once (the same numbers)."""
+    options = readings(d)
+    if not options:
+        return None
+    declared = score(evaluate((1,) * d.n))
+    if score_readings is None:
+        def score_readings(base, s, rest):
+            return [score(flip_arrays(base, s, t, order)) for t, order in rest]
+    best: tuple[Reading | None, int] = (None, declared)
+    for s, group in itertools.groupby(options, key=lambda o: o[0]):   # each s's consecutive
+        group = list(group)
+        values = score_readings(evaluate(s), s, [(t, order) for _, t, order in group])
+        for reading, value in zip(group, values):
+            if value > best[1]:
+                best = (reading, value)
+    if best[0] is None or best[1] < declared + (
+            MIN_GAIN_ORDER if is_permutation_only(best[0]) else MIN_GAIN):
+        return None
+    return best[0], declared, best[1]
+
+
+def flipped(d: Derivation, s: Sequence[int], t: Sequence[int],
+            order: Sequence[int] = ()) -> Derivation:
+    r"""``d`` with its maps read under :math:`(s, t, \pi)` (see the module docstring)."""
+    spec = d.coordinates
+    pos = {p: sign * p for p, sign in zip(d.positions, s) if sign < 0}
+    configuration = {k: sp.sympify(v).xreplace(pos) for k, v in spec.configuration.items()}
+    sign = dict(zip(spec.velocities, s))
+    velocity_map = {v: (-sp.sympify(e) if sign.get(v, 1) < 0 else e)
+                    for v, e in spec.velocity_map.items()}
+    raw = dict(spec.raw)
+    raw[FLIPPED_KEY] = describe(d, s, t, order)
+    new_spec = replace(spec, configuration=configuration, velocity_map=velocity_map, raw=raw)
+    inputs = d.inputs
+    u = list(d.input_symbols)
+    order = tuple(order) or tuple(range(len(u)))
+    if d.inputs and (any(x < 0 for x in t) or order != tuple(range(len(u)))):
+        read = {u[k]: t[k] * u[order[k]] for k in range(len(u))}
+        inputs = {k: sp.sympify(v).xreplace(read) for k, v in d.inputs.items()}
+    return replace(d, coordinates=new_spec, inputs=inputs)
+
+
+def describe(d: Derivation, s: Sequence[int], t: Sequence[int],
+             order: Sequence[int] = ()) -> str:
+    r"""``"theta → −theta, u1 → −u1, u1 ↔ u2"``: the flipped names and the exchanged inputs,
+    in the document's symbols."""
+    names = [str(p) for p, x in zip(d.positions, s) if x < 0]
+    names += [str(u) for u, x in zip(d.input_symbols, t) if x < 0]
+    parts = [f"{x} → −{x}" for x in names]
+    u = list(d.input_symbols)
+    done: set[int] = set()
+    for k, j in enumerate(order):
+        if j != k and k not in done:
+            if order[j] == k:
+                parts.append(f"{u[k]} ↔ {u[j]}")
+                done.update((k, j))
+            else:
+                parts.append(f"{u[k]} read as {u[j]}")
+    return ", ".join(parts)
+
+
+def is_permutation_only(reading: Reading) -> bool:
+    r"""A reading that only reorders the inputs (no sign flipped)."""
+    s, t, order = reading
+    return all(x > 0 for x in (*s, *t)) and tuple(order) != tuple(range(len(order)))
+
+
+def row_orders(d: Derivation) -> list[tuple[int, ...]]:
+    r"""The orders tried for the rows of a file of equations (none for matrices, for more
+    than :data:`MAX_ROWS` rows, or once reordered)."""
+    if d.equations is None or d.n > MAX_ROWS or ROWS_KEY in d.coordinates.raw:
+        return []
+    identity = tuple(range(d.n))
+    return [o for o in itertools.permutations(range(d.n)) if o != identity]
+
+
+def permute_rows(doc: Arrays, order: Sequence[int]) -> Arrays:
+    r"""The document's arrays with row :math:`i` taken from its row ``order[i]``."""
+    out = Arrays(H_rows=doc.H_rows, G=doc.G)
+    for key in ("A", "C", "Q", "B", "h", "H"):
+        M = getattr(doc, key)
+        if M is not None:
+            setattr(out, key, M[:, list(order)])
+    return out
+
+
+def best_row_order(d: Derivation, evaluate: Callable[[Sequence[int]], Arrays],
+                   score: Callable[[Arrays], int]) -> tuple[tuple[int, ...], int, int] | None:
+    r"""``(order, declared score, best score)`` when equations taken in another order agree
+    in at least :data:`MIN_GAIN` more elements, else None."""
+    options = row_orders(d)
+    if not options:
+        return None
+    identity = (1,) * d.n
+    declared = score(evaluate(identity))
+    base = evaluate(identity)
+    best: tuple[tuple[int, ...] | None, int] = (None, declared)
+    for order in options:
+        value = score(permute_rows(base, order))
+        if value > best[1]:
+            best = (order, value)
+    if best[0] is None or best[1] < declared + MIN_GAIN:
+        return None
+    return best[0], declared, best[1]
+
+
+def reordered(d: Derivation, order: Sequence[int]) -> Derivation:
+    r"""``d`` with its equation :math:`i` taken from the file's equation ``order[i]``."""
+    raw = dict(d.coordinates.raw)
+    raw[ROWS_KEY] = describe_rows(d, order)
+    scale = None if d.row_scale is None else tuple(d.row_scale[k] for k in order)
+    return replace(d, equations=tuple(d.equations[k] for k in order), row_scale=scale,
+                   coordinates=replace(d.coordinates, raw=raw))
+
+
+def describe_rows(d: Derivation, order: Sequence[int]) -> str:
+    r"""``"equation 1 is the one of phi, equation 3 the one of x"`` (1-based, as printed)."""
+    parts = [f"equation {k + 1} is the one of {d.positions[i]}"
+             for i, k in enumerate(order) if k != i]
+    return ", ".join(parts)
+
+
+def maps_text(d: Derivation) -> str:
+    r"""The file's maps as declared, briefly (``phi = -theta; tau_l = -K_f*u1``)."""
+    parts = [f"{k} = {sp.sstr(v)}" for k, v in d.coordinates.configuration.items()]
+    parts += [f"{k} = {sp.sstr(v)}" for k, v in (d.inputs or {}).items()]
+    return "; ".join(parts)
+
+
+__all__ = ["MAX_PERMUTED", "MAX_SIGNS", "MIN_GAIN", "MIN_GAIN_ORDER", "Reading", "best_reading", "describe",
+           "best_row_order", "describe_rows", "flip_arrays", "flipped", "is_permutation_only",
+           "maps_text", "permute_rows", "readings", "reordered", "row_orders"]

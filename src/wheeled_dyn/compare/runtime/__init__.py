@@ -1,0 +1,1 @@
+r"""How comparisons run (worker processes, the results cache), not what they decide."""

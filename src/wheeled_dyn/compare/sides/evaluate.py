@@ -1,0 +1,240 @@
+r"""Numbers on both sides: the truth and the document over K parameter sets × N states.
+
+Truth, in the document's coordinates (:class:`~wheeled_dyn.constraints.CoordinateMap`):
+:math:`A, C, Q, h` and the unique symmetric coefficient tensor of :math:`h`,
+:math:`H_{i,jk} = \tfrac12(C(e_k)_{ij} + C(e_j)_{ik})`, and :math:`B` in the document's inputs:
+if the model's inputs are :math:`\tau = f(u_{doc})`, :math:`B_{doc} = B\,\partial f/\partial u`.
+
+Document: each element of its A, C, Q, B (matrix form) or of the read-off A, h, Q, B (equation
+form) is compiled as ``sympy.lambdify`` compiles it (:mod:`.compiled`) in its coordinates,
+velocities and symbols; every symbol takes the value its declaration gives in the model
+namespace, at each parameter set.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import sympy as sp
+from sympy.core.function import AppliedUndef
+
+from ...constraints.reduction import CoordinateMap
+from ...coordinates import CoordinateSet, builtin_coordinate_set, parse_coordinate_set
+from ...derivations.schema import Derivation
+from ...errors import DerivationError
+from ...compiled import numpy_function
+from ..grid.samples import ParameterSet, parameter_sets, special_cases
+
+#: States per parameter set on which the coefficient tensor H of h is compared (h itself, A,
+#: C, Q, B are compared on all of them).
+H_SAMPLES = 200
+#: Range of the random values of a document's free symbols (present on both sides).
+FREE_RANGE = (0.5, 2.0)
+
+
+@dataclass
+class Arrays:
+    r"""Matrices over the samples (leading axis S = K·N); None where not given."""
+
+    A: np.ndarray | None = None
+    C: np.ndarray | None = None
+    Q: np.ndarray | None = None
+    B: np.ndarray | None = None
+    h: np.ndarray | None = None
+    H: np.ndarray | None = None
+    G: np.ndarray | None = None
+    H_rows: np.ndarray | None = None       # samples where H was computed (None: all)
+
+
+def model_value(expr: sp.Expr, values: Mapping[str, float]) -> float:
+    r"""A model-namespace expression (physical names, ``XX(link)`` calls) at ``values``."""
+    calls = {}
+    for call in expr.atoms(AppliedUndef):
+        key = f"{call.func.__name__}({call.args[0]})"
+        if key not in values:
+            from ...errors import UnknownNameError
+            raise UnknownNameError("model parameter", key,
+                                   [k for k in values if "(" in k])
+        calls[call] = sp.Float(values[key])
+    expr = expr.xreplace(calls)
+    missing = [s.name for s in expr.free_symbols if s.name not in values]
+    if missing:
+        from ...errors import UnknownNameError
+        raise UnknownNameError("model parameter", missing[0], values)
+    return float(expr.xreplace({s: values[s.name] for s in expr.free_symbols}))
+
+
+def derivation_coordinate_set(d: Derivation, ps: ParameterSet) -> CoordinateSet:
+    r"""The document's coordinate set, built-in or inline; document symbols in inline
+    expressions are replaced by their model values' names (R, L ...)."""
+    wm = ps.model
+    spec = d.coordinates
+    if spec.use:
+        cs = builtin_coordinate_set(wm, spec.use)
+        if tuple(cs.velocities) != tuple(str(v) for v in d.velocities):
+            raise DerivationError(d.path, "coordinates", f"built-in set {spec.use!r} has "
+                                  f"velocities {cs.velocities}, the file {d.velocities}")
+        return cs
+    to_model = {s.symbol: s.value for s in d.symbols.values() if s.value is not None}
+    raw = {"kind": spec.kind, "rolling": spec.rolling, "positions": list(spec.positions),
+           "velocities": list(spec.velocities),
+           "configuration": {k: str(sp.sympify(v).xreplace(to_model))
+                             for k, v in spec.configuration.items()}}
+    if spec.velocity_map:
+        raw["velocity_map"] = {k: str(sp.sympify(v).xreplace(to_model))
+                               for k, v in spec.velocity_map.items()}
+    return parse_coordinate_set(raw, "inline", wm.coordinate_names, tuple(wm.geometry),
+                                where=str(d.path))
+
+
+def document_symbol_values(d: Derivation, ps: ParameterSet, rng: np.random.Generator) -> dict[sp.Symbol, float]:
+    r"""Each non-input document symbol's number at this parameter set."""
+    out = {}
+    for spec in d.symbols.values():
+        if spec.is_input:
+            continue
+        if spec.value is not None:
+            out[spec.symbol] = model_value(spec.value, ps.values)
+        else:
+            out[spec.symbol] = rng.uniform(*FREE_RANGE)
+    return out
+
+
+def truth_arrays(cmaps: Sequence[CoordinateMap], q: np.ndarray, nu: np.ndarray,
+                 input_maps: Sequence[np.ndarray] | None) -> Arrays:
+    r"""Truth for each parameter set's bound map ``cmaps[k]`` at states ``q[k], nu[k]``
+    (K × N × n); ``input_maps[k]`` is :math:`\partial\tau/\partial u_{doc}` (or None).
+    :math:`H` comes from :math:`C_\nu(e_j)`, which is linear in :math:`\nu`, on the first
+    :data:`H_SAMPLES` states of each set (rows listed in ``H_rows``)."""
+    from ...constraints.batch import reduce_batch_multi
+    parts: dict[str, list[np.ndarray]] = {k: [] for k in "ACQBhHG"}
+    rows: list[np.ndarray] = []
+    for k, cmap in enumerate(cmaps):
+        n, N = cmap.n, len(q[k])
+        qm = cmap._config_batch(N, *q[k].T, *cmap._p)[:, :, 0]
+        m = min(N, H_SAMPLES)
+        units = [np.tile(np.eye(n)[j], (m, 1)) for j in range(n)]
+        if m == N:
+            t, *basis = reduce_batch_multi(cmap, qm, [nu[k], *units], q[k])
+        else:
+            (t,) = reduce_batch_multi(cmap, qm, [nu[k]], q[k])
+            basis = reduce_batch_multi(cmap, qm[:m], units, q[k][:m])
+        rows.append(k * N + np.arange(m))
+        gamma = np.stack([b.C for b in basis], axis=3)
+        parts["A"].append(t.A)
+        parts["C"].append(t.C)
+        parts["Q"].append(t.Q)
+        parts["h"].append(t.h)
+        parts["H"].append(0.5 * (gamma + gamma.transpose(0, 1, 3, 2)))
+        parts["B"].append(t.B if input_maps is None else t.B @ input_maps[k])
+        if t.G is not None:
+            parts["G"].append(t.G)
+    out = Arrays(**{k: (np.concatenate(v) if v else None) for k, v in parts.items()})
+    out.H_rows = np.concatenate(rows)
+    return out
+
+
+def _h_tensor(h: sp.MatrixBase, velocities: Sequence[sp.Symbol]) -> sp.Array:
+    r""":math:`H_{i,jk}` with :math:`h_i = \sum_{jk} H_{i,jk}\nu_j\nu_k`, symmetric, from the
+    polynomial coefficients of h in the velocities."""
+    n = len(velocities)
+    H = [[[sp.Integer(0)] * n for _ in range(n)] for _ in range(h.shape[0])]
+    for i in range(h.shape[0]):
+        if h[i] == 0:
+            continue
+        if h[i].has(sp.nan):                  # a lost element: the whole row is unknown
+            for j in range(n):
+                for k in range(n):
+                    H[i][j][k] = sp.nan
+            continue
+        for monomial, coeff in sp.Poly(h[i], *velocities).terms():
+            idx = [j for j, e in enumerate(monomial) for _ in range(e)]
+            if len(idx) != 2:
+                continue                      # read_off has already rejected other degrees
+            j, k = idx
+            if j == k:
+                H[i][j][j] += coeff
+            else:
+                H[i][j][k] += coeff / 2
+                H[i][k][j] += coeff / 2
+    return sp.Array(H)
+
+
+class DocumentFunctions:
+    r"""The document's elements compiled once (one function per matrix); evaluated at any
+    samples."""
+
+    def __init__(self, d: Derivation, A, C, Q, B, h, G) -> None:
+        self.d = d
+        self.params = tuple(s.symbol for s in d.symbols.values() if not s.is_input)
+        self.args = [*d.positions, *d.velocities, *self.params]
+        self.exprs = {"A": A, "C": C, "Q": Q, "B": B, "h": h, "G": G}
+        self.exprs["H"] = None if h is None else _h_tensor(h, d.velocities)
+        self._fns = {}
+        self._element_fns: dict[tuple, object] = {}
+        self._compiled: dict[sp.Expr, object] = {}
+        for key, M in self.exprs.items():
+            if M is None:
+                continue
+            arr = sp.Array(M) if not isinstance(M, sp.Array) else M
+            flat = sp.flatten(arr.tolist())
+            self._fns[key] = (arr.shape, flat, numpy_function(self.args, flat, cse=True))
+
+    def evaluate(self, q: np.ndarray, nu: np.ndarray, values: Mapping[sp.Symbol, np.ndarray]
+                 ) -> Arrays:
+        r"""Arrays over samples: positions ``q`` (S × n), velocities ``nu``, symbol values
+        (arrays of length S). An element that overflows or leaves the reals is inf or NaN
+        there, silently (the comparison calls it undecided)."""
+        S = len(q)
+        argv = [*q.T, *nu.T, *(values[p] for p in self.params)]
+        out = Arrays()
+        for key, (shape, flat, fn) in self._fns.items():
+            arr = np.empty((S, len(flat)))
+            with np.errstate(all="ignore"):
+                vals = fn(*argv)
+                for j, v in enumerate(vals):
+                    arr[:, j] = v
+            arr = arr.reshape((S, *shape))
+            if key in ("Q", "h") and arr.ndim == 3:
+                arr = arr[..., 0]
+            setattr(out, key, arr)
+        return out
+
+    def compiled(self, expr: sp.Expr):
+        r"""``expr`` (in the document's positions, velocities and symbols) compiled once;
+        the function returned evaluates without floating-point warnings (an overflow gives
+        inf, a value outside the reals NaN)."""
+        if expr not in self._compiled:
+            fn = numpy_function(self.args, expr)
+
+            def quiet(*argv: np.ndarray, _fn=fn) -> np.ndarray:
+                with np.errstate(all="ignore"):
+                    return _fn(*argv)
+
+            self._compiled[expr] = quiet
+        return self._compiled[expr]
+
+    def element_function(self, key: str, index: tuple[int, ...]):
+        r"""The compiled function of one element (for ``h``: of :math:`H_{i,jk}`)."""
+        key = "H" if key == "h" else key
+        shape, flat, _ = self._fns[key]
+        index = tuple(index) + (0,) * (len(shape) - len(index))
+        pos = int(np.ravel_multi_index(index, shape))
+        if (key, pos) not in self._element_fns:
+            self._element_fns[(key, pos)] = numpy_function(self.args, flat[pos])
+        return self._element_fns[(key, pos)]
+
+
+def given_parameter_sets(d: Derivation, given: Sequence[str], k: int,
+                         rng: np.random.Generator) -> list[ParameterSet]:
+    r"""``k`` random parameter sets of ``d``'s model restricted by the special families named
+    in a step's ``given``; an unknown name is a :class:`DerivationError` listing the model's."""
+    cases = {c.name: c for c in special_cases(d.model)}
+    for name in given:
+        if name not in cases:
+            raise DerivationError(d.path, "step.given", f"{name!r} is not a parameter family "
+                                  f"of model {d.model}; valid: " + ", ".join(cases))
+    return parameter_sets(d.model, k, rng, tuple(cases[g] for g in given))
+

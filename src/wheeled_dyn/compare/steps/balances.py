@@ -1,0 +1,400 @@
+r"""Newton–Euler balances of a document (``kind = "newton-euler"`` steps) against the body's
+true motion.
+
+A balance is printed as a relation between the applied forces (document symbols, ``free =
+true``: tyre forces, a hinge's reaction) and the body's accelerations: "−F_hr − F_hl = m ẍ_g",
+"−F_x a cos θ − F_y a sin θ = I_g θ̈". Of a rigid body of mass :math:`m`, centre of mass
+:math:`G`, central inertia :math:`I_G`, angular velocity :math:`\omega`, with forces
+:math:`F_k d_k` at points :math:`p_k` and couples :math:`C_k c_k`, the six Newton–Euler
+residuals, moments about a point :math:`P` of the body, are
+
+.. math::
+
+    E(\dot\nu, F) = \begin{bmatrix} m a_G - m g - \sum_k F_k d_k \\
+      I_G\dot\omega + \omega\times I_G\omega + (G - P)\times(m a_G - m g)
+      - \sum_k (p_k - P)\times F_k d_k - \sum_k C_k c_k \end{bmatrix} ,
+
+affine in the accelerations :math:`\dot\nu` (through :math:`a_G, \dot\omega`) and in the
+forces, with :math:`a_G, \omega, \dot\omega` from Pinocchio at the document's state
+(:class:`~.kinematics_truth.Motion`). A printed relation :math:`R(\dot\nu, F) = 0`, affine in
+the same unknowns, is right when it is one fixed combination of the residuals written along the
+axes of the step's ``frame``:
+
+.. math::
+
+    R = \mu^T\,\mathrm{blockdiag}(R_f^T, R_f^T)\,E \quad\text{for one } \mu\in\mathbb R^6
+    \text{ per parameter set, at every state,}
+
+which is checked coefficient by coefficient (the constant term, each acceleration, each
+force) by least squares over the states. When it fails, each coefficient is left out in turn:
+if the others then fit, that term is named, with the sign or factor it is off by, or as a
+wrong moment arm or direction. A relation that fits in other axes (the body's, the world's)
+says so.
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Sequence
+
+import numpy as np
+import sympy as sp
+
+from ...compiled import numpy_function
+from ...constraints.reduction import CoordinateMap
+from ...derivations.schema import Derivation
+from ...derivations.steps import Force, Step
+from ...errors import DerivationError
+from ..grid.assumptions import Assumptions, position_ranges
+from ..judge.diagnose import AGREE_TOL, nice_number
+from ..sides.evaluate import (derivation_coordinate_set, document_symbol_values,
+                       given_parameter_sets)
+from ..sides.kinematics import Motion, check_links
+from ..records import ElementRecord
+from ..grid.samples import random_states, regular_states
+from ..judge.units import DimensionChecker, format_dim
+
+#: Parameter sets and states per set on which a balance is checked.
+BALANCE_SETS, BALANCE_STATES = 2, 8
+
+
+def _world_point(m: Motion, body: str, point) -> np.ndarray:
+    fid = m.frame_id(body)
+    local = m.point_in_link(body, np.array([float(x) for x in point])
+                            if isinstance(point, np.ndarray) else point)
+    return m.data.oMf[fid].act(local)
+
+
+def residual_rows(m: Motion, body: str, point, frame: str, forces: Sequence[Force],
+                  geometry: Sequence[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
+    r"""Columns of :math:`E` at the motion ``m`` along ``frame``'s axes: the residual at the
+    motion's accelerations with no force, then :math:`\partial E/\partial F_k` for each force
+    (``geometry``: its application point and direction in the world, evaluated)."""
+    wm, data = m.wm, m.data
+    j = wm.model.frames[m.frame_id(body)].parentJoint
+    inertia = wm.model.inertias[j]
+    rot = data.oMi[j].rotation
+    mass, G = inertia.mass, data.oMi[j].act(inertia.lever)
+    I_G = rot @ np.asarray(inertia.inertia) @ rot.T
+    w = m.vector("angular velocity", body, "origin", "world")
+    dw = m.vector("angular acceleration", body, "origin", "world")
+    a_G = m.vector("acceleration", body, "com", "world")
+    P = _world_point(m, body, point)
+    lin = mass * a_G - mass * wm.model.gravity.linear
+    ang = I_G @ dw + np.cross(w, I_G @ w) + np.cross(G - P, lin)
+    cols = [np.concatenate([lin, ang])]
+    for force, (p, d) in zip(forces, geometry):
+        cols.append(-np.concatenate([np.zeros(3), d]) if force.couple
+                    else -np.concatenate([d, np.cross(p - P, d)]))
+    R_f = m.rotation(frame)
+    return np.kron(np.eye(2), R_f.T) @ np.stack(cols, 1)
+
+
+class _Balance:
+    r"""Samples of one ``newton-euler`` step: for every state the truth's coefficient columns
+    (constant, each acceleration, each force) and the document's."""
+
+    def __init__(self, d: Derivation, step: Step, index: int, seed: int) -> None:
+        self.d, self.step = d, step
+        rng = np.random.default_rng([seed, 23, index])
+        self.sets = given_parameter_sets(d, step.given, BALANCE_SETS, rng)
+        symbols = {str(s.symbol): s for s in d.symbols.values()}
+        self.free = [f for f in step.forces if f.law is None]
+        for f in step.forces:
+            where = f"step {step.equation}.forces.{f.name}"
+            if f.law is not None and f.law.has(*d.accelerations):
+                raise DerivationError(d.path, f"{where}.law", "a force's law is a function of "
+                                      "the positions, velocities and symbols, not of the "
+                                      "accelerations")
+            if f.law is not None and f.name in symbols and not symbols[f.name].free:
+                raise DerivationError(d.path, where, "a force given by its law is named by a "
+                                      "label, or by a symbol declared free = true, not by one "
+                                      "of the file's parameters")
+            if f.law is None and (f.name not in symbols or not symbols[f.name].free):
+                raise DerivationError(d.path, where, "a force is a symbol of the file declared "
+                                      "free = true (with units = \"N\", or \"N*m\" for a "
+                                      "couple), or is given by its law = \"...\"")
+        self.F = [symbols[f.name].symbol for f in self.free]
+        #: a known force's symbol, where the file declares one, stands for its law
+        self.laws = {symbols[f.name].symbol: f.law for f in step.forces
+                     if f.law is not None and f.name in symbols}
+        self.unknowns = [*d.accelerations, *self.F]
+        for j, expr in enumerate(step.components):
+            expr = expr.xreplace(self.laws)
+            try:
+                degree = sp.Poly(sp.expand(expr), *self.unknowns).total_degree()
+            except sp.PolynomialError:
+                degree = 2
+            if degree > 1:
+                raise DerivationError(d.path, f"step {step.equation} relation {j + 1}",
+                                      "a balance is linear in the accelerations and forces")
+        ranges = position_ranges(d, [str(p) for p in d.positions], Assumptions())
+        #: the coordinate map, compiled once and bound to each parameter set in turn
+        self._map = CoordinateMap(self.sets[0].model, derivation_coordinate_set(d, self.sets[0]))
+        q, self.nu = random_states(len(d.positions), BALANCE_SETS * BALANCE_STATES, rng, ranges)
+        self.q = regular_states(self._map, q, rng, ranges)   # not where coordinates are singular
+        self.params = [s.symbol for s in d.symbols.values() if not s.is_input]
+        self.args = [*d.positions, *d.velocities, *self.params]
+        self.values = [document_symbol_values(d, ps, rng) for ps in self.sets]
+        self._world: list[np.ndarray] | None = None        # residual columns, world axes
+        self._rotations: dict[str, list[np.ndarray]] = {}  # frame -> per set, states x 3 x 3
+
+    def _argv(self, k: int, i: int) -> list[float]:
+        return [*self.q[i], *self.nu[i], *(self.values[k][p] for p in self.params)]
+
+    def document(self, exprs: Sequence[sp.Expr]) -> list[np.ndarray]:
+        r"""Per parameter set, the coefficients of ``exprs`` (states × relations × columns:
+        the constant, each acceleration, each force)."""
+        zero = {u: 0 for u in self.unknowns}
+        exprs = [e.xreplace(self.laws) for e in exprs]
+        fn = numpy_function(self.args, [[e.xreplace(zero)] + [e.diff(u) for u in self.unknowns]
+                                         for e in exprs])
+        out = []
+        with np.errstate(all="ignore"):          # a value that is not finite is a verdict's
+            for k in range(len(self.sets)):     # business (undecided), not a warning
+                rows = range(k * BALANCE_STATES, (k + 1) * BALANCE_STATES)
+                out.append(np.array([np.array(fn(*self._argv(k, i)), dtype=float)
+                                     for i in rows]))
+        return out
+
+    def truth(self, frame: str) -> list[np.ndarray]:
+        r"""Per parameter set, the columns of the residuals along ``frame``'s axes (states ×
+        6 × columns): the world's residuals, computed once (the sampled velocities made
+        admissible on the way, before the document is evaluated at them), turned into the
+        frame's axes (``frame``: the step's, the world, or the body)."""
+        if self._world is None:
+            self._world = self._residuals()
+        return [np.einsum("sij,sjc->sic", _blocks(R), W)
+                for R, W in zip(self._rotations[frame], self._world)]
+
+    def _residuals(self) -> list[np.ndarray]:
+        d, step = self.d, self.step
+        n = len(d.velocities)
+        geo = numpy_function(self.args, [[*f.direction,
+                                          *(f.point if isinstance(f.point, tuple) else ())]
+                                         for f in step.forces])
+        about = numpy_function(self.args, list(step.point)) \
+            if isinstance(step.point, tuple) else None
+        known = [k for k, f in enumerate(step.forces) if f.law is not None]
+        unknown = [k for k, f in enumerate(step.forces) if f.law is None]
+        law = numpy_function(self.args, [step.forces[k].law for k in known])
+        truth = []
+        frames = tuple(dict.fromkeys((step.frame, "world", step.body)))
+        self._rotations = {f: [] for f in frames}
+        for k, ps in enumerate(self.sets):
+            cmap = self._map.bind(ps.model)
+            check_links(ps.model, [step.body, *(f for f in frames
+                                                if f not in ("world", "heading"))])
+            data = ps.model.model.createData()
+            T_k, R_k = [], {f: [] for f in frames}
+            for i in range(k * BALANCE_STATES, (k + 1) * BALANCE_STATES):
+                argv = self._argv(k, i)
+                with np.errstate(all="ignore"):
+                    raw = geo(*argv)
+                    point = np.array(about(*argv), dtype=float) if about else step.point
+                rows = []
+                for nudot in (np.zeros(n), *np.eye(n)):
+                    m = Motion(cmap, data, self.q[i], self.nu[i], nudot)
+                    self.nu[i] = m.nu      # made admissible (rolling kept): the document too
+                    if rows:               # an acceleration's column: no force columns again
+                        rows.append(residual_rows(m, step.body, point, "world", (), ()))
+                        continue
+                    geometry = [(_world_point(m, step.body, np.array(r[3:], dtype=float)
+                                              if isinstance(f.point, tuple) else f.point),
+                                 m.rotation(f.frame) @ np.array(r[:3], dtype=float))
+                                for f, r in zip(step.forces, raw)]
+                    rows.append(residual_rows(m, step.body, point, "world", step.forces,
+                                              geometry))
+                    for f in frames:                   # the frames' rotations: q only
+                        R_k[f].append(np.array(m.rotation(f)))       # a copy: data is reused
+                accel = [r[:, 0] - rows[0][:, 0] for r in rows[1:]]
+                with np.errstate(all="ignore"):          # the velocities made admissible
+                    values = np.array(law(*self._argv(k, i)), dtype=float).reshape(-1)
+                forces = rows[0][:, 1:]
+                constant = rows[0][:, 0] + forces[:, known] @ values   # known forces' share
+                T_k.append(np.column_stack([constant, *accel, forces[:, unknown]]))
+            truth.append(np.array(T_k))
+            for f in frames:
+                self._rotations[f].append(np.array(R_k[f]))
+        return truth
+
+
+def _blocks(R: np.ndarray) -> np.ndarray:
+    r"""Per state, :math:`\mathrm{blockdiag}(R^T, R^T)` (states × 6 × 6): world components to
+    a frame's."""
+    out = np.zeros((len(R), 6, 6))
+    out[:, :3, :3] = out[:, 3:, 3:] = np.transpose(R, (0, 2, 1))
+    return out
+
+
+def _fit(T: np.ndarray, D: np.ndarray, keep: np.ndarray) -> tuple[np.ndarray, float]:
+    r"""Least-squares :math:`\mu` with :math:`\mu^T T_i[:, c] = D_i[c]` over states i and kept
+    columns c; its largest residual."""
+    A = np.concatenate([T[i][:, keep].T for i in range(len(T))])
+    b = np.concatenate([D[i][keep] for i in range(len(D))])
+    mu = np.linalg.lstsq(A, b, rcond=None)[0]
+    return mu, float(np.abs(A @ mu - b).max(initial=0.0))
+
+
+def _off_balance(truth: list[np.ndarray], doc: list[np.ndarray], j: int) -> float:
+    r"""How far relation ``j`` is, at the first state, from the nearest combination of the
+    balances (0 when it is one): the report's "document" number beside the truth's 0."""
+    everything = np.arange(truth[0].shape[2])
+    mu, _ = _fit(truth[0], doc[0][:, j, :], everything)
+    return float(np.abs(truth[0][0].T @ mu - doc[0][0, j, :]).max())
+
+
+def _term_names(d: Derivation, step: Step, free: Sequence[Force]) -> list[str]:
+    known = ", the forces given by their laws" if len(free) < len(step.forces) else ""
+    return [f"the terms without accelerations or forces (gravity, velocity products{known})",
+            *(f"term {a}" for a in d.accelerations), *(f"term {f.name}" for f in free)]
+
+
+def _suspects(truth: list[np.ndarray], doc: list[np.ndarray], j: int,
+              scale: float) -> list[tuple[int, ...]]:
+    r"""The smallest sets of coefficient columns (one, else two) without which relation ``j``
+    fits the balances."""
+    cols = truth[0].shape[2]
+    everything = np.arange(cols)
+    for size in (1, 2):
+        found = []
+        for group in (itertools.combinations(range(cols), size)):
+            keep = np.array([c for c in everything if c not in group])
+            if len(keep) and max(_fit(T, D[:, j, :], keep)[1]
+                                 for T, D in zip(truth, doc)) <= AGREE_TOL * scale:
+                found.append(group)
+        if found:
+            return found
+    return []
+
+
+def _judge(truth: list[np.ndarray], doc: list[np.ndarray], j: int, names: list[str],
+           n_forces: int) -> tuple[bool, list[str], float, float]:
+    r"""Verdict and diagnoses of relation ``j``: one fit per parameter set."""
+    cols = truth[0].shape[2]
+    scale = max(max(float(np.abs(D[:, j, :]).max()) for D in doc), 1e-300)
+    everything = np.arange(cols)
+    fits = [_fit(T, D[:, j, :], everything) for T, D in zip(truth, doc)]
+    worst = max(r for _, r in fits)
+    if worst <= AGREE_TOL * scale:
+        return True, [], worst, scale
+    diags: list[str] = []
+    for group in _suspects(truth, doc, j, scale):
+        keep = np.array([c for c in everything if c not in group])
+        partial = [_fit(T, D[:, j, :], keep) for T, D in zip(truth, doc)]
+        c = group[0] if len(group) == 1 else None
+        if c is None:
+            diags.append(" and ".join(names[g] for g in group) + ": their coefficients are "
+                         "not the balance's (moment arms, directions, masses or inertias)")
+            continue
+        implied = np.concatenate([np.einsum("r,sr->s", mu, T[:, :, c])
+                                  for (mu, _), T in zip(partial, truth)])
+        printed = np.concatenate([D[:, j, c] for D in doc])
+        if np.abs(implied).max() <= AGREE_TOL * scale:
+            diags.append(f"{names[c]}: extra: the balance has none")
+            continue
+        if np.abs(printed).max() <= AGREE_TOL * scale:
+            diags.append(f"{names[c]}: missing: the document has none")
+            continue
+        ratio = printed / np.where(implied == 0, np.nan, implied)
+        if np.nanmax(ratio) - np.nanmin(ratio) <= 1e-6 * np.nanmax(np.abs(ratio)):
+            r = float(np.nanmean(ratio))
+            diags.append(f"{names[c]}: sign: the document has the opposite sign" if
+                         abs(r + 1) < 1e-6 else
+                         f"{names[c]}: factor: the document is {nice_number(r)} × the balance")
+        else:
+            diags.append(f"{names[c]}: its coefficient is not the balance's (a moment arm, "
+                         "a direction, a mass or an inertia)")
+    if not diags:
+        diags += _forces_against_the_motion(truth, doc, j, names, n_forces, scale)
+    if not diags:
+        diags.append("not a combination of the body's force and moment balances")
+    return False, diags, worst, scale
+
+
+def _forces_against_the_motion(truth: list[np.ndarray], doc: list[np.ndarray], j: int,
+                               names: list[str], n_forces: int, scale: float) -> list[str]:
+    r"""When the relation's motion side (the terms without forces and the accelerations)
+    fixes the combination :math:`\mu` on its own, the forces whose coefficients differ from
+    what that combination gives — several at once (an arm moved from one force to another)."""
+    cols = len(names)
+    forces = list(range(cols - n_forces, cols))
+    motion = np.arange(cols - n_forces)
+    fits = [_fit(T, D[:, j, :], motion) for T, D in zip(truth, doc)]
+    if max(r for _, r in fits) > AGREE_TOL * scale:
+        return []
+    out = []
+    for c in forces:
+        implied = np.concatenate([np.einsum("r,sr->s", mu, T[:, :, c])
+                                  for (mu, _), T in zip(fits, truth)])
+        printed = np.concatenate([D[:, j, c] for D in doc])
+        if np.abs(printed - implied).max() > AGREE_TOL * scale:
+            out.append(f"{names[c]}: its coefficient is not what the motion side gives "
+                       f"(document {printed[0]:.6g}, balance {implied[0]:.6g} at the first "
+                       "state)")
+    return out
+
+
+def _term_fixes(b: _Balance, j: int, names: list[str]) -> list[str]:
+    r"""One printed term of relation ``j`` with the wrong sign, or a sin written for a cos
+    (or the reverse) in it: the edits that make the relation a balance."""
+    expr = b.step.components[j]
+    truth = b.truth(b.step.frame)
+
+    def fits(trial: sp.Expr) -> bool:
+        return _judge(truth, b.document([trial]), 0, names, len(b.free))[0]
+
+    for terms in (sp.Add.make_args(expr), sp.Add.make_args(sp.expand(expr))):
+        found = [f"sign: the term {sp.sstr(term)} has the wrong sign" for k, term in
+                 enumerate(terms) if len(terms) > 1
+                 and fits(sp.Add(*terms[:k], -term, *terms[k + 1:]))]
+        for k, term in enumerate(terms):
+            for f in sorted(term.atoms(sp.sin, sp.cos), key=sp.default_sort_key):
+                other = (sp.cos if f.func == sp.sin else sp.sin)(*f.args)
+                if fits(sp.Add(*terms[:k], term.xreplace({f: other}), *terms[k + 1:])):
+                    found.append(f"swap: {sp.sstr(f)} where {sp.sstr(other)} fits in the term "
+                                 f"{sp.sstr(term)}")
+        if found:
+            return found
+    return []
+
+
+def compare_balance(d: Derivation, step: Step, index: int, seed: int) -> list[ElementRecord]:
+    r"""One record per relation of a ``newton-euler`` step (see the module docstring)."""
+    b = _Balance(d, step, index, seed)
+    truth, doc = b.truth(step.frame), b.document(step.components)
+    names = _term_names(d, step, b.free)
+    labels = step.component_names()
+    out = []
+    dims = DimensionChecker(d)
+    for j in range(len(step.components)):
+        common = dict(element=f"{step.name} {labels[j]}", key="step", index=(index, j),
+                      document=step.printed[j], document_model="", truth=None, residual=None,
+                      step=step.kind, equation=step.equation,
+                      document_latex=sp.latex(step.components[j]))
+        if not all(np.all(np.isfinite(D[:, j, :])) for D in doc) or \
+                not all(np.all(np.isfinite(T)) for T in truth):
+            out.append(ElementRecord(verdict="undecided", diagnoses=(
+                "not finite at some samples",), max_error=float("nan"), scale=float("nan"),
+                **common))
+            continue
+        ok, diags, worst, scale = _judge(truth, doc, j, names, len(b.free))
+        lhs, rhs = (dims.dim(side, []) for side in step.sides[j])
+        if lhs is not None and rhs is not None and lhs != rhs and 0 not in step.sides[j]:
+            ok = False
+            diags.insert(0, f"dimension: the left side is {format_dim(lhs)}, the right side "
+                            f"{format_dim(rhs)}")
+        if not ok:
+            diags += _term_fixes(b, j, names)
+            for frame in dict.fromkeys(("world", step.body)):
+                if frame != step.frame and _judge(b.truth(frame), doc, j, names,
+                                                  len(b.free))[0]:
+                    diags.insert(0, f"frame: it is a balance along the axes of {frame}, "
+                                    f"not {step.frame}")
+        out.append(ElementRecord(verdict="agrees" if ok else "differs", diagnoses=tuple(diags),
+                                 max_error=worst, scale=scale, truth_sample=0.0,
+                                 document_sample=_off_balance(truth, doc, j), **common))
+    return out
+
+
+__all__ = ["BALANCE_SETS", "BALANCE_STATES", "compare_balance", "residual_rows"]
