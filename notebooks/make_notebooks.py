@@ -27,7 +27,7 @@ NOTEBOOKS = {
                       "print(\"\\n\".join(summary_lines(result)))\n"
                       "for r in result.records:\n"
                       "    if r.verdict != \"agrees\":\n"
-                      "        print(f\"{r.element:16} {r.verdict:10} {'; '.join(r.diagnoses)}\")"),
+                      "        print(f\"{r.element:16} {r.verdict:10} {'; '.join(r.texts)}\")"),
         new_markdown_cell("The same as files: `wheeled-dyn compare wip <file> --out reports` "
                           "writes Markdown, an offline HTML page and JSON."),
     ],

@@ -37,7 +37,7 @@ def _sympy_tables(changes: dict[tuple, str] = {}) -> dict:
 
 
 def _summary(result) -> list[tuple]:
-    return [(r.element, r.verdict, r.diagnoses) for r in result.records]
+    return [(r.element, r.verdict, r.texts) for r in result.records]
 
 
 def test_api_equals_the_file():
@@ -52,7 +52,7 @@ def test_api_equals_the_file():
 def test_api_names_a_planted_error():
     tables = _sympy_tables({("Q", 2): "-g*(MX1*cos(phi) - MY1*sin(phi))"})
     result = wd.compare("wip", samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED, **tables)
-    wrong = {r.element: r.diagnoses for r in result.records if r.verdict != "agrees"}
+    wrong = {r.element: r.texts for r in result.records if r.verdict != "agrees"}
     assert list(wrong) == ["Q[3]"] and wrong["Q[3]"][0].startswith("sign")
     assert [c.kind for c in result.causes] == ["sign"]
 

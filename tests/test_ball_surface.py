@@ -334,7 +334,7 @@ def test_paraboloid_force_function_3_8(tmp_path):
     the convex side) it differs."""
     from wheeled_dyn.compare.steps.records import compare_steps
     from wheeled_dyn.constraints.reduction import CoordinateMap as Map
-    from wheeled_dyn.compare.sides.evaluate import derivation_coordinate_set
+    from wheeled_dyn.compare.grid.grid import derivation_coordinate_set
     from wheeled_dyn.compare.grid.samples import ParameterSet, namespace_values
     from wheeled_dyn.derivations import builtin_derivations, load_derivation
     folder = builtin_derivations("seed002")[0].parent
@@ -349,7 +349,7 @@ def test_paraboloid_force_function_3_8(tmp_path):
         centre = cmap.model_configuration(q_doc)[:3]
         assert abs(_distance_to_bowl(a, vertex, centre) - BALL_RADIUS) < EXACT_TOL
     (r,) = compare_steps(d, SEED)
-    assert r.verdict == "agrees", r.diagnoses
+    assert r.verdict == "agrees", r.texts
     printed = 'value = "-M*g*(u1**2/(2*p) + R*p/sqrt(p**2 + u1**2))"'
     assert path.read_text().count(printed) == 1
     text = path.read_text().replace(printed,
@@ -360,4 +360,4 @@ def test_paraboloid_force_function_3_8(tmp_path):
     # read as a potential V instead of the force function U = -V, the printed value differs
     planted.write_text(path.read_text().replace('quantity = "force function"\n', ""))
     (r,) = compare_steps(load_derivation(planted), SEED)
-    assert r.verdict == "differs" and r.diagnoses[0].startswith("sign"), r.diagnoses
+    assert r.verdict == "differs" and r.texts[0].startswith("sign"), r.texts

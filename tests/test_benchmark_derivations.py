@@ -14,7 +14,8 @@ import sympy as sp
 
 from conftest import SEED
 from wheeled_dyn.compare.engine import ComparisonEngine
-from wheeled_dyn.compare.sides.evaluate import derivation_coordinate_set, model_value
+from wheeled_dyn.compare.grid.grid import derivation_coordinate_set
+from wheeled_dyn.compare.sides.document import model_value
 from wheeled_dyn.compare.readings.row_functions import with_row_functions
 from wheeled_dyn.compare.grid.samples import ParameterSet, namespace_values
 from wheeled_dyn.constraints import CoordinateMap
@@ -145,7 +146,7 @@ def test_engine_verdicts(stem, engine):
         assert records[label].verdict == "differs", (label, records[label].verdict)
     for label, r in records.items():
         if label not in wrong:
-            assert r.verdict in ("agrees", "agrees_if"), (label, r.verdict, r.diagnoses)
+            assert r.verdict in ("agrees", "agrees_if"), (label, r.verdict, r.texts)
 
 
 def test_engine_judges_bounce_pitch_under_its_declared_assumptions(engine):
@@ -157,7 +158,7 @@ def test_engine_judges_bounce_pitch_under_its_declared_assumptions(engine):
     assert "linearised about" in said and "equilibrium" in said, result.assumes
     records = {r.element: r for r in result.records}
     for label in ASSUMED["p4_12_bounce_pitch"]:
-        assert records[label].verdict == "agrees", (label, records[label].diagnoses)
+        assert records[label].verdict == "agrees", (label, records[label].texts)
 
 
 def test_engine_without_the_assumptions_names_the_missing_gravity(engine, tmp_path):
@@ -172,7 +173,7 @@ def test_engine_without_the_assumptions_names_the_missing_gravity(engine, tmp_pa
     assert not result.assumes
     records = {r.element: r for r in result.records}
     assert records["A[1,2]"].verdict == "differs"
-    assert all(any("missing" in x for x in records[k].diagnoses) for k in ("Q[1]", "Q[2]"))
+    assert all(any("missing" in x for x in records[k].texts) for k in ("Q[1]", "Q[2]"))
 
 
 def test_engine_skips_h_of_a_lost_row(engine):

@@ -28,16 +28,16 @@ NAN_A33 = "ZZ1 + 2*I_a + log(2*phi) - log(phi) - log(2)"
 def test_atan2_phase_form_agrees_without_dimension_finding(engine, tmp_path):
     result = engine.compare(load_derivation(_planted(tmp_path, {("Q", 2): PHASE_Q3})))
     r = _records(result)["Q[3]"]
-    assert r.verdict == "agrees", r.diagnoses
-    assert not any(x.startswith("dimension") for x in r.diagnoses), r.diagnoses
+    assert r.verdict == "agrees", r.texts
+    assert not any(x.startswith("dimension") for x in r.texts), r.texts
     _others_agree(result, set())
 
 
 def test_non_finite_element_is_undecided(engine, tmp_path):
     result = engine.compare(load_derivation(_planted(tmp_path, {("A", 2, 2): NAN_A33})))
     r = _records(result)["A[3,3]"]
-    assert r.verdict == "undecided", (r.verdict, r.diagnoses)
-    assert r.diagnoses[0].startswith("undecided: the document's values are not finite")
+    assert r.verdict == "undecided", (r.verdict, r.texts)
+    assert r.texts[0].startswith("undecided: the document's values are not finite")
     assert result.counts()["undecided"] >= 1 and result.counts()["agrees"] < len(result.records)
 
 

@@ -83,7 +83,7 @@ def test_overflow_prints_no_runtime_warning(compared, case):
 
 
 def test_document_functions_give_inf_without_a_warning(tmp_path):
-    from wheeled_dyn.compare.sides.evaluate import DocumentFunctions
+    from wheeled_dyn.compare.sides.document import DocumentFunctions
     from wheeled_dyn.derivations import load_derivation
     d = load_derivation(_mutated(tmp_path, "matrix"))
     funcs = DocumentFunctions(d, d.A, d.C, d.Q, None, None, None)

@@ -123,7 +123,7 @@ def _records(result: DerivationResult) -> dict:
 
 
 def _others_agree(result: DerivationResult, expected: set[str]) -> None:
-    wrong = [(r.element, r.verdict, r.diagnoses) for r in result.records
+    wrong = [(r.element, r.verdict, r.texts) for r in result.records
              if r.element not in expected and r.verdict != "agrees"]
     assert not wrong, f"elements other than {sorted(expected)} do not agree: {wrong}"
     assert result.row_factors == (None, None, None), result.row_factors
@@ -173,8 +173,8 @@ def test_planted_error_is_named(engine, tmp_path, changes, expected, conserves, 
     records = _records(result)
     for element, (verdict, prefix) in expected.items():
         r = records[element]
-        assert r.verdict == verdict, (element, r.verdict, r.diagnoses)
-        assert any(x.startswith(prefix) for x in r.diagnoses), (element, r.diagnoses)
+        assert r.verdict == verdict, (element, r.verdict, r.texts)
+        assert any(x.startswith(prefix) for x in r.texts), (element, r.texts)
     _others_agree(result, set(expected))
     assert result.energy is not None and result.energy.conserves is conserves, result.energy
     assert result.asymmetric == asymmetric
@@ -186,9 +186,9 @@ def test_planted_swap_in_h_is_paired(engine, tmp_path):
     result = engine.compare(load_derivation(_planted(
         tmp_path, {("C", 0, 1): "dphi*(MY1*sin(phi) - MX1*cos(phi))"})))
     records = _records(result)
-    assert "swap: written as dpsi*dphi in the document" in records["h[1]:dpsi*dpsi"].diagnoses
+    assert "swap: written as dpsi*dphi in the document" in records["h[1]:dpsi*dpsi"].texts
     assert ("swap: the document's dpsi*dphi term is the true dpsi*dpsi term"
-            in records["h[1]:dpsi*dphi"].diagnoses)
+            in records["h[1]:dpsi*dphi"].texts)
 
 
 MISSING_TERM = {("A", 1, 1): "2*m_C*L**2 + 2*Iw3*L**2/R**2 + 2*I_a*L**2/R**2 "
@@ -206,8 +206,8 @@ def test_planted_missing_term_differs_alone(engine, tmp_path):
 def test_planted_missing_term_is_named(engine, tmp_path):
     result = engine.compare(load_derivation(_planted(tmp_path, MISSING_TERM)))
     r = _records(result)["A[2,2]"]
-    named = " ".join(r.diagnoses) + " " + (r.residual or "")
-    assert "Iw2" in named, (r.diagnoses, r.residual)
+    named = " ".join(r.texts) + " " + (r.residual or "")
+    assert "Iw2" in named, (r.texts, r.residual)
 
 
 def test_undeclared_row_factor_is_a_row_factor(engine, tmp_path):
@@ -220,6 +220,6 @@ def test_undeclared_row_factor_is_a_row_factor(engine, tmp_path):
     changes[("Q", 1)] = "-(0)"
     result = engine.compare(load_derivation(_planted(tmp_path, changes)))
     assert result.row_factors == (None, "-1", None)
-    wrong = [(r.element, r.verdict, r.diagnoses) for r in result.records if r.verdict != "agrees"]
+    wrong = [(r.element, r.verdict, r.texts) for r in result.records if r.verdict != "agrees"]
     assert not wrong, wrong
     assert result.energy.conserves and result.asymmetric == ()

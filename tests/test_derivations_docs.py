@@ -64,7 +64,7 @@ def test_the_newton_euler_example_is_judged_right(tmp_path):
         assert len(records) == 3
         assert {e for e, r in records.items() if r.verdict != "agrees"} == wrong
         if wrong:
-            assert any("term F_y: sign" in x for x in records[next(iter(wrong))].diagnoses)
+            assert any("term F_y: sign" in x for x in records[next(iter(wrong))].texts)
 
 
 def test_steps_accept_latex(tmp_path):

@@ -9,8 +9,8 @@ import sympy as sp
 
 from conftest import SEED
 from wheeled_dyn.compare.judge.diagnose import agrees, swap_diagnoses
-from wheeled_dyn.compare.sides.elements import ROW_FACTOR_SPREAD, ROW_FACTORS, row_factors
-from wheeled_dyn.compare.sides.evaluate import Arrays
+from wheeled_dyn.compare.readings.row_factors import ROW_FACTOR_SPREAD, ROW_FACTORS, row_factors
+from wheeled_dyn.compare.grid.arrays import Arrays
 
 #: Samples, rows, inputs and random cases of the row-factor check.
 N, ROWS, INPUTS, CASES = 40, 4, 2, 60
@@ -86,7 +86,8 @@ def test_a_screened_swap_diagnosis_is_the_full_one():
 
     rows = np.array([0, 100, 400])
     full = swap_diagnoses(expr, [[a, b, c]], evaluate, T, scale)
-    assert full == ["swap: b where c fits"]
+    assert [d.text for d in full] == ["swap: b where c fits"]
+    assert (full[0].kind, full[0].written, full[0].fits) == ("swap", "b", "c")
     evaluated = len(calls)
     calls.clear()
     screened = swap_diagnoses(expr, [[a, b, c]], evaluate, T, scale,

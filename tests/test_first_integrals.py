@@ -48,13 +48,13 @@ def test_printed_integrals_agree_except_3_13(as_printed):
     assert set(as_printed) >= {"(3.13)", "(3.14)", "stability, first integral 1"}
     for equation, r in as_printed.items():
         if equation != "(3.13)":
-            assert r.verdict == "agrees", (equation, r.diagnoses)
+            assert r.verdict == "agrees", (equation, r.texts)
 
 
 def test_3_13_as_printed_differs_by_its_units(as_printed):
     r = as_printed["(3.13)"]
     assert r.verdict == "differs"
-    assert any(x.startswith("dimension") and "k**3" in x for x in r.diagnoses), r.diagnoses
+    assert any(x.startswith("dimension") and "k**3" in x for x in r.texts), r.texts
 
 
 def test_3_13_with_k_squared_agrees(tmp_path):

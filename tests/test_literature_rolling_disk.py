@@ -30,7 +30,8 @@ import sympy as sp
 from conftest import SEED
 from shipped_copies import rewritten_copy
 from wheeled_dyn.compare.engine import ComparisonEngine
-from wheeled_dyn.compare.sides.evaluate import derivation_coordinate_set, model_value
+from wheeled_dyn.compare.grid.grid import derivation_coordinate_set
+from wheeled_dyn.compare.sides.document import model_value
 from wheeled_dyn.compare.grid.samples import ParameterSet, namespace_values
 from wheeled_dyn.constraints import CoordinateMap
 from wheeled_dyn.derivations import builtin_derivations, builtin_groups, load_derivation
@@ -99,7 +100,7 @@ def _verdicts(result) -> dict[str, str]:
 def _assert_all_agree(result):
     assert {r.element for r in result.records if r.key in EOM_KEYS} == EOM_ELEMENTS
     assert {STEP.format(k) for k in (1, 2, 3)} <= set(_verdicts(result))
-    bad = {r.element: (r.verdict, r.diagnoses) for r in result.records if r.verdict != "agrees"}
+    bad = {r.element: (r.verdict, r.texts) for r in result.records if r.verdict != "agrees"}
     assert not bad, bad
     # under the file's own reading of its maps: no other sign convention was needed
     assert result.conventions.best is None
@@ -182,7 +183,7 @@ def test_a_planted_error_differs_alone(tmp_path, as_written, old, new, element, 
     assert result.conventions.best is None
     if diagnosis is not None:
         record = next(r for r in result.records if r.element == element)
-        assert any(x.startswith(diagnosis) for x in record.diagnoses), record.diagnoses
+        assert any(x.startswith(diagnosis) for x in record.texts), record.texts
 
 
 @pytest.mark.parametrize("replacements", [

@@ -57,7 +57,7 @@ def test_printed_vehicle_balances_agree_and_v_hl_differs(tmp_path):
     verdicts = {e: r.verdict for e, r in records.items()}
     assert verdicts.pop("2.7 (b) left wheel v_hl") == "differs"
     # v_hl is printed with v_hr's -(w/2) theta' sin(theta): the left wheel's is +
-    assert records["2.7 (b) left wheel v_hl"].diagnoses == (
+    assert records["2.7 (b) left wheel v_hl"].texts == (
         "term dtheta: sign: the term -w*sin(theta)/2 has the wrong sign",)
     assert len(verdicts) == 6 and set(verdicts.values()) == {"agrees"}, verdicts
 
@@ -75,7 +75,7 @@ def test_planted_vehicle_errors_are_named(tmp_path, old, new, element, expected)
     records = _balances(_copy(tmp_path, VEHICLE, (old, new)))
     r = records[element]
     assert r.verdict == "differs"
-    assert any(x.startswith(expected) for x in r.diagnoses), r.diagnoses
+    assert any(x.startswith(expected) for x in r.texts), r.texts
     others = [e for e, x in records.items() if x.verdict != "agrees"]
     assert sorted(others) == sorted({element, "2.7 (b) left wheel v_hl"})
 
@@ -84,7 +84,7 @@ def test_swapped_moment_arms_are_named_together(tmp_path):
     r = _balances(_copy(tmp_path, PENDULUM, (
         ARM_3, "-F_x*a*sin(theta) - F_y*a*cos(theta) = I_g*ddtheta")))["2.6 (a) newton-euler (3)"]
     assert r.verdict == "differs"
-    assert any(x.startswith("term F_x and term F_y") for x in r.diagnoses), r.diagnoses
+    assert any(x.startswith("term F_x and term F_y") for x in r.texts), r.texts
 
 
 def test_a_dropped_velocity_term_is_named(tmp_path):
@@ -92,7 +92,7 @@ def test_a_dropped_velocity_term_is_named(tmp_path):
         "a*ddtheta*cos(theta) - a*dtheta**2*sin(theta))", "a*ddtheta*cos(theta))"
     )))["2.6 (a) newton-euler (1)"]
     assert r.verdict == "differs"
-    assert any("without accelerations or forces" in x for x in r.diagnoses), r.diagnoses
+    assert any("without accelerations or forces" in x for x in r.texts), r.texts
 
 
 def test_correct_rewrites_agree(tmp_path):
@@ -128,9 +128,9 @@ def test_a_balance_along_the_body_axes(tmp_path):
         path = _copy(tmp_path, PENDULUM)
         path.write_text(path.read_text() + text)
         r = _balances(path)["rotated newton-euler relation 1"]
-        assert r.verdict == verdict, (frame, r.diagnoses)
+        assert r.verdict == verdict, (frame, r.texts)
         if verdict == "differs":
-            assert r.diagnoses[0].startswith("frame: it is a balance along the axes of body")
+            assert r.texts[0].startswith("frame: it is a balance along the axes of body")
 
 
 @pytest.mark.parametrize("old,new,item", [
@@ -194,8 +194,8 @@ def test_car_moment_equation_names_the_moved_arm(tmp_path):
     assert records["2.13 (c) newton-euler y"].verdict == "agrees"
     moment = records["2.13 (c) newton-euler moment"]
     assert moment.verdict == "differs"
-    named = {x.split(":")[0] for x in moment.diagnoses}
-    assert named == {"term F_xrf", "term F_xlf", "term F_xrr", "term F_xlr"}, moment.diagnoses
+    named = {x.split(":")[0] for x in moment.texts}
+    assert named == {"term F_xrf", "term F_xlf", "term F_xrr", "term F_xlr"}, moment.texts
     fixed = _balances(_copy(tmp_path, CAR, ("(F_xrr + F_xlr)*a*sin(delta)",
                                             "(F_xrf + F_xlf)*a*sin(delta)")))
     assert fixed["2.13 (c) newton-euler moment"].verdict == "agrees"
@@ -230,10 +230,10 @@ def test_rolling_eccentric_disk_with_contact_forces(tmp_path):
         "(1)-(3) newton-euler (3)"]
     assert moment.verdict == "differs"
     assert "swap: cos(theta) where sin(theta) fits in the term H*(R + a*cos(theta))" in \
-        moment.diagnoses, moment.diagnoses
+        moment.texts, moment.texts
     weight = _balances(_copy(tmp_path, DISK, ("N - m*g =", "N + m*g =")))["(1)-(3) newton-euler (2)"]
     assert weight.verdict == "differs"
-    assert weight.diagnoses[0].startswith("the terms without accelerations or forces")
+    assert weight.texts[0].startswith("the terms without accelerations or forces")
 
 
 def test_a_balance_not_finite_somewhere_is_undecided(tmp_path):
@@ -245,4 +245,4 @@ def test_a_balance_not_finite_somewhere_is_undecided(tmp_path):
     records = _balances(path)
     bad = [r for e, r in records.items() if e.startswith("2.6 (a)")]
     assert bad and all(r.verdict == "undecided" for r in bad)
-    assert all(r.diagnoses == ("not finite at some samples",) for r in bad)
+    assert all(r.texts == ("not finite at some samples",) for r in bad)

@@ -16,7 +16,7 @@ import pytest
 
 from conftest import SEED
 from wheeled_dyn.compare.engine import ComparisonEngine
-from wheeled_dyn.compare.sides.evaluate import Arrays
+from wheeled_dyn.compare.grid.arrays import Arrays
 from wheeled_dyn.compare.readings.row_combinations import combination
 from wheeled_dyn.derivations import load_derivation
 
@@ -63,7 +63,7 @@ def _compare(engine, tmp_path: Path, text: str):
 
 def test_moments_about_the_centre_of_mass_agree(engine, tmp_path):
     result = _compare(engine, tmp_path, FILE)
-    differ = [(r.element, r.diagnoses) for r in result.records if r.verdict != "agrees"]
+    differ = [(r.element, r.texts) for r in result.records if r.verdict != "agrees"]
     assert not differ, differ
     causes = [c.explanation for c in result.causes if c.kind == "convention"]
     assert any("equation 2 = H*eq1*cos(theta)/2 - eq2" in c for c in causes), causes

@@ -18,7 +18,7 @@ import sympy as sp
 from conftest import SEED
 from shipped_copies import rewritten_copy, shipped
 from wheeled_dyn.compare.engine import ComparisonEngine
-from wheeled_dyn.compare.readings.row_functions import fit_factor, fit_sum
+from wheeled_dyn.compare.judge.fitting import fit_factor, fit_sum
 from wheeled_dyn.derivations import builtin_derivations, load_derivation
 
 #: Engine grid.
@@ -54,7 +54,7 @@ def _convention(result) -> str:
 def test_a_divided_equation_agrees_and_its_factor_is_named(engine, tmp_path, stem, printed,
                                                            rewritten, factor):
     result = engine.compare(load_derivation(_rewritten(tmp_path, stem, printed, rewritten)))
-    differ = [(r.element, r.diagnoses) for r in result.records if r.verdict == "differs"]
+    differ = [(r.element, r.texts) for r in result.records if r.verdict == "differs"]
     assert not differ, differ
     assert factor in _convention(result), _convention(result)
 
@@ -65,7 +65,7 @@ def test_an_error_in_a_divided_equation_is_still_named(engine, tmp_path):
     path = _rewritten(tmp_path, "p4_6_spring_particle", "ddtheta + 2*dr/r*dtheta = 0",
                       "ddtheta + dr/r*dtheta = 0")
     result = engine.compare(load_derivation(path))
-    differ = {r.element: r.diagnoses for r in result.records
+    differ = {r.element: r.texts for r in result.records
               if r.verdict == "differs" and r.key in ("A", "Q", "h")}
     assert set(differ) == {"h[1]:dtheta*dr"}, differ
     assert any("factor" in x and "1/2" in x for x in differ["h[1]:dtheta*dr"]), differ

@@ -11,9 +11,10 @@ import pytest
 from conftest import SEED
 from wheeled_dyn.compare.readings.signs import flip_arrays, readings
 from wheeled_dyn.compare.judge.diagnose import agrees
-from wheeled_dyn.compare.sides.elements import (apply_row_factors, element_values, row_factors,
-                                          row_scales)
+from wheeled_dyn.compare.readings.row_factors import apply_row_factors, row_factors, row_scales
+from wheeled_dyn.compare.sides.elements import element_values
 from wheeled_dyn.compare.engine import ComparisonEngine
+from wheeled_dyn.compare.engine.conventions import search_evaluation
 from wheeled_dyn.derivations import builtin_derivations, load_derivation
 
 #: Readings (sign patterns) scored per file.
@@ -25,7 +26,7 @@ READINGS = 8
                                          ("seed000", "p4_9_pendulum_support")])
 def test_score_counts_what_element_by_element_counts(group, stem):
     d = load_derivation(next(p for p in builtin_derivations(group) if p.stem == stem))
-    _, ev = ComparisonEngine(samples=60, param_sets=2, seed=SEED)._judge(d)
+    ev = search_evaluation(ComparisonEngine(samples=60, param_sets=2, seed=SEED).judge(d))
     n = ev.q.shape[1]
     _, truth, B_true = ev._subset()
     counts = set()
@@ -49,7 +50,7 @@ def test_readings_scored_together_score_as_each_alone(group, stem):
     positions together (what they share found once): the same numbers as scoring each
     reading's arrays on their own."""
     d = load_derivation(next(p for p in builtin_derivations(group) if p.stem == stem))
-    _, ev = ComparisonEngine(samples=60, param_sets=2, seed=SEED)._judge(d)
+    ev = search_evaluation(ComparisonEngine(samples=60, param_sets=2, seed=SEED).judge(d))
     options = readings(d)
     if not options:
         pytest.skip(f"{stem}: no readings to search")

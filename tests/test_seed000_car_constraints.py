@@ -212,13 +212,13 @@ def test_every_printed_relation_is_judged_as_the_hand_check_says(shipped):
 def test_diagnoses_name_the_wrong_terms(shipped):
     for element in ("1.12 wheel 1 side slip", "1.12 wheel 2 side slip"):
         assert "term dtheta: sign: the document has the opposite sign" in \
-            shipped[element].diagnoses
+            shipped[element].texts
     # printed "- W/2 theta' sin(delta)" where the wheel at y = +W/2 has "+": that part's sign
-    assert shipped["1.12 wheel 3 side slip"].diagnoses == (
+    assert shipped["1.12 wheel 3 side slip"].texts == (
         "term dtheta: sign: the term -W*sin(delta)/2 has the wrong sign",)
-    assert {d.split(":")[0] for d in shipped["1.11 wheel 3 side slip"].diagnoses} == \
+    assert {d.split(":")[0] for d in shipped["1.11 wheel 3 side slip"].texts} == \
         {"term dX", "term dY", "term dtheta"}
-    second = shipped["1.12 wheel 2, second form side slip"].diagnoses
+    second = shipped["1.12 wheel 2, second form side slip"].texts
     assert "term dY: missing: the document has 0" in second
     for r in shipped.values():
         assert r.step == "velocity" and r.equation in ("1.11", "1.12")
@@ -241,7 +241,7 @@ def test_sin_written_for_cos_in_a_right_relation_differs(tmp_path):
     r = records["1.11 wheel 4 side slip"]
     assert r.verdict == "differs"
     assert any(x.startswith("swap: sin(delta) where cos(delta) fits in the term")
-               for x in r.diagnoses), r.diagnoses
+               for x in r.texts), r.texts
     assert records["1.11 wheel 1 side slip"].verdict == "agrees"
 
 
@@ -249,8 +249,8 @@ def test_wrong_moment_arm_differs_and_is_named(tmp_path):
     records = _planted(tmp_path, WHEEL1, WHEEL1.replace("b*dtheta", "a*dtheta"))
     r = records["1.11 wheel 1 side slip"]
     assert r.verdict == "differs"
-    assert "swap: a where b fits" in r.diagnoses
-    assert any(x.startswith("term dtheta: factor") for x in r.diagnoses)
+    assert "swap: a where b fits" in r.texts
+    assert any(x.startswith("term dtheta: factor") for x in r.texts)
 
 
 def test_right_relation_reordered_agrees(tmp_path):
@@ -267,8 +267,8 @@ def test_right_relation_multiplied_through_is_named_as_a_factor(tmp_path):
               '*sin(delta))"]')
     r = _planted(tmp_path, WHEEL4, scaled)["1.11 wheel 4 side slip"]
     assert r.verdict == "differs"
-    assert r.diagnoses[0] == "factor: the document is -2 × the truth"
-    assert all("factor" in x for x in r.diagnoses)
+    assert r.texts[0] == "factor: the document is -2 × the truth"
+    assert all("factor" in x for x in r.texts)
 
 
 def _as_constraints(tmp_path):
@@ -298,4 +298,4 @@ def test_all_four_wheels_at_once_leave_nothing_to_check(tmp_path):
     "undecided" (with the reason), not one computed on rounding noise."""
     records = _as_constraints(tmp_path)
     assert records and all(r.verdict == "undecided" for r in records.values())
-    assert all("nothing to check" in r.diagnoses[0] for r in records.values())
+    assert all("nothing to check" in r.texts[0] for r in records.values())

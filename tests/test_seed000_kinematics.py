@@ -42,6 +42,6 @@ def test_a_flipped_rotation_term_names_its_products(tmp_path, new, element, term
     records = _records(tmp_path, new)
     r = records[element]
     assert r.verdict == "differs"
-    named = {x.split(":")[0].removeprefix("term ") for x in r.diagnoses}
-    assert terms <= named, r.diagnoses
+    named = {x.split(":")[0].removeprefix("term ") for x in r.texts}
+    assert terms <= named, r.texts
     assert [e for e, x in records.items() if x.verdict != "agrees"] == [element]

@@ -110,7 +110,7 @@ def test_eq17_comparison_is_not_vacuous(tmp_path):
     (r,) = [r for r in compare_steps(load_derivation(path), SEED)
             if r.equation == "(17)" and "E1" in r.element]
     assert r.verdict == "differs"
-    assert any(x.startswith(("term dx*dpsi", "term dpsi*dx")) for x in r.diagnoses)
+    assert any(x.startswith(("term dx*dpsi", "term dpsi*dx")) for x in r.texts)
 
 
 def _u1_record(tmp_path, value: str):
@@ -159,12 +159,12 @@ def test_wheel_energies_differ_by_the_printed_L_over_2(s4, equation, label, body
     assert s.bodies == (body,) and s.kind == "kinetic energy"
     r = _by_equation(records, equation)[f"{equation} {label} value"]
     assert r.verdict == "differs"
-    assert "term dx*dpsi: factor: the document is 1/2 × the truth" in r.diagnoses
-    assert any(x.startswith("term dpsi*dpsi") for x in r.diagnoses)
-    assert not any(x.startswith("term dx*dx") for x in r.diagnoses)     # x-dot alone is right
+    assert "term dx*dpsi: factor: the document is 1/2 × the truth" in r.texts
+    assert any(x.startswith("term dpsi*dpsi") for x in r.texts)
+    assert not any(x.startswith("term dx*dx") for x in r.texts)     # x-dot alone is right
     for e, rec in _by_equation(records, equation).items():
         if rec.step in ("velocity", "angular velocity") and rec.verdict == "differs":
-            assert rec.diagnoses == ("term dpsi: factor: the document is 1/2 × the truth",), e
+            assert rec.texts == ("term dpsi: factor: the document is 1/2 × the truth",), e
     # by hand, in the document's symbols (wheel axisymmetric, centred: only YYw, ZZw, Mw)
     dx, dpsi, L, R, Mw, YYw, ZZw = (d.symbol(n) for n in ("dx", "dpsi", "L", "R", "Mw", "YYw",
                                                            "ZZw"))
@@ -199,7 +199,7 @@ def test_wheel_energy_without_its_translation_term_differs(tmp_path):
     records = _copy_records(tmp_path, wrong)
     r = _by_equation(records, "(18)")["(18) E_L value"]
     assert r.verdict == "differs"
-    assert {x.split(":")[0] for x in r.diagnoses if x.startswith("term ")} == \
+    assert {x.split(":")[0] for x in r.texts if x.startswith("term ")} == \
         {"term dx*dx", "term dx*dpsi", "term dpsi*dpsi"}
     assert _by_equation(records, "(19)")["(19) E_R value"].verdict == "agrees"
 
@@ -223,7 +223,7 @@ def test_eq15_angular_velocity_with_the_pitch_rate_differs(tmp_path):
     got = _by_equation(_copy_records(tmp_path, wrong), "(15)")
     assert [got[f"(15) 0w0 {n}"].verdict for n in ("x0", "y0", "z0")] == \
         ["agrees", "agrees", "differs"]
-    assert "term dphi: extra term: the truth is 0" in got["(15) 0w0 z0"].diagnoses
+    assert "term dphi: extra term: the truth is 0" in got["(15) 0w0 z0"].texts
 
 
 _HEADING_STEPS = """
@@ -258,9 +258,9 @@ def test_heading_frame_origin_and_points(tmp_path):
                           "s4_heading_wrong_steps.toml")
     got = {r.element: r for r in wrong}
     assert got["(h) O x"].verdict == "differs"
-    assert "term dpsi: extra term: the truth is 0" in got["(h) O x"].diagnoses
+    assert "term dpsi: extra term: the truth is 0" in got["(h) O x"].texts
     assert got["(h) axle y"].verdict == "differs"
-    assert "term dx*dpsi: missing: the document has 0" in got["(h) axle y"].diagnoses
+    assert "term dx*dpsi: missing: the document has 0" in got["(h) axle y"].texts
 
 
 @pytest.mark.parametrize("step, item", [
@@ -302,11 +302,11 @@ def test_eq64_acceleration_formula_agrees_but_65_differs(s7):
                                           "(64) a_B k": "agrees"}
     j = _by_equation(records, "(65)")["(65) a_B j"]
     assert j.verdict == "differs"
-    assert "term dx*dpsi: missing: the document has 0" in j.diagnoses
-    assert "term dpsi*dphi: factor: the document is 1/2 × the truth" in j.diagnoses
+    assert "term dx*dpsi: missing: the document has 0" in j.texts
+    assert "term dpsi*dphi: factor: the document is 1/2 × the truth" in j.texts
     alpha = _by_equation(records, "(61)")
     assert alpha["(61) alpha_B i"].verdict == "differs"
-    assert "term dpsi*dphi: missing: the document has 0" in alpha["(61) alpha_B i"].diagnoses
+    assert "term dpsi*dphi: missing: the document has 0" in alpha["(61) alpha_B i"].texts
 
 
 def test_65_is_64_worked_out_with_61_and_a_fixed_heading(s7):
@@ -331,7 +331,7 @@ def test_eq64_comparison_is_not_vacuous(tmp_path):
     got = _by_equation(compare_steps(load_derivation(path), SEED), "(64)")
     assert [got[f"(64) a_B {n}"].verdict for n in "ijk"] == ["agrees", "differs", "agrees"]
     assert ("term dpsi*dphi: factor: the document is 1/2 × the truth"
-            in got["(64) a_B j"].diagnoses)
+            in got["(64) a_B j"].texts)
 
 
 @pytest.mark.parametrize("formula, result, wheel", [("(66)", "(67)", "a_L"),
@@ -346,7 +346,7 @@ def test_wheel_acceleration_formulas_agree_but_67_69_differ(s7, formula, result,
     printed = _by_equation(records, result)
     assert [printed[f"{result} {wheel} {n}"].verdict for n in "ijk"] == \
         ["agrees", "differs", "agrees"]
-    assert printed[f"{result} {wheel} j"].diagnoses == ("term dx*dpsi: missing: the document has 0",)
+    assert printed[f"{result} {wheel} j"].texts == ("term dx*dpsi: missing: the document has 0",)
 
 
 def test_potential_energy_with_a_wrong_term_differs(tmp_path):
@@ -361,14 +361,14 @@ def test_a_swap_in_a_potential_energy_is_named(tmp_path):
     r = _u1_record(tmp_path, "g*(MX1*cos(phi) + MY1*sin(phi))")
     assert r.verdict == "differs"
     assert any(x.startswith("swap:") and "sin(phi)" in x and "cos(phi)" in x
-               for x in r.diagnoses), r.diagnoses
+               for x in r.texts), r.texts
 
 
 def test_shipped_u1_agrees():
     r"""The shipped step file compares U1 of (17) as well: it agrees up to a constant."""
     records = compare_steps(load_derivation(S4), SEED)
     (u1,) = [r for r in records if r.equation == "(17)" and "U1" in r.element]
-    assert u1.verdict == "agrees", u1.diagnoses
+    assert u1.verdict == "agrees", u1.texts
 
 
 def test_eq15_gravity_and_orientation_of_frame_1_agree(s4):
@@ -390,7 +390,7 @@ def test_eq15_planted_sign_in_0A1_or_0g_is_named(tmp_path, old, new, element):
     assert text.count(old) == 1
     records = {r.element: r for r in _copy_records(tmp_path, text.replace(old, new))}
     r = records[element]
-    assert r.verdict == "differs" and r.diagnoses[0].startswith("sign"), r.diagnoses
+    assert r.verdict == "differs" and r.texts[0].startswith("sign"), r.texts
     others = [e for e, x in records.items() if e.startswith("(15)") and x.verdict != "agrees"]
     assert others == [element]
 

@@ -157,7 +157,7 @@ def test_seed000_4_6_agrees(engine):
     a factor the comparison finds: tests/test_row_functions.py)."""
     result = engine.compare(load_derivation(_seed_file()))
     assert result.records and all(r.verdict == "agrees" for r in result.records), \
-        [(r.element, r.verdict, r.diagnoses) for r in result.records if r.verdict != "agrees"]
+        [(r.element, r.verdict, r.texts) for r in result.records if r.verdict != "agrees"]
 
 
 @pytest.mark.parametrize("printed, planted, named", [
@@ -176,7 +176,7 @@ def test_planted_spring_errors_are_named(engine, tmp_path, printed, planted, nam
 
 def _verdicts(engine, path: Path) -> dict[str, tuple[str, tuple[str, ...]]]:
     result = engine.compare(load_derivation(path))
-    return {r.element: (r.verdict, r.diagnoses) for r in result.records}
+    return {r.element: (r.verdict, r.texts) for r in result.records}
 
 
 def test_seed000_2_19_small_motions(engine):

@@ -49,41 +49,41 @@ def _result(path):
 @pytest.mark.parametrize("name", [ROD, FLYWHEEL])
 def test_printed_results_agree(tmp_path, name):
     r = _result(_copy(tmp_path, name))
-    assert r.verdict == "agrees", r.diagnoses
+    assert r.verdict == "agrees", r.texts
     assert r.equation in ("4.4", "4.17 (d)")
 
 
 def test_wrong_factor_is_named(tmp_path):
     r = _result(_copy(tmp_path, ROD, ('value = "sqrt(3*g/(2*l))"', 'value = "sqrt(3*g/l)"')))
     assert r.verdict == "differs"
-    assert any("factor" in x and "1.414" in x for x in r.diagnoses), r.diagnoses
-    assert any("its square is 2" in x for x in r.diagnoses), r.diagnoses
+    assert any("factor" in x and "1.414" in x for x in r.texts), r.texts
+    assert any("its square is 2" in x for x in r.texts), r.texts
 
 
 def test_lost_length_is_a_dimension_error(tmp_path):
     r = _result(_copy(tmp_path, FLYWHEEL, ('value = "sqrt(3*g/(2*L))"', 'value = "sqrt(3*g/2)"')))
     assert r.verdict == "differs"
-    assert any(x.startswith("dimension") and "m^1/2" in x for x in r.diagnoses), r.diagnoses
+    assert any(x.startswith("dimension") and "m^1/2" in x for x in r.texts), r.texts
 
 
 @pytest.mark.parametrize("name", [ROD, FLYWHEEL])
 def test_a_state_that_is_not_steady_is_undecided(tmp_path, name):
     r = _result(_copy(tmp_path, name, ('about = { theta = "0" }', 'about = { theta = "1" }')))
     assert r.verdict == "undecided"
-    assert "not steady" in r.diagnoses[0]
+    assert "not steady" in r.texts[0]
 
 
 def test_the_upright_rod_does_not_oscillate(tmp_path):
     r = _result(_copy(tmp_path, ROD, ('about = { theta = "0" }', 'about = { theta = "pi" }')))
     assert r.verdict == "differs"
-    assert "does not oscillate" in r.diagnoses[0]
+    assert "does not oscillate" in r.texts[0]
 
 
 def test_a_speed_that_changes_nothing_differs(tmp_path):
     r"""Upside down (θ = π) the rod is unstable at every flywheel rate: no critical speed."""
     r = _result(_copy(tmp_path, FLYWHEEL, ('about = { theta = "0" }', 'about = { theta = "pi" }')))
     assert r.verdict == "differs"
-    assert "does not change" in r.diagnoses[0] and "unstable throughout" in r.diagnoses[0]
+    assert "does not change" in r.texts[0] and "unstable throughout" in r.texts[0]
 
 
 @pytest.mark.parametrize("old,new,item", [
@@ -156,7 +156,7 @@ def test_4_17_stability_claims(tmp_path):
     records = _claims(tmp_path)
     hanging = records["4.17 (d) theta_0 = 0 (stable) claim"]
     assert hanging.verdict == "differs"
-    assert hanging.diagnoses[0].startswith("unstable for dphi from"), hanging.diagnoses
+    assert hanging.texts[0].startswith("unstable for dphi from"), hanging.texts
     assert records["4.17 (d) theta_0 = N pi (unstable), N = 1 claim"].verdict == "agrees"
 
 
@@ -173,7 +173,7 @@ def test_a_claim_at_one_state(tmp_path, new, verdict, said):
     at rest is stable (agrees), so "unstable" there differs."""
     record = _claims(tmp_path, (STABLE_AT_0, new))["4.17 (d) theta_0 = 0 (stable) claim"]
     assert record.verdict == verdict
-    assert said is None or record.diagnoses[0].startswith(said)
+    assert said is None or record.texts[0].startswith(said)
 
 
 @pytest.mark.parametrize("old,new,item", [
@@ -209,6 +209,6 @@ def test_7_7_steady_precession(tmp_path, new, verdict):
     result = ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED).compare(
         load_derivation(path))
     (record,) = [r for r in result.records if r.step == "steady motion"]
-    assert record.verdict == verdict, record.diagnoses
+    assert record.verdict == verdict, record.texts
     if verdict == "differs":
-        assert record.diagnoses[0].startswith("the stated state is not steady")
+        assert record.texts[0].startswith("the stated state is not steady")

@@ -102,7 +102,7 @@ def test_right_kinematics_in_other_forms_agree(tmp_path):
                     frame="world"))
     records = _records(tmp_path, body)
     assert len(records) == 7 * 3
-    assert set(_verdicts(records)) == {"agrees"}, [(r.element, r.diagnoses) for r in records
+    assert set(_verdicts(records)) == {"agrees"}, [(r.element, r.texts) for r in records
                                                    if r.verdict != "agrees"]
     assert {r.step for r in records} == {"velocity", "angular velocity", "acceleration"}
     assert {r.equation for r in records} == {"(1)"}
@@ -112,7 +112,7 @@ def test_wrong_velocity_component_is_named(tmp_path):
     wrong = ["dx + L*dpsi", "0", "0"]                      # the right wheel's, for the left
     records = _records(tmp_path, _step("velocity", wrong, body="wheel_left", frame="heading"))
     assert _verdicts(records) == ["differs", "agrees", "agrees"]
-    assert "term dpsi: sign: the document has the opposite sign" in records[0].diagnoses
+    assert "term dpsi: sign: the document has the opposite sign" in records[0].texts
 
 
 def test_missing_acceleration_term_is_named(tmp_path):
@@ -120,7 +120,7 @@ def test_missing_acceleration_term_is_named(tmp_path):
     records = _records(tmp_path, _step("acceleration", wrong, body="body", point="com",
                                        frame="heading", given=["com_on_axis"]))
     assert _verdicts(records) == ["agrees", "differs", "agrees"]
-    assert "term dx*dpsi: missing: the document has 0" in records[1].diagnoses
+    assert "term dx*dpsi: missing: the document has 0" in records[1].texts
 
 
 def test_wrong_moment_arm_is_named(tmp_path):
@@ -133,7 +133,7 @@ def test_wrong_moment_arm_is_named(tmp_path):
                                given=["com_on_axis"]))
     assert _verdicts(records[:3]) == ["agrees"] * 3
     assert _verdicts(records[3:]) == ["differs"] * 3
-    assert all("swap: L where d fits" in r.diagnoses for r in records[3:])
+    assert all("swap: L where d fits" in r.texts for r in records[3:])
 
 
 def test_agrees_only_if_a_special_family(tmp_path):
@@ -142,7 +142,7 @@ def test_agrees_only_if_a_special_family(tmp_path):
     records = _records(tmp_path, _step("velocity", right, body="body", point="com",
                                        frame="heading"))
     assert all(r.verdict == "agrees_if" for r in records[:2])
-    assert "centre of mass is straight above the axle" in records[0].diagnoses[0]
+    assert "centre of mass is straight above the axle" in records[0].texts[0]
 
 
 # -- energies -----------------------------------------------------------------------------------
@@ -157,8 +157,8 @@ def test_energy_right_rewritten_and_dropped_term(tmp_path):
                    for t in (T_WHEEL, rewritten, dropped))
     records = _records(tmp_path, body)
     assert _verdicts(records) == ["agrees", "agrees", "differs"]
-    assert any(x.startswith("term dpsi*dpsi") for x in records[2].diagnoses)
-    assert not any(x.startswith(("term dx*dx", "term dx*dpsi")) for x in records[2].diagnoses)
+    assert any(x.startswith("term dpsi*dpsi") for x in records[2].texts)
+    assert not any(x.startswith(("term dx*dx", "term dx*dpsi")) for x in records[2].texts)
 
 
 def test_a_against_the_hessian_of_its_own_energy(tmp_path):
@@ -194,7 +194,7 @@ def test_constraints_right_rewritten_and_sin_for_cos(tmp_path):
     body = "".join(_step("constraint", c) for c in (RIGHT_CONSTRAINTS, rewritten, wrong))
     records = _records(tmp_path, body, WHEELS)
     assert _verdicts(records) == ["agrees"] * 5 + ["differs"]
-    assert any("sin(psi) and cos(psi) exchanged" in x for x in records[5].diagnoses)
+    assert any("sin(psi) and cos(psi) exchanged" in x for x in records[5].texts)
     assert records[5].step == "constraint"
 
 
@@ -203,7 +203,7 @@ def test_claimed_relation_between_coordinates(tmp_path):
             + _step("claim", ["psi = R/L*(theta_l - theta_r)"]))       # seed 001, section 5
     records = _records(tmp_path, body, WHEELS)
     assert _verdicts(records) == ["agrees", "differs"]
-    (why,) = records[1].diagnoses
+    (why,) = records[1].texts
     assert "-2 ×" in why and "true: psi = -R*(theta_l - theta_r)/(2*L)" in why
 
 
@@ -212,8 +212,8 @@ def test_claim_between_parameters_power_and_dimension(tmp_path):
                  given=["disc_wheels"])
     records = _records(tmp_path, body)
     assert _verdicts(records) == ["agrees", "agrees", "differs"]
-    assert "power: R**(-2) where R**2 fits" in records[2].diagnoses
-    assert any(x.startswith("dimension") for x in records[2].diagnoses)
+    assert "power: R**(-2) where R**2 fits" in records[2].texts
+    assert any(x.startswith("dimension") for x in records[2].texts)
 
 
 def test_generalized_inertia_forces_planted_factor(tmp_path):
@@ -226,7 +226,7 @@ def test_generalized_inertia_forces_planted_factor(tmp_path):
                          given=["com_on_axis", "no_armature"]) for f in (right, halved))
     records = _records(tmp_path, body, header)
     assert _verdicts(records) == ["agrees", "differs"]
-    assert "term dpsi*dpsi: factor: the document is 1/2 × the truth" in records[1].diagnoses
+    assert "term dpsi*dpsi: factor: the document is 1/2 × the truth" in records[1].texts
 
 
 # -- the seed: where Kim et al.'s missing and halved terms enter -------------------------------
@@ -317,7 +317,7 @@ def test_linearised_equations_right_rewritten_and_planted_sign(tmp_path):
     body = body.replace("about_table = [True]", 'about = { p = "Omega" }\ngiven = ["urdf_structure"]')
     records = _records(tmp_path, body, head)
     assert _verdicts(records) == ["agrees", "agrees", "differs"]
-    assert "term q: sign: the document has the opposite sign" in records[2].diagnoses
+    assert "term q: sign: the document has the opposite sign" in records[2].texts
     assert records[2].step == "linearised equations"
 
 

@@ -43,7 +43,11 @@ from .steps import read_steps
 TOP_LEVEL_KEYS: tuple[str, ...] = ("title", "model", "source", "coordinates", "inputs",
                                    "symbols", "assume", "definitions", "rows", "matrices",
                                    "constraints", "reconstructed", "step", "feeds",
-                                   "assumes", "latex")
+                                   "assumes", "latex", "convention")
+#: Values of the top-level ``convention``: ``"declared"`` (the default: the file's maps are
+#: how the document is read, binding) or ``"unknown"`` (the document's sign conventions are
+#: not known: a better reading found by the comparison is applied, and said first).
+CONVENTIONS: tuple[str, ...] = ("declared", "unknown")
 #: Keys of ``[assumes]``: what the document assumes (see docs/derivation-format.md).
 ASSUMES_KEYS: tuple[str, ...] = ("families", "linearised_about", "potential", "text")
 SYMBOL_KEYS: tuple[str, ...] = ("value", "units", "meaning", "input", "free", "latex")
@@ -304,6 +308,11 @@ def load_derivation(path: str | Path, *, parameters: Collection[str] | None = No
                           src.line_of(None, key) or src.line_of(key))
     title, model = ld.text("title"), ld.text("model")
     model = resolve_model_reference(p, model, ld.line(None, "model"))
+    convention = data.get("convention", "declared")
+    if convention not in CONVENTIONS:
+        raise ld.fail("convention", "expected one of " + ", ".join(f'"{c}"' for c in
+                                                                    CONVENTIONS),
+                      ld.line(None, "convention"))
     source = ld.table("source")
     if not all(isinstance(v, str) for v in source.values()):
         raise ld.fail("source", "values are strings", ld.line("source"))
@@ -394,7 +403,7 @@ def load_derivation(path: str | Path, *, parameters: Collection[str] | None = No
         steps=read_steps(data.get("step"), src.lines, n,
                          lambda text, item: ld.expr(text, item, None, "step"), ld.fail),
         feeds=tuple(str(f) for f in data.get("feeds", ())), assumes=assumes,
-        latex_input=MappingProxyType(dict(ld.latex_input)))
+        latex_input=MappingProxyType(dict(ld.latex_input)), convention=convention)
 
 
 def _assumes(ld: "_Loader", positions: tuple) -> Mapping[str, Any]:

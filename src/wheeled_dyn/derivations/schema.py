@@ -135,6 +135,9 @@ class Derivation:
     #: (the LaTeX as written, the SymPy text it was parsed as), for a report to echo
     latex_input: Mapping[str, tuple[str, str]] = field(
         default_factory=lambda: MappingProxyType({}))
+    #: ``"declared"``: the file's maps are binding; ``"unknown"``: the document's sign
+    #: conventions are not known, a better reading found by the comparison is applied
+    convention: str = "declared"
 
     @property
     def form(self) -> str:

@@ -29,7 +29,7 @@ import latex2mathml.converter as latex2mathml
 import sympy as sp
 from latex2mathml.converter import convert
 
-from ..compare.records import DerivationResult, ElementRecord
+from ..compare.records import DerivationResult, DiagnosisKind, ElementRecord
 from ..disk_cache import DiskMemo
 from . import summary as S
 from .markdown import VERDICT_TEXT, check_lines
@@ -272,7 +272,7 @@ def _difference(r: ElementRecord, names: Notation) -> str:
 def _card(result: DerivationResult, r: ElementRecord, names: Notation) -> str:
     factor = result.row_factors[r.index[0]] if r.index and r.index[0] < len(result.row_factors) \
         else None
-    diags = [d for d in r.diagnoses if not d.startswith("truth − document")]
+    diags = [d.text for d in r.diagnoses if d.kind != DiagnosisKind.RESIDUAL]
     doc_latex = text_latex(r.document, names, r.document_latex)
     model = _divided(r.document_model, factor, names) if r.document_model else ""
     truth = _truth_latex(r, names)

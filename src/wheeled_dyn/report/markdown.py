@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from ..compare.records import DerivationResult, ElementRecord
+from ..compare.records import DerivationResult, DiagnosisKind, ElementRecord
 from . import summary as S
 from .symbols import derivation_notation, difference_latex, product_latex, text_latex
 
@@ -84,7 +84,7 @@ def _label(r: ElementRecord, names) -> str:
 
 
 def _row(result: DerivationResult, r: ElementRecord, names) -> str:
-    diag = "; ".join(d for d in r.diagnoses if not d.startswith("truth − document"))
+    diag = "; ".join(d.text for d in r.diagnoses if d.kind != DiagnosisKind.RESIDUAL)
     verdict = VERDICT_TEXT[r.verdict] + (f": {diag}" if diag else "")
     truth = text_latex(r.truth, names, r.truth_latex) if r.truth else ""
     truth = _math(truth) if truth else (f"{r.truth_sample:.4g} at the reference state "

@@ -20,7 +20,7 @@ import re
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
-from ..compare.records import DerivationResult, ElementRecord
+from ..compare.records import Diagnosis, DiagnosisKind as K, DerivationResult, ElementRecord
 from ..derivations.schema import equation_labels
 
 #: Words for the cause kinds of :data:`wheeled_dyn.compare.records.CAUSE_KINDS`.
@@ -35,7 +35,8 @@ KIND_TEXT = {
     "A not positive definite", "file_error": "error of the derivation file",
     # kinds of the grouping by diagnosis
     "extra": "extra term", "missing": "missing term", "factorization": "factorisation of C only",
-    "differs": "differs",
+    "differs": "differs", "point_mass": "a point mass", "not_equivalent": "not equivalent",
+    "undecided": "undecided",
 }
 #: Verdicts that are shown as findings (everything but "agrees").
 SHOWN_VERDICTS = ("differs", "factorization", "agrees_if", "undecided")
@@ -107,44 +108,54 @@ def equations(result: DerivationResult) -> str:
 
 
 
-def _diagnosis_kind(record: ElementRecord, diagnosis: str) -> str:
+def _diagnosis_kind(record: ElementRecord, diagnosis: Diagnosis | None) -> str:
     if record.verdict == "agrees_if":
         return "assumption"
     if record.verdict == "factorization":
         return "factorization"
-    head = diagnosis.split(":")[0].strip().split(" ")[0]
-    return {"missing": "missing", "extra": "extra", "dimension": "dimension", "sign": "sign",
-            "factor": "factor", "swap": "swap", "power": "power"}.get(head, "differs")
+    if diagnosis is None:
+        return "differs"
+    return {K.MISSING: "missing", K.EXTRA: "extra", K.DIMENSION: "dimension", K.SIGN: "sign",
+            K.FACTOR: "factor", K.SWAP: "swap", K.POWER: "power",
+            K.POINT_MASS: "point_mass"}.get(diagnosis.kind, "differs")
 
 
 def condition(record: ElementRecord) -> str:
     r"""The condition under which an "agrees only if" element agrees (its first such
     diagnosis), or its first diagnosis."""
-    return _group_sentence("assumption", _first_diagnosis(record)) \
-        if record.verdict == "agrees_if" else _first_diagnosis(record)
+    first = _first_diagnosis(record)
+    if record.verdict == "agrees_if":
+        return _group_sentence("assumption", first, record)
+    return first.text if first is not None else _no_diagnosis(record)
 
 
-def _group_sentence(kind: str, diagnosis: str) -> str:
+def _no_diagnosis(record: ElementRecord) -> str:
+    return {"differs": "no single-term diagnosis",
+            "undecided": "values not finite"}.get(record.verdict, record.verdict.value)
+
+
+def _group_sentence(kind: str, diagnosis: Diagnosis | None, record: ElementRecord) -> str:
     if kind == "factorization":
         return "only the factorisation of C differs; C q̇ agrees"
-    if kind in ("missing", "extra"):
-        return diagnosis.split(":", 1)[-1].strip() if ":" in diagnosis else diagnosis
+    if diagnosis is None:
+        return _no_diagnosis(record)
     if kind == "assumption":
-        return re.sub(r"^agrees only if\s*", "", diagnosis)
-    return diagnosis.split(":", 1)[1].strip() if ":" in diagnosis and kind != "differs" else diagnosis
+        return diagnosis.condition or diagnosis.detail or diagnosis.text
+    if kind == "differs":
+        return diagnosis.text
+    return diagnosis.detail or diagnosis.text
 
 
-def _first_diagnosis(record: ElementRecord) -> str:
-    useful = [d for d in record.diagnoses if not d.startswith("truth − document")]
+def _first_diagnosis(record: ElementRecord) -> Diagnosis | None:
+    useful = [d for d in record.diagnoses if d.kind != K.RESIDUAL]
     if record.verdict == "agrees_if":
-        useful = [d for d in useful if d.startswith("agrees only")] or useful
-    return useful[0] if useful else {"differs": "no single-term diagnosis",
-                                     "undecided": "values not finite"}.get(record.verdict,
-                                                                           record.verdict)
+        useful = [d for d in useful if d.kind == K.CONDITION] or useful
+    return useful[0] if useful else None
 
 
 #: Order of the grouped kinds: typos, then physics, factorisation, conditions.
-_GROUP_ORDER = ("dimension", "sign", "power", "factor", "swap", "missing", "extra", "differs",
+_GROUP_ORDER = ("dimension", "sign", "power", "factor", "swap", "point_mass", "missing",
+                "extra", "differs",
                 "factorization", "assumption")
 
 
@@ -162,7 +173,7 @@ def cause_lines(result: DerivationResult) -> list[CauseLine]:
             continue
         first = _first_diagnosis(r)
         kind = _diagnosis_kind(r, first)
-        groups.setdefault((kind, _group_sentence(kind, first)), []).append(r.element)
+        groups.setdefault((kind, _group_sentence(kind, first, r)), []).append(r.element)
     rank = {k: i for i, k in enumerate(_GROUP_ORDER)}
     keys = sorted(groups, key=lambda k: (rank.get(k[0], len(rank)), -len(groups[k])))
     grouped = [CauseLine(k, tuple(groups[(k, s)]), s, computed=False) for k, s in keys]
@@ -198,11 +209,11 @@ def row_factor_line(result: DerivationResult) -> str:
         rows_are = f"rows {which} of the document are" if len(rows) > 1 else \
             f"row {which} of the document is"
         return (f"{rows_are} {c} × the equations of motion (a factor the file does not "
-                f"declare): divided by {c} before comparing; the document's numbers and its "
-                "expressions in the model's parameters are shown after that division")
+                f"declare; the same equations): the truth is compared multiplied by {c}, the "
+                "document as printed")
     return ("rows of the document are multiplied by constants the file does not declare ("
-            + ", ".join(f"row {i}: {c}" for i, c in rows) + "): each is divided out before "
-            "comparing, and the document's numbers and expressions below are shown after that")
+            + ", ".join(f"row {i}: {c}" for i, c in rows) + "; the same equations): the "
+            "truth is compared multiplied by them, the document as printed")
 
 
 def assumes_line(result: DerivationResult, file_assumptions: dict[str, str] | None = None) -> str:

@@ -22,7 +22,8 @@ import numpy as np
 import sympy as sp
 from scipy.integrate import solve_ivp
 
-from ..compare.sides.evaluate import derivation_coordinate_set, document_symbol_values
+from ..compare.grid.grid import derivation_coordinate_set
+from ..compare.sides.document import document_symbol_values
 from ..compare.grid.samples import ParameterSet, namespace_values
 from ..constraints.reduction import CoordinateMap
 from ..derivations.schema import Derivation

@@ -45,34 +45,19 @@ import sympy as sp
 
 from ...compiled import numpy_function
 from ..judge.diagnose import AGREE_TOL, agrees
-from ..sides.evaluate import Arrays, DocumentFunctions, _h_tensor
-from ..records import Cause
+from ..grid.arrays import Arrays
+from ..sides.document import _h_tensor
+from ..sides.evaluation import Evaluation
+from ..records import (SPECIFIC_KINDS, Cause, CauseKind, DiagnosisKind as K, Step, Verdict,
+                       first_of)
 
 #: Share of samples at which A must have rank n − m to call the constraints substituted.
 RANK_SHARE = 0.99
 #: Relative size below which an eigenvalue of A counts as zero.
 RANK_TOL = 1e-9
-#: Verdicts of records a cause can explain.
-EXPLAINED_VERDICTS = ("differs", "agrees_if", "factorization", "undecided")
-
-
-@dataclass
-class Evaluation:
-    r"""The numbers one comparison was decided on (the engine's working state): the document's
-    compiled functions and arrays (undeclared row factors divided out), the truth, the truth's
-    B in the document's inputs, the row scales, the flat samples and symbol values, the row
-    factors, and the kind of the coordinate set (``holonomic`` or ``quasi``)."""
-
-    funcs: DocumentFunctions
-    doc: Arrays
-    truth: Arrays
-    B_true: np.ndarray | None
-    scales: np.ndarray
-    q: np.ndarray
-    nu: np.ndarray
-    values: Mapping[sp.Symbol, np.ndarray]
-    row_factor: Sequence[float | None]
-    kind: str
+#: Verdicts of records a cause can explain (never an element whose equation is right only in
+#: its factorisation: those get no cause).
+EXPLAINED_VERDICTS = (Verdict.DIFFERS, Verdict.AGREES_IF, Verdict.UNDECIDED)
 
 
 def christoffel_h(A: sp.MatrixBase, positions: Sequence[sp.Symbol],
@@ -130,13 +115,10 @@ def _own_christoffel(ev: Evaluation, d) -> dict[tuple[int, int, int], bool] | No
     return out
 
 
-#: Diagnoses that name one term's error precisely: an element carrying one is left to its
-#: single-term cause rather than to a method cause.
-SPECIFIC = ("sign", "factor", "swap", "power", "dimension")
-
-
 def _specific(r) -> bool:
-    return any(x.startswith(SPECIFIC) for x in r.diagnoses)
+    r"""A diagnosis naming one term's error precisely: the element is left to its
+    single-term cause rather than to a method cause."""
+    return any(x.kind in SPECIFIC_KINDS for x in r.diagnoses)
 
 
 def covered_products(records: Sequence, velocities: Sequence[sp.Symbol]) -> dict[str, str]:
@@ -144,17 +126,16 @@ def covered_products(records: Sequence, velocities: Sequence[sp.Symbol]) -> dict
     :math:`\nu_j\nu_k` of row i containing the velocity of the column of a differing
     ``C[i, c]`` that has a specific diagnosis (``C[3,2]`` with φ̇ written for ψ̇ explains
     ``h[3]:dpsi*dpsi`` and ``h[3]:dpsi*dphi``). Maps the h element to the C element."""
-    names = [str(v) for v in velocities]
     out = {}
     for c in records:
         if c.key != "C" or c.verdict not in EXPLAINED_VERDICTS or not _specific(c):
             continue
         i, col = c.index
         for r in records:
-            p = _product(r.element) if r.key == "h" else None
-            own = [x for x in r.diagnoses if x.startswith(SPECIFIC) and not x.startswith("swap")]
-            if p and p[0] == i and r.verdict in EXPLAINED_VERDICTS and not own \
-                    and names[col] in p[1].split("*"):
+            if r.key != "h" or r.index[0] != i or r.verdict not in EXPLAINED_VERDICTS:
+                continue
+            own = [x for x in r.diagnoses if x.kind in SPECIFIC_KINDS and x.kind != K.SWAP]
+            if not own and col in r.index[1:]:
                 out.setdefault(r.element, c.element)
     return out
 
@@ -168,30 +149,30 @@ def method_causes(ev: Evaluation, d, records: Sequence) -> list[Cause]:
         return []
     names = [str(v) for v in d.velocities]
     covered = covered_products(records, d.velocities)
-    by_product = {}
-    for r in records:
-        p = _product(r.element) if r.key == "h" else None
-        if p is None or _specific(r) or r.element in covered:
-            continue
-        j, k = (names.index(x) for x in (p[1].split("*") + p[1].split("*"))[:2])
-        by_product[(p[0], *sorted((j, k)))] = r
+    by_product = {tuple(r.index): r for r in records if r.key == "h" and not _specific(r)
+                  and r.element not in covered}
     quasi, inconsistent = [], []
     for index, same in own.items():
         r = by_product.get(index)
-        if r is None or r.verdict != "differs":
+        if r is None or r.verdict != Verdict.DIFFERS:
             continue
         (quasi if same else inconsistent).append(r)
+    # a C said not to come from the document's own A: only where the document gives a C
+    # (equations written out, Kane's method, never took one from A's Christoffel terms)
+    if d.C is None:
+        inconsistent = []
+
     def c_elements(rows: set[int]) -> tuple[str, ...]:
         r"""The differing C elements of ``rows`` without a precise diagnosis of their own."""
         return tuple(r.element for r in records if r.key == "C" and r.index[0] in rows
-                     and r.verdict == "differs" and not _specific(r))
+                     and r.verdict == Verdict.DIFFERS and not _specific(r))
 
     out = []
     # with coordinates (not quasi-velocities) an h term equal to A's Christoffel term but not
     # to the truth follows from A, whose own records say what differs: no cause of its own
     if quasi and ev.kind == "quasi":
         out.append(Cause(
-            kind="quasi_coordinate_christoffel",
+            kind=CauseKind.QUASI_COORDINATE_CHRISTOFFEL,
             elements=tuple(r.element for r in quasi) + c_elements({q.index[0] for q in quasi}),
             explanation=("the document's C is the Christoffel matrix of its own A taken as if "
                          f"its velocities ({', '.join(names)}) were rates of coordinates; at least "
@@ -202,7 +183,7 @@ def method_causes(ev: Evaluation, d, records: Sequence) -> list[Cause]:
     if inconsistent:
         rows = {q.index[0] for q in inconsistent}
         out.append(Cause(
-            kind="c_inconsistent_with_a",
+            kind=CauseKind.C_INCONSISTENT_WITH_A,
             elements=tuple(r.element for r in inconsistent) + c_elements(rows),
             explanation=("these velocity products of C q̇ are not the Christoffel terms of the "
                          "document's own A (nor the truth's): C was not derived from this A "
@@ -269,7 +250,7 @@ def constraint_cause(ev: Evaluation, records: Sequence) -> list[Cause]:
         witness = ("; on the admissible motions it equals the true kinetic energy" if same else
                    "; even on the admissible motions it differs from the true kinetic energy")
     return [Cause(
-        kind="constraint_in_lagrangian", elements=differing,
+        kind=CauseKind.CONSTRAINT_IN_LAGRANGIAN, elements=differing,
         explanation=(f"A has rank {n - m} of {n}: the kinetic energy was written with the "
                      f"{m} constraint{'s' if m > 1 else ''} substituted (a function of "
                      f"{n - m} velocities) and then used with multipliers{witness}; with "
@@ -280,36 +261,39 @@ def claim_causes(records: Sequence) -> list[Cause]:
     r"""Claims (relations the document states) that the model contradicts."""
     out = []
     for r in records:
-        if r.step == "claim" and r.verdict == "differs":
-            why = next((x for x in r.diagnoses if not x.startswith("truth − document")),
+        if r.step == Step.CLAIM and r.verdict == Verdict.DIFFERS:
+            why = next((x.text for x in r.diagnoses if x.kind != K.RESIDUAL),
                        "the model's kinematics contradict it")
-            out.append(Cause(kind="claimed_relation", elements=(r.element,),
+            out.append(Cause(kind=CauseKind.CLAIMED_RELATION, elements=(r.element,),
                              explanation=f"{r.element}: {why}", step=r.step,
                              equation=r.equation))
     return out
 
 
-#: Single-term diagnoses, in the order their causes are listed: (prefix, kind, sentence).
+#: Single-term diagnoses, in the order their causes are listed: (diagnosis kind, cause kind,
+#: sentence).
 TERM_KINDS = (
-    ("dimension", "dimension", "a term with inconsistent units"),
-    ("sign", "sign", "the document has the opposite sign"),
-    ("power", "power", "a symbol to the wrong power"),
-    ("factor", "factor", "a constant factor"),
-    ("swap", "swap", "one symbol written for another"),
-    ("missing", "missing_physics", "a term the document leaves out (it has 0)"),
-    ("extra", "missing_physics", "a term the truth does not have"),
+    (K.DIMENSION, CauseKind.DIMENSION, "a term with inconsistent units"),
+    (K.SIGN, CauseKind.SIGN, "the document has the opposite sign"),
+    (K.POWER, CauseKind.POWER, "a symbol to the wrong power"),
+    (K.FACTOR, CauseKind.FACTOR, "a constant factor"),
+    (K.SWAP, CauseKind.SWAP, "one symbol written for another"),
+    (K.POINT_MASS, CauseKind.POINT_MASS, "a body's own inertia about its centre of mass is "
+     "missing (a point mass)"),
+    (K.MISSING, CauseKind.MISSING_PHYSICS, "a term the document leaves out"),
+    (K.EXTRA, CauseKind.MISSING_PHYSICS, "a term the truth does not have"),
 )
 
 
-def _one_swap(r, detail: str) -> str:
+def _one_swap(r, hit) -> str:
     r"""The two halves of a swapped velocity product in h — ``h[3]:dpsi*dpsi`` "written as
-    dphi*dphi in the document (...)" and ``h[3]:dphi*dphi`` "the document's dphi*dphi term is
-    the true dpsi*dpsi term (...)" — as one sentence, so they make one cause."""
+    dphi*dphi in the document" and ``h[3]:dphi*dphi`` "the document's dphi*dphi term is the
+    true dpsi*dpsi term" — as one sentence, so they make one cause."""
     p = _product(r.element)
-    if p is None or not detail.startswith("written as ") or " in the document" not in detail:
-        return detail
-    written, rest = detail[len("written as "):].split(" in the document", 1)
-    return f"the document's {written} term is the true {p[1]} term{rest}"
+    if p is None or not hit.written or hit.fits != p[1]:
+        return hit.detail
+    rest = f" (equal only if {hit.condition})" if hit.condition else ""
+    return f"the document's {hit.written} term is the true {p[1]} term{rest}"
 
 
 def term_causes(records: Sequence, explained: set[str],
@@ -317,22 +301,22 @@ def term_causes(records: Sequence, explained: set[str],
     r"""One cause per single-term diagnosis (``dimension``, ``sign``, ``power``, ``factor``,
     ``swap``, ``missing``/``extra``) and per unstated condition (``agrees_if``), each naming
     the elements it explains; the exact diagnosis of each element stays on its record."""
-    groups: dict[tuple[str, str], list[str]] = {}
+    groups: dict[tuple[CauseKind, str], list[str]] = {}
     for r in records:
         if r.element in explained or r.verdict not in EXPLAINED_VERDICTS \
-                or r.step != "equations of motion":
+                or r.step != Step.EQUATIONS_OF_MOTION:
             continue
-        if r.verdict == "agrees_if":
-            text = next((x for x in r.diagnoses if x.startswith("agrees only if")), "")
-            groups.setdefault(("assumption", text.replace("agrees only if ", "holds only if ")),
-                              []).append(r.element)
+        if r.verdict == Verdict.AGREES_IF:
+            cond = first_of(r.diagnoses, K.CONDITION)
+            text = "holds only if " + (cond.condition if cond is not None else "")
+            groups.setdefault((CauseKind.ASSUMPTION, text), []).append(r.element)
             continue
-        for prefix, kind, sentence in TERM_KINDS:
-            hit = next((x for x in r.diagnoses if x.startswith(prefix)), None)
+        for dkind, kind, sentence in TERM_KINDS:
+            hit = first_of(r.diagnoses, dkind)
             if hit is not None:
-                detail = hit.split(":", 1)[1].strip() if ":" in hit else sentence
-                detail = _one_swap(r, detail) if kind == "swap" else detail
-                key = (kind, sentence if kind == "missing_physics" else detail)
+                detail = hit.detail or sentence
+                detail = _one_swap(r, hit) if dkind == K.SWAP else detail
+                key = (kind, sentence if kind == CauseKind.MISSING_PHYSICS else detail)
                 groups.setdefault(key, []).append(r.element)
                 break
     covered = covered_products(records, velocities)
@@ -354,13 +338,13 @@ def document_causes(energy, asymmetric: Sequence[str], d=None) -> list[Cause]:
     out = []
     if energy is not None and not energy.conserves:
         latex = _power_latex(energy.residual, d)
-        out.append(Cause(kind="energy", elements=(), latex=latex,
+        out.append(Cause(kind=CauseKind.ENERGY, elements=(), latex=latex,
                          explanation=("the model as printed does not conserve energy: its "
                                       "gyroscopic terms do work, ν·h − ½ ν·Ȧν ≠ 0"
                                       + (" (below)" if latex else f": {energy.residual}"))))
     pd = [x for x in asymmetric if "positive definite" in x]
     if pd:
-        out.append(Cause(kind="not_positive_definite", elements=(), explanation=pd[0]))
+        out.append(Cause(kind=CauseKind.NOT_POSITIVE_DEFINITE, elements=(), explanation=pd[0]))
     return out
 
 
@@ -398,6 +382,6 @@ def root_causes(ev: Evaluation | None, d, records: Sequence, energy, asymmetric:
     return tuple(out)
 
 
-__all__ = ["Evaluation", "christoffel_h", "claim_causes", "constraint_cause",
+__all__ = ["christoffel_h", "claim_causes", "constraint_cause",
            "covered_products", "document_causes", "method_causes", "root_causes",
            "term_causes"]

@@ -18,6 +18,8 @@ from collections.abc import Callable, Sequence
 import numpy as np
 import sympy as sp
 
+from ..records import Diagnosis, DiagnosisKind as K, diagnosis
+
 #: Relative tolerance of agreement (the numbers are exact to ~1e-13 relative).
 AGREE_TOL = 1e-7
 
@@ -38,25 +40,26 @@ def nice_number(c: float) -> str:
     return f"{c:.4g}"
 
 
-def value_diagnoses(D: np.ndarray, T: np.ndarray, scale: float) -> list[str]:
+def value_diagnoses(D: np.ndarray, T: np.ndarray, scale: float) -> list[Diagnosis]:
     r"""Diagnoses from the numbers alone (sign, factor, extra, missing)."""
     tol = AGREE_TOL * scale
     if np.max(np.abs(T), initial=0.0) <= tol:
-        return ["extra term: the truth is 0"]
+        return [diagnosis(K.EXTRA, "the truth is 0", prefix="extra term")]
     if np.max(np.abs(D), initial=0.0) <= tol:
-        return ["missing: the document has 0"]
+        return [diagnosis(K.MISSING, "the document has 0")]
     if np.max(np.abs(D + T)) <= tol:
-        return ["sign: the document has the opposite sign"]
+        return [diagnosis(K.SIGN, "the document has the opposite sign", factor="-1")]
     c = float(D.ravel() @ T.ravel() / (T.ravel() @ T.ravel()))
     if np.max(np.abs(D - c * T)) <= tol:
-        return [f"factor: the document is {nice_number(c)} × the truth"]
+        return [diagnosis(K.FACTOR, f"the document is {nice_number(c)} × the truth",
+                          factor=nice_number(c))]
     return []
 
 
 def swap_diagnoses(expr: sp.Expr, candidates: Sequence[Sequence[sp.Symbol]],
                    evaluate: Callable[[sp.Symbol, sp.Symbol], np.ndarray], T: np.ndarray,
                    scale: float, screen: Callable[[sp.Symbol, sp.Symbol], bool] | None = None
-                   ) -> list[str]:
+                   ) -> list[Diagnosis]:
     r"""Replace one symbol of ``expr`` by another of the same group (velocities with velocities,
     positions with positions, symbols of equal units with each other); report the replacements
     that make it agree. ``evaluate(a, b)`` gives the element's values with ``a`` read as ``b``;
@@ -72,7 +75,8 @@ def swap_diagnoses(expr: sp.Expr, candidates: Sequence[Sequence[sp.Symbol]],
                 if b == a or (screen is not None and not screen(a, b)):
                     continue
                 if agrees(evaluate(a, b), T, scale):
-                    found.append(f"swap: {sp.sstr(a)} where {sp.sstr(b)} fits")
+                    found.append(diagnosis(K.SWAP, f"{sp.sstr(a)} where {sp.sstr(b)} fits",
+                                           written=sp.sstr(a), fits=sp.sstr(b)))
     return found
 
 
@@ -84,7 +88,7 @@ def power_diagnoses(expr: sp.Expr, params: Sequence[sp.Symbol],
                     evaluate: Callable[[sp.Expr], np.ndarray], T: np.ndarray,
                     scale: float,
                     powered: Callable[[sp.Symbol, float], np.ndarray] | None = None
-                    ) -> list[str]:
+                    ) -> list[Diagnosis]:
     r"""A parameter :math:`s` written to the power :math:`e` where :math:`e'` fits
     (:math:`e' \in \{-e, e \pm 1, 2e\}`, e.g. G where G² fits, R⁻² where R² fits):
     ``expr`` with :math:`s \to s^{e'/e}` agrees. ``evaluate(e)`` gives an expression's values
@@ -102,12 +106,13 @@ def power_diagnoses(expr: sp.Expr, params: Sequence[sp.Symbol],
             continue
         for new in dict.fromkeys((-e, e - 1, e + 1, 2 * e)):
             if new != 0 and agrees(powered(s, new / e), T, scale):
-                found.append(f"power: {sp.sstr(s ** e)} where {sp.sstr(s ** new)} fits")
+                found.append(diagnosis(K.POWER, f"{sp.sstr(s ** e)} where {sp.sstr(s ** new)} "
+                                       "fits", written=sp.sstr(s ** e), fits=sp.sstr(s ** new)))
     return found
 
 
 def term_diagnoses(expr: sp.Expr, evaluate: Callable[[sp.Expr], np.ndarray], D: np.ndarray,
-                   T: np.ndarray, scale: float) -> list[str]:
+                   T: np.ndarray, scale: float) -> list[Diagnosis]:
     r"""One additive term :math:`t` of the element wrong, the rest right: with the wrong sign
     (:math:`D - 2t = T`) or a constant factor :math:`c` (:math:`D + (1/c - 1)\,t = T`, the
     document's term is :math:`c` × the one that fits)."""
@@ -121,12 +126,14 @@ def term_diagnoses(expr: sp.Expr, evaluate: Callable[[sp.Expr], np.ndarray], D: 
         if tt <= (AGREE_TOL * scale) ** 2 * len(tv):
             continue
         if agrees(D - 2 * tv, T, scale):
-            found.append(f"sign: the term {sp.sstr(t)} has the wrong sign")
+            found.append(diagnosis(K.SIGN, f"the term {sp.sstr(t)} has the wrong sign",
+                                   term=sp.sstr(t), factor="-1"))
             continue
         k = float((T - D) @ tv / tt)                  # T = D + k t, the document's term is
         if abs(1 + k) > 1e-12 and agrees(D + k * tv, T, scale):   # 1/(1+k) × what fits
-            found.append(f"factor: the term {sp.sstr(t)} is {nice_number(1 / (1 + k))} × what "
-                         "fits")
+            c = nice_number(1 / (1 + k))
+            found.append(diagnosis(K.FACTOR, f"the term {sp.sstr(t)} is {c} × what fits",
+                                   term=sp.sstr(t), factor=c))
     return found
 
 
@@ -134,7 +141,7 @@ _TRIG_SWAP = {sp.sin: sp.cos, sp.cos: sp.sin}
 
 
 def trig_swap_diagnoses(expr: sp.Expr, evaluate_many: Callable[[list], list[np.ndarray]],
-                        T: np.ndarray, scale: float) -> list[str]:
+                        T: np.ndarray, scale: float) -> list[Diagnosis]:
     r"""A sin written for a cos (or the reverse): everywhere it occurs, both exchanged for one
     argument, or — when neither fits — in one printed (else expanded) additive term only.
     ``evaluate_many`` evaluates a list of expressions at the samples in one compiled call."""
@@ -142,15 +149,17 @@ def trig_swap_diagnoses(expr: sp.Expr, evaluate_many: Callable[[list], list[np.n
     if not atoms:
         return []
     args = sorted({f.args[0] for f in atoms}, key=sp.default_sort_key)
-    whole = [(f"swap: {sp.sstr(f)} where {sp.sstr(_TRIG_SWAP[f.func](*f.args))} fits",
+    whole = [(diagnosis(K.SWAP, f"{sp.sstr(f)} where {sp.sstr(_TRIG_SWAP[f.func](*f.args))} "
+                        "fits", written=sp.sstr(f), fits=sp.sstr(_TRIG_SWAP[f.func](*f.args))),
               expr.xreplace({f: _TRIG_SWAP[f.func](*f.args)})) for f in atoms]
-    whole += [(f"swap: {sp.sstr(sp.sin(a))} and {sp.sstr(sp.cos(a))} exchanged (sin written "
-               "for cos and cos for sin)", expr.xreplace({sp.sin(a): sp.cos(a),
-                                                          sp.cos(a): sp.sin(a)}))
+    whole += [(diagnosis(K.SWAP, f"{sp.sstr(sp.sin(a))} and {sp.sstr(sp.cos(a))} exchanged "
+                         "(sin written for cos and cos for sin)", written=sp.sstr(sp.sin(a)),
+                         fits=sp.sstr(sp.cos(a))),
+               expr.xreplace({sp.sin(a): sp.cos(a), sp.cos(a): sp.sin(a)}))
               for a in args if expr.has(sp.sin(a)) and expr.has(sp.cos(a))]
     values = evaluate_many([e for _, e in whole])
     found = [text for (text, _), v in zip(whole, values) if agrees(v, T, scale)]
-    singles = [x for x in found if x.endswith("fits")]
+    singles = [x for x in found if x.detail.endswith("fits")]
     if found:
         return singles or found
     for terms in (sp.Add.make_args(expr), sp.Add.make_args(sp.expand(expr))):
@@ -162,7 +171,9 @@ def trig_swap_diagnoses(expr: sp.Expr, evaluate_many: Callable[[list], list[np.n
             continue
         values = evaluate_many([*terms, *(terms[k].xreplace({f: o}) for k, f, o in trials)])
         total = sum(values[:len(terms)])
-        found = [f"swap: {sp.sstr(f)} where {sp.sstr(o)} fits in the term {sp.sstr(terms[k])}"
+        found = [diagnosis(K.SWAP, f"{sp.sstr(f)} where {sp.sstr(o)} fits in the term "
+                           f"{sp.sstr(terms[k])}", written=sp.sstr(f), fits=sp.sstr(o),
+                           term=sp.sstr(terms[k]))
                  for (k, f, o), v in zip(trials, values[len(terms):])
                  if agrees(total - values[k] + v, T, scale)]
         if found:

@@ -21,7 +21,8 @@ import sympy as sp
 from ...compiled import numpy_function
 from ...derivations.schema import Derivation
 from .diagnose import AGREE_TOL, agrees
-from ..sides.evaluate import Arrays, DocumentFunctions
+from ..grid.arrays import Arrays
+from ..sides.document import DocumentFunctions
 from ..records import EnergyCheck
 
 #: Power residuals up to this many operations are factorised for display.
@@ -29,11 +30,13 @@ FACTOR_LIMIT = 120
 
 
 def energy_check(funcs: DocumentFunctions, doc: Arrays, row_factor, q, nu, values, d: Derivation):
-    r"""Power identity of the document on its own (rows divided by their detected factors)."""
+    r"""Power identity of the document on its own, its rows divided by the factor each is of
+    the true equation (``row_factor``: per row a number or an expression in the document's
+    names, None for 1)."""
     A, h = funcs.exprs["A"], funcs.exprs["h"]
     if A is None or h is None or A.has(sp.nan) or h.has(sp.nan):
         return None
-    scale = sp.diag(*[1 if c is None else sp.nsimplify(1 / c) for c in row_factor])
+    scale = sp.diag(*[1 if c is None else 1 / sp.nsimplify(c) for c in row_factor])
     A = scale * sp.Matrix(A)
     h = scale * sp.Matrix(h)
     v = sp.Matrix(d.velocities)

@@ -10,13 +10,14 @@ from collections.abc import Sequence
 import numpy as np
 import sympy as sp
 
+from ..records import Diagnosis
 from .diagnose import agrees, power_diagnoses, term_diagnoses, trig_swap_diagnoses
-from ..sides.evaluate import DocumentFunctions
+from ..sides.document import DocumentFunctions
 
 
 def trig_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.ndarray],
                     factor: float | None, D: np.ndarray, T: np.ndarray, scale: float,
-                    check: bool = False) -> list[str]:
+                    check: bool = False) -> list[Diagnosis]:
     r"""A sin written for a cos in ``expr`` (:func:`.diagnose.trig_swap_diagnoses`), the
     document's values divided by its row ``factor``. ``check``: only when ``expr`` evaluated on
     ``argv`` gives the element's own values ``D`` (a velocity product's coefficient is sampled
@@ -35,7 +36,7 @@ def trig_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.nd
 
 def element_term_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.ndarray],
                     factor: float | None, D: np.ndarray, T: np.ndarray, scale: float,
-                    has_factor: bool) -> list[str]:
+                    has_factor: bool) -> list[Diagnosis]:
     r"""A parameter to the wrong power (also where a constant factor fits: with a geometry
     constant the sets do not vary, G for G² *is* a factor), then, when the element has no
     diagnosis yet, one additive term with the wrong sign or factor, then a sin written for a

@@ -1,9 +1,12 @@
 r"""Dimensional analysis of a document's elements, term by term.
 
 Each symbol has units (``[symbols]``), each coordinate too (``[coordinates] units``; metres or
-radians, radians counting as dimensionless). Row :math:`i` of the equations is a generalised
-force dual to :math:`q_i`, of dimension :math:`[F_i] = \mathrm{J}/[q_i]` (checked after a declared
-row scale is divided out, so an undeclared scale shows as a wrong dimension). Then
+radians, radians counting as dimensionless). Row :math:`i` of the true equations is a
+generalised force dual to :math:`q_i`, of dimension :math:`\mathrm{J}/[q_i]`; a document may
+divide or multiply an equation by a dimensional factor (by :math:`m l`, by its inertia), which
+is as right as before, so the row's dimension :math:`[F_i]` is the one most of its elements
+imply (:meth:`DimensionChecker.row_dimension`; the declared row scale's, where the file
+declares one). Then
 
 .. math::
 
@@ -82,10 +85,52 @@ class DimensionChecker:
                 self.known[v] = _add(dim, (0, 0, -1))
                 self.known[a] = _add(dim, (0, 0, -2))
         self.input_dims = [self.known.get(u) for u in d.input_symbols]
-        # rows are checked after a declared row scale is divided out
         joule = tuple(sp.Integer(v) for v in _BASE["J"])
         self.row_dims: list[Dim | None] = [None if qd is None else _add(joule, qd, -1)
                                            for qd in self.q_dims]
+        if d.row_scale is not None:            # a declared scale: the row as declared
+            for i, factor in enumerate(d.row_scale):
+                sd = self.dim(factor, [])
+                row = self.row_dims[i]
+                self.row_dims[i] = None if sd is None or row is None else _add(row, sd)
+        self.declared = d.row_scale is not None
+
+    def implied(self, key: str, index: tuple[int, ...], expr: sp.Expr) -> Dim | None:
+        r"""The row dimension an element implies (its own dimension read back through the
+        element's place: an inertia element times :math:`[q_j]/\mathrm{s}^2` ...), or None
+        when unknown or the element is 0."""
+        if sp.sympify(expr) == 0:
+            return None
+        got = self.dim(expr, [])
+        if got is None:
+            return None
+        if key in ("Q", "h"):
+            return got
+        j = index[1]
+        if key == "B":
+            u = self.input_dims[j] if j < len(self.input_dims) else None
+            return None if u is None else _add(got, u)
+        qj = self.q_dims[j]
+        if qj is None:
+            return None
+        return _add(_add(got, qj), (0, 0, -2 if key == "A" else -1))
+
+    def row_dimension(self, i: int, elements: list[tuple[str, tuple[int, ...], sp.Expr]]
+                      ) -> None:
+        r"""Set row ``i``'s dimension to the one most of its ``elements`` (key, index,
+        expression) imply, the unscaled one on a tie (a declared scale is kept)."""
+        if self.declared or self.row_dims[i] is None:
+            return
+        votes: dict[Dim, int] = {}
+        for key, index, expr in elements:
+            dim = self.implied(key, index, expr)
+            if dim is not None:
+                votes[dim] = votes.get(dim, 0) + 1
+        if not votes:
+            return
+        unscaled = self.row_dims[i]
+        best = max(votes.items(), key=lambda kv: (kv[1], kv[0] == unscaled))[0]
+        self.row_dims[i] = best
 
     def dim(self, expr: sp.Expr, problems: list[str]) -> Dim | None:
         r"""Dimension of ``expr``; inconsistent sums and dimensioned function arguments are

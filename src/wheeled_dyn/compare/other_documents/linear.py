@@ -26,7 +26,7 @@ import numpy as np
 
 from ...derivations.linear_document import LinearDocument, load_linear_document
 from ..judge.diagnose import value_diagnoses
-from ..records import DerivationResult, ElementRecord
+from ..records import Diagnosis, DiagnosisKind as K, DerivationResult, ElementRecord, diagnosis
 
 #: Relative slack beyond half a unit of the last printed decimal (floating point).
 ROUNDING_SLACK = 1e-12
@@ -67,11 +67,12 @@ def _record(element: str, key: str, index: tuple[int, ...], printed: float, trut
     tol = half_unit(printed) + ROUNDING_SLACK * max(abs(printed), abs(truth), 1.0)
     error = abs(printed - truth)
     ok = bool(np.isfinite(truth)) and error <= tol
-    diags: tuple[str, ...] = ()
+    diags: tuple[Diagnosis, ...] = ()
     if not ok:
         diags = tuple(value_diagnoses(np.array([printed]), np.array([truth]), max(tol, 1e-300)))
-        diags += (f"the truth is {truth!r}: it does not round to the printed digits "
-                  f"(off by {error:.3g}, half a unit of the last digit is {tol:.1g})",)
+        diags += (diagnosis(K.NOTE, f"the truth is {truth!r}: it does not round to the "
+                            f"printed digits (off by {error:.3g}, half a unit of the last "
+                            f"digit is {tol:.1g})", prefix=""),)
     return ElementRecord(element=element, key=key, index=index,
                          verdict="agrees" if ok else "differs", diagnoses=diags,
                          document=repr(printed), document_model="", truth=repr(truth),

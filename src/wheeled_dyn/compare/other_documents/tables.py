@@ -48,9 +48,11 @@ from ...derivations.schema import Derivation
 from ...derivations.table import ComparisonTable, TableEntry
 from ...errors import DerivationError
 from ..judge.diagnose import agrees
-from ..sides.elements import ROW_FACTORS
+from ..records import Diagnosis, DiagnosisKind, first_of
+from ..readings.row_factors import ROW_FACTORS
 from ..engine import ComparisonEngine
-from ..sides.evaluate import derivation_coordinate_set, model_value
+from ..grid.grid import derivation_coordinate_set
+from ..sides.document import model_value
 from ..records import DerivationResult
 from ..grid.samples import (
     ParameterSet,
@@ -377,7 +379,8 @@ def _same(a: sp.Expr, b: sp.Expr, rng: np.random.Generator) -> bool:
 def _engine_text(result: DerivationResult, label: str) -> str:
     for r in result.records:
         if r.element == label:
-            return r.verdict + (": " + "; ".join(r.diagnoses) if r.diagnoses else "")
+            return r.verdict.value + (": " + "; ".join(d.text for d in r.diagnoses)
+                                      if r.diagnoses else "")
     return "not compared"
 
 
@@ -490,12 +493,13 @@ def _num(c: float) -> str:
     return sp.sstr(sp.nsimplify(c))
 
 
-def _within(diagnoses: Sequence[str], model: str, assumed: Sequence[str]) -> bool:
+def _within(diagnoses: Sequence[Diagnosis], model: str, assumed: Sequence[str]) -> bool:
     r"""An "agrees only if ..." diagnosis whose conditions are all among ``assumed``
     (descriptions of the model's special cases, as the engine quotes them)."""
-    text = next((x for x in diagnoses if x.startswith("agrees only if")), None)
-    if text is None:
+    hit = first_of(diagnoses, DiagnosisKind.CONDITION)
+    if hit is None:
         return False
+    text = hit.condition
     return all(c.description not in text or c.description in assumed
                for c in special_cases(model))
 

@@ -19,6 +19,7 @@ from ...derivations.schema import Derivation
 from ...disk_cache import DiskMemo
 from ...models.registry import model_entry
 from ...models.wip_parameters import WipParameters, standard_parameters
+from ..records import Diagnosis, DiagnosisKind
 from .printing import printed
 
 #: Residuals up to this many operations are expanded with trigonometric identities for display
@@ -118,13 +119,23 @@ def family_substitution(families: tuple[str, ...]) -> dict[sp.Symbol, sp.Expr]:
     return out
 
 
-def annotate(d: Derivation, records: list[dict], cs, exprs: dict[int, sp.Expr | None],
-             row_factors: tuple[float | None, ...] = (), families: tuple[str, ...] = ()
-             ) -> None:
+def _row_label(label: str, row: int) -> str:
+    r"""``A[2,3]`` → ``A[row+1,3]``, ``h[2]:dx*dpsi`` → ``h[row+1]:dx*dpsi``."""
+    head, _, rest = label.partition("[")
+    inner, _, tail = rest.partition("]")
+    parts = inner.split(",")
+    parts[0] = str(row + 1)
+    return f"{head}[{','.join(parts)}]{tail}"
+
+
+def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, ...] | sp.Expr],
+             families: tuple[str, ...] = ()) -> None:
     r"""Fill ``truth`` (every element) and ``residual`` (truth − document, expanded, for the
-    elements that do not agree; document rows divided by their detected ``row_factors``) where
-    the symbolic engine provides closed forms; without them the records keep their numeric
-    verdicts. The truth and the document are both read under the parameter ``families`` the
+    elements that do not agree) of the ``drafts`` where the symbolic engine provides closed
+    forms; without them the drafts keep their numeric verdicts. ``frames``: per row, the
+    document's frame in its own symbols — a factor :math:`c` (the row is :math:`c` × the true
+    one) or the weights :math:`f_i` of a combination of the true rows; rows absent from it get
+    no residual. The truth and the document are both read under the parameter ``families`` the
     document assumes (:func:`family_substitution`)."""
     try:
         from ...symbolic import true_expressions
@@ -145,25 +156,33 @@ def annotate(d: Derivation, records: list[dict], cs, exprs: dict[int, sp.Expr | 
             return None if out is None else out.xreplace(assumed)
     dots = {v: rf"\dot{{{sp.latex(q)}}}" for q, v in zip(d.positions, d.velocities)}
     by_name = {str(v): text for v, text in dots.items()}
-    for r in records:
-        expr = truth.get(r["element"])
-        if expr is None or r["key"] == "B":
+    for r in drafts:
+        expr = truth.get(r.element)
+        if expr is None or r.key == "B":
             continue
         names = {sym: by_name[sym.name] for sym in expr.free_symbols if sym.name in by_name}
-        r["truth"], r["truth_latex"] = printed(expr, names)
-        if r["verdict"] != "agrees":
-            doc = to_model(exprs.get(id(r)))
-            if doc is None:
+        r.truth, r.truth_latex = printed(expr, names)
+        frame = frames.get(r.row)
+        if r.verdict == "agrees" or frame is None:
+            continue
+        doc = to_model(r.expr)
+        if doc is None:
+            continue
+        if isinstance(frame, tuple):
+            parts = [(w, truth.get(_row_label(r.element, k))) for k, w in enumerate(frame)
+                     if w != 0]
+            if any(t is None for _, t in parts):
                 continue
-            i = r["index"][0]
-            if i < len(row_factors) and row_factors[i]:
-                doc = doc / sp.nsimplify(row_factors[i])
-            text = residual_text(expr, doc, physical)
-            if text is None:
-                continue
-            r["residual"] = text
-            if text != "0":
-                r["diagnoses"].append(f"truth − document = {text}")
+            in_frame = sp.Add(*(to_model(w) * t for w, t in parts))
+        else:
+            in_frame = expr * to_model(frame)
+        text = residual_text(in_frame, doc, physical)
+        if text is None:
+            continue
+        r.residual = text
+        if text != "0":
+            r.diagnoses.append(Diagnosis(DiagnosisKind.RESIDUAL, f"truth − document = {text}",
+                                         text))
 
 
 #: The texts of :func:`residual_text`, remembered across runs (the disk cache's

@@ -13,7 +13,7 @@ Row :math:`i` of such a document is :math:`\sum_k W_{ik}` × true row :math:`k`,
 When it does at every sample of a grid of many parameter sets and :math:`W` is not diagonal
 (a diagonal :math:`W` is a row divided by a function, :mod:`.row_functions`), each entry is
 fitted as a constant, a monomial in the document's symbols, positions, sines and cosines, or a
-short sum of such products (:func:`~.row_functions.fit_factor`, :func:`~.row_functions.fit_sum`).
+short sum of such products (:func:`~..judge.fitting.fit_factor`, :func:`~..judge.fitting.fit_sum`).
 The engine then compares the document's equations with the combination undone,
 :math:`W^{-1}` × its rows, and keeps that reading when more elements agree
 (:meth:`~.engine.ComparisonEngine._compare`).
@@ -28,8 +28,9 @@ import numpy as np
 import sympy as sp
 
 from ...derivations.schema import Derivation
-from ..sides.evaluate import Arrays
-from .row_functions import document_names, fit_factor, fit_sum, with_row_functions
+from ..grid.arrays import Arrays
+from ..judge.fitting import fit_factor, fit_sum
+from .row_functions import document_names, with_row_functions
 
 #: Relative agreement of :math:`W h`, :math:`W Q`, :math:`W B` with the document's.
 COMBINATION_TOL = 1e-8

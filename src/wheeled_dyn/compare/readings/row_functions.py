@@ -25,29 +25,17 @@ only if more elements agree (:meth:`~.engine.ComparisonEngine._compare`).
 
 from __future__ import annotations
 
-import functools
-import itertools
 from collections.abc import Mapping, Sequence
 
 import numpy as np
 import sympy as sp
 
 from ...derivations.schema import Derivation
-from ..sides.evaluate import Arrays
+from ..grid.arrays import Arrays
+from ..judge.fitting import RATIO_TOL, bases, fit_factor, fit_sum
 
-#: Relative agreement of the fitted factor with every sample's ratio.
-RATIO_TOL = 1e-8
 #: A ratio counts as one constant when its relative spread is below this.
 CONSTANT_SPREAD = 1e-9
-#: Most bases in one product of the search.
-MAX_FACTORS = 2
-#: Exponents tried for each base.
-EXPONENTS = (-2, -1, 1, 2)
-#: Largest denominator of the constant c0.
-MAX_DENOMINATOR = 12
-#: Most bases in a term of a sum a row was divided by; the fraction of the target's square
-#: a fit's residual may leave to be checked exactly; most fits checked.
-SUM_DEGREE, SCREEN_TOL, MAX_CANDIDATES = 3, 1e-12, 20
 #: An element of A takes part when its size is above this fraction of the row's largest.
 ELEMENT_FLOOR = 1e-6
 
@@ -72,136 +60,6 @@ def _ratio(doc: Arrays, truth: Arrays, i: int) -> np.ndarray | None:
     if np.ptp(first) <= CONSTANT_SPREAD * np.abs(first).max():
         return None                                   # a constant: the row factors' business
     return first
-
-
-def bases(d: Derivation, q: np.ndarray, values: Mapping[sp.Symbol, np.ndarray]
-           ) -> list[tuple[sp.Expr, np.ndarray]]:
-    r"""The candidate bases with their sample values (one of each set of equal columns)."""
-    out: list[tuple[sp.Expr, np.ndarray]] = []
-    n = len(q)
-    unknown = {spec.symbol for spec in d.symbols.values() if spec.free or spec.is_input}
-    for s, v in values.items():
-        if s not in unknown:                 # a balance's forces, inputs: not parameters
-            out.append((s, np.broadcast_to(np.asarray(v, dtype=float), (n,))))
-    for a, p in enumerate(d.positions):
-        out += [(p, q[:, a]), (sp.cos(p), np.cos(q[:, a])), (sp.sin(p), np.sin(q[:, a]))]
-    unique: list[tuple[sp.Expr, np.ndarray]] = []
-    for expr, v in out:
-        if np.abs(v).min() == 0 or not np.isfinite(v).all():
-            continue
-        if any(np.allclose(v, w, rtol=1e-12, atol=0) for _, w in unique):
-            continue
-        unique.append((expr, v))
-    return unique
-
-
-def _constant(ratio: np.ndarray, product: np.ndarray) -> sp.Rational | None:
-    c = ratio / product
-    c0 = float(c[0])
-    if not np.isfinite(c0) or c0 == 0 or np.abs(c - c0).max() > RATIO_TOL * abs(c0):
-        return None
-    rational = sp.Rational(c0).limit_denominator(MAX_DENOMINATOR)
-    return rational if abs(float(rational) - c0) <= RATIO_TOL * abs(c0) else None
-
-
-def _try(ratio: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]],
-         exponents: Sequence[int]) -> sp.Expr | None:
-    product = np.ones_like(ratio)
-    for (_, v), e in zip(bases, exponents):
-        product = product * v ** e
-    c0 = _constant(ratio, product)
-    if c0 is None:
-        return None
-    return c0 * sp.Mul(*(b ** e for (b, _), e in zip(bases, exponents) if e))
-
-
-def fit_factor(ratio: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> sp.Expr | None:
-    r"""A monomial in ``bases`` equal to ``ratio`` at every sample (module docstring)."""
-    if bases:
-        X = np.column_stack([np.log(np.abs(v)) for _, v in bases] + [np.ones(len(ratio))])
-        e = np.linalg.lstsq(X, np.log(np.abs(ratio)), rcond=None)[0][:-1]
-        rounded = np.rint(e).astype(int)
-        if np.abs(e - rounded).max() < 1e-6 and np.abs(rounded).max() <= max(EXPONENTS):
-            found = _try(ratio, bases, rounded)
-            if found is not None:
-                return found
-    for size in range(1, MAX_FACTORS + 1):
-        for group in itertools.combinations(range(len(bases)), size):
-            for powers in itertools.product(EXPONENTS, repeat=size):
-                found = _try(ratio, [bases[g] for g in group], powers)
-                if found is not None:
-                    return found
-    return None
-
-
-def _products(bases: Sequence[tuple[sp.Expr, np.ndarray]], degree: int
-              ) -> tuple[list[tuple[int, ...]], np.ndarray]:
-    r"""Every product of at most ``degree`` of the bases (repetitions allowed): the bases'
-    indices of each, and their values (samples × products)."""
-    groups = [g for k in range(1, degree + 1)
-              for g in itertools.combinations_with_replacement(range(len(bases)), k)]
-    values = np.column_stack([np.prod([bases[i][1] for i in g], axis=0) for g in groups])
-    return groups, values
-
-
-def _exact_sum(X: np.ndarray, y: np.ndarray, chosen: Sequence[int],
-               terms: Sequence[sp.Expr]) -> sp.Expr | None:
-    r"""The sum of the ``chosen`` columns (``terms``) with simple rational coefficients equal
-    to ``y``, or None."""
-    sub = X[:, list(chosen)]
-    coef = np.linalg.lstsq(sub, y, rcond=None)[0]
-    exact = [sp.Rational(c).limit_denominator(MAX_DENOMINATOR) for c in coef]
-    if any(c == 0 for c in exact):
-        return None
-    if np.abs(sub @ np.array([float(c) for c in exact]) - y).max() > RATIO_TOL * np.abs(y).max():
-        return None
-    return sp.Add(*(c * t for c, t in zip(exact, terms)))
-
-
-@functools.lru_cache(maxsize=8)
-def _pairs(n: int) -> tuple[np.ndarray, np.ndarray]:
-    r"""The index pairs :math:`i < j` of ``n`` columns (``numpy.triu_indices(n, 1)``, made
-    once per size: the same bases recur from row to row and file to file)."""
-    i, j = np.triu_indices(n, 1)
-    i.flags.writeable = j.flags.writeable = False
-    return i, j
-
-
-def fit_sum(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> sp.Expr | None:
-    r"""One product, or a sum of two, of at most :data:`SUM_DEGREE` bases with simple rational
-    coefficients equal to ``target`` at every sample (the quantity a row was divided by when
-    it is a sum, :math:`I_g + m a^2`). Every pair is tried at once through the Gram matrix
-    (the residual of each 2 × 2 least-squares fit), and the few that fit are checked
-    exactly."""
-    if not bases:
-        return None
-    groups, X = _products(bases, SUM_DEGREE)
-
-    def term(k: int) -> sp.Expr:
-        return sp.Mul(*(bases[i][0] for i in groups[k]))
-
-    X = np.unique(np.column_stack([X, target]), axis=0)
-    X, y = X[:, :-1], X[:, -1]
-    norms = np.linalg.norm(X, axis=0)
-    Xn = X / np.where(norms > 0, norms, 1.0)           # unit columns: a well-scaled Gram
-    G, c, yy = Xn.T @ Xn, Xn.T @ y, float(y @ y)
-    floor = SCREEN_TOL * yy
-    for k in np.flatnonzero(yy - c ** 2 <= floor)[:MAX_CANDIDATES]:
-        found = _exact_sum(X, y, (int(k),), (term(k),))
-        if found is not None:
-            return found
-    i, j = _pairs(len(groups))
-    det = 1.0 - G[i, j] ** 2
-    with np.errstate(all="ignore"):
-        a = (c[i] - c[j] * G[i, j]) / det
-        b = (c[j] - c[i] * G[i, j]) / det
-        residual = yy - a * c[i] - b * c[j]
-    fits = np.flatnonzero((residual <= floor) & (det > SCREEN_TOL))
-    for k in fits[np.argsort(residual[fits])][:MAX_CANDIDATES]:
-        found = _exact_sum(X, y, (int(i[k]), int(j[k])), (term(i[k]), term(j[k])))
-        if found is not None:
-            return found
-    return None
 
 
 def candidate_rows(doc: Arrays, truth: Arrays, constant: Sequence[float | None]) -> list[int]:
@@ -270,6 +128,5 @@ def describe_factors(d: Derivation, factors: Mapping[int, sp.Expr]) -> str:
     return ", ".join(parts)
 
 
-__all__ = ["bases", "candidate_rows", "document_names", "describe_factors", "fit_factor", "fit_sum", "state_row_factors",
-           "with_row_factors",
-           "with_row_functions"]
+__all__ = ["candidate_rows", "document_names", "describe_factors", "state_row_factors",
+           "with_row_factors", "with_row_functions"]

@@ -9,18 +9,18 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from ..causes import root as causes
+from ..sides.evaluation import Evaluation
 from ..judge.diagnose import AGREE_TOL
 from .signs import flip_arrays
-from ..sides.elements import (apply_row_factors, decided_factor, explains, row_factors, row_pairs,
+from .row_factors import (apply_row_factors, decided_factor, explains, row_factors, row_pairs,
                        row_scales, row_sizes, row_votes)
-from ..sides.evaluate import Arrays
+from ..grid.arrays import Arrays
 
 #: Samples the convention search scores each reading on (spread over the parameter sets).
 SEARCH_SAMPLES = 400
 
 
-class SearchEvaluation(causes.Evaluation):
+class SearchEvaluation(Evaluation):
     r"""The engine's evaluation, with what the convention search needs: the document at
     sign-flipped states and the number of elements agreeing in a set of arrays."""
 

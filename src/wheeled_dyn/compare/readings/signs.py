@@ -30,7 +30,7 @@ import numpy as np
 import sympy as sp
 
 from ...derivations.schema import Derivation
-from ..sides.evaluate import Arrays
+from ..grid.arrays import Arrays
 
 #: Most signs searched (positions + inputs): 2**8 readings, each one evaluation of the document.
 MAX_SIGNS = 8

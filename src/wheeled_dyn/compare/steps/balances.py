@@ -47,10 +47,10 @@ from ...derivations.steps import Force, Step
 from ...errors import DerivationError
 from ..grid.assumptions import Assumptions, position_ranges
 from ..judge.diagnose import AGREE_TOL, nice_number
-from ..sides.evaluate import (derivation_coordinate_set, document_symbol_values,
-                       given_parameter_sets)
+from ..grid.grid import derivation_coordinate_set
+from ..sides.document import document_symbol_values, given_parameter_sets
 from ..sides.kinematics import Motion, check_links
-from ..records import ElementRecord
+from ..records import Diagnosis, DiagnosisKind as K, ElementRecord, Verdict, diagnosis
 from ..grid.samples import random_states, regular_states
 from ..judge.units import DimensionChecker, format_dim
 
@@ -268,8 +268,11 @@ def _suspects(truth: list[np.ndarray], doc: list[np.ndarray], j: int,
     return []
 
 
+def _note(text: str) -> Diagnosis:
+    return diagnosis(K.NOTE, text, prefix="")
+
 def _judge(truth: list[np.ndarray], doc: list[np.ndarray], j: int, names: list[str],
-           n_forces: int) -> tuple[bool, list[str], float, float]:
+           n_forces: int) -> tuple[bool, list[Diagnosis], float, float]:
     r"""Verdict and diagnoses of relation ``j``: one fit per parameter set."""
     cols = truth[0].shape[2]
     scale = max(max(float(np.abs(D[:, j, :]).max()) for D in doc), 1e-300)
@@ -278,42 +281,49 @@ def _judge(truth: list[np.ndarray], doc: list[np.ndarray], j: int, names: list[s
     worst = max(r for _, r in fits)
     if worst <= AGREE_TOL * scale:
         return True, [], worst, scale
-    diags: list[str] = []
+    diags: list[Diagnosis] = []
     for group in _suspects(truth, doc, j, scale):
         keep = np.array([c for c in everything if c not in group])
         partial = [_fit(T, D[:, j, :], keep) for T, D in zip(truth, doc)]
         c = group[0] if len(group) == 1 else None
         if c is None:
-            diags.append(" and ".join(names[g] for g in group) + ": their coefficients are "
-                         "not the balance's (moment arms, directions, masses or inertias)")
+            diags.append(_note(" and ".join(names[g] for g in group) + ": their coefficients "
+                               "are not the balance's (moment arms, directions, masses or "
+                               "inertias)"))
             continue
         implied = np.concatenate([np.einsum("r,sr->s", mu, T[:, :, c])
                                   for (mu, _), T in zip(partial, truth)])
         printed = np.concatenate([D[:, j, c] for D in doc])
         if np.abs(implied).max() <= AGREE_TOL * scale:
-            diags.append(f"{names[c]}: extra: the balance has none")
+            diags.append(diagnosis(K.EXTRA, "the balance has none", prefix=f"{names[c]}: extra",
+                                   term=names[c]))
             continue
         if np.abs(printed).max() <= AGREE_TOL * scale:
-            diags.append(f"{names[c]}: missing: the document has none")
+            diags.append(diagnosis(K.MISSING, "the document has none",
+                                   prefix=f"{names[c]}: missing", term=names[c]))
             continue
         ratio = printed / np.where(implied == 0, np.nan, implied)
         if np.nanmax(ratio) - np.nanmin(ratio) <= 1e-6 * np.nanmax(np.abs(ratio)):
             r = float(np.nanmean(ratio))
-            diags.append(f"{names[c]}: sign: the document has the opposite sign" if
-                         abs(r + 1) < 1e-6 else
-                         f"{names[c]}: factor: the document is {nice_number(r)} × the balance")
+            diags.append(diagnosis(K.SIGN, "the document has the opposite sign",
+                                   prefix=f"{names[c]}: sign", term=names[c], factor="-1")
+                         if abs(r + 1) < 1e-6 else
+                         diagnosis(K.FACTOR, f"the document is {nice_number(r)} × the balance",
+                                   prefix=f"{names[c]}: factor", term=names[c],
+                                   factor=nice_number(r)))
         else:
-            diags.append(f"{names[c]}: its coefficient is not the balance's (a moment arm, "
-                         "a direction, a mass or an inertia)")
+            diags.append(_note(f"{names[c]}: its coefficient is not the balance's (a moment "
+                               "arm, a direction, a mass or an inertia)"))
     if not diags:
         diags += _forces_against_the_motion(truth, doc, j, names, n_forces, scale)
     if not diags:
-        diags.append("not a combination of the body's force and moment balances")
+        diags.append(_note("not a combination of the body's force and moment balances"))
     return False, diags, worst, scale
 
 
 def _forces_against_the_motion(truth: list[np.ndarray], doc: list[np.ndarray], j: int,
-                               names: list[str], n_forces: int, scale: float) -> list[str]:
+                               names: list[str], n_forces: int, scale: float
+                               ) -> list[Diagnosis]:
     r"""When the relation's motion side (the terms without forces and the accelerations)
     fixes the combination :math:`\mu` on its own, the forces whose coefficients differ from
     what that combination gives — several at once (an arm moved from one force to another)."""
@@ -329,13 +339,13 @@ def _forces_against_the_motion(truth: list[np.ndarray], doc: list[np.ndarray], j
                                   for (mu, _), T in zip(fits, truth)])
         printed = np.concatenate([D[:, j, c] for D in doc])
         if np.abs(printed - implied).max() > AGREE_TOL * scale:
-            out.append(f"{names[c]}: its coefficient is not what the motion side gives "
-                       f"(document {printed[0]:.6g}, balance {implied[0]:.6g} at the first "
-                       "state)")
+            out.append(_note(f"{names[c]}: its coefficient is not what the motion side gives "
+                             f"(document {printed[0]:.6g}, balance {implied[0]:.6g} at the "
+                             "first state)"))
     return out
 
 
-def _term_fixes(b: _Balance, j: int, names: list[str]) -> list[str]:
+def _term_fixes(b: _Balance, j: int, names: list[str]) -> list[Diagnosis]:
     r"""One printed term of relation ``j`` with the wrong sign, or a sin written for a cos
     (or the reverse) in it: the edits that make the relation a balance."""
     expr = b.step.components[j]
@@ -345,15 +355,17 @@ def _term_fixes(b: _Balance, j: int, names: list[str]) -> list[str]:
         return _judge(truth, b.document([trial]), 0, names, len(b.free))[0]
 
     for terms in (sp.Add.make_args(expr), sp.Add.make_args(sp.expand(expr))):
-        found = [f"sign: the term {sp.sstr(term)} has the wrong sign" for k, term in
+        found = [diagnosis(K.SIGN, f"the term {sp.sstr(term)} has the wrong sign",
+                           term=sp.sstr(term), factor="-1") for k, term in
                  enumerate(terms) if len(terms) > 1
                  and fits(sp.Add(*terms[:k], -term, *terms[k + 1:]))]
         for k, term in enumerate(terms):
             for f in sorted(term.atoms(sp.sin, sp.cos), key=sp.default_sort_key):
                 other = (sp.cos if f.func == sp.sin else sp.sin)(*f.args)
                 if fits(sp.Add(*terms[:k], term.xreplace({f: other}), *terms[k + 1:])):
-                    found.append(f"swap: {sp.sstr(f)} where {sp.sstr(other)} fits in the term "
-                                 f"{sp.sstr(term)}")
+                    found.append(diagnosis(K.SWAP, f"{sp.sstr(f)} where {sp.sstr(other)} fits "
+                                           f"in the term {sp.sstr(term)}", written=sp.sstr(f),
+                                           fits=sp.sstr(other), term=sp.sstr(term)))
         if found:
             return found
     return []
@@ -374,24 +386,26 @@ def compare_balance(d: Derivation, step: Step, index: int, seed: int) -> list[El
                       document_latex=sp.latex(step.components[j]))
         if not all(np.all(np.isfinite(D[:, j, :])) for D in doc) or \
                 not all(np.all(np.isfinite(T)) for T in truth):
-            out.append(ElementRecord(verdict="undecided", diagnoses=(
-                "not finite at some samples",), max_error=float("nan"), scale=float("nan"),
+            out.append(ElementRecord(verdict=Verdict.UNDECIDED, diagnoses=(diagnosis(
+                K.UNDECIDED, "not finite at some samples", prefix=""),), max_error=float("nan"),
+                scale=float("nan"),
                 **common))
             continue
         ok, diags, worst, scale = _judge(truth, doc, j, names, len(b.free))
         lhs, rhs = (dims.dim(side, []) for side in step.sides[j])
         if lhs is not None and rhs is not None and lhs != rhs and 0 not in step.sides[j]:
             ok = False
-            diags.insert(0, f"dimension: the left side is {format_dim(lhs)}, the right side "
-                            f"{format_dim(rhs)}")
+            diags.insert(0, diagnosis(K.DIMENSION, f"the left side is {format_dim(lhs)}, the "
+                                      f"right side {format_dim(rhs)}"))
         if not ok:
             diags += _term_fixes(b, j, names)
             for frame in dict.fromkeys(("world", step.body)):
                 if frame != step.frame and _judge(b.truth(frame), doc, j, names,
                                                   len(b.free))[0]:
-                    diags.insert(0, f"frame: it is a balance along the axes of {frame}, "
-                                    f"not {step.frame}")
-        out.append(ElementRecord(verdict="agrees" if ok else "differs", diagnoses=tuple(diags),
+                    diags.insert(0, diagnosis(K.NOTE, f"it is a balance along the axes of "
+                                              f"{frame}, not {step.frame}", prefix="frame"))
+        out.append(ElementRecord(verdict=Verdict.AGREES if ok else Verdict.DIFFERS,
+                                 diagnoses=tuple(diags),
                                  max_error=worst, scale=scale, truth_sample=0.0,
                                  document_sample=_off_balance(truth, doc, j), **common))
     return out

@@ -34,8 +34,9 @@ from ..grid.assumptions import declared
 from ..causes.root import claim_causes
 from ...compiled import numpy_function
 from ..judge.diagnose import agrees, max_error, value_diagnoses
-from ..sides.evaluate import document_symbol_values
-from ..records import Cause, DerivationResult, ElementRecord
+from ..sides.document import document_symbol_values
+from ..records import (Cause, CauseKind, Diagnosis, DiagnosisKind as K, DerivationResult,
+                       ElementRecord, diagnosis)
 from ..readings.row_combinations import as_compared
 from ..grid.samples import parameter_sets
 from ..runtime.workers import Workers, can_fork
@@ -84,9 +85,12 @@ def energy_consistency(steps_d: Derivation, eom: Derivation, seed: int = 2026
             Da, Db = np.concatenate(Da).astype(float), np.concatenate(Db).astype(float)
             scale = max(float(np.abs(Da).max()), float(np.abs(Db).max()), 1e-300)
             ok = agrees(Da, Db, scale)
-            diags = () if ok else (f"{label} of {eom.path.stem} is not {what} of the document's "
-                                   f"own energy {s.name}", *(x.replace("the truth", "the energy's")
-                                                              for x in value_diagnoses(Da, Db, scale)))
+            diags = () if ok else (diagnosis(
+                K.NOTE, f"{label} of {eom.path.stem} is not {what} of the document's own "
+                f"energy {s.name}", prefix=""), *(replace(
+                    x, text=x.text.replace("the truth", "the energy's"),
+                    detail=x.detail.replace("the truth", "the energy's"))
+                    for x in value_diagnoses(Da, Db, scale)))
             out.append(ElementRecord(
                 element=f"{label} vs {what} of {s.name}", key="consistency", index=(),
                 verdict="agrees" if ok else "differs", diagnoses=diags, document=sp.sstr(a),
@@ -108,11 +112,11 @@ def _mono(r: ElementRecord, eom: Derivation) -> Counter | None:
     return None
 
 
-def _difference(diagnoses: Sequence[str]) -> str:
+def _difference(diagnoses: Sequence[Diagnosis]) -> str:
     r"""``extra`` (the truth is 0), ``missing`` (the document has 0) or ``other``."""
     for x in diagnoses:
-        if x.startswith(("extra", "missing")):
-            return x.split(" ", 1)[0].rstrip(":")
+        if x.kind in (K.EXTRA, K.MISSING):
+            return x.kind.value
     return "other"
 
 
@@ -136,19 +140,20 @@ def upstream_causes(steps: Sequence[ElementRecord], eom_records: Sequence[Elemen
             continue
         kind = _difference(r.diagnoses)
         for s in chain:
-            hit = next((x for x in s.diagnoses if x.startswith("term ")
-                        and Counter(x[5:].split(":", 1)[0].split("*")) == mono
-                        and _explains(_difference([x.split(": ", 1)[1]]), kind)), None)
+            hit = next((x for x in s.diagnoses if x.product
+                        and Counter(x.product.split("*")) == mono
+                        and _explains(_difference([x]), kind)), None)
             if hit:
                 found.setdefault((s.element, hit), []).append(r.element)
                 break
     out = []
     for (element, hit), labels in found.items():
         s = next(x for x in chain if x.element == element)
-        term = hit[5:].split(":", 1)[0]
+        term = hit.product
         rows = sorted({lab.split("[")[1].split("]")[0].split(",")[0] for lab in labels})
-        out.append(Cause(kind="upstream_step", elements=tuple(labels),
-                         explanation=f"{element} differs (its {hit[5:]}); the {term} term of "
+        out.append(Cause(kind=CauseKind.UPSTREAM_STEP, elements=tuple(labels),
+                         explanation=f"{element} differs (its {hit.text[5:]}); the {term} "
+                         "term of "
                          f"equation{'s' if len(rows) > 1 else ''} {', '.join(rows)} "
                          f"({', '.join(labels)}) follows from it",
                          step=s.step, equation=s.equation))

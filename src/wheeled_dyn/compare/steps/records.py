@@ -34,10 +34,11 @@ from ...errors import DerivationError
 from ..judge.diagnose import (agrees, max_error, nice_number, power_diagnoses, swap_diagnoses,
                        term_diagnoses, trig_swap_diagnoses, value_diagnoses)
 from ..sides.elements import swap_groups
-from ..sides.evaluate import (derivation_coordinate_set, document_symbol_values,
-                       given_parameter_sets)
+from ..grid.grid import derivation_coordinate_set
+from ..sides.document import document_symbol_values, given_parameter_sets
 from ..sides.kinematics import Motion, along, check_links
-from ..records import ElementRecord
+from ..records import (Diagnosis, DiagnosisKind as K, ElementRecord, Verdict, diagnosis,
+                       in_product)
 from ..grid.assumptions import Assumptions, declared, position_ranges
 from .balances import compare_balance
 from ...compiled import numpy_function
@@ -319,6 +320,10 @@ def _monomial_name(mono: tuple[int, ...], names: Sequence[sp.Symbol]) -> str:
     return "*".join(parts) if parts else "1"
 
 
+#: A difference no single-term diagnosis names.
+_DIFFERS = diagnosis(K.NOTE, "differs", prefix="")
+
+
 def _terms(expr: sp.Expr, gens: Sequence[sp.Symbol]) -> dict[tuple[int, ...], sp.Expr] | None:
     try:
         return {m: c for m, c in sp.Poly(sp.expand(expr), *gens).terms()}
@@ -330,7 +335,7 @@ def _power_swaps(expr: sp.Expr, g: _Group, T: np.ndarray, scale: float) -> list[
     return power_diagnoses(expr, g.params, g.document, T, scale)
 
 
-def _side_factor(g: _Group, sides: tuple[sp.Expr, sp.Expr], scale: float) -> list[str]:
+def _side_factor(g: _Group, sides: tuple[sp.Expr, sp.Expr], scale: float) -> list[Diagnosis]:
     r"""A relation whose right side is a constant c times what the left side is on the
     model's motions: the true relation has the right side divided by c."""
     L, R = (g.document(g._rate(x)) for x in sides)
@@ -340,8 +345,9 @@ def _side_factor(g: _Group, sides: tuple[sp.Expr, sp.Expr], scale: float) -> lis
     if not agrees(R, c * L, scale):
         return []
     true = sp.nsimplify(sides[1] / sp.nsimplify(nice_number(c)))
-    return [f"factor: the right side is {nice_number(c)} × what the left side is on the "
-            f"model's motions; true: {sp.sstr(sides[0])} = {sp.sstr(true)}"]
+    return [diagnosis(K.FACTOR, f"the right side is {nice_number(c)} × what the left side is "
+                      f"on the model's motions; true: {sp.sstr(sides[0])} = {sp.sstr(true)}",
+                      factor=nice_number(c))]
 
 
 def _linear_terms(g: _Group, expr: sp.Expr) -> list[str]:
@@ -374,12 +380,13 @@ def _linear_terms(g: _Group, expr: sp.Expr) -> list[str]:
     for i, (x, c) in enumerate(zip(xs, coefficients)):
         needed = c - kappa[:, i]
         if not agrees(c, needed, scale):
-            why = value_diagnoses(c, needed, scale) or ["differs"]
-            out.append(f"term {x}: {why[0]}")
+            why = value_diagnoses(c, needed, scale) or [_DIFFERS]
+            out.append(in_product(str(x), why[0]))
     return out
 
 
-def _term_diagnoses(g: _Group, step: Step, j: int, expr: sp.Expr, scale: float) -> list[str]:
+def _term_diagnoses(g: _Group, step: Step, j: int, expr: sp.Expr, scale: float
+                    ) -> list[Diagnosis]:
     d = g.d
     gens = [*d.velocities, *d.accelerations]
     if step.kind not in _TERMED or (g.cs.kind == "holonomic" and g.cs.rolling == "multipliers"):
@@ -407,20 +414,18 @@ def _term_diagnoses(g: _Group, step: Step, j: int, expr: sp.Expr, scale: float) 
             continue
         why = value_diagnoses(D, T, cscale) or term_diagnoses(
             doc.get(m, sp.Integer(0)), lambda e: g.documents([e], rows)[0], D, T, cscale) or \
-            ["differs"]
-        out.append(f"term {_monomial_name(m, gens)}: {why[0]}")
+            [_DIFFERS]
+        out.append(in_product(_monomial_name(m, gens), why[0]))
     return out
 
 
-def _explained(diagnoses: Sequence[str]) -> bool:
+def _explained(diagnoses: Sequence[Diagnosis]) -> bool:
     r"""A diagnosis that names the error already (the whole component of the wrong sign or
     factor, a term of the wrong sign or factor, a swapped symbol, a power, a dimension): no
     special family is searched then. A missing or extra term is not enough: it may be what a
     special family removes (a centre of mass off the axis)."""
-    keys = ("sign", "factor", "swap", "power", "dimension")
-    return any(x.startswith(keys) or (x.startswith("term ") and
-                                      x.split(": ", 1)[-1].startswith(("sign", "factor")))
-               for x in diagnoses)
+    return any(x.kind in (K.SIGN, K.FACTOR) or (not x.product and x.kind in (
+        K.SWAP, K.POWER, K.DIMENSION)) for x in diagnoses)
 
 
 def _compiled(g: _Group, step: Step) -> list[sp.Expr]:
@@ -520,17 +525,18 @@ def _records(g: _Group, step: Step, index: int, T: np.ndarray) -> list[ElementRe
         if D is None or not np.all(np.isfinite(D)) or not np.all(np.isfinite(Tj)):
             why = "lost in the extracted text: not compared" if D is None else \
                 "not finite at some samples"
-            recs.append(ElementRecord(verdict="undecided", diagnoses=(why,), max_error=float("nan"),
-                                      scale=scale, **common))
+            recs.append(ElementRecord(verdict=Verdict.UNDECIDED, diagnoses=(
+                diagnosis(K.UNDECIDED, why, prefix=""),), max_error=float("nan"), scale=scale,
+                **common))
             continue
         size = 1.0 + float(np.abs(g.nu).max(initial=0.0))
         if step.kind == "constraint" and scale <= VACUOUS_TOL * size:
-            recs.append(ElementRecord(verdict="undecided", diagnoses=(
-                "every term of the relation vanishes on the model's admissible motions: "
-                "nothing to check",),
+            recs.append(ElementRecord(verdict=Verdict.UNDECIDED, diagnoses=(diagnosis(
+                K.UNDECIDED, "every term of the relation vanishes on the model's admissible "
+                "motions: nothing to check", prefix=""),),
                 max_error=float("nan"), scale=scale, **common))
             continue
-        diags: list[str] = []
+        diags: list[Diagnosis] = []
         expr = g._rate(step.components[j], step.kind)
         D, Tj = _levelled(g, step, D, Tj)
         relation = step.kind in RELATION_KINDS
@@ -538,16 +544,17 @@ def _records(g: _Group, step: Step, index: int, T: np.ndarray) -> list[ElementRe
             lhs, rhs = step.sides[j]
             dl, dr = dims.dim(lhs, []), dims.dim(rhs, [])
             if dl is not None and dr is not None and dl != dr and lhs != 0 and rhs != 0:
-                diags.append(f"dimension: the left side is {format_dim(dl)}, the right side "
-                             f"{format_dim(dr)}")
+                diags.append(diagnosis(K.DIMENSION, f"the left side is {format_dim(dl)}, the "
+                                       f"right side {format_dim(dr)}"))
         else:
             problems: list[str] = []
             dims.dim(step.components[j], problems)
-            diags += [f"dimension: {x}" for x in problems]
+            diags += [diagnosis(K.DIMENSION, x) for x in problems]
         ok = agrees(D, Tj, scale) and not diags
         if not ok:
             if step.kind == "first integral":
-                diags.append("its rate along the model's free motion is not 0")
+                diags.append(diagnosis(K.NOTE, "its rate along the model's free motion is "
+                                       "not 0", prefix=""))
             elif step.kind == "linearised equations":
                 diags += _linear_terms(g, step.components[j])
             elif relation:
@@ -566,7 +573,8 @@ def _records(g: _Group, step: Step, index: int, T: np.ndarray) -> list[ElementRe
             if step.kind == "first integral" or (
                     step.kind == "claim" and not expr.has(*d.positions, *d.velocities)):
                 diags += _power_swaps(expr, g, Tj, scale)
-        recs.append(ElementRecord(verdict="agrees" if ok else "differs", diagnoses=tuple(diags),
+        recs.append(ElementRecord(verdict=Verdict.AGREES if ok else Verdict.DIFFERS,
+                                  diagnoses=tuple(diags),
                                   max_error=max_error(D, Tj), scale=scale,
                                   document_latex=sp.latex(expr), truth_sample=float(Tj[0]),
                                   document_sample=float(D[0]), **common))
@@ -596,8 +604,9 @@ def compare_steps(d: Derivation, seed: int = 2026) -> list[ElementRecord]:
             out[i] = _records(g, steps[i], i, T)
             todo = [r for r in out[i] if r.verdict == "differs" and not _explained(r.diagnoses)]
             special = _special(d, steps[i], seed) if todo else {}
-            out[i] = [replace(r, verdict="agrees_if", diagnoses=(
-                f"agrees only if {special[r.index[1]]}", *r.diagnoses))
+            out[i] = [replace(r, verdict=Verdict.AGREES_IF, diagnoses=(
+                Diagnosis(K.CONDITION, f"agrees only if {special[r.index[1]]}",
+                          special[r.index[1]], condition=special[r.index[1]]), *r.diagnoses))
                 if r in todo and r.index[1] in special else r for r in out[i]]
     return [r for i in sorted(out) for r in out[i]]
 

@@ -47,9 +47,9 @@ from ...derivations.schema import Derivation
 from ...derivations.steps import RESULT_KINDS, Step
 from ...errors import DerivationError
 from ..judge.diagnose import nice_number
-from ..sides.evaluate import (derivation_coordinate_set, document_symbol_values,
-                       given_parameter_sets)
-from ..records import ElementRecord
+from ..grid.grid import derivation_coordinate_set
+from ..sides.document import document_symbol_values, given_parameter_sets
+from ..records import Diagnosis, DiagnosisKind as K, ElementRecord, Verdict, diagnosis
 from ..judge.units import DimensionChecker, format_dim
 
 #: Parameter sets a result is checked on.
@@ -86,6 +86,17 @@ def state_field(cmap: CoordinateMap, quasi: bool) -> StateField:
     return field
 
 
+class NotSteady(str):
+    r"""The reason a stated state is not steady (a text that says what it is by its type)."""
+
+    def __add__(self, other: str) -> "NotSteady":
+        return NotSteady(str(self) + other)
+
+
+def _note(text: str) -> Diagnosis:
+    return diagnosis(K.NOTE, text, prefix="")
+
+
 def linearisation(field: StateField, q0: np.ndarray, nu0: np.ndarray) -> tuple[np.ndarray, str]:
     r"""The Jacobian :math:`J` of the state field at :math:`(q_0, \nu_0)` without the rows and
     columns of ignorable positions (the field does not depend on them: a flywheel's angle, a
@@ -103,14 +114,16 @@ def linearisation(field: StateField, q0: np.ndarray, nu0: np.ndarray) -> tuple[n
     J = np.stack(cols, 1)
     scale = max(float(np.abs(J).max()), 1e-300)
     if np.abs(nudot).max(initial=0.0) > STEADY_TOL * scale * (1 + np.abs(nu0).max(initial=0.0)):
-        return np.zeros((0, 0)), (f"the stated state is not steady: the true accelerations "
-                                  f"there are {np.round(nudot, 6).tolist()}")
+        return np.zeros((0, 0)), NotSteady(f"the stated state is not steady: the true "
+                                           f"accelerations there are "
+                                           f"{np.round(nudot, 6).tolist()}")
     ignorable = [i for i in range(n) if np.abs(J[:, i]).max() <= np.sqrt(STEADY_TOL) * scale]
     moving = [i for i in range(n) if abs(qdot[i]) > STEADY_TOL * (1 + np.abs(nu0).max())]
     bound = [i for i in moving if i not in ignorable]
     if bound:
-        return np.zeros((0, 0)), (f"the stated state is not steady: position {bound[0] + 1} "
-                                  "moves and the motion depends on it")
+        return np.zeros((0, 0)), NotSteady(f"the stated state is not steady: position "
+                                           f"{bound[0] + 1} moves and the motion depends on "
+                                           "it")
     keep = [i for i in range(2 * n) if i not in ignorable]
     return J[np.ix_(keep, keep)], ""
 
@@ -203,7 +216,7 @@ def _critical(setting: _Setting, stated: float) -> tuple[float | None, str]:
     return 0.5 * (lo + hi), ""
 
 
-def _dimension(d: Derivation, step: Step, expr: sp.Expr) -> list[str]:
+def _dimension(d: Derivation, step: Step, expr: sp.Expr) -> list[Diagnosis]:
     r"""A mismatch between the value's dimension and the result's (1/s for a frequency, the
     scanned velocity's for a critical speed), as a diagnosis; none where units are unknown."""
     checker = DimensionChecker(d)
@@ -215,10 +228,10 @@ def _dimension(d: Derivation, step: Step, expr: sp.Expr) -> list[str]:
         names = [str(v) for v in d.velocities]
         want = checker.known.get(d.velocities[names.index(step.speed)]) \
             if step.speed in names else None
-    out = [f"dimension: {x}" for x in problems]
+    out = [diagnosis(K.DIMENSION, x) for x in problems]
     if got is not None and want is not None and tuple(got) != tuple(want):
-        out.append(f"dimension: the value is {format_dim(got)}, a {step.kind} is "
-                   f"{format_dim(want)}")
+        out.append(diagnosis(K.DIMENSION, f"the value is {format_dim(got)}, a {step.kind} is "
+                             f"{format_dim(want)}"))
     return out
 
 
@@ -267,10 +280,11 @@ def _claim_record(d: Derivation, step: Step, index: int, sets, rng) -> ElementRe
                  if step.kind == "steady motion" else _stability(setting, claim))
         if found:
             break
-    verdict = ("undecided" if step.kind == "stability" and "not steady" in found
-               else "differs" if found else "agrees")
+    verdict = (Verdict.UNDECIDED if step.kind == "stability" and isinstance(found, NotSteady)
+               else Verdict.DIFFERS if found else Verdict.AGREES)
     return ElementRecord(element=f"{step.name} claim", key="step", index=(index, 0),
-                         verdict=verdict, diagnoses=(found,) if found else (), document=claim,
+                         verdict=verdict, diagnoses=(_note(found),) if found else (),
+                         document=claim,
                          document_model="", truth=None, residual=None,
                          max_error=float("nan") if found else 0.0, scale=1.0, step=step.kind,
                          equation=step.equation,
@@ -293,48 +307,53 @@ def compare_result(d: Derivation, step: Step, index: int, seed: int) -> ElementR
         values = document_symbol_values(d, ps, rng)
         stated = complex(expr.xreplace(values).evalf())
         if stated.imag != 0 or not np.isfinite(stated.real):
-            return ElementRecord(verdict="undecided", diagnoses=(
-                f"the document's value is not a finite real number ({stated:.4g})",),
+            return ElementRecord(verdict=Verdict.UNDECIDED, diagnoses=(diagnosis(
+                K.UNDECIDED, f"the document's value is not a finite real number "
+                f"({stated:.4g})", prefix=""),),
                 max_error=float("nan"), scale=1.0, **common)
         setting = _Setting(d, step, ps, values, rng)
         if step.kind == "frequency":
             J, why = linearisation(setting.field, setting.q0, setting.nu0)
             if why:
-                return ElementRecord(verdict="undecided", diagnoses=(why,),
+                return ElementRecord(verdict=Verdict.UNDECIDED, diagnoses=(_note(why),),
                                      max_error=float("nan"), scale=1.0, **common)
             modes = frequencies(J)
             if not len(modes):
-                return ElementRecord(verdict="differs", diagnoses=(
-                    "the true motion about the stated state does not oscillate (no neutral "
-                    f"mode; largest growth rate {growth(J):.3g}/s)",),
+                return ElementRecord(verdict=Verdict.DIFFERS, diagnoses=(diagnosis(
+                    K.NOTE, "the true motion about the stated state does not oscillate (no "
+                    f"neutral mode; largest growth rate {growth(J):.3g}/s)", prefix=""),),
                     max_error=float("nan"), scale=abs(stated.real), **common)
             truth = float(modes[np.argmin(np.abs(modes - stated.real))])
             notes.append("true frequencies " + ", ".join(f"{w:.6g}" for w in modes))
         else:
             truth, why = _critical(setting, stated.real)
             if truth is None:                 # a state that is not steady: undecided
-                return ElementRecord(verdict="undecided" if "not steady" in why else "differs",
-                                     diagnoses=(why,), max_error=float("nan"),
+                return ElementRecord(verdict=Verdict.UNDECIDED if isinstance(why, NotSteady)
+                                     else Verdict.DIFFERS,
+                                     diagnoses=(_note(why),), max_error=float("nan"),
                                      scale=abs(stated.real), **common)
         D.append(stated.real)
         T.append(truth)
     D_arr, T_arr = np.array(D), np.array(T)
     scale = float(np.abs(T_arr).max(initial=0.0)) or 1.0
     ok = bool(np.all(np.abs(D_arr - T_arr) <= RESULT_TOL * np.abs(T_arr))) and not dims
-    diags: list[str] = list(dims)
+    diags: list[Diagnosis] = list(dims)
     if not ok:
         ratios = D_arr / T_arr
         if np.ptp(ratios) <= RESULT_TOL * np.abs(ratios).max():
-            diags.append(f"factor: the document is {nice_number(float(ratios[0]))} × the truth")
+            c = nice_number(float(ratios[0]))
+            diags.append(diagnosis(K.FACTOR, f"the document is {c} × the truth", factor=c))
             squared = float(ratios[0]) ** 2
             if abs(squared - round(squared)) > 1e-6 or round(squared) not in (0, 1):
-                diags.append(f"its square is {nice_number(squared)} × the truth's")
+                diags.append(_note(f"its square is {nice_number(squared)} × the truth's"))
         else:
-            diags.append("the ratio to the truth changes with the parameters "
-                         f"({nice_number(float(ratios.min()))} to {nice_number(float(ratios.max()))})")
-        diags.append(f"at the first parameter set: document {D[0]:.6g}, truth {T[0]:.6g}"
-                     + (f" ({notes[0]})" if notes else ""))
-    return ElementRecord(verdict="agrees" if ok else "differs", diagnoses=tuple(diags),
+            diags.append(_note("the ratio to the truth changes with the parameters "
+                               f"({nice_number(float(ratios.min()))} to "
+                               f"{nice_number(float(ratios.max()))})"))
+        diags.append(_note(f"at the first parameter set: document {D[0]:.6g}, truth "
+                           f"{T[0]:.6g}" + (f" ({notes[0]})" if notes else "")))
+    return ElementRecord(verdict=Verdict.AGREES if ok else Verdict.DIFFERS,
+                         diagnoses=tuple(diags),
                          max_error=float(np.abs(D_arr - T_arr).max()), scale=scale,
                          truth_sample=T[0], document_sample=D[0], **common)
 

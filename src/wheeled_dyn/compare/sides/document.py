@@ -1,11 +1,6 @@
-r"""Numbers on both sides: the truth and the document over K parameter sets × N states.
+r"""The document's numbers over K parameter sets × N states.
 
-Truth, in the document's coordinates (:class:`~wheeled_dyn.constraints.CoordinateMap`):
-:math:`A, C, Q, h` and the unique symmetric coefficient tensor of :math:`h`,
-:math:`H_{i,jk} = \tfrac12(C(e_k)_{ij} + C(e_j)_{ik})`, and :math:`B` in the document's inputs:
-if the model's inputs are :math:`\tau = f(u_{doc})`, :math:`B_{doc} = B\,\partial f/\partial u`.
-
-Document: each element of its A, C, Q, B (matrix form) or of the read-off A, h, Q, B (equation
+Each element of its A, C, Q, B (matrix form) or of the read-off A, h, Q, B (equation
 form) is compiled as ``sympy.lambdify`` compiles it (:mod:`.compiled`) in its coordinates,
 velocities and symbols; every symbol takes the value its declaration gives in the model
 namespace, at each parameter set.
@@ -20,32 +15,30 @@ import numpy as np
 import sympy as sp
 from sympy.core.function import AppliedUndef
 
-from ...constraints.reduction import CoordinateMap
-from ...coordinates import CoordinateSet, builtin_coordinate_set, parse_coordinate_set
 from ...derivations.schema import Derivation
 from ...errors import DerivationError
 from ...compiled import numpy_function
+from ..grid.arrays import Arrays
 from ..grid.samples import ParameterSet, parameter_sets, special_cases
 
-#: States per parameter set on which the coefficient tensor H of h is compared (h itself, A,
-#: C, Q, B are compared on all of them).
-H_SAMPLES = 200
 #: Range of the random values of a document's free symbols (present on both sides).
 FREE_RANGE = (0.5, 2.0)
 
 
-@dataclass
-class Arrays:
-    r"""Matrices over the samples (leading axis S = K·N); None where not given."""
-
-    A: np.ndarray | None = None
-    C: np.ndarray | None = None
-    Q: np.ndarray | None = None
-    B: np.ndarray | None = None
-    h: np.ndarray | None = None
-    H: np.ndarray | None = None
-    G: np.ndarray | None = None
-    H_rows: np.ndarray | None = None       # samples where H was computed (None: all)
+def document_arrays(d: Derivation, funcs: "DocumentFunctions", sets, q: np.ndarray,
+                    nu: np.ndarray, seed: int, H_rows: np.ndarray | None = None
+                    ) -> tuple[Arrays, list[dict[sp.Symbol, float]], dict[sp.Symbol, np.ndarray]]:
+    r"""``(document arrays, symbol values per set, symbol values per sample)`` at the states
+    ``q, nu`` (K × N × n) of the parameter ``sets``; H kept at the samples ``H_rows`` (the
+    truth's)."""
+    rng = np.random.default_rng(seed + 1)
+    k, n_states, n = q.shape
+    per_set = [document_symbol_values(d, ps, rng) for ps in sets]
+    values = {s: np.repeat([v[s] for v in per_set], n_states) for s in funcs.params}
+    doc = funcs.evaluate(q.reshape(-1, n), nu.reshape(-1, n), values)
+    if doc.H is not None and H_rows is not None:
+        doc.H = doc.H[H_rows]
+    return doc, per_set, values
 
 
 def model_value(expr: sp.Expr, values: Mapping[str, float]) -> float:
@@ -66,29 +59,6 @@ def model_value(expr: sp.Expr, values: Mapping[str, float]) -> float:
     return float(expr.xreplace({s: values[s.name] for s in expr.free_symbols}))
 
 
-def derivation_coordinate_set(d: Derivation, ps: ParameterSet) -> CoordinateSet:
-    r"""The document's coordinate set, built-in or inline; document symbols in inline
-    expressions are replaced by their model values' names (R, L ...)."""
-    wm = ps.model
-    spec = d.coordinates
-    if spec.use:
-        cs = builtin_coordinate_set(wm, spec.use)
-        if tuple(cs.velocities) != tuple(str(v) for v in d.velocities):
-            raise DerivationError(d.path, "coordinates", f"built-in set {spec.use!r} has "
-                                  f"velocities {cs.velocities}, the file {d.velocities}")
-        return cs
-    to_model = {s.symbol: s.value for s in d.symbols.values() if s.value is not None}
-    raw = {"kind": spec.kind, "rolling": spec.rolling, "positions": list(spec.positions),
-           "velocities": list(spec.velocities),
-           "configuration": {k: str(sp.sympify(v).xreplace(to_model))
-                             for k, v in spec.configuration.items()}}
-    if spec.velocity_map:
-        raw["velocity_map"] = {k: str(sp.sympify(v).xreplace(to_model))
-                               for k, v in spec.velocity_map.items()}
-    return parse_coordinate_set(raw, "inline", wm.coordinate_names, tuple(wm.geometry),
-                                where=str(d.path))
-
-
 def document_symbol_values(d: Derivation, ps: ParameterSet, rng: np.random.Generator) -> dict[sp.Symbol, float]:
     r"""Each non-input document symbol's number at this parameter set."""
     out = {}
@@ -99,40 +69,6 @@ def document_symbol_values(d: Derivation, ps: ParameterSet, rng: np.random.Gener
             out[spec.symbol] = model_value(spec.value, ps.values)
         else:
             out[spec.symbol] = rng.uniform(*FREE_RANGE)
-    return out
-
-
-def truth_arrays(cmaps: Sequence[CoordinateMap], q: np.ndarray, nu: np.ndarray,
-                 input_maps: Sequence[np.ndarray] | None) -> Arrays:
-    r"""Truth for each parameter set's bound map ``cmaps[k]`` at states ``q[k], nu[k]``
-    (K × N × n); ``input_maps[k]`` is :math:`\partial\tau/\partial u_{doc}` (or None).
-    :math:`H` comes from :math:`C_\nu(e_j)`, which is linear in :math:`\nu`, on the first
-    :data:`H_SAMPLES` states of each set (rows listed in ``H_rows``)."""
-    from ...constraints.batch import reduce_batch_multi
-    parts: dict[str, list[np.ndarray]] = {k: [] for k in "ACQBhHG"}
-    rows: list[np.ndarray] = []
-    for k, cmap in enumerate(cmaps):
-        n, N = cmap.n, len(q[k])
-        qm = cmap._config_batch(N, *q[k].T, *cmap._p)[:, :, 0]
-        m = min(N, H_SAMPLES)
-        units = [np.tile(np.eye(n)[j], (m, 1)) for j in range(n)]
-        if m == N:
-            t, *basis = reduce_batch_multi(cmap, qm, [nu[k], *units], q[k])
-        else:
-            (t,) = reduce_batch_multi(cmap, qm, [nu[k]], q[k])
-            basis = reduce_batch_multi(cmap, qm[:m], units, q[k][:m])
-        rows.append(k * N + np.arange(m))
-        gamma = np.stack([b.C for b in basis], axis=3)
-        parts["A"].append(t.A)
-        parts["C"].append(t.C)
-        parts["Q"].append(t.Q)
-        parts["h"].append(t.h)
-        parts["H"].append(0.5 * (gamma + gamma.transpose(0, 1, 3, 2)))
-        parts["B"].append(t.B if input_maps is None else t.B @ input_maps[k])
-        if t.G is not None:
-            parts["G"].append(t.G)
-    out = Arrays(**{k: (np.concatenate(v) if v else None) for k, v in parts.items()})
-    out.H_rows = np.concatenate(rows)
     return out
 
 

@@ -1,0 +1,57 @@
+r"""Causes from the equations as a whole: the frames the equations were explained in, the
+equations that are not equivalent because :math:`W` is singular, and declarations the
+equations contradict.
+
+- a row that is not the true equation itself (divided by a function, reordered, combined,
+  solved for the accelerations) is one ``convention`` cause naming the frames: it explains
+  how the elements are compared, it changes no verdict (an equivalent form is as right as
+  the true one, :mod:`..judge.equivalence`);
+- equations multiplied by a factor that vanishes somewhere, lost or repeated: a
+  ``not_equivalent`` cause naming them;
+- a row scale the file declares that the equation contradicts, although the equation is
+  right: a ``file_error`` cause (the declaration is wrong, not the document).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import sympy as sp
+
+from ...derivations.schema import Derivation
+from ..readings.describe import FrameText
+from ..readings.frames import FrameKind, FrameRule
+from ..records import Cause, CauseKind, DiagnosisKind as K, EquationRecord, Verdict, first_of
+
+
+def frame_causes(d: Derivation, texts: Sequence[FrameText], rules: Sequence[FrameRule],
+                 equations: Sequence[EquationRecord], declared_wrong: Sequence[int] = ()
+                 ) -> list[Cause]:
+    r"""The causes of the module text."""
+    out: list[Cause] = []
+    shown = [f"equation {i + 1} is {t.text}" if not t.text.startswith("=") else
+             f"equation {i + 1} {t.text}"
+             for i, (t, r) in enumerate(zip(texts, rules))
+             if t.text and r.kind not in (FrameKind.IDENTITY, FrameKind.DECLARED)
+             and not (r.kind == FrameKind.CONSTANT and r.partner == i)]
+    if shown:
+        out.append(Cause(CauseKind.CONVENTION, (), "; ".join(shown) + ": its elements are "
+                         "compared in that frame (an equation divided by a quantity that does "
+                         "not vanish, or replaced by an invertible combination of the "
+                         "equations, has the same solutions)"))
+    singular = [e for e in equations if first_of(e.diagnoses, K.SINGULAR) is not None]
+    if singular:
+        why = first_of(singular[0].diagnoses, K.SINGULAR)
+        out.append(Cause(CauseKind.NOT_EQUIVALENT, tuple(e.label for e in singular),
+                         why.detail if why is not None else ""))
+    for i in declared_wrong:
+        if i < len(equations) and equations[i].verdict == Verdict.AGREES:
+            scale = sp.sstr(d.row_scale[i]) if d.row_scale is not None else "1"
+            out.append(Cause(CauseKind.FILE_ERROR, (equations[i].label,), (
+                f"the file declares equation {i + 1} as the true one times {scale}, but it "
+                f"is {texts[i].text or 'the true equation'}: the declaration is wrong, the "
+                "equation is right")))
+    return out
+
+
+__all__ = ["frame_causes"]

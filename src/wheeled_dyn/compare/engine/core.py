@@ -1,0 +1,104 @@
+r"""The comparison engine: a document's derivation against the truth.
+
+For a :class:`~wheeled_dyn.derivations.schema.Derivation`, one call per stage:
+
+1. **grid** — K random physically consistent parameter sets of its model, N states each
+   (:mod:`.grid`), the truth there in the document's coordinates, and the document's numbers
+   (:mod:`.sides`);
+2. **judge: equivalence** — whether each equation is right, whatever its form: a combination
+   of the true equations with :math:`W = A_{doc}A^{-1}` invertible (:mod:`.judge.equivalence`).
+   This alone decides the equations' verdicts;
+3. **readings: frames** — which combination of the true equations each document equation is
+   meant to be (the true one, :math:`-1` × it, divided by its inertia, solved for the
+   accelerations ...), chosen so the fewest elements differ (:mod:`.readings.frames`);
+4. **judge: elements** — every element of A, C, Q, B and every velocity product of h against
+   the truth in its row's frame, with typed diagnoses (:mod:`.judge.element`), "agrees only if"
+   from the special parameter families the document did not declare
+   (:mod:`.judge.families`), C judged by the products of h it takes part in
+   (:mod:`.judge.factorization`), differing terms named (:mod:`.judge.named`);
+5. **causes** — the few reasons (:mod:`.causes`), a better reading of the file's sign
+   conventions as a cause only (:mod:`.causes.readings`; applied only where the file declares
+   its convention unknown);
+6. **steps** — earlier steps of the derivation (:mod:`.steps`).
+
+The element pipeline lives in :mod:`.judgement`; this module wires the stages.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import replace
+
+import numpy as np
+
+from ...derivations.schema import Derivation
+from .conventions import convention_finding, unknown_convention
+from ..causes.root import root_causes
+from ..grid.grid import Grids
+from .judgement import Judgement, judge_derivation
+from ..records import Cause, Convention, ConventionSummary, DerivationResult
+from ..sides.truth import truth_for
+
+#: Called with a derivation's file name and the name of the stage that starts.
+StageCallback = Callable[[str, str], None]
+
+
+class ComparisonEngine:
+    r"""Compares derivations; the truth is computed once per (model, coordinates, parameter
+    families, grid size), so derivations sharing coordinates share it. ``parallel_steps``:
+    the step files feeding a derivation are compared in a forked process meanwhile (the
+    command line's ``compare``; :func:`~.steps.chain.with_steps`). ``on_stage``: told when
+    each stage of a derivation starts (a progress display)."""
+
+    def __init__(self, samples: int = 1000, param_sets: int = 5, seed: int = 2026,
+                 parallel_steps: bool = False, on_stage: StageCallback | None = None) -> None:
+        self.samples = samples
+        self.param_sets = param_sets
+        self.seed = seed
+        self.parallel_steps = parallel_steps
+        self.on_stage = on_stage
+        self.grids = Grids(seed, truth_for)
+        self._results: dict[tuple, DerivationResult] = {}
+
+    def stage(self, d: Derivation, name: str) -> None:
+        if self.on_stage is not None:
+            self.on_stage(d.path.name, name)
+
+    def compare(self, d: Derivation) -> DerivationResult:
+        r"""The comparison of one derivation (memoised per file and content)."""
+        key = (str(d.path), d.path.stat().st_mtime_ns if d.path.exists() else 0)
+        if key not in self._results:
+            from ..steps.chain import with_steps       # earlier steps, upstream causes
+            self._results[key] = with_steps(d, self._compare, self.seed, self.parallel_steps)
+        return self._results[key]
+
+    def judge(self, d: Derivation) -> Judgement:
+        r"""The equations and elements of ``d`` judged as the file declares them (values that
+        overflow or leave the reals are inf or NaN there, silently: they never decide)."""
+        with np.errstate(all="ignore"):
+            return judge_derivation(self, d)
+
+    def _compare(self, d: Derivation) -> DerivationResult:
+        first: list[Cause] = []
+        applied = unknown_convention(self, d)
+        if applied is not None:                   # the file says its convention is unknown
+            d, cause = applied
+            first.append(cause)
+        j = self.judge(d)
+        result = j.result
+        if applied is None and not result.equivalent and result.equations:
+            self.stage(d, "readings")
+            finding = convention_finding(self, d, j)
+            if finding is not None:
+                first.append(finding[0])
+                result = replace(result, conventions=finding[1])
+        if result.conventions is None:
+            result = replace(result, conventions=ConventionSummary(
+                declared=Convention("as declared", result.counts())))
+        self.stage(d, "causes")
+        found = root_causes(j.evaluation, d, result.records, result.energy, result.asymmetric,
+                            [*first, *j.causes])
+        return replace(result, causes=found)
+
+
+__all__ = ["ComparisonEngine", "StageCallback"]

@@ -1,0 +1,92 @@
+r"""The document's equations as records, consistent with their elements.
+
+The verdict of an equation is its equivalence decision (:mod:`..judge.equivalence`); where it
+differs on the general grid but is a combination of the true equations on the grid of the
+special parameter families the document did not declare, it *agrees only if* they hold (the
+conditions its elements need). The elements of a row are then made to say the same: in an
+equation that agrees every element agrees in its frame (C elements that differ only in their
+factorisation excepted), so a tolerance on one element cannot contradict the equation; an
+equation that differs where no element does says so itself.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from ...derivations.schema import Derivation
+from ..judge.draft import ElementDraft
+from ..readings.describe import FrameText
+from ..records import (Diagnosis, DiagnosisKind as K, EquationRecord, Verdict, diagnosis,
+                       first_of)
+from ..sides.both import Sides
+
+
+def _lost(d: Derivation, i: int) -> list[str]:
+    return [e for e in d.missing if e.split("[")[1].split(",")[0].split("]")[0] == str(i + 1)]
+
+
+def _family_condition(row: Sequence[ElementDraft]) -> str:
+    conditions = [c.condition for r in row if r.verdict == Verdict.AGREES_IF
+                  for c in r.diagnoses if c.kind == K.CONDITION and c.condition]
+    return " and ".join(dict.fromkeys(conditions))
+
+
+def _reconcile(verdict: Verdict, row: Sequence[ElementDraft]) -> list[Diagnosis]:
+    r"""Make the row's elements say what the equation says (module text); the equation's
+    extra diagnoses."""
+    if verdict == Verdict.AGREES:
+        for r in row:
+            if r.verdict in (Verdict.AGREES, Verdict.FACTORIZATION):
+                continue
+            if r.key == "C":
+                r.verdict = Verdict.FACTORIZATION
+                r.diagnoses = [Diagnosis(K.FACTORIZATION, f"C q̇ agrees in row {r.row + 1}: "
+                                         "only the factorisation of C differs, not the "
+                                         "equations")]
+            elif r.verdict != Verdict.UNDECIDED:
+                r.verdict = Verdict.AGREES
+                r.diagnoses = [diagnosis(K.NOTE, "within the equation's tolerance (its "
+                                         "equation agrees)", prefix="")]
+        return []
+    if verdict == Verdict.DIFFERS and not any(
+            r.verdict in (Verdict.DIFFERS, Verdict.AGREES_IF) and r.key != "C" for r in row):
+        return [diagnosis(K.NOTE, "no single element of it differs in its frame: the "
+                          "difference is spread over its terms", prefix="")]
+    return []
+
+
+def equation_records(d: Derivation, decision, drafts: Sequence[ElementDraft],
+                     texts: Sequence[FrameText], label: str, grids: Sequence[Sides],
+                     funcs, rules) -> list[EquationRecord]:
+    r"""One :class:`~..records.EquationRecord` per equation (module text); none where the
+    document gives no A."""
+    if decision is None:
+        return []
+    on_families = None
+    if len(grids) > 1 and any(e.verdict == Verdict.DIFFERS for e in decision.equations):
+        from .judgement import decide
+        on_families = decide(d, funcs, grids[1])
+    out = []
+    for i, e in enumerate(decision.equations):
+        row = [r for r in drafts if r.row == i]
+        verdict, diags = e.verdict, list(e.diagnoses)
+        lost = _lost(d, i)
+        if lost and verdict != Verdict.DIFFERS:
+            verdict = Verdict.UNDECIDED
+            diags = [diagnosis(K.UNDECIDED, f"{', '.join(lost)} lost in the extracted text: "
+                               "the equation is not decided")]
+        singular = first_of(diags, K.SINGULAR) is not None
+        if verdict == Verdict.DIFFERS and not singular and on_families is not None \
+                and on_families.equations[i].verdict == Verdict.AGREES:
+            text = _family_condition(row) or "the model's special parameter families hold"
+            verdict = Verdict.AGREES_IF
+            diags = [Diagnosis(K.CONDITION, f"agrees only if {text}", text, condition=text)]
+        diags += _reconcile(verdict, row)
+        out.append(EquationRecord(index=i, label=f"equation {i + 1} ({d.positions[i]})",
+                                  verdict=verdict, diagnoses=tuple(diags),
+                                  frame=texts[i].text or "the true equation",
+                                  max_error=e.max_error, equation=label))
+    return out
+
+
+__all__ = ["equation_records"]

@@ -1,0 +1,392 @@
+r"""One derivation judged as its file declares it: the equations decided by equivalence, then
+every element explained in its row's frame.
+
+The stages (see :mod:`..engine`): the grid and both sides on it; the equations' verdicts
+(:func:`~..judge.equivalence.decide`, with the special states at which a factor may vanish);
+the frame of every row (:func:`~..readings.frames.choose`, scored on the main grid and on the
+grid of the special families the document did not declare); the elements judged in their frames
+(:mod:`..judge.element`), the family search, C by its products, the differing terms named; the
+equation records, consistent with the elements (:func:`equation_records`); the document's own
+checks (energy, symmetry, constraint rows); the printed forms for the reports.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import sympy as sp
+
+from ...derivations.schema import Derivation, equation_labels
+from ..causes.frames import frame_causes
+from ..grid.assumptions import Assumptions, declared
+from ..grid.grid import special_states
+from ..grid.samples import special_cases
+from ..judge import equivalence, families
+from ..judge.document_checks import asymmetry, constraint_rows, energy_check
+from ..judge.draft import ElementDraft
+from ..judge.element import Trials, judge
+from ..judge.factorization import factorization
+from ..judge.fitting import bases, fit_factor
+from ..judge.named import name_terms, own_moments
+from ..judge.rows import drafts_of_row, row_values
+from ..judge.units import DimensionChecker
+from ..readings.describe import describe
+from ..readings.frames import Frame, FrameKind, FrameRule, candidate_rules, choose, evaluate_rule
+from ..records import Cause, DerivationResult, Verdict
+from ..sides.both import Sides, both_sides
+from ..sides.document import DocumentFunctions
+from ..sides.elements import latex_names, swap_groups
+from ..sides.evaluation import Evaluation
+from ..sides.framed import framed, row_of, row_scale
+from ..sides.truth import special_truth_A
+from .equations import equation_records
+from .printing import print_drafts
+
+#: Smaller grid used to test special parameter families: states per set, sets.
+SPECIAL_SAMPLES, SPECIAL_SETS = 40, 2
+#: The grid functions of the state are identified on (the frames' descriptions, the named
+#: terms): states per set, parameter sets (a quantity of the parameters alone takes one value
+#: per set, so many sets).
+ID_STATES, ID_SETS = 8, 16
+
+
+@dataclass(frozen=True)
+class Judgement:
+    r"""A derivation judged as declared: the result (no causes yet), the numbers it was
+    decided on, the causes found while judging (frames, declarations), and the sides."""
+
+    result: DerivationResult
+    evaluation: Evaluation
+    causes: tuple[Cause, ...]
+    sides: Sides
+    funcs: DocumentFunctions
+
+
+def document_functions(d: Derivation) -> DocumentFunctions:
+    r"""The document's elements as printed (declared row scales not divided out: the truth is
+    brought into the document's frame), assumptions applied, compiled."""
+    terms = d.read_off(assume=True, unscale=False)
+    C = d.C
+    if C is not None and d.assumptions:
+        C = sp.ImmutableMatrix(d.apply_assumptions(C))
+    G = d.G if d.G is not None else d.constraint_matrix()
+    return DocumentFunctions(d, terms.A, C, terms.Q, terms.B, terms.h, G)
+
+
+def _n(a, B) -> equivalence.Side | None:
+    r"""An :class:`~..judge.equivalence.Side` of arrays ``a`` (n = h + Q where given)."""
+    if a.A is None:
+        return None
+    parts = [x for x in (a.h, a.Q) if x is not None]
+    n = None if not parts else sum(parts[1:], parts[0])
+    return equivalence.Side(a.A, n, B)
+
+
+def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides
+           ) -> equivalence.SystemDecision | None:
+    r"""The equations' verdicts on the main grid (None where the document gives no A)."""
+    doc, truth = sides.doc, sides.truth
+    both_n = doc.h is not None or doc.Q is not None
+    doc_side = _n(doc, doc.B if sides.B_true is not None else None)
+    if doc_side is None or truth.A is None:
+        return None
+    parts = [x for x, y in ((truth.h, doc.h), (truth.Q, doc.Q)) if y is not None]
+    true_n = sum(parts[1:], parts[0]) if both_n else None
+    true_side = equivalence.Side(truth.A, true_n, sides.B_true)
+    W = equivalence.combination_rows(doc.A, truth.A)
+    varies = np.nanmax(np.ptp(np.nan_to_num(W), axis=0), initial=0.0) > 1e-9 * max(
+        float(np.nanmax(np.abs(W), initial=0.0)), 1e-300)
+    special = None
+    if varies:
+        q, owner = special_states(sides.grid)
+        if len(q):
+            values = {s: np.asarray([sides.per_set[k][s] for k in owner]) for s in funcs.params}
+            at = funcs.evaluate(q, np.zeros_like(q), values)
+            special = (at.A, special_truth_A(sides.grid, q, owner))
+    return equivalence.decide(doc_side, true_side, len(sides.grid.sets), special)
+
+
+def _grids(engine, d: Derivation, funcs: DocumentFunctions, sides: Sides,
+           cases: tuple, assumed: Assumptions) -> list[Sides]:
+    r"""The main sides and, where the model has undeclared special families, the sides on
+    their grid (a document usually omits what they remove: there its rows match the truth in
+    their frame exactly)."""
+    out = [sides]
+    if cases:
+        grid = engine.grids.get(d, tuple(cases), SPECIAL_SAMPLES, SPECIAL_SETS, assumed)
+        out.append(both_sides(d, funcs, grid, engine.seed))
+    return out
+
+
+def _frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], decision
+            ) -> tuple[list[FrameRule], list[Frame], list[int]]:
+    r"""Every row's frame rule (chosen over ``grids``), its frame on the main grid, and the
+    rows whose declared scale the (right) equation contradicts."""
+    main = grids[0]
+    rules, frames, wrong = [], [], []
+    found = bases(d, main.grid.flat_q, main.values)
+
+    def simple(ratio: np.ndarray) -> bool:
+        return fit_factor(ratio, found) is not None
+    declared_scale = None
+    for i in range(d.n):
+        right = decision is not None and decision.equations[i].verdict == Verdict.AGREES
+        candidates = candidate_rules(i, [(s.doc, s.truth, s.B_true) for s in grids],
+                                     not right, simple)
+        has_declared = d.row_scale is not None
+        declared_scale = _declared_weights(d, main, i, funcs) if has_declared else None
+        rule = choose(i, candidates, [(s.doc, s.truth, s.B_true) for s in grids],
+                      has_declared and not right, right)
+        frame = evaluate_rule(i, rule, main.doc, main.truth, main.doc.B, main.B_true,
+                              declared_scale)
+        if frame is None:
+            rule = FrameRule(FrameKind.IDENTITY)
+            frame = evaluate_rule(i, rule, main.doc, main.truth, main.doc.B, main.B_true)
+        if has_declared and rule.kind != FrameKind.DECLARED:
+            if _same(frame.weights, i, declared_scale):
+                rule = FrameRule(FrameKind.DECLARED)
+                frame = evaluate_rule(i, rule, main.doc, main.truth, main.doc.B, main.B_true,
+                                      declared_scale)
+            elif right:
+                wrong.append(i)
+        rules.append(rule)
+        frames.append(frame)
+    return rules, frames, wrong
+
+
+def _same(w: np.ndarray, i: int, factor: np.ndarray) -> bool:
+    r"""Weights ``w`` (S × n) that are ``factor`` × :math:`e_i` at every sample."""
+    expected = np.zeros_like(w)
+    expected[:, i] = factor
+    scale = max(float(np.abs(expected).max(initial=0.0)), 1e-300)
+    return bool(np.abs(w - expected).max(initial=0.0) <= 1e-7 * scale)
+
+
+def _declared_weights(d: Derivation, sides: Sides, i: int, funcs: DocumentFunctions
+                      ) -> np.ndarray:
+    r"""The factor the file declares for row ``i``, per sample."""
+    return np.broadcast_to(np.asarray(funcs.compiled(d.row_scale[i])(*sides.argv), float),
+                           (sides.size,))
+
+
+def _row_drafts(d: Derivation, funcs: DocumentFunctions, sides: Sides, frames: list[Frame],
+                dims: DimensionChecker, label: str) -> tuple[list[ElementDraft], dict]:
+    r"""Every element judged in its row's frame; per row the document's and the framed
+    truth's :math:`\Gamma` (for C by its products)."""
+    trials = Trials(funcs, sides.argv, sides.size)
+    groups = swap_groups(d)
+    lost = set(d.missing)
+    drafts: list[ElementDraft] = []
+    gammas = {}
+    for i, frame in enumerate(frames):
+        doc_row, true_row = row_of(sides.doc, i), framed(frame.weights, sides.truth,
+                                                          sides.B_true)
+        scale = row_scale(doc_row, true_row)
+        row = drafts_of_row(doc_row, true_row, i, funcs.exprs, d.velocities, scale, lost,
+                            label)
+        dims.row_dimension(i, [(r.key, r.index, r.expr) for r in row if r.key != "h"
+                               and r.expr is not None])
+        for r in row:
+            problems = dims.check(r.key, r.index, r.expr) if r.key != "h" and \
+                r.expr is not None else []
+            judge(r, problems, trials, groups)
+        drafts += row
+        if doc_row.Gamma is not None and true_row.Gamma is not None:
+            gammas[i] = (doc_row.Gamma[:, 0], true_row.Gamma[:, 0])
+    return drafts, gammas
+
+
+def _agreeing(engine, d, funcs, rules, assumed):
+    r"""The family search's callback (:data:`~..judge.families.Agreeing`)."""
+    def on(combo):
+        grid = engine.grids.get(d, combo, SPECIAL_SAMPLES, SPECIAL_SETS, assumed)
+        s = both_sides(d, funcs, grid, engine.seed)
+        elements = []
+        for i, rule in enumerate(rules):
+            frame = evaluate_rule(i, rule, s.doc, s.truth, s.doc.B, s.B_true,
+                                  _declared_weights(d, s, i, funcs)
+                                  if rule.kind == FrameKind.DECLARED
+                                  else None)
+            if frame is None:
+                continue
+            doc_row, true_row = row_of(s.doc, i), framed(frame.weights, s.truth, s.B_true)
+            scale = row_scale(doc_row, true_row)
+            elements += [(key, index, D, T, scale) for key, index, D, T, _ in
+                         row_values(doc_row, true_row, i, funcs.exprs, d.velocities)]
+        return families.items(elements)
+    return on
+
+
+def judge_derivation(engine, d: Derivation) -> Judgement:
+    r"""``d`` judged as declared (module text)."""
+    engine.stage(d, "grid")
+    assumed = declared(d)
+    funcs = document_functions(d)
+    grid = engine.grids.get(d, (), engine.samples, engine.param_sets, assumed)
+    engine.stage(d, "both sides")
+    sides = both_sides(d, funcs, grid, engine.seed, with_gamma=True)
+    engine.stage(d, "equivalence")
+    decision = decide(d, funcs, sides)
+    cases = tuple(c for c in special_cases(d.model) if c not in assumed.families)
+    grids = _grids(engine, d, funcs, sides, cases, assumed)
+    engine.stage(d, "frames")
+    rules, frames, declared_wrong = _frames(d, funcs, grids, decision)
+    engine.stage(d, "elements")
+    label = equation_labels(str(d.source.get("equations", "")))
+    drafts, gammas = _row_drafts(d, funcs, sides, frames, DimensionChecker(d), label)
+    from ..judge.swaps import h_swaps
+    h_swaps(drafts)
+    families.search(cases, drafts, _agreeing(engine, d, funcs, rules, assumed))
+    factorization(drafts, gammas)
+    id_sides = both_sides(d, funcs, engine.grids.get(d, (), ID_STATES, ID_SETS, assumed),
+                          engine.seed)
+    id_frames = _id_frames(d, funcs, rules, id_sides)
+    found = bases(d, id_sides.grid.flat_q, id_sides.values)
+    texts = [describe(i, frame, None if on_id is None else on_id.weights, found, d.positions,
+                      sides.doc.A[:, i, :] if sides.doc.A is not None else None,
+                      None if d.row_scale is None else d.row_scale[i])
+             for i, (frame, on_id) in enumerate(zip(frames, id_frames))]
+    if any(r.verdict != Verdict.AGREES for r in drafts):
+        name_terms(drafts, _id_values(d, funcs, id_sides, id_frames), found,
+                   own_moments([ps.values for ps in id_sides.grid.sets], ID_STATES),
+                   _geometric(d))
+    equations = equation_records(d, decision, drafts, texts, label, grids, funcs, rules)
+    engine.stage(d, "printing")
+    print_drafts(d, drafts, sides.grid.cs, texts, assumed)
+    return _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed,
+                      declared_wrong)
+
+
+def _geometric(d: Derivation) -> set[sp.Symbol]:
+    r"""The document's positions and its symbols measured in metres (or dimensionless)."""
+    from ..judge.units import units_dim
+    out = set(d.positions)
+    for spec in d.symbols.values():
+        dim = units_dim(spec.units) if spec.units else None
+        if dim is not None and dim[0] == 0 and dim[2] == 0:
+            out.add(spec.symbol)
+    return out
+
+
+def _id_frames(d: Derivation, funcs: DocumentFunctions, rules: list[FrameRule],
+               id_sides: Sides) -> list[Frame | None]:
+    r"""Every row's frame rule evaluated on the identification grid."""
+    return [evaluate_rule(i, rule, id_sides.doc, id_sides.truth, id_sides.doc.B,
+                          id_sides.B_true, _declared_weights(d, id_sides, i, funcs)
+                          if rule.kind == FrameKind.DECLARED else None)
+            for i, rule in enumerate(rules)]
+
+
+def _id_values(d: Derivation, funcs: DocumentFunctions, id_sides: Sides,
+               id_frames: list[Frame | None]) -> dict:
+    r"""Each element's (document, truth in frame) values on the identification grid."""
+    out = {}
+    for i, frame in enumerate(id_frames):
+        if frame is None:
+            continue
+        doc_row = row_of(id_sides.doc, i)
+        true_row = framed(frame.weights, id_sides.truth, id_sides.B_true)
+        for key, index, D, T, _ in row_values(doc_row, true_row, i, funcs.exprs, d.velocities):
+            out[(key, index)] = (D, T)
+    return out
+
+
+def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed,
+               declared_wrong) -> Judgement:
+    grid = sides.grid
+    scales = np.array([r.scale for r in [next((x for x in drafts if x.row == i), None)
+                                          for i in range(d.n)] if r is not None] or [1.0])
+    if len(scales) != d.n:
+        scales = np.ones(d.n)
+    no_factor = (None,) * d.n
+    diagonal = _diagonal(d, texts, rules)
+    energy = None if diagonal is None else energy_check(
+        funcs, sides.doc, diagonal, grid.flat_q, grid.flat_nu, sides.values, d)
+    own = _unscaled(sides.doc, frames, rules)
+    ev = Evaluation(funcs=funcs, doc=sides.doc, truth=sides.truth, B_true=sides.B_true,
+                    scales=scales, q=grid.flat_q, nu=grid.flat_nu, values=sides.values,
+                    row_factor=no_factor, kind=grid.cs.kind)
+    constants = tuple(None if t.factor is None or not t.factor.is_number or t.factor == 1
+                      or f.rule.partner not in (i, -1) else sp.sstr(t.factor)
+                      for i, (t, f) in enumerate(zip(texts, frames)))
+    functions = tuple(None if f.rule.kind != FrameKind.FUNCTION or t.factor is None
+                      or f.rule.partner != i else sp.sstr(t.factor)
+                      for i, (t, f) in enumerate(zip(texts, frames)))
+    combination = _combination(texts, rules, frames, d.n)
+    if combination:                      # the combination carries the rows' factors too
+        functions = constants = (None,) * d.n
+    notes = list(sides.notes) + [f"{e} was lost in the extracted text: not compared"
+                                 for e in d.missing]
+    result = DerivationResult(
+        path=d.path, title=d.title, model=d.model, source=dict(d.source),
+        coordinates=grid.cs.name, velocities=tuple(str(v) for v in d.velocities),
+        form=d.form, records=tuple(r.freeze() for r in drafts), row_factors=constants,
+        energy=energy, asymmetric=() if own is None or own.A is None else asymmetry(
+            own, np.nan_to_num(np.nanmax(np.abs(own.A), axis=(0, 2)), nan=1.0), d.n),
+        constraints=constraint_rows(sides.doc, sides.truth, scales),
+        reconstructed=dict(d.reconstructed), samples=grid.q.shape[1],
+        parameter_sets=len(grid.sets), notes=tuple(notes), assumes=assumed.describe(),
+        latex_input=dict(d.latex_input), row_functions=functions, row_combination=combination,
+        equations=tuple(equations))
+    causes = frame_causes(d, texts, rules, result.equations, declared_wrong)
+    return Judgement(result, ev, tuple(causes), sides, funcs)
+
+
+def _diagonal(d: Derivation, texts, rules) -> list[sp.Expr] | None:
+    r"""Each row's factor of the true equation when every row is the true one times a factor
+    (symbolic, identified), else None: the document's own checks (energy) read it so."""
+    out = []
+    for i, (t, r) in enumerate(zip(texts, rules)):
+        if r.kind == FrameKind.IDENTITY:
+            out.append(sp.Integer(1))
+        elif r.kind == FrameKind.DECLARED and d.row_scale is not None:
+            out.append(d.row_scale[i])
+        elif r.kind in (FrameKind.CONSTANT, FrameKind.FUNCTION) and r.partner == i \
+                and t.factor is not None:
+            out.append(t.factor)
+        else:
+            return None
+    return out
+
+
+def _unscaled(doc, frames, rules):
+    r"""The document's arrays with each row divided by its factor per sample, when every row
+    is the true one times a factor; None otherwise (its A's symmetry and definiteness are
+    then not judged: a solved or combined form has neither)."""
+    from ..grid.arrays import Arrays
+    factors = []
+    for i, (f, r) in enumerate(zip(frames, rules)):
+        if r.kind not in (FrameKind.IDENTITY, FrameKind.DECLARED, FrameKind.CONSTANT,
+                          FrameKind.FUNCTION) or r.partner not in (i, -1):
+            return None
+        factors.append(f.weights[:, i])
+    c = np.stack(factors, axis=1)
+    if doc.A is None:
+        return doc
+    with np.errstate(all="ignore"):
+        return Arrays(A=doc.A / c[:, :, None])
+
+
+def _combination(texts, rules, frames, n: int) -> tuple[tuple[str, ...], ...]:
+    r"""The combination :math:`W` of the true equations the document's are (rows of SymPy
+    text), when some row is not the true one times a factor and every row's weights were
+    identified; () otherwise."""
+    if all(r.kind != FrameKind.COMBINATION and r.partner in (i, -1)
+           for i, r in enumerate(rules)):
+        return ()
+    rows = []
+    for i, (t, r, f) in enumerate(zip(texts, rules, frames)):
+        if t.weights is not None:
+            rows.append(tuple(sp.sstr(w) for w in t.weights))
+        elif t.factor is not None and r.partner >= 0:
+            rows.append(tuple(sp.sstr(t.factor) if k == r.partner else "0" for k in range(n)))
+        elif r.kind == FrameKind.DECLARED or t.text == "":
+            rows.append(tuple("1" if k == i else "0" for k in range(n)))
+        else:
+            return ()
+    return tuple(rows)
+
+
+__all__ = ["ID_SETS", "ID_STATES", "Judgement", "SPECIAL_SAMPLES", "SPECIAL_SETS",
+           "decide", "document_functions", "judge_derivation"]

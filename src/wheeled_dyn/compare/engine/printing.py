@@ -1,0 +1,42 @@
+r"""What the reports print of each element: the document's expression (text and LaTeX, as
+printed, velocities dotted), the same in the model's parameters, and — where the symbolic
+engine has closed forms — the truth and truth − document in the row's frame
+(:mod:`..presentation.closed_form`). Nothing here decides a verdict."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import sympy as sp
+
+from ...derivations.schema import Derivation
+from ..grid.assumptions import Assumptions
+from ..judge.draft import ElementDraft
+from ..presentation import closed_form
+from ..presentation.printing import printed
+from ..readings.describe import FrameText
+from ..sides.elements import element_expr, latex_names
+
+
+def print_drafts(d: Derivation, drafts: Sequence[ElementDraft], cs, texts: Sequence[FrameText],
+                 assumed: Assumptions) -> None:
+    r"""Fill the printed forms of every draft (module text), in place."""
+    read = d.read_off(assume=True, unscale=False)
+    as_printed = {"A": read.A, "Q": read.Q, "B": read.B, "h": read.h, "C": d.C}
+    names = latex_names(d)
+    families = tuple(c.name for c in assumed.families)
+    mapped = closed_form.document_in_model(d, families)
+    for r in drafts:
+        shown = element_expr(as_printed, r.key, r.index, d.velocities)
+        r.document, r.document_latex = ("", "") if shown is None else printed(shown, names)
+        r.document_model, r.model_latex = mapped(r.expr)
+    frames: dict[int, tuple[sp.Expr, ...] | sp.Expr] = {}
+    for i, t in enumerate(texts):
+        if t.weights is not None:
+            frames[i] = t.weights
+        elif t.factor is not None:
+            frames[i] = t.factor
+    closed_form.annotate(d, list(drafts), cs, frames, families)
+
+
+__all__ = ["print_drafts"]

@@ -1,0 +1,157 @@
+r"""The grid a comparison is decided on: K parameter sets of the document's model and N states
+each, and the truth there in the document's coordinates.
+
+A :class:`Grid` holds the truth's arrays (:class:`~.arrays.Arrays`, samples
+:math:`S = K N` in set order), the parameter sets, the states :math:`q, \nu` (K × N × n), the
+document's coordinate set and its coordinate map. :class:`Grids` makes them and remembers them
+per (model, coordinates, special families, size, assumptions), so derivations sharing
+coordinates share the truth. States are drawn where the document's assumptions put them
+(:func:`.assumptions.position_ranges`) and away from the coordinates' singular positions
+(:func:`.samples.regular_states`).
+
+:func:`special_states` adds the states at which an equation multiplied by a function of the
+positions would read :math:`0 = 0`: each position in turn at :math:`0, \pm\pi/2, \pi` (inside
+its range), the others as drawn.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import sympy as sp
+
+from ...constraints.reduction import CoordinateMap
+from ...coordinates import CoordinateSet
+from ...coordinates import builtin_coordinate_set, parse_coordinate_set
+from ...derivations.schema import Derivation
+from ...errors import DerivationError
+from .arrays import Arrays
+from .assumptions import Assumptions, apply_to_truth, position_ranges
+from .samples import ParameterSet, SpecialCase, parameter_sets, random_states, regular_states
+
+#: The key marking a derivation whose equations were reordered (the coordinates' identity
+#: leaves it out: equations read in another order have the same truth).
+ROWS_KEY = "_row_order"
+#: Positions tried by :func:`special_states`, and how many of each set's states are used.
+SPECIAL_VALUES = (0.0, np.pi / 2, -np.pi / 2, np.pi)
+SPECIAL_STATES_PER_SET = 6
+
+
+@dataclass(frozen=True)
+class Grid:
+    r"""The truth on K parameter sets × N states (see the module text)."""
+
+    truth: Arrays
+    sets: tuple[ParameterSet, ...]
+    q: np.ndarray
+    nu: np.ndarray
+    cs: CoordinateSet
+    cmap: CoordinateMap
+    ranges: tuple[tuple[float, float], ...]
+
+    @property
+    def flat_q(self) -> np.ndarray:
+        return self.q.reshape(-1, self.q.shape[2])
+
+    @property
+    def flat_nu(self) -> np.ndarray:
+        return self.nu.reshape(-1, self.nu.shape[2])
+
+
+#: Computes the truth on a grid: ``(coordinate map, parameter sets, q, nu) -> Arrays``
+#: (:func:`~..sides.truth.truth_for`, given by the engine: the truth is a side's business).
+TruthFunction = Callable[[CoordinateMap, Sequence[ParameterSet], np.ndarray, np.ndarray], Arrays]
+
+
+def derivation_coordinate_set(d: Derivation, ps: ParameterSet) -> CoordinateSet:
+    r"""The document's coordinate set, built-in or inline; document symbols in inline
+    expressions are replaced by their model values' names (R, L ...)."""
+    wm = ps.model
+    spec = d.coordinates
+    if spec.use:
+        cs = builtin_coordinate_set(wm, spec.use)
+        if tuple(cs.velocities) != tuple(str(v) for v in d.velocities):
+            raise DerivationError(d.path, "coordinates", f"built-in set {spec.use!r} has "
+                                  f"velocities {cs.velocities}, the file {d.velocities}")
+        return cs
+    to_model = {s.symbol: s.value for s in d.symbols.values() if s.value is not None}
+    raw = {"kind": spec.kind, "rolling": spec.rolling, "positions": list(spec.positions),
+           "velocities": list(spec.velocities),
+           "configuration": {k: str(sp.sympify(v).xreplace(to_model))
+                             for k, v in spec.configuration.items()}}
+    if spec.velocity_map:
+        raw["velocity_map"] = {k: str(sp.sympify(v).xreplace(to_model))
+                               for k, v in spec.velocity_map.items()}
+    return parse_coordinate_set(raw, "inline", wm.coordinate_names, tuple(wm.geometry),
+                                where=str(d.path))
+
+
+class Grids:
+    r"""Grids made once per key (module text); ``seed`` seeds every draw, ``truth`` computes
+    the truth on each."""
+
+    def __init__(self, seed: int, truth: TruthFunction) -> None:
+        self.seed = seed
+        self.truth = truth
+        self._grids: dict[tuple, Grid] = {}
+        self._maps: dict[tuple, CoordinateMap] = {}
+        self._sets: dict[tuple, CoordinateSet] = {}
+
+    def get(self, d: Derivation, special: tuple[SpecialCase, ...], n_states: int, k: int,
+            assumed: Assumptions = Assumptions()) -> Grid:
+        special = tuple(dict.fromkeys((*assumed.families, *special)))
+        raw = repr({name: value for name, value in d.coordinates.raw.items()
+                    if name != ROWS_KEY})
+        key = (d.model, raw, d.coordinates.use, tuple(c.name for c in special), n_states, k,
+               assumed.key())
+        if key not in self._grids:
+            self._grids[key] = self._make(d, special, n_states, k, assumed, raw)
+        return self._grids[key]
+
+    def _make(self, d: Derivation, special: tuple[SpecialCase, ...], n_states: int, k: int,
+              assumed: Assumptions, raw: str) -> Grid:
+        rng = np.random.default_rng([self.seed, len(special), n_states])
+        sets = parameter_sets(d.model, k, rng, special)
+        ckey = (d.model, raw, d.coordinates.use)
+        if ckey not in self._sets:
+            self._sets[ckey] = derivation_coordinate_set(d, sets[0])
+        cs = self._sets[ckey]
+        mkey = (d.model, repr(cs))
+        if mkey not in self._maps:
+            self._maps[mkey] = CoordinateMap(sets[0].model, cs)
+        cmap = self._maps[mkey]
+        n = len(cs.positions)
+        ranges = position_ranges(d, cs.positions, assumed)
+        q, nu = random_states(n, k * n_states, rng, ranges)
+        q = regular_states(cmap, q, rng, ranges)
+        q, nu = q.reshape(k, n_states, n), nu.reshape(k, n_states, n)
+        truth = self.truth(cmap, sets, q, nu)
+        apply_to_truth(truth, assumed)
+        return Grid(truth, tuple(sets), q, nu, cs, cmap, tuple(map(tuple, ranges)))
+
+
+def special_states(grid: Grid) -> tuple[np.ndarray, np.ndarray]:
+    r"""``(q, set index)`` of the special states (module text): for each parameter set, its
+    first :data:`SPECIAL_STATES_PER_SET` states with one position at a time moved to each of
+    :data:`SPECIAL_VALUES` inside its range."""
+    K, N, n = grid.q.shape
+    m = min(N, SPECIAL_STATES_PER_SET)
+    qs, owner = [], []
+    for a, (low, high) in enumerate(grid.ranges):
+        for value in SPECIAL_VALUES:
+            if low == high or not low <= value <= high:
+                continue
+            for k in range(K):
+                q = grid.q[k, :m].copy()
+                q[:, a] = value
+                qs.append(q)
+                owner.append(np.full(m, k))
+    if not qs:
+        return np.empty((0, n)), np.empty(0, dtype=int)
+    return np.concatenate(qs), np.concatenate(owner)
+
+
+__all__ = ["Grid", "Grids", "ROWS_KEY", "SPECIAL_STATES_PER_SET", "SPECIAL_VALUES",
+           "TruthFunction", "derivation_coordinate_set", "special_states"]

@@ -1,0 +1,125 @@
+r"""The verdict on one element and what explains its difference.
+
+An element of the document, values :math:`D_s`, is compared with the truth in its row's frame,
+values :math:`T_s` (:mod:`..readings.frames`), against the row's scale :math:`\sigma`:
+
+- values not finite on either side: a finite sample that differs decides *differs*; else the
+  element is *undecided* (never agreeing, never a scale);
+- :math:`\max_s|D_s - T_s| \le \epsilon\sigma`: *agrees*, unless its units are inconsistent;
+- otherwise *differs*, with the diagnoses, in this order of trial: from the numbers (sign,
+  factor, missing, extra: :func:`.diagnose.value_diagnoses`), from its expression (a symbol to
+  the wrong power, one additive term with the wrong sign or factor, sin for cos:
+  :mod:`.terms`; one symbol written for another, everywhere or inside one product:
+  :mod:`.swaps`).
+
+The document's expression is evaluated as printed: the truth is brought into the document's
+frame, the document is never divided.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import sympy as sp
+
+from ..records import Diagnosis, DiagnosisKind as K, Verdict, diagnosis, has_kind
+from ..sides.document import DocumentFunctions
+from .diagnose import agrees, value_diagnoses
+from .draft import ElementDraft
+from .swaps import product_swaps, symbol_swaps
+from .terms import element_term_diagnoses, trig_diagnoses
+
+#: Samples a trial reading of a differing element (one symbol read as another) is first
+#: evaluated on, spread over the parameter sets: only one that agrees there is evaluated on
+#: every sample (it must agree at all of them), so the verdicts are those of the full grid.
+SCREEN_SAMPLES = 64
+
+
+class Trials:
+    r"""The document's elements evaluated with changes, on the engine's samples: ``argv`` the
+    arguments of the document's functions (positions, velocities, symbols per sample)."""
+
+    def __init__(self, funcs: DocumentFunctions, argv: Sequence[np.ndarray], size: int) -> None:
+        self.funcs, self.argv, self.size = funcs, list(argv), size
+        self.position = {a: k for k, a in enumerate(funcs.args)}
+        self.screen = np.linspace(0, size - 1, min(SCREEN_SAMPLES, size)).astype(int)
+
+    def swapped(self, key: str, index: tuple[int, ...], a: sp.Symbol, b: sp.Symbol,
+                rows: np.ndarray | None = None) -> np.ndarray:
+        r"""The element with symbol ``a`` read as ``b`` (argument arrays permuted), at every
+        sample or at the samples ``rows``."""
+        trial = list(self.argv)
+        trial[self.position[a]] = self.argv[self.position[b]]
+        if rows is not None:
+            trial = [x[rows] if np.ndim(x) and len(x) == self.size else x for x in trial]
+        out = np.broadcast_to(self.funcs.element_function(key, index)(*trial),
+                              (self.size if rows is None else len(rows),))
+        return out.astype(float)
+
+    def evaluate(self, expr: sp.Expr) -> np.ndarray:
+        r"""``expr`` (in the document's names) at every sample."""
+        return np.broadcast_to(np.asarray(self.funcs.compiled(expr)(*self.argv), float),
+                               (self.size,))
+
+
+def _undecided(d: ElementDraft, finite: np.ndarray) -> bool:
+    r"""Values not finite somewhere: *differs* where a finite sample differs (say so), else
+    *undecided*. True when the element is settled here."""
+    if finite.all():
+        return False
+    side = "the document's" if not np.isfinite(d.D).all() else "the truth's"
+    note = (f"{side} values are not finite at {int((~finite).sum())} of {len(finite)} "
+            "samples")
+    if finite.any() and not agrees(d.D[finite], d.T[finite], d.scale):
+        d.verdict = Verdict.DIFFERS
+        d.diagnoses.insert(0, diagnosis(K.NOTE, note + "; it differs where they are finite",
+                                        prefix=""))
+        return True
+    d.verdict = Verdict.UNDECIDED
+    d.diagnoses.insert(0, diagnosis(K.UNDECIDED, note))
+    return True
+
+
+def judge(d: ElementDraft, problems: Sequence[str], trials: Trials,
+          groups: Sequence[Sequence[sp.Symbol]]) -> None:
+    r"""Fill the draft's verdict and diagnoses (module text); ``problems`` are its units'
+    (:mod:`.units`), ``groups`` the symbols one may have been written for another."""
+    d.diagnoses += [diagnosis(K.DIMENSION, p) for p in problems]
+    finite = np.isfinite(d.D) & np.isfinite(d.T)
+    if _undecided(d, finite):
+        return
+    ok = agrees(d.D, d.T, d.scale)
+    if ok:
+        d.verdict = Verdict.DIFFERS if problems else Verdict.AGREES
+        if problems:
+            d.diagnoses.append(diagnosis(
+                K.COINCIDENCE, "numerically equal here only because the inconsistent term "
+                "vanishes for this model's parameters", prefix=""))
+        return
+    d.verdict = Verdict.DIFFERS
+    d.diagnoses += value_diagnoses(d.D, d.T, d.scale)
+    expr = d.expr
+    if expr is None:
+        return
+    if d.key == "h":
+        if not d.diagnoses:
+            d.diagnoses += trig_diagnoses(expr, trials.funcs, trials.argv, None, d.D, d.T,
+                                          d.scale, check=True)
+        return
+    if not has_kind(d.diagnoses, K.SIGN, K.EXTRA, K.MISSING):
+        d.diagnoses[:0] = element_term_diagnoses(
+            expr, trials.funcs, trials.argv, None, d.D, d.T, d.scale,
+            has_kind(d.diagnoses, K.FACTOR))
+    if not has_kind(d.diagnoses, K.SIGN, K.FACTOR, K.EXTRA):
+        d.diagnoses += symbol_swaps(d, trials, groups)
+    if not has_kind(d.diagnoses, K.SIGN, K.FACTOR, K.EXTRA, K.SWAP, K.POWER):
+        d.diagnoses += product_swaps(expr, trials, groups, d.T, d.scale)
+
+
+def specific(diagnoses: Sequence[Diagnosis]) -> bool:
+    r"""A diagnosis naming one term's error precisely (no family search is needed then)."""
+    return has_kind(diagnoses, K.DIMENSION, K.SIGN, K.FACTOR, K.SWAP)
+
+
+__all__ = ["SCREEN_SAMPLES", "Trials", "judge", "specific"]

@@ -1,0 +1,251 @@
+r"""Whether a document's equations are right, decided without reading their form.
+
+A document's equations of motion are right when they have the same solutions as the true ones,
+whatever the form they are written in: as matrices, written out, solved for the accelerations,
+one equation divided by its inertia or replaced by a combination of the others, scaled,
+reordered, Kane's :math:`F_r + F_r^* = 0`. With the truth :math:`A\ddot q + n = B u`
+(:math:`n = h + Q`, the velocity and gravity terms) in the document's coordinates, equation
+:math:`i` of the document, :math:`A_{doc,i}\ddot q + n_{doc,i} = B_{doc,i} u`, is right iff it
+is a combination of the true equations:
+
+.. math::
+
+    w_i = A_{doc,i}\,A^{-1},\qquad n_{doc,i} = w_i\,n,\qquad B_{doc,i} = w_i\,B
+
+at every sample (:math:`A_{doc,i} = w_i A` holds by construction). The document is right iff
+every equation is and :math:`W = (w_i) = A_{doc}A^{-1}` is invertible everywhere: no equation
+lost or repeated, none multiplied by a factor that vanishes somewhere (:math:`\sin\theta`,
+where the equation reads :math:`0 = 0`).
+
+:math:`W` is singular where :math:`\det A_{doc}` is (:math:`A` is positive definite). It is
+found singular
+
+- at every sample: relative to its rows' sizes, :math:`|\det A_{doc}|` is
+  :data:`SINGULAR_TOL` or less of the truth's; the equations whose coefficients the null
+  vector of :math:`W^T` carries are not independent;
+- somewhere: :math:`\det W` takes both signs among the samples of one parameter set (it is
+  continuous in the positions, so it vanishes between them), or it vanishes at one of the
+  special positions the engine adds (each position at :math:`0, \pm\pi/2, \pi`).
+
+Tolerances are relative, per sample: a residual counts when it exceeds :data:`~.diagnose.
+AGREE_TOL` of the largest quantity the row sums at that sample (the document's terms, the sums
+:math:`\sum_l |w_{il}|\,|n_l|`, the row's inertia), floored at :data:`FLOOR` of the row's
+largest over all samples. Values that are not finite never decide and never enter a scale: an
+equation that differs at a finite sample differs; one that agrees wherever it is finite but is
+not finite somewhere is undecided.
+
+These are pure functions of numbers; the engine supplies both sides on the same grid.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..records import Diagnosis, DiagnosisKind, Verdict, diagnosis
+from .diagnose import AGREE_TOL
+
+#: A sample's residual scale is at least this fraction of the row's largest over all samples.
+FLOOR = 1e-6
+#: :math:`|\det A_{doc}|` relative to its rows' sizes, below this fraction of the truth's:
+#: W singular at that sample.
+SINGULAR_TOL = 1e-9
+#: A component of the null vector of :math:`W^T` above this fraction of its largest names
+#: its equation as one of the dependent ones.
+NULL_SHARE = 0.2
+
+
+@dataclass(frozen=True)
+class Side:
+    r"""One side's equations on the samples (leading axis S): ``A`` (S × n × n), ``n`` the
+    velocity and gravity terms (S × n; None where the document gives neither h nor Q),
+    ``B`` (S × n × m, in the document's inputs; None where not compared)."""
+
+    A: np.ndarray
+    n: np.ndarray | None
+    B: np.ndarray | None
+
+
+@dataclass(frozen=True)
+class EquationDecision:
+    r"""The decision on one equation: its verdict, why (typed diagnoses), its largest
+    residual relative to the row's size, and :math:`w_i` per sample (S × n; NaN where it
+    could not be computed)."""
+
+    verdict: Verdict
+    diagnoses: tuple[Diagnosis, ...]
+    max_error: float
+    w: np.ndarray
+
+
+@dataclass(frozen=True)
+class SystemDecision:
+    r"""Every equation's :class:`EquationDecision` and :math:`W` per sample (S × n × n)."""
+
+    equations: tuple[EquationDecision, ...]
+    W: np.ndarray
+
+    @property
+    def equivalent(self) -> bool:
+        return all(e.verdict == Verdict.AGREES for e in self.equations)
+
+
+def relative_det(A: np.ndarray) -> np.ndarray:
+    r""":math:`|\det A|` divided by the product of its rows' norms (Hadamard's bound: 1 for
+    orthogonal rows, 0 when singular), per sample; NaN where A is not finite."""
+    out = np.full(len(A), np.nan)
+    finite = np.isfinite(A).all(axis=(1, 2))
+    if finite.any():
+        norms = np.linalg.norm(A[finite], axis=2).prod(axis=1)
+        with np.errstate(all="ignore"):
+            out[finite] = np.abs(np.linalg.det(A[finite])) / np.where(norms > 0, norms, 1.0)
+    return out
+
+
+def combination_rows(doc_A: np.ndarray, true_A: np.ndarray) -> np.ndarray:
+    r""":math:`W = A_{doc}A^{-1}` per sample (S × n × n): NaN in a row :math:`w_i` where the
+    document's row is not finite (an element lost in the extracted text, an overflow), in
+    every row where the truth's A is not."""
+    W = np.full(doc_A.shape, np.nan)
+    finite = np.isfinite(true_A).all(axis=(1, 2))
+    if finite.any():
+        # W A = A_doc  ⇔  Aᵀ Wᵀ = A_docᵀ
+        W[finite] = np.swapaxes(np.linalg.solve(np.swapaxes(true_A[finite], 1, 2),
+                                                np.swapaxes(doc_A[finite], 1, 2)), 1, 2)
+    return W
+
+
+def _part(doc: np.ndarray, true: np.ndarray, w: np.ndarray, inertia: np.ndarray
+          ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    r"""For one row: (relative residual per sample, finite mask, scale per sample) of
+    ``doc`` (S × k) against :math:`w\,` ``true`` (S × n × k)."""
+    with np.errstate(all="ignore"):
+        predicted = np.einsum("sl,slk->sk", w, true)
+        sums = np.einsum("sl,slk->sk", np.abs(w), np.abs(true))
+        finite = (np.isfinite(doc).all(axis=1) & np.isfinite(predicted).all(axis=1)
+                  & np.isfinite(sums).all(axis=1) & np.isfinite(inertia))
+        scale = np.maximum(np.maximum(np.abs(doc).max(axis=1, initial=0.0),
+                                      sums.max(axis=1, initial=0.0)), inertia)
+        scale = np.where(finite, scale, 0.0)
+        floor = FLOOR * float(scale.max(initial=0.0))
+        error = np.abs(doc - predicted).max(axis=1, initial=0.0)
+        relative = np.where(finite, error / np.maximum(np.maximum(scale, floor), 1e-300), 0.0)
+    return relative, finite, scale
+
+
+def decide_row(i: int, doc: Side, truth: Side, W: np.ndarray) -> EquationDecision:
+    r"""The verdict on equation ``i`` (module text), :math:`W` known."""
+    w = W[:, i, :]
+    inertia = np.abs(doc.A[:, i, :]).max(axis=1)
+    residuals, masks = [], []
+    for D, T in ((doc.n, truth.n), (doc.B, truth.B)):
+        if D is None or T is None:
+            continue
+        D2 = D[:, i:i + 1] if D.ndim == 2 else D[:, i, :]
+        T3 = T[:, :, None] if T.ndim == 2 else T
+        rel, finite, _ = _part(D2, T3, w, inertia)
+        residuals.append(rel)
+        masks.append(finite)
+    finite = np.logical_and.reduce(masks) if masks else np.isfinite(w).all(axis=1)
+    finite &= np.isfinite(w).all(axis=1)
+    worst = max((float(r[finite].max(initial=0.0)) for r in residuals), default=0.0)
+    total = len(finite)
+    if worst > AGREE_TOL:
+        return EquationDecision(Verdict.DIFFERS, (diagnosis(
+            DiagnosisKind.NOT_EQUIVALENT, f"equation {i + 1} is no combination of the true "
+            f"equations (W = A_doc A⁻¹ does not carry its velocity, gravity and input terms; "
+            f"off by {worst:.2g} of the row's size at the worst of {total} samples)",
+            prefix="differs", rows=(i,)),), worst, w)
+    if not finite.all():
+        return EquationDecision(Verdict.UNDECIDED, (diagnosis(
+            DiagnosisKind.UNDECIDED, f"values not finite at {int((~finite).sum())} of {total} "
+            "samples; it agrees wherever they are finite"),), worst, w)
+    return EquationDecision(Verdict.AGREES, (), worst, w)
+
+
+def _null_rows(W: np.ndarray) -> tuple[int, ...]:
+    r"""The equations a null vector of :math:`W^T` (the most singular sample's) involves."""
+    _, _, vt = np.linalg.svd(np.swapaxes(W, 0, 1))
+    y = np.abs(vt[-1])
+    return tuple(int(k) for k in np.flatnonzero(y >= NULL_SHARE * y.max()))
+
+
+def singular_everywhere(doc_A: np.ndarray, true_A: np.ndarray, W: np.ndarray
+                        ) -> tuple[int, ...] | None:
+    r"""The dependent equations when :math:`W` is singular at every sample (module text),
+    else None."""
+    rd, rt = relative_det(doc_A), relative_det(true_A)
+    ok = np.isfinite(rd) & np.isfinite(rt) & np.isfinite(W).all(axis=(1, 2))
+    if not ok.any() or not (rd[ok] <= SINGULAR_TOL * rt[ok]).all():
+        return None
+    k = int(np.flatnonzero(ok)[0])
+    return _null_rows(W[k])
+
+
+def sign_changes(W: np.ndarray, sets: int) -> tuple[int, ...] | None:
+    r"""The equations involved where :math:`\det W` takes both signs among the samples of one
+    parameter set (it vanishes between them), else None. ``sets``: the number of parameter
+    sets, the samples being grouped by set (K × N in order)."""
+    det = np.full(len(W), np.nan)
+    finite = np.isfinite(W).all(axis=(1, 2))
+    det[finite] = np.linalg.det(W[finite])
+    for group in np.array_split(np.arange(len(W)), sets):
+        d = det[group]
+        d = d[np.isfinite(d)]
+        if len(d) and (d > 0).any() and (d < 0).any():
+            k = group[np.nanargmin(np.abs(det[group]))]
+            return _null_rows(W[k])
+    return None
+
+
+def vanishing_at(doc_A: np.ndarray, true_A: np.ndarray) -> tuple[int, ...] | None:
+    r"""At special states (the engine's: a position at :math:`0, \pm\pi/2, \pi`), the
+    equations involved where :math:`W` is singular, else None. States where the truth's own
+    :math:`A` is near singular (a singular position of the coordinates) are left out."""
+    rd, rt = relative_det(doc_A), relative_det(true_A)
+    ok = np.isfinite(rd) & np.isfinite(rt)
+    if not ok.any():
+        return None
+    ok &= rt >= SINGULAR_TOL ** 0.5 * float(np.median(rt[ok]))
+    hit = np.flatnonzero(ok & (rd <= SINGULAR_TOL * rt))
+    if not len(hit):
+        return None
+    W = combination_rows(doc_A[hit[:1]], true_A[hit[:1]])
+    return _null_rows(W[0])
+
+
+def decide(doc: Side, truth: Side, sets: int, special: tuple[np.ndarray, np.ndarray] | None
+           = None) -> SystemDecision:
+    r"""Every equation's verdict (module text). ``sets``: parameter sets the samples are
+    grouped in; ``special``: the document's and the truth's A at the special states (or
+    None)."""
+    n = truth.A.shape[1]
+    W = combination_rows(doc.A, truth.A)
+    decisions = [decide_row(i, doc, truth, W) for i in range(n)]
+    lost = singular_everywhere(doc.A, truth.A, W)
+    where = "at every sample" if lost is not None else ""
+    rows = lost
+    if rows is None:
+        rows = sign_changes(W, sets)
+        where = "somewhere: det W changes sign between states of one parameter set" \
+            if rows is not None else ""
+    if rows is None and special is not None:
+        rows = vanishing_at(*special)
+        where = "at a special position (a coordinate at 0, ±π/2 or π)" if rows is not None else ""
+    if rows is not None:
+        names = ", ".join(str(k + 1) for k in rows)
+        text = (f"equations {names} are not independent {where}: W = A_doc A⁻¹ is singular "
+                "there (an equation lost, repeated, or multiplied by a factor that vanishes)")
+        for k in rows:
+            e = decisions[k]
+            extra = diagnosis(DiagnosisKind.SINGULAR, text, prefix="not equivalent",
+                              rows=tuple(rows))
+            decisions[k] = EquationDecision(Verdict.DIFFERS, (*e.diagnoses, extra),
+                                            e.max_error, e.w)
+    return SystemDecision(tuple(decisions), W)
+
+
+__all__ = ["EquationDecision", "FLOOR", "NULL_SHARE", "SINGULAR_TOL", "Side", "SystemDecision",
+           "combination_rows", "decide", "decide_row", "relative_det", "sign_changes",
+           "singular_everywhere", "vanishing_at"]

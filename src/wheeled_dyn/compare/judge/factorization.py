@@ -1,0 +1,86 @@
+r"""C is not unique, :math:`h = C\dot q` is: a C element that differs is judged by the velocity
+products of h it takes part in.
+
+With :math:`\Gamma_{i,jk}` the coefficient of :math:`\nu_k` in :math:`C_{ij}`, the coefficient
+of the product :math:`\nu_j\nu_k` in :math:`h_i` is :math:`P_{jk} = \Gamma_{i,jk} +
+\Gamma_{i,kj}` (:math:`j \ne k`) and :math:`P_{jj} = \Gamma_{i,jj}`. The element
+:math:`C_{ij}` takes part in the products :math:`P_{jk}`, every k. When it differs from the
+truth's :math:`C_{ij}` (in the row's frame):
+
+- every product it takes part in agrees: only the factorisation of C differs
+  (*factorization*); every one agrees or agrees only under a special family, one of them only
+  so: it *agrees only if* that family, as those h terms do;
+- a product differs, but for each such product the document's partner element
+  :math:`C_{ik}` alone is wrong (putting the truth's :math:`\Gamma_{i,k\cdot}` there makes it
+  agree, putting the truth's :math:`\Gamma_{i,j\cdot}` here does not): it is not this
+  element's error (*factorization*, naming the partner);
+- otherwise it *differs*.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from ..records import Diagnosis, DiagnosisKind as K, Verdict, first_of
+from .diagnose import agrees
+from .draft import ElementDraft
+
+
+def _product(drafts: dict, i: int, j: int, k: int) -> ElementDraft | None:
+    return drafts.get(("h", (i, min(j, k), max(j, k))))
+
+
+def _innocent(i: int, j: int, k: int, doc: np.ndarray, true: np.ndarray, scale: float) -> bool:
+    r"""Product :math:`P_{jk}` of row i is fixed by the partner :math:`C_{ik}` and not by
+    :math:`C_{ij}` (``doc``/``true``: :math:`\Gamma_{i,\cdot\cdot}` on the H samples,
+    S × n × n)."""
+    target = true[:, j, k] + true[:, k, j]
+    mine = true[:, j, k] + doc[:, k, j]
+    partner = doc[:, j, k] + true[:, k, j]
+    return agrees(partner, target, scale) and not agrees(mine, target, scale)
+
+
+def factorization(drafts: Sequence[ElementDraft], gammas: dict[int, tuple[np.ndarray,
+                  np.ndarray]]) -> None:
+    r"""Judge the differing C drafts by their products (module text), in place. ``gammas``:
+    per row, the document's and the framed truth's :math:`\Gamma_{i,\cdot\cdot}` (absent
+    where unknown: then only the first rule applies)."""
+    by_key = {(r.key, r.index): r for r in drafts}
+    for r in drafts:
+        if r.key != "C" or r.verdict != Verdict.DIFFERS or first_of(r.diagnoses, K.DIMENSION):
+            continue
+        i, j = r.index
+        n = max((x.index[1] for x in drafts if x.key == "C" and x.index[0] == i), default=-1) + 1
+        products = [(k, _product(by_key, i, j, k)) for k in range(n)]
+        if any(p is None for _, p in products):
+            continue
+        verdicts = {p.verdict for _, p in products}
+        if verdicts <= {Verdict.AGREES, Verdict.AGREES_IF}:
+            special = [p for _, p in products if p.verdict == Verdict.AGREES_IF]
+            if special:
+                cond = first_of(special[0].diagnoses, K.CONDITION)
+                text = cond.condition if cond is not None else ""
+                r.verdict = Verdict.AGREES_IF
+                r.diagnoses = [Diagnosis(K.CONDITION, f"agrees only if {text}", text,
+                                         condition=text)]
+                continue
+            r.verdict = Verdict.FACTORIZATION
+            r.diagnoses = [Diagnosis(K.FACTORIZATION, f"C q̇ agrees in row {i + 1}: only the "
+                                     "factorisation of C differs, not the equations")]
+            continue
+        if i not in gammas:
+            continue
+        doc, true = gammas[i]
+        bad = [k for k, p in products if p.verdict != Verdict.AGREES]
+        if j in bad or not all(_innocent(i, j, k, doc, true, r.scale) for k in bad):
+            continue
+        names = ", ".join(f"C[{i + 1},{k + 1}]" for k in bad)
+        r.verdict = Verdict.FACTORIZATION
+        r.diagnoses = [Diagnosis(K.FACTORIZATION, f"the h terms of row {i + 1} it takes part in "
+                                 f"differ only where {names} is wrong: this element's "
+                                 "difference is a factorisation of C")]
+
+
+__all__ = ["factorization"]

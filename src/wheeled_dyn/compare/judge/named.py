@@ -1,0 +1,137 @@
+r"""Differing terms named in the document's symbols, one by one.
+
+An element that differs and that no single-term diagnosis explains (no sign, factor, power,
+swap) has a residual :math:`\Delta = T - D` (the truth in the row's frame minus the document).
+On the identification grid (many parameter sets) :math:`\Delta` is fitted
+
+1. as a body's own inertia about its centre of mass (one link's moment about one of its axes,
+   or the same moment of two links), times a monomial in the document's names: the document
+   treats the body as a point mass, or drops its inertia (a wheel's spin inertia
+   :math:`2 I_w / r^2`) — ``point_mass``;
+2. as a monomial, or a sum of two products, in the document's symbols, positions and their
+   sines and cosines (:mod:`.fitting`): the terms the document lacks (those of
+   :math:`\Delta`) — ``missing`` with the terms named, ``"the document lacks m*l**2/3"``.
+
+A fit must reproduce :math:`\Delta` at every sample of every set. Nothing here changes a
+verdict.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+import sympy as sp
+
+from ..records import DiagnosisKind as K, Verdict, diagnosis, has_kind
+from .draft import ElementDraft
+from .fitting import RATIO_TOL, fit_factor, fit_sum
+
+#: Diagnoses after which no term is named (the error is named already).
+NAMED = (K.SIGN, K.FACTOR, K.POWER, K.SWAP, K.DIMENSION, K.EXTRA, K.UNDECIDED, K.POINT_MASS)
+#: Axes of a link's own moments of inertia.
+AXES = ("x", "y", "z")
+#: Most elements of one derivation whose terms are named (each is a search).
+MAX_NAMED = 24
+
+
+def own_moments(values: Sequence[Mapping[str, float]], states: int) -> dict[str, np.ndarray]:
+    r"""Every link's moments about its centre of mass along its own axes, per sample of a grid
+    (``values``: each parameter set's namespace values; ``states`` per set):
+    :math:`I_{xx,c} = XX - (MY^2 + MZ^2)/M` and likewise."""
+    links = sorted({k[2:-1] for k in values[0] if k.startswith("M(")})
+    out: dict[str, np.ndarray] = {}
+    for link in links:
+        for a, axis in enumerate(AXES):
+            others = [x for x in AXES if x != axis]
+            vals = []
+            for v in values:
+                m = v.get(f"M({link})", 0.0)
+                first = [v.get(f"M{o.upper()}({link})", 0.0) for o in others]
+                moment = v.get(f"{axis.upper() * 2}({link})", 0.0)
+                vals.append(moment - sum(f * f for f in first) / m if m > 0 else 0.0)
+            arr = np.repeat(np.asarray(vals, float), states)
+            if np.abs(arr).max(initial=0.0) > 0:
+                out[f"I{axis}{axis}({link})"] = arr
+    return out
+
+
+def _point_mass(residual: np.ndarray, moments: Mapping[str, np.ndarray],
+                bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> tuple[str, sp.Expr] | None:
+    r"""``(moment name(s), multiplier)`` with :math:`\Delta` = multiplier × moment(s); the
+    multiplier a simple rational, or a monomial in ``bases`` (the document's lengths and
+    positions: geometry, never another inertia)."""
+    items = list(moments.items())
+    trials = [(name, v) for name, v in items]
+    trials += [(f"{a} + {b}", va + vb) for k, (a, va) in enumerate(items)
+               for b, vb in items[k + 1:] if a[:3] == b[:3]]
+    for name, v in trials:
+        if np.abs(v).min() <= 0:
+            continue
+        ratio = residual / v
+        if np.ptp(ratio) <= RATIO_TOL * np.abs(ratio).max():
+            c = sp.nsimplify(float(np.median(ratio)), rational=True, tolerance=1e-9)
+            if c != 0 and abs(float(c) - float(np.median(ratio))) <= 1e-9 * abs(float(c)) \
+                    and sp.Rational(c).q <= 12:
+                return name, c
+        found = fit_factor(ratio, bases)
+        if found is not None:
+            return name, found
+    return None
+
+
+def _lacks(expr: sp.Expr) -> str:
+    r"""``"lacks a and b"`` / ``"has c too much"`` for the terms of truth − document."""
+    terms = sp.Add.make_args(sp.expand(expr))
+    lacks = [t for t in terms if not t.could_extract_minus_sign()]
+    extra = [-t for t in terms if t.could_extract_minus_sign()]
+    parts = []
+    if lacks:
+        parts.append("lacks " + " and ".join(sp.sstr(t) for t in lacks))
+    if extra:
+        parts.append("has " + " and ".join(sp.sstr(t) for t in extra) + " too much")
+    return "the document " + "; ".join(parts)
+
+
+def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[int, ...]],
+               tuple[np.ndarray, np.ndarray]], bases: Sequence[tuple[sp.Expr, np.ndarray]],
+               moments: Mapping[str, np.ndarray], geometric: set[sp.Symbol]) -> None:
+    r"""Name the differing terms of the drafts (module text), in place. ``on_id``: each
+    element's (document, truth in frame) values on the identification grid; ``geometric``
+    the document's names a point-mass multiplier may contain (positions, lengths)."""
+    lengths = [(e, v) for e, v in bases if e.free_symbols <= geometric]
+    named = 0
+    for r in drafts:
+        if named >= MAX_NAMED:
+            break
+        if r.verdict not in (Verdict.DIFFERS, Verdict.AGREES_IF) or r.key == "C" \
+                or has_kind(r.diagnoses, *NAMED) or (r.key, r.index) not in on_id:
+            continue
+        D, T = on_id[(r.key, r.index)]
+        if not (np.isfinite(D).all() and np.isfinite(T).all()):
+            continue
+        residual = T - D
+        named += 1
+        if np.abs(residual).max(initial=0.0) <= 1e-7 * max(float(np.abs(T).max(initial=0.0)),
+                                                             1e-300):
+            continue                          # agrees on these sets (a family's condition)
+        hit = _point_mass(residual, moments, lengths) if r.key in ("A", "h") else None
+        if hit is not None:
+            name, c = hit
+            times = "" if c == 1 else f" × {sp.sstr(c)}"
+            r.diagnoses.insert(0, diagnosis(
+                K.POINT_MASS, f"the moment of inertia {name} about its own centre of mass"
+                f"{times} is missing: the document treats the body as a point mass (or drops "
+                "its inertia)", prefix="missing", terms=(f"{sp.sstr(c)}*{name}",),
+                fits=name, factor=sp.sstr(c)))
+            continue
+        found = fit_factor(residual, bases) if np.abs(residual).min() > 0 else None
+        found = found if found is not None else fit_sum(residual, bases)
+        if found is None:
+            continue
+        terms = tuple(sp.sstr(t) for t in sp.Add.make_args(sp.expand(found)))
+        r.diagnoses.append(diagnosis(K.MISSING, f"{_lacks(found)} (truth − document = "
+                                     f"{sp.sstr(found)})", prefix="terms", terms=terms))
+
+
+__all__ = ["AXES", "NAMED", "name_terms", "own_moments"]

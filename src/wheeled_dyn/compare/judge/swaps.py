@@ -1,0 +1,99 @@
+r"""One thing written for another: a symbol for another of its kind (everywhere in an element,
+or once inside one product: :math:`l_{c1}l_1` where :math:`l_1^2` fits), and in h one velocity
+product for another (:math:`\dot\varphi^2` where :math:`\dot\psi^2` fits).
+
+Symbols are exchanged only within a group (velocities with velocities, positions with
+positions, symbols of equal units with each other: :func:`~..sides.elements.swap_groups`). A
+trial is first evaluated on the screening samples and on every sample only when it agrees
+there, so the verdicts are those of the full grid.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import sympy as sp
+
+from ..records import Diagnosis, DiagnosisKind as K, Verdict, diagnosis, has_kind
+from .diagnose import MAX_TERMS, agrees, swap_diagnoses
+from .draft import ElementDraft
+
+
+def symbol_swaps(d: ElementDraft, trials, groups: Sequence[Sequence[sp.Symbol]]
+                 ) -> list[Diagnosis]:
+    r"""One symbol read as another everywhere in the element (``trials``: the engine's
+    :class:`~.element.Trials`)."""
+    if d.expr is None:
+        return []
+    screen = trials.screen
+    return swap_diagnoses(
+        d.expr, groups, lambda a, b: trials.swapped(d.key, d.index, a, b), d.T, d.scale,
+        lambda a, b: agrees(trials.swapped(d.key, d.index, a, b, screen), d.T[screen],
+                            d.scale))
+
+
+def _one_factor_trials(expr: sp.Expr, groups: Sequence[Sequence[sp.Symbol]]):
+    r"""``(term, written, fits, trial element)``: in one additive term, one factor
+    :math:`a` of a product read as :math:`b` (a power :math:`a^e` becomes
+    :math:`a^{e-1}b`)."""
+    members = {s: g for g in groups for s in g}
+    terms = sp.Add.make_args(sp.expand(expr))
+    if len(terms) > MAX_TERMS:
+        return
+    for k, t in enumerate(terms):
+        factors = sp.Mul.make_args(t)
+        for f in factors:
+            base, e = f.as_base_exp()
+            if base not in members or not (e.is_Integer and e >= 1):
+                continue
+            if e == 1 and sum(1 for g in factors if g.as_base_exp()[0] in members) < 2:
+                continue                          # a lone symbol: an ordinary swap
+            for b in members[base]:
+                if b == base:
+                    continue
+                new = t.xreplace({f: base ** (e - 1) * b}) if e > 1 else t.xreplace({f: b})
+                yield (t, sp.sstr(f), sp.sstr(base ** (e - 1) * b), expr - t + new)
+
+
+def product_swaps(expr: sp.Expr, trials, groups: Sequence[Sequence[sp.Symbol]], T: np.ndarray,
+                  scale: float) -> list[Diagnosis]:
+    r"""A symbol written for another once, inside one product of one additive term (the
+    element everywhere else as printed): ``"lc1**2 where l1*lc1 fits in the term
+    m2*lc1**2*..."``."""
+    screen = trials.screen
+    found = []
+    for term, written, fits, trial in _one_factor_trials(expr, groups):
+        with np.errstate(all="ignore"):
+            if not agrees(np.broadcast_to(np.asarray(trials.funcs.compiled(trial)(
+                    *[x[screen] if np.ndim(x) and len(x) == trials.size else x
+                      for x in trials.argv]), float), (len(screen),)), T[screen], scale):
+                continue
+            if agrees(trials.evaluate(trial), T, scale):
+                found.append(diagnosis(K.SWAP, f"{written} where {fits} fits in the term "
+                                       f"{sp.sstr(term)}", written=written, fits=fits,
+                                       term=sp.sstr(term)))
+    return found
+
+
+def h_swaps(drafts: Sequence[ElementDraft]) -> None:
+    r"""Within a row of h, an extra term equal to a missing one: the document wrote one
+    velocity product for another (e.g. φ̇² where ψ̇² fits)."""
+    for extra in drafts:
+        if extra.key != "h" or extra.verdict != Verdict.DIFFERS \
+                or not has_kind(extra.diagnoses, K.EXTRA):
+            continue
+        for missing in drafts:
+            if missing.key != "h" or missing.row != extra.row \
+                    or not has_kind(missing.diagnoses, K.MISSING):
+                continue
+            if agrees(extra.D, missing.T, extra.scale):
+                a = extra.element.split(":")[1]
+                b = missing.element.split(":")[1]
+                extra.diagnoses.append(diagnosis(K.SWAP, f"the document's {a} term is the true "
+                                                 f"{b} term", written=a, fits=b))
+                missing.diagnoses.append(diagnosis(K.SWAP, f"written as {a} in the document",
+                                                   written=a, fits=b))
+
+
+__all__ = ["h_swaps", "product_swaps", "symbol_swaps"]

@@ -1,0 +1,351 @@
+r"""The frame an equation is explained in: which combination of the true equations the
+document's equation is meant to be, so that each differing term is named where its author
+wrote it.
+
+Whether an equation is right is decided by :mod:`..judge.equivalence`, whatever its form. To
+*explain* a difference, the document's row :math:`i` is compared element by element with the
+truth brought into the document's frame, :math:`T' = f_i\,[A \mid C \mid Q \mid B \mid H]`,
+for a row vector :math:`f_i` per sample (a *frame*):
+
+- ``DECLARED``: the factor the file declares for the row (``[rows] scale``), binding;
+- ``IDENTITY``: the true equation :math:`i` itself;
+- ``CONSTANT`` / ``FUNCTION``: :math:`c\,e_k`, a constant (Kane's :math:`F^* = -(A\ddot q + h)`
+  has :math:`-1`) or a function of the state and parameters (the row divided by its diagonal
+  inertia, by :math:`m l`), pairing the document's row with the true row :math:`k` (another
+  :math:`k`: the equations printed in another order). :math:`c` is the ratio
+  :math:`D_{ij}/T_{kj}` most of the row's nonzero elements share, per sample;
+- ``COMBINATION``: :math:`w_i = A_{doc,i}A^{-1}` (a row solved for the accelerations has
+  :math:`A_{doc,i} = e_i`, and :math:`w_i` is row :math:`i` of :math:`A^{-1}`), or, so that one
+  wrong element of :math:`A_{doc,i}` is not absorbed into :math:`w_i`, the :math:`w` that fits
+  the row's other inertia elements and its velocity-and-gravity term (or one input column).
+
+The frame of a row is the candidate under which most of the row's elements agree (the fewest
+differences: the most parsimonious explanation), the simplest on a tie; a declared factor is
+kept as declared. A frame never changes whether an equation is right: for an equation that is
+right the frame is exact and every element agrees; for one that is not, some element differs
+under every frame (if all agreed, :math:`f_i = w_i` and the equation would be right).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from enum import IntEnum
+
+import numpy as np
+
+from ..judge.diagnose import AGREE_TOL
+from ..judge.equivalence import SINGULAR_TOL, relative_det
+from ..grid.arrays import Arrays
+from ..sides.framed import framed, row_of, row_scale
+
+#: Relative agreement of two elements' ratio arrays to share a vote.
+RATIO_TOL = 1e-8
+#: A ratio counts as one constant when its relative spread is below this.
+CONSTANT_SPREAD = 1e-9
+#: An element takes part in a vote when its smallest magnitude is above this fraction of the
+#: row's largest.
+VOTE_FLOOR = 1e-9
+
+
+class FrameKind(IntEnum):
+    r"""Kinds of frame, simplest first (the order breaks ties)."""
+
+    DECLARED = 0
+    IDENTITY = 1
+    CONSTANT = 2
+    FUNCTION = 3
+    COMBINATION = 4
+
+
+@dataclass(frozen=True)
+class FrameRule:
+    r"""How a frame is found on any grid: ``kind``; ``partner`` the true row paired with the
+    document's (``CONSTANT``/``FUNCTION``) and ``value`` the constant (``CONSTANT``: the same
+    on every grid; a ``FUNCTION``'s ratio is voted on each); ``variant`` for
+    ``COMBINATION``, ``identified`` a function whose ratio is a simple expression in the
+    document's names (voted by one element of A alone, it is then as good as a constant);
+    ``COMBINATION``: ``None`` for
+    :math:`A_{doc,i}A^{-1}`, ``(j, c)`` for the :math:`w` fitting the row with inertia column
+    ``j`` replaced by column ``c`` of the rest (``-1``: the velocity-and-gravity term,
+    ``k >= 0``: input ``k``)."""
+
+    kind: FrameKind
+    partner: int = -1
+    variant: tuple[int, int] | None = None
+    value: float | None = None
+    identified: bool = False
+
+
+@dataclass(frozen=True)
+class Frame:
+    r"""A frame found on one grid: its rule, the weights per sample (S × n), and the constant
+    when it is one (``CONSTANT``: :math:`c`; else None)."""
+
+    rule: FrameRule
+    weights: np.ndarray
+    constant: float | None = None
+
+
+def _ratio_groups(D: np.ndarray, T: np.ndarray, first: int
+                  ) -> list[tuple[np.ndarray, int, int]]:
+    r"""Per-sample ratios :math:`D_j/T_j` of the columns of ``D`` and ``T`` (S × k) that are
+    finite and nonzero, grouped by equality: (ratio, votes, votes of the first ``first``
+    columns — the inertia's), most votes first."""
+    with np.errstate(all="ignore"):
+        size = max(float(np.nanmax(np.abs(T), initial=0.0)), float(np.nanmax(np.abs(D),
+                                                                              initial=0.0)))
+        groups: list[list] = []
+        for j in range(T.shape[1]):
+            d, t = D[:, j], T[:, j]
+            if not (np.isfinite(d).all() and np.isfinite(t).all()):
+                continue
+            if np.abs(t).min() <= VOTE_FLOOR * size or np.abs(d).min() <= VOTE_FLOOR * size:
+                continue
+            r = d / t
+            for g in groups:
+                if np.abs(r - g[0]).max() <= RATIO_TOL * np.abs(g[0]).max():
+                    g[1] += 1
+                    g[2] += int(j < first)
+                    break
+            else:
+                groups.append([r, 1, int(j < first)])
+    return sorted(((g[0], g[1], g[2]) for g in groups), key=lambda g: -g[1])
+
+
+def _columns(a: Arrays, B: np.ndarray | None, row: int, with_n: bool) -> np.ndarray:
+    r"""Row ``row`` of A, the velocity-and-gravity term :math:`n = h + Q` (``with_n``, per
+    sample) and B (where given) side by side (S × k)."""
+    parts = [a.A[:, row, :]]
+    if with_n:
+        n = sum(x[:, row] for x in (a.h, a.Q) if x is not None)
+        parts.append(np.asarray(n, float)[:, None])
+    if B is not None:
+        parts.append(B[:, row, :])
+    return np.concatenate(parts, axis=1)
+
+
+def paired(i: int, k: int, doc: Arrays, truth: Arrays, B_doc: np.ndarray | None,
+           B_true: np.ndarray | None, simple: Callable[[np.ndarray], bool] | None = None
+           ) -> tuple[np.ndarray, int] | None:
+    r"""The ratio of the document's row ``i`` to the true row ``k`` that most of their nonzero
+    elements (A, Q, B) share, per sample, with its votes; only a ratio an element of A shares
+    (an equation multiplied through scales its accelerations' coefficients too: a wrong input
+    map must not scale a row), and one that varies only with at least two votes or, with one,
+    when ``simple`` says it is a simple expression of the document's names (a function fitted
+    to one element would absorb it). None when there is none."""
+    if doc.A is None or truth.A is None:
+        return None
+    both = B_doc is not None and B_true is not None
+    with_n = doc.h is not None or doc.Q is not None
+    D = _columns(doc, B_doc if both else None, i, with_n)
+    T = _columns(_matching(truth, doc), B_true if both else None, k, with_n)
+    n = doc.A.shape[2]
+    for ratio, votes, inertia in _ratio_groups(D, T, n):
+        constant = np.ptp(ratio) <= CONSTANT_SPREAD * np.abs(ratio).max()
+        if inertia and (constant or votes >= 2 or (simple is not None and simple(ratio))):
+            return ratio, votes
+    return None
+
+
+def _matching(truth: Arrays, doc: Arrays) -> Arrays:
+    r"""The truth with the parts the document does not give left out (its n = h + Q is the
+    document's parts')."""
+    return Arrays(A=truth.A, h=truth.h if doc.h is not None else None,
+                  Q=truth.Q if doc.Q is not None else None)
+
+
+def _solve_rows(M: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    r""":math:`w` with :math:`w M = rhs` per sample (M: S × n × n, rhs: S × n); NaN where M
+    is singular or not finite."""
+    out = np.full(rhs.shape, np.nan)
+    ok = np.isfinite(M).all(axis=(1, 2)) & np.isfinite(rhs).all(axis=1)
+    ok[ok] = relative_det(M[ok]) > SINGULAR_TOL
+    if ok.any():
+        out[ok] = np.linalg.solve(np.swapaxes(M[ok], 1, 2), rhs[ok][:, :, None])[..., 0]
+    return out
+
+
+def combination_weights(i: int, rule: FrameRule, doc: Arrays, truth: Arrays,
+                        B_doc: np.ndarray | None, B_true: np.ndarray | None) -> np.ndarray:
+    r"""The weights of a ``COMBINATION`` rule (see :class:`FrameRule`)."""
+    if rule.variant is None:
+        return _solve_rows(truth.A, doc.A[:, i, :])
+    j, c = rule.variant
+    if c < 0:
+        if doc.h is None or truth.h is None:
+            return np.full(doc.A[:, i, :].shape, np.nan)
+        extra_t = truth.h + (truth.Q if truth.Q is not None else 0.0)
+        extra_d = doc.h[:, i] + (doc.Q[:, i] if doc.Q is not None else 0.0)
+    else:
+        if B_doc is None or B_true is None:
+            return np.full(doc.A[:, i, :].shape, np.nan)
+        extra_t, extra_d = B_true[:, :, c], B_doc[:, i, c]
+    M = truth.A.copy()
+    M[:, :, j] = extra_t
+    rhs = doc.A[:, i, :].copy()
+    rhs[:, j] = extra_d
+    return _solve_rows(M, rhs)
+
+
+def evaluate_rule(i: int, rule: FrameRule, doc: Arrays, truth: Arrays,
+                  B_doc: np.ndarray | None, B_true: np.ndarray | None,
+                  declared: np.ndarray | None = None) -> Frame | None:
+    r"""The frame of ``rule`` for row ``i`` on this grid (None when it does not exist here:
+    no element votes for the pairing). ``declared``: the declared factor per sample."""
+    S, n = truth.A.shape[0], truth.A.shape[1]
+    if rule.kind == FrameKind.DECLARED:
+        w = np.zeros((S, n))
+        w[:, i] = 1.0 if declared is None else declared
+        return Frame(rule, w)
+    if rule.kind == FrameKind.IDENTITY:
+        w = np.zeros((S, n))
+        w[:, i] = 1.0
+        return Frame(rule, w, 1.0)
+    if rule.kind == FrameKind.CONSTANT and rule.value is not None:
+        w = np.zeros((S, n))
+        w[:, rule.partner] = rule.value
+        return Frame(rule, w, rule.value)
+    if rule.kind in (FrameKind.CONSTANT, FrameKind.FUNCTION):
+        found = paired(i, rule.partner, doc, truth, B_doc, B_true,
+                       (lambda r: True) if rule.identified else None)
+        if found is None:
+            return None
+        ratio = found[0]
+        w = np.zeros((S, n))
+        w[:, rule.partner] = ratio
+        constant = float(np.median(ratio)) if np.ptp(ratio) <= CONSTANT_SPREAD * np.abs(
+            ratio).max() else None
+        return Frame(rule, w, constant)
+    w = combination_weights(i, rule, doc, truth, B_doc, B_true)
+    if not np.isfinite(w).all():
+        return None
+    size = np.abs(w).max(axis=1)
+    if size.min() <= VOTE_FLOOR * max(float(size.max()), 1e-300) or size.min() == 0.0:
+        return None                  # the row would be no equation at some sample
+    return Frame(rule, w)
+
+
+def candidate_rules(i: int, grids: Sequence[tuple[Arrays, Arrays, np.ndarray | None]],
+                    robust: bool, simple: Callable[[np.ndarray], bool] | None = None
+                    ) -> list[FrameRule]:
+    r"""The rules tried for row ``i``: the identity; for each true row the elements vote for
+    on some grid ((document, truth, true B) each, the document's B in its ``Arrays.B``), the
+    constant they share there, else a function; the combination :math:`A_{doc,i}A^{-1}`, and
+    with ``robust`` (an equation that is not right) its variants with one inertia column
+    replaced."""
+    doc0, truth0, B0 = grids[0]
+    n = truth0.A.shape[1]
+    out = [FrameRule(FrameKind.IDENTITY)]
+    for k in range(n):
+        for g, (doc, truth, B_true) in enumerate(grids):
+            found = paired(i, k, doc, truth, doc.B, B_true, simple if g == 0 else None)
+            if found is None:
+                continue
+            ratio, votes = found
+            if np.ptp(ratio) <= CONSTANT_SPREAD * np.abs(ratio).max():
+                c = float(np.median(ratio))
+                if not (k == i and abs(c - 1.0) <= RATIO_TOL):
+                    rule = FrameRule(FrameKind.CONSTANT, k, value=c)
+                    if not any(r.kind == FrameKind.CONSTANT and r.partner == k and
+                               abs(r.value - c) <= RATIO_TOL * abs(c) for r in out):
+                        out.append(rule)
+            else:
+                rule = FrameRule(FrameKind.FUNCTION, k, identified=votes < 2)
+                if not any(r.kind == FrameKind.FUNCTION and r.partner == k for r in out):
+                    out.append(rule)
+    out.append(FrameRule(FrameKind.COMBINATION))
+    if robust:
+        m = 0 if doc0.B is None or B0 is None else doc0.B.shape[2]
+        out += [FrameRule(FrameKind.COMBINATION, variant=(j, c))
+                for j in range(n) for c in range(-1, m)]
+    return out
+
+
+def _agreeing(D: np.ndarray | None, T: np.ndarray | None, tol: float,
+              mask: np.ndarray | None = None) -> int:
+    if D is None or T is None:
+        return 0
+    with np.errstate(invalid="ignore"):
+        ok = (np.isfinite(D).all(axis=0) & np.isfinite(T).all(axis=0)
+              & (np.abs(D - T).max(axis=0, initial=0.0) <= tol))
+    return int((ok & mask).sum() if mask is not None else ok.sum())
+
+
+def score(doc_row: Arrays, true_row: Arrays) -> int:
+    r"""The number of the row's A, Q, B elements and velocity products of H that agree."""
+    tol = AGREE_TOL * row_scale(doc_row, true_row)
+    count = _agreeing(doc_row.A, true_row.A, tol) + _agreeing(doc_row.Q, true_row.Q, tol)
+    count += _agreeing(doc_row.B, true_row.B, tol)
+    if doc_row.H is not None and true_row.H is not None:
+        n = doc_row.H.shape[2]
+        count += _agreeing(doc_row.H, true_row.H, tol,
+                           np.triu(np.ones((n, n), dtype=bool))[None, :, :])
+    return count
+
+
+#: Free weights a frame fits per sample (its degrees of freedom): a frame that fits more
+#: must explain that many more elements to be preferred (a combination of n rows fits any n
+#: elements of the row).
+def freedom(rule: FrameRule, n: int) -> int:
+    r"""0 for the identity, a declared factor and a constant (one number for every sample: it
+    is taken only where an element of A shares it exactly), 1 for a function (a number per
+    sample), n for a combination."""
+    if rule.kind in (FrameKind.IDENTITY, FrameKind.DECLARED, FrameKind.CONSTANT) or \
+            rule.identified:
+        return 0
+    if rule.kind == FrameKind.FUNCTION:
+        return 1
+    return n
+
+
+def _elements(doc_row: Arrays) -> int:
+    r"""The number of A, Q, B elements and velocity products of H in one row."""
+    count = 0
+    for name in ("A", "Q", "B"):
+        M = getattr(doc_row, name)
+        if M is not None:
+            count += int(np.prod(M.shape[2:])) if M.ndim > 2 else 1
+    if doc_row.H is not None:
+        n = doc_row.H.shape[2]
+        count += n * (n + 1) // 2
+    return count
+
+
+def choose(i: int, rules: Sequence[FrameRule], grids: Sequence[tuple[Arrays, Arrays,
+           np.ndarray | None]], declared: bool, right: bool = False) -> FrameRule:
+    r"""The rule of row ``i`` (module text), scored over ``grids`` ((document, truth, true B in
+    the document's inputs) each, the document's B in its ``Arrays.B``). For an equation that
+    is ``right``: the simplest rule under which every element agrees on the first grid. Else
+    the rule under which most elements agree beyond the weights it fits
+    (:func:`freedom`), summed over the grids, the simplest on a tie; a ``declared`` factor is
+    kept."""
+    if declared:
+        return FrameRule(FrameKind.DECLARED)
+    n = grids[0][1].A.shape[1]
+    best: tuple[int, int, FrameRule] | None = None
+    for order, rule in enumerate(rules):
+        total = 0
+        for g, (doc, truth, B_true) in enumerate(grids):
+            if right and g:
+                break
+            frame = evaluate_rule(i, rule, doc, truth, doc.B, B_true)
+            if frame is None:
+                total = -10 ** 9
+                break
+            row = row_of(doc, i)
+            got = score(row, framed(frame.weights, truth, B_true))
+            if right:
+                if got == _elements(row):
+                    return rule
+                total = -10 ** 9
+                break
+            total += got - freedom(rule, n)
+        if total > -10 ** 9 and (best is None or total > best[0]):
+            best = (total, -order, rule)
+    return best[2] if best is not None else FrameRule(FrameKind.IDENTITY)
+
+
+__all__ = ["CONSTANT_SPREAD", "Frame", "FrameKind", "FrameRule", "RATIO_TOL", "VOTE_FLOOR",
+           "candidate_rules", "choose", "combination_weights", "evaluate_rule", "freedom", "paired",
+           "score"]

@@ -1,0 +1,61 @@
+r"""The truth brought into a document row's frame: for weights :math:`f_i` per sample
+(S × n, which combination of the true equations the document's row :math:`i` is), the row
+:math:`f_i\,[A \mid C \mid Q \mid h \mid B \mid H \mid \Gamma]` of the truth, shaped as one row of
+the document's arrays, and the row's scale."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..grid.arrays import Arrays
+
+
+def framed(w: np.ndarray, truth: Arrays, B_true: np.ndarray | None) -> Arrays:
+    r"""The truth brought into the frame: one row (S × 1 × ...) of A, C, Q, h, B (as
+    ``Arrays.B``) and H (on the truth's ``H_rows``)."""
+    out = Arrays(H_rows=truth.H_rows)
+    with np.errstate(all="ignore"):
+        for name in ("A", "C"):
+            M = getattr(truth, name)
+            if M is not None:
+                setattr(out, name, np.einsum("sl,slj->sj", w, M)[:, None, :])
+        for name in ("Q", "h"):
+            M = getattr(truth, name)
+            if M is not None:
+                setattr(out, name, np.einsum("sl,sl->s", w, M)[:, None])
+        if B_true is not None:
+            out.B = np.einsum("sl,slj->sj", w, B_true)[:, None, :]
+        if truth.H is not None:
+            rows = truth.H_rows if truth.H_rows is not None else np.arange(len(w))
+            out.H = np.einsum("sl,sljk->sjk", w[rows], truth.H)[:, None, :, :]
+        if truth.Gamma is not None:
+            rows = truth.H_rows if truth.H_rows is not None else np.arange(len(w))
+            out.Gamma = np.einsum("sl,sljk->sjk", w[rows], truth.Gamma)[:, None, :, :]
+    return out
+
+
+def row_of(doc: Arrays, i: int) -> Arrays:
+    r"""Row ``i`` of the document's arrays, shaped as :func:`framed`'s."""
+    out = Arrays(H_rows=doc.H_rows)
+    for name in ("A", "C", "Q", "h", "B", "H", "Gamma"):
+        M = getattr(doc, name)
+        if M is not None:
+            setattr(out, name, M[:, i:i + 1])
+    return out
+
+
+def row_scale(doc_row: Arrays, true_row: Arrays) -> float:
+    r"""The row's scale: the largest finite magnitude of its A, C, Q and H entries on either
+    side (1 for a row of zeros)."""
+    s = 0.0
+    for a in (doc_row, true_row):
+        for name in ("A", "C", "Q", "H"):
+            M = getattr(a, name)
+            if M is not None:
+                finite = M[np.isfinite(M)]
+                if finite.size:
+                    s = max(s, float(np.abs(finite).max()))
+    return s if s > 0 else 1.0
+
+
+__all__ = ["framed", "row_of", "row_scale"]
