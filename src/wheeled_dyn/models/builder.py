@@ -62,12 +62,15 @@ import pinocchio as pin
 
 from ..errors import ModelError, UnknownNameError
 from .contact import BallContact, SphereContact
+from .conventions import ANGLE_TOL
 from .rolling_wheel import BoundWheelContact, WheelContact
 from .springs import SPRING_JOINTS, BoundSpring, JointSpring, spring_energy, spring_force
 from .urdf_source import UrdfSource, read_urdf
 
-#: Largest |cos| between the axle and the up direction for the axle to count as horizontal.
-HORIZONTAL_TOL = 1e-9
+#: Largest |cos| between the axle and the up direction for the axle to count as horizontal
+#: (:data:`~.conventions.ANGLE_TOL`: URDFs round their angles); within it, the up direction is
+#: made exactly perpendicular to the axle (the axle, from the wheel centres, is kept).
+HORIZONTAL_TOL = ANGLE_TOL
 #: Largest distance (m) of a wheel link's origin from its spin joint's axis.
 AXIS_TOL = 1e-9
 #: Largest relative difference between the two wheel radii.
@@ -114,6 +117,7 @@ class ModelSpec:
     default_coordinates: str | None = None       # the default coordinate set's name
     source: Path | None = None                   # the model file, if the spec came from one
     springs: tuple[JointSpring, ...] = ()        # linear springs along or about joints
+    forward: tuple[float, float, float] | None = None   # body's forward, link axes (planar)
 
 
 @dataclass(frozen=True)
@@ -296,6 +300,32 @@ def _check_on_body(spec: ModelSpec, source: UrdfSource, body: str, wheel: str,
         link = joint.parent
 
 
+def _check_sides(spec: ModelSpec, body_rot: np.ndarray, forward: np.ndarray,
+                 left_centre: np.ndarray, right_centre: np.ndarray) -> None:
+    r"""The wheels are listed (left, right) as the geometry says: *forward* is up × (left →
+    right), so a swapped list mirrors the model (forward reversed, every input's sign
+    flipped). Forward is the spec's ``forward`` (in the body link's axes) when given, else the
+    body's +x when it is horizontal (REP 103: x forward, y left, z up); a body whose x is not
+    horizontal, without ``forward``, is not checked."""
+    declared = spec.forward is not None
+    ref = np.asarray(spec.forward if declared else (1.0, 0.0, 0.0), dtype=float)
+    if not np.linalg.norm(ref) > 0:
+        raise ModelError(spec.name, spec.body, f"forward direction {spec.forward} is zero")
+    ref = body_rot @ (ref / np.linalg.norm(ref))
+    along = float(ref @ forward)
+    if declared and along < np.cos(ANGLE_TOL) and along > -np.cos(ANGLE_TOL):
+        raise ModelError(spec.name, spec.body, f"the declared forward direction "
+                         f"{spec.forward} is not perpendicular to the axle and the up direction")
+    if along < -np.cos(ANGLE_TOL):
+        axis = "the declared forward" if declared else f"+x of {spec.body} (REP 103)"
+        raise ModelError(spec.name, f"{spec.wheels[0]}, {spec.wheels[1]}",
+                         f"wheels listed against the geometry: with {spec.wheels[0]!r} as "
+                         f"left and {spec.wheels[1]!r} as right, forward would be opposite "
+                         f"to {axis}, a mirrored model with every input's sign flipped; list "
+                         f"them as [{spec.wheels[1]!r}, {spec.wheels[0]!r}], or declare the "
+                         "body's forward direction ([base] forward = [...], in its link axes)")
+
+
 def _build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
                    urdf_geom: pin.GeometryModel) -> WheeledModel:
     if not spec.body:
@@ -325,13 +355,18 @@ def _build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
     up = body_rot @ np.asarray(spec.up, dtype=float)
     up /= np.linalg.norm(up)
     for link, axis in ((spec.wheels[0], al), (spec.wheels[1], ar)):
-        if np.linalg.norm(np.cross(axis, axle)) > 1e-6:
-            raise ModelError(spec.name, link, "wheel spin axis is not along the axle")
-    if abs(float(up @ axle)) > HORIZONTAL_TOL:
+        if np.linalg.norm(np.cross(axis, axle)) > np.sin(ANGLE_TOL):
+            raise ModelError(spec.name, link, "wheel spin axis is not along the axle (more "
+                                              f"than {ANGLE_TOL} rad off)")
+    if abs(float(up @ axle)) > np.sin(HORIZONTAL_TOL):
         raise ModelError(spec.name, body_link, "the axle is not horizontal for the declared "
-                                               f"up direction {spec.up}")
+                                               f"up direction {spec.up} (more than "
+                                               f"{HORIZONTAL_TOL} rad off)")
+    up = up - (up @ axle) * axle
+    up /= np.linalg.norm(up)
     forward = np.cross(up, axle)
     left = np.cross(up, forward)
+    _check_sides(spec, body_rot, forward, cl, cr)
     R_HJ = np.vstack([forward, left, up])        # root-frame vectors -> heading frame
     centre = 0.5 * (cl + cr)
 
