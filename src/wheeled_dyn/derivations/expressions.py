@@ -31,7 +31,9 @@ undefined functions of a link name,
     \mathrm{XX}(\text{body}),\ \mathrm{MY}(\text{body}),\ \mathrm{ZZ}(\text{wheel\_left}),\ \dots
 
 written with :data:`KHALIL_FUNCTIONS` (real undefined functions) applied to
-``sympy.Symbol(link)``. The model namespace
+``sympy.Symbol(link)``, and the physical ones about the centre of mass, ``CX(link)``,
+``IXX(link)`` ... (:data:`PHYSICAL_NAMES`; :func:`physical_in_standard` rewrites them in
+Khalil's). The model namespace
 is open (any identifier is a parameter) unless the caller passes the valid parameter and link
 names: the parser does not import the models.
 

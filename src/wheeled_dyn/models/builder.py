@@ -62,7 +62,7 @@ import pinocchio as pin
 
 from ..errors import ModelError, UnknownNameError
 from .contact import BallContact, SphereContact
-from .conventions import ANGLE_TOL
+from .conventions import ANGLE_TOL, check_sides
 from .rolling_wheel import BoundWheelContact, WheelContact
 from .springs import SPRING_JOINTS, BoundSpring, JointSpring, spring_energy, spring_force
 from .urdf_source import UrdfSource, read_urdf
@@ -300,32 +300,6 @@ def _check_on_body(spec: ModelSpec, source: UrdfSource, body: str, wheel: str,
         link = joint.parent
 
 
-def _check_sides(spec: ModelSpec, body_rot: np.ndarray, forward: np.ndarray,
-                 left_centre: np.ndarray, right_centre: np.ndarray) -> None:
-    r"""The wheels are listed (left, right) as the geometry says: *forward* is up × (left →
-    right), so a swapped list mirrors the model (forward reversed, every input's sign
-    flipped). Forward is the spec's ``forward`` (in the body link's axes) when given, else the
-    body's +x when it is horizontal (REP 103: x forward, y left, z up); a body whose x is not
-    horizontal, without ``forward``, is not checked."""
-    declared = spec.forward is not None
-    ref = np.asarray(spec.forward if declared else (1.0, 0.0, 0.0), dtype=float)
-    if not np.linalg.norm(ref) > 0:
-        raise ModelError(spec.name, spec.body, f"forward direction {spec.forward} is zero")
-    ref = body_rot @ (ref / np.linalg.norm(ref))
-    along = float(ref @ forward)
-    if declared and along < np.cos(ANGLE_TOL) and along > -np.cos(ANGLE_TOL):
-        raise ModelError(spec.name, spec.body, f"the declared forward direction "
-                         f"{spec.forward} is not perpendicular to the axle and the up direction")
-    if along < -np.cos(ANGLE_TOL):
-        axis = "the declared forward" if declared else f"+x of {spec.body} (REP 103)"
-        raise ModelError(spec.name, f"{spec.wheels[0]}, {spec.wheels[1]}",
-                         f"wheels listed against the geometry: with {spec.wheels[0]!r} as "
-                         f"left and {spec.wheels[1]!r} as right, forward would be opposite "
-                         f"to {axis}, a mirrored model with every input's sign flipped; list "
-                         f"them as [{spec.wheels[1]!r}, {spec.wheels[0]!r}], or declare the "
-                         "body's forward direction ([base] forward = [...], in its link axes)")
-
-
 def _build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
                    urdf_geom: pin.GeometryModel) -> WheeledModel:
     if not spec.body:
@@ -366,7 +340,7 @@ def _build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
     up /= np.linalg.norm(up)
     forward = np.cross(up, axle)
     left = np.cross(up, forward)
-    _check_sides(spec, body_rot, forward, cl, cr)
+    check_sides(spec, body_rot, forward)
     R_HJ = np.vstack([forward, left, up])        # root-frame vectors -> heading frame
     centre = 0.5 * (cl + cr)
 

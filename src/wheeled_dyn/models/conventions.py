@@ -30,6 +30,8 @@ from enum import Enum
 
 import numpy as np
 
+from ..errors import ModelError
+
 #: Largest angle (rad) between two directions that count as the same, wherever axes are
 #: compared (a wheel's cylinder and its joint axis, an axle and the body's y, left and right):
 #: URDFs round π/2 as 1.5708 (3.7e-6 rad off) or 1.57 (8e-4 rad off).
@@ -190,3 +192,29 @@ def _joint_table(wm) -> ConventionTable:
                                "reaction on the parent", base.vector, base.frame,
                                base.positive))
     return ConventionTable(wm.name, wm.spec.body, tuple(rows))
+
+
+def check_sides(spec, body_rot: np.ndarray, forward: np.ndarray) -> None:
+    r"""Check that a :class:`~.builder.ModelSpec` ``spec`` lists its wheels (left, right) as
+    the geometry says (``body_rot`` the body's rotation and ``forward`` = up × (left → right),
+    both in the URDF root's frame): a swapped list mirrors the model (forward reversed, every
+    input's sign flipped). Forward is the spec's ``forward`` (in the body link's axes) when given, else the
+    body's +x when it is horizontal (REP 103: x forward, y left, z up); a body whose x is not
+    horizontal, without ``forward``, is not checked."""
+    declared = spec.forward is not None
+    ref = np.asarray(spec.forward if declared else (1.0, 0.0, 0.0), dtype=float)
+    if not np.linalg.norm(ref) > 0:
+        raise ModelError(spec.name, spec.body, f"forward direction {spec.forward} is zero")
+    ref = body_rot @ (ref / np.linalg.norm(ref))
+    along = float(ref @ forward)
+    if declared and along < np.cos(ANGLE_TOL) and along > -np.cos(ANGLE_TOL):
+        raise ModelError(spec.name, spec.body, f"the declared forward direction "
+                         f"{spec.forward} is not perpendicular to the axle and the up direction")
+    if along < -np.cos(ANGLE_TOL):
+        axis = "the declared forward" if declared else f"+x of {spec.body} (REP 103)"
+        raise ModelError(spec.name, f"{spec.wheels[0]}, {spec.wheels[1]}",
+                         f"wheels listed against the geometry: with {spec.wheels[0]!r} as "
+                         f"left and {spec.wheels[1]!r} as right, forward would be opposite "
+                         f"to {axis}, a mirrored model with every input's sign flipped; list "
+                         f"them as [{spec.wheels[1]!r}, {spec.wheels[0]!r}], or declare the "
+                         "body's forward direction ([base] forward = [...], in its link axes)")

@@ -72,8 +72,8 @@ def _cylinder(link) -> tuple[float, float, np.ndarray, str] | None:
     return None
 
 
-def inspect_urdf(path: str | Path) -> UrdfInventory:
-    r"""Links, joints and candidate wheels of a URDF (see the module docstring)."""
+def _read(path: str | Path):
+    r"""The URDF's source (bad link inertias accepted and listed) and its yourdfpy model."""
     import yourdfpy
     accept: list[str] = []
     while True:                       # a bad link inertia is reported, not fatal, here
@@ -86,10 +86,12 @@ def inspect_urdf(path: str | Path) -> UrdfInventory:
             accept.append(exc.item)
     urdf = yourdfpy.URDF.load(io.BytesIO(source.text.encode("utf-8")), build_scene_graph=True,
                               load_meshes=False, load_collision_meshes=False)
-    robot = urdf.robot
-    root = source.root_link()
-    parent_joint = {j.child: j for j in robot.joints}
-    carriers = set()                  # joints that carry another moving joint
+    return source, urdf, tuple(accept)
+
+
+def _carriers(robot, parent_joint) -> set[str]:
+    r"""The moving joints that carry another moving joint (a wheel ends its chain)."""
+    carriers = set()
     for j in robot.joints:
         if j.type == "fixed":
             continue
@@ -99,7 +101,55 @@ def inspect_urdf(path: str | Path) -> UrdfInventory:
             if above.type != "fixed":
                 carriers.add(above.name)
             link = above.parent
-    links, candidates = [], {}
+    return carriers
+
+
+def _candidate(urdf, link, cyl, parent_joint, carriers, root: str, why: dict[str, str]
+               ) -> WheelCandidate | None:
+    r"""``link`` as a wheel, or None (with the reason in ``why`` under its joint's name)."""
+    joint = parent_joint[link.name]
+    while joint.type == "fixed" and joint.parent in parent_joint:
+        joint = parent_joint[joint.parent]
+    if joint.type not in ("revolute", "continuous"):
+        return None
+    if joint.name in carriers:
+        why.setdefault(joint.name, f"turns {link.name}'s cylinder but carries other moving "
+                                   "joints (a wheel ends its chain)")
+        return None
+    cyl_axis = urdf.get_transform(link.name, joint.child)[:3, :3] @ cyl[2]
+    axis = np.asarray(joint.axis if joint.axis is not None else (1.0, 0.0, 0.0), dtype=float)
+    sine = float(np.linalg.norm(np.cross(cyl_axis, axis / np.linalg.norm(axis))))
+    angle = float(np.arcsin(min(1.0, sine)))
+    if angle > ANGLE_TOL:
+        why[joint.name] = (f"{link.name}'s cylinder axis is {angle:.3g} rad from the joint "
+                           f"axis (at most {ANGLE_TOL} rad for a wheel)")
+        return None
+    pos = tuple(float(x) for x in urdf.get_transform(link.name, root)[:3, 3])
+    return WheelCandidate(link.name, joint.name, cyl[0], cyl[1], pos, cyl[3])  # type: ignore[arg-type]
+
+
+def _path_joints(pair, parent_joint) -> tuple[str, ...]:
+    r"""The moving joints between the body and the wheels' spin joints."""
+    out: list[str] = []
+    for cand in pair or ():
+        link = cand.link
+        while link in parent_joint:
+            joint = parent_joint[link]
+            if joint.type != "fixed" and joint.name != cand.joint and joint.name not in out:
+                out.insert(0, joint.name)
+            link = joint.parent
+    return tuple(out)
+
+
+def inspect_urdf(path: str | Path) -> UrdfInventory:
+    r"""Links, joints and candidate wheels of a URDF (see the module docstring)."""
+    source, urdf, accept = _read(path)
+    robot = urdf.robot
+    root = source.root_link()
+    parent_joint = {j.child: j for j in robot.joints}
+    carriers = _carriers(robot, parent_joint)
+    links: list[tuple[str, float, str]] = []
+    candidates: dict[str, WheelCandidate] = {}
     why: dict[str, str] = {}
     for link in robot.links:
         mass = float(link.inertial.mass) if link.inertial is not None and \
@@ -109,29 +159,10 @@ def inspect_urdf(path: str | Path) -> UrdfInventory:
                       f"({cyl[3]})" if cyl else ""))
         if cyl is None or link.name not in parent_joint:
             continue
-        joint = parent_joint[link.name]
-        while joint.type == "fixed" and joint.parent in parent_joint:
-            joint = parent_joint[joint.parent]
-        if joint.type not in ("revolute", "continuous"):
-            continue
-        if joint.name in carriers:
-            why.setdefault(joint.name, f"turns {link.name}'s cylinder but carries other moving "
-                                       "joints (a wheel ends its chain)")
-            continue
-        to_child = urdf.get_transform(link.name, joint.child)
-        cyl_axis = to_child[:3, :3] @ cyl[2]
-        axis = np.asarray(joint.axis if joint.axis is not None else (1.0, 0.0, 0.0), dtype=float)
-        angle = float(np.arcsin(min(1.0, np.linalg.norm(np.cross(cyl_axis,
-                                                                 axis / np.linalg.norm(axis))))))
-        if angle > ANGLE_TOL:
-            why[joint.name] = (f"{link.name}'s cylinder axis is {angle:.3g} rad from the joint "
-                               f"axis (at most {ANGLE_TOL} rad for a wheel)")
-            continue
-        pos = tuple(float(x) for x in urdf.get_transform(link.name, root)[:3, 3])
-        cand = WheelCandidate(link.name, joint.name, cyl[0], cyl[1], pos, cyl[3])
-        best = candidates.get(joint.name)
-        if best is None or cand.radius > best.radius:
-            candidates[joint.name] = cand
+        cand = _candidate(urdf, link, cyl, parent_joint, carriers, root, why)
+        best = candidates.get(cand.joint) if cand is not None else None
+        if cand is not None and (best is None or cand.radius > best.radius):
+            candidates[cand.joint] = cand
     for j in robot.joints:
         if j.type in ("revolute", "continuous") and j.name not in candidates:
             why.setdefault(j.name, "turns no link with a cylinder (collision or visual "
@@ -143,16 +174,7 @@ def inspect_urdf(path: str | Path) -> UrdfInventory:
                             f"{PAIR_RADIUS_TOL:g} relative) at distinct places")
     elif pair is None and ordered:
         why["(pairing)"] = f"only one candidate wheel ({ordered[0].link})"
-    path_joints: list[str] = []
-    if pair is not None:
-        for cand in pair:
-            link = cand.link
-            while link in parent_joint:
-                joint = parent_joint[link]
-                if (joint.type != "fixed" and joint.name != cand.joint
-                        and joint.name not in path_joints):
-                    path_joints.insert(0, joint.name)
-                link = joint.parent
+    path_joints = _path_joints(pair, parent_joint)
     joints = tuple((j.name, j.type, j.parent, j.child,
                     " ".join(f"{x:g}" for x in (j.axis if j.axis is not None else ())))
                    for j in robot.joints)
@@ -161,7 +183,7 @@ def inspect_urdf(path: str | Path) -> UrdfInventory:
         body = _body(pair, parent_joint, path_joints, root)
         pair, up, notes = _sides(pair, urdf.get_transform(body, root)[:3, :3], body)
     return UrdfInventory(Path(path), robot.name, root, tuple(links), joints, tuple(ordered),
-                         pair, tuple(path_joints), tuple(accept),
+                         pair, path_joints, accept,
                          tuple(sorted(why.items())) if pair is None else (), body, up, notes)
 
 
@@ -171,7 +193,7 @@ def _body(pair, parent_joint, path_joints, root: str) -> str:
     parents = {parent_joint[c.link].parent if parent_joint[c.link].name == c.joint else None
                for c in pair}
     if len(parents) == 1 and None not in parents and not path_joints:
-        return parents.pop()
+        return str(parents.pop())
     return root
 
 
