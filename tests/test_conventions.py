@@ -19,7 +19,7 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
-from wheeled_dyn.cli import main
+from wheeled_dyn.cli.main import main
 from wheeled_dyn.constraints import CoordinateMap
 from wheeled_dyn.coordinates import builtin_coordinate_set
 from wheeled_dyn.models.conventions import Positive, convention_table

@@ -23,7 +23,7 @@ import sympy as sp
 
 from conftest import SEED
 from ros_kane import kane_terms
-from wheeled_dyn.cli import main
+from wheeled_dyn.cli.main import main
 from wheeled_dyn.constraints import CoordinateMap
 from wheeled_dyn.coordinates import builtin_coordinate_set
 from wheeled_dyn.errors import ModelError
@@ -99,6 +99,10 @@ def test_model_command_writes_the_shipped_file_then_matrices_and_compare_run(tmp
     assert "wheel pair found: left left_wheel" in printed and "body base_link" in printed
     assert "track 0.44 m" in printed and "forward = +x of base_link (REP 103)" in printed
     assert out.read_text() == MODEL.read_text()          # the shipped file has no hand edits
+    from wheeled_dyn.models.conventions import convention_table
+    for line in convention_table(load_model(str(out))).lines():
+        assert line in printed
+    assert "about the centre of mass, in base_link's axes" in printed
     assert main(["matrices", str(out), "--state", "phi=0.1,dx=0.5"]) == 0
     assert "conventions of model ros_balancer" in capsys.readouterr().out
     for name in ("ros_balancer_heading.toml", "ros_balancer_dropped_wheel.toml"):

@@ -87,8 +87,8 @@ def _cmd_model(args: argparse.Namespace) -> int:
             raise InputFileError(out, "exists; give --force to replace it")
     import sys
 
-    from .starter import inspect_urdf
-    from .starter_summary import summary_lines
+    from ..models.starter import inspect_urdf
+    from ..models.starter_summary import summary_lines
     inventory = inspect_urdf(args.urdf)
     text = write_starter(args.urdf, args.out, inventory)
     summary = "\n".join(summary_lines(inventory))
@@ -119,7 +119,7 @@ def _cmd_matrices(args: argparse.Namespace) -> int:
         print(json.dumps(out, indent=2))
         return 0
     vel = cs.velocities
-    from .conventions import convention_table
+    from ..models.conventions import convention_table
     print("\n".join(convention_table(wm).lines()))
     print(f"model {wm.name}, coordinates {cs.name}: {cs.description}")
     print("state: " + ", ".join(f"{k}={v:g}" for k, v in zip((*cs.positions, *vel), (*q, *nu))))
