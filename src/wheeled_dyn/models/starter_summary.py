@@ -13,16 +13,18 @@ from .starter import UrdfInventory
 
 
 def starter_spec(inv: UrdfInventory):
-    r"""The :class:`~.builder.ModelSpec` the starting file describes (planar models only)."""
-    from .builder import ModelSpec
-    if inv.pair is None:
-        return ModelSpec(name=inv.robot or inv.path.stem, urdf=inv.path, base="fixed",
-                         body=inv.root, accept_inertia=inv.bad_inertia)
-    left, right = inv.pair
-    return ModelSpec(name=inv.robot or inv.path.stem, urdf=inv.path, body=inv.body,
-                     wheels=(left.link, right.link), up=inv.up, lock=inv.path_joints,
-                     aliases={left.joint: "theta_l", right.joint: "theta_r"},
-                     radius=left.radius, accept_inertia=inv.bad_inertia)
+    r"""The :class:`~.builder.ModelSpec` the starting file describes: its text, written to a
+    temporary folder and read back as any model file is (the URDF by its absolute path or its
+    package, so that package meshes resolve)."""
+    import tempfile
+    from pathlib import Path
+
+    from .model_file import read_model_file
+    from .starter import starter_text
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / "starter.toml"
+        path.write_text(starter_text(inv, path), encoding="utf-8")
+        return read_model_file(path).spec()
 
 
 def summary_lines(inv: UrdfInventory) -> list[str]:
