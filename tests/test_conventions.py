@@ -56,16 +56,13 @@ def test_pitch_and_heading_claims_hold(model):
     table = convention_table(wm)
     rest = _frame_pose(wm, _q(wm))
     up_in_body = rest.rotation.T @ np.array([0.0, 0.0, 1.0])
-    top_rest = rest.act(rest.actInv(np.array([0.0, 0.0, 0.0])) + up_in_body)
+    above_axle = rest.actInv(np.array([0.0, 0.0, wm.geometry["R"]])) + up_in_body  # 1 m above
     pitched = _frame_pose(wm, _q(wm, phi=ANGLE))
-    axle_centre = rest.actInv(np.array([0.0, 0.0, wm.geometry["R"]]))
-    top = pitched.act(axle_centre + up_in_body)
-    moved = top[0] - (rest.act(axle_centre + up_in_body))[0]
+    moved = pitched.act(above_axle)[0] - rest.act(above_axle)[0]
     claim = table.row("phi").positive
     assert claim in (Positive.TOP_BACKWARD, Positive.TOP_FORWARD)
     assert abs(moved) > SIGNIFICANT
     assert (moved < 0) == (claim is Positive.TOP_BACKWARD), (model, moved)
-    del top_rest
     forward_in_body = rest.rotation.T @ np.array([1.0, 0.0, 0.0])
     turned = _frame_pose(wm, _q(wm, psi=ANGLE)).rotation @ forward_in_body
     assert table.row("psi").positive is Positive.TURNS_LEFT and turned[1] > SIGNIFICANT
