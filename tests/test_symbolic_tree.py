@@ -106,6 +106,7 @@ def test_tiago_rolling_reduction_matches_numeric(tiago):
     cs = builtin_coordinate_set(tiago, None)
     red = tree_wheeled(tiago, cs, "standard")
     values = {k.replace("(", "_").rstrip(")"): v for k, v in model_parameters(tiago).items()}
+    values |= named_parameters(tiago.model)      # joint bodies named by their joints (M_psi)
     _reduced_check(tiago, cs, red, values)
     # one element expanded on demand: the heading-speed mass is the total mass plus wheel terms
     a11 = red.expand(red.A[0, 0])

@@ -79,7 +79,12 @@ def check_model_names(d) -> None:
             link = str(call.args[0])
             args |= call.args[0].free_symbols
             if link not in links:
-                raise DerivationNameError(d.path, item, "link", link, links, line)
+                from ..models.link_parameters import merged_links
+                body = merged_links(wm).get(link)
+                kind = "link" if body is None else (
+                    f"link of its own (it is fixed to the rigid body named {body.carrier}: "
+                    f"{', '.join(body.members)}; name that body)")
+                raise DerivationNameError(d.path, item, kind, link, links, line)
             key = f"{call.func.__name__}({link})"
             if key not in values:
                 raise DerivationNameError(d.path, item, "model parameter", key,

@@ -85,10 +85,18 @@ def _cmd_model(args: argparse.Namespace) -> int:
         out = check_output_file(args.out, ".toml")
         if out.exists() and not args.force:
             raise InputFileError(out, "exists; give --force to replace it")
-    text = write_starter(args.urdf, args.out)
-    if args.out is None:
+    import sys
+
+    from ..models.starter import inspect_urdf
+    from ..models.starter_summary import summary_lines
+    inventory = inspect_urdf(args.urdf)
+    text = write_starter(args.urdf, args.out, inventory)
+    summary = "\n".join(summary_lines(inventory))
+    if args.out is None:            # the file on stdout (to redirect), what was decided on stderr
         print(text, end="")
+        print(summary, file=sys.stderr)
     else:
+        print(summary)
         print(f"wrote {args.out}: check the lines marked CHECK, then run "
               f"'wheeled-dyn matrices {args.out}'")
     return 0
@@ -111,6 +119,8 @@ def _cmd_matrices(args: argparse.Namespace) -> int:
         print(json.dumps(out, indent=2))
         return 0
     vel = cs.velocities
+    from ..models.conventions import convention_table
+    print("\n".join(convention_table(wm).lines()))
     print(f"model {wm.name}, coordinates {cs.name}: {cs.description}")
     print("state: " + ", ".join(f"{k}={v:g}" for k, v in zip((*cs.positions, *vel), (*q, *nu))))
     print(format_matrix("A", terms.A, vel, vel))

@@ -41,6 +41,14 @@ def _matrix_lines(name: str, M: sp.Matrix) -> list[str]:
     return lines
 
 
+def _print_link_parameters(wm) -> None:
+    r"""The link parameters a derivation file may name, both kinds with their reference points
+    and the model's values (:func:`~wheeled_dyn.models.link_parameters.parameter_listing`)."""
+    from ..models.link_parameters import parameter_listing
+    print("link parameters a derivation may name (per rigid body, by the link carrying it):")
+    print("\n".join(parameter_listing(wm)))
+
+
 #: Models with more velocities than this get intermediate variables by default (``--form``).
 EXPANDED_MAX_NV: int = 8
 
@@ -77,6 +85,7 @@ def _cmd_tree(args: argparse.Namespace, wm, cs, mode: str) -> int:
     print(f"positions {', '.join(map(str, red.q))}; velocities {', '.join(map(str, red.nu))}; "
           f"inputs {', '.join(wm.input_names)}")
     print(f"parameters ({mode}): {', '.join(map(str, red.parameters))}")
+    _print_link_parameters(wm)
     print(f"derived in {seconds:.2f} s with intermediate variables: {ops}")
     print("A(q) nu' + C(q, nu) nu + Q(q) = B u, h = C nu; intermediate variables in order:")
     for w, e in red.assignments:
@@ -147,6 +156,7 @@ def _cmd_symbolic(args: argparse.Namespace) -> int:
     print(f"positions {', '.join(map(str, red.q))}; velocities {', '.join(map(str, red.nu))}; "
           f"inputs {', '.join(wm.input_names)}")
     print(f"parameters ({mode}): {', '.join(map(str, red.parameters))}")
+    _print_link_parameters(wm)
     print("A(q) nu' + C(q, nu) nu + Q(q) = B u")
     for name, M in terms.items():
         print(f"{name}:")

@@ -31,7 +31,9 @@ undefined functions of a link name,
     \mathrm{XX}(\text{body}),\ \mathrm{MY}(\text{body}),\ \mathrm{ZZ}(\text{wheel\_left}),\ \dots
 
 written with :data:`KHALIL_FUNCTIONS` (real undefined functions) applied to
-``sympy.Symbol(link)``. The model namespace
+``sympy.Symbol(link)``, and the physical ones about the centre of mass, ``CX(link)``,
+``IXX(link)`` ... (:data:`PHYSICAL_NAMES`; :func:`physical_in_standard` rewrites them in
+Khalil's). The model namespace
 is open (any identifier is a parameter) unless the caller passes the valid parameter and link
 names: the parser does not import the models.
 
@@ -71,6 +73,35 @@ RESERVED_NAMES: frozenset[str] = frozenset(STANDARD_FUNCTIONS) | frozenset(CONST
 KHALIL_NAMES: tuple[str, ...] = ("M", "MX", "MY", "MZ", "XX", "XY", "XZ", "YY", "YZ", "ZZ")
 KHALIL_FUNCTIONS: Mapping[str, sympy.FunctionClass] = {n: sympy.Function(n, real=True)
                                                        for n in KHALIL_NAMES}
+#: The physical parameters of a link (:mod:`wheeled_dyn.models.link_parameters`): ``CX CY CZ``
+#: the centre of mass in the link frame, ``IXX IXY IXZ IYY IYZ IZZ`` the inertia tensor entries
+#: about the centre of mass in the link's axes (``M`` is shared with Khalil's).
+PHYSICAL_NAMES: tuple[str, ...] = ("CX", "CY", "CZ", "IXX", "IXY", "IXZ", "IYY", "IYZ", "IZZ")
+#: Every function a value expression may apply to a link name.
+LINK_FUNCTIONS: Mapping[str, sympy.FunctionClass] = {
+    **KHALIL_FUNCTIONS, **{n: sympy.Function(n, real=True) for n in PHYSICAL_NAMES}}
+
+
+def physical_in_standard(expr: sympy.Expr) -> sympy.Expr:
+    r"""``expr`` with every physical link parameter written in Khalil's standard ones of the
+    same link (parallel-axis theorem, :math:`J_G = J_O - M(|c|^2 I - c c^T)`, :math:`c = MS/M`):
+    :math:`CX = MX/M`, :math:`IXX = XX - (MY^2 + MZ^2)/M`, :math:`IXY = XY + MX\,MY/M` ..."""
+    f = LINK_FUNCTIONS
+    out = {}
+    for call in expr.atoms(sympy.core.function.AppliedUndef):
+        name, link = call.func.__name__, call.args[0]
+        if name not in PHYSICAL_NAMES:
+            continue
+        m = f["M"](link)
+        ms = {"X": f["MX"](link), "Y": f["MY"](link), "Z": f["MZ"](link)}
+        if name[0] == "C":
+            out[call] = ms[name[1]] / m
+        elif name[1] == name[2]:
+            others = [ms[a] ** 2 for a in "XYZ" if a != name[1]]
+            out[call] = f[name[1:]](link) - (others[0] + others[1]) / m
+        else:
+            out[call] = f[name[1:]](link) + ms[name[1]] * ms[name[2]] / m
+    return expr.xreplace(out) if out else expr
 
 #: Unit names accepted in ``units`` (SI base and derived units, radians; ``1`` = dimensionless).
 UNIT_NAMES: tuple[str, ...] = ("kg", "m", "s", "rad", "N", "J", "W", "A", "V", "K", "mol")
@@ -355,15 +386,15 @@ def parse_model_expression(text: str, parameters: Collection[str] | None = None,
         if name in STANDARD_FUNCTIONS:
             if not called:
                 raise ExpressionError(text, f"{name!r} is a function; write {name}(...)")
-        elif name in KHALIL_FUNCTIONS and called:
-            local[name] = KHALIL_FUNCTIONS[name]
+        elif name in LINK_FUNCTIONS and called:
+            local[name] = LINK_FUNCTIONS[name]
             previous_khalil = True
         elif name in CONSTANTS:
             continue
         else:
             if called:
-                raise ExpressionError(text, f"{name!r} is not a function; Khalil parameters are "
-                                            f"{', '.join(KHALIL_NAMES)}")
+                raise ExpressionError(text, f"{name!r} is not a function; link parameters are "
+                                            f"{', '.join(LINK_FUNCTIONS)}")
             if parameters is not None and name not in parameters:
                 raise UndeclaredNameError(text, name, "model parameter")
             local[name] = real_symbol(name)

@@ -62,12 +62,15 @@ import pinocchio as pin
 
 from ..errors import ModelError, UnknownNameError
 from .contact import BallContact, SphereContact
+from .conventions import ANGLE_TOL, check_sides
 from .rolling_wheel import BoundWheelContact, WheelContact
 from .springs import SPRING_JOINTS, BoundSpring, JointSpring, spring_energy, spring_force
 from .urdf_source import UrdfSource, read_urdf
 
-#: Largest |cos| between the axle and the up direction for the axle to count as horizontal.
-HORIZONTAL_TOL = 1e-9
+#: Largest |cos| between the axle and the up direction for the axle to count as horizontal
+#: (:data:`~.conventions.ANGLE_TOL`: URDFs round their angles); within it, the up direction is
+#: made exactly perpendicular to the axle (the axle, from the wheel centres, is kept).
+HORIZONTAL_TOL = ANGLE_TOL
 #: Largest distance (m) of a wheel link's origin from its spin joint's axis.
 AXIS_TOL = 1e-9
 #: Largest relative difference between the two wheel radii.
@@ -114,6 +117,7 @@ class ModelSpec:
     default_coordinates: str | None = None       # the default coordinate set's name
     source: Path | None = None                   # the model file, if the spec came from one
     springs: tuple[JointSpring, ...] = ()        # linear springs along or about joints
+    forward: tuple[float, float, float] | None = None   # body's forward, link axes (planar)
 
 
 @dataclass(frozen=True)
@@ -325,13 +329,18 @@ def _build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
     up = body_rot @ np.asarray(spec.up, dtype=float)
     up /= np.linalg.norm(up)
     for link, axis in ((spec.wheels[0], al), (spec.wheels[1], ar)):
-        if np.linalg.norm(np.cross(axis, axle)) > 1e-6:
-            raise ModelError(spec.name, link, "wheel spin axis is not along the axle")
-    if abs(float(up @ axle)) > HORIZONTAL_TOL:
+        if np.linalg.norm(np.cross(axis, axle)) > np.sin(ANGLE_TOL):
+            raise ModelError(spec.name, link, "wheel spin axis is not along the axle (more "
+                                              f"than {ANGLE_TOL} rad off)")
+    if abs(float(up @ axle)) > np.sin(HORIZONTAL_TOL):
         raise ModelError(spec.name, body_link, "the axle is not horizontal for the declared "
-                                               f"up direction {spec.up}")
+                                               f"up direction {spec.up} (more than "
+                                               f"{HORIZONTAL_TOL} rad off)")
+    up = up - (up @ axle) * axle
+    up /= np.linalg.norm(up)
     forward = np.cross(up, axle)
     left = np.cross(up, forward)
+    check_sides(spec, body_rot, forward)
     R_HJ = np.vstack([forward, left, up])        # root-frame vectors -> heading frame
     centre = 0.5 * (cl + cr)
 

@@ -45,7 +45,7 @@ KEYS: Mapping[str | None, tuple[str, ...]] = MappingProxyType({
            "base", "wheels", "joints", "geometry", "contact", "rolling_wheel", "spring",
            "coordinates", "checks"),
     "urdf": ("path", "package", "package_dirs"),
-    "base": ("type", "body", "up", "pitch"),
+    "base": ("type", "body", "up", "pitch", "forward"),
     "wheels": ("links", "radius", "inputs"),
     "joints": ("lock", "locked", "actuated", "inputs", "aliases"),
     "contact": ("link", "radius", "surface", "surface_radius", "centre", "vertex_radius",
@@ -117,6 +117,7 @@ class ModelFile:
             wheels=tuple(wheels.get("links", ())),
             up=tuple(float(x) for x in base.get("up", (0.0, 0.0, 1.0))),
             pitch=bool(base.get("pitch", True)), lock=tuple(lock),
+            forward=tuple(float(x) for x in base["forward"]) if "forward" in base else None,
             locked=MappingProxyType({k: float(v) for k, v in locked.items()}),
             aliases=MappingProxyType(dict(joints.get("aliases", {}))),
             inputs=tuple(inputs) if inputs is not None else None,
@@ -185,8 +186,9 @@ def _validate(mf: ModelFile) -> None:
         if table in d:
             _check_table(mf, table, d[table])
     base = d.get("base", {})
-    if "up" in base:
-        _numbers(mf, "base", "up", base["up"], 3)
+    for key in ("up", "forward"):
+        if key in base:
+            _numbers(mf, "base", key, base[key], 3)
     if "pitch" in base and not isinstance(base["pitch"], bool):
         raise mf.fail("pitch", "expected true or false", "base")
     for table, key in (("base", "type"), ("base", "body")):

@@ -147,18 +147,12 @@ def apply_wip_parameters(wm: WheeledModel, p: WipParameters) -> WheeledModel:
 
 def model_parameters(wm: WheeledModel) -> dict[str, float]:
     r"""Numeric values of the model's named parameters: its geometry (R, L for a wheeled
-    model; the spec's named constants otherwise), g and, per link with mass, Khalil's standard
-    parameters keyed ``XX(link)`` etc. (in the link frame), and each spring's ``k_<name>``,
-    ``rest_<name>``."""
-    out = {**{k: float(v) for k, v in wm.geometry.items()},
-           "g": float(-wm.model.gravity.linear[2]), **spring_parameters(wm.springs)}
-    for frame in wm.model.frames:
-        if frame.type != pin.FrameType.BODY:
-            continue
-        inertia = frame.placement.actInv(wm.model.inertias[frame.parentJoint])
-        if inertia.mass <= 0:
-            continue
-        # only links that are alone on their joint have their own parameters
-        for key, value in zip(STANDARD_NAMES, inertia.toDynamicParameters()):
-            out[f"{key}({frame.name})"] = float(value)
-    return out
+    model; the spec's named constants otherwise), g, each spring's ``k_<name>``,
+    ``rest_<name>`` and, per rigid body with mass, named by the link carrying it, Khalil's
+    standard parameters keyed ``XX(link)`` (about the link origin) and the physical ones keyed
+    ``IXX(link)``, ``CX(link)`` (about the centre of mass), both in the link frame
+    (:mod:`.link_parameters`)."""
+    from .link_parameters import parameter_values
+    return {**{k: float(v) for k, v in wm.geometry.items()},
+            "g": float(-wm.model.gravity.linear[2]), **spring_parameters(wm.springs),
+            **parameter_values(wm)}

@@ -23,11 +23,10 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import ModelError
+from .conventions import ANGLE_TOL
 from .urdf_packages import package_reference
 from .urdf_source import read_urdf
 
-#: Largest |sin| of the angle between a cylinder's axis and its joint's axis to count as parallel.
-PARALLEL_TOL = 1e-6
 #: Largest relative difference of two wheel radii to pair them.
 PAIR_RADIUS_TOL = 1e-6
 
@@ -57,6 +56,10 @@ class UrdfInventory:
     pair: tuple[WheelCandidate, WheelCandidate] | None
     path_joints: tuple[str, ...]                        # moving joints body -> wheels
     bad_inertia: tuple[str, ...] = ()                   # links failing the inertia checks
+    rejected: tuple[tuple[str, str], ...] = ()          # (moving joint, why not a wheel)
+    body: str = ""                                      # the link carrying the axle
+    up: tuple[float, float, float] = (0.0, 0.0, 1.0)    # in the body's link axes
+    notes: tuple[str, ...] = ()                         # how left, right, up were decided
 
 
 def _cylinder(link) -> tuple[float, float, np.ndarray, str] | None:
@@ -69,8 +72,8 @@ def _cylinder(link) -> tuple[float, float, np.ndarray, str] | None:
     return None
 
 
-def inspect_urdf(path: str | Path) -> UrdfInventory:
-    r"""Links, joints and candidate wheels of a URDF (see the module docstring)."""
+def _read(path: str | Path):
+    r"""The URDF's source (bad link inertias accepted and listed) and its yourdfpy model."""
     import yourdfpy
     accept: list[str] = []
     while True:                       # a bad link inertia is reported, not fatal, here
@@ -83,10 +86,12 @@ def inspect_urdf(path: str | Path) -> UrdfInventory:
             accept.append(exc.item)
     urdf = yourdfpy.URDF.load(io.BytesIO(source.text.encode("utf-8")), build_scene_graph=True,
                               load_meshes=False, load_collision_meshes=False)
-    robot = urdf.robot
-    root = source.root_link()
-    parent_joint = {j.child: j for j in robot.joints}
-    carriers = set()                  # joints that carry another moving joint
+    return source, urdf, tuple(accept)
+
+
+def _carriers(robot, parent_joint) -> set[str]:
+    r"""The moving joints that carry another moving joint (a wheel ends its chain)."""
+    carriers = set()
     for j in robot.joints:
         if j.type == "fixed":
             continue
@@ -96,7 +101,56 @@ def inspect_urdf(path: str | Path) -> UrdfInventory:
             if above.type != "fixed":
                 carriers.add(above.name)
             link = above.parent
-    links, candidates = [], {}
+    return carriers
+
+
+def _candidate(urdf, link, cyl, parent_joint, carriers, root: str, why: dict[str, str]
+               ) -> WheelCandidate | None:
+    r"""``link`` as a wheel, or None (with the reason in ``why`` under its joint's name)."""
+    joint = parent_joint[link.name]
+    while joint.type == "fixed" and joint.parent in parent_joint:
+        joint = parent_joint[joint.parent]
+    if joint.type not in ("revolute", "continuous"):
+        return None
+    if joint.name in carriers:
+        why.setdefault(joint.name, f"turns {link.name}'s cylinder but carries other moving "
+                                   "joints (a wheel ends its chain)")
+        return None
+    cyl_axis = urdf.get_transform(link.name, joint.child)[:3, :3] @ cyl[2]
+    axis = np.asarray(joint.axis if joint.axis is not None else (1.0, 0.0, 0.0), dtype=float)
+    sine = float(np.linalg.norm(np.cross(cyl_axis, axis / np.linalg.norm(axis))))
+    angle = float(np.arcsin(min(1.0, sine)))
+    if angle > ANGLE_TOL:
+        why[joint.name] = (f"{link.name}'s cylinder axis is {angle:.3g} rad from the joint "
+                           f"axis (at most {ANGLE_TOL} rad for a wheel)")
+        return None
+    pos = tuple(float(x) for x in urdf.get_transform(link.name, root)[:3, 3])
+    return WheelCandidate(link.name, joint.name, cyl[0], cyl[1], pos, cyl[3])  # type: ignore[arg-type]
+
+
+def _path_joints(pair, parent_joint) -> tuple[str, ...]:
+    r"""The moving joints between the body and the wheels' spin joints."""
+    out: list[str] = []
+    for cand in pair or ():
+        link = cand.link
+        while link in parent_joint:
+            joint = parent_joint[link]
+            if joint.type != "fixed" and joint.name != cand.joint and joint.name not in out:
+                out.insert(0, joint.name)
+            link = joint.parent
+    return tuple(out)
+
+
+def inspect_urdf(path: str | Path) -> UrdfInventory:
+    r"""Links, joints and candidate wheels of a URDF (see the module docstring)."""
+    source, urdf, accept = _read(path)
+    robot = urdf.robot
+    root = source.root_link()
+    parent_joint = {j.child: j for j in robot.joints}
+    carriers = _carriers(robot, parent_joint)
+    links: list[tuple[str, float, str]] = []
+    candidates: dict[str, WheelCandidate] = {}
+    why: dict[str, str] = {}
     for link in robot.links:
         mass = float(link.inertial.mass) if link.inertial is not None and \
             link.inertial.mass is not None else 0.0
@@ -105,38 +159,69 @@ def inspect_urdf(path: str | Path) -> UrdfInventory:
                       f"({cyl[3]})" if cyl else ""))
         if cyl is None or link.name not in parent_joint:
             continue
-        joint = parent_joint[link.name]
-        while joint.type == "fixed" and joint.parent in parent_joint:
-            joint = parent_joint[joint.parent]
-        if joint.type not in ("revolute", "continuous") or joint.name in carriers:
-            continue
-        to_child = urdf.get_transform(link.name, joint.child)
-        cyl_axis = to_child[:3, :3] @ cyl[2]
-        axis = np.asarray(joint.axis if joint.axis is not None else (1.0, 0.0, 0.0), dtype=float)
-        if np.linalg.norm(np.cross(cyl_axis, axis / np.linalg.norm(axis))) > PARALLEL_TOL:
-            continue
-        pos = tuple(float(x) for x in urdf.get_transform(link.name, root)[:3, 3])
-        cand = WheelCandidate(link.name, joint.name, cyl[0], cyl[1], pos, cyl[3])
-        best = candidates.get(joint.name)
-        if best is None or cand.radius > best.radius:
-            candidates[joint.name] = cand
+        cand = _candidate(urdf, link, cyl, parent_joint, carriers, root, why)
+        best = candidates.get(cand.joint) if cand is not None else None
+        if cand is not None and (best is None or cand.radius > best.radius):
+            candidates[cand.joint] = cand
+    for j in robot.joints:
+        if j.type in ("revolute", "continuous") and j.name not in candidates:
+            why.setdefault(j.name, "turns no link with a cylinder (collision or visual "
+                                   "geometry) that could be a wheel")
     ordered = sorted(candidates.values(), key=lambda c: (c.position[2], c.link))
     pair = _pair(ordered)
-    path_joints: list[str] = []
-    if pair is not None:
-        for cand in pair:
-            link = cand.link
-            while link in parent_joint:
-                joint = parent_joint[link]
-                if (joint.type != "fixed" and joint.name != cand.joint
-                        and joint.name not in path_joints):
-                    path_joints.insert(0, joint.name)
-                link = joint.parent
+    if pair is None and len(ordered) >= 2:
+        why["(pairing)"] = ("no two candidate wheels have equal radii (within "
+                            f"{PAIR_RADIUS_TOL:g} relative) at distinct places")
+    elif pair is None and ordered:
+        why["(pairing)"] = f"only one candidate wheel ({ordered[0].link})"
+    path_joints = _path_joints(pair, parent_joint)
     joints = tuple((j.name, j.type, j.parent, j.child,
                     " ".join(f"{x:g}" for x in (j.axis if j.axis is not None else ())))
                    for j in robot.joints)
+    body, up, notes = root, (0.0, 0.0, 1.0), ()
+    if pair is not None:
+        body = _body(pair, parent_joint, path_joints, root)
+        pair, up, notes = _sides(pair, urdf.get_transform(body, root)[:3, :3], body)
     return UrdfInventory(Path(path), robot.name, root, tuple(links), joints, tuple(ordered),
-                         pair, tuple(path_joints), tuple(accept))
+                         pair, path_joints, accept,
+                         tuple(sorted(why.items())) if pair is None else (), body, up, notes)
+
+
+def _body(pair, parent_joint, path_joints, root: str) -> str:
+    r"""The link carrying the axle: the link both wheel joints hang from (a ``base_link`` under
+    a ``base_footprint`` root), or the root when joints lie between (they are locked)."""
+    parents = {parent_joint[c.link].parent if parent_joint[c.link].name == c.joint else None
+               for c in pair}
+    if len(parents) == 1 and None not in parents and not path_joints:
+        return str(parents.pop())
+    return root
+
+
+def _sides(pair, R_body: np.ndarray, body: str):
+    r"""(left, right), the up direction and notes, from the geometry: in the body's axes, up
+    is +z (REP 103) unless the axle is along z (then +y, as seed 001 writes its body), forward
+    is +x, and left is the wheel for which up × (left → right) points forward. Where the axle
+    lies along x, forward is unknown and the link names decide (else the list order)."""
+    a, b = pair
+    axle = R_body.T @ np.subtract(b.position, a.position)
+    axle /= np.linalg.norm(axle)
+    up = np.array([0.0, 1.0, 0.0]) if abs(axle[2]) >= np.cos(ANGLE_TOL) else np.eye(3)[2]
+    notes = []
+    along = float(np.cross(up, axle)[0])
+    if abs(along) < np.cos(ANGLE_TOL):
+        notes.append(f"CHECK left and right: the axle is not perpendicular to +x of {body}, so "
+                     "the link names decided (REP 103: x forward, y left, z up)")
+        for left, right in (pair, pair[::-1]):
+            if _side(left.link) == "left" or _side(right.link) == "right":
+                return (left, right), tuple(up), tuple(notes)
+        return pair, tuple(up), tuple(notes)
+    left, right = (a, b) if along > 0 else (b, a)
+    notes.append(f"left and right from the geometry: forward = +x of {body} (REP 103), up = "
+                 f"{'+z' if up[2] else '+y'} of {body}, {left.link} on the left")
+    if _side(left.link) == "right" or _side(right.link) == "left":
+        notes.append(f"CHECK: the names say otherwise ({left.link} is on the left side of "
+                     f"{body}'s +x); the geometry decided")
+    return (left, right), tuple(up), tuple(notes)
 
 
 def _pair(cands: list[WheelCandidate]) -> tuple[WheelCandidate, WheelCandidate] | None:
@@ -149,12 +234,7 @@ def _pair(cands: list[WheelCandidate]) -> tuple[WheelCandidate, WheelCandidate] 
             key = (round(a.position[2] + b.position[2], 6), -round(gap, 9))
             if gap > 0 and (best_key is None or key < best_key):
                 best, best_key = (a, b), key
-    if best is None:
-        return None
-    for a, b in (best, best[::-1]):
-        if _side(a.link) == "left" or _side(b.link) == "right":
-            return a, b
-    return tuple(sorted(best, key=lambda c: -c.position[1]))  # type: ignore[return-value]
+    return best
 
 
 def _side(name: str) -> str | None:
@@ -163,12 +243,6 @@ def _side(name: str) -> str | None:
         if any(m in low and (m != "_l" and m != "_r" or low.endswith(m)) for m in marks):
             return side
     return None
-
-
-def _up(a: WheelCandidate, b: WheelCandidate) -> str:
-    axle = np.abs(np.subtract(a.position, b.position))
-    up = [0.0, 0.0, 1.0] if int(np.argmax(axle)) != 2 else [0.0, 1.0, 0.0]
-    return "[" + ", ".join(f"{x:.1f}" for x in up) + "]"
 
 
 def _q(text: str) -> str:
@@ -202,31 +276,42 @@ def starter_text(inv: UrdfInventory, out: Path | None) -> str:
                   "of a larger body.",
                   "accept_inertia = [" + ", ".join(_q(n) for n in inv.bad_inertia) + "]", ""]
     if inv.pair is None:
-        lines += ["[base]",
-                  "# No pair of wheels found (no two cylinders of equal radius turning about",
-                  "# their joints' axes). CHECK: fixed (root link fixed to the world) or free.",
-                  'type = "fixed"', f"body = {_q(inv.root)}", ""]
+        moving = [j for j in inv.joints if j[1] in ("continuous", "revolute")]
+        lines += ["[base]", "# No pair of wheels found, so this is no wheeled model:"]
+        lines += [f"#   {joint}: {reason}" for joint, reason in inv.rejected] or \
+            ["#   the URDF has no revolute or continuous joint"]
+        if any(j[1] == "continuous" for j in moving):
+            lines += ["# CHECK: a fixed base holds the root link in the air: the continuous "
+                      "joints above spin",
+                      "# on a stand. For a wheeled robot, give each wheel link a cylinder "
+                      "about its joint's axis."]
+        lines += ['type = "fixed"         # CHECK: fixed (root link fixed to the world) or free',
+                  f"body = {_q(inv.root)}", ""]
     else:
         left, right = inv.pair
+        up = "[" + ", ".join(f"{x:.1f}" for x in inv.up) + "]"
         lines += ["[base]",
                   'type = "planar"        # a wheeled body on the ground plane (fixed, free: '
                   'see the format)',
-                  f"body = {_q(inv.root)}    # CHECK: the link carrying the axle (suggested: "
-                  "the root link)",
-                  f"up = {_up(left, right)}   # CHECK: the body's up direction in its link "
-                  "frame (perpendicular to the axle)",
+                  f"body = {_q(inv.body)}    # the link carrying the axle; the links fixed to "
+                  "it move with it",
+                  f"up = {up}   # the body's up direction in its link frame "
+                  "(perpendicular to the axle)",
                   "pitch = true           # CHECK: true if the body pitches about the axle "
                   "(a pendulum), false if casters keep it level", "",
-                  "[wheels]",
-                  f"links = [{_q(left.link)}, {_q(right.link)}]   # left, right: CHECK",
+                  "[wheels]"]
+        lines += [f"# {note}" for note in inv.notes]
+        lines += [f"links = [{_q(left.link)}, {_q(right.link)}]   # left, right",
                   f"radius = {left.radius:.6g}    # CHECK: the rolling radius; read from "
-                  f"{left.link}'s {left.geometry} cylinder", ""]
+                  f"{left.link}'s {left.geometry} cylinder", "",
+                  "[joints.aliases]          # the wheel angles' coordinate names",
+                  f"{_q(left.joint)} = \"theta_l\"", f"{_q(right.joint)} = \"theta_r\"", ""]
         if inv.path_joints:
-            lines += ["[joints]",
+            lines += ["[joints.locked]",
                       "# The joints between the body and the wheels, locked (a planar base "
                       "needs the axle on one rigid",
                       "# body). CHECK the values (rad or m): the axle must stay horizontal.",
-                      "locked = { " + ", ".join(f"{j} = 0.0" for j in inv.path_joints) + " }",
+                      *(f"{_q(j)} = 0.0" for j in inv.path_joints),
                       ""]
     lines += ["# Candidate wheels (link, joint, radius m, position in the root frame m):"]
     lines += [f"#   {c.link:28} {c.joint:20} r={c.radius:<8g} "
@@ -239,12 +324,14 @@ def starter_text(inv: UrdfInventory, out: Path | None) -> str:
     return "\n".join(lines) + "\n"
 
 
-def write_starter(urdf: str | Path, out: str | Path | None) -> str:
-    r"""Inspect ``urdf`` and return the starting model file's text; write it to ``out`` (atomic:
-    a temporary file renamed; missing folders created) when given."""
+def write_starter(urdf: str | Path, out: str | Path | None,
+                  inventory: UrdfInventory | None = None) -> str:
+    r"""Inspect ``urdf`` (unless its ``inventory`` is given) and return the starting model
+    file's text; write it to ``out`` (atomic: a temporary file renamed; missing folders
+    created) when given."""
     from ..output import write_atomic
     out_path = Path(out) if out is not None else None
-    text = starter_text(inspect_urdf(urdf), out_path)
+    text = starter_text(inventory or inspect_urdf(urdf), out_path)
     if out_path is not None:
         write_atomic(out_path, text)
     return text

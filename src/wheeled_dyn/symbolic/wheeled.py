@@ -152,13 +152,18 @@ def _physical_setup(wm: WheeledModel) -> dict:
 
 
 def _standard_names(wm: WheeledModel) -> dict[int, str]:
+    r"""The name of each joint body's standard parameters (in the joint frame): the link that
+    carries the rigid body (:mod:`~wheeled_dyn.models.link_parameters`) when its frame is the
+    joint frame, so that ``XX_link`` is what a derivation's ``XX(link)`` names; else the
+    joint's name (a merged link such as ``base_footprint`` never names the whole body)."""
+    from ..models.link_parameters import rigid_bodies
     model = wm.model
-    links: dict[int, list[str]] = {}
-    for f in model.frames:
-        if f.type == pin.FrameType.BODY and f.placement.isIdentity(PLACEMENT_TOL):
-            links.setdefault(f.parentJoint, []).append(f.name)
-    return {j: (links[j][0] if len(links.get(j, ())) == 1 else model.names[j])
-            for j in range(1, model.njoints)}
+    names = {j: model.names[j] for j in range(1, model.njoints)}
+    for body in rigid_bodies(wm):
+        frame = model.frames[model.getFrameId(body.carrier, pin.FrameType.BODY)]
+        if frame.placement.isIdentity(PLACEMENT_TOL):
+            names[frame.parentJoint] = body.carrier
+    return names
 
 
 def _numeric_setup(wm: WheeledModel, mode: str) -> dict:

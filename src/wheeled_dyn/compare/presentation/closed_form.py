@@ -15,6 +15,7 @@ from pathlib import Path
 import sympy as sp
 from sympy.core.function import AppliedUndef
 
+from ...derivations.expressions import physical_in_standard
 from ...derivations.schema import Derivation
 from ...disk_cache import DiskMemo
 from ...models.registry import model_entry
@@ -67,7 +68,7 @@ def model_expression(d: Derivation, standard: bool = False
     def convert(expr: sp.Expr | None) -> sp.Expr | None:
         if expr is None:
             return None
-        out = sp.sympify(expr).xreplace(mapping)
+        out = physical_in_standard(sp.sympify(expr).xreplace(mapping))  # CX(l) -> MX(l)/M(l)
         if to_standard is not None:
             return to_standard(out)
         if std is not None:

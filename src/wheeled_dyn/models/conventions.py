@@ -1,0 +1,220 @@
+r"""What each coordinate and input of a built model means, for its URDF: one table.
+
+A planar (wheeled) model is built in a *heading frame* (:mod:`.builder`): at :math:`q = 0` the
+world axes are the body's forward, left and up directions, so every claim below is read off
+the built Pinocchio model at :math:`q = 0`, in words and as a vector in the body link's axes:
+
+- ``x0, y0``: the point on the ground below the axle midpoint, along the world x and y;
+- ``psi``: the heading, about the world up axis; positive turns forward toward left;
+- ``phi``: the pitch, about the axle oriented from the left wheel to the right wheel (world
+  :math:`-y` at :math:`q = 0`): positive moves the body's top *backward*. For a body whose
+  link axes are REP 103's (x forward, y left, z up) this is :math:`-`\ the REP 103 pitch about
+  +y;
+- a wheel angle: about its joint's axis as the URDF writes it, relative to the body; rolling
+  forward (body level) makes it increase when that axis points left, decrease when it points
+  right;
+- a wheel torque: about the same joint axis on the wheel, the reaction on the body; from rest,
+  upright, a positive torque accelerates the robot forward when the axis points left.
+
+Fixed and free bases list each joint's axis in the link that carries it, and each motor along
+its joint. ``tests/test_conventions.py`` checks every claim against the terms ``matrices``
+computes (the acceleration from rest, the centre of mass at a pitch, the wheel rates of a
+rolling motion), for the WIP and for a REP 103 robot; ``docs/derivation-format.md`` shows
+the WIP's table as :func:`convention_table` prints it (tested).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import Enum
+
+import numpy as np
+
+from ..errors import ModelError
+
+#: Largest angle (rad) between two directions that count as the same, wherever axes are
+#: compared (a wheel's cylinder and its joint axis, an axle and the body's y, left and right):
+#: URDFs round π/2 as 1.5708 (3.7e-6 rad off) or 1.57 (8e-4 rad off).
+ANGLE_TOL = 1e-2
+
+
+class Positive(Enum):
+    r"""What a positive value (or rate, or input) of a coordinate does."""
+
+    ALONG_WORLD_X = "moves the robot along the world x axis"
+    ALONG_WORLD_Y = "moves the robot along the world y axis"
+    TURNS_LEFT = "turns the robot's forward direction toward its left (counterclockwise seen " \
+                 "from above)"
+    TOP_BACKWARD = "tilts the body's top backward"
+    TOP_FORWARD = "tilts the body's top forward"
+    INCREASES_ROLLING_FORWARD = "increases when the robot rolls forward (body level)"
+    DECREASES_ROLLING_FORWARD = "decreases when the robot rolls forward (body level)"
+    DRIVES_FORWARD = "from rest, upright, accelerates the robot forward"
+    DRIVES_BACKWARD = "from rest, upright, accelerates the robot backward"
+    ABOUT_AXIS = "turns the child link about the axis (right-hand rule)"
+    ALONG_AXIS = "moves the child link along the axis"
+
+
+@dataclass(frozen=True)
+class Convention:
+    r"""One row: a coordinate or an input, its axis (words, and the vector in ``frame``'s
+    axes), what a positive value does, and a note (e.g. its relation to REP 103)."""
+
+    name: str
+    kind: str                                  # "coordinate" or "input"
+    axis: str
+    vector: tuple[float, float, float] | None
+    frame: str
+    positive: Positive
+    note: str = ""
+
+
+@dataclass(frozen=True)
+class ConventionTable:
+    r"""The table of a model (see the module docstring)."""
+
+    model: str
+    body: str
+    rows: tuple[Convention, ...]
+
+    def row(self, name: str) -> Convention:
+        return next(r for r in self.rows if r.name == name)
+
+    def lines(self) -> list[str]:
+        r"""The table as printed by ``wheeled-dyn model`` and ``matrices``."""
+        width = max(len(r.name) for r in self.rows) if self.rows else 4
+        out = [f"conventions of model {self.model} (body {self.body or '-'}):"]
+        for r in self.rows:
+            text = f"  {r.kind:10} {r.name:{width}}  {r.axis}; positive {r.positive.value}"
+            out.append(text + (f"; {r.note}" if r.note else ""))
+        return out
+
+
+def _words(vector: np.ndarray, frame: str) -> str:
+    r"""``"+y of base_link"`` for a unit vector within :data:`ANGLE_TOL` of an axis; the
+    components otherwise."""
+    for i, axis in enumerate("xyz"):
+        if abs(abs(vector[i]) - 1.0) <= ANGLE_TOL ** 2 / 2:
+            return f"{'+' if vector[i] > 0 else '-'}{axis} of {frame}"
+    return "(" + ", ".join(f"{x:.3g}" for x in vector) + f") in {frame}'s axes"
+
+
+def _vec(v: np.ndarray) -> tuple[float, float, float]:
+    return (float(v[0]), float(v[1]), float(v[2]))
+
+
+def convention_table(wm) -> ConventionTable:
+    r"""The table of a built model (:class:`~.builder.WheeledModel`)."""
+    import pinocchio as pin
+    model = wm.model
+    data = model.createData()
+    pin.forwardKinematics(model, data, pin.neutral(model))
+    pin.updateFramePlacements(model, data)
+    if wm.base != "planar":
+        return _joint_table(wm)
+    body = wm.spec.body
+    R_body = data.oMf[model.getFrameId(body, pin.FrameType.BODY)].rotation
+    in_body = lambda world: R_body.T @ np.asarray(world, dtype=float)   # noqa: E731
+    forward, left, up = np.eye(3)
+    rows = [Convention("x0", "coordinate", "along the world x axis (the robot's forward "
+                       "direction at psi = 0)", None, "world", Positive.ALONG_WORLD_X),
+            Convention("y0", "coordinate", "along the world y axis", None, "world",
+                       Positive.ALONG_WORLD_Y),
+            Convention("psi", "coordinate", "about the world up axis", None, "world",
+                       Positive.TURNS_LEFT)]
+    if "phi" in wm.coordinate_names:
+        axis = in_body(-left)
+        note = ""
+        if abs(in_body(left) @ np.array([0.0, 1.0, 0.0]) - 1.0) <= ANGLE_TOL ** 2 / 2:
+            note = f"phi = -(REP 103 pitch about +y of {body})"
+        rows.append(Convention("phi", "coordinate", f"about the axle from the left wheel to "
+                               f"the right wheel, {_words(axis, body)}", _vec(axis), body,
+                               Positive.TOP_BACKWARD, note))
+    for wheel in wm.wheels:
+        jid = wheel.joint_id
+        world = data.oMi[jid].rotation @ _axis(model.joints[jid])[0]
+        axis = in_body(world)
+        points_left = float(world @ left) > 0
+        name = wm.coordinate_names[wheel.v_index]
+        where = (f"about joint {wheel.joint_name}'s axis, {_words(axis, body)} "
+                 f"(toward the {'left' if points_left else 'right'})")
+        rows.append(Convention(name, "coordinate", f"{wheel.side} wheel {wheel.link}, "
+                               f"relative to the body, {where}", _vec(axis), body,
+                               Positive.INCREASES_ROLLING_FORWARD if points_left
+                               else Positive.DECREASES_ROLLING_FORWARD))
+    for wheel, name in zip(wm.wheels, wm.input_names):
+        conv = next(r for r in rows if r.name == wm.coordinate_names[wheel.v_index])
+        rows.append(Convention(name, "input", f"torque on {wheel.link} about the axis of "
+                               f"{conv.name} ({_words(np.array(conv.vector), body)}), reaction "
+                               "on the body", conv.vector, body,
+                               Positive.DRIVES_FORWARD
+                               if conv.positive is Positive.INCREASES_ROLLING_FORWARD
+                               else Positive.DRIVES_BACKWARD))
+    for name in wm.coordinate_names:
+        if name not in {r.name for r in rows}:
+            rows.append(_joint_row(wm, name))
+    return ConventionTable(wm.name, body, tuple(rows))
+
+
+def _axis(jmodel) -> tuple[np.ndarray | None, bool]:
+    r"""A 1-DoF joint's axis in its joint frame and whether it is prismatic (None for other
+    joints)."""
+    short = jmodel.shortname()
+    prismatic = short.startswith("JointModelP")
+    if short[-2:] in ("RX", "RY", "RZ", "PX", "PY", "PZ"):
+        return np.eye(3)["XYZ".index(short[-1])], prismatic
+    if short.endswith("Unaligned"):
+        inner = jmodel.extract() if hasattr(jmodel, "extract") else jmodel
+        return np.asarray(inner.axis, dtype=float), prismatic
+    return None, prismatic
+
+
+def _joint_row(wm, name: str) -> Convention:
+    r"""A URDF joint's coordinate: about (along) its axis, in its joint frame."""
+    model = wm.model
+    jid = 1 + wm.coordinate_names.index(name)
+    axis, prismatic = _axis(model.joints[jid])
+    joint = model.names[jid]
+    if axis is None:
+        return Convention(name, "coordinate", f"joint {joint} ({model.joints[jid].shortname()})",
+                          None, joint, Positive.ABOUT_AXIS)
+    words = (f"{'along' if prismatic else 'about'} joint {joint}'s axis "
+             f"({', '.join(f'{x:g}' for x in axis)} in its joint frame)")
+    return Convention(name, "coordinate", words, _vec(axis), joint,
+                      Positive.ALONG_AXIS if prismatic else Positive.ABOUT_AXIS)
+
+
+def _joint_table(wm) -> ConventionTable:
+    rows = [_joint_row(wm, name) for name in wm.coordinate_names]
+    for k, vi in enumerate(wm.actuated):
+        base = rows[vi]
+        rows.append(Convention(wm.input_names[k], "input", f"force or torque {base.axis}, "
+                               "reaction on the parent", base.vector, base.frame,
+                               base.positive))
+    return ConventionTable(wm.name, wm.spec.body, tuple(rows))
+
+
+def check_sides(spec, body_rot: np.ndarray, forward: np.ndarray) -> None:
+    r"""Check that a :class:`~.builder.ModelSpec` ``spec`` lists its wheels (left, right) as
+    the geometry says (``body_rot`` the body's rotation and ``forward`` = up × (left → right),
+    both in the URDF root's frame): a swapped list mirrors the model (forward reversed, every
+    input's sign flipped). Forward is the spec's ``forward`` (in the body link's axes) when given, else the
+    body's +x when it is horizontal (REP 103: x forward, y left, z up); a body whose x is not
+    horizontal, without ``forward``, is not checked."""
+    declared = spec.forward is not None
+    ref = np.asarray(spec.forward if declared else (1.0, 0.0, 0.0), dtype=float)
+    if not np.linalg.norm(ref) > 0:
+        raise ModelError(spec.name, spec.body, f"forward direction {spec.forward} is zero")
+    ref = body_rot @ (ref / np.linalg.norm(ref))
+    along = float(ref @ forward)
+    if declared and along < np.cos(ANGLE_TOL) and along > -np.cos(ANGLE_TOL):
+        raise ModelError(spec.name, spec.body, f"the declared forward direction "
+                         f"{spec.forward} is not perpendicular to the axle and the up direction")
+    if along < -np.cos(ANGLE_TOL):
+        axis = "the declared forward" if declared else f"+x of {spec.body} (REP 103)"
+        raise ModelError(spec.name, f"{spec.wheels[0]}, {spec.wheels[1]}",
+                         f"wheels listed against the geometry: with {spec.wheels[0]!r} as "
+                         f"left and {spec.wheels[1]!r} as right, forward would be opposite "
+                         f"to {axis}, a mirrored model with every input's sign flipped; list "
+                         f"them as [{spec.wheels[1]!r}, {spec.wheels[0]!r}], or declare the "
+                         "body's forward direction ([base] forward = [...], in its link axes)")
