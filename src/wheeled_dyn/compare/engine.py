@@ -22,7 +22,7 @@ Data flows one way: derivation → evaluation (:mod:`.evaluate`) → elements (:
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import replace
 
 import numpy as np
@@ -81,28 +81,40 @@ SCREEN_SAMPLES = 64
 #: The grid a row divided by a function, or a combination of rows, is identified on: states
 #: per set, parameter sets.
 ROW_FUNCTION_STATES, ROW_FUNCTION_SETS = 8, 16
+#: The stages of one comparison as ``on_stage`` names them. The equations' stages start in this
+#: order; "steps" comes first for the file's own ``[[step]]`` tables, last for the step files
+#: that feed it.
+STAGES: tuple[str, ...] = ("grid", "truth", "document", "judging", "readings", "causes", "steps")
 
 
 class ComparisonEngine:
     r"""Compares derivations; caches the truth per (model, coordinate set, parameter family)
     so derivations sharing coordinates share the work. ``parallel_steps``: the step files
     feeding a derivation are compared in a forked process while the derivation itself is
-    (the command line's ``compare``; :func:`~.steps.with_steps`)."""
+    (the command line's ``compare``; :func:`~.steps.with_steps`). ``on_stage``: called with
+    the derivation file's name and a stage's name (:data:`STAGES`) at the start of each stage
+    of a comparison (a progress display; the stages of re-readings are not announced)."""
 
     def __init__(self, samples: int = 1000, param_sets: int = 5, seed: int = 2026,
-                 parallel_steps: bool = False) -> None:
+                 parallel_steps: bool = False,
+                 on_stage: Callable[[str, str], None] | None = None) -> None:
         self.samples = samples
         self.param_sets = param_sets
         self.seed = seed
         self.parallel_steps = parallel_steps
+        self.on_stage = on_stage
         self._truth: dict[tuple, tuple] = {}      # (truth, sets, q, nu, coordinate set)
         self._maps: dict[tuple, CoordinateMap] = {}
         self._sets: dict[tuple, object] = {}
         self._results: dict[tuple, DerivationResult] = {}
 
+    def _stage(self, d: Derivation, stage: str) -> None:
+        if self.on_stage is not None:
+            self.on_stage(d.path.name, stage)
+
     # -- the two sides -------------------------------------------------------------------
     def _grid(self, d: Derivation, special: tuple[SpecialCase, ...], n_states: int, k: int,
-              assumed: Assumptions = Assumptions()):
+              assumed: Assumptions = Assumptions(), announce: bool = False):
         special = tuple(dict.fromkeys((*assumed.families, *special)))
         # the coordinates' identity: equations read in another order have the same truth
         raw = repr({name: value for name, value in d.coordinates.raw.items()
@@ -125,6 +137,8 @@ class ComparisonEngine:
             q, nu = random_states(n, k * n_states, rng, ranges)
             q = regular_states(cmap, q, rng, ranges)
             q, nu = q.reshape(k, n_states, n), nu.reshape(k, n_states, n)
+            if announce:
+                self._stage(d, "truth")
             truth = truth_for(cmap, sets, q, nu)
             apply_to_truth(truth, assumed)
             self._truth[key] = (truth, sets, q, nu, cs)
@@ -182,14 +196,16 @@ class ComparisonEngine:
         key = (str(d.path), d.path.stat().st_mtime_ns if d.path.exists() else 0)
         if key not in self._results:
             from .steps.chain import with_steps          # earlier steps, upstream causes
-            self._results[key] = with_steps(d, self._compare, self.seed, self.parallel_steps)
+            self._results[key] = with_steps(d, self._compare, self.seed, self.parallel_steps,
+                                            lambda stage: self._stage(d, stage))
         return self._results[key]
 
     def _compare(self, d: Derivation) -> DerivationResult:
         r"""The comparison under the declared reading of the file's maps, or under a better
         sign convention when one explains :data:`conventions.MIN_GAIN` more elements
         (:mod:`.conventions`); then the root causes (:mod:`.causes`)."""
-        result, ev = self._judge(d)
+        result, ev = self._judge(d, announce=True)
+        self._stage(d, "readings")
         first: list[Cause] = []
         rows = conventions.best_row_order(d, ev.doc_at, ev.score)
         if rows is not None:
@@ -250,11 +266,15 @@ class ComparisonEngine:
                 result, ev, d = better, ev2, flipped
         if summary is None:
             summary = ConventionSummary(declared=Convention("as declared", declared_counts))
+        self._stage(d, "causes")
         found = causes.root_causes(ev, d, result.records, result.energy, result.asymmetric,
                                    first)
         return replace(result, causes=found, conventions=summary)
 
-    def _judge(self, d: Derivation) -> tuple[DerivationResult, causes.Evaluation]:
+    def _judge(self, d: Derivation, announce: bool = False
+               ) -> tuple[DerivationResult, causes.Evaluation]:
+        if announce:
+            self._stage(d, "grid")
         terms = d.read_off(assume=True, unscale=True)
         n = d.n
         C = d.C
@@ -268,8 +288,11 @@ class ComparisonEngine:
         read = d.read_off(assume=True, unscale=False)
         as_printed = {"A": read.A, "Q": read.Q, "B": read.B, "h": read.h, "C": d.C}
         assumed = declared(d)
-        truth, sets, q, nu, cs = self._grid(d, (), self.samples, self.param_sets, assumed)
+        truth, sets, q, nu, cs = self._grid(d, (), self.samples, self.param_sets, assumed,
+                                            announce)
         cs_name = cs.name
+        if announce:
+            self._stage(d, "document")
         doc, per_set, values = self._document(d, funcs, sets, q, nu, truth.H_rows)
         notes: list[str] = []
         B_true = input_map(d, truth, per_set, self.samples, notes)
@@ -284,6 +307,8 @@ class ComparisonEngine:
             special = row_factors(doc2, t2, input_map(d, t2, per2, SPECIAL_SAMPLES, []), n)
             row_factor = [f if f is not None else m for f, m in zip(special, row_factor)]
         apply_row_factors(doc, row_factor)
+        if announce:
+            self._stage(d, "judging")
         scales = row_scales(doc, truth, n)
         dims = DimensionChecker(d)
         mapped = closed_form.document_in_model(d, tuple(c.name for c in assumed.families))
