@@ -13,45 +13,11 @@ HERE = Path(__file__).resolve().parent
 #: Seconds a cell may take.
 CELL_TIMEOUT = 300
 
-#: A derivation of a planar balancing robot, as a user writes it (docs/derivation-format.md).
-MY_NOTES = '''title = "Planar balancing robot, my Lagrange derivation"
-model = "wip"
-
-[source]
-document = "my notes"
-equations = "(1)-(2)"
-
-[coordinates]
-kind = "quasi"                      # dx is the speed along the heading: no coordinate's rate
-positions = ["x", "phi"]
-rolling = "eliminate"
-units = { x = "m", phi = "rad" }
-configuration = { psi = "0", phi = "phi" }
-velocity_map = { dx = "cos(psi)*dx0 + sin(psi)*dy0", dphi = "dphi" }
-
-[inputs]
-tau_l = "-tau/2"                    # the model's wheel torques from my forward motor torque
-tau_r = "-tau/2"
-
-[symbols]
-m_b = { value = "m_S", units = "kg", meaning = "body mass" }
-m_w = { value = "m_C", units = "kg", meaning = "mass of one wheel" }
-r   = { value = "R", units = "m", meaning = "wheel radius" }
-l   = { value = "d", units = "m", meaning = "axle to the body's centre of mass" }
-J_b = { value = "I3", units = "kg*m**2", meaning = "body inertia about the axle direction, at its centre of mass" }
-J_w = { value = "Iw3", units = "kg*m**2", meaning = "wheel inertia about the axle" }
-g   = { value = "g", units = "m/s**2" }
-tau = { input = true, units = "N*m", meaning = "forward motor torque, both wheels" }
-
-[assumes]
-families = ["no_products", "com_on_axis", "no_armature"]
-
-[matrices]
-A = "[[m_b + 2*m_w + 2*J_w/r**2, -m_b*l*cos(phi)], [-m_b*l*cos(phi), J_b + m_b*l**2]]"
-C = "[[0, m_b*l*sin(phi)*dphi], [0, 0]]"
-Q = "[0, -m_b*g*l*sin(phi)]"
-B = "[[1/r], [1]]"
-'''
+#: A derivation of a planar balancing robot, as a user writes it (docs/derivation-format.md):
+#: examples/my_planar_robot.toml without its comment lines at the top.
+MY_NOTES = "".join(line for line in (HERE.parent / "examples" / "my_planar_robot.toml")
+                   .read_text(encoding="utf-8").splitlines(keepends=True)
+                   if not line.startswith("#")).lstrip("\n")
 
 NOTEBOOKS = {
     "01_wip_from_urdf_to_report.ipynb": [
