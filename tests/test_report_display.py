@@ -18,7 +18,7 @@ from pathlib import Path
 
 import pytest
 
-from wheeled_dyn.compare.commands import print_summary, run_comparison, summary_heading
+from wheeled_dyn.cli.compare_cmd import print_summary, run_comparison, summary_heading
 from wheeled_dyn.compare.engine import STAGES, ComparisonEngine
 from wheeled_dyn.derivations import builtin_derivations, load_derivation
 from wheeled_dyn.report.html import derivation_html

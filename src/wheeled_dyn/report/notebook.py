@@ -1,6 +1,6 @@
 r"""A comparison result in a notebook: its report section, with the report's style kept to it.
 
-:meth:`DerivationResult._repr_html_ <wheeled_dyn.compare.result.DerivationResult._repr_html_>`
+:meth:`DerivationResult._repr_html_ <wheeled_dyn.compare.records.DerivationResult._repr_html_>`
 returns :func:`result_html`: the section :func:`~.html.derivation_html` writes for the report
 (causes first, then the matrices, document | truth side by side, then what differs), preceded
 by the report's CSS with every selector put under one class, so that the notebook's own page
@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import re
 
-from ..compare.result import DerivationResult
+from ..compare.records import DerivationResult
 from .html import CSS, derivation_html
 
 #: The class of the box a result is shown in.

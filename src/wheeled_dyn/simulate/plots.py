@@ -24,7 +24,7 @@ def position_units(d: Derivation) -> list[str | None]:
     ``rad`` for a dimensionless position, ``m`` for a length); None where neither says."""
     import sympy as sp
 
-    from ..compare.units import DimensionChecker, format_dim
+    from ..compare.judge.units import DimensionChecker, format_dim
     declared = d.coordinates.units
     checker = DimensionChecker(d)
     A = d.read_off(assume=True, unscale=True).A
