@@ -146,4 +146,6 @@ def main() -> None:
 
 
 if __name__ == "__main__":
-    main()
+    from doc_block import recorded
+    with recorded(__file__):      # its block of docs/benchmarks.md
+        main()

@@ -108,4 +108,7 @@ def main() -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    from doc_block import recorded
+    with recorded(__file__):      # its block of docs/benchmarks.md
+        code = main()
+    sys.exit(code)

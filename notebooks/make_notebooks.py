@@ -1,4 +1,8 @@
-"""Writes the notebooks of this folder (without outputs). Run: python notebooks/make_notebooks.py"""
+"""Writes the notebooks of this folder, executed, with their outputs (so that they read on
+GitHub without running them). Run: .venv/bin/python notebooks/make_notebooks.py
+
+tests/test_notebooks.py checks that the stored notebooks hold these cells, with outputs, and
+executes them again (without errors)."""
 
 from pathlib import Path
 
@@ -6,6 +10,14 @@ import nbformat
 from nbformat.v4 import new_code_cell, new_markdown_cell, new_notebook
 
 HERE = Path(__file__).resolve().parent
+#: Seconds a cell may take.
+CELL_TIMEOUT = 300
+
+#: A derivation of a planar balancing robot, as a user writes it (docs/derivation-format.md):
+#: examples/my_planar_robot.toml without its comment lines at the top.
+MY_NOTES = "".join(line for line in (HERE.parent / "examples" / "my_planar_robot.toml")
+                   .read_text(encoding="utf-8").splitlines(keepends=True)
+                   if not line.startswith("#")).lstrip("\n")
 
 NOTEBOOKS = {
     "01_wip_from_urdf_to_report.ipynb": [
@@ -14,21 +26,19 @@ NOTEBOOKS = {
                           "equations in the document's coordinates (heading speed ẋ, heading "
                           "rate ψ̇, pitch rate φ̇), and compare the author's eq. (25) with them."),
         new_code_cell("import numpy as np\nimport wheeled_dyn as wd\n\n"
-                      "wip = wd.load_model(\"wip\")\nprint(wip.coordinate_names, wip.geometry)\n"
+                      "wip = wd.load_model(\"wip\")\nprint(wip.coordinate_names)\n"
                       "t = wd.matrices(wip, \"seed001\", phi=0.2, dx=1.0, dpsi=0.5, dphi=0.3)\n"
                       "np.set_printoptions(precision=4, suppress=True)\nprint(t.A); print(t.h); print(t.B)"),
         new_markdown_cell("The author's eq. (25), transcribed as printed, against the truth over "
-                          "random states and random physically consistent parameters:"),
+                          "random states and random physically consistent parameters. A result "
+                          "shows as its section of the HTML report: the causes first, then the "
+                          "matrices, document | truth, then each element that differs."),
         new_code_cell("from wheeled_dyn.derivations import builtin_derivations, load_derivation\n"
-                      "from wheeled_dyn.compare import ComparisonEngine\n"
-                      "from wheeled_dyn.report import summary_lines\n\n"
+                      "from wheeled_dyn.compare import ComparisonEngine\n\n"
                       "path = next(p for p in builtin_derivations() if p.name == \"eq25_lagrange.toml\")\n"
                       "result = ComparisonEngine(samples=200, param_sets=3).compare(load_derivation(path))\n"
-                      "print(\"\\n\".join(summary_lines(result)))\n"
-                      "for r in result.records:\n"
-                      "    if r.verdict != \"agrees\":\n"
-                      "        print(f\"{r.element:16} {r.verdict:10} {'; '.join(r.texts)}\")"),
-        new_markdown_cell("The same as files: `wheeled-dyn compare wip <file> --out reports` "
+                      "result"),
+        new_markdown_cell("The same as files: `./wd compare wip <file> --out reports` "
                           "writes Markdown, an offline HTML page and JSON."),
     ],
     "02_why_the_heading_needs_the_reduction.ipynb": [
@@ -66,40 +76,75 @@ NOTEBOOKS = {
                       "print(result.energy)\n"
                       "print([r.element for r in result.records if r.element.startswith(\"h[2]\") and r.verdict == \"differs\"])"),
     ],
-    "03_benchmark_body_rod_pendulum.ipynb": [
-        new_markdown_cell("# A benchmark body: the rod pendulum of seed 000, problem 4.4\n\n"
-                          "A uniform rod of mass m and length l hinged at one end swings with "
-                          "ω_n = √(3g/2l) for small angles. We linearise the true equations "
-                          "(Pinocchio) about the hanging position and compare; then the "
-                          "textbook's printed equation goes through the comparison engine."),
-        new_code_cell("import numpy as np\nimport wheeled_dyn as wd\n"
-                      "from wheeled_dyn.models.registry import model_parameters\n\n"
-                      "rod = wd.load_model(\"rod_pendulum\")\n"
-                      "p = model_parameters(rod)\n"
-                      "m, l = p[\"M(rod)\"], 2 * -p[\"MZ(rod)\"] / p[\"M(rod)\"]   # first moment m l/2\n"
-                      "cmap = wd.CoordinateMap(rod, wd.builtin_coordinate_set(rod, \"full\"))\n"
-                      "eps = 1e-6\n"
-                      "A = cmap.terms(np.zeros(1), np.zeros(1)).A[0, 0]\n"
-                      "dQ = (cmap.terms(np.array([eps]), np.zeros(1)).Q[0]\n"
-                      "      - cmap.terms(np.array([-eps]), np.zeros(1)).Q[0]) / (2 * eps)\n"
-                      "print(\"omega_n from the truth:      \", np.sqrt(dQ / A))\n"
-                      "print(\"sqrt(3 g / 2 l) (textbook):  \", np.sqrt(3 * p[\"g\"] / (2 * l)))"),
-        new_code_cell("from wheeled_dyn.derivations import builtin_derivations, load_derivation\n"
+    "03_your_own_derivation.ipynb": [
+        new_markdown_cell(
+            "# Your own derivation, checked and plotted\n\n"
+            "You derived the equations of a planar balancing robot by hand: a body on two wheels, "
+            "the distance rolled x and the pitch φ (φ > 0 tilts the body backward). The body is "
+            "one of the project's models, `wip` (`./wd list` shows them all; for your own URDF, "
+            "`./wd model robot.urdf --out robot.toml` writes a model file). The derivation is a "
+            "TOML file, no code: your coordinates and how they map to the model's, your symbols "
+            "and what they are in the model, your matrices as you wrote them "
+            "(`docs/derivation-format.md`). Here it is written inline."),
+        new_code_cell('MY_NOTES = """\\\n' + MY_NOTES + '"""'),
+        new_code_cell("import tempfile\nfrom pathlib import Path\n\n"
                       "from wheeled_dyn.compare import ComparisonEngine\n"
-                      "from wheeled_dyn.report import summary_lines\n"
-                      "path = next(p for p in builtin_derivations(\"seed000\") if p.name == \"p4_4_rod_pendulum.toml\")\n"
-                      "result = ComparisonEngine(samples=200, param_sets=3).compare(load_derivation(path))\n"
-                      "print(\"\\n\".join(summary_lines(result)))"),
+                      "from wheeled_dyn.derivations import load_derivation\n\n"
+                      "folder = Path(tempfile.mkdtemp())\n"
+                      "mine = folder / \"my_planar_robot.toml\"\n"
+                      "mine.write_text(MY_NOTES)\n"
+                      "engine = ComparisonEngine(samples=200, param_sets=3)\n"
+                      "result = engine.compare(load_derivation(mine))\n"
+                      "result"),
+        new_markdown_cell("Every element agrees, over random states and random physically "
+                          "consistent parameters (the families under `[assumes]` are what the "
+                          "derivation assumes: no products of inertia, the centre of mass on "
+                          "the axis, no motor inertia). Now the same notes with one sign "
+                          "slipped, in the centrifugal term of the first equation:"),
+        new_code_cell("typo = folder / \"my_planar_robot_typo.toml\"\n"
+                      "typo.write_text(MY_NOTES.replace(\"[[0, m_b*l*sin(phi)*dphi]\",\n"
+                      "                                 \"[[0, -m_b*l*sin(phi)*dphi]\"))\n"
+                      "result_typo = engine.compare(load_derivation(typo))\n"
+                      "result_typo"),
+        new_markdown_cell("The sign is found, and with it its consequence: the equations as "
+                          "written do not conserve energy. Simulated from the same start "
+                          "beside the truth (Pinocchio, rolling eliminated), zero input:"),
+        new_code_cell("from IPython.display import Image\n"
+                      "from wheeled_dyn.simulate.documented import side_by_side\n"
+                      "from wheeled_dyn.simulate.plots import plot_side_by_side\n\n"
+                      "run = side_by_side(load_derivation(typo), {\"phi\": 0.2, \"dx\": 0.5}, 3.0)\n"
+                      "Image(plot_side_by_side(run))"),
+        new_markdown_cell("From the command line: `./wd compare wip my_planar_robot.toml` "
+                          "(reports in `reports/`), `./wd simulate my_planar_robot.toml` "
+                          "(the same plot as a PNG file)."),
     ],
 }
 
 
+def build(name: str) -> nbformat.NotebookNode:
+    r"""The notebook ``name`` without outputs (cell ids numbered: a new run changes no id)."""
+    cells = [nbformat.from_dict(c) for c in NOTEBOOKS[name]]
+    for k, cell in enumerate(cells):
+        cell["id"] = f"cell-{k + 1}"
+    return new_notebook(cells=cells, metadata={"kernelspec": {
+        "name": "python3", "display_name": "Python 3", "language": "python"}})
+
+
+def execute(nb: nbformat.NotebookNode) -> nbformat.NotebookNode:
+    r"""Run ``nb`` in this folder (in place; no timings recorded, so the stored outputs change
+    only when what they show does)."""
+    import nbclient
+    nbclient.NotebookClient(nb, timeout=CELL_TIMEOUT, kernel_name="python3",
+                            record_timing=False,
+                            resources={"metadata": {"path": str(HERE)}}).execute()
+    return nb
+
+
 def main() -> None:
-    for name, cells in NOTEBOOKS.items():
-        nb = new_notebook(cells=cells, metadata={"kernelspec": {"name": "python3",
-                                                                "display_name": "Python 3",
-                                                                "language": "python"}})
+    for name in NOTEBOOKS:
+        nb = execute(build(name))
         nbformat.write(nb, HERE / name)
+        print(f"wrote {name}")
 
 
 if __name__ == "__main__":

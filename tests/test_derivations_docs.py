@@ -1,4 +1,5 @@
-r"""The examples of docs/derivation-format.md load and mean what the text says."""
+r"""The examples of docs/derivation-format.md and its pages (derivation-latex.md,
+derivation-steps.md) load and mean what the text says."""
 
 from __future__ import annotations
 
@@ -9,11 +10,14 @@ import sympy
 
 from wheeled_dyn.derivations import load_derivation
 
-DOC = Path(__file__).resolve().parents[1] / "docs" / "derivation-format.md"
+DOCS = Path(__file__).resolve().parents[1] / "docs"
+#: The format's pages: the main page (its complete example first), LaTeX input, steps.
+PAGES = ("derivation-format.md", "derivation-latex.md", "derivation-steps.md")
 
 
 def _toml_blocks() -> list[str]:
-    return re.findall(r"```toml\n(.*?)```", DOC.read_text(encoding="utf-8"), flags=re.S)
+    text = "".join((DOCS / page).read_text(encoding="utf-8") for page in PAGES)
+    return re.findall(r"```toml\n(.*?)```", text, flags=re.S)
 
 
 def test_the_complete_example_loads_in_both_forms(tmp_path):

@@ -19,6 +19,7 @@ ROOT = Path(__file__).resolve().parents[1]
 SEED001 = ROOT / "src" / "wheeled_dyn" / "data" / "derivations" / "seed001"
 TWINS = ROOT / "tests" / "data" / "latex_twins"
 DOC = ROOT / "docs" / "derivation-format.md"
+LATEX_DOC = ROOT / "docs" / "derivation-latex.md"
 #: Seed 001's text: in shared/ beside the checkout (as CI has it), else where it is shared.
 SEED_TEXT = next((p for p in (Path(__file__).resolve().parents[2] / "shared" / "seeds"
                               / "001_370b32d9732353a8.txt",
@@ -555,7 +556,8 @@ def test_shipped_twin_matches_and_is_pasted_verbatim():
 
 # -- the documentation's example ---------------------------------------------------------------
 def test_documented_example_matches_the_sympy_example(tmp_path):
-    blocks = re.findall(r"```toml\n(.*?)```", DOC.read_text(encoding="utf-8"), flags=re.S)
+    blocks = re.findall(r"```toml\n(.*?)```", DOC.read_text(encoding="utf-8")
+                        + LATEX_DOC.read_text(encoding="utf-8"), flags=re.S)
     sympy_example = blocks[0]
     latex_example = next(b for b in blocks if "latex = '''" in b)
     latex_equations = next(b for b in blocks if "equations = { latex" in b)

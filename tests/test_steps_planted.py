@@ -286,7 +286,7 @@ def test_step_expressions_are_sympy():
 
 def test_the_documented_step_examples_load_and_say_what_the_text_says(tmp_path):
     import re
-    doc = (Path(__file__).resolve().parents[1] / "docs" / "derivation-format.md").read_text()
+    doc = (Path(__file__).resolve().parents[1] / "docs" / "derivation-steps.md").read_text()
     blocks = [b for b in re.findall(r"```toml\n(.*?)```", doc, flags=re.S) if "[[step]]" in b
               and 'model = "wip"' in b]     # the flywheel example: test_derivations_docs.py
     assert len(blocks) == 2

@@ -104,6 +104,14 @@ def progress(total: int, what: str):
                 disable=not sys.stderr.isatty())
 
 
+def stage_display(bar) -> Callable[[str, str], None]:
+    r"""A :class:`~wheeled_dyn.compare.engine.ComparisonEngine` ``on_stage`` callback: the progress ``bar`` shows
+    the derivation being compared and its current stage (``eq25_lagrange.toml: judging``)."""
+    def show(name: str, stage: str) -> None:
+        bar.set_postfix_str(f"{name}: {stage}")
+    return show
+
+
 def run_comparison(files: Sequence[Path], samples: int, param_sets: int, seed: int = 2026,
                    model: str | None = None, engine: ComparisonEngine | None = None
                    ) -> list[DerivationResult]:
@@ -126,9 +134,15 @@ def run_comparison(files: Sequence[Path], samples: int, param_sets: int, seed: i
     engine = engine or ComparisonEngine(samples=samples, param_sets=param_sets, seed=seed)
     by_path = {}
     with progress(len(files), "comparing") as bar:
-        for d in derivations:
-            by_path[d.path] = _compared(engine, d)
-            bar.update()
+        before = engine.on_stage
+        if before is None and not bar.disable:
+            engine.on_stage = stage_display(bar)
+        try:
+            for d in derivations:
+                by_path[d.path] = _compared(engine, d)
+                bar.update()
+        finally:
+            engine.on_stage = before
         for p in linear:                        # published linearised equations
             by_path[p] = compare_linear(p)
             bar.update()
@@ -175,18 +189,22 @@ def _compared(engine: ComparisonEngine, d) -> DerivationResult:
 _PARSED: dict[Path, Derivation] = {}
 
 
-def _work(args, tick: Callable[[], object] | None = None):
+def _work(args, tick: Callable[[], object] | None = None,
+          on_stage: Callable[[str, str], None] | None = None):
     r"""Compare the derivations ``files[i]`` for ``i`` in ``indices`` (and reproduce the
-    tables of ``table_group``); ``tick()`` after each (default: in a worker, tell the parent).
-    Returns the results, the tables' sections and the results' HTML sections (made here, in
-    parallel, rather than one after the other in the parent)."""
+    tables of ``table_group``); ``tick()`` after each and ``on_stage(file, stage)`` at each
+    stage of a comparison (default: in a worker, tell the parent). Returns the results, the
+    tables' sections and the results' HTML sections (made here, in parallel, rather than one
+    after the other in the parent)."""
     from ..report.html import derivation_html
     from ..disk_cache import save_memos
     from ..compare.engine import ComparisonEngine
+    from ..compare.runtime.workers import stage as worker_stage
     from ..compare.runtime.workers import tick as worker_tick
     tick = tick or worker_tick
     files, indices, samples, param_sets, table_group = args
-    engine = ComparisonEngine(samples=samples, param_sets=param_sets)
+    engine = ComparisonEngine(samples=samples, param_sets=param_sets,
+                              on_stage=on_stage or worker_stage)
     results = []
     for i in indices:
         results.append((i, _compared(engine, _PARSED[files[i]])))
@@ -234,13 +252,14 @@ def compare_report(files: Sequence[Path], samples: int, param_sets: int,
             for k, b in enumerate(bins)]
     try:
         with progress(len(paths), "comparing") as bar:
+            show = stage_display(bar)
             if len(jobs) == 1 or not can_fork():
-                outputs = [_work(job, bar.update) for job in jobs]
+                outputs = [_work(job, bar.update, show) for job in jobs]
             else:
                 with Workers(len(jobs)) as workers:
                     for job in jobs:
                         workers.submit(_work, (job,), [paths[i].name for i in job[1]])
-                    outputs = workers.wait(bar.update)
+                    outputs = workers.wait(bar.update, None if bar.disable else show)
     finally:
         _PARSED.clear()
     results: list[DerivationResult | None] = [None] * len(paths)
@@ -255,11 +274,19 @@ def compare_report(files: Sequence[Path], samples: int, param_sets: int,
     return results, sections, html
 
 
+def summary_heading(r: DerivationResult) -> str:
+    r"""``file — document eqs (1)-(3): title``; the parts the file does not give left out
+    (``notes.toml — my notes, 26 Nov: title``, ``notes.toml: title``)."""
+    document = str(r.source.get("document", "")).strip()
+    equations = str(r.source.get("equations", "")).strip()
+    where = " ".join(p for p in (document, f"eqs {equations}" if equations else "") if p)
+    return f"{r.path.name} — {where}: {r.title}" if where else f"{r.path.name}: {r.title}"
+
+
 def print_summary(results: Sequence[DerivationResult]) -> None:
     from ..report.markdown import summary_lines
     for r in results:
-        src = r.source
-        print(f"{r.path.name} — {src.get('document', '')} eqs {src.get('equations', '')}: {r.title}")
+        print(summary_heading(r))
         for line in summary_lines(r):
             print(f"    {line}")
 

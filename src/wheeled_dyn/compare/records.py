@@ -406,6 +406,17 @@ class DerivationResult:
         typo = {id(r) for r in self.typos()}
         return [r for r in self.records if r.verdict == "differs" and id(r) not in typo]
 
+    def _repr_pretty_(self, printer, cycle: bool) -> None:
+        r"""In IPython, as text: the file and its verdict counts (the HTML form shows the rest)."""
+        counts = ", ".join(f"{n} {v}" for v, n in self.counts().items() if n)
+        printer.text(f"<DerivationResult {self.path.name}: {counts or 'no records'}>")
+
+    def _repr_html_(self) -> str:
+        r"""In a notebook: the report's section of this result (causes first, then document
+        | truth side by side; :func:`wheeled_dyn.report.notebook.result_html`)."""
+        from ..report.notebook import result_html       # the renderer imports this module
+        return result_html(self)
+
     def as_dict(self) -> dict[str, object]:
         return {"path": str(self.path), "title": self.title, "model": self.model,
                 "source": dict(self.source), "coordinates": self.coordinates,

@@ -130,7 +130,7 @@ class _Loader:
             raise self.fail(item, exc.reason, self.line(table, key, source)) from exc
         return value
 
-    # -- LaTeX input (docs/derivation-format.md, "LaTeX input") -----------------------
+    # -- LaTeX input (docs/derivation-latex.md) ----------------------------------------
     def latex_names(self) -> LatexNames:
         r"""The file's names for reading LaTeX: every declared name, the positions' velocities
         and accelerations, how the document prints names (``latex`` fields of ``[symbols]``,

@@ -9,8 +9,9 @@ Layout (one screen to the verdict, then the evidence):
    parameters | truth, differing cells marked), then only the elements that differ or hold
    conditionally — document as printed, document in the model's parameters, truth and the
    simplified difference, as MathML — and the agreeing elements folded in a ``<details>``;
-3. nothing wider than the window: long formulas scroll inside their own box; one column below
-   700 px.
+3. nothing wider than the window: document and truth side by side where both fit, else one
+   below the other, each as wide as the page (a matrix wider than that scrolls inside its own
+   box, as long formulas do); one column below 700 px.
 
 Formulas are MathML made by ``latex2mathml`` from SymPy's LaTeX with the document's names
 (:mod:`.symbols`); Chromium renders MathML offline, brackets stretch with the font
@@ -71,19 +72,21 @@ vertical-align:top;text-align:left}th{background:#eee}
 .pill{display:inline-block;padding:0 .35em;margin:.05em .1em;border-radius:.3em;
 border:1px solid #bbb;white-space:nowrap;font-size:.92em}
 .v-agrees{background:#d9f2d9}.v-agrees_if{background:#fff3c4}.v-factorization{background:#dde8ff}
-.v-differs{background:#f9d0d0}.v-undecided{background:#e0e0e0}
+.v-differs{background:#f9d0d0}.v-undecided{background:#e0e0e0}.pill.zero{color:#666}
 .toc{columns:2 24em;margin:.3em 0}.toc li{break-inside:avoid}
 .causes{background:#f6f6f6;padding:.4em .8em;border-left:4px solid #b33}
 .causes.grouped{border-left-color:#c90}.causes ul{margin:.2em 0;padding-left:1.2em}
 .meta,.assumes,.conv{margin:.35em 0}.note{color:#555;font-size:.92em}
 .m{overflow-x:auto;overflow-y:hidden;max-width:100%;padding:.1em 0}
-.pair{display:grid;grid-template-columns:minmax(0,1fr) minmax(0,1fr);gap:1em;margin:.4em 0}
-.pane{min-width:0;overflow-x:auto;border:1px solid #ddd;padding:.3em;font-size:.9em}
+.pair{display:flex;flex-wrap:wrap;gap:1em;margin:.4em 0}
+.pane{flex:1 1 auto;min-width:0;max-width:100%;overflow-x:auto;border:1px solid #ddd;
+padding:.3em;font-size:.9em}
 .pane table.mat td{text-align:center;vertical-align:middle;min-width:2.5em;position:relative}
 .mat td.v-differs,.mat td.v-agrees_if,.mat td.v-factorization{outline:2px solid #a33;
 outline-offset:-2px}.mat td.v-agrees_if{outline-color:#b80}.mat td.v-factorization{outline-color:#36c}
 .mark{font-size:.75em;font-weight:bold;color:#a33;vertical-align:super;margin-left:.2em}
-.mat a{text-decoration:none;color:inherit}.mat td.lost{color:#999;font-size:.8em}
+.mat a{text-decoration:none;color:inherit}.mat .div{border:0;background:none;
+white-space:nowrap;font-weight:normal;color:#555;min-width:0}.mat td.lost{color:#999;font-size:.8em}
 .num{font-family:"DejaVu Sans Mono",monospace;font-size:.85em;color:#333}
 .card{border:1px solid #ccc;border-left:6px solid #ccc;margin:.6em 0;padding:.3em .6em}
 .card.v-differs{border-left-color:#c44}.card.v-agrees_if{border-left-color:#d9a400}
@@ -98,7 +101,7 @@ details{margin:.6em 0}summary{cursor:pointer;font-weight:bold}
 .agree col.c1{width:9em}
 .wide{max-width:100%;overflow-x:auto}
 .wide table{font-size:.85em}
-@media (max-width:700px){body{padding:.5em;font-size:14px}.pair{grid-template-columns:1fr}
+@media (max-width:700px){body{padding:.5em;font-size:14px}.pane{flex-basis:100%}
 .rows{grid-template-columns:1fr}.sumtab col.c2,.sumtab td:nth-child(2),.sumtab th:nth-child(2)
 {display:none}.sumtab col.c1{width:34%}.sumtab col.c3{width:22%}.toc{columns:1}
 .sumtab li{white-space:normal}}
@@ -138,9 +141,10 @@ def _e(text: object) -> str:
 
 
 def _counts(result: DerivationResult) -> str:
+    r"""The verdict counts as pills; a count of 0 is neutral ("0 differ" is not red)."""
     c = result.counts()
-    return "".join(f'<span class="pill v-{v}">{n} {SHORT[v]}</span>' for v, n in c.items()
-                   if n or v in ("agrees", "differs"))
+    return "".join(f'<span class="pill {f"v-{v}" if n else "zero"}">{n} {SHORT[v]}</span>'
+                   for v, n in c.items() if n or v in ("agrees", "differs"))
 
 
 # -- the top of the report --------------------------------------------------------------------
@@ -210,9 +214,11 @@ def _matrix(result: DerivationResult, key: str, names: Notation, document: bool)
     closed = _closed(result, key)
     n = max(i[0] for i in recs) + 1
     cols = 1 if key == "Q" else max(i[1] for i in recs) + 1
+    factors = [result.row_factors[i] if i < len(result.row_factors) else None for i in range(n)]
+    marked = document and any(factors)      # a column of its own for the rows' "÷ c" marks
     rows = []
     for i in range(n):
-        factor = result.row_factors[i] if i < len(result.row_factors) else None
+        factor = factors[i]
         cells = []
         for j in range(cols):
             r = recs.get((i,) if key == "Q" else (i, j))
@@ -236,7 +242,8 @@ def _matrix(result: DerivationResult, key: str, names: Notation, document: bool)
                 body = f"<a href='#{S.element_anchor(result, r.element)}'>{body}</a>"
             tip = _e(VERDICT_TEXT[r.verdict] + (f"; {r.diagnoses[0]}" if r.diagnoses else ""))
             cells.append(f'<td class="v-{r.verdict}" title="{tip}">{body}{mark}</td>')
-        side = f"<th>÷ {_e(factor)}</th>" if document and factor else ""
+        side = (f"<th class='div'>÷ {_e(factor)}</th>" if factor else "<td class='div'></td>") \
+            if marked else ""
         rows.append(f"<tr>{side}{''.join(cells)}</tr>")
     if document:
         label = ("document, in the model's parameters" if closed else
@@ -391,7 +398,7 @@ def derivation_html(result: DerivationResult, names: Notation | None = None) -> 
             f'<p class="assumes"><b>Assumes:</b> {_e(S.assumes_line(result, dict(names.assumed)))}</p>'
             f"{_conventions(result)}"
             f'<p class="meta note"><code>{_e(result.path.name)}</code> — '
-            f"{_e(src.get('document', ''))} {_e(src.get('section', ''))}; model "
+            f"{_e(' '.join(str(src.get(k, '')).strip() for k in ('document', 'section') if src.get(k)))}; model "
             f"<code>{_e(result.model)}</code>, coordinates <code>{_e(result.coordinates)}</code> "
             f"(velocities {_mathml(', '.join(names.latex(v) for v in result.velocities))}); "
             f"{_grid_text(result)} "

@@ -41,6 +41,11 @@ from ..sides.truth import truth_for
 
 #: Called with a derivation's file name and the name of the stage that starts.
 StageCallback = Callable[[str, str], None]
+#: The stages of one comparison as ``on_stage`` names them, in the order they start ("steps"
+#: comes first for the file's own ``[[step]]`` tables, last for the step files that feed it;
+#: "readings" only where the equations are not right as declared).
+STAGES: tuple[str, ...] = ("grid", "truth", "document", "equivalence", "frames", "judging",
+                           "readings", "causes", "steps")
 
 
 class ComparisonEngine:
@@ -69,14 +74,16 @@ class ComparisonEngine:
         key = (str(d.path), d.path.stat().st_mtime_ns if d.path.exists() else 0)
         if key not in self._results:
             from ..steps.chain import with_steps       # earlier steps, upstream causes
-            self._results[key] = with_steps(d, self._compare, self.seed, self.parallel_steps)
+            self._results[key] = with_steps(d, self._compare, self.seed, self.parallel_steps,
+                                            lambda stage: self.stage(d, stage))
         return self._results[key]
 
-    def judge(self, d: Derivation) -> Judgement:
+    def judge(self, d: Derivation, announce: bool = False) -> Judgement:
         r"""The equations and elements of ``d`` judged as the file declares them (values that
-        overflow or leave the reals are inf or NaN there, silently: they never decide)."""
+        overflow or leave the reals are inf or NaN there, silently: they never decide);
+        ``announce``: its stages are told to ``on_stage`` (not those of re-readings)."""
         with np.errstate(all="ignore"):
-            return judge_derivation(self, d)
+            return judge_derivation(self, d, announce)
 
     def _compare(self, d: Derivation) -> DerivationResult:
         first: list[Cause] = []
@@ -84,10 +91,10 @@ class ComparisonEngine:
         if applied is not None:                   # the file says its convention is unknown
             d, cause = applied
             first.append(cause)
-        j = self.judge(d)
+        j = self.judge(d, announce=True)
         result = j.result
+        self.stage(d, "readings")
         if applied is None and not result.equivalent and result.equations:
-            self.stage(d, "readings")
             finding = convention_finding(self, d, j)
             if finding is not None:
                 first.append(finding[0])
@@ -101,4 +108,4 @@ class ComparisonEngine:
         return replace(result, causes=found)
 
 
-__all__ = ["ComparisonEngine", "StageCallback"]
+__all__ = ["ComparisonEngine", "STAGES", "StageCallback"]

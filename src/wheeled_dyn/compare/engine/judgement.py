@@ -218,21 +218,26 @@ def _agreeing(engine, d, funcs, rules, assumed):
     return on
 
 
-def judge_derivation(engine, d: Derivation) -> Judgement:
-    r"""``d`` judged as declared (module text)."""
-    engine.stage(d, "grid")
+def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement:
+    r"""``d`` judged as declared (module text); ``announce``: the stages are told to the
+    engine's ``on_stage``."""
+    def stage(name: str) -> None:
+        if announce:
+            engine.stage(d, name)
+    stage("grid")
     assumed = declared(d)
     funcs = document_functions(d)
-    grid = engine.grids.get(d, (), engine.samples, engine.param_sets, assumed)
-    engine.stage(d, "both sides")
+    grid = engine.grids.get(d, (), engine.samples, engine.param_sets, assumed,
+                            lambda: stage("truth"))
+    stage("document")
     sides = both_sides(d, funcs, grid, engine.seed, with_gamma=True)
-    engine.stage(d, "equivalence")
+    stage("equivalence")
     decision = decide(d, funcs, sides)
     cases = tuple(c for c in special_cases(d.model) if c not in assumed.families)
     grids = _grids(engine, d, funcs, sides, cases, assumed)
-    engine.stage(d, "frames")
+    stage("frames")
     rules, frames, declared_wrong = _frames(d, funcs, grids, decision)
-    engine.stage(d, "elements")
+    stage("judging")
     label = equation_labels(str(d.source.get("equations", "")))
     drafts, gammas = _row_drafts(d, funcs, sides, frames, DimensionChecker(d), label)
     from ..judge.swaps import h_swaps
@@ -252,7 +257,6 @@ def judge_derivation(engine, d: Derivation) -> Judgement:
                    own_moments([ps.values for ps in id_sides.grid.sets], ID_STATES),
                    _geometric(d))
     equations = equation_records(d, decision, drafts, texts, label, grids, funcs, rules)
-    engine.stage(d, "printing")
     print_drafts(d, drafts, sides.grid.cs, texts, assumed)
     return _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed,
                       declared_wrong)

@@ -100,18 +100,21 @@ class Grids:
         self._sets: dict[tuple, CoordinateSet] = {}
 
     def get(self, d: Derivation, special: tuple[SpecialCase, ...], n_states: int, k: int,
-            assumed: Assumptions = Assumptions()) -> Grid:
+            assumed: Assumptions = Assumptions(), on_truth: Callable[[], None] | None = None
+            ) -> Grid:
+        r"""The grid of ``d`` under the ``special`` families and its ``assumed``
+        assumptions, made once; ``on_truth`` is called before its truth is computed."""
         special = tuple(dict.fromkeys((*assumed.families, *special)))
         raw = repr({name: value for name, value in d.coordinates.raw.items()
                     if name != ROWS_KEY})
         key = (d.model, raw, d.coordinates.use, tuple(c.name for c in special), n_states, k,
                assumed.key())
         if key not in self._grids:
-            self._grids[key] = self._make(d, special, n_states, k, assumed, raw)
+            self._grids[key] = self._make(d, special, n_states, k, assumed, raw, on_truth)
         return self._grids[key]
 
     def _make(self, d: Derivation, special: tuple[SpecialCase, ...], n_states: int, k: int,
-              assumed: Assumptions, raw: str) -> Grid:
+              assumed: Assumptions, raw: str, on_truth: Callable[[], None] | None) -> Grid:
         rng = np.random.default_rng([self.seed, len(special), n_states])
         sets = parameter_sets(d.model, k, rng, special)
         ckey = (d.model, raw, d.coordinates.use)
@@ -127,6 +130,8 @@ class Grids:
         q, nu = random_states(n, k * n_states, rng, ranges)
         q = regular_states(cmap, q, rng, ranges)
         q, nu = q.reshape(k, n_states, n), nu.reshape(k, n_states, n)
+        if on_truth is not None:
+            on_truth()
         truth = self.truth(cmap, sets, q, nu)
         apply_to_truth(truth, assumed)
         return Grid(truth, tuple(sets), q, nu, cs, cmap, tuple(map(tuple, ranges)))

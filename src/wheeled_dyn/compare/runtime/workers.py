@@ -41,6 +41,12 @@ def tick() -> None:
         _PROGRESS.put(1)
 
 
+def stage(name: str, stage: str) -> None:
+    r"""In a worker: the comparison of file ``name`` starts ``stage`` (the parent shows it)."""
+    if _PROGRESS is not None:
+        _PROGRESS.put(("stage", name, stage))
+
+
 def _start_worker() -> None:
     r"""Workers leave Ctrl-C to the parent, which ends them (no traceback from each), and
     announce their process id (so that the parent notices one that dies)."""
@@ -100,15 +106,20 @@ class Workers:
         r"""Run ``fn(*args)`` in a worker; ``files`` are named should the worker die."""
         self._jobs.append((self._pool.apply_async(fn, args), tuple(files)))
 
-    def wait(self, progress: Callable[[int], object] | None = None) -> list:
+    def wait(self, progress: Callable[[int], object] | None = None,
+             on_stage: Callable[[str, str], object] | None = None) -> list:
         r"""The results of the submitted jobs, in their order; ``progress(1)`` for each
-        derivation a worker reports done."""
+        derivation a worker reports done, ``on_stage(file, stage)`` for each stage of a
+        comparison a worker reports started."""
         while waiting := [job for job, _ in self._jobs if not job.ready()]:
             waiting[0].wait(POLL)
             while not self._queue.empty():
                 message = self._queue.get()
-                if isinstance(message, tuple):
+                if isinstance(message, tuple) and message[0] == "pid":
                     self._pids.add(message[1])
+                elif isinstance(message, tuple):
+                    if on_stage is not None:
+                        on_stage(message[1], message[2])
                 elif progress is not None:
                     progress(message)
             for job, _ in self._jobs:
@@ -122,4 +133,4 @@ class Workers:
         return [job.get() for job, _ in self._jobs]
 
 
-__all__ = ["Workers", "can_fork", "tick"]
+__all__ = ["Workers", "can_fork", "stage", "tick"]

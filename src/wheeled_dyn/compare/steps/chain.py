@@ -239,11 +239,14 @@ def has_equations(d: Derivation) -> bool:
 
 
 def with_steps(d: Derivation, compare: Callable[[Derivation], DerivationResult],
-               seed: int = 2026, parallel: bool = False) -> DerivationResult:
+               seed: int = 2026, parallel: bool = False,
+               on_stage: Callable[[str], None] | None = None) -> DerivationResult:
     r"""``compare(d)`` (the equations of motion, when the file has them) with the records of
     its steps and of the step files that feed it, the consistency of its A and Q with the
     document's own energies, and the ``upstream_step`` causes. ``parallel``: the step files
-    are compared in a forked worker meanwhile."""
+    are compared in a forked worker meanwhile. ``on_stage("steps")`` where steps are compared."""
+    if d.steps and on_stage is not None:
+        on_stage("steps")
     own = _step_records(d, seed) if d.steps else []
     if not has_equations(d):
         from .records import STEP_SETS, STEP_STATES
@@ -255,6 +258,8 @@ def with_steps(d: Derivation, compare: Callable[[Derivation], DerivationResult],
             reconstructed=dict(d.reconstructed), samples=STEP_STATES, parameter_sets=STEP_SETS,
             assumes=declared(d).describe())
     base, paths = _beside(d, seed, compare) if parallel else (compare(d), feeding_files(d))
+    if paths and on_stage is not None:
+        on_stage("steps")
     fed = [_step_file(p, seed) for p in paths]
     if not own and not fed:
         return base
