@@ -29,6 +29,10 @@ RANK = {"records": 0, "runtime": 0, "presentation": 0, "grid": 1, "sides": 2, "j
 NO_PRESENTATION = ("judge", "causes")
 #: Longest module of the package (lines).
 MAX_LINES = 400
+#: The one import against the flow, and why: a result displays itself in a notebook
+#: (``DerivationResult._repr_html_``, called by IPython) as the report renders it, imported
+#: when it is displayed.
+ALLOWED = {("records.py", "wheeled_dyn.report.notebook")}
 
 
 def _stage(path: Path) -> str | None:
@@ -67,6 +71,8 @@ def test_compare_imports_flow_one_way(path: Path) -> None:
     here = _stage(path)
     wrong = []
     for line, name in _imports(path):
+        if (str(path.relative_to(COMPARE)), name) in ALLOWED:
+            continue
         if name.startswith(("wheeled_dyn.cli", "wheeled_dyn.report")):
             wrong.append(f"line {line}: {name} (the command line and the reports come after)")
             continue

@@ -327,7 +327,7 @@ def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed
         coordinates=grid.cs.name, velocities=tuple(str(v) for v in d.velocities),
         form=d.form, records=tuple(r.freeze() for r in drafts), row_factors=constants,
         energy=energy, asymmetric=() if own is None or own.A is None else asymmetry(
-            own, np.nan_to_num(np.nanmax(np.abs(own.A), axis=(0, 2)), nan=1.0), d.n),
+            own, _sizes(own.A), d.n),
         constraints=constraint_rows(sides.doc, sides.truth, scales),
         reconstructed=dict(d.reconstructed), samples=grid.q.shape[1],
         parameter_sets=len(grid.sets), notes=tuple(notes), assumes=assumed.describe(),
@@ -370,6 +370,13 @@ def _unscaled(doc, frames, rules):
         return doc
     with np.errstate(all="ignore"):
         return Arrays(A=doc.A / c[:, :, None])
+
+
+def _sizes(A: np.ndarray) -> np.ndarray:
+    r"""Each row's largest finite magnitude (1 for a row with none)."""
+    finite = np.where(np.isfinite(A), np.abs(A), 0.0)
+    size = finite.max(axis=(0, 2))
+    return np.where(size > 0, size, 1.0)
 
 
 def _combination(texts, rules, frames, n: int) -> tuple[tuple[str, ...], ...]:
