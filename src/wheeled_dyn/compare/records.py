@@ -310,6 +310,11 @@ class EquationRecord:
     max_error: float
     equation: str = ""
 
+    @property
+    def texts(self) -> tuple[str, ...]:
+        r"""The diagnoses as the reports print them."""
+        return tuple(d.text for d in self.diagnoses)
+
     def as_dict(self) -> dict[str, object]:
         return {"equation": self.label, "verdict": self.verdict.value,
                 "diagnoses": [d.text for d in self.diagnoses],

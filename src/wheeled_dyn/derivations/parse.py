@@ -387,6 +387,10 @@ def load_derivation(path: str | Path, *, parameters: Collection[str] | None = No
         reader.check_label(label, ld.line("reconstructed", label))
 
     assumes = _assumes(ld, positions)
+    # in the steps, the rate of each acceleration (``ddq`` for ``dq``): second-order relations
+    # a document derives from its linearised equations (q'' + k q = 0)
+    jerks = {f"d{a}": real_symbol(f"d{a}") for a in accelerations if f"d{a}" not in ld.names}
+    step_names = {**ld.names, **jerks}
     spec = coordinate_spec(p, coord_table, names,
                            lambda text, item, key: ld.expr(text, item, "coordinates", key),
                            lambda key: ld.line("coordinates", key))
@@ -401,7 +405,9 @@ def load_derivation(path: str | Path, *, parameters: Collection[str] | None = No
         positions=positions, velocities=velocities, accelerations=accelerations,
         namespace=MappingProxyType(dict(ld.names)),
         steps=read_steps(data.get("step"), src.lines, n,
-                         lambda text, item: ld.expr(text, item, None, "step"), ld.fail),
+                         lambda text, item: ld.expr(text, item, None, "step", step_names),
+                         ld.fail),
+        jerks=tuple(jerks.values()),
         feeds=tuple(str(f) for f in data.get("feeds", ())), assumes=assumes,
         latex_input=MappingProxyType(dict(ld.latex_input)), convention=convention)
 

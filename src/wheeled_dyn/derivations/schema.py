@@ -138,6 +138,9 @@ class Derivation:
     #: ``"declared"``: the file's maps are binding; ``"unknown"``: the document's sign
     #: conventions are not known, a better reading found by the comparison is applied
     convention: str = "declared"
+    #: the rates of the accelerations (``ddq`` for ``dq``), names a step may use: a
+    #: second-order relation derived from linearised equations
+    jerks: tuple[sympy.Symbol, ...] = ()
 
     @property
     def form(self) -> str:

@@ -274,12 +274,12 @@ def claim_causes(records: Sequence) -> list[Cause]:
 #: sentence).
 TERM_KINDS = (
     (K.DIMENSION, CauseKind.DIMENSION, "a term with inconsistent units"),
+    (K.POINT_MASS, CauseKind.POINT_MASS, "a body's own inertia about its centre of mass is "
+     "missing (a point mass)"),
     (K.SIGN, CauseKind.SIGN, "the document has the opposite sign"),
     (K.POWER, CauseKind.POWER, "a symbol to the wrong power"),
     (K.FACTOR, CauseKind.FACTOR, "a constant factor"),
     (K.SWAP, CauseKind.SWAP, "one symbol written for another"),
-    (K.POINT_MASS, CauseKind.POINT_MASS, "a body's own inertia about its centre of mass is "
-     "missing (a point mass)"),
     (K.MISSING, CauseKind.MISSING_PHYSICS, "a term the document leaves out"),
     (K.EXTRA, CauseKind.MISSING_PHYSICS, "a term the truth does not have"),
 )

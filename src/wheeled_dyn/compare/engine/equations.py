@@ -57,9 +57,10 @@ def _reconcile(verdict: Verdict, row: Sequence[ElementDraft]) -> list[Diagnosis]
 
 def equation_records(d: Derivation, decision, drafts: Sequence[ElementDraft],
                      texts: Sequence[FrameText], label: str, grids: Sequence[Sides],
-                     funcs, rules) -> list[EquationRecord]:
+                     funcs, rules, solved: Diagnosis | None = None) -> list[EquationRecord]:
     r"""One :class:`~..records.EquationRecord` per equation (module text); none where the
-    document gives no A."""
+    document gives no A. ``solved``: for a document solved for its accelerations, what its
+    own inertia matrix lacks (:mod:`..judge.unsolved`), said on each equation that differs."""
     if decision is None:
         return []
     on_families = None
@@ -82,6 +83,8 @@ def equation_records(d: Derivation, decision, drafts: Sequence[ElementDraft],
             verdict = Verdict.AGREES_IF
             diags = [Diagnosis(K.CONDITION, f"agrees only if {text}", text, condition=text)]
         diags += _reconcile(verdict, row)
+        if solved is not None and verdict == Verdict.DIFFERS:
+            diags.append(solved)
         out.append(EquationRecord(index=i, label=f"equation {i + 1} ({d.positions[i]})",
                                   verdict=verdict, diagnoses=tuple(diags),
                                   frame=texts[i].text or "the true equation",

@@ -31,6 +31,7 @@ from ..judge.fitting import bases, fit_factor
 from ..judge.named import name_terms, own_moments
 from ..judge.rows import drafts_of_row, row_values
 from ..judge.units import DimensionChecker
+from ..judge.unsolved import inertia_diagnoses
 from ..readings.describe import describe
 from ..readings.frames import Frame, FrameKind, FrameRule, candidate_rules, choose, evaluate_rule
 from ..records import Cause, DerivationResult, Verdict
@@ -49,6 +50,8 @@ SPECIAL_SAMPLES, SPECIAL_SETS = 40, 2
 #: terms): states per set, parameter sets (a quantity of the parameters alone takes one value
 #: per set, so many sets).
 ID_STATES, ID_SETS = 8, 16
+#: Samples a ratio is fitted on to be taken as a simple expression (spread over the sets).
+SIMPLE_SAMPLES = 64
 
 
 @dataclass(frozen=True)
@@ -71,16 +74,35 @@ def document_functions(d: Derivation) -> DocumentFunctions:
     if C is not None and d.assumptions:
         C = sp.ImmutableMatrix(d.apply_assumptions(C))
     G = d.G if d.G is not None else d.constraint_matrix()
-    return DocumentFunctions(d, terms.A, C, terms.Q, terms.B, terms.h, G)
+    return DocumentFunctions(d, terms.A, C, terms.Q, terms.B, terms.h, G, _stiffness(d, terms))
+
+
+def _stiffness(d: Derivation, terms) -> sp.ImmutableMatrix | None:
+    r"""A linearised document's stiffness :math:`K = \partial Q/\partial q` (its Q is linear
+    in the deviations; at the point the grid's states are drawn at), compared with the
+    truth's; None for other documents, and where the file declares its potential measured
+    from an equilibrium of springs the model lacks (their stiffness is not compared)."""
+    assumed = declared(d)
+    if not assumed.linearised_about or assumed.equilibrium_potential or terms.Q is None \
+            or terms.Q.has(sp.nan):
+        return None
+    return sp.ImmutableMatrix(terms.Q.jacobian(sp.Matrix(d.positions)))
 
 
 def _n(a, B) -> equivalence.Side | None:
-    r"""An :class:`~..judge.equivalence.Side` of arrays ``a`` (n = h + Q where given)."""
+    r"""An :class:`~..judge.equivalence.Side` of arrays ``a`` (n = h + Q where given; a
+    linearised document's stiffness K compared with its inputs' columns)."""
     if a.A is None:
         return None
     parts = [x for x in (a.h, a.Q) if x is not None]
     n = None if not parts else sum(parts[1:], parts[0])
-    return equivalence.Side(a.A, n, B)
+    return equivalence.Side(a.A, n, _with_stiffness(a.K, B))
+
+
+def _with_stiffness(K: np.ndarray | None, B: np.ndarray | None) -> np.ndarray | None:
+    if K is None:
+        return B
+    return K if B is None else np.concatenate([K, B], axis=2)
 
 
 def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides
@@ -93,7 +115,8 @@ def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides
         return None
     parts = [x for x, y in ((truth.h, doc.h), (truth.Q, doc.Q)) if y is not None]
     true_n = sum(parts[1:], parts[0]) if both_n else None
-    true_side = equivalence.Side(truth.A, true_n, sides.B_true)
+    true_side = equivalence.Side(truth.A, true_n, _with_stiffness(
+        truth.K if doc.K is not None else None, sides.B_true))
     W = equivalence.combination_rows(doc.A, truth.A)
     varies = np.nanmax(np.ptp(np.nan_to_num(W), axis=0), initial=0.0) > 1e-9 * max(
         float(np.nanmax(np.abs(W), initial=0.0)), 1e-300)
@@ -125,10 +148,15 @@ def _frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], decisio
     rows whose declared scale the (right) equation contradicts."""
     main = grids[0]
     rules, frames, wrong = [], [], []
-    found = bases(d, main.grid.flat_q, main.values)
+    rows = np.linspace(0, main.size - 1, min(SIMPLE_SAMPLES, main.size)).astype(int)
+    found = bases(d, main.grid.flat_q[rows], {s: np.asarray(v)[rows] if np.ndim(v) else v
+                                             for s, v in main.values.items()})
 
     def simple(ratio: np.ndarray) -> bool:
-        return fit_factor(ratio, found) is not None
+        r"""A ratio voted by one element of A alone is a simple expression of the document's
+        names (on samples spread over the sets: a hint only, the frame is then scored on
+        every sample)."""
+        return fit_factor(ratio[rows], found) is not None
     declared_scale = None
     for i in range(d.n):
         right = decision is not None and decision.equations[i].verdict == Verdict.AGREES
@@ -255,9 +283,13 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     if any(r.verdict != Verdict.AGREES for r in drafts):
         name_terms(drafts, _id_values(d, funcs, id_sides, id_frames), found,
                    own_moments([ps.values for ps in id_sides.grid.sets], ID_STATES),
-                   _geometric(d))
-    equations = equation_records(d, decision, drafts, texts, label, grids, funcs, rules)
-    print_drafts(d, drafts, sides.grid.cs, texts, assumed)
+                   _geometric(d), d.positions)
+    solved = None
+    if decision is not None and not decision.equivalent and id_sides.doc.A is not None:
+        solved = inertia_diagnoses(id_sides.doc.A, id_sides.doc.B, id_sides.truth.A,
+                                   id_sides.B_true, found)
+    equations = equation_records(d, decision, drafts, texts, label, grids, funcs, rules, solved)
+    print_drafts(d, drafts, sides.grid.cs, texts, assumed, funcs.exprs)
     return _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed,
                       declared_wrong)
 

@@ -19,10 +19,10 @@ from ..sides.elements import element_expr, latex_names
 
 
 def print_drafts(d: Derivation, drafts: Sequence[ElementDraft], cs, texts: Sequence[FrameText],
-                 assumed: Assumptions) -> None:
-    r"""Fill the printed forms of every draft (module text), in place."""
-    read = d.read_off(assume=True, unscale=False)
-    as_printed = {"A": read.A, "Q": read.Q, "B": read.B, "h": read.h, "C": d.C}
+                 assumed: Assumptions, exprs) -> None:
+    r"""Fill the printed forms of every draft (module text), in place; ``exprs``: the
+    document's read-off matrices (its compiled functions'), C as the file prints it."""
+    as_printed = {**{k: exprs[k] for k in ("A", "Q", "B", "h")}, "C": d.C}
     names = latex_names(d)
     families = tuple(c.name for c in assumed.families)
     mapped = closed_form.document_in_model(d, families)

@@ -21,6 +21,9 @@ class Arrays:
     #: :math:`\Gamma_{i,jk}`, the coefficient of :math:`\nu_k` in :math:`C_{ij}` (C as given,
     #: not symmetrised), on the samples ``H_rows``
     Gamma: np.ndarray | None = None
+    #: :math:`K_{ij} = \partial(h + Q)_i/\partial q_j` at the state a linearised document is
+    #: linearised about (its stiffness); None for other documents
+    K: np.ndarray | None = None
     H_rows: np.ndarray | None = None       # samples where H was computed (None: all)
 
 

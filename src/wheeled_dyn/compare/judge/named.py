@@ -27,8 +27,9 @@ from ..records import DiagnosisKind as K, Verdict, diagnosis, has_kind
 from .draft import ElementDraft
 from .fitting import RATIO_TOL, fit_factor, fit_sum
 
-#: Diagnoses after which no term is named (the error is named already).
-NAMED = (K.SIGN, K.FACTOR, K.POWER, K.SWAP, K.DIMENSION, K.EXTRA, K.UNDECIDED, K.POINT_MASS)
+#: Diagnoses after which no term is named (the error is named already); a constant factor
+#: may still be a point mass's (m l² for the uniform rod's m l²/3 is "factor 3/4").
+NAMED = (K.SIGN, K.POWER, K.SWAP, K.DIMENSION, K.EXTRA, K.UNDECIDED, K.POINT_MASS)
 #: Axes of a link's own moments of inertia.
 AXES = ("x", "y", "z")
 #: Most elements of one derivation whose terms are named (each is a search).
@@ -95,11 +96,15 @@ def _lacks(expr: sp.Expr) -> str:
 
 def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[int, ...]],
                tuple[np.ndarray, np.ndarray]], bases: Sequence[tuple[sp.Expr, np.ndarray]],
-               moments: Mapping[str, np.ndarray], geometric: set[sp.Symbol]) -> None:
+               moments: Mapping[str, np.ndarray], geometric: set[sp.Symbol],
+               positions: Sequence[sp.Symbol] = ()) -> None:
     r"""Name the differing terms of the drafts (module text), in place. ``on_id``: each
     element's (document, truth in frame) values on the identification grid; ``geometric``
-    the document's names a point-mass multiplier may contain (positions, lengths)."""
-    lengths = [(e, v) for e, v in bases if e.free_symbols <= geometric]
+    the document's lengths, the only names a point-mass multiplier may contain (never a
+    position: a body's own inertia enters the inertia matrix as a constant times
+    lengths)."""
+    lengths = [(e, v) for e, v in bases if e.free_symbols <= geometric
+               and not e.has(*positions)]
     named = 0
     for r in drafts:
         if named >= MAX_NAMED:
@@ -116,6 +121,8 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
                                                              1e-300):
             continue                          # agrees on these sets (a family's condition)
         hit = _point_mass(residual, moments, lengths) if r.key in ("A", "h") else None
+        if hit is None and has_kind(r.diagnoses, K.FACTOR):
+            continue
         if hit is not None:
             name, c = hit
             times = "" if c == 1 else f" × {sp.sstr(c)}"

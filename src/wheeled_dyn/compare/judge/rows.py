@@ -22,7 +22,7 @@ def row_values(doc_row: Arrays, true_row: Arrays, i: int, exprs: Mapping[str, ob
     r"""``(key, index, D, T, expression)`` of every element of row ``i`` (``doc_row`` and
     ``true_row`` shaped as :func:`~..sides.framed.row_of`'s)."""
     n = len(velocities)
-    for key in ("A", "C"):
+    for key in ("A", "C", "K"):
         D, T = getattr(doc_row, key), getattr(true_row, key)
         if D is not None and T is not None:
             for j in range(n):

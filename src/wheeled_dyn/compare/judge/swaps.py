@@ -34,26 +34,28 @@ def symbol_swaps(d: ElementDraft, trials, groups: Sequence[Sequence[sp.Symbol]]
 
 
 def _one_factor_trials(expr: sp.Expr, groups: Sequence[Sequence[sp.Symbol]]):
-    r"""``(term, written, fits, trial element)``: in one additive term, one factor
-    :math:`a` of a product read as :math:`b` (a power :math:`a^e` becomes
-    :math:`a^{e-1}b`)."""
+    r"""``(term, written, fits, trial element)``: in one additive term, a symbol :math:`a`
+    read as :math:`b` — everywhere in the term (:math:`a^2` becomes :math:`b^2`), or in one
+    factor of a power (:math:`a^e` becomes :math:`a^{e-1}b`)."""
     members = {s: g for g in groups for s in g}
     terms = sp.Add.make_args(sp.expand(expr))
     if len(terms) > MAX_TERMS:
         return
-    for k, t in enumerate(terms):
+    for t in terms:
         factors = sp.Mul.make_args(t)
-        for f in factors:
-            base, e = f.as_base_exp()
-            if base not in members or not (e.is_Integer and e >= 1):
+        present = [f.as_base_exp() for f in factors if f.as_base_exp()[0] in members]
+        if len(terms) == 1 and len(present) < 2:
+            continue                              # one symbol alone: an ordinary swap
+        for base, e in present:
+            if not (e.is_Integer and e >= 1):
                 continue
-            if e == 1 and sum(1 for g in factors if g.as_base_exp()[0] in members) < 2:
-                continue                          # a lone symbol: an ordinary swap
             for b in members[base]:
                 if b == base:
                     continue
-                new = t.xreplace({f: base ** (e - 1) * b}) if e > 1 else t.xreplace({f: b})
-                yield (t, sp.sstr(f), sp.sstr(base ** (e - 1) * b), expr - t + new)
+                yield (t, sp.sstr(base ** e), sp.sstr(b ** e), expr - t + t.xreplace({base: b}))
+                if e > 1:
+                    new = t.xreplace({base ** e: base ** (e - 1) * b})
+                    yield (t, sp.sstr(base ** e), sp.sstr(base ** (e - 1) * b), expr - t + new)
 
 
 def product_swaps(expr: sp.Expr, trials, groups: Sequence[Sequence[sp.Symbol]], T: np.ndarray,

@@ -45,7 +45,8 @@ _HOMOGENEOUS: Mapping[type, int] = {sp.atan2: 0, sp.sign: 0, sp.Abs: 1, sp.Max: 
 
 
 def _add(a: Dim, b: Dim, k=1) -> Dim:
-    return tuple(sp.nsimplify(x + k * y) for x, y in zip(a, b))
+    k = sp.Rational(k)
+    return tuple(sp.Rational(x) + k * sp.Rational(y) for x, y in zip(a, b))
 
 
 def units_dim(text: str | None) -> Dim | None:
@@ -70,6 +71,7 @@ class DimensionChecker:
     r"""Dimensions of the document's names, and the check of an element's terms."""
 
     def __init__(self, d: Derivation) -> None:
+        self._memo: dict[sp.Expr, tuple[Dim | None, list[str]]] = {}
         self.known: dict[sp.Symbol, Dim] = {}
         for spec in d.symbols.values():
             dim = units_dim(spec.units)
@@ -113,7 +115,7 @@ class DimensionChecker:
         qj = self.q_dims[j]
         if qj is None:
             return None
-        return _add(_add(got, qj), (0, 0, -2 if key == "A" else -1))
+        return _add(_add(got, qj), (0, 0, {"A": -2, "C": -1, "K": 0}[key]))
 
     def row_dimension(self, i: int, elements: list[tuple[str, tuple[int, ...], sp.Expr]]
                       ) -> None:
@@ -134,8 +136,21 @@ class DimensionChecker:
 
     def dim(self, expr: sp.Expr, problems: list[str]) -> Dim | None:
         r"""Dimension of ``expr``; inconsistent sums and dimensioned function arguments are
-        appended to ``problems``. None where a name has no declared units."""
+        appended to ``problems``. None where a name has no declared units. Remembered per
+        subexpression (a solved form repeats its parts many times)."""
         expr = sp.sympify(expr)
+        key = expr
+        if key in self._memo:
+            found, said = self._memo[key]
+            problems += said
+            return found
+        said: list[str] = []
+        found = self._dim(expr, said)
+        self._memo[key] = (found, said)
+        problems += said
+        return found
+
+    def _dim(self, expr: sp.Expr, problems: list[str]) -> Dim | None:
         if expr.is_Number or expr is sp.pi or expr.is_NumberSymbol:
             return ZERO
         if expr.is_Symbol:
@@ -166,7 +181,7 @@ class DimensionChecker:
                 return None
             if not exp.is_Number:
                 return ZERO if bd == ZERO else None
-            return tuple(sp.nsimplify(x * exp) for x in bd)
+            return tuple(sp.Rational(x) * sp.Rational(exp) for x in bd)
         if expr.func in _HOMOGENEOUS:
             # atan2(y, x), Max, Min: homogeneous of degree 0 or 1 in arguments of one dimension
             dims = [self.dim(a, problems) for a in expr.args]
@@ -201,7 +216,7 @@ class DimensionChecker:
         qj = self.q_dims[j]
         if qj is None:
             return None
-        return _add(_add(row, qj, -1), (0, 0, 2 if key == "A" else 1))
+        return _add(_add(row, qj, -1), (0, 0, {"A": 2, "C": 1, "K": 0}[key]))
 
     def check(self, key: str, index: tuple[int, ...], expr: sp.Expr) -> list[str]:
         r"""Problems of one element: inconsistent terms, or a dimension other than expected."""

@@ -30,6 +30,9 @@ TRIG_EXPAND_LIMIT = 40
 #: operations, or with roots of them (a document's mass or length read as an algebraic function
 #: of the link's parameters), are not shown; the truth is.
 STANDARD_RESIDUAL_LIMIT = 60
+#: Elements of the document longer than this many operations are not printed again in the
+#: model's parameters (a form solved for the accelerations: a page of text nobody reads).
+MODEL_PRINT_LIMIT = 150
 
 
 def _physical_symbols() -> dict[str, sp.Symbol]:
@@ -94,6 +97,8 @@ def document_in_model(d: Derivation, families: tuple[str, ...] = ()
         if model_entry(d.model).parameters is WipParameters else {}
 
     def convert(expr: sp.Expr | None) -> tuple[str, str]:
+        if expr is None or sp.count_ops(expr) > MODEL_PRINT_LIMIT:
+            return "", ""                 # (a solved form's elements: too long to read)
         out = to_model(expr)
         if out is None:
             return "", ""

@@ -276,7 +276,7 @@ def score(doc_row: Arrays, true_row: Arrays) -> int:
     r"""The number of the row's A, Q, B elements and velocity products of H that agree."""
     tol = AGREE_TOL * row_scale(doc_row, true_row)
     count = _agreeing(doc_row.A, true_row.A, tol) + _agreeing(doc_row.Q, true_row.Q, tol)
-    count += _agreeing(doc_row.B, true_row.B, tol)
+    count += _agreeing(doc_row.B, true_row.B, tol) + _agreeing(doc_row.K, true_row.K, tol)
     if doc_row.H is not None and true_row.H is not None:
         n = doc_row.H.shape[2]
         count += _agreeing(doc_row.H, true_row.H, tol,
@@ -302,7 +302,7 @@ def freedom(rule: FrameRule, n: int) -> int:
 def _elements(doc_row: Arrays) -> int:
     r"""The number of A, Q, B elements and velocity products of H in one row."""
     count = 0
-    for name in ("A", "Q", "B"):
+    for name in ("A", "Q", "B", "K"):
         M = getattr(doc_row, name)
         if M is not None:
             count += int(np.prod(M.shape[2:])) if M.ndim > 2 else 1

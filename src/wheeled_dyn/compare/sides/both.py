@@ -19,7 +19,7 @@ from ...derivations.schema import Derivation
 from ..grid.arrays import Arrays
 from ..grid.grid import Grid
 from .document import DocumentFunctions, document_arrays
-from .truth import input_map
+from .truth import input_map, stiffness
 
 
 @dataclass(frozen=True)
@@ -63,6 +63,8 @@ def both_sides(d: Derivation, funcs: DocumentFunctions, grid: Grid, seed: int,
     truth = grid.truth
     doc, per_set, values = document_arrays(d, funcs, grid.sets, grid.q, grid.nu, seed,
                                            truth.H_rows)
+    if doc.K is not None and truth.K is None:       # a linearised document: its stiffness
+        truth.K = stiffness(grid.cmap, grid.sets, grid.q)
     notes: list[str] = []
     B_true = input_map(d, truth, per_set, grid.q.shape[1], notes)
     if with_gamma and truth.H_rows is not None:

@@ -102,11 +102,11 @@ class DocumentFunctions:
     r"""The document's elements compiled once (one function per matrix); evaluated at any
     samples."""
 
-    def __init__(self, d: Derivation, A, C, Q, B, h, G) -> None:
+    def __init__(self, d: Derivation, A, C, Q, B, h, G, K=None) -> None:
         self.d = d
         self.params = tuple(s.symbol for s in d.symbols.values() if not s.is_input)
         self.args = [*d.positions, *d.velocities, *self.params]
-        self.exprs = {"A": A, "C": C, "Q": Q, "B": B, "h": h, "G": G}
+        self.exprs = {"A": A, "C": C, "Q": Q, "B": B, "h": h, "G": G, "K": K}
         self.exprs["H"] = None if h is None else _h_tensor(h, d.velocities)
         self._fns = {}
         self._element_fns: dict[tuple, object] = {}

@@ -15,7 +15,7 @@ def framed(w: np.ndarray, truth: Arrays, B_true: np.ndarray | None) -> Arrays:
     ``Arrays.B``) and H (on the truth's ``H_rows``)."""
     out = Arrays(H_rows=truth.H_rows)
     with np.errstate(all="ignore"):
-        for name in ("A", "C"):
+        for name in ("A", "C", "K"):
             M = getattr(truth, name)
             if M is not None:
                 setattr(out, name, np.einsum("sl,slj->sj", w, M)[:, None, :])
@@ -37,7 +37,7 @@ def framed(w: np.ndarray, truth: Arrays, B_true: np.ndarray | None) -> Arrays:
 def row_of(doc: Arrays, i: int) -> Arrays:
     r"""Row ``i`` of the document's arrays, shaped as :func:`framed`'s."""
     out = Arrays(H_rows=doc.H_rows)
-    for name in ("A", "C", "Q", "h", "B", "H", "Gamma"):
+    for name in ("A", "C", "Q", "h", "B", "H", "Gamma", "K"):
         M = getattr(doc, name)
         if M is not None:
             setattr(out, name, M[:, i:i + 1])

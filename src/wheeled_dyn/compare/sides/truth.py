@@ -90,6 +90,34 @@ def input_map(d: Derivation, truth: Arrays, per_set, n_states: int, notes: list[
     return truth.B @ Ps
 
 
+#: Step of the central differences of the truth's stiffness (in the document's positions), and
+#: the most distinct states per parameter set it is computed at (else at every state).
+STIFFNESS_STEP, STIFFNESS_STATES = 1e-3, 32
+
+
+def stiffness(cmap: CoordinateMap, sets, q: np.ndarray) -> np.ndarray:
+    r""":math:`K = \partial Q/\partial q` of the truth at the states ``q`` (K × N × n) of the
+    parameter ``sets`` (S × n × n), by Richardson-extrapolated central differences
+    (:math:`[8(Q(q+\delta) - Q(q-\delta)) - (Q(q+2\delta) - Q(q-2\delta))]/12\delta`, error of
+    order :math:`\delta^4`), at each distinct state once."""
+    K_sets, N, n = q.shape
+    out = np.empty((K_sets, N, n, n))
+    h = STIFFNESS_STEP
+    steps = [(2 * h, -1.0), (h, 8.0), (-h, -8.0), (-2 * h, 1.0)]
+    for k, ps in enumerate(sets):
+        states, where = np.unique(q[k], axis=0, return_inverse=True)
+        if len(states) > STIFFNESS_STATES:
+            states, where = q[k], np.arange(N)
+        moved = np.concatenate([states + dh * np.eye(n)[j] for j in range(n)
+                                for dh, _ in steps])
+        Q = truth_for(cmap, [ps], moved[None], np.zeros_like(moved)[None]).Q
+        Q = Q.reshape(n, len(steps), len(states), n)
+        weights = np.array([w for _, w in steps])
+        deriv = np.einsum("c,jcsi->sij", weights, Q) / (12 * h)
+        out[k] = deriv[np.ravel(where)]
+    return out.reshape(K_sets * N, n, n)
+
+
 def special_truth_A(grid: Grid, q: np.ndarray, owner: np.ndarray) -> np.ndarray:
     r"""The truth's A at states ``q`` of the parameter sets ``owner`` (S × n × n)."""
     n = grid.q.shape[2]
@@ -104,4 +132,5 @@ def special_truth_A(grid: Grid, q: np.ndarray, owner: np.ndarray) -> np.ndarray:
     return out
 
 
-__all__ = ["H_SAMPLES", "input_map", "special_truth_A", "truth_arrays", "truth_for"]
+__all__ = ["H_SAMPLES", "STIFFNESS_STATES", "STIFFNESS_STEP", "input_map", "special_truth_A",
+           "stiffness", "truth_arrays", "truth_for"]

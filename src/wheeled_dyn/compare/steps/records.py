@@ -94,7 +94,11 @@ class _Group:
         #: the rates of the positions along the free motion (first integrals; else 0)
         self.rates = [sp.Symbol("_rate_" + str(p), real=True) for p in d.positions]
         self.qdot = np.zeros_like(q)
-        self.args = [*d.positions, *d.velocities, *d.accelerations, *self.params, *self.rates]
+        #: the rates of the accelerations on a linearised step's deviations (else NaN: a
+        #: second-order relation means nothing elsewhere)
+        self.jerk = np.full_like(nu, np.nan)
+        self.args = [*d.positions, *d.velocities, *d.accelerations, *self.params, *self.rates,
+                     *d.jerks]
 
     def truth(self, steps: Sequence[Step]) -> list[np.ndarray]:
         r"""The truth of every step at every sample; the states are made admissible first (a
@@ -129,7 +133,10 @@ class _Group:
         named there as drawn), the true free motion's Jacobians :math:`J_q, J_\nu` of
         :math:`\dot\nu = A^{-1}(-h - Q)` there (central differences; exact in :math:`\nu`,
         where it is quadratic), and random deviations :math:`\Delta q, \Delta\nu` with
-        :math:`\Delta\dot\nu = J_q\Delta q + J_\nu\Delta\nu` in place of the sample."""
+        :math:`\Delta\dot\nu = J_q\Delta q + J_\nu\Delta\nu` in place of the sample; their
+        rates :math:`\Delta\ddot\nu = J_q\Delta\dot q + J_\nu\Delta\dot\nu`, with
+        :math:`\Delta\dot q = R_q\Delta q + R_\nu\Delta\nu` from the positions' rates
+        :math:`\dot q = r(q, \nu)` (:math:`r = \nu` in holonomic coordinates)."""
         d, cmap = self.d, self.cmap
         if self.cs.rolling == "multipliers":
             raise DerivationError(d.path, f"step {step.equation}", "linearised equations need "
@@ -156,6 +163,30 @@ class _Group:
         J_q = np.stack([(f(q0 + 1e-4 * e, nu0) - f(q0 - 1e-4 * e, nu0)) / 2e-4 for e in eye], 1)
         dq, dnu = self.rng.normal(size=n), self.rng.normal(size=n)
         self.q[i], self.nu[i], self.nudot[i] = dq, dnu, J_q @ dq + J_nu @ dnu
+        if self.d.jerks:
+            if self.cs.kind == "holonomic":
+                dqdot = dnu
+            else:
+                R_nu = np.stack([(self._position_rates(q0, nu0 + 1e-6 * e)
+                                  - self._position_rates(q0, nu0 - 1e-6 * e)) / 2e-6
+                                 for e in eye], 1)
+                R_q = np.stack([(self._position_rates(q0 + 1e-6 * e, nu0)
+                                 - self._position_rates(q0 - 1e-6 * e, nu0)) / 2e-6
+                                for e in eye], 1)
+                dqdot = R_q @ dq + R_nu @ dnu
+            self.jerk[i] = J_q @ dqdot + J_nu @ self.nudot[i]
+
+    def _position_rates(self, q0: np.ndarray, nu: np.ndarray) -> np.ndarray:
+        r"""The rates of the document's positions at ``(q0, nu)``: the least-squares solution
+        of :math:`\partial g/\partial q_d\,\dot q_d = v`, :math:`v = S\nu` the model's
+        velocity (:math:`\partial g/\partial q_d` by central differences)."""
+        cmap = self.cmap
+        q = cmap.model_configuration(q0)
+        _, _, v = cmap.reduce_at(q, nu, q0)
+        G = np.stack([(cmap.model_configuration(q0 + 1e-6 * e) -
+                       cmap.model_configuration(q0 - 1e-6 * e)) / 2e-6
+                      for e in np.eye(len(q0))], 1)
+        return np.linalg.lstsq(G, v, rcond=None)[0]
 
     def _free_rates(self, step: Step, i: int) -> None:
         r"""Sample ``i`` of a first integral: the true accelerations of the free motion,
@@ -168,16 +199,9 @@ class _Group:
             raise DerivationError(self.d.path, f"step {step.equation}", "first integrals need "
                                   "coordinates with the rolling eliminated (or none)")
         q0, nu = self.q[i], self.nu[i]
-        q = cmap.model_configuration(q0)
-        terms, _, v = cmap.reduce_at(q, nu, q0)
+        terms, _, _ = cmap.reduce_at(cmap.model_configuration(q0), nu, q0)
         self.nudot[i] = np.linalg.solve(terms.A, -(terms.h + terms.Q))
-        if self.cs.kind == "holonomic":
-            self.qdot[i] = nu
-            return
-        G = np.stack([(cmap.model_configuration(q0 + 1e-6 * e) -
-                       cmap.model_configuration(q0 - 1e-6 * e)) / 2e-6
-                      for e in np.eye(len(q0))], 1)
-        self.qdot[i] = np.linalg.lstsq(G, v, rcond=None)[0]
+        self.qdot[i] = nu if self.cs.kind == "holonomic" else self._position_rates(q0, nu)
 
     def coefficients(self, step: Step, monomials: Sequence[tuple[int, ...]]) -> dict:
         r"""The truth's coefficient of each monomial (exponents over velocities then
@@ -284,7 +308,7 @@ class _Group:
         per = np.repeat(np.arange(len(self.sets)), self.N)[every]
         out = [*self.q[every].T, *self.nu[every].T, *self.nudot[every].T,
                *(np.array([self.values[k][p] for k in per]) for p in self.params),
-               *self.qdot[every].T]
+               *self.qdot[every].T, *self.jerk[every][:, :len(self.d.jerks)].T]
         if rows is None:
             self._argv = out
         return list(out)

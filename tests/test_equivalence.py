@@ -1,0 +1,148 @@
+r"""What decides that a document's equations are right: their equivalence to the true ones.
+
+- Linearised documents are compared with the truth's linearisation at the stated point: a
+  pendulum with ten times its stiffness, or with the sign that makes the hanging rod
+  unstable, differs (the stiffness K = ∂Q/∂q is compared; it never was before);
+- second-order relations a document derives from its linearised equations (seed 000's 7.2:
+  part (c)'s K is right, part (e)'s k has the wrong sign);
+- an equation multiplied by a function that vanishes somewhere (0 = 0 at θ = 0) is not
+  equivalent; an equation replaced by another times cos θ (one equation lost) is not either,
+  and neither crashes;
+- the equivalence verdict is the system's: an equation right but for its scale is right.
+
+The pendulum is seed 000's 4.4 rod (the shipped ``rod_pendulum`` model): mass m, length l,
+:math:`\tfrac13ml^2\ddot\theta + \tfrac12mgl\sin\theta = 0`, linearised about θ = 0.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from conftest import SEED
+from wheeled_dyn.compare.engine import ComparisonEngine
+from wheeled_dyn.compare.judge import equivalence
+from wheeled_dyn.compare.records import DiagnosisKind as K
+from wheeled_dyn.compare.steps.records import compare_steps
+from wheeled_dyn.derivations import builtin_derivations, load_derivation
+
+SAMPLES, PARAM_SETS = 200, 3
+
+ROD = '''title = "Rod pendulum ({name})"
+model = "rod_pendulum"
+[coordinates]
+positions = ["theta"]
+kind = "holonomic"
+rolling = "none"
+configuration = {{ theta = "theta" }}
+units = {{ theta = "rad" }}
+[symbols]
+m = {{ value = "4*MZ(rod)**2/(3*YY(rod))", units = "kg" }}
+l = {{ value = "-3*YY(rod)/(2*MZ(rod))", units = "m" }}
+g = {{ value = "g", units = "m/s**2" }}
+[assumes]
+families = ["urdf_structure"]
+{assumes}
+[matrices]
+equations = ["{equation}"]
+'''
+
+
+@pytest.fixture(scope="module")
+def engine():
+    return ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED)
+
+
+def _rod(engine, tmp_path, name, equation, linearised=True):
+    path = tmp_path / f"{name}.toml"
+    path.write_text(ROD.format(name=name, equation=equation, assumes=(
+        "linearised_about = { theta = 0.0 }" if linearised else "")))
+    return engine.compare(load_derivation(path))
+
+
+def test_linearised_pendulum_agrees(engine, tmp_path):
+    result = _rod(engine, tmp_path, "right", "1/3*m*l**2*ddtheta + m*g*l/2*theta = 0")
+    assert result.equivalent is True
+    assert {r.element for r in result.records} >= {"A[1,1]", "K[1,1]", "Q[1]"}
+    assert all(r.verdict == "agrees" for r in result.records)
+
+
+@pytest.mark.parametrize("equation, kind, factor", [
+    ("1/3*m*l**2*ddtheta + 10*m*g*l/2*theta = 0", K.FACTOR, "10"),
+    ("1/3*m*l**2*ddtheta - m*g*l/2*theta = 0", K.SIGN, "-1"),      # the hanging rod unstable
+])
+def test_a_wrong_stiffness_differs(engine, tmp_path, equation, kind, factor):
+    result = _rod(engine, tmp_path, "wrong", equation)
+    assert result.equivalent is False
+    (record,) = [r for r in result.records if r.verdict != "agrees"]
+    assert record.element == "K[1,1]" and record.kinds[0] == kind, record.texts
+    assert record.diagnoses[0].factor == factor
+
+
+def test_second_order_relations_of_7_2(tmp_path):
+    r"""Part (c)'s Δq'' + K Δq = 0 agrees; part (e)'s q'' + k q = 0 prints k with the wrong
+    sign: each of its two relations differs by the sign of its q (r) term."""
+    path = builtin_derivations("seed000")[0].parent / "p7_2_linearised_steps.toml"
+    records = {r.element: r for r in compare_steps(load_derivation(path), SEED)}
+    part_c = [r for e, r in records.items() if e.startswith("(c)")]
+    part_e = [r for e, r in records.items() if e.startswith("7.2 (e) (3), (4)")]
+    assert len(part_c) == len(part_e) == 2
+    assert all(r.verdict == "agrees" for r in part_c), [r.texts for r in part_c]
+    assert all(r.verdict == "differs" for r in part_e)
+    assert [r.diagnoses[0].product for r in part_e] == ["q", "r"]
+    assert all(r.kinds[0] == K.SIGN for r in part_e), [r.texts for r in part_e]
+
+
+def test_an_equation_multiplied_by_a_vanishing_factor_is_not_equivalent(engine, tmp_path):
+    r"""sin θ × the pendulum's equation: 0 = 0 at θ = 0, so the equations are not equivalent
+    there — never "divided by a quantity that does not vanish"."""
+    result = _rod(engine, tmp_path, "times_sin", "sin(theta)*(1/3*m*l**2*ddtheta + "
+                  "m*g*l/2*sin(theta)) = 0", linearised=False)
+    assert result.equivalent is False
+    (equation,) = result.equations
+    assert equation.verdict == "differs"
+    assert K.SINGULAR in [d.kind for d in equation.diagnoses], equation.texts
+    assert any(c.kind == "not_equivalent" for c in result.causes), result.causes
+
+
+def test_an_equation_divided_by_a_function_that_does_not_vanish_is_right(engine, tmp_path):
+    result = _rod(engine, tmp_path, "over_2_plus_cos", "(1/3*m*l**2*ddtheta + "
+                  "m*g*l/2*sin(theta))/(2 + cos(theta)) = 0", linearised=False)
+    assert result.equivalent is True
+    assert all(r.verdict == "agrees" for r in result.records)
+
+
+def test_an_equation_replaced_by_another_times_cos_is_not_equivalent(engine, tmp_path):
+    r"""The arm's second equation replaced by cos(q2) × its first: W is singular everywhere
+    (an equation lost): not equivalent, named, and no crash."""
+    import published_forms as P
+    path = P.write(tmp_path, "arm", "equations", None)
+    text = path.read_text()
+    first, second = (line.strip().strip('",') for line in
+                     text.split("equations = [")[1].split("]")[0].strip().splitlines())
+    lhs, rhs = first.split(" = ")
+    text = text.replace(second, f"cos(q2)*({lhs}) = cos(q2)*({rhs})")
+    path.write_text(text)
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False
+    assert any(K.SINGULAR in [d.kind for d in e.diagnoses] for e in result.equations)
+
+
+def test_overflow_never_decides():
+    r"""A term overflowing to inf at some samples: the equation is undecided where it agrees
+    elsewhere, and differs where a finite sample already differs — inf is never a scale."""
+    rng = np.random.default_rng(SEED)
+    S, n = 60, 2
+    A = np.eye(n) + 0.1 * rng.normal(size=(S, n, n))
+    A = A @ np.swapaxes(A, 1, 2)
+    nvec = rng.normal(size=(S, n))
+    truth = equivalence.Side(A, nvec, None)
+    doc = nvec.copy()
+    doc[:3, 0] = np.inf
+    decision = equivalence.decide(equivalence.Side(A.copy(), doc, None), truth, 2)
+    assert decision.equations[0].verdict == "undecided"
+    assert decision.equations[1].verdict == "agrees"
+    doc[10:, 0] += 1.0                                   # and wrong where finite
+    decision = equivalence.decide(equivalence.Side(A.copy(), doc, None), truth, 2)
+    assert decision.equations[0].verdict == "differs"
+    assert np.isfinite(decision.equations[0].max_error)
