@@ -267,7 +267,7 @@ def test_remembered_code_altered_on_disk_is_not_run(cache):
     os.environ[REUSE_ENV] = "0"
     try:
         assert _verdicts(_compared(path)) == truth
-        assert compiled.SOURCES.entries() is compiled.SOURCES._made  # nothing from the disk
+        assert compiled.SOURCES.entries() is compiled.SOURCES._unkept  # nothing from disk
     finally:
         os.environ[REUSE_ENV] = "1"
     with cache_trust.without_reuse():
@@ -327,3 +327,19 @@ def test_an_entry_over_the_size_bound_is_a_miss(cache, monkeypatch):
     assert store(entry, "x" * 1000)
     monkeypatch.setattr(disk_cache, "MAX_ENTRY_BYTES", 500)
     assert load(entry, str) is None
+
+
+def test_the_no_cache_flag_reads_and_writes_nothing(tmp_path):
+    r"""``compare --no-cache`` with reuse on in the environment: the cache folder is not even
+    created (nothing read, nothing written), and the verdicts are printed."""
+    import subprocess
+    import sys
+    root = tmp_path / "cache"
+    env = {**os.environ, CACHE_ENV: str(root), REUSE_ENV: "1"}
+    out = subprocess.run([sys.executable, "-m", "wheeled_dyn.cli", "compare", "rolling_disk",
+                          str(_derivation()), "--no-cache", "--samples", str(SAMPLES),
+                          "--param-sets", str(PARAM_SETS), "--out", str(tmp_path / "out")],
+                         capture_output=True, text=True, env=env, timeout=300)
+    assert out.returncode == 0, out.stderr
+    assert " agree, " in out.stdout
+    assert not root.exists()

@@ -133,7 +133,8 @@ class DiskMemo:
     def __init__(self, kind: str, name: str, code: Callable[[], Iterable[Path]]) -> None:
         self.kind, self.name, self._code = kind, name, code
         self._entries: dict | None = None     # read from the file, and made here
-        self._made: dict = {}                 # made in this process
+        self._made: dict = {}                 # made in this process, to be saved
+        self._unkept: dict = {}               # made here with reuse off: never saved
         if not _MEMOS:                        # a program using the API saves on exit
             atexit.register(save_memos)
         _MEMOS.append(self)
@@ -147,9 +148,9 @@ class DiskMemo:
 
     def entries(self) -> dict:
         r"""The remembered entries (read from the file on first use); with reuse off, only
-        those made in this process."""
+        those made in this process while it was off (never saved)."""
         if not reuse_enabled():
-            return self._made
+            return self._unkept
         if self._entries is None:
             self._entries = {**(load(self.path(), dict) or {}), **self._made}
         return self._entries
@@ -165,12 +166,14 @@ class DiskMemo:
             return compute()
         found = self.entries()
         if digest not in found:
-            found[digest] = self._made[digest] = compute()
+            found[digest] = compute()
+            if found is not self._unkept:
+                self._made[digest] = found[digest]
         return found[digest]
 
     def forget(self) -> None:
         r"""Drop what is in memory (the next use reads the file again)."""
-        self._entries, self._made = None, {}
+        self._entries, self._made, self._unkept = None, {}, {}
 
     def save(self) -> None:
         r"""Write the entries to the file when this process made any (best effort)."""
