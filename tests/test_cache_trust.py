@@ -343,3 +343,28 @@ def test_the_no_cache_flag_reads_and_writes_nothing(tmp_path):
     assert out.returncode == 0, out.stderr
     assert " agree, " in out.stdout
     assert not root.exists()
+
+
+def test_the_command_warns_once_and_gives_the_verdicts(tmp_path):
+    r"""``compare`` of eq. (25) (its step files compared in a forked worker) with a cache folder
+    others can write: one warning line naming the folder, the verdicts of a run without it,
+    exit code 0, nothing written there."""
+    import subprocess
+    import sys
+    root = tmp_path / "cache"
+    root.mkdir()
+    root.chmod(0o777)
+    eq25 = _derivation("eq25_lagrange.toml", "seed001")
+    command = [sys.executable, "-m", "wheeled_dyn.cli", "compare", "wip", str(eq25),
+               "--samples", str(SAMPLES), "--param-sets", str(PARAM_SETS),
+               "--out", str(tmp_path / "out")]
+    shared = subprocess.run(command, capture_output=True, text=True, timeout=300,
+                            env={**os.environ, CACHE_ENV: str(root), REUSE_ENV: "1"})
+    alone = subprocess.run([*command, "--no-cache"], capture_output=True, text=True,
+                           timeout=300, env={**os.environ, CACHE_ENV: str(root)})
+    assert shared.returncode == 0 and alone.returncode == 0, shared.stderr + alone.stderr
+    lines = [line for line in shared.stderr.splitlines() if line]
+    assert len(lines) == 1 and lines[0].startswith("wheeled-dyn: warning: the cache folder "
+                                                   f"{root} can be written by other users")
+    assert shared.stdout.replace(str(tmp_path), "") == alone.stdout.replace(str(tmp_path), "")
+    assert list(root.iterdir()) == []

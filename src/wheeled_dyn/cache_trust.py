@@ -31,6 +31,7 @@ import contextlib
 import os
 import secrets
 import stat
+import tempfile
 import warnings
 from collections.abc import Iterator
 from pathlib import Path
@@ -52,9 +53,16 @@ _keys: dict[str, bytes] = {}             # signing key by cache root (read once 
 
 
 def cache_root(root: str | Path | None = None) -> Path:
-    r"""The cache directory (not created here)."""
+    r"""The cache directory (not created here): ``root``, else ``$WHEELED_DYN_CACHE``, else
+    ``~/.cache/wheeled_dyn`` (without a home folder: ``wheeled_dyn-<uid>`` in the temporary
+    folder, which the checks below then judge like any other)."""
     if root is None:
-        root = os.environ.get(CACHE_ENV) or Path.home() / ".cache" / "wheeled_dyn"
+        root = os.environ.get(CACHE_ENV)
+    if not root:
+        try:
+            return Path.home() / ".cache" / "wheeled_dyn"
+        except (RuntimeError, KeyError):
+            return Path(tempfile.gettempdir()) / f"wheeled_dyn-{_uid()}"
     return Path(root)
 
 
@@ -100,8 +108,10 @@ def warn_once(key: str, message: str) -> None:
         warnings.warn(CacheWarning(message), stacklevel=3)
 
 
-def _uid() -> int:
-    return os.geteuid()
+def _uid() -> int | None:
+    r"""The user the checks are made for; None where the system has no POSIX owners (there
+    the file system's own permissions are all there is)."""
+    return os.geteuid() if hasattr(os, "geteuid") else None
 
 
 def _why_untrusted(folder: Path, own: bool) -> str | None:
@@ -114,6 +124,8 @@ def _why_untrusted(folder: Path, own: bool) -> str | None:
         return f"cannot be examined ({exc.strerror})"
     if not stat.S_ISDIR(st.st_mode):
         return "is not a folder"
+    if _uid() is None:
+        return None
     owners = (_uid(),) if own else (_uid(), 0)
     if st.st_uid not in owners:
         return f"belongs to another user (uid {st.st_uid})"
@@ -216,7 +228,8 @@ def signing_key(root: Path, create: bool = False) -> bytes | None:
         key = os.read(fd, KEY_BYTES + 1)
     finally:
         os.close(fd)
-    if st.st_uid != _uid() or st.st_mode & 0o077 or not stat.S_ISREG(st.st_mode):
+    if not stat.S_ISREG(st.st_mode) or (_uid() is not None and (st.st_uid != _uid()
+                                                                or st.st_mode & 0o077)):
         warn_once(f"trust {path}", f"the cache's key {path} is not private to this user "
                   f"(owner uid {st.st_uid}, mode {stat.S_IMODE(st.st_mode):04o}): the cache "
                   "is not used (delete the file to start anew)")

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import hashlib
 import importlib.metadata
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable
 from functools import lru_cache
 from pathlib import Path
 
@@ -65,11 +65,6 @@ def dependencies(path: Path, model: str, extra: Iterable[Path] = ()) -> list[Pat
     path = Path(path).resolve()
     return sorted({path, *path.parent.glob("*_steps.toml"), *model_files(model),
                    *(Path(p) for p in extra)})
-
-
-def file_stamps(paths: Sequence[Path]) -> tuple:
-    r"""The :func:`~wheeled_dyn.paths.file_stamp` of each file (None: missing)."""
-    return tuple(file_stamp(p) for p in paths)
 
 
 def note_parsed(paths: Iterable[Path]) -> None:
@@ -124,5 +119,5 @@ def reused(key: Callable[[], str], kind: type, compute: Callable[[], object],
     return value
 
 
-__all__ = ["REUSE_ENV", "dependencies", "file_stamps", "note_parsed", "package_digest",
+__all__ = ["REUSE_ENV", "dependencies", "note_parsed", "package_digest",
            "result_key", "results_reused", "reuse_enabled", "reused"]
