@@ -41,7 +41,7 @@ MIMIC = RIGHT + '\n    <mimic joint="wheel_left_joint" multiplier="1" offset="0"
 
 
 def _cli(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "wheeled_dyn.cli", *args], capture_output=True,
+    return subprocess.run([sys.executable, "-m", "wheeled_dyn.cli.main", *args], capture_output=True,
                           text=True, timeout=300)
 
 
@@ -221,6 +221,9 @@ def test_every_exported_function_checks_its_arguments():
     functions = [n for n in wd.__all__ if inspect.isfunction(getattr(wd, n))
                  and inspect.signature(getattr(wd, n)).parameters]
     assert {"load_model", "matrices", "full_terms", "simulate"} <= set(functions)
+    from wheeled_dyn import api
+    from wheeled_dyn.arguments import checked
+    checked(api.compare)                 # exported as the package today; checkable as is
     for name in functions:
         fn = getattr(wd, name)
         parameters = inspect.signature(fn).parameters.values()

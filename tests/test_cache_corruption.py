@@ -27,7 +27,7 @@ from wheeled_dyn.report import html, symbols  # noqa: E402
 from wheeled_dyn.symbolic import wheeled  # noqa: E402
 
 #: Examples of the quick property (one entry, read back) and of the slow one (a comparison).
-QUICK_EXAMPLES, COMPARISON_EXAMPLES = 300, 40
+QUICK_EXAMPLES, COMPARISON_EXAMPLES = 1000, 40
 #: A small grid: the verdicts only have to be the same as from an intact cache.
 SAMPLES, PARAM_SETS = 30, 1
 MEMOS = (printing.PRINTED, closed_form.RESIDUALS, compiled.SOURCES, seed_table.SHOWN,

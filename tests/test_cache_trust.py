@@ -336,7 +336,7 @@ def test_the_no_cache_flag_reads_and_writes_nothing(tmp_path):
     import sys
     root = tmp_path / "cache"
     env = {**os.environ, CACHE_ENV: str(root), REUSE_ENV: "1"}
-    out = subprocess.run([sys.executable, "-m", "wheeled_dyn.cli", "compare", "rolling_disk",
+    out = subprocess.run([sys.executable, "-m", "wheeled_dyn.cli.main", "compare", "rolling_disk",
                           str(_derivation()), "--no-cache", "--samples", str(SAMPLES),
                           "--param-sets", str(PARAM_SETS), "--out", str(tmp_path / "out")],
                          capture_output=True, text=True, env=env, timeout=300)
@@ -355,7 +355,7 @@ def test_the_command_warns_once_and_gives_the_verdicts(tmp_path):
     root.mkdir()
     root.chmod(0o777)
     eq25 = _derivation("eq25_lagrange.toml", "seed001")
-    command = [sys.executable, "-m", "wheeled_dyn.cli", "compare", "wip", str(eq25),
+    command = [sys.executable, "-m", "wheeled_dyn.cli.main", "compare", "wip", str(eq25),
                "--samples", str(SAMPLES), "--param-sets", str(PARAM_SETS),
                "--out", str(tmp_path / "out")]
     shared = subprocess.run(command, capture_output=True, text=True, timeout=300,

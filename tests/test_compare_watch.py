@@ -158,7 +158,7 @@ def test_a_urdf_saved_during_the_watch_is_the_truth_during_and_after(tmp_path):
            REUSE_ENV: "1"}                                 # results remembered, as users run
     grid = ["--samples", str(SAMPLES), "--param-sets", str(PARAM_SETS),
             "--out", str(tmp_path / "out")]
-    command = [sys.executable, "-m", "wheeled_dyn.cli", "compare", str(model), str(doc)]
+    command = [sys.executable, "-m", "wheeled_dyn.cli.main", "compare", str(model), str(doc)]
     proc = subprocess.Popen([*command, "--watch", *grid], stdout=subprocess.PIPE,
                             stderr=subprocess.STDOUT, text=True, bufsize=1, env=env)
     q: queue.Queue = queue.Queue()

@@ -12,7 +12,7 @@ the function is wrapped, so a new export cannot slip through unchecked):
   function: an instance of that;
 - a number (``float``): a finite real number; ``duration``, ``rate``, ``rtol``, ``atol``
   positive;
-- a count (``int``): an integer, at least 1;
+- a count (``int``): an integer, at least 1; a flag (``bool``): True or False;
 - a vector (``np.ndarray``): finite real numbers, and for ``q``, ``v``, ``u`` as many as the
   model has coordinates (velocities, inputs);
 - keyword arguments of a state (``**state: float``): finite real numbers, else
@@ -93,6 +93,11 @@ def _text(fn: str, name: str, value: Any, bound: dict) -> None:
         raise ArgumentError(fn, name, value, "a name (str)")
 
 
+def _flag(fn: str, name: str, value: Any, bound: dict) -> None:
+    if not isinstance(value, bool):
+        raise ArgumentError(fn, name, value, "True or False")
+
+
 def _callable(fn: str, name: str, value: Any, bound: dict) -> None:
     if not callable(value):
         raise ArgumentError(fn, name, value, "a function")
@@ -145,6 +150,7 @@ CHECKS: dict[str, Callable[[str, str, Any, dict], None]] = {
     "float": _number,
     "int": _count,
     "str": _text,
+    "bool": _flag,
     "Any": lambda fn, name, value, bound: None,
 }
 

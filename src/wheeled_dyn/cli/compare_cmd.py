@@ -180,7 +180,7 @@ def _bins(derivations, workers: int, heavy: frozenset[str] = frozenset()) -> lis
 
 def _compared(engine: ComparisonEngine, d) -> DerivationResult:
     r"""``engine.compare(d)``, reused from the results cache when nothing it depends on
-    changed (:mod:`.result_cache`)."""
+    changed (:mod:`~wheeled_dyn.compare.runtime.result_cache`)."""
     from ..compare.records import DerivationResult
     from ..compare.runtime.result_cache import result_key, reused
     grid = (engine.samples, engine.param_sets, engine.seed)

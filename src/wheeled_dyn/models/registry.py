@@ -59,6 +59,9 @@ def file_entry(mf: ModelFile) -> ModelEntry:
 
 MODELS: dict[str, ModelEntry] = {name: file_entry(mf)
                                  for name, mf in shipped_model_files().items()}
+#: The stamps of the shipped model files as they were read for :data:`MODELS`.
+_READ: dict[str, tuple | None] = {str(e.source): file_stamp(e.source) for e in MODELS.values()
+                                  if e.source is not None}
 for _name, _summary, _spec in PYTHON_BENCHMARKS:
     if _name in MODELS:
         raise UnknownNameError("model", _name, (), where="models.benchmarks: defined twice")
@@ -112,7 +115,9 @@ def model_entry(reference: str | Path) -> ModelEntry:
     if entry is not None:
         if entry.source is None:
             return entry
-        return _path_entry(str(entry.source), file_stamp(entry.source))   # a shipped file
+        stamp = file_stamp(entry.source)                     # a shipped model file
+        return entry if _READ.get(str(entry.source)) == stamp else _path_entry(
+            str(entry.source), stamp)
     if is_model_path(key):
         return _path_entry(key, file_stamp(key))
     raise UnknownNameError("model", str(reference), tuple(MODELS),
