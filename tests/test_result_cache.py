@@ -130,3 +130,12 @@ def test_the_key_covers_the_model_file_and_its_urdf(tmp_path):
     key = result_key(path, model, (1, 2, 3))
     assert result_key(path, model, (1, 2, 3), extra=[path.parent / "new.toml"]) != key
     assert result_key(path, model, (1, 2, 4)) != key
+
+
+def test_the_package_digest_covers_the_whole_package():
+    r"""Every file of the package is in the key (the digest's folder is the package's, not
+    that of the module computing it)."""
+    import wheeled_dyn
+    from pathlib import Path
+    from wheeled_dyn.compare.runtime import result_cache
+    assert result_cache._PACKAGE == Path(wheeled_dyn.__file__).resolve().parent
