@@ -41,8 +41,8 @@ MIMIC = RIGHT + '\n    <mimic joint="wheel_left_joint" multiplier="1" offset="0"
 
 
 def _cli(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "wheeled_dyn.cli.main", *args], capture_output=True,
-                          text=True, timeout=300)
+    return subprocess.run([sys.executable, "-m", "wheeled_dyn.cli.main", *args],
+                          capture_output=True, text=True, timeout=300)
 
 
 def _chain(folder: Path, links: int, moving: set[int] | None = None) -> Path:
