@@ -5,17 +5,20 @@ the time of the truth alone (Pinocchio, reduced, batched) for one coordinate set
 grid, all measured in the same run. A first report (not timed) fills the disk cache: the
 closed forms, and the printed forms (compiled code, text and LaTeX of expressions,
 simplified cells and residuals: :class:`~wheeled_dyn.disk_cache.DiskMemo`). No verdict is
-kept there: every comparison is made again.
+kept there: every comparison is made again (``WHEELED_DYN_REUSE=forms``).
 
 Then the commands as a user runs them (issue "Fast enough to iterate on"), wall time including
-start-up, rendering and writing, with the results cache off (``WHEELED_DYN_REUSE=0``; the
+start-up, rendering and writing, with the results cache off (``WHEELED_DYN_REUSE=forms``: the
 closed forms and the printed forms stay remembered), :data:`RUNS` times each:
 ``wheeled-dyn compare wip .../eq25_lagrange.toml`` (target < 1 s) and ``wheeled-dyn report``
 (target < 3 s); and ``wheeled-dyn report`` once with an empty cache folder (the closed forms
 derived, nothing printed before: a first run on a new machine). ``wheeled-dyn list`` and
 ``--help`` (target < 0.3 s) against the interpreter's own start-up (``python -c pass``). And
 the check again after a derivation file is saved, as ``compare --watch`` makes it (the same
-engine: the truth reused; the file's comparison, its step files', the reports written).
+engine: the truth reused; the file's comparison, its step files', the reports written). And
+the two commands with everything remembered (``WHEELED_DYN_REUSE=1``, after one run that
+fills the cache: nothing changed since), as a check made again runs (issue 25: the signed
+cache must not make them slower).
 
 Run: ``.venv/bin/python benchmarks/bench_report.py``
 """
@@ -41,12 +44,17 @@ from wheeled_dyn.derivations.builtin import BUILTIN_DIR
 RUNS = 5
 
 
-def _command_times(*args: str, runs: int = RUNS, env: dict | None = None) -> list[float]:
-    r"""Wall times of ``wheeled-dyn ARGS --out TMP`` (a fresh process each, reuse off)."""
+def _command_times(*args: str, runs: int = RUNS, env: dict | None = None,
+                   reuse: str = "forms") -> list[float]:
+    r"""Wall times of ``wheeled-dyn ARGS --out TMP`` (a fresh process each; results not
+    reused, unless ``reuse="1"``: then after one run, not timed, that stores them)."""
     command = [str(Path(sys.executable).with_name("wheeled-dyn")), *args]
-    env = {**os.environ, **(env or {}), "WHEELED_DYN_REUSE": "0"}
+    env = {**os.environ, **(env or {}), "WHEELED_DYN_REUSE": reuse}
     out = []
     with tempfile.TemporaryDirectory() as folder:
+        if reuse == "1":
+            subprocess.run([*command, "--out", folder], env=env, check=True,
+                           stdout=subprocess.DEVNULL)
         for _ in range(runs):
             t0 = time.perf_counter()
             subprocess.run([*command, "--out", folder], env=env, check=True,
@@ -100,7 +108,7 @@ def _check_after_saving(derivation: Path) -> list[float]:
 
 
 def main() -> None:
-    os.environ["WHEELED_DYN_REUSE"] = "0"      # every figure is a first check: no results reused
+    os.environ["WHEELED_DYN_REUSE"] = "forms"  # every figure is a first check: no results reused
     files = builtin_derivations("seed001")
     compare_report(files, DEFAULT_SAMPLES, DEFAULT_PARAM_SETS, table_group="seed001")  # fills
     t0 = time.perf_counter()
@@ -130,6 +138,9 @@ def main() -> None:
         times = _command_times(*args)
         print(f"wheeled-dyn {what}, results cache off, wall incl. start-up and writing, "
               f"{RUNS} runs: {min(times):.2f} .. {max(times):.2f} s (target < {target} s)")
+        warm = _command_times(*args, reuse="1")
+        print(f"wheeled-dyn {what}, everything remembered (nothing changed), wall, {RUNS} "
+              f"runs: {min(warm):.2f} .. {max(warm):.2f} s")
     start = _times([sys.executable, "-c", "pass"])
     for what in (("list",), ("--help",)):
         times = _times([str(Path(sys.executable).with_name("wheeled-dyn")), *what])

@@ -1,7 +1,9 @@
 """Shared fixtures: seeded random generators, models with random physical parameters.
 
 Comparison results are not reused from the disk cache in the tests (each test computes what it
-checks); tests/test_result_cache.py turns reuse on where it tests it.
+checks: ``WHEELED_DYN_REUSE=forms`` keeps only the printed and compiled forms and the closed
+forms); tests/test_result_cache.py and tests/test_cache_trust.py turn reuse on where they test
+it.
 """
 
 from __future__ import annotations
@@ -11,7 +13,7 @@ import os
 import numpy as np
 import pytest
 
-os.environ["WHEELED_DYN_REUSE"] = "0"           # also for the CLI subprocesses the tests start
+os.environ["WHEELED_DYN_REUSE"] = "forms"       # also for the CLI subprocesses the tests start
 
 #: Seed of every random generator in the tests.
 SEED = 20261122

@@ -25,3 +25,25 @@ def rewritten_copy(source: Path, folder: Path, *replacements: tuple[str, str],
     path = folder / source.name
     path.write_text(text)
     return path
+
+
+def own_wip_model(folder: Path, *urdf_replacements: tuple[str, str],
+                  model_replacements: tuple[tuple[str, str], ...] = ()) -> tuple[Path, Path]:
+    r"""The shipped ``wip`` model as a user's own: its model file (``wip.toml``, naming
+    ``wip.urdf`` beside it) and a copy of its URDF, in ``folder``, each ``(old, new)``
+    replaced once. Returns (model file, URDF)."""
+    from wheeled_dyn.models.registry import MODELS
+    from wheeled_dyn.paths import urdf_dir
+    urdf = folder / "wip.urdf"
+    text = (urdf_dir() / "wip.urdf").read_text()
+    for old, new in urdf_replacements:
+        assert text.count(old) == 1, old
+        text = text.replace(old, new)
+    urdf.write_text(text)
+    model = Path(MODELS["wip"].source).read_text().replace('package = "wheeled-dyn"\n', "")
+    for old, new in model_replacements:
+        assert model.count(old) == 1, old
+        model = model.replace(old, new)
+    path = folder / "wip.toml"
+    path.write_text(model.replace('name = "wip"', f'name = "{folder.name}_wip"'))
+    return path, urdf

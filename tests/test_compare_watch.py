@@ -1,5 +1,7 @@
 """``wheeled-dyn compare ... --watch``: a saved file is checked again (a broken save is reported
-and the watch goes on), Ctrl-C ends it with exit code 0; every wait is bounded."""
+and the watch goes on), Ctrl-C ends it with exit code 130 (as every command); a change of the
+model's URDF is a change too: the truth is computed again, during the watch and after it
+(the stale-watch sequence of issue 25); every wait is bounded."""
 
 from __future__ import annotations
 
@@ -13,7 +15,11 @@ import threading
 import time
 from pathlib import Path
 
-from wheeled_dyn.cli.watch import watch
+from shipped_copies import own_wip_model
+from wheeled_dyn.cli import compare_cmd as commands
+from wheeled_dyn.cli.watch import INTERRUPTED, watch, watched_files
+from wheeled_dyn.disk_cache import CACHE_ENV, REUSE_ENV
+from wheeled_dyn.report.markdown import summary_lines
 from wheeled_dyn.derivations.builtin import builtin_derivations
 from wheeled_dyn.errors import InputFileError
 
@@ -73,7 +79,7 @@ def test_watch_rechecks_saved_file_and_stops_on_ctrl_c(tmp_path):
         _wait_for(q, "checked again", seen)
         proc.send_signal(signal.SIGINT)
         _wait_for(q, "stopped watching", seen)
-        assert proc.wait(timeout=LINE_TIMEOUT) == 0
+        assert proc.wait(timeout=LINE_TIMEOUT) == INTERRUPTED == 130
     finally:
         if proc.poll() is None:
             proc.kill()
@@ -104,3 +110,80 @@ def test_watch_calls_check_once_per_save(tmp_path):
     t.join(timeout=10)
     assert len(calls) == 2
     assert any("broken on purpose" in line for line in lines)
+
+
+#: The left wheel's joint as the shipped URDF has it, and turned 90° about the body's x axis
+#: (its axis turned with it, so that it still spins about the axle): the wheel's symmetry
+#: axis is then vertical, its inertia about the axle Iw2 instead of Iw3 — another body.
+JOINT = """    <origin xyz="0 0 -0.35" rpy="0 0 0"/>
+    <axis xyz="0 0 1"/>"""
+TURNED = """    <origin xyz="0 0 -0.35" rpy="1.5707963267948966 0 0"/>
+    <axis xyz="0 1 0"/>"""
+#: Grid of the stale-watch sequence (small: the test is about which truth is used).
+SAMPLES, PARAM_SETS = 40, 2
+
+
+def _own_model(folder: Path) -> tuple[Path, Path, Path]:
+    r"""A copy of the wip model (model file, URDF) and of eq. (25) naming it, in ``folder``."""
+    model, urdf = own_wip_model(folder)
+    doc = folder / "eq25.toml"
+    doc.write_text(_eq25().read_text().replace('model = "wip"', f'model = "{model.name}"'))
+    return model, urdf, doc
+
+
+def _counts_line(model: Path, doc: Path) -> str:
+    r"""The counts line of a comparison made from scratch here (no result reused)."""
+    (result,) = commands.run_comparison([doc], SAMPLES, PARAM_SETS, model=str(model))
+    return summary_lines(result)[0]
+
+
+def _replace(path: Path, text: str) -> None:
+    r"""Save ``text`` to ``path`` as an editor does: a new file renamed over it."""
+    tmp = path.with_name(path.name + ".saving")
+    tmp.write_text(text)
+    os.replace(tmp, path)
+
+
+def test_a_urdf_saved_during_the_watch_is_the_truth_during_and_after(tmp_path):
+    model, urdf, doc = _own_model(tmp_path)
+    assert JOINT in urdf.read_text()
+    original, turned = urdf.read_text(), urdf.read_text().replace(JOINT, TURNED)
+    before = _counts_line(model, doc)
+    _replace(urdf, turned)
+    after = _counts_line(model, doc)
+    _replace(urdf, original)
+    assert before != after, "the turned joint must change the verdicts"
+    assert watched_files([doc], str(model)) == sorted([doc, model, urdf])
+    env = {**os.environ, "PYTHONUNBUFFERED": "1", CACHE_ENV: str(tmp_path / "cache"),
+           REUSE_ENV: "1"}                                 # results remembered, as users run
+    grid = ["--samples", str(SAMPLES), "--param-sets", str(PARAM_SETS),
+            "--out", str(tmp_path / "out")]
+    command = [sys.executable, "-m", "wheeled_dyn.cli.main", "compare", str(model), str(doc)]
+    proc = subprocess.Popen([*command, "--watch", *grid], stdout=subprocess.PIPE,
+                            stderr=subprocess.STDOUT, text=True, bufsize=1, env=env)
+    q: queue.Queue = queue.Queue()
+    threading.Thread(target=_reader, args=(proc.stdout, q), daemon=True).start()
+    seen: list[str] = []
+    try:
+        assert _wait_for(q, " agree, ", seen).strip() == before
+        _wait_for(q, "watching", seen)
+        time.sleep(0.05)
+        _replace(urdf, turned)                              # the URDF alone is saved
+        assert _wait_for(q, " agree, ", seen).strip() == after
+        _wait_for(q, "checked again", seen)
+        time.sleep(0.05)
+        _replace(doc, doc.read_text() + "\n# saved\n")      # then the derivation
+        assert _wait_for(q, " agree, ", seen).strip() == after
+        _wait_for(q, "checked again", seen)
+        proc.send_signal(signal.SIGINT)
+        assert proc.wait(timeout=LINE_TIMEOUT) == 130
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait(timeout=10)
+    for urdf_text, expected in ((turned, after), (original, before)):    # after the watch
+        _replace(urdf, urdf_text)
+        out = subprocess.run([*command, *grid], capture_output=True, text=True, env=env,
+                             timeout=LINE_TIMEOUT)
+        assert out.returncode == 0, out.stderr
+        assert expected in out.stdout, out.stdout

@@ -1,5 +1,5 @@
 """On-disk cache of symbolic models: hits return the same closed forms, the key follows the
-model's content, unreadable entries are replaced with a warning."""
+model's content, unreadable entries are derived again and replaced."""
 
 from __future__ import annotations
 
@@ -8,6 +8,7 @@ import pinocchio as pin
 import pytest
 from test_symbolic_model import SEED, arm3, wip_like
 
+from wheeled_dyn.disk_cache import MAGIC, REUSE_ENV
 from wheeled_dyn.symbolic import numeric_parameters
 from wheeled_dyn.symbolic.cache import (
     CACHE_ENV, cache_dir, cached_symbolic_model, clear_cache, model_fingerprint)
@@ -16,6 +17,7 @@ from wheeled_dyn.symbolic.cache import (
 @pytest.fixture
 def root(tmp_path, monkeypatch):
     monkeypatch.setenv(CACHE_ENV, str(tmp_path / "cache"))
+    monkeypatch.setenv(REUSE_ENV, "1")
     return tmp_path / "cache"
 
 
@@ -61,9 +63,9 @@ def test_unreadable_entry_is_replaced(root):
     path = root / "symbolic" / f"{model_fingerprint(model)}.pickle"
     path.parent.mkdir(parents=True)
     path.write_bytes(b"not a pickle")
-    with pytest.warns(UserWarning, match="unreadable"):
-        sym = cached_symbolic_model(model)
+    sym = cached_symbolic_model(model)                      # a miss: derived again
     assert sym.n == 3
+    assert path.read_bytes().startswith(MAGIC)              # replaced by a signed entry
     assert cached_symbolic_model(model).A == sym.A
     assert clear_cache() == 1
     assert not path.exists()

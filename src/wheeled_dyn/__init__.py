@@ -8,12 +8,15 @@ The Python API in four lines::
     terms.A, terms.C, terms.Q, terms.B, terms.h                 # in (dx, dpsi, dphi)
 
 Names are imported on first use (PEP 562 module ``__getattr__``), so ``import wheeled_dyn``
-and the command line's ``--help`` do not load Pinocchio, SymPy or matplotlib.
+and the command line's ``--help`` do not load Pinocchio, SymPy or matplotlib. The exported
+functions check their arguments first (:mod:`.arguments`): a wrong one raises the project's
+:class:`~wheeled_dyn.errors.ArgumentError`.
 """
 
 from __future__ import annotations
 
 import importlib
+import inspect
 import sys
 from typing import Any
 
@@ -52,6 +55,9 @@ def __getattr__(name: str) -> Any:
         raise AttributeError(f"module 'wheeled_dyn' has no attribute {name!r}")
     value = importlib.import_module(f".{name}", __name__) if not module else \
         getattr(importlib.import_module(module, __name__), name)
+    if inspect.isfunction(value):           # its arguments checked (.arguments)
+        from .arguments import checked
+        value = checked(value)
     globals()[name] = value
     return value
 

@@ -1,13 +1,22 @@
-r"""Top-level conveniences of the Python API (exported lazily by :mod:`wheeled_dyn`)."""
+r"""Top-level conveniences of the Python API (exported lazily by :mod:`wheeled_dyn`).
+
+Both check their arguments before any computing and raise the project's own, picklable
+errors (:class:`~wheeled_dyn.errors.ArgumentError`, :class:`~wheeled_dyn.errors.LimitError`,
+:class:`~wheeled_dyn.errors.DerivationError`), never a raw ``TypeError``.
+"""
 
 from __future__ import annotations
 
+import math
+import numbers
+from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
 from .constraints import CoordinateMap
 from .coordinates import builtin_coordinate_set
 from .dynamics import Terms
+from .errors import ArgumentError, DerivationError, LimitError, StateError
 from .models import WheeledModel
 from .models.registry import load_model
 
@@ -15,31 +24,119 @@ from .models.registry import load_model
 def matrices(model: WheeledModel | str, coords: str | None = None, **state: float) -> Terms:
     r"""A, C, Q, B, h of ``model`` in its built-in coordinate set ``coords`` at the state given
     by keyword (document names, e.g. ``phi=0.2, dx=1``; missing entries are 0)."""
-    wm = load_model(model) if isinstance(model, str) else model
+    if not isinstance(model, (WheeledModel, str, Path)):
+        raise ArgumentError("matrices", "model", model, "a model (wheeled_dyn.load_model) or "
+                            "a model name or model file path")
+    if coords is not None and not isinstance(coords, str):
+        raise ArgumentError("matrices", "coords", coords, "the name of a coordinate set")
+    for name, value in state.items():
+        if not _real(value):
+            raise StateError(name, value, "a finite real number")
+    wm = model if isinstance(model, WheeledModel) else load_model(model)
     cmap = CoordinateMap(wm, builtin_coordinate_set(wm, coords))
     q, nu = cmap.state_from(state)
     return cmap.terms(q, nu)
 
 
+def _real(value: object) -> bool:
+    return (not isinstance(value, bool) and isinstance(value, numbers.Real)
+            and math.isfinite(float(value)))
+
+
+def _integer(name: str, value: object, low: int, high: int) -> int:
+    r"""``value`` if it is an integer from ``low`` to ``high``, else :class:`ArgumentError`."""
+    if (isinstance(value, bool) or not isinstance(value, numbers.Integral)
+            or not low <= int(value) <= high):
+        raise ArgumentError("compare", name, value, f"an integer from {low} to {high:,}")
+    return int(value)
+
+
+#: The tables :func:`compare` takes (as a derivation file has them).
+TABLES = ("coordinates", "symbols", "inputs", "A", "C", "Q", "B", "G", "equations", "assumes",
+          "title", "source")
+#: The tables that hold expressions (checked for non-finite numbers).
+EXPRESSION_TABLES = ("A", "C", "Q", "B", "G", "equations")
+
+
+def _entries(value: Any, label: str) -> Iterable[tuple[str, Any]]:
+    r"""``(label, entry)`` of each entry of a matrix, nested list or list of equations, with
+    1-based indices as the reports write them (``A[2,3]``)."""
+    import sympy as sp
+    if isinstance(value, sp.MatrixBase):
+        for i in range(value.rows):
+            for j in range(value.cols):
+                yield f"{label}[{i + 1},{j + 1}]", value[i, j]
+    elif isinstance(value, (list, tuple)):
+        for i, item in enumerate(value):
+            yield from _entries(item, f"{label}[{i + 1}]" if "[" not in label
+                                else f"{label[:-1]},{i + 1}]")
+    elif isinstance(value, sp.Equality):
+        yield label, value.lhs
+        yield label, value.rhs
+    else:
+        yield label, value
+
+
+def _finite_tables(tables: dict[str, Any], title: str) -> None:
+    r"""Raise :class:`DerivationError` naming the element where an expression holds NaN or an
+    infinity (SymPy's ``nan``, ``oo``, ``zoo``, or a float that is not finite)."""
+    import sympy as sp
+    for key in EXPRESSION_TABLES:
+        if tables.get(key) is None:
+            continue
+        for label, entry in _entries(tables[key], key):
+            if isinstance(entry, str):
+                continue                        # text is parsed as a file's would be
+            try:
+                expr = sp.sympify(entry)
+            except (sp.SympifyError, TypeError, ValueError):
+                continue                        # reported by the parser, with its reason
+            if isinstance(expr, sp.Basic) and expr.has(sp.nan, sp.oo, -sp.oo, sp.zoo):
+                raise DerivationError(Path(f"<python: {title}>"), label,
+                                      f"'{entry}' is not a finite expression (it holds NaN "
+                                      "or an infinity); give the document's expression")
+
+
 def compare(model: str | Path, *, samples: int = 1000, param_sets: int = 5, seed: int = 2026,
-            **tables: Any):
+            reuse: bool = True, **tables: Any):
     r"""Compare a derivation given as SymPy objects with the truth; the same
     :class:`~wheeled_dyn.compare.records.DerivationResult` a file gives.
 
     ``tables``: ``coordinates`` (a built-in set's name or an inline table), ``symbols``
     (document name → value in the model), ``inputs``, ``A``, ``C``, ``Q``, ``B``, ``G`` or
     ``equations``, ``assumes``, ``title`` — see
-    :func:`wheeled_dyn.derivations.from_python.derivation_from_sympy`. For a check in a test
-    suite::
+    :func:`wheeled_dyn.derivations.from_python.derivation_from_sympy`. ``reuse=False`` uses
+    nothing remembered on disk (no compiled code, printed form or closed form: as
+    ``WHEELED_DYN_REUSE=0``). For a check in a test suite::
 
         result = wd.compare("wip", coordinates="seed001", A=A, C=C, Q=Q, symbols={...})
         assert not [r for r in result.records if r.verdict == "differs"]
     """
-    from .cli.compare_cmd import check_model_names
+    from .cache_trust import without_reuse
+    from .cli.compare_cmd import MAX_PARAM_SETS, MAX_SAMPLES, MAX_STATES, check_model_names
     from .compare.engine import ComparisonEngine
     from .derivations.from_python import derivation_from_sympy
     from .models.registry import model_entry
+    if not isinstance(model, (str, Path)):
+        raise ArgumentError("compare", "model", model, "a model name or a model file path")
+    samples = _integer("samples", samples, 1, MAX_SAMPLES)
+    param_sets = _integer("param_sets", param_sets, 1, MAX_PARAM_SETS)
+    seed = _integer("seed", seed, 0, 2 ** 63 - 1)
+    if samples * param_sets > MAX_STATES:
+        raise LimitError("samples × param_sets", samples * param_sets,
+                         f"at most {MAX_STATES:,} states", "memory and time grow with them")
+    if not isinstance(reuse, bool):
+        raise ArgumentError("compare", "reuse", reuse, "True or False")
+    unknown = sorted(set(tables) - set(TABLES))
+    if unknown:
+        raise ArgumentError("compare", unknown[0], tables[unknown[0]],
+                            "one of the tables " + ", ".join(TABLES))
+    _finite_tables(tables, str(tables.get("title", "derivation from Python")))
     model_entry(str(model))                    # an unknown model: its own error, first
-    d = derivation_from_sympy(model, **tables)
-    check_model_names(d)
-    return ComparisonEngine(samples=samples, param_sets=param_sets, seed=seed).compare(d)
+    with without_reuse(not reuse):
+        d = derivation_from_sympy(model, **tables)
+        check_model_names(d)
+        return ComparisonEngine(samples=samples, param_sets=param_sets, seed=seed).compare(d)
+
+
+__all__ = ["EXPRESSION_TABLES", "TABLES", "compare", "matrices"]

@@ -15,7 +15,9 @@ report in one process, before the code was remembered (below): its 721 compilati
 The code written is remembered across runs (the disk cache's ``compiled/numpy-<code>.pickle``,
 a :class:`~wheeled_dyn.disk_cache.DiskMemo` named by SymPy's version and this file), keyed by
 the argument names, the expression and ``cse``: compiling the same expression again only
-executes its code.
+executes its code. That file is signed and read only from the user's own private cache
+(:mod:`wheeled_dyn.disk_cache`, docs/cache.md): code altered or planted there is never
+executed, and with ``WHEELED_DYN_REUSE=0`` none is read (every function is written anew).
 
 It builds on two of SymPy's internals, ``lambdify``'s function printer and its NumPy
 namespace (a SymPy release without them gets ``lambdify`` itself);

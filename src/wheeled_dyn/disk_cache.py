@@ -1,69 +1,121 @@
 r"""Where the toolkit keeps what it computed once and can reuse: ``$WHEELED_DYN_CACHE`` if set,
-else ``~/.cache/wheeled_dyn``, one folder per kind of entry (``symbolic/`` closed forms,
-``urdf/`` outlines of URDF files). Entries are pickles written atomically (a temporary file in
-the same folder, renamed), so a reader never sees half an entry; an entry that cannot be read
-is treated as missing.
+else ``~/.cache/wheeled_dyn``, one folder per kind of entry (``results/`` comparisons,
+``symbolic/`` closed forms, ``urdf/`` outlines of URDF files, ``compiled/``, ``compare/``,
+``report/`` printed forms). The rules (docs/cache.md) are those of a cache that only saves
+time:
+
+- an entry ``<root>/<kind>/<file>`` is written atomically (a private temporary file in the
+  same folder, renamed), so a reader never sees half an entry;
+- it is signed: :data:`MAGIC`, then HMAC-SHA256 under the cache's private key
+  (:func:`~wheeled_dyn.cache_trust.signing_key`) of its name ``<kind>/<file>`` and its bytes,
+  then the pickle. The signature is checked before anything is unpickled, so an entry that
+  was altered, planted, written by other code or copied under another entry's name is never
+  loaded;
+- reading is best effort: a missing entry, one over :data:`MAX_ENTRY_BYTES`, one whose
+  signature does not match, and any exception while it is read or unpickled, are a miss;
+- writing is best effort: a folder that cannot be written (read-only, missing, full) gives
+  one :class:`~wheeled_dyn.errors.CacheWarning` naming it, once per process, and the run goes
+  on;
+- only folders of the user running the check are used, and nothing is read or written when
+  reuse is off (:mod:`wheeled_dyn.cache_trust`).
 
 A :class:`DiskMemo` is a dictionary of printed forms (compiled code, text, LaTeX, MathML,
 simplified display text) kept there between runs: printing the same expression again gives
-the same text, so a check made again does not print it again. Its file is named by SymPy's version and the code that
-prints, so text printed by other code is never served.
+the same text, so a check made again does not print it again. Its file is named by SymPy's
+version and the code that prints, so text printed by other code is never served.
 """
 
 from __future__ import annotations
 
 import atexit
 import hashlib
+import hmac
 import os
 import pickle
 import tempfile
-import warnings
 from collections.abc import Callable, Hashable, Iterable
 from pathlib import Path
+from typing import TypeVar
 
-#: Environment variable naming the cache directory.
-CACHE_ENV: str = "WHEELED_DYN_CACHE"
+from .cache_trust import (CACHE_ENV, REUSE_ENV, cache_root, reuse_enabled, signing_key,
+                          trusted_folder, trusted_root, warn_once, without_reuse)
+
+T = TypeVar("T")
+
+#: First bytes of every entry (the format's version).
+MAGIC = b"wdcache2"
+#: Largest entry read (bytes): a bigger file is a miss, never loaded.
+MAX_ENTRY_BYTES = 64 * 2 ** 20
+_SIGNATURE = hashlib.sha256().digest_size
 
 
-def cache_root(root: str | Path | None = None) -> Path:
-    r"""The cache directory (not created here)."""
-    if root is None:
-        root = os.environ.get(CACHE_ENV) or Path.home() / ".cache" / "wheeled_dyn"
-    return Path(root)
+def _place(path: Path) -> tuple[Path, str, str]:
+    r"""The root, the kind (folder) and the name ``<kind>/<file>`` of entry ``path``."""
+    path = Path(path)
+    return path.parent.parent, path.parent.name, f"{path.parent.name}/{path.name}"
 
 
-def store(path: Path, obj: object) -> None:
-    r"""Pickle ``obj`` to ``path`` atomically (a temporary file in the same folder, renamed)."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-", suffix=".pickle")
+def _signature(key: bytes, name: str, payload: bytes) -> bytes:
+    return hmac.new(key, name.encode() + b"\0" + payload, hashlib.sha256).digest()
+
+
+def store(path: Path, obj: object) -> bool:
+    r"""Pickle ``obj``, signed, to the entry ``path`` = ``<root>/<kind>/<file>``, atomically.
+    Best effort: True if it was written; False when reuse is off, the folder is not the
+    user's, or it cannot be written (then one warning naming it, once per process), or
+    ``obj`` cannot be pickled."""
+    root, kind, name = _place(path)
+    if (trusted_root(root, create=True) is None
+            or trusted_folder(root, kind, create=True) is None
+            or (key := signing_key(root, create=True)) is None):
+        return False
     try:
+        payload = pickle.dumps(obj, protocol=pickle.HIGHEST_PROTOCOL)
+    except Exception:                     # a value that cannot be pickled: not kept
+        return False
+    tmp = None
+    try:
+        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-", suffix=".pickle")
         with os.fdopen(fd, "wb") as fh:
-            pickle.dump(obj, fh, protocol=pickle.HIGHEST_PROTOCOL)
+            fh.write(MAGIC + _signature(key, name, payload) + payload)
         os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+        tmp = None
+    except OSError as exc:
+        warn_once(f"write {root}", f"the cache folder {path.parent} cannot be written "
+                  f"({exc.strerror or exc}); results are not kept (only slower)")
+        return False
+    finally:
+        if tmp is not None:
+            try:
+                os.unlink(tmp)
+            except OSError:
+                pass
+    return True
 
 
-def load(path: Path, kind: type, warn: bool = False) -> object | None:
-    r"""The entry at ``path`` if it is a readable pickle of a ``kind``, else None; with
-    ``warn``, an entry that exists but cannot be used says so (it is then made again)."""
+def load(path: Path, kind: type[T]) -> T | None:
+    r"""The entry at ``path`` if reuse is on, its folder is the user's, its signature is the
+    cache key's for its own name, and it unpickles to a ``kind``; else None (a miss, whatever
+    went wrong)."""
+    root, folder, name = _place(path)
+    if (trusted_root(root) is None or trusted_folder(root, folder) is None
+            or (key := signing_key(root)) is None):
+        return None
     try:
-        with path.open("rb") as fh:
-            obj = pickle.load(fh)
-    except FileNotFoundError:
+        with open(path, "rb") as fh:
+            if os.fstat(fh.fileno()).st_size > MAX_ENTRY_BYTES:
+                return None
+            data = fh.read(MAX_ENTRY_BYTES + 1)
+        head = len(MAGIC) + _SIGNATURE
+        if len(data) > MAX_ENTRY_BYTES or data[:len(MAGIC)] != MAGIC:
+            return None
+        payload = data[head:]
+        if not hmac.compare_digest(data[len(MAGIC):head], _signature(key, name, payload)):
+            return None
+        obj = pickle.loads(payload)
+    except Exception:                     # anything at all: a miss, computed again
         return None
-    except (OSError, EOFError, pickle.UnpicklingError, AttributeError, ImportError,
-            TypeError, ValueError) as exc:
-        if warn:
-            warnings.warn(f"cache entry {path} is unreadable ({exc}); made again", stacklevel=3)
-        return None
-    if isinstance(obj, kind):
-        return obj
-    if warn:
-        warnings.warn(f"cache entry {path} holds {type(obj).__name__}; made again",
-                      stacklevel=3)
-    return None
+    return obj if isinstance(obj, kind) else None
 
 
 class DiskMemo:
@@ -80,8 +132,9 @@ class DiskMemo:
 
     def __init__(self, kind: str, name: str, code: Callable[[], Iterable[Path]]) -> None:
         self.kind, self.name, self._code = kind, name, code
-        self._entries: dict | None = None
-        self._new = False
+        self._entries: dict | None = None     # read from the file, and made here
+        self._made: dict = {}                 # made in this process, to be saved
+        self._unkept: dict = {}               # made here with reuse off: never saved
         if not _MEMOS:                        # a program using the API saves on exit
             atexit.register(save_memos)
         _MEMOS.append(self)
@@ -94,44 +147,48 @@ class DiskMemo:
         return cache_root() / self.kind / f"{self.name}-{h.hexdigest()[:16]}.pickle"
 
     def entries(self) -> dict:
-        r"""The remembered entries (read from the file on first use)."""
+        r"""The remembered entries (read from the file on first use); with reuse off, only
+        those made in this process while it was off (never saved)."""
+        if not reuse_enabled():
+            return self._unkept
         if self._entries is None:
-            self._entries = load(self.path(), dict) or {}
+            self._entries = {**(load(self.path(), dict) or {}), **self._made}
         return self._entries
 
     def get(self, key: Hashable, compute: Callable[[], object]) -> object:
         r"""The value remembered under ``key``, else ``compute()``, remembered. Entries are
-        kept under a digest of the key's pickle (a SymPy expression pickles to the same bytes
-        in every process, and the file then holds no expressions to rebuild when read); a
-        key that cannot be pickled is computed every time."""
+        kept under the SHA-256 of the key's pickle (a SymPy expression pickles to the same
+        bytes in every process, and the file then holds no expressions to rebuild when
+        read); a key that cannot be pickled is computed every time."""
         try:
-            digest = hashlib.sha1(pickle.dumps(key, protocol=4)).digest()
-        except (pickle.PicklingError, TypeError, AttributeError, RecursionError):
+            digest = hashlib.sha256(pickle.dumps(key, protocol=4)).digest()
+        except Exception:
             return compute()
-        store_ = self.entries()
-        if digest not in store_:
-            store_[digest] = compute()
-            self._new = True
-        return store_[digest]
+        found = self.entries()
+        if digest not in found:
+            found[digest] = compute()
+            if found is not self._unkept:
+                self._made[digest] = found[digest]
+        return found[digest]
 
     def forget(self) -> None:
         r"""Drop what is in memory (the next use reads the file again)."""
-        self._entries, self._new = None, False
+        self._entries, self._made, self._unkept = None, {}, {}
 
     def save(self) -> None:
-        r"""Write the entries to the file when this process added any."""
-        if not self._new or self._entries is None:
+        r"""Write the entries to the file when this process made any (best effort)."""
+        if not self._made or not reuse_enabled():
             return
         path = self.path()
-        entries = {**(load(path, dict) or {}), **self._entries}
-        try:
-            store(path, dict(list(entries.items())[-MEMO_LIMIT:]))
+        entries = {**(load(path, dict) or {}), **(self._entries or {}), **self._made}
+        if store(path, dict(list(entries.items())[-MEMO_LIMIT:])):
+            self._made = {}
             for old in path.parent.glob(f"{self.name}-*.pickle"):
                 if old != path:               # made by other code: never read again
-                    old.unlink(missing_ok=True)
-        except (OSError, pickle.PicklingError, TypeError, AttributeError):
-            pass
-        self._new = False
+                    try:
+                        old.unlink()
+                    except OSError:
+                        pass
 
 
 #: Entries a :class:`DiskMemo` file keeps (the newest).
@@ -145,4 +202,5 @@ def save_memos() -> None:
         memo.save()
 
 
-__all__ = ["CACHE_ENV", "DiskMemo", "cache_root", "load", "save_memos", "store"]
+__all__ = ["CACHE_ENV", "MAGIC", "MAX_ENTRY_BYTES", "REUSE_ENV", "DiskMemo", "cache_root", "load",
+           "reuse_enabled", "save_memos", "store", "without_reuse"]

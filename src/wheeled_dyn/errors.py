@@ -6,12 +6,18 @@ subclass of :class:`WheeledDynError`. Each carries the data needed to act on it 
 expected. Nothing in the package uses ``assert`` for input validation.
 
 Every error survives a pickle round trip with its data (it is rebuilt from the arguments it was
-made with), so an error raised in a worker process reaches the user as the same one-line
+made with; an argument that cannot be pickled, such as a mapping proxy or a function, travels
+as its ``repr``), so an error raised in a worker process reaches the user as the same one-line
 message.
+
+Things worth knowing that are not errors (a mesh the dynamics do not need is missing, the disk
+cache cannot be used) are :class:`WheeledDynWarning`\ s; the command line prints each as one
+line.
 """
 
 from __future__ import annotations
 
+import pickle
 from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
@@ -24,8 +30,29 @@ def _names(valid: Iterable[str] | None) -> str:
     return f"; valid: {', '.join(items)}" if items else "; there are none"
 
 
-def _rebuild(cls: type, args: tuple, kwargs: dict[str, Any]) -> WheeledDynError:
-    return cls(*args, **kwargs)
+def _rebuild(cls: type, args: tuple, kwargs: dict[str, Any],
+             shown: tuple | None = None) -> WheeledDynError:
+    r"""``cls(*args, **kwargs)``, its message the one the original had (``shown``)."""
+    err = cls(*args, **kwargs)
+    if shown is not None:
+        err.args = shown
+    return err
+
+
+def _picklable(value: object) -> bool:
+    try:
+        pickle.dumps(value)
+    except Exception:
+        return False
+    return True
+
+
+def _restore(cls: type, args: tuple) -> WheeledDynError:
+    r"""An error of ``cls`` with ``args``, its constructor not called (its attributes follow
+    as the pickle's state)."""
+    self: WheeledDynError = Exception.__new__(cls)
+    self.args = args
+    return self
 
 
 class WheeledDynError(Exception):
@@ -36,14 +63,24 @@ class WheeledDynError(Exception):
     back an equal error, message and attributes included, whatever the subclass's signature.
     """
 
+    _ctor: tuple[tuple, dict[str, Any]]
+
     def __new__(cls, *args: Any, **kwargs: Any) -> WheeledDynError:
         self = super().__new__(cls, *args)
         self._ctor = (args, kwargs)
         return self
 
     def __reduce__(self):
-        args, kwargs = getattr(self, "_ctor", (self.args, {}))
-        return _rebuild, (type(self), args, kwargs), dict(self.__dict__)
+        ctor = getattr(self, "_ctor", None)
+        state = dict(self.__dict__)
+        if ctor is not None and _picklable((ctor, state, self.args)):
+            return _rebuild, (type(self), *ctor, self.args), state
+        # an argument that does not pickle (a mapping proxy, a function): the message and
+        # the attributes as they are, each that does not pickle as its repr
+        state = {k: v if _picklable(v) else repr(v) for k, v in state.items()
+                 if k != "_ctor"}
+        return _restore, (type(self), tuple(a if _picklable(a) else str(a)
+                                            for a in self.args)), state
 
 
 class InputFileError(WheeledDynError):
@@ -77,7 +114,7 @@ class UnknownNameError(WheeledDynError, KeyError):
                  where: str | None = None) -> None:
         self.kind = kind
         self.name = name
-        self.valid = tuple(sorted(valid)) if valid is not None else None
+        self.valid = tuple(sorted(str(v) for v in valid)) if valid is not None else None
         self.where = where
         prefix = f"{where}: " if where else ""
         super().__init__(f"{prefix}unknown {kind} {name!r}{_names(valid)}")
@@ -168,3 +205,44 @@ class WorkerError(WheeledDynError):
         which = f" while comparing one of: {', '.join(self.files)}" if self.files else ""
         super().__init__(f"{reason}{which}; compare them one by one "
                          "('wheeled-dyn compare MODEL FILE') to find the one")
+
+
+class ArgumentError(WheeledDynError, ValueError):
+    """An argument of a public function is of the wrong type or value (``load_model(123)``,
+    ``matrices(phi="abc")``, ``compare(samples=0)``). Attributes: ``function``, ``name`` (the
+    argument), ``value`` (as given), ``expected``; the message quotes the value's ``repr``,
+    shortened to :data:`SHOWN_CHARS`."""
+
+    def __init__(self, function: str, name: str, value: object, expected: str) -> None:
+        self.function = function
+        self.name = name
+        self.value = value
+        self.expected = expected
+        super().__init__(f"{function}({name}={_shown(value)}): expected {expected}")
+
+
+#: Longest ``repr`` of a value an :class:`ArgumentError` quotes (characters).
+SHOWN_CHARS = 80
+
+
+def _shown(value: object) -> str:
+    try:
+        text = repr(value)
+    except Exception:
+        text = f"<{type(value).__name__}>"
+    return text if len(text) <= SHOWN_CHARS else text[:SHOWN_CHARS - 3] + "..."
+
+
+class WheeledDynWarning(UserWarning):
+    """Something worth knowing that is not an error; the command line prints it as one line
+    (``wheeled-dyn: warning: ...``)."""
+
+
+class CacheWarning(WheeledDynWarning):
+    """The disk cache is not used or not written (a folder another user can write, a
+    read-only or full disk): the run goes on without it, only slower."""
+
+
+class ModelWarning(WheeledDynWarning):
+    """A model's file asks for something the dynamics do not need and that is not there
+    (a mesh file): the model is built without it."""

@@ -10,7 +10,8 @@ yes to root even on a read-only file system), and creates nothing.
 :func:`write_atomic` and :func:`write_files_atomic` write to a temporary name (``.NAME.XXXX``)
 in the target folder and rename it over the final name (``os.replace`` is atomic): a failure
 (a full disk, Ctrl-C) leaves the previous file or none, never half of one, and removes the
-temporary files on every path out.
+temporary files on every path out. The files get the mode ``open()`` would give them
+(:data:`FILE_MODE` less the umask: 0644 under the usual umask 022, 0600 under 077).
 """
 
 from __future__ import annotations
@@ -24,6 +25,8 @@ from .errors import InputFileError
 
 #: Longest name of one path component, in bytes (POSIX file systems: 255).
 NAME_MAX = 255
+#: Mode of the files written, before the umask (as ``open()`` creates files: 0666).
+FILE_MODE = 0o666
 
 
 def _check_names(p: Path) -> None:
@@ -87,6 +90,21 @@ def check_output_file(path: str | Path, suffix: str | None = None) -> Path:
     return p
 
 
+def current_umask() -> int:
+    r"""The process's umask: from ``/proc/self/status`` where Linux gives it, else by setting
+    it and setting it back (POSIX has no getter)."""
+    try:
+        with open("/proc/self/status", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("Umask:"):
+                    return int(line.split()[1], 8)
+    except (OSError, ValueError, IndexError):
+        pass
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
 def write_files_atomic(files: Mapping[str, str | bytes], folder: str | Path) -> list[Path]:
     r"""Write ``files`` (name → text or bytes) into ``folder`` (created if needed), all or
     none: every file is staged under a temporary name first, and the renames happen only when
@@ -97,15 +115,16 @@ def write_files_atomic(files: Mapping[str, str | bytes], folder: str | Path) -> 
     except OSError as exc:
         raise InputFileError(out, f"cannot create the folder: {exc.strerror}") from None
     staged: list[tuple[Path, Path]] = []
+    mode = FILE_MODE & ~current_umask()      # as open() would create it
     try:
-        for name, data in files.items():
-            fd, tmp = tempfile.mkstemp(prefix=f".{name}.", dir=out)
-            staged.append((Path(tmp), out / name))
+        for file, data in files.items():
+            fd, tmp = tempfile.mkstemp(prefix=f".{file}.", dir=out)
+            staged.append((Path(tmp), out / file))
             with os.fdopen(fd, "wb") as fh:
                 fh.write(data if isinstance(data, bytes) else data.encode("utf-8"))
-            os.chmod(tmp, 0o644)
-        for tmp, final in staged:
-            os.replace(tmp, final)
+            os.chmod(tmp, mode)
+        for staged_file, final in staged:
+            os.replace(staged_file, final)
     except OSError as exc:
         _remove(staged)
         name = exc.filename if isinstance(exc.filename, str) else out

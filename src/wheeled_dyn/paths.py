@@ -2,6 +2,7 @@ r"""Where the shipped files are: URDFs, derivation files, built-in coordinate se
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 PACKAGE_DIR = Path(__file__).resolve().parent
@@ -32,3 +33,13 @@ def example_robot_data_share() -> Path | None:
         if (share / "example-robot-data" / "robots").is_dir():
             return share
     return None
+
+
+def file_stamp(path: str | Path) -> tuple[int, int, int] | None:
+    r"""``(mtime_ns, size, inode)`` of a file, None when it is missing: what changes when the
+    file is saved (an editor's save, a rename over it)."""
+    try:
+        st = os.stat(path)
+    except (OSError, ValueError):
+        return None
+    return st.st_mtime_ns, st.st_size, st.st_ino

@@ -122,7 +122,9 @@ def run_comparison(files: Sequence[Path], samples: int, param_sets: int, seed: i
     from ..models.registry import model_entry, model_key
     from ..compare.engine import ComparisonEngine
     from ..compare.other_documents.linear import compare_linear, is_linear_document
+    from ..compare.runtime.result_cache import note_parsed
     linear = [Path(p) for p in files if is_linear_document(p)]
+    note_parsed(p for p in files if Path(p) not in linear)
     derivations = load_derivations([p for p in files if Path(p) not in linear])
     for item in [*derivations, *(load_linear_document(p) for p in linear)]:
         model_entry(item.model)
@@ -178,11 +180,13 @@ def _bins(derivations, workers: int, heavy: frozenset[str] = frozenset()) -> lis
 
 def _compared(engine: ComparisonEngine, d) -> DerivationResult:
     r"""``engine.compare(d)``, reused from the results cache when nothing it depends on
-    changed (:mod:`.result_cache`)."""
+    changed (:mod:`~wheeled_dyn.compare.runtime.result_cache`)."""
     from ..compare.records import DerivationResult
     from ..compare.runtime.result_cache import result_key, reused
-    key = result_key(d.path, d.model, (engine.samples, engine.param_sets, engine.seed))
-    return reused(key, DerivationResult, lambda: engine.compare(d))
+    grid = (engine.samples, engine.param_sets, engine.seed)
+    return reused(lambda: result_key(d.path, d.model, grid), DerivationResult,
+                  lambda: engine.compare(d), lambda r: Path(r.path) == Path(d.path),
+                  parsed=d.path)
 
 
 #: The derivations :func:`compare_report` parsed, by file: its forked workers inherit them.
@@ -230,7 +234,9 @@ def compare_report(files: Sequence[Path], samples: int, param_sets: int,
     from ..derivations import load_derivations
     from ..models.registry import model_entry
     from ..report.symbols import remember_notation
+    from ..compare.runtime.result_cache import note_parsed
     from ..compare.runtime.workers import Workers, can_fork
+    note_parsed(files)
     derivations = load_derivations(files)
     for d in derivations:
         model_entry(d.model)
@@ -302,10 +308,10 @@ def _reused_tables(engine: ComparisonEngine, group: str) -> tuple[list[str], lis
         return [], [], {}
     model = load_comparison_table(tables[0]).model
     folder = tables[0].parent
-    key = result_key(tables[0], model, ("tables", engine.samples, engine.param_sets,
-                                        engine.seed), [*folder.glob("*.toml"),
-                                                       *builtin_derivations(group)])
-    return reused(key, tuple, lambda: tuple(_table_sections(engine, group)))
+    grid = ("tables", engine.samples, engine.param_sets, engine.seed)
+    return reused(lambda: result_key(tables[0], model, grid, [*folder.glob("*.toml"),
+                                                              *builtin_derivations(group)]),
+                  tuple, lambda: tuple(_table_sections(engine, group)))
 
 
 def _table_sections(engine: ComparisonEngine, group: str) -> tuple[list[str], list[str], dict]:
@@ -416,12 +422,23 @@ def _cmd_compare(args: argparse.Namespace) -> int:
     check_output_folder(args.out)
     files = input_files(args.files)
     from ..compare.engine import ComparisonEngine
-    engine = ComparisonEngine(samples=args.samples, param_sets=args.param_sets, seed=2026,
-                              parallel_steps=True)
+    from ..models.registry import model_version
+    engines: dict[tuple, ComparisonEngine] = {}
 
     def check() -> None:
+        # one engine per content of the model's files: the truth is computed again when the
+        # model file or the URDF was saved since
+        try:
+            version = model_version(args.model)
+        except WheeledDynError:
+            version = ()
+        if version not in engines:
+            engines.clear()
+            engines[version] = ComparisonEngine(samples=args.samples,
+                                                param_sets=args.param_sets, seed=2026,
+                                                parallel_steps=True)
         results = run_comparison(files, args.samples, args.param_sets, model=args.model,
-                                 engine=engine)
+                                 engine=engines[version])
         print_summary(results)
         _write(results, f"wheeled_dyn: derivations of {args.model} against the truth",
                Path(args.out), args.plots)
@@ -429,12 +446,22 @@ def _cmd_compare(args: argparse.Namespace) -> int:
     if not getattr(args, "watch", False):
         check()
         return 0
-    from .watch import watch
+    from .watch import watch, watched_files
     try:
         check()
     except WheeledDynError as exc:          # the first version may be the broken one
         print(f"wheeled-dyn: error: {exc}", flush=True)
-    return watch(files, check)
+    return watch(lambda: watched_files(files, args.model), check)
+
+
+def _without_cache(handler: Callable[[argparse.Namespace], int]
+                   ) -> Callable[[argparse.Namespace], int]:
+    r"""``handler`` run with the disk cache off when ``--no-cache`` is given."""
+    def run(args: argparse.Namespace) -> int:
+        from ..cache_trust import without_reuse
+        with without_reuse(getattr(args, "no_cache", False)):
+            return handler(args)
+    return run
 
 
 def add_commands(sub: argparse._SubParsersAction) -> None:
@@ -461,4 +488,7 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
                        help="random physically consistent parameter sets")
         p.add_argument("--plots", action="store_true",
                        help="add simulations of each document beside the truth (PNG)")
-        p.set_defaults(handler=handler)
+        p.add_argument("--no-cache", action="store_true",
+                       help="use nothing remembered from earlier runs (results, compiled "
+                            "code, closed forms) and remember nothing; as WHEELED_DYN_REUSE=0")
+        p.set_defaults(handler=_without_cache(handler))

@@ -3,8 +3,8 @@ r"""The ``wheeled-dyn`` command: a thin layer over the Python API.
 Each sub-command module (``cli/*_cmd.py``) contributes its sub-commands through a function
 ``add_commands(subparsers)`` listed in :data:`COMMAND_MODULES`; the handler it registers with
 ``set_defaults(handler=...)`` receives the parsed arguments and returns an exit code. Errors of
-the project's own type are printed as one line on stderr with exit code 2; Ctrl-C ends a
-command with exit code 130 and one line, no traceback.
+the project's own type are printed as one line on stderr with exit code 2, its warnings as one
+line each; Ctrl-C ends a command with exit code 130 and one line, no traceback.
 
 A Ctrl-C that arrives while a module is being imported is held back until the import has
 finished (see :func:`_on_interrupt`): third-party packages catch ``BaseException`` around
@@ -20,10 +20,11 @@ import importlib
 import os
 import signal
 import sys
-from collections.abc import Sequence
+import warnings
+from collections.abc import Callable, Sequence
 from types import FrameType
 
-from ..errors import WheeledDynError
+from ..errors import WheeledDynError, WheeledDynWarning
 
 #: Modules that define ``add_commands(subparsers)``, in the order they appear in ``--help``.
 COMMAND_MODULES: tuple[str, ...] = (
@@ -99,11 +100,24 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _one_line(show: Callable[..., None]) -> Callable[..., None]:
+    r"""``warnings.showwarning`` that prints the project's warnings as one line
+    (``wheeled-dyn: warning: ...``) and leaves others to ``show``."""
+    def shown(message, category, filename, lineno, file=None, line=None) -> None:
+        if issubclass(category, WheeledDynWarning):
+            print(f"wheeled-dyn: warning: {message}", file=file or sys.stderr, flush=True)
+        else:
+            show(message, category, filename, lineno, file, line)
+    return shown
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     r"""Run the command ``argv`` (default: the process's arguments); its exit code. While it
-    runs, SIGINT is handled by :func:`_on_interrupt`."""
+    runs, SIGINT is handled by :func:`_on_interrupt`, and the project's warnings are printed
+    as one line each."""
     global _interrupted
     _interrupted = False
+    shown, warnings.showwarning = warnings.showwarning, _one_line(warnings.showwarning)
     try:
         previous = signal.signal(signal.SIGINT, _on_interrupt)
     except ValueError:               # not the main thread: signals are not ours to handle
@@ -120,6 +134,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         print("wheeled-dyn: interrupted", file=sys.stderr)
         return 130
     finally:
+        warnings.showwarning = shown
         if not interrupted:
             _restore_alarm(None)
             if previous is not None:

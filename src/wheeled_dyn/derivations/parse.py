@@ -19,6 +19,7 @@ is checked by the comparison engine, or here when ``parameters``/``links`` are p
 
 from __future__ import annotations
 
+import math
 from collections.abc import Collection, Iterable, Mapping
 from pathlib import Path
 from types import MappingProxyType
@@ -48,6 +49,8 @@ TOP_LEVEL_KEYS: tuple[str, ...] = ("title", "model", "source", "coordinates", "i
 #: how the document is read, binding) or ``"unknown"`` (the document's sign conventions are
 #: not known: a better reading found by the comparison is applied, and said first).
 CONVENTIONS: tuple[str, ...] = ("declared", "unknown")
+#: Names that stand for NaN or an infinity (in Python, SymPy or TOML): not finite numbers.
+NON_FINITE_NAMES = frozenset({"nan", "inf", "infinity", "oo", "zoo"})
 #: Keys of ``[assumes]``: what the document assumes (see docs/derivation-format.md).
 ASSUMES_KEYS: tuple[str, ...] = ("families", "linearised_about", "potential", "text")
 SYMBOL_KEYS: tuple[str, ...] = ("value", "units", "meaning", "input", "free", "latex")
@@ -118,12 +121,19 @@ class _Loader:
         if isinstance(text, bool) or not isinstance(text, (str, int, float)):
             raise self.fail(item, f"expected an expression, got {text!r}",
                             self.line(table, key))
+        if isinstance(text, float) and not math.isfinite(text):
+            raise self.fail(item, f"{text} is not a finite number (NaN or an infinity); give "
+                            "the document's expression", self.line(table, key))
         source = str(text)
         try:
             value = parse_expression(source, names)
             value = value.xreplace(self.expansion) if expand and self.expansion else value
             check_expanded(source, value)
         except UndeclaredNameError as exc:
+            if exc.name.lower() in NON_FINITE_NAMES:
+                raise self.fail(item, f"{exc.name!r} is not a finite number (NaN or an "
+                                "infinity) and not a declared symbol; give the document's "
+                                "expression", self.line(table, key, exc.name)) from None
             raise DerivationNameError(self.path, item, "symbol", exc.name, names,
                                       self.line(table, key, exc.name)) from exc
         except ExpressionError as exc:

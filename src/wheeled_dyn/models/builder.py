@@ -53,6 +53,7 @@ bowl, or a spheroid on the ground, is declared by ``contact``
 
 from __future__ import annotations
 
+import xml.etree.ElementTree as ET
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -65,7 +66,9 @@ from .contact import BallContact, SphereContact
 from .conventions import ANGLE_TOL, check_sides
 from .rolling_wheel import BoundWheelContact, WheelContact
 from .springs import SPRING_JOINTS, BoundSpring, JointSpring, spring_energy, spring_force
+from .urdf_checks import check_mimic
 from .urdf_source import UrdfSource, read_urdf
+from .visual_geometry import visual_geometry
 
 #: Largest |cos| between the axle and the up direction for the axle to count as horizontal
 #: (:data:`~.conventions.ANGLE_TOL`: URDFs round their angles); within it, the up direction is
@@ -75,6 +78,8 @@ HORIZONTAL_TOL = ANGLE_TOL
 AXIS_TOL = 1e-9
 #: Largest relative difference between the two wheel radii.
 RADIUS_TOL = 1e-9
+#: Shortest direction vector (``up``, a wheel axis) taken as a direction.
+DIRECTION_TOL = 1e-9
 #: Standard gravity of built models (m/s²); parameter sets may change it.
 GRAVITY = 9.81
 
@@ -225,10 +230,10 @@ def _joint_axis(jmodel: pin.JointModel) -> np.ndarray:
 
 
 def _urdf_models(source: UrdfSource, spec: ModelSpec) -> tuple[pin.Model, pin.GeometryModel]:
+    check_mimic(source.path, source.text, ET.fromstring(source.text), spec.locked, spec.lock)
     text = source.pinocchio_text()
     model = pin.buildModelFromXML(text)
-    geom = pin.buildGeomFromUrdfString(model, text, pin.GeometryType.VISUAL,
-                                       package_dirs=list(spec.package_dirs))
+    geom = visual_geometry(source, spec.name, spec.package_dirs, model, text)
     for name in spec.locked:
         if name not in spec.lock:
             raise ModelError(spec.name, name, "a value is given for a joint that is not locked")
@@ -326,8 +331,7 @@ def _build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
         raise ModelError(spec.name, None, "the two wheel centres coincide")
     axle /= 2 * half_track
     body_rot = data.oMf[urdf_model.getFrameId(body_link)].rotation
-    up = body_rot @ np.asarray(spec.up, dtype=float)
-    up /= np.linalg.norm(up)
+    up = body_rot @ _direction(spec, "up", spec.up, body_link)
     for link, axis in ((spec.wheels[0], al), (spec.wheels[1], ar)):
         if np.linalg.norm(np.cross(axis, axle)) > np.sin(ANGLE_TOL):
             raise ModelError(spec.name, link, "wheel spin axis is not along the axle (more "
@@ -378,6 +382,17 @@ def _build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
     return WheeledModel(spec.name, spec, model, geom, tuple(wheels), coordinate_names, inputs,
                         {"R": rl, "L": half_track, **spec.geometry}, body_jid,
                         springs=_bind_springs(spec, model, coordinate_names))
+
+
+def _direction(spec: ModelSpec, what: str, value: Sequence[float], item: str) -> np.ndarray:
+    r"""``value`` as a unit vector; :class:`ModelError` for three numbers that are not finite
+    or of length below :data:`DIRECTION_TOL`."""
+    v = np.asarray(value, dtype=float).reshape(-1)
+    norm = float(np.linalg.norm(v)) if v.shape == (3,) and np.all(np.isfinite(v)) else 0.0
+    if not norm > DIRECTION_TOL:
+        raise ModelError(spec.name, item, f"{what} direction {tuple(value)}: expected three "
+                                          "finite numbers, not all zero")
+    return v / norm
 
 
 def _move_joint_to(model: pin.Model, geom: pin.GeometryModel, jid: int, frame: pin.Frame) -> None:

@@ -189,6 +189,9 @@ def _validate(mf: ModelFile) -> None:
     for key in ("up", "forward"):
         if key in base:
             _numbers(mf, "base", key, base[key], 3)
+            if not math.hypot(*base[key]) > 0:
+                raise mf.fail(key, "expected a direction: three finite numbers, not all zero",
+                              "base")
     if "pitch" in base and not isinstance(base["pitch"], bool):
         raise mf.fail("pitch", "expected true or false", "base")
     for table, key in (("base", "type"), ("base", "body")):

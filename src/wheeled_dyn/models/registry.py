@@ -21,7 +21,8 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 
-from ..errors import UnknownNameError
+from ..errors import ArgumentError, UnknownNameError
+from ..paths import file_stamp
 from .benchmarks import PYTHON_BENCHMARKS
 from .builder import ModelSpec, WheeledModel, build_wheeled_model
 from .listing import shipped_model_files
@@ -39,6 +40,9 @@ class ModelEntry:
     source: Path | None = None              # the model file, if the model is one
 
 
+#: Models (and model files read) kept in memory, each per content of its files.
+MODEL_CACHE = 128
+
 #: Physical-parameter records by the name a model file gives (``parameters = "wip"``).
 PARAMETER_RECORDS: dict[str, type] = {"wip": WipParameters}
 
@@ -55,6 +59,9 @@ def file_entry(mf: ModelFile) -> ModelEntry:
 
 MODELS: dict[str, ModelEntry] = {name: file_entry(mf)
                                  for name, mf in shipped_model_files().items()}
+#: The stamps of the shipped model files as they were read for :data:`MODELS`.
+_READ: dict[str, tuple | None] = {str(e.source): file_stamp(e.source) for e in MODELS.values()
+                                  if e.source is not None}
 for _name, _summary, _spec in PYTHON_BENCHMARKS:
     if _name in MODELS:
         raise UnknownNameError("model", _name, (), where="models.benchmarks: defined twice")
@@ -66,6 +73,7 @@ def register_model(name: str, summary: str, spec: Callable[[], ModelSpec],
     r"""Register a model written in Python (a :class:`ModelSpec` function) under ``name``."""
     MODELS[name] = ModelEntry(name, summary, spec, parameters)
     _built.cache_clear()
+    _spec_of.cache_clear()
     return MODELS[name]
 
 
@@ -73,39 +81,86 @@ def model_names() -> tuple[str, ...]:
     return tuple(MODELS)
 
 
-@lru_cache(maxsize=None)
-def _path_entry(resolved: str) -> ModelEntry:
+@lru_cache(maxsize=MODEL_CACHE)
+def _path_entry(resolved: str, stamp: tuple | None) -> ModelEntry:
     return file_entry(read_model_file(resolved))
 
 
 def model_key(reference: str | Path) -> str:
     r"""The registry key of a model reference: the name, or the model file's absolute path."""
-    text = str(reference)
+    text = _reference(reference)
     if text in MODELS or not is_model_path(text):
         return text
     return str(Path(text).expanduser().resolve())
 
 
+def _reference(reference: object) -> str:
+    r"""``reference`` as text, if it can name a model; else :class:`ArgumentError`."""
+    if not isinstance(reference, (str, Path)) or isinstance(reference, bool):
+        raise ArgumentError("load_model", "name", reference,
+                            "a model name (see wheeled_dyn.model_names()) or a model file "
+                            "path (str or Path)")
+    text = str(reference)
+    if not text or "\0" in text:
+        raise ArgumentError("load_model", "name", reference,
+                            "a model name or a model file path without NUL characters")
+    return text
+
+
 def model_entry(reference: str | Path) -> ModelEntry:
-    r"""The entry of a model name or a model file path (see the module docstring)."""
+    r"""The entry of a model name or a model file path (see the module docstring); a model
+    file is read again when it changed since it was read."""
     key = model_key(reference)
-    if key in MODELS:
-        return MODELS[key]
+    entry = MODELS.get(key)
+    if entry is not None:
+        if entry.source is None:
+            return entry
+        stamp = file_stamp(entry.source)                     # a shipped model file
+        return entry if _READ.get(str(entry.source)) == stamp else _path_entry(
+            str(entry.source), stamp)
     if is_model_path(key):
-        return _path_entry(key)
-    raise UnknownNameError("model", str(reference), MODELS,
+        return _path_entry(key, file_stamp(key))
+    raise UnknownNameError("model", str(reference), tuple(MODELS),
                            where="names, or a model file path (name.toml)")
 
 
-@lru_cache(maxsize=None)
-def _built(key: str) -> WheeledModel:
-    return build_wheeled_model(model_entry(key).spec())
+def model_spec(reference: str | Path) -> ModelSpec:
+    r"""The :class:`ModelSpec` of a model (made once per content of its model file)."""
+    key = model_key(reference)
+    entry = model_entry(key)
+    return _spec_of(key, None if entry.source is None else file_stamp(entry.source))
+
+
+@lru_cache(maxsize=MODEL_CACHE)
+def _spec_of(key: str, stamp: tuple | None) -> ModelSpec:
+    return model_entry(key).spec()
+
+
+def model_files(reference: str | Path) -> tuple[Path, ...]:
+    r"""The files a model is built from: its model file (when it has one) and its URDF."""
+    entry = model_entry(reference)
+    urdf = Path(model_spec(reference).urdf)
+    return (Path(entry.source), urdf) if entry.source is not None else (urdf,)
+
+
+def model_version(reference: str | Path) -> tuple:
+    r"""What identifies the content a model is built from: the :func:`file_stamp` of each of
+    its :func:`model_files`. A cached model, truth or result made under another version is
+    stale."""
+    return tuple((str(f), file_stamp(f)) for f in model_files(reference))
+
+
+@lru_cache(maxsize=MODEL_CACHE)
+def _built(key: str, version: tuple) -> WheeledModel:
+    return build_wheeled_model(model_spec(key))
 
 
 def load_model(name: str | Path, params: WipParameters | None = None) -> WheeledModel:
     r"""The model named ``name`` (or described by the model file at that path), with the given
-    physical parameters if the model has a record."""
-    base = _built(model_key(name))
+    physical parameters if the model has a record. Built once per content of its files
+    (:func:`model_version`): a model file or URDF saved since is read again."""
+    key = model_key(name)
+    base = _built(key, model_version(key))
     if params is None:
         return base.with_model(pin.Model(base.model))
     entry = model_entry(name)

@@ -7,14 +7,20 @@ link or joint:
 
 - **structure** (:class:`~wheeled_dyn.errors.InputFileError`): a link or joint without a name or
   named twice; a joint without ``<parent link>``/``<child link>`` or naming a missing link; a
-  link that is the child of two joints; a cycle of joints; more than one root link.
+  link that is the child of two joints; a cycle of joints; more than one root link; more
+  than :data:`MAX_MOVING_JOINTS` moving joints (:class:`~wheeled_dyn.errors.LimitError`).
 - **inertial data** (:class:`~wheeled_dyn.errors.ModelError`): a mass that is not a finite
   positive number (a zero mass with a zero inertia is a massless frame, as real URDFs write
   ``base_footprint``, and counts as no ``<inertial>``); an inertia tensor :math:`I` (about the centre of mass) with a non-finite
   entry, with a negative principal moment (not positive semi-definite) or whose principal
   moments violate the triangle inequality :math:`I_a + I_b \ge I_c` (no mass distribution has
   them); a moving joint whose whole subtree carries no mass (its coordinate has no inertia:
-  the mass matrix is singular) — a link without ``<inertial>`` is massless.
+  the mass matrix is singular) — a link without ``<inertial>`` is massless; every check is
+  made without recursion (a chain of thousands of links is fine);
+- **mimic joints** (:func:`check_mimic`, :class:`~wheeled_dyn.errors.InputFileError`): a
+  moving joint that follows another is refused (it would be built as an independent
+  coordinate, a different body), unless it is locked with its leader at values that satisfy
+  the relation.
 
 A point mass (:math:`I = 0`) and a thin rod (one principal moment 0) are accepted: they are
 positive semi-definite limits that keep the mass matrix regular when other bodies carry
@@ -26,11 +32,12 @@ from __future__ import annotations
 import math
 import re
 import xml.etree.ElementTree as ET
+from collections.abc import Mapping
 from pathlib import Path
 
 import numpy as np
 
-from ..errors import InputFileError, ModelError
+from ..errors import InputFileError, LimitError, ModelError
 
 #: Relative tolerance (of the largest principal moment) for PSD and triangle checks.
 INERTIA_TOL = 1e-9
@@ -41,6 +48,12 @@ ACCEPT_HINT = ("; to build anyway (e.g. a small link merged into a larger body),
                "in the model file's accept_inertia")
 #: Joint types that do not move their child.
 FIXED_TYPES = ("fixed",)
+#: Most moving joints (neither fixed nor locked) a URDF may have: the symbolic coordinate
+#: maps of every comparison and ``matrices`` take time growing as the cube of the number of
+#: coordinates (measured: 49 coordinates 2.5 s, 99 coordinates 21 s).
+MAX_MOVING_JOINTS = 100
+#: Largest relative difference between a locked mimic joint's value and its leader's image.
+MIMIC_TOL = 1e-9
 
 
 def _line_of(text: str, tag: str, name: str) -> int | None:
@@ -95,6 +108,57 @@ def _check_inertial(path: Path, text: str, link: ET.Element, accept: tuple[str, 
                                           f"{', '.join(f'{m:.6g}' for m in moments)}) ({where})"
                                           + ACCEPT_HINT)
     return mass
+
+
+def _subtree_masses(mass: dict[str, float], parent_of: dict[str, str]) -> dict[str, float]:
+    r"""The mass each link carries (its own and everything below it), without recursion (a
+    chain of thousands of links is as deep): each link's mass is added to every link above
+    it, following the parents (the tree was checked: no cycles)."""
+    total = dict(mass)
+    depth: dict[str, int] = {}
+    for link in mass:                       # depth below the root, iteratively
+        path = []
+        while link not in depth and link in parent_of:
+            path.append(link)
+            link = parent_of[link]
+        base = depth.get(link, 0)
+        for k, item in enumerate(reversed(path), start=1):
+            depth[item] = base + k
+    for link in sorted(mass, key=lambda n: -depth.get(n, 0)):     # the deepest first
+        if link in parent_of:
+            total[parent_of[link]] += total[link]
+    return total
+
+
+def check_mimic(path: str | Path, text: str, root: ET.Element, locked: Mapping[str, float],
+                lock: tuple[str, ...]) -> None:
+    r"""Refuse a ``<mimic>`` joint the model would not honour: a moving joint that the URDF
+    makes follow another (``q = multiplier q_leader + offset``) would be built as an
+    independent coordinate, a different body. Accepted: a mimic on a fixed joint (nothing
+    moves), and a mimic joint that is locked with its leader at values that satisfy the
+    relation. Raises :class:`InputFileError` naming the joint and its line."""
+    path = Path(path)
+    types = {j.get("name"): j.get("type", "") for j in root.findall("joint")}
+    for joint in root.findall("joint"):
+        mimic = joint.find("mimic")
+        name = joint.get("name", "")
+        if mimic is None or types.get(name) in FIXED_TYPES:
+            continue
+        leader = mimic.get("joint", "")
+        factor, offset = _float(mimic.get("multiplier", "1")), _float(mimic.get("offset", "0"))
+        line = _line_of(text, "joint", name)
+        if name in lock and (leader in lock or types.get(leader) in FIXED_TYPES):
+            value, lead = locked.get(name, 0.0), locked.get(leader, 0.0)
+            if math.isfinite(factor) and math.isfinite(offset) and \
+                    abs(value - (factor * lead + offset)) <= MIMIC_TOL * (1 + abs(value)):
+                continue
+            raise InputFileError(path, f"joint {name!r} mimics {leader!r} (q = {factor:g} "
+                                       f"q_{leader} + {offset:g}): its locked value {value:g} "
+                                       f"does not follow the leader's {lead:g}", line=line)
+        raise InputFileError(path, f"joint {name!r} mimics joint {leader!r} (<mimic>): a "
+                                   "mimic joint is not modelled (each joint is an independent "
+                                   "coordinate here); lock it and its leader (model file "
+                                   "[joints] locked) or remove the <mimic>", line=line)
 
 
 def check_urdf_tree(path: str | Path, text: str, root: ET.Element,
@@ -155,18 +219,18 @@ def check_urdf_tree(path: str | Path, text: str, root: ET.Element,
     roots = [n for n in links if n not in parent_of]
     if len(roots) != 1:
         raise InputFileError(path, f"expected one root link, found {len(roots)}: {roots}")
+    moving = [j for j, (jtype, _, _) in joints.items()
+              if jtype not in FIXED_TYPES and j not in locked]
+    if len(moving) > MAX_MOVING_JOINTS:
+        raise LimitError(f"{path}: moving joints", len(moving), f"at most {MAX_MOVING_JOINTS} "
+                         "(lock the others in the model file)", "the time of the coordinate "
+                         "maps grows as their cube: 99 coordinates take 21 s")
     mass = {name: _check_inertial(path, text, link, accept) for name, link in links.items()}
-    children: dict[str, list[str]] = {}
-    for jname, (_, parent, child) in joints.items():
-        children.setdefault(parent, []).append(child)
-
-    def subtree_mass(link: str) -> float:
-        return mass[link] + sum(subtree_mass(c) for c in children.get(link, ()))
-
+    subtree = _subtree_masses(mass, {child: parent for _, parent, child in joints.values()})
     for jname, (jtype, _, child) in joints.items():
         if jtype in FIXED_TYPES or jname in locked:
             continue
-        if subtree_mass(child) <= 0:
+        if subtree[child] <= 0:
             raise ModelError(path.stem, child, f"link moved by joint {jname!r} has no inertial "
                                                "data, nor has anything it carries: the joint's "
                                                "coordinate would have no inertia "

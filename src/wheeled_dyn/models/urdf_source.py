@@ -16,6 +16,7 @@ import importlib.metadata
 import io
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
+from functools import lru_cache
 from pathlib import Path
 
 from ..disk_cache import cache_root, load, store
@@ -51,10 +52,9 @@ class UrdfOutline:
 def _outline(path: Path, text: str) -> UrdfOutline:
     r"""The outline of a URDF text, read with :mod:`yourdfpy` (which also rejects what it
     cannot read, as :class:`InputFileError` naming ``path``) and kept in the disk cache
-    (``urdf/``), keyed by the text: a file read before is not parsed again, and yourdfpy is
-    then not even imported."""
-    reader = importlib.metadata.version("yourdfpy")
-    key = hashlib.sha256(f"{OUTLINE_VERSION}\0{reader}\0{text}".encode()).hexdigest()
+    (``urdf/``), keyed by the text, yourdfpy's version and this code: a file read before is
+    not parsed again, and yourdfpy is then not even imported."""
+    key = hashlib.sha256(f"{_reader_digest()}\0{text}".encode()).hexdigest()
     entry = cache_root() / "urdf" / f"{key}.pickle"
     cached = load(entry, UrdfOutline)
     if cached is not None:
@@ -75,11 +75,18 @@ def _outline(path: Path, text: str) -> UrdfOutline:
     outline = UrdfOutline(tuple(link.name for link in robot.links),
                           tuple(JointInfo(j.name, j.type, j.parent, j.child)
                                 for j in robot.joints), tuple(cylinders))
-    try:
-        store(entry, outline)
-    except OSError:                     # a cache that cannot be written is only slower
-        pass
+    store(entry, outline)               # best effort: a cache that cannot be written is slower
     return outline
+
+
+@lru_cache(maxsize=1)
+def _reader_digest() -> str:
+    r"""What an outline depends on besides the text: :data:`OUTLINE_VERSION`, yourdfpy's
+    version and this module's code."""
+    h = hashlib.sha256(f"{OUTLINE_VERSION}\0{importlib.metadata.version('yourdfpy')}\0"
+                       .encode())
+    h.update(Path(__file__).read_bytes())
+    return h.hexdigest()
 
 
 @dataclass(frozen=True)

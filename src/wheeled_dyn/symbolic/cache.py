@@ -4,8 +4,11 @@ The key is a SHA-256 of everything the result depends on: each joint's type, axi
 and placement (floats in exact hexadecimal), the armature and gravity, the resolved standard
 parameters (numbers or SymPy ``srepr``), the coordinate names, the ``simplify`` flag, the SymPy
 version and the source text of this package (so a code change invalidates old entries). Values
-are pickles of the SymPy objects, written atomically. The directory is ``$WHEELED_DYN_CACHE``
-if set, else ``~/.cache/wheeled_dyn``; entries live under ``symbolic/``.
+are pickles of the SymPy objects, signed and written atomically by
+:mod:`wheeled_dyn.disk_cache` (an entry is taken only with its signature for its own name, the
+key; anything unreadable is derived again). The directory is ``$WHEELED_DYN_CACHE`` if set,
+else ``~/.cache/wheeled_dyn``; entries live under ``symbolic/``. With reuse off
+(``WHEELED_DYN_REUSE=0``) nothing is read or written.
 """
 
 from __future__ import annotations
@@ -83,12 +86,12 @@ def cached_symbolic_model(model: pin.Model, params: Mapping[int, Sequence] | Non
                           armature: Sequence | None = None, real: bool = False
                           ) -> SymbolicModel:
     """:func:`~.model.symbolic_model`, read from the cache when an entry for the same inputs
-    exists (unless ``refresh``), else derived and stored. An unreadable entry is reported
-    with a warning and replaced."""
+    exists (unless ``refresh``), else derived and stored. An unreadable entry is a miss: it
+    is derived again and replaced."""
     key = model_fingerprint(model, params, coordinate_names, gravity, simplify,
                             translations, armature, real)
     path = cache_dir(root) / f"{key}.pickle"
-    if not refresh and (found := load(path, SymbolicModel, warn=True)) is not None:
+    if not refresh and (found := load(path, SymbolicModel)) is not None:
         return found
     sym = symbolic_model(model, params, coordinate_names, gravity, simplify, translations,
                          armature, real)
@@ -102,7 +105,7 @@ def clear_cache(root: str | Path | None = None) -> int:
     removed = 0
     if d.is_dir():
         for path in d.glob("*.pickle"):
-            path.unlink()
+            path.unlink(missing_ok=True)
             removed += 1
     return removed
 

@@ -483,7 +483,7 @@ def true_expressions(model: str, cs: CoordinateSet, refresh: bool = False
     if key in _MEMORY and not refresh:
         return _MEMORY[key]
     path = cache_dir() / f"true-{key}.pickle"
-    if not refresh and (found := load(path, dict, warn=True)) is not None:
+    if not refresh and (found := load(path, dict)) is not None:
         _MEMORY[key] = found
         return found
     try:

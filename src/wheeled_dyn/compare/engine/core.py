@@ -32,6 +32,7 @@ from dataclasses import replace
 import numpy as np
 
 from ...derivations.schema import Derivation
+from ...models.registry import model_version
 from .conventions import convention_finding, unknown_convention
 from ..causes.root import root_causes
 from ..grid.grid import Grids
@@ -71,7 +72,8 @@ class ComparisonEngine:
 
     def compare(self, d: Derivation) -> DerivationResult:
         r"""The comparison of one derivation (memoised per file and content)."""
-        key = (str(d.path), d.path.stat().st_mtime_ns if d.path.exists() else 0)
+        key = (str(d.path), d.path.stat().st_mtime_ns if d.path.exists() else 0,
+               model_version(d.model))          # and per content of the model's files
         if key not in self._results:
             from ..steps.chain import with_steps       # earlier steps, upstream causes
             self._results[key] = with_steps(d, self._compare, self.seed, self.parallel_steps,

@@ -27,6 +27,7 @@ from ...coordinates import CoordinateSet
 from ...coordinates import builtin_coordinate_set, parse_coordinate_set
 from ...derivations.schema import Derivation
 from ...errors import DerivationError
+from ...models.registry import model_version
 from .arrays import Arrays
 from .assumptions import Assumptions, apply_to_truth, position_ranges
 from .samples import ParameterSet, SpecialCase, parameter_sets, random_states, regular_states
@@ -107,8 +108,9 @@ class Grids:
         special = tuple(dict.fromkeys((*assumed.families, *special)))
         raw = repr({name: value for name, value in d.coordinates.raw.items()
                     if name != ROWS_KEY})
-        key = (d.model, raw, d.coordinates.use, tuple(c.name for c in special), n_states, k,
-               assumed.key())
+        # the model as its files are now: a model file or URDF saved since is another truth
+        key = (d.model, model_version(d.model), raw, d.coordinates.use,
+               tuple(c.name for c in special), n_states, k, assumed.key())
         if key not in self._grids:
             self._grids[key] = self._make(d, special, n_states, k, assumed, raw, on_truth)
         return self._grids[key]
@@ -117,11 +119,12 @@ class Grids:
               assumed: Assumptions, raw: str, on_truth: Callable[[], None] | None) -> Grid:
         rng = np.random.default_rng([self.seed, len(special), n_states])
         sets = parameter_sets(d.model, k, rng, special)
-        ckey = (d.model, raw, d.coordinates.use)
+        version = model_version(d.model)
+        ckey = (d.model, version, raw, d.coordinates.use)
         if ckey not in self._sets:
             self._sets[ckey] = derivation_coordinate_set(d, sets[0])
         cs = self._sets[ckey]
-        mkey = (d.model, repr(cs))
+        mkey = (d.model, version, repr(cs))
         if mkey not in self._maps:
             self._maps[mkey] = CoordinateMap(sets[0].model, cs)
         cmap = self._maps[mkey]

@@ -22,6 +22,8 @@ from types import TracebackType
 
 #: Seconds between two looks at the workers while waiting for their results.
 POLL = 0.2
+#: Signals held back while the processes are forked.
+HELD_SIGNALS = {signal.SIGINT, *([signal.SIGALRM] if hasattr(signal, "SIGALRM") else [])}
 
 #: In a worker: the queue (inherited from the parent) on which it announces its process id
 #: and each derivation done.
@@ -77,9 +79,11 @@ class Workers:
         # Ctrl-C is held back while the processes are forked: one arriving inside the fork's
         # callbacks (logging's lock release) would be swallowed there and the command would
         # run on; held back, it is raised here once they are forked (the workers, which
-        # inherit it blocked, ignore it anyway)
+        # inherit it blocked, ignore it anyway). SIGALRM too: the command line raises a
+        # Ctrl-C it held back during an import from a SIGALRM (cli.main._on_interrupt), which
+        # could otherwise fire inside those callbacks
         held = hasattr(signal, "pthread_sigmask")
-        before = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT}) if held else None
+        before = signal.pthread_sigmask(signal.SIG_BLOCK, HELD_SIGNALS) if held else None
         self._pool = ctx.Pool(count, initializer=_start_worker)
         try:
             if held:

@@ -160,7 +160,7 @@ def upstream_causes(steps: Sequence[ElementRecord], eom_records: Sequence[Elemen
     return out
 
 
-_STEP_CACHE: dict[tuple[str, int, int], list[ElementRecord]] = {}
+_STEP_CACHE: dict[tuple, list[ElementRecord]] = {}
 
 
 _LOADED: dict[tuple[str, int], Derivation] = {}
@@ -175,8 +175,9 @@ def _load(path: Path) -> Derivation:
     return _LOADED[key]
 
 
-def _step_key(path: Path, seed: int) -> tuple[str, int, int]:
-    return str(path), path.stat().st_mtime_ns, seed
+def _step_key(path: Path, seed: int) -> tuple:
+    from ...models.registry import model_version
+    return str(path), path.stat().st_mtime_ns, seed, model_version(_load(path).model)
 
 
 def _step_records(d: Derivation, seed: int) -> list[ElementRecord]:
@@ -188,7 +189,7 @@ def _step_records(d: Derivation, seed: int) -> list[ElementRecord]:
 
 
 def _step_file(path: Path, seed: int) -> tuple[Derivation, list[ElementRecord]]:
-    r"""A step file and its records, compared once per content."""
+    r"""A step file and its records, compared once per content (of it and of its model)."""
     key = _step_key(path, seed)
     if key not in _STEP_CACHE:
         _STEP_CACHE[key] = _step_records(_load(path), seed)

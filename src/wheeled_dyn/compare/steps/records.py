@@ -31,6 +31,7 @@ from ...constraints.reduction import CoordinateMap
 from ...derivations.schema import Derivation
 from ...derivations.steps import RELATION_KINDS, RESULT_KINDS, VECTOR_KINDS, Step
 from ...errors import DerivationError
+from ...models.registry import model_version
 from ..judge.diagnose import (agrees, max_error, nice_number, power_diagnoses, swap_diagnoses,
                        term_diagnoses, trig_swap_diagnoses, value_diagnoses)
 from ..sides.elements import swap_groups
@@ -75,11 +76,12 @@ class _Group:
         self._argv: list[np.ndarray] | None = None
         rng = np.random.default_rng([seed, 11, len(given)])
         self.sets = given_parameter_sets(d, given, sets, rng)
-        ckey = (str(d.path), repr(d.coordinates.raw), d.coordinates.use)
+        version = model_version(d.model)          # the model's files as they are now
+        ckey = (str(d.path), repr(d.coordinates.raw), d.coordinates.use, version)
         if ckey not in _SETS:
             _SETS[ckey] = derivation_coordinate_set(d, self.sets[0])
         self.cs = _SETS[ckey]
-        key = (d.model, repr(self.cs))
+        key = (d.model, version, repr(self.cs))
         if key not in _MAPS:                      # compiled once, rebound per parameter set
             _MAPS[key] = CoordinateMap(self.sets[0].model, self.cs)
         self.cmap = _MAPS[key]
