@@ -360,13 +360,15 @@ def _causes(result: DerivationResult, names: Notation) -> str:
 def _conventions(result: DerivationResult) -> str:
     factors = S.row_factor_line(result)
     parts = []
+    equations = S.equations_line(result)
+    out = f'<p class="eqs"><b>Equations:</b> {_e(equations)}</p>' if equations else ""
     if S.conventions_line(result):
         parts.append(_e(S.conventions_line(result)))
     if factors:
         parts.append(_e(factors))
     if not parts:
-        return ""
-    return '<p class="conv"><b>Conventions:</b> ' + "; ".join(parts) + "</p>"
+        return out
+    return out + '<p class="conv"><b>Conventions:</b> ' + "; ".join(parts) + "</p>"
 
 
 def _grid_text(result: DerivationResult) -> str:

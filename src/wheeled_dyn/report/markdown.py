@@ -119,6 +119,8 @@ def derivation_markdown(result: DerivationResult) -> str:
     if not causes:
         lines += ["**Causes:** none, every element agrees.", ""]
     lines += [f"**Assumes:** {S.assumes_line(result, dict(names.assumed))}", ""]
+    if S.equations_line(result):
+        lines += [f"**Equations:** {S.equations_line(result)}.", ""]
     if S.conventions_line(result):
         lines += [f"**Conventions:** {S.conventions_line(result)}.", ""]
     factors = S.row_factor_line(result)

@@ -180,6 +180,28 @@ def cause_lines(result: DerivationResult) -> list[CauseLine]:
     return root + grouped + upstream
 
 
+def equations_line(result: DerivationResult) -> str:
+    r"""The equations as a whole, decided by their equivalence to the true ones: whether the
+    document's system is right, then each equation's verdict and the frame its elements are
+    compared in (``""`` where no equation was decided: a file of steps, a published
+    linearisation)."""
+    if not result.equations:
+        return ""
+    whole = {True: "right as a system (the same motions as the true equations)",
+             False: "not right as a system", None: "not decided"}[result.equivalent]
+    parts = []
+    for e in result.equations:
+        verdict = VERDICT_WORDS.get(e.verdict.value, e.verdict.value)
+        frame = "" if e.frame == "the true equation" else f" ({e.frame})"
+        parts.append(f"{e.label} {verdict}{frame}")
+    return f"{whole}: " + "; ".join(parts)
+
+
+#: Words for an equation's verdict.
+VERDICT_WORDS = {"agrees": "agrees", "agrees_if": "agrees only for special values",
+                 "differs": "differs", "undecided": "undecided"}
+
+
 def conventions_line(result: DerivationResult) -> str:
     r"""The conventions sentence: the file's reading kept (nothing explains more), or the
     better reading found with the verdict counts under both; ``""`` for a file of steps."""

@@ -283,9 +283,10 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     if any(r.verdict != Verdict.AGREES for r in drafts):
         name_terms(drafts, _id_values(d, funcs, id_sides, id_frames), found,
                    own_moments([ps.values for ps in id_sides.grid.sets], ID_STATES),
-                   _geometric(d), d.positions)
+                   _geometric(d), d.positions, _row_factors(rules, id_frames))
     solved = None
-    if decision is not None and not decision.equivalent and id_sides.doc.A is not None:
+    if decision is not None and not decision.equivalent and id_sides.doc.A is not None \
+            and any(r.kind == FrameKind.COMBINATION for r in rules):
         solved = inertia_diagnoses(id_sides.doc.A, id_sides.doc.B, id_sides.truth.A,
                                    id_sides.B_true, found)
     equations = equation_records(d, decision, drafts, texts, label, grids, funcs, rules, solved)
@@ -302,6 +303,15 @@ def _geometric(d: Derivation) -> set[sp.Symbol]:
         dim = units_dim(spec.units) if spec.units else None
         if dim is not None and dim[0] == 0 and dim[2] == 0:
             out.add(spec.symbol)
+    return out
+
+
+def _row_factors(rules: list[FrameRule], frames: list[Frame | None]) -> dict[int, np.ndarray]:
+    r"""Per row whose frame is the true equation times a factor, that factor per sample."""
+    out = {}
+    for i, (rule, frame) in enumerate(zip(rules, frames)):
+        if frame is not None and rule.kind != FrameKind.COMBINATION:
+            out[i] = frame.weights[:, i if rule.partner < 0 else rule.partner]
     return out
 
 

@@ -97,12 +97,15 @@ def _lacks(expr: sp.Expr) -> str:
 def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[int, ...]],
                tuple[np.ndarray, np.ndarray]], bases: Sequence[tuple[sp.Expr, np.ndarray]],
                moments: Mapping[str, np.ndarray], geometric: set[sp.Symbol],
-               positions: Sequence[sp.Symbol] = ()) -> None:
+               positions: Sequence[sp.Symbol] = (),
+               factors: Mapping[int, np.ndarray] | None = None) -> None:
     r"""Name the differing terms of the drafts (module text), in place. ``on_id``: each
     element's (document, truth in frame) values on the identification grid; ``geometric``
     the document's lengths, the only names a point-mass multiplier may contain (never a
     position: a body's own inertia enters the inertia matrix as a constant times
-    lengths)."""
+    lengths); ``factors``: per row, the factor the row is of the true equation (on the same
+    grid), divided out of a residual before it is compared with a body's own inertia (an
+    equation divided by m l has m l²/3 as l/3)."""
     lengths = [(e, v) for e, v in bases if e.free_symbols <= geometric
                and not e.has(*positions)]
     named = 0
@@ -120,7 +123,8 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
         if np.abs(residual).max(initial=0.0) <= 1e-7 * max(float(np.abs(T).max(initial=0.0)),
                                                              1e-300):
             continue                          # agrees on these sets (a family's condition)
-        hit = _point_mass(residual, moments, lengths) if r.key in ("A", "h") else None
+        own = residual if not factors or r.row not in factors else residual / factors[r.row]
+        hit = _point_mass(own, moments, lengths) if r.key in ("A", "h") else None
         if hit is None and has_kind(r.diagnoses, K.FACTOR):
             continue
         if hit is not None:

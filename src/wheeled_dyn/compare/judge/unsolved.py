@@ -1,12 +1,14 @@
 r"""Equations solved for the accelerations, read back before solving.
 
-A document that writes :math:`\ddot q = M_{doc}^{-1}(B u - n_{doc})` (simulation code does)
-hides its inertia matrix in every element; an error in it (a dropped inertia, a symbol for
-another in :math:`M_{doc}`) changes all of them. When the inputs act on every coordinate (B
-square and invertible), the document's own inertia matrix is read back from its inputs'
-coefficients, :math:`B_{doc} = M_{doc}^{-1}B`:
+A document that writes :math:`\ddot q = M_{doc}^{-1}(B u - n_{doc})` (simulation code does),
+or solves part of its equations, hides its inertia matrix in every element; an error in it (a
+dropped inertia, a symbol for another in :math:`M_{doc}`) changes all of them. When the inputs
+act on every coordinate (B square and invertible), the document's own inertia matrix, in the
+true equations' frame, is read back from its inputs' coefficients: its equations
+:math:`A_{doc}\ddot q + n_{doc} = B_{doc}u` are :math:`BB_{doc}^{-1}` times a system whose
+inputs enter as the truth's, with the inertia matrix
 
-.. math:: M_{doc} = B\,B_{doc}^{-1},
+.. math:: M_{doc} = B\,B_{doc}^{-1}A_{doc}
 
 and compared with the truth's A element by element; a differing element is named in the
 document's symbols (:mod:`.fitting`: "A[1,1] lacks I1"). This only explains: the equations'
@@ -53,20 +55,16 @@ def implied_inertia(doc_B: np.ndarray, true_B: np.ndarray) -> np.ndarray | None:
 def inertia_diagnoses(doc_A: np.ndarray, doc_B: np.ndarray | None, true_A: np.ndarray,
                       true_B: np.ndarray | None,
                       bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> Diagnosis | None:
-    r"""For a document every row of which is solved for an acceleration: the elements of its
-    own inertia matrix (read back from its inputs) that differ from the truth's, named
-    (module text); None when all agree or it cannot be read back."""
+    r"""The elements of the document's own inertia matrix (read back from its inputs,
+    module text) that differ from the truth's, named; None when all agree or it cannot be
+    read back."""
     n = doc_A.shape[1]
-    solved = solved_rows(doc_A)
-    if doc_B is None or true_B is None or len(solved) != n or \
-            sorted(k for k, _ in solved.values()) != list(range(n)):
+    if doc_B is None or true_B is None or not np.isfinite(doc_A).all():
         return None
-    ordered = np.empty_like(doc_B)           # row k: the equation solved for acceleration k
-    for i, (k, c) in solved.items():
-        ordered[:, k] = doc_B[:, i] / c
-    M = implied_inertia(ordered, true_B)
+    M = implied_inertia(doc_B, true_B)
     if M is None:
         return None
+    M = M @ doc_A
     scale = float(np.abs(true_A).max())
     parts, terms = [], []
     for i in range(n):
@@ -83,7 +81,7 @@ def inertia_diagnoses(doc_A: np.ndarray, doc_B: np.ndarray | None, true_A: np.nd
     if not parts:
         return None
     return Diagnosis(K.MISSING, "the inertia matrix the document inverted (read back from its "
-                     "inputs' coefficients, M = B B_doc⁻¹) differs from the truth's: "
+                     "inputs' coefficients, M = B B_doc⁻¹ A_doc) differs from the truth's: "
                      + "; ".join(parts), "; ".join(parts), terms=tuple(terms))
 
 
