@@ -37,15 +37,13 @@ An element is explained by at most one cause (the first in this order).
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from collections.abc import Sequence
 
 import numpy as np
 import sympy as sp
 
 from ...compiled import numpy_function
 from ..judge.diagnose import AGREE_TOL, agrees
-from ..grid.arrays import Arrays
 from ..sides.document import _h_tensor
 from ..sides.evaluation import Evaluation
 from ..records import (SPECIFIC_KINDS, Cause, CauseKind, DiagnosisKind as K, Step, Verdict,

@@ -27,17 +27,18 @@ from ..judge.document_checks import asymmetry, constraint_rows, energy_check
 from ..judge.draft import ElementDraft
 from ..judge.element import Trials, judge
 from ..judge.factorization import factorization
-from ..judge.fitting import bases, fit_factor
-from ..judge.named import name_terms, own_moments
+from ..judge.fitting import bases
+from ..judge.named import NAMED, name_terms, own_moments
 from ..judge.rows import drafts_of_row, row_values
 from ..judge.units import DimensionChecker
 from ..judge.unsolved import inertia_diagnoses
 from ..readings.describe import describe
-from ..readings.frames import Frame, FrameKind, FrameRule, candidate_rules, choose, evaluate_rule
-from ..records import Cause, DerivationResult, Verdict
+from ..readings.frames import Frame, FrameKind, evaluate_rule
+from .frames import choose_frames, declared_weights, id_frames, row_factors
+from ..records import Cause, DerivationResult, Verdict, has_kind
 from ..sides.both import Sides, both_sides
 from ..sides.document import DocumentFunctions
-from ..sides.elements import latex_names, swap_groups
+from ..sides.elements import swap_groups
 from ..sides.evaluation import Evaluation
 from ..sides.framed import framed, row_of, row_scale
 from ..sides.truth import special_truth_A
@@ -50,8 +51,6 @@ SPECIAL_SAMPLES, SPECIAL_SETS = 40, 2
 #: terms): states per set, parameter sets (a quantity of the parameters alone takes one value
 #: per set, so many sets).
 ID_STATES, ID_SETS = 8, 16
-#: Samples a ratio is fitted on to be taken as a simple expression (spread over the sets).
-SIMPLE_SAMPLES = 64
 
 
 @dataclass(frozen=True)
@@ -117,16 +116,21 @@ def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides
     true_n = sum(parts[1:], parts[0]) if both_n else None
     true_side = equivalence.Side(truth.A, true_n, _with_stiffness(
         truth.K if doc.K is not None else None, sides.B_true))
-    W = equivalence.combination_rows(doc.A, truth.A)
-    varies = np.nanmax(np.ptp(np.nan_to_num(W), axis=0), initial=0.0) > 1e-9 * max(
-        float(np.nanmax(np.abs(W), initial=0.0)), 1e-300)
+    first = equivalence.decide(doc_side, true_side, len(sides.grid.sets))
+    # the special positions matter where an equation is otherwise a combination of the true
+    # ones with weights that vary (a factor that may vanish there: sin θ)
+    W = first.W
+    varies = [i for i, e in enumerate(first.equations) if e.verdict == Verdict.AGREES and
+              np.nanmax(np.ptp(np.nan_to_num(W[:, i]), axis=0), initial=0.0) > 1e-9 * max(
+                  float(np.nanmax(np.abs(W[:, i]), initial=0.0)), 1e-300)]
+    if not varies:
+        return first
     special = None
-    if varies:
-        q, owner = special_states(sides.grid)
-        if len(q):
-            values = {s: np.asarray([sides.per_set[k][s] for k in owner]) for s in funcs.params}
-            at = funcs.evaluate(q, np.zeros_like(q), values)
-            special = (at.A, special_truth_A(sides.grid, q, owner))
+    q, owner = special_states(sides.grid)
+    if len(q):
+        values = {s: np.asarray([sides.per_set[k][s] for k in owner]) for s in funcs.params}
+        at = funcs.evaluate(q, np.zeros_like(q), values)
+        special = (at.A, special_truth_A(sides.grid, q, owner))
     return equivalence.decide(doc_side, true_side, len(sides.grid.sets), special)
 
 
@@ -140,62 +144,6 @@ def _grids(engine, d: Derivation, funcs: DocumentFunctions, sides: Sides,
         grid = engine.grids.get(d, tuple(cases), SPECIAL_SAMPLES, SPECIAL_SETS, assumed)
         out.append(both_sides(d, funcs, grid, engine.seed))
     return out
-
-
-def _frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], decision
-            ) -> tuple[list[FrameRule], list[Frame], list[int]]:
-    r"""Every row's frame rule (chosen over ``grids``), its frame on the main grid, and the
-    rows whose declared scale the (right) equation contradicts."""
-    main = grids[0]
-    rules, frames, wrong = [], [], []
-    rows = np.linspace(0, main.size - 1, min(SIMPLE_SAMPLES, main.size)).astype(int)
-    found = bases(d, main.grid.flat_q[rows], {s: np.asarray(v)[rows] if np.ndim(v) else v
-                                             for s, v in main.values.items()})
-
-    def simple(ratio: np.ndarray) -> bool:
-        r"""A ratio voted by one element of A alone is a simple expression of the document's
-        names (on samples spread over the sets: a hint only, the frame is then scored on
-        every sample)."""
-        return fit_factor(ratio[rows], found) is not None
-    declared_scale = None
-    for i in range(d.n):
-        right = decision is not None and decision.equations[i].verdict == Verdict.AGREES
-        candidates = candidate_rules(i, [(s.doc, s.truth, s.B_true) for s in grids],
-                                     not right, simple)
-        has_declared = d.row_scale is not None
-        declared_scale = _declared_weights(d, main, i, funcs) if has_declared else None
-        rule = choose(i, candidates, [(s.doc, s.truth, s.B_true) for s in grids],
-                      has_declared and not right, right)
-        frame = evaluate_rule(i, rule, main.doc, main.truth, main.doc.B, main.B_true,
-                              declared_scale)
-        if frame is None:
-            rule = FrameRule(FrameKind.IDENTITY)
-            frame = evaluate_rule(i, rule, main.doc, main.truth, main.doc.B, main.B_true)
-        if has_declared and rule.kind != FrameKind.DECLARED:
-            if _same(frame.weights, i, declared_scale):
-                rule = FrameRule(FrameKind.DECLARED)
-                frame = evaluate_rule(i, rule, main.doc, main.truth, main.doc.B, main.B_true,
-                                      declared_scale)
-            elif right:
-                wrong.append(i)
-        rules.append(rule)
-        frames.append(frame)
-    return rules, frames, wrong
-
-
-def _same(w: np.ndarray, i: int, factor: np.ndarray) -> bool:
-    r"""Weights ``w`` (S × n) that are ``factor`` × :math:`e_i` at every sample."""
-    expected = np.zeros_like(w)
-    expected[:, i] = factor
-    scale = max(float(np.abs(expected).max(initial=0.0)), 1e-300)
-    return bool(np.abs(w - expected).max(initial=0.0) <= 1e-7 * scale)
-
-
-def _declared_weights(d: Derivation, sides: Sides, i: int, funcs: DocumentFunctions
-                      ) -> np.ndarray:
-    r"""The factor the file declares for row ``i``, per sample."""
-    return np.broadcast_to(np.asarray(funcs.compiled(d.row_scale[i])(*sides.argv), float),
-                           (sides.size,))
 
 
 def _row_drafts(d: Derivation, funcs: DocumentFunctions, sides: Sides, frames: list[Frame],
@@ -233,7 +181,7 @@ def _agreeing(engine, d, funcs, rules, assumed):
         elements = []
         for i, rule in enumerate(rules):
             frame = evaluate_rule(i, rule, s.doc, s.truth, s.doc.B, s.B_true,
-                                  _declared_weights(d, s, i, funcs)
+                                  declared_weights(d, s, i, funcs)
                                   if rule.kind == FrameKind.DECLARED
                                   else None)
             if frame is None:
@@ -264,7 +212,7 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     cases = tuple(c for c in special_cases(d.model) if c not in assumed.families)
     grids = _grids(engine, d, funcs, sides, cases, assumed)
     stage("frames")
-    rules, frames, declared_wrong = _frames(d, funcs, grids, decision)
+    rules, frames, declared_wrong = choose_frames(d, funcs, grids, decision)
     stage("judging")
     label = equation_labels(str(d.source.get("equations", "")))
     drafts, gammas = _row_drafts(d, funcs, sides, frames, DimensionChecker(d), label)
@@ -272,21 +220,26 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     h_swaps(drafts)
     families.search(cases, drafts, _agreeing(engine, d, funcs, rules, assumed))
     factorization(drafts, gammas)
-    id_sides = both_sides(d, funcs, engine.grids.get(d, (), ID_STATES, ID_SETS, assumed),
-                          engine.seed)
-    id_frames = _id_frames(d, funcs, rules, id_sides)
-    found = bases(d, id_sides.grid.flat_q, id_sides.values)
+    combined = any(r.kind == FrameKind.COMBINATION for r in rules)
+    unnamed = any(r.verdict != Verdict.AGREES and r.key != "C" and not has_kind(r.diagnoses, *NAMED)
+                  for r in drafts)
+    solved, found, frames_on_id, id_sides = None, [], [None] * d.n, None
+    if unnamed or combined or any(r.kind == FrameKind.FUNCTION for r in rules):
+        # the identification grid (many parameter sets), only where something is identified
+        id_sides = both_sides(d, funcs, engine.grids.get(d, (), ID_STATES, ID_SETS, assumed),
+                              engine.seed)
+        frames_on_id = id_frames(d, funcs, rules, id_sides)
+        found = bases(d, id_sides.grid.flat_q, id_sides.values)
     texts = [describe(i, frame, None if on_id is None else on_id.weights, found, d.positions,
                       sides.doc.A[:, i, :] if sides.doc.A is not None else None,
                       None if d.row_scale is None else d.row_scale[i])
-             for i, (frame, on_id) in enumerate(zip(frames, id_frames))]
-    if any(r.verdict != Verdict.AGREES for r in drafts):
-        name_terms(drafts, _id_values(d, funcs, id_sides, id_frames), found,
+             for i, (frame, on_id) in enumerate(zip(frames, frames_on_id))]
+    if unnamed and id_sides is not None:
+        name_terms(drafts, _id_values(d, funcs, id_sides, frames_on_id), found,
                    own_moments([ps.values for ps in id_sides.grid.sets], ID_STATES),
-                   _geometric(d), d.positions, _row_factors(rules, id_frames))
-    solved = None
-    if decision is not None and not decision.equivalent and id_sides.doc.A is not None \
-            and any(r.kind == FrameKind.COMBINATION for r in rules):
+                   _geometric(d), d.positions, row_factors(rules, frames_on_id))
+    if decision is not None and not decision.equivalent and combined and id_sides is not None \
+            and id_sides.doc.A is not None:
         solved = inertia_diagnoses(id_sides.doc.A, id_sides.doc.B, id_sides.truth.A,
                                    id_sides.B_true, found)
     equations = equation_records(d, decision, drafts, texts, label, grids, funcs, rules, solved)
@@ -304,24 +257,6 @@ def _geometric(d: Derivation) -> set[sp.Symbol]:
         if dim is not None and dim[0] == 0 and dim[2] == 0:
             out.add(spec.symbol)
     return out
-
-
-def _row_factors(rules: list[FrameRule], frames: list[Frame | None]) -> dict[int, np.ndarray]:
-    r"""Per row whose frame is the true equation times a factor, that factor per sample."""
-    out = {}
-    for i, (rule, frame) in enumerate(zip(rules, frames)):
-        if frame is not None and rule.kind != FrameKind.COMBINATION:
-            out[i] = frame.weights[:, i if rule.partner < 0 else rule.partner]
-    return out
-
-
-def _id_frames(d: Derivation, funcs: DocumentFunctions, rules: list[FrameRule],
-               id_sides: Sides) -> list[Frame | None]:
-    r"""Every row's frame rule evaluated on the identification grid."""
-    return [evaluate_rule(i, rule, id_sides.doc, id_sides.truth, id_sides.doc.B,
-                          id_sides.B_true, _declared_weights(d, id_sides, i, funcs)
-                          if rule.kind == FrameKind.DECLARED else None)
-            for i, rule in enumerate(rules)]
 
 
 def _id_values(d: Derivation, funcs: DocumentFunctions, id_sides: Sides,

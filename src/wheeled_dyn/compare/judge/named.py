@@ -33,7 +33,7 @@ NAMED = (K.SIGN, K.POWER, K.SWAP, K.DIMENSION, K.EXTRA, K.UNDECIDED, K.POINT_MAS
 #: Axes of a link's own moments of inertia.
 AXES = ("x", "y", "z")
 #: Most elements of one derivation whose terms are named (each is a search).
-MAX_NAMED = 24
+MAX_NAMED = 12
 
 
 def own_moments(values: Sequence[Mapping[str, float]], states: int) -> dict[str, np.ndarray]:
@@ -124,7 +124,7 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
                                                              1e-300):
             continue                          # agrees on these sets (a family's condition)
         own = residual if not factors or r.row not in factors else residual / factors[r.row]
-        hit = _point_mass(own, moments, lengths) if r.key in ("A", "h") else None
+        hit = _point_mass(own, moments, lengths) if r.key == "A" else None
         if hit is None and has_kind(r.diagnoses, K.FACTOR):
             continue
         if hit is not None:

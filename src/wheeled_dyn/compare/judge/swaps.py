@@ -58,19 +58,28 @@ def _one_factor_trials(expr: sp.Expr, groups: Sequence[Sequence[sp.Symbol]]):
                     yield (t, sp.sstr(base ** e), sp.sstr(base ** (e - 1) * b), expr - t + new)
 
 
+#: Most trials of :func:`product_swaps` per element.
+MAX_PRODUCT_TRIALS = 48
+
+
 def product_swaps(expr: sp.Expr, trials, groups: Sequence[Sequence[sp.Symbol]], T: np.ndarray,
                   scale: float) -> list[Diagnosis]:
-    r"""A symbol written for another once, inside one product of one additive term (the
-    element everywhere else as printed): ``"lc1**2 where l1*lc1 fits in the term
-    m2*lc1**2*..."``."""
+    r"""A symbol written for another inside one product of one additive term (the element
+    everywhere else as printed): ``"lc1**2 where l1**2 fits in the term m2*lc1**2"``. The
+    trials are compiled together and screened on a few samples first."""
+    found: list[Diagnosis] = []
+    candidates = list(_one_factor_trials(expr, groups))[:MAX_PRODUCT_TRIALS]
+    if not candidates:
+        return found
     screen = trials.screen
-    found = []
-    for term, written, fits, trial in _one_factor_trials(expr, groups):
+    argv = [x[screen] if np.ndim(x) and len(x) == trials.size else x for x in trials.argv]
+    with np.errstate(all="ignore"):
+        values = trials.funcs.compiled(tuple(c[3] for c in candidates))(*argv)
+    for (term, written, fits, trial), v in zip(candidates, values):
+        v = np.broadcast_to(np.asarray(v, float), (len(screen),))
+        if not agrees(v, T[screen], scale):
+            continue
         with np.errstate(all="ignore"):
-            if not agrees(np.broadcast_to(np.asarray(trials.funcs.compiled(trial)(
-                    *[x[screen] if np.ndim(x) and len(x) == trials.size else x
-                      for x in trials.argv]), float), (len(screen),)), T[screen], scale):
-                continue
             if agrees(trials.evaluate(trial), T, scale):
                 found.append(diagnosis(K.SWAP, f"{written} where {fits} fits in the term "
                                        f"{sp.sstr(term)}", written=written, fits=fits,

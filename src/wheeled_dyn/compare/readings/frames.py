@@ -299,7 +299,7 @@ def freedom(rule: FrameRule, n: int) -> int:
     return n
 
 
-def _elements(doc_row: Arrays) -> int:
+def elements_of(doc_row: Arrays) -> int:
     r"""The number of A, Q, B elements and velocity products of H in one row."""
     count = 0
     for name in ("A", "Q", "B", "K"):
@@ -334,9 +334,9 @@ def choose(i: int, rules: Sequence[FrameRule], grids: Sequence[tuple[Arrays, Arr
                 total = -10 ** 9
                 break
             row = row_of(doc, i)
-            got = score(row, framed(frame.weights, truth, B_true))
+            got = score(row, framed(frame.weights, truth, B_true, full=False))
             if right:
-                if got == _elements(row):
+                if got == elements_of(row):
                     return rule
                 total = -10 ** 9
                 break
@@ -347,5 +347,6 @@ def choose(i: int, rules: Sequence[FrameRule], grids: Sequence[tuple[Arrays, Arr
 
 
 __all__ = ["CONSTANT_SPREAD", "Frame", "FrameKind", "FrameRule", "RATIO_TOL", "VOTE_FLOOR",
-           "candidate_rules", "choose", "combination_weights", "evaluate_rule", "freedom", "paired",
+           "candidate_rules", "choose", "combination_weights", "elements_of", "evaluate_rule", "freedom",
+           "paired",
            "score"]

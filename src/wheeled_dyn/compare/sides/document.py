@@ -9,7 +9,6 @@ namespace, at each parameter set.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
 
 import numpy as np
 import sympy as sp

@@ -10,9 +10,8 @@ r"""Element by element: both sides' numbers per element, and labels.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 
-import numpy as np
 import sympy as sp
 
 from ...derivations.schema import Derivation

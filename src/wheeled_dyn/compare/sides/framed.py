@@ -10,16 +10,18 @@ import numpy as np
 from ..grid.arrays import Arrays
 
 
-def framed(w: np.ndarray, truth: Arrays, B_true: np.ndarray | None) -> Arrays:
+def framed(w: np.ndarray, truth: Arrays, B_true: np.ndarray | None, full: bool = True
+           ) -> Arrays:
     r"""The truth brought into the frame: one row (S × 1 × ...) of A, C, Q, h, B (as
-    ``Arrays.B``) and H (on the truth's ``H_rows``)."""
+    ``Arrays.B``), K and H (on the truth's ``H_rows``); with ``full`` also h and
+    :math:`\Gamma` (not needed to score a frame)."""
     out = Arrays(H_rows=truth.H_rows)
     with np.errstate(all="ignore"):
         for name in ("A", "C", "K"):
             M = getattr(truth, name)
             if M is not None:
                 setattr(out, name, np.einsum("sl,slj->sj", w, M)[:, None, :])
-        for name in ("Q", "h"):
+        for name in ("Q", "h") if full else ("Q",):
             M = getattr(truth, name)
             if M is not None:
                 setattr(out, name, np.einsum("sl,sl->s", w, M)[:, None])
@@ -28,7 +30,7 @@ def framed(w: np.ndarray, truth: Arrays, B_true: np.ndarray | None) -> Arrays:
         if truth.H is not None:
             rows = truth.H_rows if truth.H_rows is not None else np.arange(len(w))
             out.H = np.einsum("sl,sljk->sjk", w[rows], truth.H)[:, None, :, :]
-        if truth.Gamma is not None:
+        if truth.Gamma is not None and full:
             rows = truth.H_rows if truth.H_rows is not None else np.arange(len(w))
             out.Gamma = np.einsum("sl,sljk->sjk", w[rows], truth.Gamma)[:, None, :, :]
     return out

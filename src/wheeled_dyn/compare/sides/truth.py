@@ -124,11 +124,9 @@ def special_truth_A(grid: Grid, q: np.ndarray, owner: np.ndarray) -> np.ndarray:
     out = np.full((len(q), n, n), np.nan)
     for k, ps in enumerate(grid.sets):
         rows = np.flatnonzero(owner == k)
-        if not len(rows):
-            continue
-        grid.cmap.bind(ps.model)
-        for r in rows:
-            out[r] = grid.cmap.terms(q[r], np.zeros(n)).A
+        if len(rows):
+            out[rows] = truth_for(grid.cmap, [ps], q[rows][None],
+                                  np.zeros((1, len(rows), n))).A
     return out
 
 

@@ -1,0 +1,111 @@
+r"""The frame each equation of a document is explained in, chosen on the grids (the engine's
+use of :mod:`..readings.frames`): per row, the simplest rule under which every element agrees
+when the equation is right; else the rule under which most elements agree beyond the weights
+it fits — the combinations that replace one inertia column only where the simple rules leave
+more differing elements than a combination has weights. A factor the file declares is kept,
+and where a right equation contradicts it, the row is listed (a ``file_error`` cause).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ...derivations.schema import Derivation
+from ..judge.fitting import bases, fit_factor
+from ..readings.frames import (Frame, FrameKind, FrameRule, candidate_rules, choose,
+                               elements_of, evaluate_rule, score)
+from ..records import Verdict
+from ..sides.both import Sides
+from ..sides.document import DocumentFunctions
+from ..sides.framed import framed, row_of
+
+#: Samples a ratio is fitted on to be taken as a simple expression (spread over the sets).
+SIMPLE_SAMPLES = 64
+
+
+def choose_frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], decision
+            ) -> tuple[list[FrameRule], list[Frame], list[int]]:
+    r"""Every row's frame rule (chosen over ``grids``), its frame on the main grid, and the
+    rows whose declared scale the (right) equation contradicts."""
+    main = grids[0]
+    rules, frames, wrong = [], [], []
+    rows = np.linspace(0, main.size - 1, min(SIMPLE_SAMPLES, main.size)).astype(int)
+    found = bases(d, main.grid.flat_q[rows], {s: np.asarray(v)[rows] if np.ndim(v) else v
+                                             for s, v in main.values.items()})
+
+    def simple(ratio: np.ndarray) -> bool:
+        r"""A ratio voted by one element of A alone is a simple expression of the document's
+        names (on samples spread over the sets: a hint only, the frame is then scored on
+        every sample)."""
+        return fit_factor(ratio[rows], found) is not None
+    declared_scale = None
+    on = [(s.doc, s.truth, s.B_true) for s in grids]
+    for i in range(d.n):
+        right = decision is not None and decision.equations[i].verdict == Verdict.AGREES
+        has_declared = d.row_scale is not None
+        declared_scale = declared_weights(d, main, i, funcs) if has_declared else None
+        rule = choose(i, candidate_rules(i, on, False, simple), on,
+                      has_declared and not right, right)
+        if not right and not has_declared and _differing(i, rule, main) > d.n:
+            rule = choose(i, candidate_rules(i, on, True, simple), on, False)
+        frame = evaluate_rule(i, rule, main.doc, main.truth, main.doc.B, main.B_true,
+                              declared_scale)
+        if frame is None:
+            rule = FrameRule(FrameKind.IDENTITY)
+            frame = evaluate_rule(i, rule, main.doc, main.truth, main.doc.B, main.B_true)
+        if has_declared and rule.kind != FrameKind.DECLARED:
+            if _same(frame.weights, i, declared_scale):
+                rule = FrameRule(FrameKind.DECLARED)
+                frame = evaluate_rule(i, rule, main.doc, main.truth, main.doc.B, main.B_true,
+                                      declared_scale)
+            elif right:
+                wrong.append(i)
+        rules.append(rule)
+        frames.append(frame)
+    return rules, frames, wrong
+
+
+def _differing(i: int, rule: FrameRule, main: Sides) -> int:
+    r"""How many of row ``i``'s elements differ under ``rule`` on the main grid."""
+    frame = evaluate_rule(i, rule, main.doc, main.truth, main.doc.B, main.B_true)
+    if frame is None:
+        return 10 ** 6
+    row = row_of(main.doc, i)
+    return elements_of(row) - score(row, framed(frame.weights, main.truth, main.B_true,
+                                                full=False))
+
+
+def _same(w: np.ndarray, i: int, factor: np.ndarray) -> bool:
+    r"""Weights ``w`` (S × n) that are ``factor`` × :math:`e_i` at every sample."""
+    expected = np.zeros_like(w)
+    expected[:, i] = factor
+    scale = max(float(np.abs(expected).max(initial=0.0)), 1e-300)
+    return bool(np.abs(w - expected).max(initial=0.0) <= 1e-7 * scale)
+
+
+def declared_weights(d: Derivation, sides: Sides, i: int, funcs: DocumentFunctions
+                      ) -> np.ndarray:
+    r"""The factor the file declares for row ``i``, per sample."""
+    return np.broadcast_to(np.asarray(funcs.compiled(d.row_scale[i])(*sides.argv), float),
+                           (sides.size,))
+
+
+def row_factors(rules: list[FrameRule], frames: list[Frame | None]) -> dict[int, np.ndarray]:
+    r"""Per row whose frame is the true equation times a factor, that factor per sample."""
+    out = {}
+    for i, (rule, frame) in enumerate(zip(rules, frames)):
+        if frame is not None and rule.kind != FrameKind.COMBINATION:
+            out[i] = frame.weights[:, i if rule.partner < 0 else rule.partner]
+    return out
+
+
+def id_frames(d: Derivation, funcs: DocumentFunctions, rules: list[FrameRule],
+               id_sides: Sides) -> list[Frame | None]:
+    r"""Every row's frame rule evaluated on the identification grid."""
+    return [evaluate_rule(i, rule, id_sides.doc, id_sides.truth, id_sides.doc.B,
+                          id_sides.B_true, declared_weights(d, id_sides, i, funcs)
+                          if rule.kind == FrameKind.DECLARED else None)
+            for i, rule in enumerate(rules)]
+
+
+__all__ = ["SIMPLE_SAMPLES", "choose_frames", "declared_weights", "id_frames", "row_factors"]
