@@ -33,8 +33,9 @@ RATIO_TOL = 1e-8
 MAX_FACTORS = 2
 #: Exponents tried for each base.
 EXPONENTS = (-2, -1, 1, 2)
-#: Largest denominator of the constant c0.
-MAX_DENOMINATOR = 12
+#: Largest denominator and numerator of the constant c0 (a fit that needs 7870917/10 has
+#: found a coincidence, not a term).
+MAX_DENOMINATOR, MAX_NUMERATOR = 12, 1000
 #: Most bases in a term of a sum a row was divided by; the fraction of the target's square
 #: a fit's residual may leave to be checked exactly; most fits checked.
 SUM_DEGREE, SCREEN_TOL, MAX_CANDIDATES = 3, 1e-12, 20
@@ -54,7 +55,7 @@ def bases(d: Derivation, q: np.ndarray, values: Mapping[sp.Symbol, np.ndarray]
     unique: list[tuple[sp.Expr, np.ndarray]] = []
     for expr, v in out:
         if np.abs(v).min() == 0 or not np.isfinite(v).all():
-            continue
+            continue                   # a name the grid holds constant is a number there
         if any(np.allclose(v, w, rtol=1e-12, atol=0) for _, w in unique):
             continue
         unique.append((expr, v))
@@ -67,6 +68,8 @@ def _constant(ratio: np.ndarray, product: np.ndarray) -> sp.Rational | None:
     if not np.isfinite(c0) or c0 == 0 or np.abs(c - c0).max() > RATIO_TOL * abs(c0):
         return None
     rational = sp.Rational(c0).limit_denominator(MAX_DENOMINATOR)
+    if abs(rational.p) > MAX_NUMERATOR:
+        return None
     return rational if abs(float(rational) - c0) <= RATIO_TOL * abs(c0) else None
 
 
