@@ -50,6 +50,7 @@ from __future__ import annotations
 import hashlib
 from collections.abc import Mapping, Sequence
 from dataclasses import fields, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pinocchio as pin
@@ -68,6 +69,9 @@ from .parameters import PARAMETER_NAMES, numeric_parameters
 from .simplify import canonical_trig, simplify_expr
 from .springs import spring_terms, with_springs
 from .transform import ReducedSymbolic, time_derivative, transform
+
+if TYPE_CHECKING:
+    from .tree_wheeled import ReducedTree
 
 #: Parameter modes of :func:`wheeled_symbolic`.
 PARAMETER_MODES: tuple[str, ...] = ("physical", "numbers", "standard")
@@ -404,7 +408,7 @@ def velocity_products(h: sp.Expr, nu: Sequence[sp.Symbol]) -> dict[tuple[int, in
     return out
 
 
-def element_expressions(red: ReducedSymbolic, inputs: Sequence[str] = ()) -> dict[str, sp.Expr]:
+def element_expressions(red: ReducedSymbolic | ReducedTree, inputs: Sequence[str] = ()) -> dict[str, sp.Expr]:
     r"""The elements of ``red`` labelled as the comparison engine labels them (1-based):
     ``"A[i,j]"``, ``"C[i,j]"``, ``"Q[i]"``, ``"B[i,j]"``, ``"G[i,j]"`` and ``"h[i]:a*b"`` (the
     coefficient of the velocity product ``a*b``, ``a`` not after ``b`` in the velocity
@@ -414,7 +418,7 @@ def element_expressions(red: ReducedSymbolic, inputs: Sequence[str] = ()) -> dic
     pars = tuple(red.parameters)
     out: dict[str, sp.Expr] = {}
     for key in ("A", "C", "B", "G"):
-        M = getattr(red, key)
+        M = getattr(red, key, None)
         if M is None:
             continue
         for i in range(M.shape[0]):
@@ -474,11 +478,11 @@ def true_expressions(model: str, cs: CoordinateSet, refresh: bool = False
     the model, the content of ``cs`` and the code version; ``refresh`` re-derives.
     """
     from ..models.registry import load_model, model_entry
+    from .expanded import expanded_tree
     model_entry(model)  # unknown names raise here
     wm = load_model(model)
     mode = "physical" if _has_physical_record(wm) else "standard"
-    if mode == "standard" and (wm.spec.base != "fixed" or wm.model.nv > STANDARD_MAX_DOF):
-        return None                     # free bodies and contacts: minutes in SymPy
+    tree = mode == "standard" and (wm.spec.base != "fixed" or wm.model.nv > STANDARD_MAX_DOF)
     key = _true_key(model, cs, wm) + mode
     if key in _MEMORY and not refresh:
         return _MEMORY[key]
@@ -486,9 +490,11 @@ def true_expressions(model: str, cs: CoordinateSet, refresh: bool = False
     if not refresh and (found := load(path, dict)) is not None:
         _MEMORY[key] = found
         return found
-    try:
-        red = wheeled_symbolic(wm, cs, mode)
+    try:            # free bodies and contacts: minutes in one piece, seconds as a tree
+        red = expanded_tree(wm, cs) if tree else wheeled_symbolic(wm, cs, mode)
     except ModelError:                        # a model the standard mode does not fit
+        red = None
+    if red is None:
         _MEMORY[key] = None
         return None
     out = element_expressions(red, wm.input_names)
