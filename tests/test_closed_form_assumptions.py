@@ -40,11 +40,16 @@ def test_family_substitution_is_the_family(case):
 
 
 def test_eq25_residual_is_the_tables_missing_term():
+    r"""Seed 001's table: C[1,2] lacks :math:`m_S d\sin\phi\,\dot\psi`, which the file's own
+    symbols write :math:`MY_1\sin\phi\,\dot\psi` (its declaration ``MY1 = MY(body)``); the
+    truth is in the file's symbols, under its families (no d_x, no I_a)."""
     engine = ComparisonEngine(samples=200, param_sets=2, seed=SEED)
     result = engine.compare(load_derivation(SHIPPED / "seed001" / "eq25_lagrange.toml"))
+    assert result.truth_in_document
     records = {r.element: r for r in result.records}
-    d, m_S, phi, dpsi = sp.symbols("d m_S phi dpsi", real=True)
-    names = {"d": d, "m_S": m_S, "phi": phi, "dpsi": dpsi}
+    MY1, phi, dpsi = sp.symbols("MY1 phi dpsi", real=True)
+    names = {"MY1": MY1, "phi": phi, "dpsi": dpsi}
     residual = sp.sympify(records["C[1,2]"].residual, locals=names)
-    assert sp.simplify(residual - m_S * d * sp.sin(phi) * dpsi) == 0
+    assert sp.simplify(residual - MY1 * sp.sin(phi) * dpsi) == 0
     assert "d_x" not in records["C[1,2]"].truth and "I_a" not in records["A[1,1]"].truth
+    assert "m_S" not in records["A[1,1]"].truth            # the model's symbols are gone

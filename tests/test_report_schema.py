@@ -65,20 +65,22 @@ def test_summary_anchors_exist_in_html(rendered):
 
 
 def test_benchmark_bodies_have_closed_form_truths():
-    r"""Seed 000's differential (no physical record): truths in Khalil's parameters, and the
-    residual of the G-for-G² typo is :math:`(G^2 - G)/4\,ZZ_{pinion}` with the model's G."""
+    r"""Seed 000's differential (no physical record): truths from the closed forms in
+    Khalil's parameters, written in the file's symbols (``I3 = ZZ(pinion)``), and the residual
+    of the G-for-G² typo is :math:`(G^2 - G)/4\,I_3` (G the model's ratio)."""
     import sympy as sp
 
     from wheeled_dyn.models.registry import load_model
     engine = ComparisonEngine(samples=100, param_sets=2, seed=SEED)
     result = engine.compare(load_derivation(SHIPPED / "seed000/p4_13_differential_theta1.toml"))
     records = {r.element: r for r in result.records}
+    assert result.truth_in_document
     assert all(records[f"A[{i},{j}]"].truth for i in (1, 2) for j in (1, 2))
-    G = sp.nsimplify(load_model("differential").geometry["G"], rational=True)
-    expected = (G**2 - G) / 4 * sp.Symbol("ZZ_pinion", real=True)
-    assert sp.simplify(sp.sympify(records["A[1,2]"].residual,
-                                  locals={"ZZ_pinion": sp.Symbol("ZZ_pinion", real=True)})
-                       - expected) == 0
+    I3, G_symbol = sp.Symbol("I3", real=True), sp.Symbol("G", real=True)
+    residual = sp.sympify(records["A[1,2]"].residual, locals={"I3": I3, "G": G_symbol})
+    G = G_symbol if G_symbol in residual.free_symbols else \
+        sp.nsimplify(load_model("differential").geometry["G"], rational=True)
+    assert sp.simplify(residual - (G**2 - G) / 4 * I3) == 0
 
 
 def test_latex_input_is_echoed():

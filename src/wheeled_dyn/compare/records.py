@@ -300,7 +300,9 @@ class EquationRecord:
     repeated). ``index`` is 0-based; ``frame`` says, in words, which combination of the true
     equations the document's is (``"the true equation"``, ``"-1 × the true equation"``,
     ``"divided by m*l"``, ``"solved for the accelerations"`` ...), the frame its elements are
-    compared in; ``max_error`` the largest residual relative to the row's size."""
+    compared in; ``max_error`` the largest residual relative to the row's size;
+    ``corrected``, ``corrected_latex``: an equation that differs as it should read, in the
+    document's symbols and frame (empty where the closed forms cannot write it)."""
 
     index: int
     label: str
@@ -309,6 +311,8 @@ class EquationRecord:
     frame: str
     max_error: float
     equation: str = ""
+    corrected: str = ""
+    corrected_latex: str = ""
 
     @property
     def texts(self) -> tuple[str, ...]:
@@ -319,7 +323,8 @@ class EquationRecord:
         return {"equation": self.label, "verdict": self.verdict.value,
                 "diagnoses": [d.text for d in self.diagnoses],
                 "findings": [d.as_dict() for d in self.diagnoses], "frame": self.frame,
-                "max_error": self.max_error, "label": self.equation}
+                "max_error": self.max_error, "label": self.equation,
+                "corrected": self.corrected, "corrected_latex": self.corrected_latex}
 
 
 @dataclass(frozen=True)
@@ -385,6 +390,9 @@ class DerivationResult:
     row_combination: tuple[tuple[str, ...], ...] = field(default=())
     #: the document's equations as a whole, decided by equivalence (:class:`EquationRecord`)
     equations: tuple[EquationRecord, ...] = field(default=())
+    #: the truths of the records are written in the document's own symbols (solved from its
+    #: declarations); else in the model's parameters
+    truth_in_document: bool = False
 
     @property
     def equivalent(self) -> bool | None:
@@ -434,6 +442,7 @@ class DerivationResult:
                 "row_combination": [list(r) for r in self.row_combination],
                 "equations": [e.as_dict() for e in self.equations],
                 "equivalent": self.equivalent,
+                "truth_in_document": self.truth_in_document,
                 "energy": self.energy.as_dict() if self.energy else None,
                 "asymmetric": list(self.asymmetric), "constraints": list(self.constraints),
                 "reconstructed": dict(self.reconstructed), "samples": self.samples,

@@ -33,6 +33,7 @@ from latex2mathml.converter import convert
 from ..compare.records import DerivationResult, DiagnosisKind, ElementRecord
 from ..disk_cache import DiskMemo
 from . import summary as S
+from .corrected import corrected_html
 from .markdown import VERDICT_TEXT, check_lines
 from .symbols import (
     Notation,
@@ -76,7 +77,7 @@ border:1px solid #bbb;white-space:nowrap;font-size:.92em}
 .toc{columns:2 24em;margin:.3em 0}.toc li{break-inside:avoid}
 .causes{background:#f6f6f6;padding:.4em .8em;border-left:4px solid #b33}
 .causes.grouped{border-left-color:#c90}.causes ul{margin:.2em 0;padding-left:1.2em}
-.meta,.assumes,.conv{margin:.35em 0}.note{color:#555;font-size:.92em}
+.meta,.assumes,.conv{margin:.35em 0}.fix{margin:.4em 0}.fix .m{overflow-x:auto}.fix pre{white-space:pre-wrap;font-size:.85em}.note{color:#555;font-size:.92em}
 .m{overflow-x:auto;overflow-y:hidden;max-width:100%;padding:.1em 0}
 .pair{display:flex;flex-wrap:wrap;gap:1em;margin:.4em 0}
 .pane{flex:1 1 auto;min-width:0;max-width:100%;overflow-x:auto;border:1px solid #ddd;
@@ -205,13 +206,13 @@ def _closed(result: DerivationResult, key: str) -> bool:
 
 
 def _matrix(result: DerivationResult, key: str, names: Notation, document: bool) -> str:
-    r"""One matrix of one side. With closed-form truths the document is shown in the model's
-    parameters (the truth's symbols); without, as printed, and both sides show their numbers
+    r"""One matrix of one side. With closed-form truths in the model's parameters the document
+    is shown in them too; without, or with the truth in the document's symbols, as printed, and both sides show their numbers
     at the reference state (the document's after dividing out a row factor)."""
     recs = {r.index: r for r in result.records if r.key == key}
     if not recs:
         return ""
-    closed = _closed(result, key)
+    closed = _closed(result, key) and not result.truth_in_document
     n = max(i[0] for i in recs) + 1
     cols = 1 if key == "Q" else max(i[1] for i in recs) + 1
     factors = [result.row_factors[i] if i < len(result.row_factors) else None for i in range(n)]
@@ -409,6 +410,7 @@ def derivation_html(result: DerivationResult, names: Notation | None = None) -> 
             f'<p class="note">Marked cells: ≠ differs, ? agrees only for special values, '
             f"≈ only the factorisation of C differs; click one for its entry below.</p>"
             f"{_matrices(result, names)}"
+            f"{corrected_html(result, _mathml)}"
             f"<h3>What differs or holds only conditionally ({len(shown)})</h3>"
             + (_cards(result, shown, names) or "<p>Nothing: every element agrees.</p>")
             + _agreeing(result, names)

@@ -9,6 +9,7 @@ from collections.abc import Sequence
 
 from ..compare.records import DerivationResult, DiagnosisKind, ElementRecord
 from . import summary as S
+from .corrected import corrected_markdown
 from .symbols import derivation_notation, difference_latex, product_latex, text_latex
 
 VERDICT_TEXT = {"agrees": "agrees", "agrees_if": "agrees only for special values",
@@ -126,6 +127,7 @@ def derivation_markdown(result: DerivationResult) -> str:
     factors = S.row_factor_line(result)
     if factors:
         lines += [f"**Rows:** {factors}.", ""]
+    lines += corrected_markdown(result)
     lines += [f"`{result.path.name}` — {src.get('document', '')} {src.get('section', '')}; model "
               f"`{result.model}`, coordinates `{result.coordinates}`; {result.samples} states × "
               f"{result.parameter_sets} random parameter sets; {_counts(result)}.", ""]

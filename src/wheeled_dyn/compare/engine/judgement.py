@@ -43,7 +43,7 @@ from ..sides.evaluation import Evaluation
 from ..sides.framed import framed, row_of, row_scale
 from ..sides.truth import special_truth_A
 from .equations import equation_records
-from .printing import print_drafts
+from .printing import corrected, print_drafts
 
 #: Smaller grid used to test special parameter families: states per set, sets.
 SPECIAL_SAMPLES, SPECIAL_SETS = 40, 2
@@ -243,9 +243,10 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
         solved = inertia_diagnoses(id_sides.doc.A, id_sides.doc.B, id_sides.truth.A,
                                    id_sides.B_true, found)
     equations = equation_records(d, decision, drafts, texts, label, grids, funcs, rules, solved)
-    print_drafts(d, drafts, sides.grid.cs, texts, assumed, funcs.exprs)
+    fixes = print_drafts(d, drafts, sides.grid.cs, texts, assumed, funcs.exprs)
+    equations = corrected(d, equations, fixes)
     return _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed,
-                      declared_wrong)
+                      declared_wrong, fixes.truth is not None)
 
 
 def _geometric(d: Derivation) -> set[sp.Symbol]:
@@ -274,7 +275,7 @@ def _id_values(d: Derivation, funcs: DocumentFunctions, id_sides: Sides,
 
 
 def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed,
-               declared_wrong) -> Judgement:
+               declared_wrong, in_document: bool) -> Judgement:
     grid = sides.grid
     scales = np.array([r.scale for r in [next((x for x in drafts if x.row == i), None)
                                           for i in range(d.n)] if r is not None] or [1.0])
@@ -309,7 +310,7 @@ def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed
         reconstructed=dict(d.reconstructed), samples=grid.q.shape[1],
         parameter_sets=len(grid.sets), notes=tuple(notes), assumes=assumed.describe(),
         latex_input=dict(d.latex_input), row_functions=functions, row_combination=combination,
-        equations=tuple(equations))
+        equations=tuple(equations), truth_in_document=in_document)
     causes = frame_causes(d, texts, rules, result.equations, declared_wrong)
     return Judgement(result, ev, tuple(causes), sides, funcs)
 

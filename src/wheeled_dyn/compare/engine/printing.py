@@ -6,6 +6,7 @@ engine has closed forms — the truth and truth − document in the row's frame
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass, replace
 
 import sympy as sp
 
@@ -13,15 +14,19 @@ from ...derivations.schema import Derivation
 from ..grid.assumptions import Assumptions
 from ..judge.draft import ElementDraft
 from ..presentation import closed_form
+from ..presentation.in_document import corrected_row, written
 from ..presentation.printing import printed
+from ..records import EquationRecord, Verdict
 from ..readings.describe import FrameText
 from ..sides.elements import element_expr, latex_names
 
 
 def print_drafts(d: Derivation, drafts: Sequence[ElementDraft], cs, texts: Sequence[FrameText],
-                 assumed: Assumptions, exprs) -> None:
+                 assumed: Assumptions, exprs) -> Corrections:
     r"""Fill the printed forms of every draft (module text), in place; ``exprs``: the
-    document's read-off matrices (its compiled functions'), C as the file prints it."""
+    document's read-off matrices (its compiled functions'), C as the file prints it. Returns
+    what :func:`corrected` needs: the truth in the document's symbols (None where the closed
+    forms or the declarations do not give it) and each row's frame."""
     as_printed = {**{k: exprs[k] for k in ("A", "Q", "B", "h")}, "C": d.C}
     names = latex_names(d)
     families = tuple(c.name for c in assumed.families)
@@ -36,7 +41,41 @@ def print_drafts(d: Derivation, drafts: Sequence[ElementDraft], cs, texts: Seque
             frames[i] = t.weights
         elif t.factor is not None:
             frames[i] = t.factor
-    closed_form.annotate(d, list(drafts), cs, frames, families)
+    return Corrections(closed_form.annotate(d, list(drafts), cs, frames, families), frames)
 
 
-__all__ = ["print_drafts"]
+@dataclass(frozen=True)
+class Corrections:
+    r"""The truth in a document's symbols (labels as the engine's) and each row's frame: a
+    factor of the true row or the weights of the true rows."""
+
+    truth: dict[str, sp.Expr] | None
+    frames: dict[int, tuple[sp.Expr, ...] | sp.Expr]
+
+
+def corrected(d: Derivation, equations: Sequence[EquationRecord], fixes: Corrections
+              ) -> list[EquationRecord]:
+    r"""The equations, each that differs with its corrected form (text and LaTeX) where the
+    truth reads in the document's symbols: :func:`.in_document.corrected_row` in the row's
+    frame, collected by acceleration and velocity product."""
+    if fixes.truth is None:
+        return list(equations)
+    names = latex_names(d)
+    out = []
+    for e in equations:
+        frame = fixes.frames.get(e.index)
+        if e.verdict is not Verdict.DIFFERS or frame is None:
+            out.append(e)
+            continue
+        weights = frame if isinstance(frame, tuple) else tuple(
+            frame if k == e.index else sp.Integer(0) for k in range(d.n))
+        row = corrected_row(d, e.index, fixes.truth, weights)
+        if row is None:
+            out.append(e)
+            continue
+        text, latex = written(d, row, names)
+        out.append(replace(e, corrected=text, corrected_latex=latex))
+    return out
+
+
+__all__ = ["Corrections", "corrected", "print_drafts"]

@@ -21,6 +21,7 @@ from ...disk_cache import DiskMemo
 from ...models.registry import model_entry
 from ...models.wip_parameters import WipParameters, standard_parameters
 from ..records import Diagnosis, DiagnosisKind
+from .in_document import in_document
 from .printing import printed
 
 #: Residuals up to this many operations are expanded with trigonometric identities for display
@@ -71,7 +72,7 @@ def model_expression(d: Derivation, standard: bool = False
     def convert(expr: sp.Expr | None) -> sp.Expr | None:
         if expr is None:
             return None
-        out = physical_in_standard(sp.sympify(expr).xreplace(mapping))  # CX(l) -> MX(l)/M(l)
+        out = sp.sympify(physical_in_standard(sp.sympify(expr).xreplace(mapping)))  # CX -> MX/M
         if to_standard is not None:
             return to_standard(out)
         if std is not None:
@@ -79,7 +80,7 @@ def model_expression(d: Derivation, standard: bool = False
             for call in out.atoms(AppliedUndef):
                 link = str(call.args[0])
                 if link in std and call.func.__name__ in std[link]:
-                    calls[call] = std[link][call.func.__name__]
+                    calls[call] = sp.sympify(std[link][call.func.__name__])
             out = out.xreplace(calls)
             out = out.xreplace({s: names.get(s.name, s) for s in out.free_symbols})
         return out
@@ -135,25 +136,35 @@ def _row_label(label: str, row: int) -> str:
 
 
 def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, ...] | sp.Expr],
-             families: tuple[str, ...] = ()) -> None:
+             families: tuple[str, ...] = ()) -> dict[str, sp.Expr] | None:
     r"""Fill ``truth`` (every element) and ``residual`` (truth − document, expanded, for the
     elements that do not agree) of the ``drafts`` where the symbolic engine provides closed
     forms; without them the drafts keep their numeric verdicts. ``frames``: per row, the
     document's frame in its own symbols — a factor :math:`c` (the row is :math:`c` × the true
     one) or the weights :math:`f_i` of a combination of the true rows; rows absent from it get
     no residual. The truth and the document are both read under the parameter ``families`` the
-    document assumes (:func:`family_substitution`)."""
+    document assumes (:func:`family_substitution`), in the document's own symbols where its
+    declarations determine the parameters (:func:`.in_document.in_document`: then the truth so
+    written is returned), else in the model's."""
     try:
         from ...symbolic import true_expressions
     except ImportError:
-        return
+        return None
     truth = true_expressions(d.model, cs)
     if not truth:
-        return
+        return None
     physical = model_entry(d.model).parameters is WipParameters
     to_model = model_expression(d, standard=not physical)
     assumed = family_substitution(families) if physical else {}
-    if assumed:
+    ours = in_document(d, truth, to_model, assumed if physical else None, families)
+    if ours is not None:
+        truth, physical = ours, True
+        values = {s.symbol: to_model(s.symbol) for s in d.symbols.values()}
+        numbers = {k: v for k, v in values.items() if v is not None and sp.sympify(v).is_Number}
+
+        def to_model(e: sp.Expr | None) -> sp.Expr | None:
+            return None if e is None else sp.sympify(e).xreplace(numbers)
+    elif assumed:
         truth = {k: sp.sympify(v).xreplace(assumed) for k, v in truth.items()}
         plain = to_model
 
@@ -189,6 +200,7 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
         if text != "0":
             r.diagnoses.append(Diagnosis(DiagnosisKind.RESIDUAL, f"truth − document = {text}",
                                          text))
+    return ours
 
 
 #: The texts of :func:`residual_text`, remembered across runs (the disk cache's

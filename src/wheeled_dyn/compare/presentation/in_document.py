@@ -1,0 +1,223 @@
+r"""The truth in the document's own symbols, and each differing equation corrected.
+
+The symbolic engine gives the true elements in the model's parameters :math:`p` (Khalil's
+standard parameters of the links, ``XX_link`` ...). The derivation file declares what each of
+its symbols is in them, :math:`s_k = f_k(p)` (``m = M(rod)``, ``lc1 = CX(link1)``,
+``I1 = IYY(link1)``). Where these declarations determine the parameters the truth depends on,
+they are solved for them, :math:`p = g(s)` — one parameter at a time, each from a declaration
+linear in it (``MX = m lc``, then ``YY = I + m lc²``), so the answer is unique — and the truth
+reads in the document's symbols, :math:`T(g(s))`. Parameters the document's assumed families
+set to zero (a centre of mass on the link's line: ``urdf_structure`` keeps the URDF's zeros)
+are zero first.
+
+Each differing equation is then given corrected: the true row in the document's frame (the
+factor or combination the row was found to be), written with the document's accelerations,
+velocities and inputs, :math:`\sum_j T_{ij}\ddot q_j + \sum_{j\le k} T_{i,jk}\nu_j\nu_k + T_{Q,i}
+= \sum_j T_{B,ij}u_j`, as text and LaTeX ready to paste back. Nothing here decides.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence
+from pathlib import Path
+
+import sympy as sp
+
+from ...derivations.schema import Derivation
+from ...disk_cache import DiskMemo
+from ...models.registry import load_model, model_parameters
+from ...symbolic import simplify
+from ...symbolic.simplify import simplify_expr
+from . import proportions
+from .proportions import completed, equalities
+
+#: A document expression in the model's parameters (None where it has none).
+ToModel = Callable[[sp.Expr], sp.Expr | None]
+
+#: Most declarations solved (each a SymPy solve in one unknown).
+MAX_STEPS = 40
+#: Rows with more operations than this are not written out corrected.
+CORRECTED_LIMIT = 400
+
+
+def _linear_in(eq: sp.Expr, x: sp.Symbol) -> bool:
+    num = sp.numer(sp.together(eq))
+    try:
+        return sp.Poly(num, x).degree() == 1
+    except sp.PolynomialError:
+        return False
+
+
+def parameter_solution(declared: Sequence[tuple[sp.Symbol, sp.Expr]],
+                       document: set[sp.Symbol], unknowns: set[sp.Symbol],
+                       relations: Mapping[sp.Symbol, sp.Expr]) -> dict[sp.Symbol, sp.Expr]:
+    r""":math:`p = g(s)` for as many of the ``unknowns`` as the declarations :math:`s = f(p)`
+    determine (module text); the others are left out (they stay model parameters)."""
+    eqs = [s - v.xreplace(dict(relations)) for s, v in declared]
+    eqs = [e for e in eqs if e.free_symbols - document]
+    solution: dict[sp.Symbol, sp.Expr] = {}
+    todo = set(unknowns)
+    for _ in range(MAX_STEPS):
+        step = next(((eq, x) for eq in eqs for x in sorted(eq.free_symbols & todo, key=str)
+                     if _linear_in(eq, x)), None)
+        if step is None:
+            break
+        eq, x = step
+        found = sp.solve(eq, x, dict=True)
+        eqs = [e for e in eqs if e is not eq]
+        if len(found) != 1:
+            continue
+        value = sp.simplify(found[0][x])
+        solution = {k: v.xreplace({x: value}) for k, v in solution.items()}
+        solution[x] = value
+        todo.discard(x)
+        todo |= {y for y in value.free_symbols if y not in document and y not in solution}
+        eqs = [e.xreplace({x: value}) for e in eqs]
+        eqs = [e for e in eqs if sp.simplify(e) != 0]
+    return solution
+
+
+#: The truths in documents' symbols, remembered across runs (the disk cache's
+#: ``compare/in-document-<code>.pickle``), keyed by everything they are computed from.
+IN_DOCUMENT = DiskMemo("compare", "in-document", lambda: [
+    Path(__file__), Path(proportions.__file__), Path(simplify.__file__)])
+
+
+def _declarations(d: Derivation, to_model: ToModel) -> list[tuple[sp.Symbol, sp.Expr]]:
+    out = []
+    for spec in d.symbols.values():
+        if spec.value is None or spec.is_input or spec.free:
+            continue
+        value = to_model(spec.symbol)
+        if value is not None:
+            out.append((spec.symbol, sp.sympify(value)))
+    return out
+
+
+def in_document(d: Derivation, truth: Mapping[str, sp.Expr], to_model: ToModel,
+                assumed: Mapping[sp.Symbol, sp.Expr] | None, families: Sequence[str] = ()
+                ) -> dict[str, sp.Expr] | None:
+    r"""The true elements (labels as the engine's) in the document's symbols where its
+    declarations (``to_model``: a document expression in the model's parameters) determine
+    the parameters (module text; the others stay model parameters), or None where they
+    determine none of them. ``assumed``: the physical families' substitution of a model with
+    a physical record, None for a model in Khalil's parameters (its families are
+    ``families``). Remembered: :data:`IN_DOCUMENT`."""
+    wm = load_model(d.model)
+    relations = dict(assumed) if assumed is not None else equalities(wm, families)
+    declared = _declarations(d, to_model)
+    values = () if assumed is not None else tuple(sorted(model_parameters(wm).items()))
+    key = (tuple(sorted(truth.items(), key=lambda kv: kv[0])), tuple(declared),
+           tuple(sorted(relations.items(), key=str)), tuple(families), values,
+           tuple(d.positions), tuple(d.velocities))
+    return IN_DOCUMENT.get(key, lambda: _in_document(d, wm, truth, declared, relations,
+                                                     assumed is None, families))
+
+
+def _in_document(d: Derivation, wm, truth: Mapping[str, sp.Expr],
+                 declared: Sequence[tuple[sp.Symbol, sp.Expr]],
+                 relations: Mapping[sp.Symbol, sp.Expr], standard: bool,
+                 families: Sequence[str]) -> dict[str, sp.Expr] | None:
+    motion = {*d.positions, *d.velocities}
+    exprs = {k: sp.sympify(v).xreplace(relations) for k, v in truth.items()}
+    names = {str(x): x for x in motion}
+    unknowns = {u for e in exprs.values() for u in e.free_symbols if u.name not in names}
+    document = {spec.symbol for spec in d.symbols.values()}
+    solution = parameter_solution(declared, document, unknowns, relations)
+    if not solution:
+        return None
+    if standard:
+        solution.update(completed(wm, families, solution))
+    out = {}
+    for k, e in exprs.items():
+        e = e.xreplace(solution)
+        e = e.xreplace({s: names[s.name] for s in e.free_symbols
+                        if s.name in names and s not in motion})
+        pars = sorted(e.free_symbols - motion, key=str)
+        out[k] = simplify_expr(e, pars) if e.free_symbols else sp.nsimplify(e)
+    return out
+
+
+def _row_label(key: str, i: int, rest: str) -> str:
+    return f"{key}[{i + 1}{rest}"
+
+
+def corrected_row(d: Derivation, i: int, truth: Mapping[str, sp.Expr],
+                  weights: Sequence[sp.Expr]) -> sp.Eq | None:
+    r"""Equation ``i`` as it should read in the document's frame (``weights``: the true rows
+    it combines, in the document's symbols), or None where an element is not known."""
+    n, v, a = d.n, d.velocities, d.accelerations
+    lhs, rhs = sp.Integer(0), sp.Integer(0)
+    for k, w in enumerate(weights):
+        if w == 0:
+            continue
+        row = sp.Integer(0)
+        for j in range(n):
+            t = truth.get(f"A[{k + 1},{j + 1}]")
+            if t is None:
+                return None
+            row += t * a[j]
+        for j in range(n):
+            for m in range(j, n):
+                t = truth.get(f"h[{k + 1}]:{v[j]}*{v[m]}")
+                if t is None:
+                    return None
+                row += t * v[j] * v[m]
+        q = truth.get(f"Q[{k + 1}]")
+        if q is None:
+            return None
+        lhs += w * (row + q)
+        rhs += w * _inputs(d, k, truth)
+    lhs, rhs = sp.expand(lhs), sp.expand(rhs)
+    if sp.count_ops(lhs) + sp.count_ops(rhs) > CORRECTED_LIMIT:
+        return None
+    return sp.Eq(lhs, rhs, evaluate=False)
+
+
+def written(d: Derivation, row: sp.Eq, names: Mapping[sp.Symbol, str]) -> tuple[str, str]:
+    r"""Text and LaTeX of a corrected ``row``: its left side collected by the accelerations
+    and the velocity products (each coefficient simplified), ``names`` the LaTeX of the
+    velocities and accelerations."""
+    v = d.velocities
+    keys = [*d.accelerations, *(v[j] * v[k] for j in range(d.n) for k in range(j, d.n))]
+    collected = sp.collect(sp.expand(row.lhs), keys, evaluate=False)
+    terms = [(sp.factor_terms(sp.simplify(collected[k])), k) for k in keys if k in collected]
+    rest = sp.simplify(collected.get(sp.Integer(1), sp.Integer(0)))
+    terms += [(rest, sp.Integer(1))] if rest != 0 else []
+    text = _joined(terms, sp.sstr, "*")
+    latex = _joined(terms, lambda e: sp.latex(e, symbol_names=dict(names)), " ")
+    return (f"{text} = {sp.sstr(row.rhs)}",
+            f"{latex} = {sp.latex(row.rhs, symbol_names=dict(names))}")
+
+
+def _joined(terms: Sequence[tuple[sp.Expr, sp.Expr]], show: Callable[[sp.Expr], str],
+            times: str) -> str:
+    r"""``c_1 k_1 + c_2 k_2 - ...`` in the order given (``times`` between a coefficient and
+    its acceleration or product: ``" "`` for LaTeX), each coefficient in parentheses where it is
+    a sum."""
+    out = ""
+    for c, k in terms:
+        negative = c.could_extract_minus_sign()
+        c = -c if negative else c
+        left, right = (r"\left(", r"\right)") if times == " " else ("(", ")")
+        shown = f"{left}{show(c)}{right}" if isinstance(c, sp.Add) else show(c)
+        body = shown if k == 1 else show(k) if c == 1 else f"{shown}{times}{show(k)}"
+        out += (" - " if negative else " + ") + body if out else ("-" if negative else "") + body
+    return out or "0"
+
+
+def _inputs(d: Derivation, k: int, truth: Mapping[str, sp.Expr]) -> sp.Expr:
+    r"""Row ``k``'s input terms in the document's inputs: :math:`\sum_j B_{kj}\tau_j(u)`."""
+    if not d.inputs:
+        return sp.Integer(0)
+    names = load_model(d.model).input_names
+    out = sp.Integer(0)
+    for j, name in enumerate(names):
+        b = truth.get(f"B[{k + 1},{j + 1}]")
+        tau = d.inputs.get(name)
+        if b is not None and tau is not None:
+            out += b * sp.sympify(tau)
+    return out
+
+
+__all__ = ["CORRECTED_LIMIT", "corrected_row", "in_document", "parameter_solution", "written"]

@@ -1,0 +1,113 @@
+r"""The truth in the document's own symbols and the corrected equations (issue 26, item 4).
+
+Three independent checks:
+
+- a term planted out of a derivation comes back, in the file's symbols, as truth − document
+  (the ROS balancer without the wheels' spin inertia :math:`2J_w/R^2` in :math:`A_{11}`,
+  the free block of seed 000 7.2 without :math:`(I_1 - I_3)pr/I_2` in its q-equation);
+- the corrected equation, written back into the derivation in place of the wrong one, makes
+  the document right: the comparison (Pinocchio's numbers, not the closed forms the correction
+  is written from) then finds the whole system equivalent;
+- the corrected LaTeX is valid LaTeX for the report's renderer (latex2mathml).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import latex2mathml.converter
+import pytest
+import sympy as sp
+
+from wheeled_dyn.compare.engine import ComparisonEngine
+from wheeled_dyn.compare.records import Verdict
+from wheeled_dyn.derivations import load_derivation
+from wheeled_dyn.models.registry import load_model
+
+ROS = Path(__file__).parent / "data" / "ros_balancer"
+SHIPPED = Path(__file__).parents[1] / "src" / "wheeled_dyn" / "data" / "derivations"
+SEED = 2026
+
+
+@pytest.fixture(scope="module")
+def engine():
+    return ComparisonEngine(samples=200, param_sets=3, seed=SEED)
+
+
+def _value(name: str, model: str, expr: sp.Expr) -> sp.Expr:
+    r"""``name`` as the residual writes it: its symbol where the closed forms keep it, else
+    the model's number."""
+    symbol = sp.Symbol(name, real=True)
+    if symbol in expr.free_symbols:
+        return symbol
+    return sp.nsimplify(load_model(model).geometry[name], rational=True)
+
+
+def test_dropped_wheel_inertia_reads_in_the_files_symbols(engine):
+    result = engine.compare(load_derivation(ROS / "ros_balancer_dropped_wheel.toml"))
+    assert result.truth_in_document
+    records = {r.element: r for r in result.records}
+    wrong = [e for e, r in records.items() if r.verdict == Verdict.DIFFERS]
+    assert wrong == ["A[1,1]"]
+    J_w = sp.Symbol("J_w", real=True)
+    residual = sp.sympify(records["A[1,1]"].residual, locals={"J_w": J_w})
+    R = _value("R", str(ROS / "ros_balancer.toml"), residual)
+    assert sp.simplify(residual - 2 * J_w / R**2) == 0
+    truth = records["A[1,1]"].truth
+    assert "M_" not in truth and "YY_" not in truth          # no model parameter left
+    eq = result.equations[0]
+    assert eq.verdict == Verdict.DIFFERS and eq.corrected and eq.corrected_latex
+    assert all(not e.corrected for e in result.equations[1:])
+    latex2mathml.converter.convert(eq.corrected_latex)
+
+
+def _equations_file(path: Path, tmp: Path, rows: list[str]) -> Path:
+    r"""The derivation ``path`` with its matrices replaced by the equations ``rows``."""
+    text = path.read_text()
+    head = text[:text.index("[matrices]")]
+    body = "[matrices]\nequations = [\n" + ",\n".join(f'  "{r}"' for r in rows) + "\n]\n"
+    out = tmp / path.name
+    out.write_text(head.replace('model = "ros_balancer.toml"',
+                                f'model = "{ROS / "ros_balancer.toml"}"') + body)
+    return out
+
+
+def test_the_corrected_equation_makes_the_document_right(engine, tmp_path):
+    r"""Equation 1 as corrected, with the file's equations 2 and 3 written out from its own
+    matrices (:math:`A\dot\nu + C\nu + Q = Bu`): Pinocchio's truth finds them equivalent."""
+    path = ROS / "ros_balancer_dropped_wheel.toml"
+    d = load_derivation(path)
+    result = engine.compare(d)
+    terms = d.read_off()
+    lhs = terms.A * sp.Matrix(d.accelerations) + terms.h + terms.Q
+    rhs = terms.B * sp.Matrix(terms.inputs)
+    rows = [result.equations[0].corrected] + [
+        f"{sp.sstr(lhs[i])} = {sp.sstr(rhs[i])}" for i in (1, 2)]
+    again = engine.compare(load_derivation(_equations_file(path, tmp_path, rows)))
+    assert again.equivalent is True, [(e.label, e.verdict, e.texts) for e in again.equations]
+
+
+def test_a_free_body_missing_its_gyroscopic_term(engine, tmp_path):
+    r"""Seed 000 7.2's free block (a free base, body rates p, q, r) with the q-equation's
+    :math:`(I_1 - I_3)pr/I_2` dropped: truth − document names it in the file's symbols, and
+    the corrected equation, in the file's frame (divided by :math:`I_2`), restores it."""
+    source = SHIPPED / "seed000" / "p7_2_euler_equations.toml"
+    text = source.read_text().replace("[0, 0, 0, 0, 0, (I1 - I3)*p/I2]", "[0, 0, 0, 0, 0, 0]")
+    assert text != source.read_text()
+    path = tmp_path / "dropped.toml"
+    path.write_text(text)
+    result = engine.compare(load_derivation(path))
+    assert result.truth_in_document
+    records = {r.element: r for r in result.records}
+    I1, I2, I3, p, r = sp.symbols("I1 I2 I3 p r", real=True)
+    names = {"I1": I1, "I2": I2, "I3": I3, "p": p, "r": r}
+    h = records["h[5]:p*r"]
+    assert h.verdict == Verdict.DIFFERS
+    assert sp.simplify(sp.sympify(h.residual, locals=names) - (I1 - I3) / I2) == 0
+    eq = next(e for e in result.equations if e.index == 4)
+    assert eq.corrected
+    lhs, rhs = eq.corrected.split(" = ")
+    dq = sp.Symbol("dq", real=True)
+    written = sp.sympify(lhs, locals=names | {"dq": dq}) - sp.sympify(rhs, locals=names)
+    assert sp.simplify(written - (dq + (I1 - I3) * p * r / I2)) == 0
+    latex2mathml.converter.convert(eq.corrected_latex)
