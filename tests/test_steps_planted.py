@@ -346,18 +346,18 @@ def test_steps_are_not_sampled_where_the_coordinates_are_singular(monkeypatch):
 def test_balances_are_sampled_away_from_singular_coordinates(monkeypatch):
     r"""A balance's samples go through the same redraw of singular positions (seed 000's
     2.19: one grid per balance, every position left regular)."""
-    from wheeled_dyn.compare.steps import balances
+    from wheeled_dyn.compare.steps import balance_samples
     from wheeled_dyn.compare.grid.samples import MAX_CONDITION
     from wheeled_dyn.derivations import builtin_derivations
     drawn = []
-    plain = balances.regular_states
+    plain = balance_samples.regular_states
 
     def recorded(cmap, q, rng, ranges=None):
         out = plain(cmap, q, rng, ranges)
         drawn.append((q.shape, cmap.conditioning(out).max()))
         return out
 
-    monkeypatch.setattr(balances, "regular_states", recorded)
+    monkeypatch.setattr(balance_samples, "regular_states", recorded)
     path = next(p for p in builtin_derivations("seed000") if p.name == "p2_19_spring_block.toml")
     d = load_derivation(path)
     compare_steps(d, 2026)
