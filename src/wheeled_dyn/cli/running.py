@@ -186,13 +186,13 @@ def compare_report(files: Sequence[Path], samples: int, param_sets: int,
             if len(jobs) == 1 or not can_fork():
                 outputs = [_work(job, bar.update, show) for job in jobs]
             else:
-                with Workers(len(jobs)) as workers:
+                with Workers(len(jobs)) as pool:
                     for job in jobs:
-                        workers.submit(_work, (job,), [paths[i].name for i in job[1]])
-                    outputs = workers.wait(bar.update, None if bar.disable else show)
+                        pool.submit(_work, (job,), [paths[i].name for i in job[1]])
+                    outputs = pool.wait(bar.update, None if bar.disable else show)
     finally:
         _PARSED.clear()
-    results: list[DerivationResult | None] = [None] * len(paths)
+    results: dict[int, DerivationResult] = {}
     sections: tuple[list[str], list[str], dict] = ([], [], {})
     html: dict[Path, str] = {}
     for found, sec, parts in outputs:
@@ -201,4 +201,4 @@ def compare_report(files: Sequence[Path], samples: int, param_sets: int,
         if sec is not None:
             sections = sec
         html.update(parts)
-    return results, sections, html
+    return [results[i] for i in range(len(paths))], sections, html
