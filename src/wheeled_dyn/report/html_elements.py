@@ -65,8 +65,8 @@ def _matrix(result: DerivationResult, key: str, names: Notation, document: bool)
                     mathml(r.model_latex or r.document_latex)
             elif document:
                 latex = text_latex(r.document, names, r.document_latex)
-                number = "" if not r.document or parse(r.document) is None or \
-                    parse(r.document).is_number else f'<div class="num">{num_text(r.document_sample)}</div>'
+                number = "" if not r.document or (expr := parse(r.document)) is None or \
+                    expr.is_number else f'<div class="num">{num_text(r.document_sample)}</div>'
                 body = (mathml(latex) or "0") + number
             else:
                 latex = _truth_latex(r, names)
