@@ -141,9 +141,9 @@ class DimensionChecker:
         expr = sp.sympify(expr)
         key = expr
         if key in self._memo:
-            found, said = self._memo[key]
-            problems += said
-            return found
+            known, noted = self._memo[key]
+            problems += noted
+            return known
         said: list[str] = []
         found = self._dim(expr, said)
         self._memo[key] = (found, said)
