@@ -61,9 +61,9 @@ def reproduce_table(table: ComparisonTable, engine: ComparisonEngine, *,
                     f"document in general parameters, but under the table's assumptions the "
                     f"row's A is exactly {num(f)} × the truth's: {num(f)} is used, and the "
                     f"engine's verdicts on that row are quoted as they are")
+        per_row = np.asarray(factors[which])[None, :, None]
         for key in (which, f"{which} cell"):
-            f = np.asarray(factors[which])[None, :, None]
-            numbers[key] = (numbers[key][0] / f, numbers[key][1] / f)
+            numbers[key] = (numbers[key][0] / per_row, numbers[key][1] / per_row)
     flat_nu = nu.reshape(-1, n)
     numbers_h = {k: np.einsum("sij,sj->si", v[1], flat_nu) for k, v in numbers.items()}
     scale = np.ones(n)
