@@ -20,7 +20,7 @@ from ..grid.assumptions import Assumptions, position_ranges
 from ..grid.grid import derivation_coordinate_set
 from ..grid.samples import random_states, regular_states
 from ..sides.document import document_symbol_values, given_parameter_sets
-from ..sides.kinematics import Motion, check_links
+from ..sides.kinematics import Motion, check_links, step_body
 
 
 #: Parameter sets and states per set on which a balance is checked.
@@ -138,6 +138,7 @@ class BalanceSamples:
 
     def _residuals(self) -> list[np.ndarray]:
         d, step = self.d, self.step
+        body = step_body(step)
         n = len(d.velocities)
         geo = numpy_function(self.args, [[*f.direction,
                                           *(f.point if isinstance(f.point, tuple) else ())]
@@ -148,31 +149,32 @@ class BalanceSamples:
         unknown = [k for k, f in enumerate(step.forces) if f.law is None]
         law = numpy_function(self.args, [step.forces[k].law for k in known])
         truth = []
-        frames = tuple(dict.fromkeys((step.frame, "world", step.body)))
+        frames = tuple(dict.fromkeys((step.frame, "world", body)))
         self._rotations = {f: [] for f in frames}
         for k, ps in enumerate(self.sets):
             cmap = self._map.bind(ps.model)
-            check_links(ps.model, [step.body, *(f for f in frames
+            check_links(ps.model, [body, *(f for f in frames
                                                 if f not in ("world", "heading"))])
             data = ps.model.model.createData()
-            T_k, R_k = [], {f: [] for f in frames}
+            T_k: list[np.ndarray] = []
+            R_k: dict[str, list[np.ndarray]] = {f: [] for f in frames}
             for i in range(k * BALANCE_STATES, (k + 1) * BALANCE_STATES):
                 argv = self._argv(k, i)
                 with np.errstate(all="ignore"):
                     raw = geo(*argv)
                     point = np.array(about(*argv), dtype=float) if about else step.point
-                rows = []
+                rows: list[np.ndarray] = []
                 for nudot in (np.zeros(n), *np.eye(n)):
                     m = Motion(cmap, data, self.q[i], self.nu[i], nudot)
                     self.nu[i] = m.nu      # made admissible (rolling kept): the document too
                     if rows:               # an acceleration's column: no force columns again
-                        rows.append(residual_rows(m, step.body, point, "world", (), ()))
+                        rows.append(residual_rows(m, body, point, "world", (), ()))
                         continue
-                    geometry = [(_world_point(m, step.body, np.array(r[3:], dtype=float)
+                    geometry = [(_world_point(m, body, np.array(r[3:], dtype=float)
                                               if isinstance(f.point, tuple) else f.point),
                                  m.rotation(f.frame) @ np.array(r[:3], dtype=float))
                                 for f, r in zip(step.forces, raw)]
-                    rows.append(residual_rows(m, step.body, point, "world", step.forces,
+                    rows.append(residual_rows(m, body, point, "world", step.forces,
                                               geometry))
                     for f in frames:                   # the frames' rotations: q only
                         R_k[f].append(np.array(m.rotation(f)))       # a copy: data is reused

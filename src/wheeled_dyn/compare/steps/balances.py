@@ -45,6 +45,7 @@ from ...derivations.steps import Force, Step
 from ..judge.diagnose import AGREE_TOL, nice_number
 from ..judge.units import DimensionChecker, format_dim
 from ..records import Diagnosis, DiagnosisKind as K, ElementRecord, Verdict, diagnosis
+from ..sides.kinematics import step_body
 from .balance_samples import BALANCE_SETS, BALANCE_STATES, BalanceSamples, residual_rows
 
 
@@ -221,7 +222,7 @@ def compare_balance(d: Derivation, step: Step, index: int, seed: int) -> list[El
                                       f"right side {format_dim(rhs)}"))
         if not ok:
             diags += _term_fixes(b, j, names)
-            for frame in dict.fromkeys(("world", step.body)):
+            for frame in dict.fromkeys(("world", step_body(step))):
                 if frame != step.frame and _judge(b.truth(frame), doc, j, names,
                                                   len(b.free))[0]:
                     diags.insert(0, diagnosis(K.NOTE, f"it is a balance along the axes of "

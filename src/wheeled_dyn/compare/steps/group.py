@@ -12,7 +12,7 @@ import numpy as np
 import sympy as sp
 
 from ...compiled import numpy_function
-from ...constraints.reduction import CoordinateMap
+from ...constraints.reduction import CoordinateMap, CoordinateSet
 from ...derivations.schema import Derivation
 from ...derivations.steps import RELATION_KINDS, VECTOR_KINDS, Step
 from ...errors import DerivationError
@@ -21,7 +21,7 @@ from ..grid.assumptions import Assumptions, position_ranges
 from ..grid.grid import derivation_coordinate_set
 from ..grid.samples import random_states, regular_states
 from ..sides.document import document_symbol_values, given_parameter_sets
-from ..sides.kinematics import Motion, along, check_links
+from ..sides.kinematics import Motion, along, check_links, step_body
 
 
 #: Parameter sets and states per set on which the steps are compared.
@@ -30,8 +30,8 @@ STEP_SETS, STEP_STATES = 2, 10
 DECOMPOSE_STATES = 3
 
 
-_MAPS: dict[tuple[str, str], CoordinateMap] = {}
-_SETS: dict[tuple, object] = {}
+_MAPS: dict[tuple, CoordinateMap] = {}
+_SETS: dict[tuple, CoordinateSet] = {}
 
 
 class StepGroup:
@@ -96,7 +96,8 @@ class StepGroup:
                 for s, arr in zip(steps, out):
                     arr[i] = self.true_value(s, m, k)
                     if s.kind in VECTOR_KINDS:       # the size of the body's motion
-                        size = float(np.linalg.norm(m.vector(s.kind, s.body, "origin", "world")))
+                        size = float(np.linalg.norm(m.vector(s.kind, step_body(s), "origin",
+                                                             "world")))
                         self.reference[id(s)] = max(self.reference.get(id(s), 0.0), size)
         return out
 
@@ -177,12 +178,11 @@ class StepGroup:
 
     def true_value(self, s: Step, m: Motion, k: int) -> np.ndarray:
         if s.kind in VECTOR_KINDS:
-            point = s.point
-            if isinstance(point, tuple):
-                point = np.array([float(sp.sympify(p).xreplace(self.values[k])) for p in point])
-            return along(m.vector(s.kind, s.body, point, s.frame), s.axes)
+            point = s.point if not isinstance(s.point, tuple) else np.array(
+                [float(sp.sympify(p).xreplace(self.values[k])) for p in s.point])
+            return along(m.vector(s.kind, step_body(s), point, s.frame), s.axes)
         if s.kind == "orientation":
-            return m.orientation(s.body, s.frame, s.axes, s.body_axes).ravel()
+            return m.orientation(step_body(s), s.frame, s.axes, s.body_axes).ravel()
         if s.kind == "gravity":
             g = self.cmap.wm.model.gravity.linear
             return along(m.rotation(s.frame).T @ g, s.axes)

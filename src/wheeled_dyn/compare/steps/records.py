@@ -22,6 +22,7 @@ kind, ``equation`` = its label as printed) with the verdicts and diagnoses of :m
 from __future__ import annotations
 
 from dataclasses import replace
+from typing import Any
 
 import numpy as np
 import sympy as sp
@@ -76,7 +77,7 @@ def _document_values(g: StepGroup, step: Step, T: np.ndarray):
                     + sum(np.abs(x) for x in grads[n:]) * np.linalg.norm(g.nudot, axis=1))
             reference = max(reference, float(np.max(size, initial=0.0)))
     values = g.documents(exprs)
-    D_all = [None] * len(step.components)
+    D_all: list[np.ndarray | None] = [None] * len(step.components)
     for j, v in zip(kept, values):
         D_all[j] = v
     parts = values[len(kept):]
@@ -139,10 +140,10 @@ def _records(g: StepGroup, step: Step, index: int, T: np.ndarray) -> list[Elemen
     for j, expr in enumerate(step.components):
         D, Tj = D_all[j], T[:, j]
         element = f"{step.name} {names[j]}"
-        common = dict(element=element, key="step", index=(index, j), document=step.printed[j],
-                      document_model="", truth=None, residual=None,
-                      step="claim" if step.kind == "first integral" else step.kind,
-                      equation=step.equation)
+        common: dict[str, Any] = dict(                   # ElementRecord's fields
+            element=element, key="step", index=(index, j), document=step.printed[j],
+            document_model="", truth=None, residual=None,
+            step="claim" if step.kind == "first integral" else step.kind, equation=step.equation)
         if D is None or not np.all(np.isfinite(D)) or not np.all(np.isfinite(Tj)):
             why = "lost in the extracted text: not compared" if D is None else \
                 "not finite at some samples"

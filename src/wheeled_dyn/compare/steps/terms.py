@@ -39,7 +39,8 @@ def _terms(expr: sp.Expr, gens: Sequence[sp.Symbol]) -> dict[tuple[int, ...], sp
         return None
 
 
-def power_swaps(expr: sp.Expr, g: StepGroup, T: np.ndarray, scale: float) -> list[str]:
+def power_swaps(expr: sp.Expr, g: StepGroup, T: np.ndarray, scale: float
+                ) -> list[Diagnosis]:
     return power_diagnoses(expr, g.params, g.document, T, scale)
 
 
@@ -58,7 +59,7 @@ def side_factor(g: StepGroup, sides: tuple[sp.Expr, sp.Expr], scale: float) -> l
                       factor=nice_number(c))]
 
 
-def linear_term_diagnoses(g: StepGroup, expr: sp.Expr) -> list[str]:
+def linear_term_diagnoses(g: StepGroup, expr: sp.Expr) -> list[Diagnosis]:
     r"""A linearised relation :math:`\sum c_a\Delta\dot\nu_a + \sum c_x\Delta x` that does
     not hold: its residual on the true deviations is :math:`\sum\kappa_x\Delta x`
     (:math:`\kappa` fitted per parameter set over every deviation when the samples suffice,
@@ -141,7 +142,7 @@ def truth_coefficients(g: StepGroup, step: Step, monomials: Sequence[tuple[int, 
     r"""The truth's coefficient of each monomial (exponents over velocities then
     accelerations) on the first :data:`DECOMPOSE_STATES` states of each set."""
     n = len(g.cs.positions)
-    out = {m: [] for m in monomials}
+    out: dict[tuple[int, ...], list[np.ndarray]] = {m: [] for m in monomials}
     for k, ps in enumerate(g.sets):
         g.cmap.bind(ps.model)
         data = ps.model.model.createData()
