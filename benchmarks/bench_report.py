@@ -79,7 +79,7 @@ def _check_after_saving(derivation: Path) -> list[float]:
     the command keeps, so the truth is computed at the first check only."""
     import shutil
 
-    from wheeled_dyn.cli.compare_cmd import _write
+    from wheeled_dyn.cli.report_output import write_report
     from wheeled_dyn.compare.engine import ComparisonEngine
     out = []
     with tempfile.TemporaryDirectory() as folder:
@@ -94,7 +94,7 @@ def _check_after_saving(derivation: Path) -> list[float]:
                 try:
                     results = run_comparison([path], DEFAULT_SAMPLES, DEFAULT_PARAM_SETS,
                                              model="wip", engine=engine)
-                    _write(results, "watch", Path(folder) / "out")
+                    write_report(results, "watch", Path(folder) / "out")
                 finally:
                     sys.stdout = stdout
 

@@ -23,7 +23,7 @@ from wheeled_dyn.compare.presentation import closed_form, printing  # noqa: E402
 from wheeled_dyn.derivations import builtin_derivations  # noqa: E402
 from wheeled_dyn.disk_cache import CACHE_ENV, MAGIC, REUSE_ENV, load, save_memos, store  # noqa: E402
 from wheeled_dyn.models import registry  # noqa: E402
-from wheeled_dyn.report import html, symbols  # noqa: E402
+from wheeled_dyn.report import html_text, symbols  # noqa: E402
 from wheeled_dyn.symbolic import wheeled  # noqa: E402
 
 #: Examples of the quick property (one entry, read back) and of the slow one (a comparison).
@@ -31,7 +31,7 @@ QUICK_EXAMPLES, COMPARISON_EXAMPLES = 1000, 40
 #: A small grid: the verdicts only have to be the same as from an intact cache.
 SAMPLES, PARAM_SETS = 30, 1
 MEMOS = (printing.PRINTED, closed_form.RESIDUALS, compiled.SOURCES, seed_table.SHOWN,
-         symbols.RENDERED, html.MATHML)
+         symbols.RENDERED, html_text.MATHML)
 
 #: A value with the kinds of objects entries hold.
 VALUE = {"text": "x*cos(phi)**2", "numbers": (1.0, 2, None), "bytes": b"\x00\x01" * 40}
@@ -109,7 +109,7 @@ def _forget_memory() -> None:
     registry._built.cache_clear()
     registry._spec_of.cache_clear()
     symbols._NOTATIONS.clear()
-    html._mathml.cache_clear()
+    html_text.mathml.cache_clear()
 
 
 def _records(path: Path):

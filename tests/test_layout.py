@@ -32,7 +32,7 @@ MAX_LINES = 400
 #: The one import against the flow, and why: a result displays itself in a notebook
 #: (``DerivationResult._repr_html_``, called by IPython) as the report renders it, imported
 #: when it is displayed.
-ALLOWED = {("records.py", "wheeled_dyn.report.notebook")}
+ALLOWED = {("records/result.py", "wheeled_dyn.report.notebook")}
 
 
 def _stage(path: Path) -> str | None:

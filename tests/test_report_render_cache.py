@@ -8,7 +8,7 @@ from conftest import SEED
 from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.derivations import builtin_derivations, load_derivation
 from wheeled_dyn.disk_cache import CACHE_ENV
-from wheeled_dyn.report import html, symbols
+from wheeled_dyn.report import html_text, symbols
 from wheeled_dyn.report.write import render
 
 
@@ -20,8 +20,8 @@ def _results():
 def _forget() -> None:
     r"""What a new process does not have: the memos' entries in memory, the notations."""
     symbols.RENDERED.forget()
-    html.MATHML.forget()
-    html._mathml.cache_clear()
+    html_text.MATHML.forget()
+    html_text.mathml.cache_clear()
     symbols._NOTATIONS.clear()
 
 
@@ -32,13 +32,13 @@ def test_remembered_latex_renders_the_same_report(tmp_path, monkeypatch):
     cold = render(results, "t")
     entry = symbols.RENDERED.path()
     assert entry.is_file() and entry.parent == tmp_path / "report"
-    assert html.MATHML.path().is_file()
+    assert html_text.MATHML.path().is_file()
     # a new process: nothing in memory, the entries on disk
     _forget()
     warm = render(results, "t")
     assert warm["report.md"] == cold["report.md"]
     assert warm["report.html"] == cold["report.html"]
-    assert len(symbols.RENDERED.entries()) > 0 and len(html.MATHML.entries()) > 0
+    assert len(symbols.RENDERED.entries()) > 0 and len(html_text.MATHML.entries()) > 0
     _forget()
 
 

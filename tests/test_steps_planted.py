@@ -325,18 +325,18 @@ def test_steps_are_not_sampled_where_the_coordinates_are_singular(monkeypatch):
     r"""A step file's samples avoid the positions where its coordinate map is singular (as
     the equations' grid does): seed 002's paraboloid draws one sample of condition number
     above the bound, which is drawn again."""
-    from wheeled_dyn.compare.steps import records as step_records
+    from wheeled_dyn.compare.steps import group as step_group
     from wheeled_dyn.compare.grid.samples import MAX_CONDITION
     from wheeled_dyn.derivations import builtin_derivations
     drawn = []
-    plain = step_records.regular_states
+    plain = step_group.regular_states
 
     def recorded(cmap, q, rng, ranges=None):
         out = plain(cmap, q, rng, ranges)
         drawn.append((cmap.conditioning(q).max(), cmap.conditioning(out).max()))
         return out
 
-    monkeypatch.setattr(step_records, "regular_states", recorded)
+    monkeypatch.setattr(step_group, "regular_states", recorded)
     path = next(p for p in builtin_derivations("seed002") if p.name == "s3_8_paraboloid.toml")
     compare_steps(load_derivation(path), 2026)
     assert drawn and max(before for before, _ in drawn) > MAX_CONDITION
@@ -346,18 +346,18 @@ def test_steps_are_not_sampled_where_the_coordinates_are_singular(monkeypatch):
 def test_balances_are_sampled_away_from_singular_coordinates(monkeypatch):
     r"""A balance's samples go through the same redraw of singular positions (seed 000's
     2.19: one grid per balance, every position left regular)."""
-    from wheeled_dyn.compare.steps import balances
+    from wheeled_dyn.compare.steps import balance_samples
     from wheeled_dyn.compare.grid.samples import MAX_CONDITION
     from wheeled_dyn.derivations import builtin_derivations
     drawn = []
-    plain = balances.regular_states
+    plain = balance_samples.regular_states
 
     def recorded(cmap, q, rng, ranges=None):
         out = plain(cmap, q, rng, ranges)
         drawn.append((q.shape, cmap.conditioning(out).max()))
         return out
 
-    monkeypatch.setattr(balances, "regular_states", recorded)
+    monkeypatch.setattr(balance_samples, "regular_states", recorded)
     path = next(p for p in builtin_derivations("seed000") if p.name == "p2_19_spring_block.toml")
     d = load_derivation(path)
     compare_steps(d, 2026)

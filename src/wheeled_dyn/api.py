@@ -113,7 +113,7 @@ def compare(model: str | Path, *, samples: int = 1000, param_sets: int = 5, seed
         assert not [r for r in result.records if r.verdict == "differs"]
     """
     from .cache_trust import without_reuse
-    from .cli.compare_cmd import MAX_PARAM_SETS, MAX_SAMPLES, MAX_STATES, check_model_names
+    from .cli.inputs import MAX_PARAM_SETS, MAX_SAMPLES, MAX_STATES, check_model_names
     from .compare.engine import ComparisonEngine
     from .derivations.from_python import derivation_from_sympy
     from .models.registry import model_entry

@@ -155,7 +155,7 @@ class DiskMemo:
             self._entries = {**(load(self.path(), dict) or {}), **self._made}
         return self._entries
 
-    def get(self, key: Hashable, compute: Callable[[], object]) -> object:
+    def get(self, key: Hashable, compute: Callable[[], T]) -> T:
         r"""The value remembered under ``key``, else ``compute()``, remembered. Entries are
         kept under the SHA-256 of the key's pickle (a SymPy expression pickles to the same
         bytes in every process, and the file then holds no expressions to rebuild when

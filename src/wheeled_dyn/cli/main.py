@@ -23,8 +23,13 @@ import sys
 import warnings
 from collections.abc import Callable, Sequence
 from types import FrameType
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 from ..errors import WheeledDynError, WheeledDynWarning
+
+if TYPE_CHECKING:
+    #: What ``signal.signal`` takes and returns.
+    _Handler: TypeAlias = Callable[[int, FrameType | None], Any] | int | signal.Handlers | None
 
 #: Modules that define ``add_commands(subparsers)``, in the order they appear in ``--help``.
 COMMAND_MODULES: tuple[str, ...] = (
@@ -49,7 +54,7 @@ INTERRUPT_RETRY = 0.02
 #: Set by :func:`_on_interrupt` when Ctrl-C comes while a command runs.
 _interrupted = False
 #: The SIGALRM handler that :func:`_on_interrupt` replaced to look again (None: not replaced).
-_previous_alarm: object = None
+_previous_alarm: _Handler = None
 
 
 def _importing(frame: FrameType | None) -> bool:
@@ -79,7 +84,7 @@ def _on_interrupt(signum: int, frame: FrameType | None) -> None:
     raise KeyboardInterrupt
 
 
-def _restore_alarm(handler: object) -> None:
+def _restore_alarm(handler: _Handler) -> None:
     r"""Cancel a pending look at a held-back Ctrl-C and give SIGALRM ``handler`` (its
     handler before :func:`_on_interrupt` took it, when ``None``)."""
     global _previous_alarm

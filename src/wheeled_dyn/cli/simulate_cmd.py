@@ -59,7 +59,8 @@ def energy_summary(s) -> str:
 
 
 def _cmd(args: argparse.Namespace) -> int:
-    from .compare_cmd import check_model_names, input_files, progress
+    from .inputs import check_model_names, input_files
+    from .running import progress
     from ..derivations import load_derivations
     from ..output import check_output_folder, write_atomic
     from ..simulate.documented import side_by_side

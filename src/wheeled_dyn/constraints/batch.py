@@ -15,7 +15,7 @@ leading axis of length N.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import NamedTuple
 
 import numpy as np
@@ -33,7 +33,7 @@ from .wheel_contact import wheel_jacobian
 BLOCK = 256
 
 
-def lambdify_batch(matrix: sp.Matrix, args: Sequence) -> callable:
+def lambdify_batch(matrix: sp.Matrix, args: Sequence) -> Callable[..., np.ndarray]:
     r"""A function of stacked arguments returning an array (N, rows, cols) of ``matrix``;
     the constant entries (no symbol at all) are evaluated once and broadcast."""
     rows, cols = matrix.shape
@@ -108,6 +108,7 @@ def _rolling_rows(w: _Wheels, J: np.ndarray, p: np.ndarray, v: np.ndarray | None
     if dJ is None:
         lin, X, W = J, _skew(c)[:, :, :2], J[:, 3:]
     else:
+        assert v is not None, "the rows of the rate of J_c need the velocities v"
         Jv = np.swapaxes(J @ (v[:, :, None] * w.support.T), 1, 2)[..., None]  # N × k × 6 × 1
         c_dot = Jv[:, :, :3] - _skew(p) @ Jv[:, :, 3:]
         lin, X = dJ, np.concatenate([_skew(c), _skew(c_dot[..., 0])], axis=-1)[:, :, :2]
@@ -198,10 +199,12 @@ def _configuration(cmap, ctx: _Context, q: np.ndarray, q_doc: np.ndarray | None,
         J = np.concatenate([J, tilt], axis=1)
     Mp = None
     if cs.kind == "holonomic":
+        assert q_doc is not None, "a holonomic set's S is a function of its own positions"
         S = cmap._S_batch(N, *q_doc.T, *p)
     else:
         T = cmap._T_batch(N, *q.T, *p)
         if cs.rolling == "eliminate":
+            assert J is not None, "rolling eliminated: J_c was computed (need_J)"
             Mp = pseudo_inverse(np.concatenate([J, T], axis=1))
             S = Mp[:, :, J.shape[1]:]
         else:
@@ -237,8 +240,8 @@ def reduce_batch_multi(cmap, q: np.ndarray, nus: list[np.ndarray],
     out = []
     for terms in zip(*parts):
         first, G = terms[0], None if terms[0].G is None else np.concatenate([t.G for t in terms])
-        out.append(Terms(first.velocities, first.inputs,
-                         *(np.concatenate([getattr(t, k) for t in terms]) for k in "ACQBh"), G))
+        A, C, Q, B, h = (np.concatenate([getattr(t, k) for t in terms]) for k in "ACQBh")
+        out.append(Terms(first.velocities, first.inputs, A, C, Q, B, h, G))
     return out
 
 
@@ -261,6 +264,7 @@ def _reduce_block(cmap, ctx: _Context, q: np.ndarray, nus: list[np.ndarray],
     St = np.swapaxes(S, 1, 2)
     A_nu, AS = _project(A, S)
     SA = np.swapaxes(AS, 1, 2)
+    assert Q is not None, "_configuration with gravity gives Q"
     Q_nu = (St @ Q[:, :, None])[:, :, 0]
     B_nu = St @ cmap._B
     G = J @ S if cs.rolling == "multipliers" else None
@@ -276,6 +280,7 @@ def _reduce_block(cmap, ctx: _Context, q: np.ndarray, nus: list[np.ndarray],
             if rolling:
                 Di[...] = dJ_view if by_reference else data.dJ
         if cs.kind == "holonomic":
+            assert q_doc is not None, "a holonomic set's S is a function of its own positions"
             Sdot = cmap._Sdot_batch(N, *q_doc.T, *nu.T, *p)
         else:
             Tdot = cmap._Tdot_batch(N, *q.T, *v.T, *p)

@@ -8,6 +8,8 @@ r"""Small dense linear algebra of the reductions, fast on the small matrices of 
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 
 #: Largest entry of :math:`M^+M - I` for the normal equations' pseudo-inverse to stand.
@@ -22,12 +24,13 @@ def spd_solve(K: np.ndarray, R: np.ndarray) -> np.ndarray:
     raises ``LinAlgError`` when ``K`` is singular)."""
     global _dposv
     if _dposv is None:
-        from scipy.linalg.lapack import dposv as _dposv
+        from scipy.linalg.lapack import dposv
+        _dposv = dposv
     _, x, info = _dposv(K, R)
     return x if info == 0 else np.linalg.solve(K, R)
 
 
-_dposv = None
+_dposv: Callable[..., tuple] | None = None
 
 
 def pseudo_inverse(M: np.ndarray) -> np.ndarray:

@@ -72,7 +72,9 @@ class CoordinateMap:
             self._Sdot_batch = lambdify_batch(Sdot, [*doc_q, *doc_v, *params])
         else:
             mq, mv = model_symbols(wm.coordinate_names)
-            nu = sp.Matrix([cs.velocity_map[v] for v in cs.velocities])
+            vmap = cs.velocity_map
+            assert vmap is not None, "a set that is not holonomic maps its velocities"
+            nu = sp.Matrix([vmap[v] for v in cs.velocities])
             T = nu.jacobian(mv)
             Tdot = sum((T.diff(s) * ds for s, ds in zip(mq, mv)), sp.zeros(*T.shape))
             self._T = grouped_function([list(mq), params], T)

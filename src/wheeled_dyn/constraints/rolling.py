@@ -26,6 +26,7 @@ neither has no rows (:math:`J_c` is 0 × nv).
 from __future__ import annotations
 
 from functools import lru_cache
+from typing import overload
 
 import numpy as np
 import pinocchio as pin
@@ -35,6 +36,22 @@ from .sphere_contact import ball_contact_point, ball_contact_velocity, ball_jaco
 
 _EZ_CROSS = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 0.0]])
 _LWA = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
+
+
+@overload
+def contact_jacobian(wm: WheeledModel, q: np.ndarray, v: None = None,
+                     data: pin.Data | None = None) -> tuple[np.ndarray, None]: ...
+
+
+@overload
+def contact_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray,
+                     data: pin.Data | None = None) -> tuple[np.ndarray, np.ndarray]: ...
+
+
+@overload
+def contact_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = None,
+                     data: pin.Data | None = None
+                     ) -> tuple[np.ndarray, np.ndarray | None]: ...
 
 
 def contact_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = None,
@@ -57,13 +74,13 @@ def contact_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = Non
     if wm.contact is not None:
         Jb, dJb = ball_jacobian(wm, q, v, data)
         rows.append(Jb)
-        if v is not None:
+        if dJb is not None:                    # v given
             drows.append(dJb)
     if wm.rolling_wheels:                      # tilting wheels: 3 rows each (.wheel_contact)
         from .wheel_contact import wheel_jacobian
         Jw, dJw = wheel_jacobian(wm, q, v, data)
         rows.append(Jw)
-        if v is not None:
+        if dJw is not None:                    # v given
             drows.append(dJw)
     return np.vstack(rows), (np.vstack(drows) if v is not None else None)
 

@@ -43,11 +43,13 @@ contact point's velocity).
 
 from __future__ import annotations
 
+from typing import overload
+
 import numpy as np
 import pinocchio as pin
 
 from ..models.builder import WheeledModel
-from .spheroid_contact import (spheroid_contact_point, spheroid_contact_velocity,
+from .spheroid_contact import (ball_contact, spheroid_contact_point, spheroid_contact_velocity,
                                spheroid_jacobian)
 from .surfaces import Foot, foot, meridian_of, normal_rate
 
@@ -64,7 +66,7 @@ def _cross(a: np.ndarray) -> np.ndarray:
 def _revolution_foot(wm: WheeledModel, centre: np.ndarray) -> Foot | None:
     r"""The contact with a surface of revolution (:mod:`.surfaces`), or None for the plane
     and the sphere."""
-    spec = wm.contact.spec
+    spec = ball_contact(wm).spec
     meridian = meridian_of(spec)
     if meridian is None:
         return None
@@ -73,7 +75,7 @@ def _revolution_foot(wm: WheeledModel, centre: np.ndarray) -> Foot | None:
 
 def contact_normal(wm: WheeledModel, centre: np.ndarray) -> np.ndarray:
     r"""The surface normal :math:`n` at the contact of a ball centred at ``centre``."""
-    spec = wm.contact.spec
+    spec = ball_contact(wm).spec
     if spec.surface == "plane":
         return _EZ.copy()
     ft = _revolution_foot(wm, centre)
@@ -83,14 +85,31 @@ def contact_normal(wm: WheeledModel, centre: np.ndarray) -> np.ndarray:
     return d / np.linalg.norm(d)
 
 
+@overload
+def ball_jacobian(wm: WheeledModel, q: np.ndarray, v: None = None,
+                  data: pin.Data | None = None) -> tuple[np.ndarray, None]: ...
+
+
+@overload
+def ball_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray,
+                  data: pin.Data | None = None) -> tuple[np.ndarray, np.ndarray]: ...
+
+
+@overload
+def ball_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = None,
+                  data: pin.Data | None = None
+                  ) -> tuple[np.ndarray, np.ndarray | None]: ...
+
+
 def ball_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = None,
                   data: pin.Data | None = None) -> tuple[np.ndarray, np.ndarray | None]:
     r""":math:`J_c(q)` (3 × nv) of the ball and, if ``v`` is given, :math:`\dot J_c(q, v)`."""
-    if wm.contact.spec.spheroid:
+    contact = ball_contact(wm)
+    if contact.spec.spheroid:
         return spheroid_jacobian(wm, q, v, data)
     model = wm.model
     data = data or model.createData()
-    fid, r = wm.contact.frame_id, wm.contact.radius
+    fid, r = contact.frame_id, contact.radius
     if v is None:
         pin.computeJointJacobians(model, data, q)
     else:
@@ -108,8 +127,8 @@ def ball_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = None,
     cdot = J[:3] @ v
     if ft is not None:
         dJc = dJc + r * _cross(normal_rate(ft, r, cdot)) @ J[3:]
-    elif wm.contact.spec.surface == "sphere":
-        dist = np.linalg.norm(centre - np.asarray(wm.contact.spec.centre, dtype=float))
+    elif contact.spec.surface == "sphere":
+        dist = np.linalg.norm(centre - np.asarray(contact.spec.centre, dtype=float))
         ndot = (cdot - n * (n @ cdot)) / dist
         dJc = dJc + r * _cross(ndot) @ J[3:]
     return Jc, dJc
@@ -117,23 +136,25 @@ def ball_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = None,
 
 def ball_contact_point(wm: WheeledModel, q: np.ndarray) -> np.ndarray:
     r"""World position of the contact point :math:`p = c - r\,n`."""
-    if wm.contact.spec.spheroid:
+    contact = ball_contact(wm)
+    if contact.spec.spheroid:
         return spheroid_contact_point(wm, q)
     data = wm.model.createData()
     pin.framesForwardKinematics(wm.model, data, q)
-    centre = data.oMf[wm.contact.frame_id].translation
-    return centre - wm.contact.radius * contact_normal(wm, centre)
+    centre = data.oMf[contact.frame_id].translation
+    return centre - contact.radius * contact_normal(wm, centre)
 
 
 def ball_contact_velocity(wm: WheeledModel, q: np.ndarray, v: np.ndarray) -> np.ndarray:
     r"""Velocity (world axes) of the ball's material point at the contact, from the frame
     velocity of the ball (independently of :func:`ball_jacobian`)."""
-    if wm.contact.spec.spheroid:
+    contact = ball_contact(wm)
+    if contact.spec.spheroid:
         return spheroid_contact_velocity(wm, q, v)
     data = wm.model.createData()
     pin.forwardKinematics(wm.model, data, q, v)
     pin.updateFramePlacements(wm.model, data)
-    fid = wm.contact.frame_id
+    fid = contact.frame_id
     vel = pin.getFrameVelocity(wm.model, data, fid, _LWA)
     n = contact_normal(wm, data.oMf[fid].translation)
-    return vel.linear + np.cross(vel.angular, -wm.contact.radius * n)
+    return vel.linear + np.cross(vel.angular, -contact.radius * n)

@@ -76,18 +76,36 @@ plane, :math:`J_{o,\text{lin}} + r\,[e_z]_\times J_\omega` (:mod:`.sphere_contac
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import overload
 
 import numpy as np
 import pinocchio as pin
 
 from ..errors import ModelError
 from ..models.builder import WheeledModel
+from ..models.contact import BallContact
 
 _LWA = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
 
 
 def _cross(x: np.ndarray) -> np.ndarray:
     return np.array([[0.0, -x[2], x[1]], [x[2], 0.0, -x[0]], [-x[1], x[0], 0.0]])
+
+
+def ball_contact(wm: WheeledModel) -> BallContact:
+    r"""The model's rolling ball or spheroid; a :class:`~wheeled_dyn.errors.ModelError` for a
+    model without one."""
+    if wm.contact is None:
+        raise ModelError(wm.name, None, "has no rolling ball or spheroid to take the contact of")
+    return wm.contact
+
+
+def _radii(contact: BallContact, model: str) -> tuple[float, float]:
+    r"""The equatorial and polar radii :math:`a, c` of a spheroid contact."""
+    c = contact.polar_radius
+    if c is None:
+        raise ModelError(model, None, "its contact is a ball, not a spheroid (no polar_radius)")
+    return contact.radius, c
 
 
 def lowest_point(a: float, c: float, u: np.ndarray) -> tuple[np.ndarray, float]:
@@ -127,12 +145,29 @@ class SpheroidPoint:
 def spheroid_point(wm: WheeledModel, data: pin.Data) -> SpheroidPoint:
     r"""The contact geometry of the model's spheroid from ``data`` (joint placements up to
     date)."""
-    H = pin.updateFramePlacement(wm.model, data, wm.contact.frame_id).homogeneous
+    contact = ball_contact(wm)
+    H = pin.updateFramePlacement(wm.model, data, contact.frame_id).homogeneous
     R, o = H[:3, :3].copy(), H[:3, 3].copy()
     u = -R[2]
-    p, s = lowest_point(wm.contact.radius, wm.contact.polar_radius, u)
+    p, s = lowest_point(*_radii(contact, wm.name), u)
     rho = R @ p
     return SpheroidPoint(o, R, u, p, s, rho, o + rho)
+
+
+@overload
+def spheroid_jacobian(wm: WheeledModel, q: np.ndarray, v: None = None,
+                      data: pin.Data | None = None) -> tuple[np.ndarray, None]: ...
+
+
+@overload
+def spheroid_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray,
+                      data: pin.Data | None = None) -> tuple[np.ndarray, np.ndarray]: ...
+
+
+@overload
+def spheroid_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = None,
+                      data: pin.Data | None = None
+                      ) -> tuple[np.ndarray, np.ndarray | None]: ...
 
 
 def spheroid_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = None,
@@ -141,7 +176,8 @@ def spheroid_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = No
     if ``v`` is given, :math:`\dot J_c(q, v)` (see the module docstring)."""
     model = wm.model
     data = data or model.createData()
-    fid = wm.contact.frame_id
+    contact = ball_contact(wm)
+    fid = contact.frame_id
     if v is None:
         pin.computeJointJacobians(model, data, q)
     else:
@@ -155,7 +191,7 @@ def spheroid_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = No
     dJ = pin.getFrameJacobianTimeVariation(model, data, fid, _LWA)
     omega = Jw @ v
     udot = np.cross(g.u, g.rotation.T @ omega)
-    pdot = lowest_point_rate(wm.contact.radius, wm.contact.polar_radius, g.u, udot)
+    pdot = lowest_point_rate(*_radii(contact, wm.name), g.u, udot)
     rhodot = np.cross(omega, g.rho) + g.rotation @ pdot
     return Jc, dJ[:3] - _cross(g.rho) @ dJ[3:] - _cross(rhodot) @ Jw
 
@@ -180,7 +216,7 @@ def spheroid_contact_velocity(wm: WheeledModel, q: np.ndarray, v: np.ndarray) ->
     pin.forwardKinematics(wm.model, data, q, v)
     pin.updateFramePlacements(wm.model, data)
     g = spheroid_point(wm, data)
-    vel = pin.getFrameVelocity(wm.model, data, wm.contact.frame_id, _LWA)
+    vel = pin.getFrameVelocity(wm.model, data, ball_contact(wm).frame_id, _LWA)
     return vel.linear + np.cross(vel.angular, g.rho)
 
 

@@ -50,6 +50,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import overload
 
 import numpy as np
 import pinocchio as pin
@@ -150,6 +151,22 @@ def wheel_rows_rate(wm: WheeledModel, q: np.ndarray, v: np.ndarray, rows: WheelR
         rhodot = _cross3(w, g.centre - g.origin) + wc.radius * ddot
         out.append(dJ[:3] - _cross(g.rho) @ dJ[3:] - _cross(rhodot) @ Jw)
     return np.vstack(out)
+
+
+@overload
+def wheel_jacobian(wm: WheeledModel, q: np.ndarray, v: None = None,
+                   data: pin.Data | None = None) -> tuple[np.ndarray, None]: ...
+
+
+@overload
+def wheel_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray,
+                   data: pin.Data | None = None) -> tuple[np.ndarray, np.ndarray]: ...
+
+
+@overload
+def wheel_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = None,
+                   data: pin.Data | None = None
+                   ) -> tuple[np.ndarray, np.ndarray | None]: ...
 
 
 def wheel_jacobian(wm: WheeledModel, q: np.ndarray, v: np.ndarray | None = None,

@@ -223,7 +223,7 @@ class RollingReduction:
                 q = self.on_ground(q)
             qs.append(q)
             nus.append(nu)
-        qs, nus = np.array(qs), np.array(nus)
-        energy = (np.array([self.energy(a, b) for a, b in zip(qs, nus)]) if u is None
+        q_path, nu_path = np.array(qs), np.array(nus)
+        energy = (np.array([self.energy(a, b) for a, b in zip(q_path, nu_path)]) if u is None
                   else np.full(len(times), np.nan))
-        return RollingTrajectory(times, qs, nus, energy, drift)
+        return RollingTrajectory(times, q_path, nu_path, energy, drift)

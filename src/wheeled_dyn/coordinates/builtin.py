@@ -83,7 +83,7 @@ def _unwheeled_specs(wm: WheeledModel) -> dict[str, dict[str, Any]]:
     config = {n: n for n in (*angles, *others)}
     vmap = {**BODY_RATES, **{"d" + n: "d" + n for n in others}}
     velocities = ["wx", "wy", "wz", *("d" + n for n in others)]
-    if contact:
+    if wm.contact is not None:
         spec = wm.contact.spec
         cx, cy, cz = (str(float(c)) for c in spec.centre)
         if spec.spheroid:                       # centre at the height s of the lowest point

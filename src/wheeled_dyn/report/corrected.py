@@ -5,19 +5,18 @@ a ``$$`` block and the text form)."""
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from html import escape
 
 from ..compare.records import DerivationResult, EquationRecord
+from .html_text import mathml
 
 
 def _fixed(result: DerivationResult) -> list[EquationRecord]:
     return [e for e in result.equations if e.corrected_latex]
 
 
-def corrected_html(result: DerivationResult, mathml: Callable[[str], str]) -> str:
-    r"""A block with each corrected equation (``mathml``: LaTeX to MathML), empty without
-    one."""
+def corrected_html(result: DerivationResult) -> str:
+    r"""A block with each corrected equation rendered as MathML, empty without one."""
     fixed = _fixed(result)
     if not fixed:
         return ""

@@ -61,9 +61,9 @@ class CauseLine:
         named = ", ".join(label(e) for e in self.elements[:NAMED_IN_LINE])
         more = len(self.elements) - NAMED_IN_LINE
         where = f" — {named}" + (f" +{more}" if more > 0 else "") if self.elements else ""
-        label = KIND_TEXT.get(self.kind, self.kind.replace("_", " "))
-        text = self.text if not self.text.lower().startswith(label.lower()) else self.text[len(label):].lstrip(": ")
-        return f"{label}: {text}{where}"
+        kind = KIND_TEXT.get(self.kind, self.kind.replace("_", " "))
+        text = self.text if not self.text.lower().startswith(kind.lower()) else self.text[len(kind):].lstrip(": ")
+        return f"{kind}: {text}{where}"
 
 
 def _numbers(text: str) -> tuple[int, ...]:

@@ -122,7 +122,8 @@ def side_by_side(d: Derivation, q0: dict[str, float], duration: float = 5.0,
                             for c in found.row_factors)
         d = as_compared(d, found)
     wm = load_model(d.model)
-    physical = model_entry(d.model).parameters() if model_entry(d.model).parameters else None
+    entry = model_entry(d.model)
+    physical = entry.parameters() if entry.parameters else None
     params = ParameterSet(wm, namespace_values(wm, physical), physical)
     cs = derivation_coordinate_set(d, params)
     cmap = CoordinateMap(wm, cs)

@@ -22,6 +22,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import sympy as sp
@@ -109,7 +110,7 @@ def compile_rhs(S: sp.Matrix, A: sp.Matrix, force: sp.Matrix, q: Sequence[sp.Sym
     source = "\n".join(lines + ["    " + line for line in body])
     namespace = dict(_NAMESPACE)
     exec(compile(source, "<wheeled_dyn fast rhs>", "exec"), namespace)  # noqa: S102
-    fn = namespace["_rhs"]
+    fn: Any = namespace["_rhs"]            # made by exec: a function with its source
     fn.source = source
     return fn
 

@@ -71,7 +71,8 @@ def frame_points(points: np.ndarray, azimuth: float = 35.0, elevation: float = 2
     centre = 0.5 * (lo + hi)
     radius = max(MIN_RADIUS, 0.5 * float(np.linalg.norm(hi - lo))) * margin
     distance = radius / np.sin(np.radians(fov) / 2)
-    return View(tuple(float(c) for c in centre), float(distance), azimuth, elevation)
+    return View((float(centre[0]), float(centre[1]), float(centre[2])), float(distance), azimuth,
+                elevation)
 
 
 def apply_view(vis, view: View) -> None:

@@ -201,7 +201,7 @@ class Viewer:
             self.root[path].set_transform(T)
 
     @_answering
-    def frame(self, qs: Sequence[Sequence[float]] | np.ndarray) -> camera.View:
+    def frame(self, qs: Sequence[Sequence[float] | np.ndarray] | np.ndarray) -> camera.View:
         r"""Aim the camera so that the model stays in view at every configuration of ``qs``,
         resize the ground grid to match, and return the view."""
         pts = np.vstack([self.poses.points(q) for q in qs])

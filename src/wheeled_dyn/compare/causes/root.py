@@ -46,8 +46,8 @@ from ...compiled import numpy_function
 from ..judge.diagnose import AGREE_TOL, agrees
 from ..sides.document import _h_tensor
 from ..sides.evaluation import Evaluation
-from ..records import (SPECIFIC_KINDS, Cause, CauseKind, DiagnosisKind as K, Step, Verdict,
-                       first_of)
+from ..records import (SPECIFIC_KINDS, Cause, CauseKind, DiagnosisKind as K, ElementRecord, Step,
+                       Verdict, first_of)
 
 #: Share of samples at which A must have rank n − m to call the constraints substituted.
 RANK_SHARE = 0.99
@@ -124,7 +124,7 @@ def covered_products(records: Sequence, velocities: Sequence[sp.Symbol]) -> dict
     :math:`\nu_j\nu_k` of row i containing the velocity of the column of a differing
     ``C[i, c]`` that has a specific diagnosis (``C[3,2]`` with φ̇ written for ψ̇ explains
     ``h[3]:dpsi*dpsi`` and ``h[3]:dpsi*dphi``). Maps the h element to the C element."""
-    out = {}
+    out: dict[str, str] = {}
     for c in records:
         if c.key != "C" or c.verdict not in EXPLAINED_VERDICTS or not _specific(c):
             continue
@@ -149,7 +149,8 @@ def method_causes(ev: Evaluation, d, records: Sequence) -> list[Cause]:
     covered = covered_products(records, d.velocities)
     by_product = {tuple(r.index): r for r in records if r.key == "h" and not _specific(r)
                   and r.element not in covered}
-    quasi, inconsistent = [], []
+    quasi: list[ElementRecord] = []
+    inconsistent: list[ElementRecord] = []
     for index, same in own.items():
         r = by_product.get(index)
         if r is None or r.verdict != Verdict.DIFFERS:
@@ -367,7 +368,8 @@ def root_causes(ev: Evaluation | None, d, records: Sequence, energy, asymmetric:
     if ev is not None:
         found += method_causes(ev, d, records)
         found += constraint_cause(ev, records)
-    out, explained = [], set()
+    out: list[Cause] = []
+    explained: set[str] = set()
     for c in found:
         fresh = tuple(e for e in c.elements if e not in explained)
         if c.elements and not fresh:

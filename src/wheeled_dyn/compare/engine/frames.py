@@ -48,21 +48,29 @@ def choose_frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], d
                       has_declared and not right, right)
         if not right and not has_declared and _differing(i, rule, main) > d.n:
             rule = choose(i, candidate_rules(i, on, True, simple), on, False)
-        frame = evaluate_rule(i, rule, main.doc, main.truth, main.doc.B, main.B_true,
-                              declared_scale)
-        if frame is None:
+        evaluated = evaluate_rule(i, rule, main.doc, main.truth, main.doc.B, main.B_true,
+                                  declared_scale)
+        if evaluated is None:
             rule = FrameRule(FrameKind.IDENTITY)
-            frame = evaluate_rule(i, rule, main.doc, main.truth, main.doc.B, main.B_true)
-        if has_declared and rule.kind != FrameKind.DECLARED:
+        frame = evaluated if evaluated is not None else _always(i, rule, main)
+        if declared_scale is not None and rule.kind != FrameKind.DECLARED:
             if _same(frame.weights, i, declared_scale):
                 rule = FrameRule(FrameKind.DECLARED)
-                frame = evaluate_rule(i, rule, main.doc, main.truth, main.doc.B, main.B_true,
-                                      declared_scale)
+                frame = _always(i, rule, main, declared_scale)
             elif right:
                 wrong.append(i)
         rules.append(rule)
         frames.append(frame)
     return rules, frames, wrong
+
+
+def _always(i: int, rule: FrameRule, main: Sides, declared: np.ndarray | None = None) -> Frame:
+    r"""Row ``i``'s frame under a rule that always has one (the identity, the declared scale)
+    on the main grid."""
+    frame = evaluate_rule(i, rule, main.doc, main.truth, main.doc.B, main.B_true, declared)
+    if frame is None:
+        raise ValueError(f"row {i + 1}: the {rule.kind} frame is always defined")
+    return frame
 
 
 def _differing(i: int, rule: FrameRule, main: Sides) -> int:
@@ -86,7 +94,9 @@ def _same(w: np.ndarray, i: int, factor: np.ndarray) -> bool:
 def declared_weights(d: Derivation, sides: Sides, i: int, funcs: DocumentFunctions
                       ) -> np.ndarray:
     r"""The factor the file declares for row ``i``, per sample."""
-    return np.broadcast_to(np.asarray(funcs.compiled(d.row_scale[i])(*sides.argv), float),
+    if d.row_scale is None:
+        raise ValueError(f"{d.path.name} declares no row scale")
+    return np.broadcast_to(np.asarray(funcs.compiled(d.row_scale[i])(*sides.argv), dtype=float),
                            (sides.size,))
 
 

@@ -112,7 +112,7 @@ def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides
     doc_side = _n(doc, doc.B if sides.B_true is not None else None)
     if doc_side is None or truth.A is None:
         return None
-    parts = [x for x, y in ((truth.h, doc.h), (truth.Q, doc.Q)) if y is not None]
+    parts = [truth.need(k) for k, y in (("h", doc.h), ("Q", doc.Q)) if y is not None]
     true_n = sum(parts[1:], parts[0]) if both_n else None
     true_side = equivalence.Side(truth.A, true_n, _with_stiffness(
         truth.K if doc.K is not None else None, sides.B_true))
@@ -130,7 +130,7 @@ def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides
     if len(q):
         values = {s: np.asarray([sides.per_set[k][s] for k in owner]) for s in funcs.params}
         at = funcs.evaluate(q, np.zeros_like(q), values)
-        special = (at.A, special_truth_A(sides.grid, q, owner))
+        special = (at.need("A"), special_truth_A(sides.grid, q, owner))
     return equivalence.decide(doc_side, true_side, len(sides.grid.sets), special)
 
 
@@ -223,7 +223,8 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     combined = any(r.kind == FrameKind.COMBINATION for r in rules)
     unnamed = any(r.verdict != Verdict.AGREES and r.key != "C" and not has_kind(r.diagnoses, *NAMED)
                   for r in drafts)
-    solved, found, frames_on_id, id_sides = None, [], [None] * d.n, None
+    solved, found, id_sides = None, [], None
+    frames_on_id: list[Frame | None] = [None] * d.n
     if unnamed or combined or any(r.kind == FrameKind.FUNCTION for r in rules):
         # the identification grid (many parameter sets), only where something is identified
         id_sides = both_sides(d, funcs, engine.grids.get(d, (), ID_STATES, ID_SETS, assumed),
@@ -240,7 +241,7 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
                    _geometric(d), d.positions, row_factors(rules, frames_on_id))
     if decision is not None and not decision.equivalent and combined and id_sides is not None \
             and id_sides.doc.A is not None:
-        solved = inertia_diagnoses(id_sides.doc.A, id_sides.doc.B, id_sides.truth.A,
+        solved = inertia_diagnoses(id_sides.doc.A, id_sides.doc.B, id_sides.truth.need("A"),
                                    id_sides.B_true, found)
     equations = equation_records(d, decision, drafts, texts, label, grids, funcs, rules, solved)
     fixes = print_drafts(d, drafts, sides.grid.cs, texts, assumed, funcs.exprs)

@@ -26,5 +26,13 @@ class Arrays:
     K: np.ndarray | None = None
     H_rows: np.ndarray | None = None       # samples where H was computed (None: all)
 
+    def need(self, name: str) -> np.ndarray:
+        r"""Matrix ``name``, which the caller knows is there (the truth's A, C, Q, h and H; a
+        matrix the document gives); a ``ValueError`` naming it where it is not."""
+        value = getattr(self, name)
+        if value is None:
+            raise ValueError(f"{name} is needed here and was not evaluated")
+        return value
+
 
 __all__ = ["Arrays"]

@@ -19,7 +19,8 @@ and names as "agrees only if ..." only a condition the document did not state.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
+from typing import Any
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -57,7 +58,7 @@ class Assumptions:
 def declared(d: Derivation) -> Assumptions:
     r"""The assumptions ``d`` declares; an unknown family name is a
     :class:`~wheeled_dyn.errors.DerivationError` naming the file and the valid names."""
-    raw = d.assumes or {}
+    raw: Mapping[str, Any] = d.assumes or {}          # as read from TOML
     available = {c.name: c for c in special_cases(d.model)}
     families = []
     for name in raw.get("families", ()):
@@ -75,7 +76,8 @@ def position_ranges(d: Derivation, positions: Sequence[str],
                     assumptions: Assumptions) -> list[tuple[float, float]]:
     r"""Where each position is drawn: the linearisation point, else the file's declared
     range, else [−π, π]."""
-    ranges = dict(d.coordinates.raw.get("ranges", {}))
+    raw: Mapping[str, Any] = d.coordinates.raw            # as read from TOML
+    ranges = dict(raw.get("ranges", {}))
     point = dict(assumptions.linearised_about)
     return [(point[p], point[p]) if p in point else tuple(ranges.get(p, (-np.pi, np.pi)))
             for p in positions]

@@ -137,7 +137,7 @@ class Grids:
             on_truth()
         truth = self.truth(cmap, sets, q, nu)
         apply_to_truth(truth, assumed)
-        return Grid(truth, tuple(sets), q, nu, cs, cmap, tuple(map(tuple, ranges)))
+        return Grid(truth, tuple(sets), q, nu, cs, cmap, tuple((lo, hi) for lo, hi in ranges))
 
 
 def special_states(grid: Grid) -> tuple[np.ndarray, np.ndarray]:

@@ -101,7 +101,7 @@ def power_diagnoses(expr: sp.Expr, params: Sequence[sp.Symbol],
     found = []
     factors = [f for term in sp.Add.make_args(sp.expand(expr)) for f in sp.Mul.make_args(term)]
     for s in sorted(expr.free_symbols & set(params), key=str):
-        e = next((f.as_base_exp()[1] for f in factors if f.as_base_exp()[0] == s), 0)
+        e = next((f.as_base_exp()[1] for f in factors if f.as_base_exp()[0] == s), sp.Integer(0))
         if e == 0 or not e.is_Rational:
             continue
         for new in dict.fromkeys((-e, e - 1, e + 1, 2 * e)):

@@ -235,7 +235,7 @@ def decide(doc: Side, truth: Side, sets: int, special: tuple[np.ndarray, np.ndar
         where = "at a special position (a coordinate at 0, ±π/2 or π)" if rows is not None else ""
     if rows is not None:
         wrong = [k for k in rows if decisions[k].verdict == Verdict.DIFFERS]
-        rows = wrong or rows            # an equation that is no combination explains it
+        rows = tuple(wrong) or rows     # an equation that is no combination explains it
         names = ", ".join(str(k + 1) for k in rows)
         which = f"equations {names} are" if len(rows) > 1 else f"equation {names} is"
         text = (f"{which} not independent {where}: W = A_doc A⁻¹ is singular there (an "

@@ -53,8 +53,9 @@ def factorization(drafts: Sequence[ElementDraft], gammas: dict[int, tuple[np.nda
             continue
         i, j = r.index
         n = max((x.index[1] for x in drafts if x.key == "C" and x.index[0] == i), default=-1) + 1
-        products = [(k, _product(by_key, i, j, k)) for k in range(n)]
-        if any(p is None for _, p in products):
+        found = [(k, _product(by_key, i, j, k)) for k in range(n)]
+        products = [(k, p) for k, p in found if p is not None]
+        if len(products) < n:                   # a product not compared
             continue
         verdicts = {p.verdict for _, p in products}
         if verdicts <= {Verdict.AGREES, Verdict.AGREES_IF}:

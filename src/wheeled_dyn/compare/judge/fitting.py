@@ -93,10 +93,10 @@ def _search(ratio: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
         return []
     L = np.column_stack([np.log(np.abs(v)) for _, v in bases])
     y = np.log(np.abs(ratio))
-    out = []
+    out: list[tuple[tuple[int, ...], tuple[int, ...]]] = []
     for p in EXPONENTS:
         spread = np.ptp(y[:, None] - p * L, axis=0)
-        out += [((a,), (p,)) for a in np.flatnonzero(spread <= RATIO_TOL)]
+        out += [((int(a),), (p,)) for a in np.flatnonzero(spread <= RATIO_TOL)]
     if MAX_FACTORS >= 2 and L.shape[1] > 1:
         a, b = np.triu_indices(L.shape[1], 1)
         for p in EXPONENTS:

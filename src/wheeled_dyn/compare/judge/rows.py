@@ -6,6 +6,7 @@ element and h per velocity product (the coefficient :math:`H_{i,jk}` weighted 1 
 from __future__ import annotations
 
 from collections.abc import Iterator, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 import sympy as sp
@@ -16,7 +17,7 @@ from ..sides.elements import element_expr, element_label
 from .draft import ElementDraft
 
 
-def row_values(doc_row: Arrays, true_row: Arrays, i: int, exprs: Mapping[str, object],
+def row_values(doc_row: Arrays, true_row: Arrays, i: int, exprs: Mapping[str, Any],
                velocities: Sequence[sp.Symbol]
                ) -> Iterator[tuple[str, tuple[int, ...], np.ndarray, np.ndarray, sp.Expr | None]]:
     r"""``(key, index, D, T, expression)`` of every element of row ``i`` (``doc_row`` and
@@ -43,7 +44,7 @@ def row_values(doc_row: Arrays, true_row: Arrays, i: int, exprs: Mapping[str, ob
                        element_expr(exprs, "h", (i, j, k), velocities))
 
 
-def drafts_of_row(doc_row: Arrays, true_row: Arrays, i: int, exprs: Mapping[str, object],
+def drafts_of_row(doc_row: Arrays, true_row: Arrays, i: int, exprs: Mapping[str, Any],
                   velocities: Sequence[sp.Symbol], scale: float, lost: set[str],
                   equation: str) -> list[ElementDraft]:
     r"""Unjudged drafts of row ``i``'s elements; elements the extracted text lost (labels in

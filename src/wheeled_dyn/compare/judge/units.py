@@ -141,9 +141,9 @@ class DimensionChecker:
         expr = sp.sympify(expr)
         key = expr
         if key in self._memo:
-            found, said = self._memo[key]
-            problems += said
-            return found
+            known, noted = self._memo[key]
+            problems += noted
+            return known
         said: list[str] = []
         found = self._dim(expr, said)
         self._memo[key] = (found, said)
@@ -156,43 +156,13 @@ class DimensionChecker:
         if expr.is_Symbol:
             return self.known.get(expr)
         if expr.is_Add:
-            dims = [(t, self.dim(t, problems)) for t in expr.args]
-            known = [(t, dd) for t, dd in dims if dd is not None]
-            if not known:
-                return None
-            ref = max(known, key=lambda td: sum(1 for t2, d2 in known if d2 == td[1]))[1]
-            for t, dd in known:
-                if dd != ref:
-                    problems.append(f"term {sp.sstr(t)} is {format_dim(dd)} beside "
-                                    f"{format_dim(ref)}")
-            return ref
+            return self._sum_dim(expr, problems)
         if expr.is_Mul:
-            total = ZERO
-            for f in expr.args:
-                fd = self.dim(f, problems)
-                if fd is None:
-                    return None
-                total = _add(total, fd)
-            return total
+            return self._product_dim(expr, problems)
         if expr.is_Pow:
-            base, exp = expr.args
-            bd = self.dim(base, problems)
-            if bd is None:
-                return None
-            if not exp.is_Number:
-                return ZERO if bd == ZERO else None
-            return tuple(sp.Rational(x) * sp.Rational(exp) for x in bd)
+            return self._power_dim(expr, problems)
         if expr.func in _HOMOGENEOUS:
-            # atan2(y, x), Max, Min: homogeneous of degree 0 or 1 in arguments of one dimension
-            dims = [self.dim(a, problems) for a in expr.args]
-            known = [(a, dd) for a, dd in zip(expr.args, dims) if dd is not None]
-            for a, dd in known[1:]:
-                if dd != known[0][1]:
-                    problems.append(f"arguments of {expr.func.__name__}: {sp.sstr(a)} is "
-                                    f"{format_dim(dd)} beside {format_dim(known[0][1])}")
-            if _HOMOGENEOUS[expr.func] == 0:
-                return ZERO
-            return known[0][1] if len(known) == len(dims) else None
+            return self._homogeneous_dim(expr, problems)
         if isinstance(expr, sp.Function):
             for arg in expr.args:
                 ad = self.dim(arg, problems)
@@ -201,6 +171,50 @@ class DimensionChecker:
                                     f"{format_dim(ad)}")
             return ZERO
         return None
+
+    def _sum_dim(self, expr: sp.Expr, problems: list[str]) -> Dim | None:
+        r"""A sum's dimension: the one most of its terms have (the others are problems)."""
+        dims = [(t, self.dim(t, problems)) for t in expr.args]
+        known = [(t, dd) for t, dd in dims if dd is not None]
+        if not known:
+            return None
+        ref = max(known, key=lambda td: sum(1 for t2, d2 in known if d2 == td[1]))[1]
+        for t, dd in known:
+            if dd != ref:
+                problems.append(f"term {sp.sstr(t)} is {format_dim(dd)} beside "
+                                f"{format_dim(ref)}")
+        return ref
+
+    def _product_dim(self, expr: sp.Expr, problems: list[str]) -> Dim | None:
+        total = ZERO
+        for f in expr.args:
+            fd = self.dim(f, problems)
+            if fd is None:
+                return None
+            total = _add(total, fd)
+        return total
+
+    def _power_dim(self, expr: sp.Expr, problems: list[str]) -> Dim | None:
+        base, exp = expr.args
+        bd = self.dim(base, problems)
+        if bd is None:
+            return None
+        if not exp.is_Number:
+            return ZERO if bd == ZERO else None
+        return tuple(sp.Rational(x) * sp.Rational(exp) for x in bd)
+
+    def _homogeneous_dim(self, expr: sp.Expr, problems: list[str]) -> Dim | None:
+        r"""atan2(y, x), Max, Min: homogeneous of degree 0 or 1 in arguments of one
+        dimension."""
+        dims = [self.dim(a, problems) for a in expr.args]
+        known = [(a, dd) for a, dd in zip(expr.args, dims) if dd is not None]
+        for a, dd in known[1:]:
+            if dd != known[0][1]:
+                problems.append(f"arguments of {expr.func.__name__}: {sp.sstr(a)} is "
+                                f"{format_dim(dd)} beside {format_dim(known[0][1])}")
+        if _HOMOGENEOUS[expr.func] == 0:
+            return ZERO
+        return known[0][1] if len(known) == len(dims) else None
 
     def expected(self, key: str, index: tuple[int, ...]) -> Dim | None:
         i = index[0]

@@ -26,7 +26,8 @@ import numpy as np
 
 from ...derivations.linear_document import LinearDocument, load_linear_document
 from ..judge.diagnose import value_diagnoses
-from ..records import Diagnosis, DiagnosisKind as K, DerivationResult, ElementRecord, diagnosis
+from ..records import (Diagnosis, DiagnosisKind as K, DerivationResult, ElementRecord, Step,
+                       Verdict, diagnosis)
 
 #: Relative slack beyond half a unit of the last printed decimal (floating point).
 ROUNDING_SLACK = 1e-12
@@ -34,7 +35,7 @@ ROUNDING_SLACK = 1e-12
 SCAN_SPEEDS = np.linspace(0.0, 10.0, 201)
 ROOT_XTOL = 1e-14
 #: Step names of the records.
-STEP = "linearised equations"
+STEP = Step.LINEARISED_EQUATIONS
 
 
 def is_linear_document(path: str | Path) -> bool:
@@ -74,7 +75,7 @@ def _record(element: str, key: str, index: tuple[int, ...], printed: float, trut
                             f"printed digits (off by {error:.3g}, half a unit of the last "
                             f"digit is {tol:.1g})", prefix=""),)
     return ElementRecord(element=element, key=key, index=index,
-                         verdict="agrees" if ok else "differs", diagnoses=diags,
+                         verdict=Verdict.AGREES if ok else Verdict.DIFFERS, diagnoses=diags,
                          document=repr(printed), document_model="", truth=repr(truth),
                          residual=None, max_error=error, scale=max(abs(truth), 1e-300),
                          truth_sample=truth, document_sample=printed, step=STEP,
@@ -149,7 +150,7 @@ def compare_linear(path: str | Path) -> DerivationResult:
             records.append(_record(key.replace("_", " "), "claim", (k,), doc.claims[key],
                                    value, "section 5"))
     return DerivationResult(
-        path=doc.path, title=doc.title, model=doc.model, source=dict(doc.source),
+        path=doc.path, title=doc.title, model=doc.model, source=dict(doc.source or {}),
         coordinates="linearised: " + ", ".join(doc.positions),
         velocities=tuple(doc.positions), form="linearised", records=tuple(records),
         row_factors=(), energy=None, asymmetric=(), constraints=(), reconstructed={},

@@ -116,7 +116,7 @@ def _ratio_groups(D: np.ndarray, T: np.ndarray, first: int
 def _columns(a: Arrays, B: np.ndarray | None, row: int, with_n: bool) -> np.ndarray:
     r"""Row ``row`` of A, the velocity-and-gravity term :math:`n = h + Q` (``with_n``, per
     sample) and B (where given) side by side (S × k)."""
-    parts = [a.A[:, row, :]]
+    parts = [a.need("A")[:, row, :]]
     if with_n:
         n = sum(x[:, row] for x in (a.h, a.Q) if x is not None)
         parts.append(np.asarray(n, float)[:, None])
@@ -169,21 +169,22 @@ def _solve_rows(M: np.ndarray, rhs: np.ndarray) -> np.ndarray:
 def combination_weights(i: int, rule: FrameRule, doc: Arrays, truth: Arrays,
                         B_doc: np.ndarray | None, B_true: np.ndarray | None) -> np.ndarray:
     r"""The weights of a ``COMBINATION`` rule (see :class:`FrameRule`)."""
+    A_doc, A_true = doc.need("A"), truth.need("A")
     if rule.variant is None:
-        return _solve_rows(truth.A, doc.A[:, i, :])
+        return _solve_rows(A_true, A_doc[:, i, :])
     j, c = rule.variant
     if c < 0:
         if doc.h is None or truth.h is None:
-            return np.full(doc.A[:, i, :].shape, np.nan)
+            return np.full(A_doc[:, i, :].shape, np.nan)
         extra_t = truth.h + (truth.Q if truth.Q is not None else 0.0)
         extra_d = doc.h[:, i] + (doc.Q[:, i] if doc.Q is not None else 0.0)
     else:
         if B_doc is None or B_true is None:
-            return np.full(doc.A[:, i, :].shape, np.nan)
+            return np.full(A_doc[:, i, :].shape, np.nan)
         extra_t, extra_d = B_true[:, :, c], B_doc[:, i, c]
-    M = truth.A.copy()
+    M = A_true.copy()
     M[:, :, j] = extra_t
-    rhs = doc.A[:, i, :].copy()
+    rhs = A_doc[:, i, :].copy()
     rhs[:, j] = extra_d
     return _solve_rows(M, rhs)
 
@@ -193,7 +194,7 @@ def evaluate_rule(i: int, rule: FrameRule, doc: Arrays, truth: Arrays,
                   declared: np.ndarray | None = None) -> Frame | None:
     r"""The frame of ``rule`` for row ``i`` on this grid (None when it does not exist here:
     no element votes for the pairing). ``declared``: the declared factor per sample."""
-    S, n = truth.A.shape[0], truth.A.shape[1]
+    S, n = truth.need("A").shape[:2]
     if rule.kind == FrameKind.DECLARED:
         w = np.zeros((S, n))
         w[:, i] = 1.0 if declared is None else declared
@@ -235,7 +236,7 @@ def candidate_rules(i: int, grids: Sequence[tuple[Arrays, Arrays, np.ndarray | N
     with ``robust`` (an equation that is not right) its variants with one inertia column
     replaced."""
     doc0, truth0, B0 = grids[0]
-    n = truth0.A.shape[1]
+    n = truth0.need("A").shape[1]
     out = [FrameRule(FrameKind.IDENTITY)]
     for k in range(n):
         for g, (doc, truth, B_true) in enumerate(grids):
@@ -248,7 +249,8 @@ def candidate_rules(i: int, grids: Sequence[tuple[Arrays, Arrays, np.ndarray | N
                 if not (k == i and abs(c - 1.0) <= RATIO_TOL):
                     rule = FrameRule(FrameKind.CONSTANT, k, value=c)
                     if not any(r.kind == FrameKind.CONSTANT and r.partner == k and
-                               abs(r.value - c) <= RATIO_TOL * abs(c) for r in out):
+                               r.value is not None and abs(r.value - c) <= RATIO_TOL * abs(c)
+                               for r in out):
                         out.append(rule)
             else:
                 rule = FrameRule(FrameKind.FUNCTION, k, identified=votes < 2)
@@ -322,7 +324,7 @@ def choose(i: int, rules: Sequence[FrameRule], grids: Sequence[tuple[Arrays, Arr
     kept."""
     if declared:
         return FrameRule(FrameKind.DECLARED)
-    n = grids[0][1].A.shape[1]
+    n = grids[0][1].need("A").shape[1]
     best: tuple[int, int, FrameRule] | None = None
     for order, rule in enumerate(rules):
         total = 0

@@ -39,14 +39,17 @@ COMBINATION_TOL = 1e-8
 def combination(doc: Arrays, truth: Arrays, B_true: np.ndarray | None) -> np.ndarray | None:
     r""":math:`W` per sample (samples × n × n) with the document's A, h, Q (and B) equal to
     :math:`W` times the truth's, when one exists and is not diagonal; else None."""
-    parts = [(doc.h, truth.h), (doc.Q, truth.Q)]
-    if any(x is None for x in (doc.A, truth.A, *(p for pair in parts for p in pair))):
+    A_doc, A_true = doc.A, truth.A
+    h_doc, h_true, Q_doc, Q_true = doc.h, truth.h, doc.Q, truth.Q
+    if A_doc is None or A_true is None or h_doc is None or h_true is None or Q_doc is None \
+            or Q_true is None:
         return None
-    arrays = [doc.A, truth.A, *(p for pair in parts for p in pair)]
+    parts = [(h_doc, h_true), (Q_doc, Q_true)]
+    arrays = [A_doc, A_true, h_doc, h_true, Q_doc, Q_true]
     if not all(np.isfinite(a).all() for a in arrays):
         return None
     try:
-        W = np.swapaxes(np.linalg.solve(np.swapaxes(truth.A, 1, 2), np.swapaxes(doc.A, 1, 2)),
+        W = np.swapaxes(np.linalg.solve(np.swapaxes(A_true, 1, 2), np.swapaxes(A_doc, 1, 2)),
                         1, 2)                                        # W A = A_doc
     except np.linalg.LinAlgError:
         return None
@@ -100,11 +103,11 @@ def separated(d: Derivation, W: sp.Matrix) -> Derivation | None:
         return replace(d, equations=tuple(
             sp.Eq(sp.Add(*(M[i, k] * rows[k] for k in range(d.n) if M[i, k] != 0)), 0)
             for i in range(d.n)))
-    mats = {k: getattr(d, k) for k in ("A", "C", "Q", "B")}
-    if any(m is not None and m.has(sp.nan) for m in mats.values()):
+    mats = (d.A, d.C, d.Q, d.B)
+    if any(m is not None and m.has(sp.nan) for m in mats):
         return None
-    return replace(d, **{k: None if m is None else sp.ImmutableMatrix(M * m)
-                         for k, m in mats.items()})
+    A, C, Q, B = (None if m is None else sp.ImmutableMatrix(M * m) for m in mats)
+    return replace(d, A=A, C=C, Q=Q, B=B)
 
 
 def as_text(W: sp.Matrix) -> tuple[tuple[str, ...], ...]:

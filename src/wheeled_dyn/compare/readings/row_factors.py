@@ -31,9 +31,13 @@ def row_factors(doc: Arrays, truth: Arrays, B_true, n: int) -> list[float | None
     a strict majority among A's entries and among all of the row's (A, Q, B). Voting keeps a
     single wrong coefficient (e.g. 3(m_c + m_s)) from scaling a row."""
     votes_a, votes_all = row_votes(doc, truth, B_true, n)
-    return [decided_factor(votes_a[i], votes_all[i],
-                           lambda f, i=i: explains(f, row_pairs(doc, truth, B_true, i)))
+    return [decided_factor(votes_a[i], votes_all[i], explaining(doc, truth, B_true, i))
             for i in range(n)]
+
+
+def explaining(doc: Arrays, truth: Arrays, B_true, i: int) -> Callable[[float], bool]:
+    r"""Whether dividing row ``i`` by a factor makes one of its elements agree."""
+    return lambda f: explains(f, row_pairs(doc, truth, B_true, i))
 
 
 def row_votes(doc: Arrays, truth: Arrays, B_true, n: int,
@@ -43,8 +47,8 @@ def row_votes(doc: Arrays, truth: Arrays, B_true, n: int,
     (A's, Q's, B's; rows × entries). ``fixed``: the votes of A and of Q, known already (only
     B's are counted then)."""
     if fixed is None:
-        votes_a = _votes(doc.A, truth.A) if doc.A is not None else np.empty((n, 0))
-        votes_q = _votes(doc.Q[:, :, None], truth.Q[:, :, None]) if doc.Q is not None \
+        votes_a = _votes(doc.A, truth.need("A")) if doc.A is not None else np.empty((n, 0))
+        votes_q = _votes(doc.Q[:, :, None], truth.need("Q")[:, :, None]) if doc.Q is not None \
             else np.empty((n, 0))
     else:
         votes_a, votes_q = fixed
@@ -74,9 +78,10 @@ def row_pairs(doc: Arrays, truth: Arrays, B_true, i: int) -> list[tuple[np.ndarr
     r"""Row i's (document, truth) sample pairs: A's entries, Q, B's entries."""
     pairs = []
     if doc.A is not None:
-        pairs += [(doc.A[:, i, j], truth.A[:, i, j]) for j in range(doc.A.shape[2])]
+        A_true = truth.need("A")
+        pairs += [(doc.A[:, i, j], A_true[:, i, j]) for j in range(doc.A.shape[2])]
     if doc.Q is not None:
-        pairs.append((doc.Q[:, i], truth.Q[:, i]))
+        pairs.append((doc.Q[:, i], truth.need("Q")[:, i]))
     if doc.B is not None and B_true is not None:
         pairs += [(doc.B[:, i, j], B_true[:, i, j]) for j in range(doc.B.shape[2])]
     return pairs
@@ -141,4 +146,5 @@ def row_sizes(arrays: Arrays, n: int) -> np.ndarray:
 
 
 __all__ = ["ROW_FACTORS", "ROW_FACTOR_SPREAD", "apply_row_factors", "decided_factor",
-           "explains", "row_factors", "row_pairs", "row_scales", "row_sizes", "row_votes"]
+           "explaining", "explains", "row_factors", "row_pairs", "row_scales", "row_sizes",
+           "row_votes"]

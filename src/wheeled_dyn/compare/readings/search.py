@@ -12,8 +12,8 @@ import numpy as np
 from ..sides.evaluation import Evaluation
 from ..judge.diagnose import AGREE_TOL
 from .signs import flip_arrays
-from .row_factors import (apply_row_factors, decided_factor, explains, row_factors, row_pairs,
-                       row_scales, row_sizes, row_votes)
+from .row_factors import (apply_row_factors, decided_factor, explaining, row_factors,
+                          row_scales, row_sizes, row_votes)
 from ..grid.arrays import Arrays
 
 #: Samples the convention search scores each reading on (spread over the parameter sets).
@@ -69,13 +69,16 @@ class SearchEvaluation(Evaluation):
         factors = row_factors(doc, truth, B_true, n)
         apply_row_factors(doc, factors)
         scales = row_scales(doc, truth, n, truth_sizes)
-        pairs = [(doc.A, truth.A), (doc.C, truth.C), (doc.Q, truth.Q)]
-        if B_true is not None:
-            pairs.append((doc.B, B_true))
-        count = sum(_agreeing(D, T, scales) for D, T in pairs if D is not None)
+        count = 0
+        for name in ("A", "C", "Q"):
+            D = getattr(doc, name)
+            if D is not None:
+                count += _agreeing(D, truth.need(name), scales)
+        if B_true is not None and doc.B is not None:
+            count += _agreeing(doc.B, B_true, scales)
         if doc.H is not None:            # the velocity products j <= k (2 H_ijk for j < k)
             upper = np.triu(np.ones((n, n), dtype=bool))
-            count += _agreeing(doc.H * _product_weights(n), truth_H, scales, upper)
+            count += _agreeing(doc.H * _product_weights(n), _needed(truth_H), scales, upper)
         return count
 
     def score_readings(self, base: Arrays, s: Sequence[int],
@@ -103,8 +106,8 @@ class SearchEvaluation(Evaluation):
             votes_a, votes_all = row_votes(variant, truth, B_true, n, fixed)
             total = 0
             for i in range(n):
-                f = decided_factor(votes_a[i], votes_all[i], lambda f, i=i: explains(
-                    f, row_pairs(variant, truth, B_true, i)))
+                f = decided_factor(votes_a[i], votes_all[i],
+                                   explaining(variant, truth, B_true, i))
                 count, scale = rows.part(i, f)
                 Bi = B[:, i:i + 1] if f is None else B[:, i:i + 1] / f
                 total += count + _agreeing(Bi, B_true[:, i:i + 1], np.array([scale]))
@@ -131,15 +134,15 @@ class _RowParts:
             one = np.array([scale])
             count = 0
             for name in ("A", "C", "Q"):
-                D, T = getattr(self.doc, name), getattr(self.truth, name)
+                D = getattr(self.doc, name)
                 if D is not None:
                     D = D[:, i:i + 1] if f is None else D[:, i:i + 1] / f
-                    count += _agreeing(D, T[:, i:i + 1], one)
+                    count += _agreeing(D, self.truth.need(name)[:, i:i + 1], one)
             if self.doc.H is not None:
                 H = self.doc.H[:, i:i + 1] if f is None else self.doc.H[:, i:i + 1] / f
                 upper = np.triu(np.ones((self.n, self.n), dtype=bool))
-                count += _agreeing(H * _product_weights(self.n), self.truth_H[:, i:i + 1], one,
-                                   upper)
+                count += _agreeing(H * _product_weights(self.n),
+                                   _needed(self.truth_H)[:, i:i + 1], one, upper)
             self._parts[(i, f)] = (count, scale)
         return self._parts[(i, f)]
 
@@ -148,6 +151,13 @@ def _product_weights(n: int) -> np.ndarray:
     r"""The weights of H's entries as coefficients of h's velocity products: 1 for
     :math:`\nu_j^2`, 2 for :math:`\nu_j\nu_k` (:math:`j \ne k`)."""
     return np.where(np.eye(n, dtype=bool), 1.0, 2.0)
+
+
+def _needed(truth_H: np.ndarray | None) -> np.ndarray:
+    r"""The truth's weighted H, which a document that gives h is compared with."""
+    if truth_H is None:
+        raise ValueError("the truth's H is needed where the document gives h")
+    return truth_H
 
 
 def _agreeing(D: np.ndarray, T: np.ndarray, scales: np.ndarray,

@@ -113,9 +113,9 @@ def best_reading(d: Derivation, evaluate: Callable[[Sequence[int]], Arrays],
             return [score(flip_arrays(base, s, t, order)) for t, order in rest]
     best: tuple[Reading | None, int] = (None, declared)
     for s, group in itertools.groupby(options, key=lambda o: o[0]):   # each s's consecutive
-        group = list(group)
-        values = score_readings(evaluate(s), s, [(t, order) for _, t, order in group])
-        for reading, value in zip(group, values):
+        members = list(group)
+        values = score_readings(evaluate(s), s, [(t, order) for _, t, order in members])
+        for reading, value in zip(members, values):
             if value > best[1]:
                 best = (reading, value)
     if best[0] is None or best[1] < declared + (
@@ -211,6 +211,8 @@ def best_row_order(d: Derivation, evaluate: Callable[[Sequence[int]], Arrays],
 
 def reordered(d: Derivation, order: Sequence[int]) -> Derivation:
     r"""``d`` with its equation :math:`i` taken from the file's equation ``order[i]``."""
+    if d.equations is None:
+        raise ValueError(f"{d.path.name}: only equations written out are reordered, not matrices")
     raw = dict(d.coordinates.raw)
     raw[ROWS_KEY] = describe_rows(d, order)
     scale = None if d.row_scale is None else tuple(d.row_scale[k] for k in order)

@@ -31,10 +31,13 @@ import importlib.metadata
 from collections.abc import Callable, Iterable
 from functools import lru_cache
 from pathlib import Path
+from typing import TypeVar
 
 from ...cache_trust import REUSE_ENV, results_reused, reuse_enabled
 from ...disk_cache import cache_root, load, store
 from ...paths import PACKAGE_DIR, file_stamp
+
+T = TypeVar("T")
 
 _PACKAGE = PACKAGE_DIR                  # every file of the package, not only compare/'s
 #: The :func:`~wheeled_dyn.paths.file_stamp` of each derivation file when it was
@@ -96,9 +99,9 @@ def result_key(path: Path, model: str, grid: tuple, extra: Iterable[Path] = ()) 
     return h.hexdigest()
 
 
-def reused(key: Callable[[], str], kind: type, compute: Callable[[], object],
-           fits: Callable[[object], bool] = lambda value: True,
-           parsed: Path | None = None) -> object:
+def reused(key: Callable[[], str], kind: type[T], compute: Callable[[], T],
+           fits: Callable[[T], bool] = lambda value: True,
+           parsed: Path | None = None) -> T:
     r"""The result remembered under ``key()``, else ``compute()``, stored under it.
 
     A remembered entry is taken only if it holds that key, a ``kind`` and ``fits(value)``.

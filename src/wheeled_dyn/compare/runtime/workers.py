@@ -86,7 +86,7 @@ class Workers:
         before = signal.pthread_sigmask(signal.SIG_BLOCK, HELD_SIGNALS) if held else None
         self._pool = ctx.Pool(count, initializer=_start_worker)
         try:
-            if held:
+            if before is not None:           # held: the mask as it was
                 signal.pthread_sigmask(signal.SIG_SETMASK, before)
         except BaseException:
             self._pool.terminate()

@@ -52,7 +52,7 @@ def gamma(funcs: DocumentFunctions, q: np.ndarray, values: Mapping[sp.Symbol, np
     for k in range(n):
         unit = np.zeros((len(rows), n))
         unit[:, k] = 1.0
-        parts.append(funcs.evaluate(q[rows], unit, sub).C)
+        parts.append(funcs.evaluate(q[rows], unit, sub).need("C"))
     return np.stack(parts, axis=3)
 
 

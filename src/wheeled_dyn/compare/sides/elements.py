@@ -11,7 +11,9 @@ r"""Element by element: both sides' numbers per element, and labels.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from typing import Any
 
+import numpy as np
 import sympy as sp
 
 from ...derivations.schema import Derivation
@@ -39,7 +41,7 @@ def element_label(key: str, index: tuple[int, ...], velocities: Sequence[sp.Symb
     return f"{key}[{index[0] + 1},{index[1] + 1}]"
 
 
-def element_expr(exprs: Mapping[str, object], key: str, index: tuple[int, ...],
+def element_expr(exprs: Mapping[str, Any], key: str, index: tuple[int, ...],
                   velocities: Sequence[sp.Symbol]) -> sp.Expr | None:
     r"""The expression of one element (for h: the coefficient of a velocity product)."""
     M = exprs.get(key if key != "h" else "h")
@@ -67,29 +69,38 @@ def expanded(expr: sp.Expr) -> sp.Expr:
 
 def element_values(funcs: DocumentFunctions, doc: Arrays, truth: Arrays, B_true, n: int):
     r"""(key, document values, true values, index, document expression) of every element."""
-    ex, vel = funcs.exprs, funcs.d.velocities
+    ex = funcs.exprs
     if doc.A is not None:
-        for i in range(n):
-            for j in range(n):
-                yield "A", doc.A[:, i, j], truth.A[:, i, j], (i, j), ex["A"][i, j]
+        yield from _matrix_values("A", doc.A, truth.need("A"), ex["A"], n, n)
     if doc.C is not None:
-        for i in range(n):
-            for j in range(n):
-                yield "C", doc.C[:, i, j], truth.C[:, i, j], (i, j), ex["C"][i, j]
+        yield from _matrix_values("C", doc.C, truth.need("C"), ex["C"], n, n)
     if doc.Q is not None:
+        Q_true = truth.need("Q")
         for i in range(n):
-            yield "Q", doc.Q[:, i], truth.Q[:, i], (i,), ex["Q"][i]
+            yield "Q", doc.Q[:, i], Q_true[:, i], (i,), ex["Q"][i]
     if doc.B is not None and B_true is not None:
-        for i in range(n):
-            for j in range(doc.B.shape[2]):
-                yield "B", doc.B[:, i, j], B_true[:, i, j], (i, j), ex["B"][i, j]
+        yield from _matrix_values("B", doc.B, B_true, ex["B"], n, doc.B.shape[2])
     if doc.H is not None:
-        for i in range(n):
-            for j in range(n):
-                for k in range(j, n):
-                    w = 1.0 if j == k else 2.0
-                    yield ("h", w * doc.H[:, i, j, k], w * truth.H[:, i, j, k], (i, j, k),
-                           element_expr(ex, "h", (i, j, k), vel))
+        yield from _h_values(funcs, doc.H, truth.need("H"), n)
+
+
+def _matrix_values(key: str, D: np.ndarray, T: np.ndarray, exprs: sp.Matrix, rows: int,
+                   cols: int):
+    r"""The elements of matrix ``key`` (samples × rows × cols), row by row."""
+    for i in range(rows):
+        for j in range(cols):
+            yield key, D[:, i, j], T[:, i, j], (i, j), exprs[i, j]
+
+
+def _h_values(funcs: DocumentFunctions, H_doc: np.ndarray, H_true: np.ndarray, n: int):
+    r"""The velocity products of h: the coefficient of :math:`\dot q_j\dot q_k` (j ≤ k) in
+    row i, twice the symmetric H's element where j ≠ k."""
+    for i in range(n):
+        for j in range(n):
+            for k in range(j, n):
+                w = 1.0 if j == k else 2.0
+                yield ("h", w * H_doc[:, i, j, k], w * H_true[:, i, j, k], (i, j, k),
+                       element_expr(funcs.exprs, "h", (i, j, k), funcs.d.velocities))
 
 
 def swap_groups(d: Derivation) -> list[list[sp.Symbol]]:

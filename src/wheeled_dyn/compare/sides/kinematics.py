@@ -42,6 +42,7 @@ import pinocchio as pin
 
 from ...constraints.reduction import CoordinateMap
 from ...constraints.rolling import contact_jacobian
+from ...derivations.steps import Step
 from ...errors import UnknownNameError
 from ...models.builder import WheeledModel
 
@@ -214,6 +215,14 @@ def along(vector: np.ndarray, axes: Sequence[str]) -> np.ndarray:
     r"""Components of ``vector`` along the document's axes (``"-y"``: minus the y axis)."""
     return np.array([(-1.0 if a.startswith("-") else 1.0) * vector[_AXIS[a.lstrip("-")]]
                      for a in axes])
+
+
+def step_body(step: Step) -> str:
+    r"""The link a vector, orientation or balance step is about (the file's parser requires
+    one); a ``ValueError`` for a step without one."""
+    if step.body is None:
+        raise ValueError(f"step {step.equation} ({step.kind}) names no body")
+    return step.body
 
 
 def check_links(wm: WheeledModel, links: Sequence[str]) -> None:

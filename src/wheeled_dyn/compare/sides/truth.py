@@ -110,7 +110,7 @@ def stiffness(cmap: CoordinateMap, sets, q: np.ndarray) -> np.ndarray:
             states, where = q[k], np.arange(N)
         moved = np.concatenate([states + dh * np.eye(n)[j] for j in range(n)
                                 for dh, _ in steps])
-        Q = truth_for(cmap, [ps], moved[None], np.zeros_like(moved)[None]).Q
+        Q = truth_for(cmap, [ps], moved[None], np.zeros_like(moved)[None]).need("Q")
         Q = Q.reshape(n, len(steps), len(states), n)
         weights = np.array([w for _, w in steps])
         deriv = np.einsum("c,jcsi->sij", weights, Q) / (12 * h)

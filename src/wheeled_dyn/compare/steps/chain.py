@@ -36,7 +36,7 @@ from ...compiled import numpy_function
 from ..judge.diagnose import agrees, max_error, value_diagnoses
 from ..sides.document import document_symbol_values
 from ..records import (Cause, CauseKind, Diagnosis, DiagnosisKind as K, DerivationResult,
-                       ElementRecord, diagnosis)
+                       ElementRecord, Verdict, diagnosis)
 from ..readings.row_combinations import as_compared
 from ..grid.samples import parameter_sets
 from ..runtime.workers import Workers, can_fork
@@ -76,13 +76,13 @@ def energy_consistency(steps_d: Derivation, eom: Derivation, seed: int = 2026
         for label, a, b, what in pairs:
             if a.has(sp.nan):
                 continue
-            Da, Db = [], []
+            parts_a, parts_b = [], []
             for va, vb in per_set:
                 fa = numpy_function(eom.positions, a.xreplace(va))
                 fb = numpy_function(eom.positions, b.xreplace(vb))
-                Da.append(np.broadcast_to(fa(*states.T), (len(states),)))
-                Db.append(np.broadcast_to(fb(*states.T), (len(states),)))
-            Da, Db = np.concatenate(Da).astype(float), np.concatenate(Db).astype(float)
+                parts_a.append(np.broadcast_to(fa(*states.T), (len(states),)))
+                parts_b.append(np.broadcast_to(fb(*states.T), (len(states),)))
+            Da, Db = np.concatenate(parts_a).astype(float), np.concatenate(parts_b).astype(float)
             scale = max(float(np.abs(Da).max()), float(np.abs(Db).max()), 1e-300)
             ok = agrees(Da, Db, scale)
             diags = () if ok else (diagnosis(
@@ -93,7 +93,8 @@ def energy_consistency(steps_d: Derivation, eom: Derivation, seed: int = 2026
                     for x in value_diagnoses(Da, Db, scale)))
             out.append(ElementRecord(
                 element=f"{label} vs {what} of {s.name}", key="consistency", index=(),
-                verdict="agrees" if ok else "differs", diagnoses=diags, document=sp.sstr(a),
+                verdict=Verdict.AGREES if ok else Verdict.DIFFERS, diagnoses=diags,
+                document=sp.sstr(a),
                 document_model=sp.sstr(b), truth=None, residual=None,
                 max_error=max_error(Da, Db), scale=scale, step=s.kind, equation=s.equation))
     return out
@@ -133,7 +134,7 @@ def upstream_causes(steps: Sequence[ElementRecord], eom_records: Sequence[Elemen
     level = {k: i for i, k in enumerate(STEP_KINDS)}
     chain = sorted((r for r in steps if r.verdict == "differs" and r.key == "step"),
                    key=lambda r: level.get(r.step, len(level)))
-    found: dict[tuple[str, str], list[str]] = {}
+    found: dict[tuple[str, Diagnosis], list[str]] = {}
     for r in eom_records:
         mono = _mono(r, eom) if r.verdict == "differs" else None
         if not mono:
@@ -147,12 +148,12 @@ def upstream_causes(steps: Sequence[ElementRecord], eom_records: Sequence[Elemen
                 found.setdefault((s.element, hit), []).append(r.element)
                 break
     out = []
-    for (element, hit), labels in found.items():
+    for (element, finding), labels in found.items():
         s = next(x for x in chain if x.element == element)
-        term = hit.product
+        term = finding.product
         rows = sorted({lab.split("[")[1].split("]")[0].split(",")[0] for lab in labels})
         out.append(Cause(kind=CauseKind.UPSTREAM_STEP, elements=tuple(labels),
-                         explanation=f"{element} differs (its {hit.text[5:]}); the {term} "
+                         explanation=f"{element} differs (its {finding.text[5:]}); the {term} "
                          "term of "
                          f"equation{'s' if len(rows) > 1 else ''} {', '.join(rows)} "
                          f"({', '.join(labels)}) follows from it",

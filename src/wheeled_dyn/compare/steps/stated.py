@@ -50,7 +50,8 @@ from ..judge.diagnose import nice_number
 from ..grid.grid import derivation_coordinate_set
 from ..sides.document import document_symbol_values, given_parameter_sets
 from ..records import Diagnosis, DiagnosisKind as K, ElementRecord, Verdict, diagnosis
-from ..judge.units import DimensionChecker, format_dim
+from ..records import Step as RecordStep
+from ..judge.units import Dim, DimensionChecker, format_dim
 
 #: Parameter sets a result is checked on.
 RESULT_SETS = 3
@@ -222,6 +223,7 @@ def _dimension(d: Derivation, step: Step, expr: sp.Expr) -> list[Diagnosis]:
     checker = DimensionChecker(d)
     problems: list[str] = []
     got = checker.dim(expr, problems)
+    want: Dim | None
     if step.kind == "frequency":
         want = (sp.Integer(0), sp.Integer(0), sp.Integer(-1))
     else:
@@ -286,7 +288,8 @@ def _claim_record(d: Derivation, step: Step, index: int, sets, rng) -> ElementRe
                          verdict=verdict, diagnoses=(_note(found),) if found else (),
                          document=claim,
                          document_model="", truth=None, residual=None,
-                         max_error=float("nan") if found else 0.0, scale=1.0, step=step.kind,
+                         max_error=float("nan") if found else 0.0, scale=1.0,
+                         step=RecordStep(step.kind),
                          equation=step.equation,
                          document_latex="" if step.kind == "steady motion" else claim)
 
@@ -326,12 +329,13 @@ def compare_result(d: Derivation, step: Step, index: int, seed: int) -> ElementR
             truth = float(modes[np.argmin(np.abs(modes - stated.real))])
             notes.append("true frequencies " + ", ".join(f"{w:.6g}" for w in modes))
         else:
-            truth, why = _critical(setting, stated.real)
-            if truth is None:                 # a state that is not steady: undecided
+            critical, why = _critical(setting, stated.real)
+            if critical is None:              # a state that is not steady: undecided
                 return ElementRecord(verdict=Verdict.UNDECIDED if isinstance(why, NotSteady)
                                      else Verdict.DIFFERS,
                                      diagnoses=(_note(why),), max_error=float("nan"),
                                      scale=abs(stated.real), **common)
+            truth = critical
         D.append(stated.real)
         T.append(truth)
     D_arr, T_arr = np.array(D), np.array(T)

@@ -1,202 +1,16 @@
-r"""What a comparison says about one derivation, as frozen, picklable records.
-
-The data flow of :mod:`wheeled_dyn.compare` is one way:
-
-.. code-block:: text
-
-    derivation → evaluation (truth and document on the same samples) → element records
-               → causes (the few reasons that explain the records) → DerivationResult
-
-- :class:`ElementRecord`: one element of A, C, Q, B, G or one velocity product of
-  :math:`h = C\dot q`, or one component of an earlier step of the derivation (a velocity, an
-  energy, a constraint, a claim), with its verdict and diagnoses.
-- :class:`Cause`: one reason, named by its ``kind`` (:data:`CAUSE_KINDS`), the elements it
-  explains and one sentence in the document's own symbols. A cause is reported once, however
-  many elements (C-level and h-level) it explains.
-- :class:`ConventionSummary`: the verdict counts under the convention the file declares and
-  under the best one found (sign flips and scalings of coordinates, velocities and inputs,
-  permutations of inputs, row scalings, half vs full track).
-- :class:`DerivationResult`: everything the reports (Markdown, HTML, JSON) show of one
-  derivation. ``as_dict`` is the JSON contract documented in ``docs/report-schema.json``.
-"""
+r"""The records of a comparison: one element's (:class:`ElementRecord`), one equation's as a
+whole (:class:`EquationRecord`), one cause's (:class:`Cause`), the conventions tried
+(:class:`ConventionSummary`) and one derivation's (:class:`DerivationResult`), whose
+``as_dict`` is the JSON contract documented in ``docs/report-schema.json``."""
 
 from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from enum import StrEnum
 from pathlib import Path
 
-
-class Verdict(StrEnum):
-    r"""Verdict of an element or of an equation. ``UNDECIDED``: the comparison cannot decide
-    (values not finite at some samples, and no finite sample differs); never counted as
-    agreeing. ``FACTORIZATION``: a C element that differs while :math:`C\dot q` agrees."""
-
-    AGREES = "agrees"
-    AGREES_IF = "agrees_if"
-    FACTORIZATION = "factorization"
-    DIFFERS = "differs"
-    UNDECIDED = "undecided"
-
-
-#: Verdicts of an element, in report order.
-VERDICTS: tuple[str, ...] = tuple(v.value for v in Verdict)
-
-
-class CauseKind(StrEnum):
-    r"""Kinds of causes (what the reports group and explain)."""
-
-    CONVENTION = "convention"          # a sign or scaling of a coordinate, velocity, input or row
-    QUASI_COORDINATE_CHRISTOFFEL = "quasi_coordinate_christoffel"   # SᵀAṠ missing
-    CONSTRAINT_IN_LAGRANGIAN = "constraint_in_lagrangian"
-    C_INCONSISTENT_WITH_A = "c_inconsistent_with_a"
-    CLAIMED_RELATION = "claimed_relation"
-    UPSTREAM_STEP = "upstream_step"
-    SIGN = "sign"                      # one additive term with the wrong sign
-    POWER = "power"                    # a symbol to the wrong power (G for G², R for R²)
-    FACTOR = "factor"                  # a constant factor
-    SWAP = "swap"                      # one variable or symbol written for another
-    SWAPPED_INPUTS = "swapped_inputs"  # input columns exchanged
-    DIMENSION = "dimension"            # a term with inconsistent units
-    MISSING_PHYSICS = "missing_physics"  # an effect the document leaves out and does not state
-    POINT_MASS = "point_mass"          # a rigid body treated as a point mass
-    ASSUMPTION = "assumption"          # holds only under a condition the document did not state
-    ENERGY = "energy"                  # the model as printed does not conserve energy
-    NOT_POSITIVE_DEFINITE = "not_positive_definite"
-    NOT_EQUIVALENT = "not_equivalent"  # equations lost, repeated, or scaled by a vanishing factor
-    UNDECIDED = "undecided"            # values not finite: no verdict
-    FILE_ERROR = "file_error"          # the derivation file contradicts the model or itself
-
-
-#: Kinds of causes (their values, in order).
-CAUSE_KINDS: tuple[str, ...] = tuple(k.value for k in CauseKind)
-
-
-class Step(StrEnum):
-    r"""Steps of a derivation a record can belong to."""
-
-    EQUATIONS_OF_MOTION = "equations of motion"
-    VELOCITY = "velocity"
-    ANGULAR_VELOCITY = "angular velocity"
-    ACCELERATION = "acceleration"
-    ANGULAR_ACCELERATION = "angular acceleration"
-    KINETIC_ENERGY = "kinetic energy"
-    POTENTIAL_ENERGY = "potential energy"
-    CONSTRAINT = "constraint"
-    CLAIM = "claim"
-    GENERALIZED_FORCE = "generalized force"
-    NEWTON_EULER = "newton-euler"
-    LINEARISED_EQUATIONS = "linearised equations"
-    FREQUENCY = "frequency"
-    CRITICAL_SPEED = "critical speed"
-    STABILITY = "stability"
-    STEADY_MOTION = "steady motion"
-    ORIENTATION = "orientation"
-    GRAVITY = "gravity"
-
-
-#: Steps (their values, in order).
-STEPS: tuple[str, ...] = tuple(s.value for s in Step)
-
-
-class DiagnosisKind(StrEnum):
-    r"""What a diagnosis says, as data: the causes and the reports read this, never the text.
-
-    Whole-element findings (``term`` empty) or one additive term's (``term`` set):
-    ``SIGN``, ``FACTOR`` (``factor``), ``POWER``/``SWAP`` (``written`` where ``fits`` fits),
-    ``MISSING``/``EXTRA`` (the document has 0 / the truth is 0; with ``terms``: the terms
-    named one by one), ``POINT_MASS`` (a body's own inertia about its centre is missing),
-    ``DIMENSION``; ``CONDITION`` (agrees only if ``condition``), ``FACTORIZATION`` (C differs,
-    C q̇ agrees), ``UNDECIDED`` (values not finite), ``RESIDUAL`` (truth − document, as
-    text), ``COINCIDENCE`` (numerically equal only because an inconsistent term vanishes
-    here), ``NOT_EQUIVALENT`` (an equation that is no combination of the true ones),
-    ``SINGULAR`` (equations lost, repeated, or scaled by a factor that vanishes somewhere:
-    :math:`W` singular), ``NOTE`` (words only)."""
-
-    SIGN = "sign"
-    FACTOR = "factor"
-    POWER = "power"
-    SWAP = "swap"
-    MISSING = "missing"
-    EXTRA = "extra"
-    POINT_MASS = "point_mass"
-    DIMENSION = "dimension"
-    CONDITION = "condition"
-    FACTORIZATION = "factorization"
-    UNDECIDED = "undecided"
-    RESIDUAL = "residual"
-    COINCIDENCE = "coincidence"
-    NOT_EQUIVALENT = "not_equivalent"
-    SINGULAR = "singular"
-    NOTE = "note"
-
-
-#: Diagnoses that name one term's error precisely (an element carrying one is left to its
-#: single-term cause rather than to a method cause).
-SPECIFIC_KINDS = frozenset({DiagnosisKind.SIGN, DiagnosisKind.FACTOR, DiagnosisKind.SWAP,
-                            DiagnosisKind.POWER, DiagnosisKind.DIMENSION})
-
-
-@dataclass(frozen=True)
-class Diagnosis:
-    r"""One finding about an element, as a record. ``text`` is the sentence the reports show
-    (``"sign: the term m*g*l has the wrong sign"``); ``detail`` the part after its kind, which
-    groups equal findings into one cause; the other fields carry the finding's data in the
-    document's symbols (SymPy text): ``term`` the document's term concerned (empty: the
-    whole element), ``factor`` the document / truth ratio, ``written``/``fits`` the symbol
-    (or power, or velocity product) the document wrote and the one that fits, ``condition``
-    the special values an element needs, ``terms`` terms named one by one (missing or extra),
-    ``rows`` 0-based equations concerned, ``product`` the velocity or acceleration product
-    whose coefficient an earlier step's finding is about (``"dx*dpsi"``)."""
-
-    kind: DiagnosisKind
-    text: str
-    detail: str = ""
-    term: str = ""
-    factor: str = ""
-    written: str = ""
-    fits: str = ""
-    condition: str = ""
-    terms: tuple[str, ...] = ()
-    rows: tuple[int, ...] = ()
-    product: str = ""
-
-    def __str__(self) -> str:
-        return self.text
-
-    def as_dict(self) -> dict[str, object]:
-        out: dict[str, object] = {"kind": self.kind.value, "text": self.text}
-        for name in ("term", "factor", "written", "fits", "condition", "product"):
-            if getattr(self, name):
-                out[name] = getattr(self, name)
-        if self.terms:
-            out["terms"] = list(self.terms)
-        return out
-
-
-def diagnosis(kind: DiagnosisKind, detail: str, prefix: str | None = None, **data) -> Diagnosis:
-    r"""A :class:`Diagnosis` whose text is ``"<prefix>: <detail>"`` (the prefix defaults to the
-    kind's value; ``prefix=""``: the detail alone)."""
-    head = kind.value if prefix is None else prefix
-    return Diagnosis(kind, f"{head}: {detail}" if head else detail, detail, **data)
-
-
-def in_product(product: str, inner: Diagnosis) -> Diagnosis:
-    r"""``inner`` about the coefficient of the velocity or acceleration ``product`` of an
-    earlier step: ``"term dx*dpsi: missing: the document has 0"``."""
-    from dataclasses import replace
-    return replace(inner, text=f"term {product}: {inner.text}", product=product)
-
-
-def has_kind(diagnoses, *kinds: DiagnosisKind) -> bool:
-    r"""Whether any of ``diagnoses`` is of one of ``kinds``."""
-    return any(d.kind in kinds for d in diagnoses)
-
-
-def first_of(diagnoses, *kinds: DiagnosisKind) -> Diagnosis | None:
-    r"""The first of ``diagnoses`` of one of ``kinds``, or None."""
-    return next((d for d in diagnoses if d.kind in kinds), None)
+from .diagnosis import Diagnosis, has_kind
+from .kinds import VERDICTS, CauseKind, DiagnosisKind, Step, Verdict
 
 
 @dataclass(frozen=True)
@@ -427,7 +241,7 @@ class DerivationResult:
     def _repr_html_(self) -> str:
         r"""In a notebook: the report's section of this result (causes first, then document
         | truth side by side; :func:`wheeled_dyn.report.notebook.result_html`)."""
-        from ..report.notebook import result_html       # the renderer imports this module
+        from ...report.notebook import result_html       # the renderer imports this module
         return result_html(self)
 
     def as_dict(self) -> dict[str, object]:

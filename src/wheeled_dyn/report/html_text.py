@@ -1,0 +1,50 @@
+r"""The pieces of text of the HTML report: escaped text, a number at the reference state
+(rounding noise as ≈0), and formulas as MathML made by ``latex2mathml`` (remembered across
+runs: :data:`MATHML`)."""
+
+from __future__ import annotations
+
+import functools
+import html
+from pathlib import Path
+
+import latex2mathml.converter as latex2mathml
+from latex2mathml.converter import convert
+
+from ..disk_cache import DiskMemo
+
+
+#: Numbers smaller than this are rounding noise of the truth (shown as ≈0).
+ROUNDING = 1e-12
+
+
+def num_text(x: float, digits: int = 4) -> str:
+    r"""A number at the reference state; rounding noise (below :data:`ROUNDING`) as ≈0."""
+    return "≈0" if abs(x) < ROUNDING else f"{x:.{digits}g}"
+
+
+#: The MathML of LaTeX texts, remembered across runs (the disk cache's
+#: ``report/mathml-<code>.pickle``, named by SymPy's version, this file and latex2mathml's
+#: converter: MathML made by other code is not read).
+MATHML = DiskMemo("report", "mathml", lambda: [Path(__file__), Path(latex2mathml.__file__)])
+
+
+@functools.lru_cache(maxsize=8192)
+def mathml(latex: str) -> str:
+    r"""The MathML of ``latex`` (:data:`MATHML`); code for LaTeX latex2mathml cannot read."""
+    return MATHML.get(latex, lambda: _converted(latex)) if latex else ""
+
+
+def _converted(latex: str) -> str:
+    try:
+        return convert(latex)
+    except Exception:          # an expression latex2mathml cannot read is shown as text
+        return f"<code>{html.escape(latex)}</code>"
+
+
+def math_box(latex: str, empty: str = "—") -> str:
+    return f'<div class="m">{mathml(latex)}</div>' if latex else f'<div class="m">{empty}</div>'
+
+
+def esc(text: object) -> str:
+    return html.escape(str(text))
