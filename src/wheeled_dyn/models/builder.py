@@ -62,6 +62,7 @@ import numpy as np
 import pinocchio as pin
 
 from ..errors import ModelError, UnknownNameError
+from . import geometry as geo
 from .contact import BallContact, SphereContact
 from .conventions import ANGLE_TOL, check_sides
 from .rolling_wheel import BoundWheelContact, WheelContact
@@ -113,7 +114,7 @@ class ModelSpec:
     description: str = ""
     base: str = "planar"
     actuated: tuple[str, ...] = ()               # joint names with a motor (fixed/free bases)
-    geometry: Mapping[str, float] = field(default_factory=dict)
+    geometry: Mapping[str, object] = field(default_factory=dict)   # [geometry]: see .geometry
     contact: SphereContact | None = None
     rolling_wheels: tuple[WheelContact, ...] = ()   # tilting wheels on any link (fixed/free)
     locked: Mapping[str, float] = field(default_factory=dict)  # values of ``lock`` joints
@@ -123,6 +124,7 @@ class ModelSpec:
     source: Path | None = None                   # the model file, if the spec came from one
     springs: tuple[JointSpring, ...] = ()        # linear springs along or about joints
     forward: tuple[float, float, float] | None = None   # body's forward, link axes (planar)
+    fixed_geometry: tuple[str, ...] = ()         # [draw] fixed: names no parameter set draws
 
 
 @dataclass(frozen=True)
@@ -147,7 +149,8 @@ class WheeledModel:
     wheel joint axis, reaction on the wheel's parent), or one per joint of ``actuated``
     (velocity indices); ``geometry`` holds the named constants (``R`` wheel radius and ``L``
     half the distance between the wheel centres for a planar model, the spec's ``geometry``
-    otherwise); ``contact`` the rolling ball, if any.
+    otherwise); ``contact`` the rolling ball, if any; ``lengths`` the named lengths and
+    constants (:mod:`.geometry`: ``origin_x(joint)``, ``radius(link)`` ...).
     """
 
     name: str
@@ -163,6 +166,20 @@ class WheeledModel:
     contact: BallContact | None = None
     rolling_wheels: tuple[BoundWheelContact, ...] = ()
     springs: tuple[BoundSpring, ...] = ()
+    lengths: geo.GeometryTable | None = None
+
+    @property
+    def dimensions(self) -> dict[str, float]:
+        r"""The named lengths (:mod:`.geometry`): ``{"origin_x(elbow)": 1.0, ...}``."""
+        return {} if self.lengths is None else {k: d.value for k, d in
+                                                self.lengths.dimensions.items()}
+
+    def named_lengths(self) -> dict[str, float]:
+        r"""The names a coordinate expression may use: the constants (``R``, ``L``, ...) and
+        the lengths as identifiers (``radius_coin`` for ``radius(coin)``)."""
+        out = {geo.identifier(k): v for k, v in self.dimensions.items()}
+        out.update(self.geometry)
+        return out
 
     @property
     def nv(self) -> int:
@@ -379,9 +396,39 @@ def _build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
     inputs = tuple(spec.inputs) if spec.inputs is not None else ("tau_l", "tau_r")
     if len(inputs) != 2:
         raise ModelError(spec.name, None, f"{len(inputs)} input names for two wheel motors")
+    axle = [j.name for w in spec.wheels for j in _path_to_root(source, w)]
+    dims = geo.dimensions(model, source, {w: {"radius": rl} for w in spec.wheels}, axle,
+                          spec.fixed_geometry)
+    given = {"R": geo.Constant("R", rl, geo.ConstantKind.SAME,
+                               tuple((1.0, f"radius({w})") for w in spec.wheels),
+                               drawn="R" not in spec.fixed_geometry),
+             "L": geo.Constant("L", half_track, geo.ConstantKind.TRACK,
+                               drawn="L" not in spec.fixed_geometry)}
+    lengths = _lengths(spec, dims, given)
     return WheeledModel(spec.name, spec, model, geom, tuple(wheels), coordinate_names, inputs,
-                        {"R": rl, "L": half_track, **spec.geometry}, body_jid,
-                        springs=_bind_springs(spec, model, coordinate_names))
+                        lengths.constant_values(lengths.values()), body_jid,
+                        springs=_bind_springs(spec, model, coordinate_names), lengths=lengths)
+
+
+def _path_to_root(source: UrdfSource, link: str) -> list:
+    r"""The joints from the root down to ``link``."""
+    out = []
+    while link != source.root_link():
+        joint = source.joint_to(link)
+        out.append(joint)
+        link = joint.parent
+    return out
+
+
+def _lengths(spec: ModelSpec, dims: Mapping[str, geo.Dimension],
+             given: Mapping[str, geo.Constant]) -> geo.GeometryTable:
+    r"""The model's lengths and constants (:mod:`.geometry`): the builder's ``given`` names
+    where ``[geometry]`` does not name them, then ``[geometry]``'s."""
+    given = {k: c for k, c in given.items() if k not in spec.geometry}
+    table = geo.table(dims, geo.constants(spec.name, spec.geometry, dims, given,
+                                          spec.fixed_geometry))
+    geo.check_fixed(spec.name, spec.fixed_geometry, table)
+    return table
 
 
 def _direction(spec: ModelSpec, what: str, value: Sequence[float], item: str) -> np.ndarray:
@@ -473,20 +520,17 @@ def _build_unwheeled(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
     if spec.body:
         source.link(spec.body)
         body_jid = model.frames[model.getFrameId(spec.body)].parentJoint
-    geometry = dict(spec.geometry)
     contact = None
     if spec.contact is not None:
         source.link(spec.contact.link)
         contact = BallContact(spec.contact, model.getFrameId(spec.contact.link))
-        if spec.contact.spheroid:                   # equatorial and polar radii
-            geometry.setdefault("a", float(spec.contact.radius))
-            geometry.setdefault("c", float(spec.contact.polar_radius))
-        else:
-            geometry.setdefault("r", float(spec.contact.radius))
-        if spec.contact.surface == "sphere":
-            geometry.setdefault("R1", float(spec.contact.surface_radius))
-        elif spec.contact.surface == "paraboloid":      # vertex radius of curvature
-            geometry.setdefault("a", float(spec.contact.vertex_radius))
+    rolling, given = _contact_lengths(spec)
+    dims = geo.dimensions(model, source, rolling, (), spec.fixed_geometry)
+    named = {k: geo.Constant(k, dims[v].value, geo.ConstantKind.DERIVED,
+                             expression=sp_call(v), drawn=dims[v].drawn)
+             for k, v in given.items()}
+    lengths = _lengths(spec, dims, named)
+    geometry = lengths.constant_values(lengths.values())
     rolling_wheels = []
     for wc in spec.rolling_wheels:
         source.link(wc.link)
@@ -496,7 +540,40 @@ def _build_unwheeled(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
                                                 np.asarray(wc.centre, dtype=float)))
     return WheeledModel(spec.name, spec, model, geom, (), coordinate_names, inputs, geometry,
                         body_jid, tuple(actuated), contact, tuple(rolling_wheels),
-                        _bind_springs(spec, model, coordinate_names))
+                        _bind_springs(spec, model, coordinate_names), lengths)
+
+
+def _contact_lengths(spec: ModelSpec) -> tuple[dict[str, dict[str, float]], dict[str, str]]:
+    r"""The radii the contacts declare, per link (``radius``, ``polar_radius``,
+    ``surface_radius``, ``vertex_radius``, ``tyre_radius``), and the names the builder gives
+    them (``r``, ``R1``, ``a``, ``c``: name → length)."""
+    rolling: dict[str, dict[str, float]] = {}
+    given: dict[str, str] = {}
+    sc = spec.contact
+    if sc is not None:
+        rolling[sc.link] = {"radius": float(sc.radius)}
+        if sc.spheroid:                             # equatorial and polar radii
+            rolling[sc.link]["polar_radius"] = float(sc.polar_radius)
+            given.update(a=f"radius({sc.link})", c=f"polar_radius({sc.link})")
+        else:
+            given["r"] = f"radius({sc.link})"
+        if sc.surface == "sphere":
+            rolling[sc.link]["surface_radius"] = float(sc.surface_radius)
+            given["R1"] = f"surface_radius({sc.link})"
+        elif sc.surface == "paraboloid":            # vertex radius of curvature
+            rolling[sc.link]["vertex_radius"] = float(sc.vertex_radius)
+            given["a"] = f"vertex_radius({sc.link})"
+    for wc in spec.rolling_wheels:
+        rolling[wc.link] = {"radius": float(wc.radius)}
+        if wc.tyre_radius:
+            rolling[wc.link]["tyre_radius"] = float(wc.tyre_radius)
+    return rolling, given
+
+
+def sp_call(name: str):
+    r"""The SymPy call of a length's name (``radius(ball)``)."""
+    from ..derivations.expressions import parse_model_expression
+    return parse_model_expression(name)
 
 
 def _bind_springs(spec: ModelSpec, model: pin.Model, coordinate_names: Sequence[str]

@@ -42,16 +42,24 @@ def _physical_symbols() -> dict[str, sp.Symbol]:
 
 def _standard_names(model: str) -> Callable[[sp.Expr], sp.Expr]:
     r"""For a model without a physical record: Khalil calls ``XX(link)`` → the symbolic
-    engine's symbols ``XX_link``, and the model's other names (geometry, gravity) → their
-    values as exact numbers, as in its closed forms."""
+    engine's symbols ``XX_link``, the model's lengths and constants as its closed forms write
+    them (a drawn length a symbol: ``origin_x(elbow)`` → ``origin_x_elbow``, a length listed
+    with a constant → that constant), its other names (gravity) → their values as exact
+    numbers, as in its closed forms."""
     from ...models.registry import load_model, model_parameters
-    numbers = {sp.Symbol(k, real=True): sp.nsimplify(v, rational=True)
-               for k, v in model_parameters(load_model(model)).items() if "(" not in k}
+    from ...symbolic.wheeled import length_symbols
+    wm = load_model(model)
+    lengths = length_symbols(wm) if wm.lengths is not None else {}
+    numbers = {sp.Symbol(k, real=True): lengths.get(k, sp.nsimplify(v, rational=True))
+               for k, v in model_parameters(wm).items() if "(" not in k}
     plain = {sp.Symbol(s.name): v for s, v in numbers.items()}
 
     def convert(out: sp.Expr) -> sp.Expr:
-        calls = {c: sp.Symbol(f"{c.func.__name__}_{c.args[0]}", real=True)
-                 for c in out.atoms(AppliedUndef)}
+        calls = {}
+        for c in out.atoms(AppliedUndef):
+            name = f"{c.func.__name__}({c.args[0]})"
+            calls[c] = lengths[name] if name in lengths else \
+                sp.Symbol(f"{c.func.__name__}_{c.args[0]}", real=True)
         return out.xreplace(calls).xreplace(numbers).xreplace(plain)
 
     return convert
@@ -125,6 +133,51 @@ def family_substitution(families: tuple[str, ...]) -> dict[sp.Symbol, sp.Expr]:
     return out
 
 
+def uniform_substitution(d: Derivation, families: tuple[str, ...]) -> dict[sp.Symbol, sp.Expr]:
+    r"""A model without a physical record: its bodies the ``families`` keep uniform
+    (:func:`~.samples.uniform_family`, ``urdf_proportions``) as a substitution of its closed
+    forms' symbols. Each such body is the URDF's scaled by a length :math:`s` and its mass by
+    :math:`M/M_0`: its first moments :math:`\mathrm{MX} = (M/M_0)\,\mathrm{MX}_0\,s`, its
+    second :math:`\mathrm{XX} = (M/M_0)\,\mathrm{XX}_0\,s^2`, each of its lengths
+    :math:`\ell_0 s`, with :math:`s` one of them over its URDF value
+    (:func:`~wheeled_dyn.models.geometry_apply.uniform_scales`)."""
+    from ...models.geometry_apply import uniform_scales
+    from ...models.registry import load_model
+    from ...symbolic.parameters import PARAMETER_NAMES
+    from ...symbolic.wheeled import _standard_names, length_symbols
+    from ..grid.assumptions import declared
+    from ..grid.samples import special_cases, uniform_bodies
+    cases = [c for c in (*special_cases(d.model), *declared(d).families)
+             if c.name in families and c.uniform is not None]
+    wm = load_model(d.model)
+    bodies = uniform_bodies(wm, cases) if cases else set()
+    if not bodies or wm.lengths is None:
+        return {}
+    lengths = length_symbols(wm)
+    names = _standard_names(wm)
+    used = {f"{c.func.__name__}({c.args[0]})" if isinstance(c, AppliedUndef) else c.name
+            for s in d.symbols.values() if s.value is not None
+            for c in (*s.value.atoms(AppliedUndef), *s.value.free_symbols)}
+    values = wm.lengths.values()
+    out: dict[sp.Symbol, sp.Expr] = {}
+    for body, (group, value, members) in uniform_scales(wm, bodies).items():
+        group = next((m for m in members if m in used and values.get(m)), group)
+        scale = lengths[group] / sp.nsimplify(values[group], rational=True)
+        for name in members:
+            symbol = lengths.get(name)
+            if isinstance(symbol, sp.Symbol) and symbol != lengths[group]:
+                out[symbol] = sp.nsimplify(values[name], rational=True) * scale
+        pi = wm.model.inertias[body].toDynamicParameters()
+        if pi[0] <= 0:
+            continue
+        mass = sp.Symbol(f"M_{names[body]}", real=True) / sp.nsimplify(pi[0], rational=True)
+        for k, (key, x) in enumerate(zip(PARAMETER_NAMES, pi)):
+            if k:
+                out[sp.Symbol(f"{key}_{names[body]}", real=True)] = \
+                    mass * sp.nsimplify(x, rational=True) * scale ** (1 if k < 4 else 2)
+    return out
+
+
 def _row_label(label: str, row: int) -> str:
     r"""``A[2,3]`` → ``A[row+1,3]``, ``h[2]:dx*dpsi`` → ``h[row+1]:dx*dpsi``."""
     head, _, rest = label.partition("[")
@@ -152,7 +205,7 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
         return
     physical = model_entry(d.model).parameters is WipParameters
     to_model = model_expression(d, standard=not physical)
-    assumed = family_substitution(families) if physical else {}
+    assumed = family_substitution(families) if physical else uniform_substitution(d, families)
     if assumed:
         truth = {k: sp.sympify(v).xreplace(assumed) for k, v in truth.items()}
         plain = to_model

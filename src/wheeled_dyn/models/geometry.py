@@ -1,0 +1,363 @@
+r"""The model's lengths by name, and the constants of its ``[geometry]``.
+
+Agreement at one set of numbers hides errors: :math:`l_1^2` written for :math:`l_1` is invisible
+on a URDF whose :math:`l_1` is 1 m, and a disc's :math:`I = m r^2/2` breaks when its mass and
+inertia are drawn but not its radius. So every length of a model has a name, a derivation may
+use it (``l1 = "origin_x(elbow)"`` as ``m = "M(link)"``), and the random parameter sets draw
+it (:mod:`.geometry_apply`).
+
+**Dimensions** (:class:`Dimension`), named by a function of a URDF joint or link
+(:data:`~wheeled_dyn.derivations.expressions.GEOMETRY_NAMES`):
+
+- ``origin_x(joint)``, ``origin_y(joint)``, ``origin_z(joint)``: the joint's origin in its
+  parent link's frame, as the URDF's ``<origin xyz>`` writes it. Each component of a moving
+  joint is drawn (a zero stays zero; rotations are kept); a fixed or locked joint lies inside
+  one rigid body, whose inertia is drawn as a whole: its origin is kept, unless the body is
+  drawn uniform (then the body is scaled as a whole, fixed joints included). The joints on the
+  path from a planar model's root to its wheels are named by ``R`` and ``L`` instead;
+- ``radius(link)``: the rolling radius of a wheel or ball, else the link's first sphere or
+  cylinder (collision, then visual); ``length(link)``: its first cylinder's length;
+- ``tyre_radius(link)`` of a rolling wheel with a tyre, ``polar_radius(link)`` of a spheroid,
+  ``surface_radius(link)`` (the fixed sphere a ball rolls on) and ``vertex_radius(link)`` (the
+  bowl's radius of curvature at its vertex), both named by the ball's link.
+
+**Constants** (:class:`Constant`), the names of ``[geometry]`` (and the ones the builder gives:
+``R``, ``L`` of a planar model, ``r``, ``R1``, ``a``, ``c`` of a rolling ball or spheroid):
+
+- a number (``G = 3.5``): a constant of the model (a gear ratio), drawn on its own;
+- an expression of dimensions and constants (``R = "radius(coin)"``): it follows them;
+- a list of monomials ``c * dimension`` (``W = ["2*origin_y(spin_rl)", "-2*origin_y(spin_rr)"]``):
+  lengths the body has equal by design, drawn as one (each entry equals the constant);
+- ``{ value = x }``: a number that is a constant of its own although a length of the URDF has
+  the same value (a plain number equal to one is an error: it would be drawn apart from it).
+
+``[draw] fixed`` lists names kept at their values in every parameter set (a published body
+whose wheels must touch the ground at its reference state).
+"""
+
+from __future__ import annotations
+
+import math
+import xml.etree.ElementTree as ET
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from enum import Enum
+from types import MappingProxyType
+from typing import Any
+
+import numpy as np
+import sympy as sp
+from sympy.core.function import AppliedUndef
+
+from ..derivations.expressions import GEOMETRY_NAMES, ExpressionError, parse_model_expression
+from ..errors import ModelError
+
+#: Relative agreement of the entries of a ``[geometry]`` list (and of a number with a length
+#: of the URDF, which makes it an error to write it as a plain number).
+SAME_TOL = 1e-9
+_AXES = ("x", "y", "z")
+
+
+class ConstantKind(str, Enum):
+    r"""How a constant of ``[geometry]`` is drawn (see the module docstring)."""
+
+    FREE = "free"          # a number of its own: drawn by a random factor
+    SAME = "same"          # equal lengths of the URDF: drawn as one
+    DERIVED = "derived"    # an expression of the dimensions: follows them
+    TRACK = "track"        # a planar model's half track L: the wheels moved along the axle
+
+
+@dataclass(frozen=True)
+class Dimension:
+    r"""A named length of the model: ``name`` as written (``origin_x(elbow)``), its value,
+    what it is, the Pinocchio joint whose rigid body carries it (0: the fixed world), whether
+    a parameter set draws it on its own (``drawn``: not the origin of a fixed joint, which
+    changes only with its body scaled as a whole) and whether it is ``kept`` (``[draw]
+    fixed``: never changed)."""
+
+    name: str
+    value: float
+    meaning: str
+    body: int
+    drawn: bool = True
+    kept: bool = False
+
+
+@dataclass(frozen=True)
+class Constant:
+    r"""A named constant: a number, equal lengths (``members``: (c, dimension), the constant
+    is c × the dimension) or an ``expression`` of dimensions and constants."""
+
+    name: str
+    value: float
+    kind: ConstantKind
+    members: tuple[tuple[float, str], ...] = ()
+    expression: sp.Expr | None = None
+    drawn: bool = True
+
+    @property
+    def meaning(self) -> str:
+        if self.kind is ConstantKind.SAME:
+            return "= " + " = ".join(_monomial(c, d) for c, d in self.members)
+        if self.kind is ConstantKind.DERIVED:
+            return f"= {self.expression}"
+        if self.kind is ConstantKind.TRACK:
+            return "half the distance between the wheel centres"
+        return "a constant of the model"
+
+
+def _monomial(c: float, name: str) -> str:
+    return name if c == 1 else f"-{name}" if c == -1 else f"{c:g}*{name}"
+
+
+@dataclass(frozen=True)
+class GeometryTable:
+    r"""The dimensions and constants of a built model (names in the file's order)."""
+
+    dimensions: Mapping[str, Dimension]
+    constants: Mapping[str, Constant]
+
+    def values(self) -> dict[str, float]:
+        r"""Every name → its value (dimensions, then constants)."""
+        return {**{k: d.value for k, d in self.dimensions.items()},
+                **{k: c.value for k, c in self.constants.items()}}
+
+    def constant_values(self, dims: Mapping[str, float],
+                        free: Mapping[str, float] | None = None) -> dict[str, float]:
+        r"""The constants at the dimensions ``dims`` (the numbers of ``free`` constants as
+        given, else as in the table)."""
+        out: dict[str, float] = {}
+        for name, c in self.constants.items():
+            if c.kind is ConstantKind.SAME:
+                coef, member = c.members[0]
+                out[name] = coef * dims[member]
+            elif c.kind is ConstantKind.DERIVED:
+                out[name] = evaluate(c.expression, dims, out)
+            else:
+                out[name] = float((free or {}).get(name, c.value))
+        return out
+
+
+def evaluate(expr: sp.Expr, dims: Mapping[str, float], constants: Mapping[str, float]) -> float:
+    r"""An expression of dimension calls and constant names at these values."""
+    calls = {call: sp.Float(dims[call_name(call)]) for call in expr.atoms(AppliedUndef)}
+    out = expr.xreplace(calls)
+    return float(out.xreplace({s: constants[s.name] for s in out.free_symbols}))
+
+
+def identifier(name: str) -> str:
+    r"""The name of a length as one identifier, as coordinate expressions and closed forms
+    write it: ``radius_coin`` for ``radius(coin)``."""
+    return name.replace("(", "_").rstrip(")")
+
+
+def call_name(call: sp.Expr) -> str:
+    r"""``origin_x(elbow)`` of the SymPy call ``origin_x(elbow)``."""
+    return f"{call.func.__name__}({call.args[0]})"
+
+
+# -- reading the URDF --------------------------------------------------------------------
+def urdf_lengths(text: str) -> tuple[dict[str, tuple[float, float, float]],
+                                     dict[str, tuple[float | None, float | None]]]:
+    r"""Each joint's ``<origin xyz>`` and each link's (radius, length) of its first sphere or
+    cylinder (collision, then visual; None where absent)."""
+    root = ET.fromstring(text)
+    origins: dict[str, tuple[float, float, float]] = {}
+    for joint in root.iter("joint"):
+        origin = joint.find("origin")
+        xyz = (origin.get("xyz", "0 0 0") if origin is not None else "0 0 0").split()
+        origins[joint.get("name", "")] = tuple(float(x) for x in xyz)  # type: ignore[assignment]
+    shapes: dict[str, tuple[float | None, float | None]] = {}
+    for link in root.iter("link"):
+        found: tuple[float | None, float | None] = (None, None)
+        for group in ("collision", "visual"):
+            for item in link.findall(group):
+                geometry = item.find("geometry")
+                shape = None if geometry is None else (geometry.find("cylinder")
+                                                       if geometry.find("cylinder") is not None
+                                                       else geometry.find("sphere"))
+                if shape is not None and found == (None, None):
+                    length = shape.get("length")
+                    found = (float(shape.get("radius", "nan")),
+                             None if length is None else float(length))
+        shapes[link.get("name", "")] = found
+    return origins, shapes
+
+
+def _link_body(model: Any, link: str) -> int:
+    import pinocchio as pin
+    return model.frames[model.getFrameId(link, pin.FrameType.BODY)].parentJoint
+
+
+def dimensions(model: Any, source: Any, rolling: Mapping[str, dict[str, float]],
+               skip_joints: Sequence[str] = (), fixed: Sequence[str] = ()
+               ) -> dict[str, Dimension]:
+    r"""The named lengths of a built model (module docstring). ``rolling``: per link, the
+    radii its contact declares (``radius``, ``tyre_radius`` ...; these replace its shape's
+    radius); ``skip_joints``: joints named otherwise (a planar model's axle); ``fixed``:
+    names kept in every parameter set."""
+    origins, shapes = urdf_lengths(source.text)
+    out: dict[str, Dimension] = {}
+    for info in source.outline.joints:
+        if info.name in skip_joints or not model.existFrame(info.parent):
+            continue
+        moving = model.existJointName(info.name)
+        body = _link_body(model, info.parent)
+        for axis, value in zip(_AXES, origins.get(info.name, (0.0, 0.0, 0.0))):
+            name = f"origin_{axis}({info.name})"
+            out[name] = Dimension(name, float(value), f"{axis} of joint {info.name}'s origin in "
+                                  f"link {info.parent}'s frame" + ("" if moving else
+                                                                   f" ({info.type} joint)"),
+                                  body, moving and name not in fixed, name in fixed)
+    for link in source.link_names:
+        if not model.existFrame(link):
+            continue
+        body = _link_body(model, link)
+        radius, length = shapes.get(link, (None, None))
+        declared = rolling.get(link, {})
+        if "radius" in declared:
+            radius = None
+        for key, value in declared.items():
+            name = f"{key}({link})"
+            out[name] = Dimension(name, float(value), f"{key.replace('_', ' ')} of {link} "
+                                  "(its contact)", 0 if key in ("surface_radius", "vertex_radius")
+                                  else body, name not in fixed, name in fixed)
+        if radius is not None:
+            name = f"radius({link})"
+            out[name] = Dimension(name, radius, f"radius of {link}'s first sphere or cylinder",
+                                  body, name not in fixed, name in fixed)
+        if length is not None:
+            name = f"length({link})"
+            out[name] = Dimension(name, length, f"length of {link}'s first cylinder", body,
+                                  name not in fixed, name in fixed)
+    return out
+
+
+# -- the constants of [geometry] ---------------------------------------------------------
+def constants(spec_name: str, raw: Mapping[str, Any], dims: Mapping[str, Dimension],
+              given: Mapping[str, Constant] = MappingProxyType({}), fixed: Sequence[str] = ()
+              ) -> dict[str, Constant]:
+    r"""The constants of ``[geometry]`` (``raw``: name → number, expression, list of
+    monomials or ``{ value = x }``) after the ones the builder ``given``; errors are
+    :class:`~wheeled_dyn.errors.ModelError` naming ``geometry.<name>``."""
+    out = dict(given)
+    values = {k: d.value for k, d in dims.items()}
+    for name, value in raw.items():
+        item = f"geometry.{name}"
+        if name in out:
+            raise ModelError(spec_name, item, f"{name} is given by the model already "
+                                              f"({out[name].meaning})")
+        drawn = name not in fixed
+        if isinstance(value, Mapping):
+            out[name] = Constant(name, float(value["value"]), ConstantKind.FREE, drawn=drawn)
+        elif isinstance(value, (int, float)) and not isinstance(value, bool):
+            equal = [k for k, d in dims.items()
+                     if d.value and abs(d.value - value) <= SAME_TOL * abs(value)]
+            if equal:
+                raise ModelError(spec_name, item, f"{value!r} is the value of {equal[0]}: write "
+                                 f"{name} = \"{equal[0]}\" (or a list of the equal lengths) so "
+                                 "that it is drawn with it, or { value = ... } if it is a "
+                                 "constant of its own")
+            out[name] = Constant(name, float(value), ConstantKind.FREE, drawn=drawn)
+        elif isinstance(value, str):
+            expr = _parse(spec_name, item, value, dims, out)
+            out[name] = Constant(name, evaluate(expr, values, _numbers(out)),
+                                 ConstantKind.DERIVED, expression=expr, drawn=drawn)
+        else:
+            out[name] = _same(spec_name, name, list(value), dims, out, drawn)
+    return out
+
+
+def _numbers(consts: Mapping[str, Constant]) -> dict[str, float]:
+    return {k: c.value for k, c in consts.items()}
+
+
+def _parse(spec_name: str, item: str, text: str, dims: Mapping[str, Dimension],
+           consts: Mapping[str, Constant]) -> sp.Expr:
+    try:
+        expr = parse_model_expression(text, tuple(consts))
+    except ExpressionError as exc:
+        raise ModelError(spec_name, item, f"{text!r}: {exc.reason}") from None
+    for call in expr.atoms(AppliedUndef):
+        if call.func.__name__ not in GEOMETRY_NAMES or call_name(call) not in dims:
+            raise ModelError(spec_name, item, f"{call_name(call)} is not a length of the model; "
+                             "valid: " + ", ".join(dims))
+    return expr
+
+
+def _same(spec_name: str, name: str, entries: list, dims: Mapping[str, Dimension],
+          consts: Mapping[str, Constant], drawn: bool) -> Constant:
+    r"""A list of monomials ``c * dimension`` that are equal in the URDF."""
+    item = f"geometry.{name}"
+    members = []
+    for text in entries:
+        expr = _parse(spec_name, item, str(text), dims, consts)
+        coef, rest = expr.as_coeff_Mul()
+        if not (isinstance(rest, AppliedUndef) and coef != 0):
+            raise ModelError(spec_name, item, f"{text!r}: expected a number times one length "
+                             "(a list names equal lengths)")
+        members.append((float(coef), call_name(rest)))
+    values = [c * dims[d].value for c, d in members]
+    for (c, d), v in zip(members, values):
+        if abs(v - values[0]) > SAME_TOL * max(abs(values[0]), 1e-300):
+            raise ModelError(spec_name, item, f"{_monomial(c, d)} is {v:g} in the URDF, "
+                             f"{_monomial(*members[0])} is {values[0]:g}: the entries of a list "
+                             "are equal lengths")
+    if not math.isfinite(values[0]) or values[0] == 0:
+        raise ModelError(spec_name, item, "equal lengths of value 0 (nothing to draw)")
+    return Constant(name, values[0], ConstantKind.SAME, tuple(members),
+                    drawn=drawn and all(dims[d].drawn for _, d in members))
+
+
+def symbols(geometry: GeometryTable, exact=None) -> dict[str, sp.Expr]:
+    r"""Every name of ``geometry`` as the closed forms write it: the lengths a parameter set
+    draws as symbols, one per group of equal lengths (its constant's name:
+    ``origin_y(spin_rl) → W/2``, ``radius(coin) → R`` where ``R = "radius(coin)"``), the others
+    (``origin_x(elbow) → origin_x_elbow``); a constant that follows them as their expression;
+    what is kept (a fixed joint's origin, ``[draw] fixed``) as its number (``exact``: the
+    function making a float exact, default ``sympy.nsimplify``)."""
+    exact = exact or (lambda x: sp.nsimplify(x, rational=True))
+    out: dict[str, sp.Expr] = {}
+    for name, c in geometry.constants.items():
+        single = c.kind is ConstantKind.DERIVED and isinstance(c.expression, AppliedUndef)
+        if c.kind is ConstantKind.SAME or single:
+            members = c.members or ((1.0, call_name(c.expression)),)
+            drawn = c.drawn and all(geometry.dimensions[d].drawn for _, d in members)
+            symbol = sp.Symbol(name, real=True) if drawn else exact(c.value)
+            for coef, dim in members:
+                out.setdefault(dim, symbol / sp.nsimplify(coef, rational=True))
+            out[name] = symbol
+    for name, d in geometry.dimensions.items():
+        if name not in out:
+            out[name] = sp.Symbol(identifier(name), real=True) if d.drawn and d.value else \
+                exact(d.value)
+    for name, c in geometry.constants.items():
+        if name in out:
+            continue
+        if c.kind is ConstantKind.DERIVED:
+            calls = {call: out[call_name(call)] for call in c.expression.atoms(AppliedUndef)}
+            out[name] = c.expression.xreplace(calls).xreplace(
+                {s: out[s.name] for s in c.expression.free_symbols if s.name in out})
+        else:
+            out[name] = sp.Symbol(name, real=True) if c.drawn else exact(c.value)
+    return out
+
+
+def table(dims: Mapping[str, Dimension], consts: Mapping[str, Constant]) -> GeometryTable:
+    return GeometryTable(MappingProxyType(dict(dims)), MappingProxyType(dict(consts)))
+
+
+def check_fixed(spec_name: str, fixed: Sequence[str], geometry: GeometryTable) -> None:
+    r"""Every name of ``[draw] fixed`` is a dimension or a constant."""
+    for name in fixed:
+        if name not in geometry.dimensions and name not in geometry.constants:
+            raise ModelError(spec_name, "draw.fixed", f"{name} is not a length or constant of "
+                             "the model; valid: " + ", ".join((*geometry.dimensions,
+                                                               *geometry.constants)))
+
+
+def translation_delta(rotation: np.ndarray, old: Sequence[float], new: Sequence[float]
+                      ) -> np.ndarray:
+    r"""The change of a joint placement's translation (in its parent joint's frame) when its
+    URDF origin (in the parent link's frame, rotated by ``rotation`` there) changes."""
+    return rotation @ (np.asarray(new, dtype=float) - np.asarray(old, dtype=float))
