@@ -404,7 +404,7 @@ def _build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
                                drawn="R" not in spec.fixed_geometry),
              "L": geo.Constant("L", half_track, geo.ConstantKind.TRACK,
                                drawn="L" not in spec.fixed_geometry)}
-    lengths = _lengths(spec, dims, given)
+    lengths = _lengths(spec, source, dims, given)
     return WheeledModel(spec.name, spec, model, geom, tuple(wheels), coordinate_names, inputs,
                         lengths.constant_values(lengths.values()), body_jid,
                         springs=_bind_springs(spec, model, coordinate_names), lengths=lengths)
@@ -420,13 +420,13 @@ def _path_to_root(source: UrdfSource, link: str) -> list:
     return out
 
 
-def _lengths(spec: ModelSpec, dims: Mapping[str, geo.Dimension],
+def _lengths(spec: ModelSpec, source: UrdfSource, dims: Mapping[str, geo.Dimension],
              given: Mapping[str, geo.Constant]) -> geo.GeometryTable:
     r"""The model's lengths and constants (:mod:`.geometry`): the builder's ``given`` names
-    where ``[geometry]`` does not name them, then ``[geometry]``'s."""
+    where ``[geometry]`` does not name them, then ``[geometry]``'s; the links' own inertias."""
     given = {k: c for k, c in given.items() if k not in spec.geometry}
     table = geo.table(dims, geo.constants(spec.name, spec.geometry, dims, given,
-                                          spec.fixed_geometry))
+                                          spec.fixed_geometry), geo.link_inertials(source.text))
     geo.check_fixed(spec.name, spec.fixed_geometry, table)
     return table
 
@@ -529,7 +529,7 @@ def _build_unwheeled(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
     named = {k: geo.Constant(k, dims[v].value, geo.ConstantKind.DERIVED,
                              expression=sp_call(v), drawn=dims[v].drawn)
              for k, v in given.items()}
-    lengths = _lengths(spec, dims, named)
+    lengths = _lengths(spec, source, dims, named)
     geometry = lengths.constant_values(lengths.values())
     rolling_wheels = []
     for wc in spec.rolling_wheels:

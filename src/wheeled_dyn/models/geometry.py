@@ -10,16 +10,19 @@ it (:mod:`.geometry_apply`).
 (:data:`~wheeled_dyn.derivations.expressions.GEOMETRY_NAMES`):
 
 - ``origin_x(joint)``, ``origin_y(joint)``, ``origin_z(joint)``: the joint's origin in its
-  parent link's frame, as the URDF's ``<origin xyz>`` writes it. Each component of a moving
-  joint is drawn (a zero stays zero; rotations are kept); a fixed or locked joint lies inside
-  one rigid body, whose inertia is drawn as a whole: its origin is kept, unless the body is
-  drawn uniform (then the body is scaled as a whole, fixed joints included). The joints on the
-  path from a planar model's root to its wheels are named by ``R`` and ``L`` instead;
+  parent link's frame, as the URDF's ``<origin xyz>`` writes it, for every joint, moving,
+  fixed or locked (a zero stays zero; rotations are kept). The joints on the path from a
+  planar model's root to its wheels are named by ``R`` and ``L`` instead;
 - ``radius(link)``: the rolling radius of a wheel or ball, else the link's first sphere or
   cylinder (collision, then visual); ``length(link)``: its first cylinder's length;
 - ``tyre_radius(link)`` of a rolling wheel with a tyre, ``polar_radius(link)`` of a spheroid,
   ``surface_radius(link)`` (the fixed sphere a ball rolls on) and ``vertex_radius(link)`` (the
   bowl's radius of curvature at its vertex), both named by the ball's link.
+
+A link's radii and lengths are its *shape*: a uniform link (a family of the comparison) keeps
+them in proportion to its inertia. Where a joint sits on a link is not its shape (a point
+mass anywhere on a disc): a model that has a joint at the end of a rod says so in
+``[geometry]`` (``l1 = ["origin_x(elbow)", "length(upper_arm)"]``).
 
 **Constants** (:class:`Constant`), the names of ``[geometry]`` (and the ones the builder gives:
 ``R``, ``L`` of a planar model, ``r``, ``R1``, ``a``, ``c`` of a rolling ball or spheroid):
@@ -40,7 +43,7 @@ from __future__ import annotations
 import math
 import xml.etree.ElementTree as ET
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from enum import Enum
 from types import MappingProxyType
 from typing import Any
@@ -70,17 +73,19 @@ class ConstantKind(str, Enum):
 @dataclass(frozen=True)
 class Dimension:
     r"""A named length of the model: ``name`` as written (``origin_x(elbow)``), its value,
-    what it is, the Pinocchio joint whose rigid body carries it (0: the fixed world), whether
-    a parameter set draws it on its own (``drawn``: not the origin of a fixed joint, which
-    changes only with its body scaled as a whole) and whether it is ``kept`` (``[draw]
-    fixed``: never changed)."""
+    what it is, the link whose shape it is (``shape_of``: its radii and lengths; None for a
+    joint's origin and a fixed surface), whether a parameter set draws it (``drawn``: not a
+    length kept by ``[draw] fixed``)."""
 
     name: str
     value: float
     meaning: str
-    body: int
+    shape_of: str | None = None
     drawn: bool = True
-    kept: bool = False
+
+    @property
+    def kept(self) -> bool:
+        return not self.drawn
 
 
 @dataclass(frozen=True)
@@ -112,10 +117,14 @@ def _monomial(c: float, name: str) -> str:
 
 @dataclass(frozen=True)
 class GeometryTable:
-    r"""The dimensions and constants of a built model (names in the file's order)."""
+    r"""The dimensions and constants of a built model (names in the file's order), and each
+    link's own inertia as the URDF gives it (``inertials``: link → Pinocchio's ten dynamic
+    parameters in the link frame), from which a body of several links is put together again
+    when its lengths change."""
 
     dimensions: Mapping[str, Dimension]
     constants: Mapping[str, Constant]
+    inertials: Mapping[str, tuple[float, ...]] = field(default_factory=dict)
 
     def values(self) -> dict[str, float]:
         r"""Every name → its value (dimensions, then constants)."""
@@ -184,9 +193,28 @@ def urdf_lengths(text: str) -> tuple[dict[str, tuple[float, float, float]],
     return origins, shapes
 
 
-def _link_body(model: Any, link: str) -> int:
+def link_inertials(text: str) -> dict[str, tuple[float, ...]]:
+    r"""Each link's own ``<inertial>`` in its link frame, as Pinocchio's dynamic parameters
+    :math:`(m, mc, I_O)` (links without one are left out)."""
     import pinocchio as pin
-    return model.frames[model.getFrameId(link, pin.FrameType.BODY)].parentJoint
+    out: dict[str, tuple[float, ...]] = {}
+    for link in ET.fromstring(text).iter("link"):
+        inertial = link.find("inertial")
+        if inertial is None or inertial.find("mass") is None:
+            continue
+        origin = inertial.find("origin")
+        xyz = np.array([float(x) for x in (origin.get("xyz", "0 0 0") if origin is not None
+                                           else "0 0 0").split()])
+        rpy = np.array([float(x) for x in (origin.get("rpy", "0 0 0") if origin is not None
+                                           else "0 0 0").split()])
+        tensor = inertial.find("inertia")
+        get = (lambda k: float(tensor.get(k, "0"))) if tensor is not None else (lambda k: 0.0)
+        I = np.array([[get("ixx"), get("ixy"), get("ixz")], [get("ixy"), get("iyy"), get("iyz")],
+                      [get("ixz"), get("iyz"), get("izz")]])
+        R = pin.rpy.rpyToMatrix(rpy)
+        inertia = pin.Inertia(float(inertial.find("mass").get("value")), xyz, R @ I @ R.T)
+        out[link.get("name", "")] = tuple(float(x) for x in inertia.toDynamicParameters())
+    return out
 
 
 def dimensions(model: Any, source: Any, rolling: Mapping[str, dict[str, float]],
@@ -201,35 +229,31 @@ def dimensions(model: Any, source: Any, rolling: Mapping[str, dict[str, float]],
     for info in source.outline.joints:
         if info.name in skip_joints or not model.existFrame(info.parent):
             continue
-        moving = model.existJointName(info.name)
-        body = _link_body(model, info.parent)
+        kind = "" if model.existJointName(info.name) else f" ({info.type} joint)"
         for axis, value in zip(_AXES, origins.get(info.name, (0.0, 0.0, 0.0))):
             name = f"origin_{axis}({info.name})"
             out[name] = Dimension(name, float(value), f"{axis} of joint {info.name}'s origin in "
-                                  f"link {info.parent}'s frame" + ("" if moving else
-                                                                   f" ({info.type} joint)"),
-                                  body, moving and name not in fixed, name in fixed)
+                                  f"link {info.parent}'s frame{kind}", None, name not in fixed)
     for link in source.link_names:
         if not model.existFrame(link):
             continue
-        body = _link_body(model, link)
         radius, length = shapes.get(link, (None, None))
         declared = rolling.get(link, {})
         if "radius" in declared:
             radius = None
         for key, value in declared.items():
             name = f"{key}({link})"
+            surface = key in ("surface_radius", "vertex_radius")
             out[name] = Dimension(name, float(value), f"{key.replace('_', ' ')} of {link} "
-                                  "(its contact)", 0 if key in ("surface_radius", "vertex_radius")
-                                  else body, name not in fixed, name in fixed)
+                                  "(its contact)", None if surface else link, name not in fixed)
         if radius is not None:
             name = f"radius({link})"
             out[name] = Dimension(name, radius, f"radius of {link}'s first sphere or cylinder",
-                                  body, name not in fixed, name in fixed)
+                                  link, name not in fixed)
         if length is not None:
             name = f"length({link})"
-            out[name] = Dimension(name, length, f"length of {link}'s first cylinder", body,
-                                  name not in fixed, name in fixed)
+            out[name] = Dimension(name, length, f"length of {link}'s first cylinder", link,
+                                  name not in fixed)
     return out
 
 
@@ -343,8 +367,10 @@ def symbols(geometry: GeometryTable, exact=None) -> dict[str, sp.Expr]:
     return out
 
 
-def table(dims: Mapping[str, Dimension], consts: Mapping[str, Constant]) -> GeometryTable:
-    return GeometryTable(MappingProxyType(dict(dims)), MappingProxyType(dict(consts)))
+def table(dims: Mapping[str, Dimension], consts: Mapping[str, Constant],
+          inertials: Mapping[str, tuple[float, ...]]) -> GeometryTable:
+    return GeometryTable(MappingProxyType(dict(dims)), MappingProxyType(dict(consts)),
+                         MappingProxyType(dict(inertials)))
 
 
 def check_fixed(spec_name: str, fixed: Sequence[str], geometry: GeometryTable) -> None:

@@ -28,7 +28,7 @@ import pinocchio as pin
 
 from ...errors import ParameterError
 from ...models.builder import WheeledModel
-from ...models.geometry_apply import apply_geometry, draw_geometry
+from ...models.geometry_apply import apply_geometry, bodies_of, draw_geometry
 from ...models.registry import load_model, model_entry, model_parameters
 from ...models.springs import with_stiffness
 from ...models.wip_parameters import WipParameters, random_wip_parameters
@@ -105,7 +105,7 @@ def namespace_values(wm: WheeledModel, physical: WipParameters | None) -> dict[s
 GEOMETRY_REDRAWS = 50
 
 
-def _with_geometry(wm: WheeledModel, rng: np.random.Generator, uniform: set[int]
+def _with_geometry(wm: WheeledModel, rng: np.random.Generator, uniform: set[str]
                    ) -> WheeledModel:
     r"""``wm`` with random lengths (:func:`~wheeled_dyn.models.geometry_apply.draw_geometry`),
     drawn again where a contact would be invalid."""
@@ -117,40 +117,44 @@ def _with_geometry(wm: WheeledModel, rng: np.random.Generator, uniform: set[int]
     return wm
 
 
-def uniform_bodies(wm: WheeledModel, special: Sequence[SpecialCase]) -> set[int]:
-    r"""The bodies (joint ids) the ``special`` families keep uniform."""
-    out: set[int] = set()
+def uniform_links(wm: WheeledModel, special: Sequence[SpecialCase]) -> set[str]:
+    r"""The links the ``special`` families keep uniform (every link with mass for
+    ``urdf_proportions``)."""
+    out: set[str] = set()
+    masses = {link for jid, links in bodies_of(wm).items() for link in links
+              if jid and wm.lengths is not None and wm.lengths.inertials.get(link, (0.0,))[0] > 0}
     for case in special:
         if case.uniform == ():
-            out |= {j for j in range(1, wm.model.njoints) if wm.model.inertias[j].mass > 0}
+            out |= masses
         elif case.uniform:
-            out |= {wm.joint_id_of_link(link) for link in case.uniform}
+            out |= set(case.uniform)
     return out
 
 
 def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
-                          keep_structure: bool = False, uniform: set[int] = frozenset()
+                          keep_structure: bool = False, uniform: set[str] = frozenset()
                           ) -> WheeledModel:
-    r"""Random lengths (the ``uniform`` bodies scaled as a whole, their mass by a random
-    factor), and random, physically consistent inertias (log-Cholesky parameters) for every
-    other joint that carries mass; a random gravity. With ``keep_structure`` the URDF's
-    inertias are rescaled instead: mass and each centre-of-mass coordinate by random factors,
-    the principal moments by random factors keeping the triangle inequality, the principal
-    axes unchanged. Each spring's stiffness is scaled by a random factor in [0.5, 2]."""
+    r"""Random lengths (the ``uniform`` links scaled as a whole with a random mass factor
+    each, and their bodies put together again from their links:
+    :mod:`~wheeled_dyn.models.geometry_apply`), and random, physically consistent inertias
+    (log-Cholesky parameters) for every other joint that carries mass; a random gravity. With
+    ``keep_structure`` the URDF's inertias are rescaled instead: mass and each centre-of-mass
+    coordinate by random factors, the principal moments by random factors keeping the triangle
+    inequality, the principal axes unchanged. Each spring's stiffness is scaled by a random
+    factor in [0.5, 2]."""
     drawn = _with_geometry(wm, rng, uniform)
     model = pin.Model(drawn.model)               # never the model of ``wm`` itself
-    masses: dict[int, float] = {}
+    composed = {jid for jid, links in bodies_of(wm).items() if uniform & set(links)}
     for jid in range(1, model.njoints):
-        if model.inertias[jid].mass > 0 and jid in uniform:
-            old = model.inertias[jid]
-            mass = masses.setdefault(_alike(wm, jid), rng.uniform(0.5, 2.0))
-            model.inertias[jid] = pin.Inertia(old.mass * mass, old.lever, old.inertia * mass)
+        if model.inertias[jid].mass > 0 and jid in composed:
+            continue                              # its links drawn with the lengths
         elif model.inertias[jid].mass > 0 and keep_structure:
             old = model.inertias[jid]
             eig, axes = np.linalg.eigh(old.inertia)
             second = 0.5 * (eig.sum() - 2 * eig)           # second moments along the axes
             second = np.maximum(second, 0.0) * rng.uniform(0.5, 2.0, 3)
-            moments = np.array([second[1] + second[2], second[0] + second[2], second[0] + second[1]])
+            moments = np.array([second[1] + second[2], second[0] + second[2],
+                                second[0] + second[1]])
             model.inertias[jid] = pin.Inertia(old.mass * rng.uniform(0.5, 2.0),
                                               old.lever * rng.uniform(0.5, 2.0, 3),
                                               axes @ np.diag(moments) @ axes.T)
@@ -161,19 +165,12 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
             theta[0] += 0.5 * scale / 3
             model.inertias[jid] = pin.Inertia.FromLogCholeskyParameters(
                 pin.LogCholeskyParameters(theta))
-    if not uniform & {w.joint_id for w in wm.wheels}:
+    if not composed & {w.joint_id for w in wm.wheels}:
         _alike_wheels(wm, model, rng)
     model.gravity = pin.Motion(np.array([0.0, 0.0, -rng.uniform(5.0, 15.0)]), np.zeros(3))
     springs = with_stiffness(wm.springs, rng.uniform(0.5, 2.0, len(wm.springs))) \
         if wm.springs else None
     return drawn.with_model(model, springs)
-
-
-def _alike(wm: WheeledModel, jid: int) -> int:
-    r"""The body whose random mass factor ``jid`` shares: the left wheel for both drive wheels
-    of a wheeled model (they stay alike), else itself."""
-    ids = [w.joint_id for w in wm.wheels]
-    return ids[0] if len(ids) == 2 and jid in ids else jid
 
 
 def _alike_wheels(wm: WheeledModel, model: pin.Model, rng: np.random.Generator) -> None:
@@ -211,7 +208,7 @@ def parameter_sets(model_name: str, k: int, rng: np.random.Generator,
         return out
     base = load_model(model_name)
     keep = URDF_STRUCTURE in special
-    uniform = uniform_bodies(base, special)
+    uniform = uniform_links(base, special)
     for _ in range(k):
         wm = _random_link_inertias(base, rng, keep, uniform)
         out.append(ParameterSet(wm, namespace_values(wm, None)))
@@ -254,4 +251,4 @@ REDRAWS = 5
 
 __all__ = ["MAX_CONDITION", "ParameterSet", "SpecialCase", "WIP_SPECIAL_CASES",
            "namespace_values", "parameter_sets", "random_states", "regular_states",
-           "special_cases", "uniform_bodies", "uniform_family", "replace"]
+           "special_cases", "uniform_family", "uniform_links", "replace"]

@@ -134,24 +134,27 @@ def family_substitution(families: tuple[str, ...]) -> dict[sp.Symbol, sp.Expr]:
 
 
 def uniform_substitution(d: Derivation, families: tuple[str, ...]) -> dict[sp.Symbol, sp.Expr]:
-    r"""A model without a physical record: its bodies the ``families`` keep uniform
+    r"""A model without a physical record: its links the ``families`` keep uniform
     (:func:`~.samples.uniform_family`, ``urdf_proportions``) as a substitution of its closed
-    forms' symbols. Each such body is the URDF's scaled by a length :math:`s` and its mass by
-    :math:`M/M_0`: its first moments :math:`\mathrm{MX} = (M/M_0)\,\mathrm{MX}_0\,s`, its
-    second :math:`\mathrm{XX} = (M/M_0)\,\mathrm{XX}_0\,s^2`, each of its lengths
-    :math:`\ell_0 s`, with :math:`s` one of them over its URDF value
-    (:func:`~wheeled_dyn.models.geometry_apply.uniform_scales`)."""
-    from ...models.geometry_apply import uniform_scales
+    forms' symbols. Each such link, alone with mass on its joint and at its joint's frame, is
+    the URDF's scaled by a length :math:`s` and its mass by :math:`M/M_0`: its first moments
+    :math:`\mathrm{MX} = (M/M_0)\,\mathrm{MX}_0\,s`, its second
+    :math:`\mathrm{XX} = (M/M_0)\,\mathrm{XX}_0\,s^2`, each length of its class
+    :math:`\ell_0 s`, with :math:`s` one of them (one the document uses, if any) over its URDF
+    value (:func:`~wheeled_dyn.models.geometry_apply.uniform_scales`)."""
+    import pinocchio as pin
+
+    from ...models.geometry_apply import bodies_of, uniform_scales
     from ...models.registry import load_model
     from ...symbolic.parameters import PARAMETER_NAMES
     from ...symbolic.wheeled import _standard_names, length_symbols
     from ..grid.assumptions import declared
-    from ..grid.samples import special_cases, uniform_bodies
+    from ..grid.samples import special_cases, uniform_links
     cases = [c for c in (*special_cases(d.model), *declared(d).families)
              if c.name in families and c.uniform is not None]
     wm = load_model(d.model)
-    bodies = uniform_bodies(wm, cases) if cases else set()
-    if not bodies or wm.lengths is None:
+    links = uniform_links(wm, cases) if cases else set()
+    if not links or wm.lengths is None:
         return {}
     lengths = length_symbols(wm)
     names = _standard_names(wm)
@@ -159,17 +162,21 @@ def uniform_substitution(d: Derivation, families: tuple[str, ...]) -> dict[sp.Sy
             for s in d.symbols.values() if s.value is not None
             for c in (*s.value.atoms(AppliedUndef), *s.value.free_symbols)}
     values = wm.lengths.values()
+    massive = {jid: [k for k in ks if wm.lengths.inertials.get(k, (0.0,))[0] > 0]
+               for jid, ks in bodies_of(wm).items()}
     out: dict[sp.Symbol, sp.Expr] = {}
-    for body, (group, value, members) in uniform_scales(wm, bodies).items():
+    for link, (group, _, members) in uniform_scales(wm, links).items():
         group = next((m for m in members if m in used and values.get(m)), group)
         scale = lengths[group] / sp.nsimplify(values[group], rational=True)
         for name in members:
             symbol = lengths.get(name)
             if isinstance(symbol, sp.Symbol) and symbol != lengths[group]:
                 out[symbol] = sp.nsimplify(values[name], rational=True) * scale
-        pi = wm.model.inertias[body].toDynamicParameters()
-        if pi[0] <= 0:
+        body = wm.joint_id_of_link(link)
+        frame = wm.model.frames[wm.model.getFrameId(link, pin.FrameType.BODY)]
+        if massive.get(body) != [link] or not frame.placement.isIdentity(1e-12):
             continue
+        pi = wm.model.inertias[body].toDynamicParameters()
         mass = sp.Symbol(f"M_{names[body]}", real=True) / sp.nsimplify(pi[0], rational=True)
         for k, (key, x) in enumerate(zip(PARAMETER_NAMES, pi)):
             if k:
