@@ -28,8 +28,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...derivations.schema import Derivation
-from ...errors import DerivationError
-from .samples import SpecialCase, special_cases, uniform_family
+from ...errors import DerivationError, UnknownNameError
+from .samples import SpecialCase, family, special_cases, uniform_family
 
 
 @dataclass(frozen=True)
@@ -61,14 +61,17 @@ def declared(d: Derivation) -> Assumptions:
     r"""The assumptions ``d`` declares; an unknown family name is a
     :class:`~wheeled_dyn.errors.DerivationError` naming the file and the valid names."""
     raw = d.assumes or {}
-    available = {c.name: c for c in special_cases(d.model)}
     families = []
     for name in raw.get("families", ()):
-        if name not in available:
+        try:
+            found = family(d.model, name)
+        except UnknownNameError as exc:
+            raise DerivationError(d.path, f"assumes.families.{name}", str(exc)) from None
+        if found is None:
             raise DerivationError(d.path, f"assumes.families.{name}",
                                   f"not a parameter family of model {d.model!r}; valid: "
-                                  + ", ".join(available))
-        families.append(available[name])
+                                  + ", ".join(c.name for c in special_cases(d.model)))
+        families.append(found)
     links = tuple(raw.get("uniform", ()))
     if links:
         families.append(_uniform(d, links))
@@ -81,7 +84,6 @@ def _uniform(d: Derivation, links: tuple[str, ...]) -> SpecialCase:
     r"""The family of ``[assumes] uniform``; a link the model lacks, or a model whose
     parameters are a physical record (its own families say what is uniform), is a
     :class:`~wheeled_dyn.errors.DerivationError` naming the file."""
-    from ...errors import UnknownNameError
     from ...models.registry import load_model, model_entry
     if model_entry(d.model).parameters is not None:
         raise DerivationError(d.path, "assumes.uniform", f"model {d.model!r} has a physical "

@@ -215,6 +215,23 @@ def parameter_sets(model_name: str, k: int, rng: np.random.Generator,
     return out
 
 
+def family(model_name: str, name: str) -> SpecialCase | None:
+    r"""The model's special family called ``name``: one of :func:`special_cases`, or
+    ``uniform(link, ...)`` (:func:`uniform_family`) for links of a model without a physical
+    record; None for another name (an unknown link is an
+    :class:`~wheeled_dyn.errors.UnknownNameError`)."""
+    found = next((c for c in special_cases(model_name) if c.name == name), None)
+    if found is not None or not (name.startswith("uniform(") and name.endswith(")")):
+        return found
+    if model_entry(model_name).parameters is not None:
+        return None
+    links = tuple(x.strip() for x in name[len("uniform("):-1].split(","))
+    wm = load_model(model_name)
+    for link in links:
+        wm.joint_id_of_link(link)
+    return uniform_family(links)
+
+
 def special_cases(model_name: str) -> tuple[SpecialCase, ...]:
     return WIP_SPECIAL_CASES if model_entry(model_name).parameters is WipParameters \
         else (URDF_STRUCTURE, URDF_PROPORTIONS)
@@ -251,4 +268,4 @@ REDRAWS = 5
 
 __all__ = ["MAX_CONDITION", "ParameterSet", "SpecialCase", "WIP_SPECIAL_CASES",
            "namespace_values", "parameter_sets", "random_states", "regular_states",
-           "special_cases", "uniform_family", "uniform_links", "replace"]
+           "special_cases", "family", "uniform_family", "uniform_links", "replace"]
