@@ -193,6 +193,25 @@ def urdf_lengths(text: str) -> tuple[dict[str, tuple[float, float, float]],
     return origins, shapes
 
 
+def urdf_length_names(text: str) -> list[tuple[str, float, str]]:
+    r"""The lengths a URDF names (name, value, what it is), as a model built on it lists them
+    before its contacts are declared: each joint's nonzero origin components, each link's first
+    sphere or cylinder (the starting model file lists them)."""
+    origins, shapes = urdf_lengths(text)
+    out = []
+    for joint, xyz in origins.items():
+        for axis, value in zip(_AXES, xyz):
+            if value:
+                out.append((f"origin_{axis}({joint})", value, f"{axis} of joint {joint}'s "
+                            "origin"))
+    for link, (radius, length) in shapes.items():
+        if radius is not None:
+            out.append((f"radius({link})", radius, f"{link}'s first sphere or cylinder"))
+        if length is not None:
+            out.append((f"length({link})", length, f"{link}'s first cylinder"))
+    return out
+
+
 def link_inertials(text: str) -> dict[str, tuple[float, ...]]:
     r"""Each link's own ``<inertial>`` in its link frame, as Pinocchio's dynamic parameters
     :math:`(m, mc, I_O)` (links without one are left out)."""
