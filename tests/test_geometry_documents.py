@@ -130,3 +130,16 @@ def test_seed000_4_13_keeps_power_and_loses_the_stray_factor(element):
     assert record.verdict == "differs"
     assert any(d.startswith("power: G where G**2 fits") for d in record.diagnoses)
     assert not any(d.startswith("factor") for d in record.diagnoses), record.diagnoses
+
+
+def test_the_family_search_names_the_link_that_must_be_uniform(tmp_path):
+    r"""The arm's file without its [assumes]: the forearm's terms agree only if the forearm
+    is a uniform body (the per-link family), the upper arm's gravity term needs every link."""
+    result = _compare(_variant(ARM, tmp_path, "[assumes]", "", 'uniform = ["upper_arm", "forearm"]'))
+    records = _by_element(result)
+    for element in ("A[2,2]", "Q[2]", "h[2]:dq1*dq1"):
+        assert records[element].verdict == "agrees_if"
+        assert records[element].diagnoses[0] == "agrees only if forearm is a uniform body " \
+            "(mass and size scaled as a whole, its lengths with it)", records[element].diagnoses
+    assert records["Q[1]"].verdict == "agrees_if"
+    assert "every link keeps the URDF's proportions" in records["Q[1]"].diagnoses[0]

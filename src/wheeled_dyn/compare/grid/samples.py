@@ -232,9 +232,22 @@ def family(model_name: str, name: str) -> SpecialCase | None:
     return uniform_family(links)
 
 
+#: A model without a physical record whose links with mass are at least two and at most this
+#: many also offers each of them uniform alone as a family (a per-link "agrees only if").
+UNIFORM_LINK_FAMILIES = 4
+
+
 def special_cases(model_name: str) -> tuple[SpecialCase, ...]:
-    return WIP_SPECIAL_CASES if model_entry(model_name).parameters is WipParameters \
-        else (URDF_STRUCTURE, URDF_PROPORTIONS)
+    r"""The special families of a model, weakest first: the WIP's
+    (:data:`WIP_SPECIAL_CASES`); for the others ``urdf_structure``, each link with mass
+    uniform alone (:func:`uniform_family`, two to :data:`UNIFORM_LINK_FAMILIES` such links)
+    and every link uniform (``urdf_proportions``)."""
+    if model_entry(model_name).parameters is WipParameters:
+        return WIP_SPECIAL_CASES
+    links = sorted(uniform_links(load_model(model_name), (URDF_PROPORTIONS,)))
+    each = tuple(uniform_family((link,)) for link in links) \
+        if 2 <= len(links) <= UNIFORM_LINK_FAMILIES else ()
+    return (URDF_STRUCTURE, *each, URDF_PROPORTIONS)
 
 
 def regular_states(cmap, q: np.ndarray, rng: np.random.Generator,
