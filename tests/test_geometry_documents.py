@@ -135,7 +135,8 @@ def test_seed000_4_13_keeps_power_and_loses_the_stray_factor(element):
 def test_the_family_search_names_the_link_that_must_be_uniform(tmp_path):
     r"""The arm's file without its [assumes]: the forearm's terms agree only if the forearm
     is a uniform body (the per-link family), the upper arm's gravity term needs every link."""
-    result = _compare(_variant(ARM, tmp_path, "[assumes]", "", 'uniform = ["upper_arm", "forearm"]'))
+    result = _compare(_variant(ARM, tmp_path, "[assumes]", "",
+                               'uniform = ["upper_arm", "forearm"]'))
     records = _by_element(result)
     for element in ("A[2,2]", "Q[2]", "h[2]:dq1*dq1"):
         assert records[element].verdict == "agrees_if"

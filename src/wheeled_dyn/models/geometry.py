@@ -219,7 +219,8 @@ def link_inertials(text: str) -> dict[str, tuple[float, ...]]:
     out: dict[str, tuple[float, ...]] = {}
     for link in ET.fromstring(text).iter("link"):
         inertial = link.find("inertial")
-        if inertial is None or inertial.find("mass") is None:
+        mass = None if inertial is None else inertial.find("mass")
+        if inertial is None or mass is None:
             continue
         origin = inertial.find("origin")
         xyz = np.array([float(x) for x in (origin.get("xyz", "0 0 0") if origin is not None
@@ -231,7 +232,7 @@ def link_inertials(text: str) -> dict[str, tuple[float, ...]]:
         I = np.array([[get("ixx"), get("ixy"), get("ixz")], [get("ixy"), get("iyy"), get("iyz")],
                       [get("ixz"), get("iyz"), get("izz")]])
         R = pin.rpy.rpyToMatrix(rpy)
-        inertia = pin.Inertia(float(inertial.find("mass").get("value")), xyz, R @ I @ R.T)
+        inertia = pin.Inertia(float(mass.get("value", "0")), xyz, R @ I @ R.T)
         out[link.get("name", "")] = tuple(float(x) for x in inertia.toDynamicParameters())
     return out
 
@@ -377,10 +378,11 @@ def symbols(geometry: GeometryTable, exact=None) -> dict[str, sp.Expr]:
     for name, c in geometry.constants.items():
         if name in out:
             continue
-        if c.kind is ConstantKind.DERIVED:
-            calls = {call: out[call_name(call)] for call in c.expression.atoms(AppliedUndef)}
-            out[name] = c.expression.xreplace(calls).xreplace(
-                {s: out[s.name] for s in c.expression.free_symbols if s.name in out})
+        if c.kind is ConstantKind.DERIVED and c.expression is not None:
+            expr = c.expression
+            calls = {call: out[call_name(call)] for call in expr.atoms(AppliedUndef)}
+            out[name] = expr.xreplace(calls).xreplace(
+                {s: out[s.name] for s in expr.free_symbols if s.name in out})
         else:
             out[name] = sp.Symbol(name, real=True) if c.drawn else exact(c.value)
     return out

@@ -193,7 +193,7 @@ def length_symbols(wm: WheeledModel) -> dict[str, sp.Expr]:
     (:func:`~wheeled_dyn.models.geometry.symbols`: a drawn length a symbol, a kept one its
     exact number)."""
     from ..models.geometry import symbols
-    return symbols(wm.lengths, exact_length)
+    return symbols(wm.lengths, exact_length) if wm.lengths is not None else {}
 
 
 def _translations(wm: WheeledModel, lengths: Mapping[str, sp.Expr]) -> dict | None:

@@ -72,7 +72,8 @@ def declared(d: Derivation) -> Assumptions:
                                   f"not a parameter family of model {d.model!r}; valid: "
                                   + ", ".join(c.name for c in special_cases(d.model)))
         families.append(found)
-    links = tuple(raw.get("uniform", ()))
+    uniform = raw.get("uniform", ())
+    links = tuple(str(x) for x in uniform) if isinstance(uniform, (list, tuple)) else ()
     if links:
         families.append(_uniform(d, links))
     point = tuple((k, float(v)) for k, v in dict(raw.get("linearised_about", {})).items())
@@ -95,7 +96,7 @@ def _uniform(d: Derivation, links: tuple[str, ...]) -> SpecialCase:
             wm.joint_id_of_link(link)
         except UnknownNameError as exc:
             raise DerivationError(d.path, "assumes.uniform", f"{link!r} is not a link of model "
-                                  f"{d.model!r}; valid: " + ", ".join(exc.valid)) from None
+                                  f"{d.model!r}; valid: " + ", ".join(exc.valid or ())) from None
     return uniform_family(links)
 
 

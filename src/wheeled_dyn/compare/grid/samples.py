@@ -20,7 +20,7 @@ model's lengths, keyed ``origin_x(joint)``, ``radius(link)`` ...
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Collection, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -105,7 +105,7 @@ def namespace_values(wm: WheeledModel, physical: WipParameters | None) -> dict[s
 GEOMETRY_REDRAWS = 50
 
 
-def _with_geometry(wm: WheeledModel, rng: np.random.Generator, uniform: set[str]
+def _with_geometry(wm: WheeledModel, rng: np.random.Generator, uniform: Collection[str]
                    ) -> WheeledModel:
     r"""``wm`` with random lengths (:func:`~wheeled_dyn.models.geometry_apply.draw_geometry`),
     drawn again where a contact would be invalid."""
@@ -132,7 +132,8 @@ def uniform_links(wm: WheeledModel, special: Sequence[SpecialCase]) -> set[str]:
 
 
 def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
-                          keep_structure: bool = False, uniform: set[str] = frozenset()
+                          keep_structure: bool = False,
+                          uniform: frozenset[str] | set[str] = frozenset()
                           ) -> WheeledModel:
     r"""Random lengths (the ``uniform`` links scaled as a whole with a random mass factor
     each, and their bodies put together again from their links:
