@@ -144,3 +144,15 @@ def test_the_family_search_names_the_link_that_must_be_uniform(tmp_path):
             "(mass and size scaled as a whole, its lengths with it)", records[element].diagnoses
     assert records["Q[1]"].verdict == "agrees_if"
     assert "every link keeps the URDF's proportions" in records["Q[1]"].diagnoses[0]
+
+
+def test_an_unknown_joint_or_length_is_one_error_naming_the_file_and_line(tmp_path, capsys):
+    from wheeled_dyn.cli import main
+    for old, new, name in (('"origin_x(elbow)"', '"origin_x(elbw)"', "elbw"),
+                           ('"length(forearm)"', '"tyre_radius(forearm)"', "tyre_radius(forearm)")):
+        path = _variant(ARM, tmp_path, old, new)
+        model = str(DATA / "two_link_arm" / "two_link_arm.toml")
+        assert main(["compare", model, str(path), "--out", str(tmp_path / "out")]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and path.name in err[0] and name in err[0], err
+        assert f"{path.name}:" in err[0] and "symbols." in err[0], err

@@ -65,6 +65,7 @@ from ..errors import ModelError, UnknownNameError
 from . import geometry as geo
 from .contact import BallContact, SphereContact
 from .conventions import ANGLE_TOL, check_sides
+from .geometry_constants import planar_lengths, unwheeled_lengths
 from .rolling_wheel import BoundWheelContact, WheelContact
 from .springs import SPRING_JOINTS, BoundSpring, JointSpring, spring_energy, spring_force
 from .urdf_checks import check_mimic
@@ -396,39 +397,10 @@ def _build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
     inputs = tuple(spec.inputs) if spec.inputs is not None else ("tau_l", "tau_r")
     if len(inputs) != 2:
         raise ModelError(spec.name, None, f"{len(inputs)} input names for two wheel motors")
-    axle = [j.name for w in spec.wheels for j in _path_to_root(source, w)]
-    dims = geo.dimensions(model, source, {w: {"radius": rl} for w in spec.wheels}, axle,
-                          spec.fixed_geometry)
-    given = {"R": geo.Constant("R", rl, geo.ConstantKind.SAME,
-                               tuple((1.0, f"radius({w})") for w in spec.wheels),
-                               drawn="R" not in spec.fixed_geometry),
-             "L": geo.Constant("L", half_track, geo.ConstantKind.TRACK,
-                               drawn="L" not in spec.fixed_geometry)}
-    lengths = _lengths(spec, source, dims, given)
+    lengths = planar_lengths(spec, source, model, rl, half_track)
     return WheeledModel(spec.name, spec, model, geom, tuple(wheels), coordinate_names, inputs,
                         lengths.constant_values(lengths.values()), body_jid,
                         springs=_bind_springs(spec, model, coordinate_names), lengths=lengths)
-
-
-def _path_to_root(source: UrdfSource, link: str) -> list:
-    r"""The joints from the root down to ``link``."""
-    out = []
-    while link != source.root_link():
-        joint = source.joint_to(link)
-        out.append(joint)
-        link = joint.parent
-    return out
-
-
-def _lengths(spec: ModelSpec, source: UrdfSource, dims: Mapping[str, geo.Dimension],
-             given: Mapping[str, geo.Constant]) -> geo.GeometryTable:
-    r"""The model's lengths and constants (:mod:`.geometry`): the builder's ``given`` names
-    where ``[geometry]`` does not name them, then ``[geometry]``'s; the links' own inertias."""
-    given = {k: c for k, c in given.items() if k not in spec.geometry}
-    table = geo.table(dims, geo.constants(spec.name, spec.geometry, dims, given,
-                                          spec.fixed_geometry), geo.link_inertials(source.text))
-    geo.check_fixed(spec.name, spec.fixed_geometry, table)
-    return table
 
 
 def _direction(spec: ModelSpec, what: str, value: Sequence[float], item: str) -> np.ndarray:
@@ -524,12 +496,7 @@ def _build_unwheeled(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
     if spec.contact is not None:
         source.link(spec.contact.link)
         contact = BallContact(spec.contact, model.getFrameId(spec.contact.link))
-    rolling, given = _contact_lengths(spec)
-    dims = geo.dimensions(model, source, rolling, (), spec.fixed_geometry)
-    named = {k: geo.Constant(k, dims[v].value, geo.ConstantKind.DERIVED,
-                             expression=sp_call(v), drawn=dims[v].drawn)
-             for k, v in given.items()}
-    lengths = _lengths(spec, source, dims, named)
+    lengths = unwheeled_lengths(spec, source, model)
     geometry = lengths.constant_values(lengths.values())
     rolling_wheels = []
     for wc in spec.rolling_wheels:
@@ -541,39 +508,6 @@ def _build_unwheeled(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
     return WheeledModel(spec.name, spec, model, geom, (), coordinate_names, inputs, geometry,
                         body_jid, tuple(actuated), contact, tuple(rolling_wheels),
                         _bind_springs(spec, model, coordinate_names), lengths)
-
-
-def _contact_lengths(spec: ModelSpec) -> tuple[dict[str, dict[str, float]], dict[str, str]]:
-    r"""The radii the contacts declare, per link (``radius``, ``polar_radius``,
-    ``surface_radius``, ``vertex_radius``, ``tyre_radius``), and the names the builder gives
-    them (``r``, ``R1``, ``a``, ``c``: name → length)."""
-    rolling: dict[str, dict[str, float]] = {}
-    given: dict[str, str] = {}
-    sc = spec.contact
-    if sc is not None:
-        rolling[sc.link] = {"radius": float(sc.radius)}
-        if sc.spheroid:                             # equatorial and polar radii
-            rolling[sc.link]["polar_radius"] = float(sc.polar_radius)
-            given.update(a=f"radius({sc.link})", c=f"polar_radius({sc.link})")
-        else:
-            given["r"] = f"radius({sc.link})"
-        if sc.surface == "sphere":
-            rolling[sc.link]["surface_radius"] = float(sc.surface_radius)
-            given["R1"] = f"surface_radius({sc.link})"
-        elif sc.surface == "paraboloid":            # vertex radius of curvature
-            rolling[sc.link]["vertex_radius"] = float(sc.vertex_radius)
-            given["a"] = f"vertex_radius({sc.link})"
-    for wc in spec.rolling_wheels:
-        rolling[wc.link] = {"radius": float(wc.radius)}
-        if wc.tyre_radius:
-            rolling[wc.link]["tyre_radius"] = float(wc.tyre_radius)
-    return rolling, given
-
-
-def sp_call(name: str):
-    r"""The SymPy call of a length's name (``radius(ball)``)."""
-    from ..derivations.expressions import parse_model_expression
-    return parse_model_expression(name)
 
 
 def _bind_springs(spec: ModelSpec, model: pin.Model, coordinate_names: Sequence[str]

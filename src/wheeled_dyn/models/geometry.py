@@ -29,18 +29,19 @@ mass anywhere on a disc): a model that has a joint at the end of a rod says so i
 
 - a number (``G = 3.5``): a constant of the model (a gear ratio), drawn on its own;
 - an expression of dimensions and constants (``R = "radius(coin)"``): it follows them;
-- a list of monomials ``c * dimension`` (``W = ["2*origin_y(spin_rl)", "-2*origin_y(spin_rr)"]``):
-  lengths the body has equal by design, drawn as one (each entry equals the constant);
+- a list of monomials ``c * dimension``
+  (``W = ["2*origin_y(spin_rl)", "-2*origin_y(spin_rr)"]``): lengths the body has equal by
+  design, drawn as one (each entry equals the constant);
 - ``{ value = x }``: a number that is a constant of its own although a length of the URDF has
   the same value (a plain number equal to one is an error: it would be drawn apart from it).
 
-``[draw] fixed`` lists names kept at their values in every parameter set (a published body
-whose wheels must touch the ground at its reference state).
+They are read by :mod:`.geometry_constants`. ``[draw] fixed`` lists names kept at their values
+in every parameter set (a published body whose wheels must touch the ground at its reference
+state).
 """
 
 from __future__ import annotations
 
-import math
 import xml.etree.ElementTree as ET
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
@@ -52,8 +53,6 @@ import numpy as np
 import sympy as sp
 from sympy.core.function import AppliedUndef
 
-from ..derivations.expressions import GEOMETRY_NAMES, ExpressionError, parse_model_expression
-from ..errors import ModelError
 
 #: Relative agreement of the entries of a ``[geometry]`` list (and of a number with a length
 #: of the URDF, which makes it an error to write it as a plain number).
@@ -103,7 +102,7 @@ class Constant:
     @property
     def meaning(self) -> str:
         if self.kind is ConstantKind.SAME:
-            return "= " + " = ".join(_monomial(c, d) for c, d in self.members)
+            return "= " + " = ".join(monomial(c, d) for c, d in self.members)
         if self.kind is ConstantKind.DERIVED:
             return f"= {self.expression}"
         if self.kind is ConstantKind.TRACK:
@@ -111,7 +110,7 @@ class Constant:
         return "a constant of the model"
 
 
-def _monomial(c: float, name: str) -> str:
+def monomial(c: float, name: str) -> str:
     return name if c == 1 else f"-{name}" if c == -1 else f"{c:g}*{name}"
 
 
@@ -229,10 +228,11 @@ def link_inertials(text: str) -> dict[str, tuple[float, ...]]:
                                            else "0 0 0").split()])
         tensor = inertial.find("inertia")
         get = (lambda k: float(tensor.get(k, "0"))) if tensor is not None else (lambda k: 0.0)
-        I = np.array([[get("ixx"), get("ixy"), get("ixz")], [get("ixy"), get("iyy"), get("iyz")],
-                      [get("ixz"), get("iyz"), get("izz")]])
+        tensor_matrix = np.array([[get("ixx"), get("ixy"), get("ixz")],
+                                  [get("ixy"), get("iyy"), get("iyz")],
+                                  [get("ixz"), get("iyz"), get("izz")]])
         R = pin.rpy.rpyToMatrix(rpy)
-        inertia = pin.Inertia(float(mass.get("value", "0")), xyz, R @ I @ R.T)
+        inertia = pin.Inertia(float(mass.get("value", "0")), xyz, R @ tensor_matrix @ R.T)
         out[link.get("name", "")] = tuple(float(x) for x in inertia.toDynamicParameters())
     return out
 
@@ -277,82 +277,6 @@ def dimensions(model: Any, source: Any, rolling: Mapping[str, dict[str, float]],
     return out
 
 
-# -- the constants of [geometry] ---------------------------------------------------------
-def constants(spec_name: str, raw: Mapping[str, Any], dims: Mapping[str, Dimension],
-              given: Mapping[str, Constant] = MappingProxyType({}), fixed: Sequence[str] = ()
-              ) -> dict[str, Constant]:
-    r"""The constants of ``[geometry]`` (``raw``: name → number, expression, list of
-    monomials or ``{ value = x }``) after the ones the builder ``given``; errors are
-    :class:`~wheeled_dyn.errors.ModelError` naming ``geometry.<name>``."""
-    out = dict(given)
-    values = {k: d.value for k, d in dims.items()}
-    for name, value in raw.items():
-        item = f"geometry.{name}"
-        if name in out:
-            raise ModelError(spec_name, item, f"{name} is given by the model already "
-                                              f"({out[name].meaning})")
-        drawn = name not in fixed
-        if isinstance(value, Mapping):
-            out[name] = Constant(name, float(value["value"]), ConstantKind.FREE, drawn=drawn)
-        elif isinstance(value, (int, float)) and not isinstance(value, bool):
-            equal = [k for k, d in dims.items()
-                     if d.value and abs(d.value - value) <= SAME_TOL * abs(value)]
-            if equal:
-                raise ModelError(spec_name, item, f"{value!r} is the value of {equal[0]}: write "
-                                 f"{name} = \"{equal[0]}\" (or a list of the equal lengths) so "
-                                 "that it is drawn with it, or { value = ... } if it is a "
-                                 "constant of its own")
-            out[name] = Constant(name, float(value), ConstantKind.FREE, drawn=drawn)
-        elif isinstance(value, str):
-            expr = _parse(spec_name, item, value, dims, out)
-            out[name] = Constant(name, evaluate(expr, values, _numbers(out)),
-                                 ConstantKind.DERIVED, expression=expr, drawn=drawn)
-        else:
-            out[name] = _same(spec_name, name, list(value), dims, out, drawn)
-    return out
-
-
-def _numbers(consts: Mapping[str, Constant]) -> dict[str, float]:
-    return {k: c.value for k, c in consts.items()}
-
-
-def _parse(spec_name: str, item: str, text: str, dims: Mapping[str, Dimension],
-           consts: Mapping[str, Constant]) -> sp.Expr:
-    try:
-        expr = parse_model_expression(text, tuple(consts))
-    except ExpressionError as exc:
-        raise ModelError(spec_name, item, f"{text!r}: {exc.reason}") from None
-    for call in expr.atoms(AppliedUndef):
-        if call.func.__name__ not in GEOMETRY_NAMES or call_name(call) not in dims:
-            raise ModelError(spec_name, item, f"{call_name(call)} is not a length of the model; "
-                             "valid: " + ", ".join(dims))
-    return expr
-
-
-def _same(spec_name: str, name: str, entries: list, dims: Mapping[str, Dimension],
-          consts: Mapping[str, Constant], drawn: bool) -> Constant:
-    r"""A list of monomials ``c * dimension`` that are equal in the URDF."""
-    item = f"geometry.{name}"
-    members = []
-    for text in entries:
-        expr = _parse(spec_name, item, str(text), dims, consts)
-        coef, rest = expr.as_coeff_Mul()
-        if not (isinstance(rest, AppliedUndef) and coef != 0):
-            raise ModelError(spec_name, item, f"{text!r}: expected a number times one length "
-                             "(a list names equal lengths)")
-        members.append((float(coef), call_name(rest)))
-    values = [c * dims[d].value for c, d in members]
-    for (c, d), v in zip(members, values):
-        if abs(v - values[0]) > SAME_TOL * max(abs(values[0]), 1e-300):
-            raise ModelError(spec_name, item, f"{_monomial(c, d)} is {v:g} in the URDF, "
-                             f"{_monomial(*members[0])} is {values[0]:g}: the entries of a list "
-                             "are equal lengths")
-    if not math.isfinite(values[0]) or values[0] == 0:
-        raise ModelError(spec_name, item, "equal lengths of value 0 (nothing to draw)")
-    return Constant(name, values[0], ConstantKind.SAME, tuple(members),
-                    drawn=drawn and all(dims[d].drawn for _, d in members))
-
-
 def symbols(geometry: GeometryTable, exact=None) -> dict[str, sp.Expr]:
     r"""Every name of ``geometry`` as the closed forms write it: the lengths a parameter set
     draws as symbols, one per group of equal lengths (its constant's name:
@@ -392,19 +316,3 @@ def table(dims: Mapping[str, Dimension], consts: Mapping[str, Constant],
           inertials: Mapping[str, tuple[float, ...]]) -> GeometryTable:
     return GeometryTable(MappingProxyType(dict(dims)), MappingProxyType(dict(consts)),
                          MappingProxyType(dict(inertials)))
-
-
-def check_fixed(spec_name: str, fixed: Sequence[str], geometry: GeometryTable) -> None:
-    r"""Every name of ``[draw] fixed`` is a dimension or a constant."""
-    for name in fixed:
-        if name not in geometry.dimensions and name not in geometry.constants:
-            raise ModelError(spec_name, "draw.fixed", f"{name} is not a length or constant of "
-                             "the model; valid: " + ", ".join((*geometry.dimensions,
-                                                               *geometry.constants)))
-
-
-def translation_delta(rotation: np.ndarray, old: Sequence[float], new: Sequence[float]
-                      ) -> np.ndarray:
-    r"""The change of a joint placement's translation (in its parent joint's frame) when its
-    URDF origin (in the parent link's frame, rotated by ``rotation`` there) changes."""
-    return rotation @ (np.asarray(new, dtype=float) - np.asarray(old, dtype=float))
