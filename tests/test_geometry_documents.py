@@ -25,7 +25,7 @@ import sympy as sp
 from conftest import SEED
 from wheeled_dyn import CoordinateMap, builtin_coordinate_set, load_model
 from wheeled_dyn.compare import ComparisonEngine
-from wheeled_dyn.compare.evaluate import model_value
+from wheeled_dyn.compare.sides.evaluate import model_value
 from wheeled_dyn.derivations import builtin_derivations, load_derivation
 from wheeled_dyn.models.registry import model_parameters
 
@@ -147,7 +147,7 @@ def test_the_family_search_names_the_link_that_must_be_uniform(tmp_path):
 
 
 def test_an_unknown_joint_or_length_is_one_error_naming_the_file_and_line(tmp_path, capsys):
-    from wheeled_dyn.cli import main
+    from wheeled_dyn.cli.main import main
     for old, new, name in (('"origin_x(elbow)"', '"origin_x(elbw)"', "elbw"),
                            ('"length(forearm)"', '"tyre_radius(forearm)"', "tyre_radius(forearm)")):
         path = _variant(ARM, tmp_path, old, new)

@@ -19,8 +19,8 @@ import pytest
 from conftest import SEED
 from drawn_urdf import drawn_urdf_text, rebuilt
 from wheeled_dyn import CoordinateMap, builtin_coordinate_set, load_model
-from wheeled_dyn.compare.samples import (URDF_PROPORTIONS, URDF_STRUCTURE, parameter_sets,
-                                         uniform_family)
+from wheeled_dyn.compare.grid.samples import (URDF_PROPORTIONS, URDF_STRUCTURE, parameter_sets,
+                                              uniform_family)
 from wheeled_dyn.constraints.rolling import contact_jacobian
 from wheeled_dyn.models.registry import model_parameters
 

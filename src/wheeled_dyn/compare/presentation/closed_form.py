@@ -135,7 +135,7 @@ def family_substitution(families: tuple[str, ...]) -> dict[sp.Symbol, sp.Expr]:
 
 def uniform_substitution(d: Derivation, families: tuple[str, ...]) -> dict[sp.Symbol, sp.Expr]:
     r"""A model without a physical record: its links the ``families`` keep uniform
-    (:func:`~.samples.uniform_family`, ``urdf_proportions``) as a substitution of its closed
+    (:func:`~wheeled_dyn.compare.grid.samples.uniform_family`, ``urdf_proportions``) as a substitution of its closed
     forms' symbols. Each such link, alone with mass on its joint and at its joint's frame, is
     the URDF's scaled by a length :math:`s` and its mass by :math:`M/M_0`: its first moments
     :math:`\mathrm{MX} = (M/M_0)\,\mathrm{MX}_0\,s`, its second
