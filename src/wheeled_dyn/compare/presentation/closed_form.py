@@ -135,9 +135,10 @@ def family_substitution(families: tuple[str, ...]) -> dict[sp.Symbol, sp.Expr]:
 
 def uniform_substitution(d: Derivation, families: tuple[str, ...]) -> dict[sp.Symbol, sp.Expr]:
     r"""A model without a physical record: its links the ``families`` keep uniform
-    (:func:`~wheeled_dyn.compare.grid.samples.uniform_family`, ``urdf_proportions``) as a substitution of its closed
-    forms' symbols. Each such link, alone with mass on its joint and at its joint's frame, is
-    the URDF's scaled by a length :math:`s` and its mass by :math:`M/M_0`: its first moments
+    (:func:`~wheeled_dyn.compare.grid.samples.uniform_family`, ``urdf_proportions``) as a
+    substitution of its closed forms' symbols. Each such link, alone with mass on its joint and
+    at its joint's frame, is the URDF's scaled by a length :math:`s` and its mass by
+    :math:`M/M_0`: its first moments
     :math:`\mathrm{MX} = (M/M_0)\,\mathrm{MX}_0\,s`, its second
     :math:`\mathrm{XX} = (M/M_0)\,\mathrm{XX}_0\,s^2`, each length of its class
     :math:`\ell_0 s`, with :math:`s` one of them (one the document uses, if any) over its URDF
