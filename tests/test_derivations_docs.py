@@ -110,7 +110,7 @@ def test_the_lengths_example_is_the_tested_file_and_finds_a_length_error(tmp_pat
         bad = {r.element: r for r in result.records if r.verdict != "agrees"}
         assert set(bad) == ({wrong} if wrong else set()), bad
         if wrong:
-            assert any(d.startswith("power: l**2 where l fits") for d in bad[wrong].diagnoses)
+            assert any(d.startswith("power: l**2 where l fits") for d in bad[wrong].texts)
 
 
 def _written(folder: Path, text: str) -> Path:

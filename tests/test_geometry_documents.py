@@ -25,7 +25,7 @@ import sympy as sp
 from conftest import SEED
 from wheeled_dyn import CoordinateMap, builtin_coordinate_set, load_model
 from wheeled_dyn.compare import ComparisonEngine
-from wheeled_dyn.compare.sides.evaluate import model_value
+from wheeled_dyn.compare.sides.document import model_value
 from wheeled_dyn.derivations import builtin_derivations, load_derivation
 from wheeled_dyn.models.registry import model_parameters
 
@@ -64,7 +64,7 @@ def _by_element(result) -> dict:
 def test_sympy_rolling_disc_kane_agrees_when_the_disc_is_uniform(tmp_path):
     result = _compare(KANE)
     assert result.records and all(r.verdict == "agrees" for r in result.records), \
-        [(r.element, r.verdict, r.diagnoses) for r in result.records if r.verdict != "agrees"]
+        [(r.element, r.verdict, r.texts) for r in result.records if r.verdict != "agrees"]
     # without saying the disc is uniform, its inertias m r^2/4, m r^2/2 are not the coin's
     loose = _compare(_variant(KANE, tmp_path, "[assumes]", "", 'uniform = ["coin"]'))
     assert any(r.verdict != "agrees" for r in loose.records)
@@ -81,10 +81,10 @@ def test_two_thirds_for_two_fifths_differs_with_its_factor(tmp_path):
     claim = next(r for r in result.records if r.step == "claim")
     frequency = next(r for r in result.records if r.step == "frequency")
     assert claim.verdict == frequency.verdict == "differs"
-    assert any(d.startswith("factor") and "5/3" in d for d in claim.diagnoses), claim.diagnoses
+    assert any(d.startswith("factor") and "5/3" in d for d in claim.texts), claim.texts
     # (3/5)/(5/7) = 21/25 = 0.84: the square of the frequency's factor
-    assert any("0.84" in d for d in frequency.diagnoses), frequency.diagnoses
-    assert any(d.startswith("factor") for d in frequency.diagnoses), frequency.diagnoses
+    assert any("0.84" in d for d in frequency.texts), frequency.texts
+    assert any(d.startswith("factor") for d in frequency.texts), frequency.texts
 
 
 def test_arm_agrees_and_l1_squared_for_l1_differs_on_a_one_metre_upper_arm(tmp_path):
@@ -95,7 +95,7 @@ def test_arm_agrees_and_l1_squared_for_l1_differs_on_a_one_metre_upper_arm(tmp_p
                             "(m1/2 + m2)*g*l1**2*cos(q1)")
     records = _by_element(_compare(planted_path))
     assert records["Q[1]"].verdict == "differs"
-    assert any(d.startswith("power: l1**2 where l1 fits") for d in records["Q[1]"].diagnoses)
+    assert any(d.startswith("power: l1**2 where l1 fits") for d in records["Q[1]"].texts)
     assert all(r.verdict == "agrees" for e, r in records.items() if e != "Q[1]")
     # on the URDF's own numbers the planted Q[1] is the truth's: only drawn lengths show it
     d = load_derivation(planted_path)
@@ -117,7 +117,7 @@ def test_rod_pendulum_length_error_is_found(tmp_path):
     records = _by_element(_compare(_variant(ROD, tmp_path, "m*g*l/2*sin(theta)",
                                             "m*g*l**2/2*sin(theta)")))
     assert records["Q[1]"].verdict == "differs"
-    assert any(d.startswith("power: l**2 where l fits") for d in records["Q[1]"].diagnoses)
+    assert any(d.startswith("power: l**2 where l fits") for d in records["Q[1]"].texts)
     frequency = _compare(_variant(ROD, tmp_path, "sqrt(3*g/(2*l))", "sqrt(3*g/(2*l**2))"))
     assert next(r for r in frequency.records if r.step == "frequency").verdict == "differs"
 
@@ -128,8 +128,8 @@ def test_seed000_4_13_keeps_power_and_loses_the_stray_factor(element):
                 if p.name == "p4_13_differential_theta1.toml")
     record = _by_element(_compare(path))[element]
     assert record.verdict == "differs"
-    assert any(d.startswith("power: G where G**2 fits") for d in record.diagnoses)
-    assert not any(d.startswith("factor") for d in record.diagnoses), record.diagnoses
+    assert any(d.startswith("power: G where G**2 fits") for d in record.texts)
+    assert not any(d.startswith("factor") for d in record.texts), record.texts
 
 
 def test_the_family_search_names_the_link_that_must_be_uniform(tmp_path):
@@ -140,10 +140,10 @@ def test_the_family_search_names_the_link_that_must_be_uniform(tmp_path):
     records = _by_element(result)
     for element in ("A[2,2]", "Q[2]", "h[2]:dq1*dq1"):
         assert records[element].verdict == "agrees_if"
-        assert records[element].diagnoses[0] == "agrees only if forearm is a uniform body " \
-            "(mass and size scaled as a whole, its lengths with it)", records[element].diagnoses
+        assert records[element].texts[0] == "agrees only if forearm is a uniform body " \
+            "(mass and size scaled as a whole, its lengths with it)", records[element].texts
     assert records["Q[1]"].verdict == "agrees_if"
-    assert "every link keeps the URDF's proportions" in records["Q[1]"].diagnoses[0]
+    assert "every link keeps the URDF's proportions" in records["Q[1]"].texts[0]
 
 
 def test_an_unknown_joint_or_length_is_one_error_naming_the_file_and_line(tmp_path, capsys):
