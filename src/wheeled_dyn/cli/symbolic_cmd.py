@@ -104,7 +104,7 @@ def _cmd_tree(args: argparse.Namespace, wm, cs, mode: str) -> int:
 def _lengths(wm) -> list[tuple[str, float, str, str]]:
     r"""The model's named lengths and constants: (name, value, as the closed forms of
     ``--parameters standard`` write it, what it is)."""
-    from ..symbolic.wheeled import length_symbols
+    from ..symbolic.lengths import length_symbols
     if wm.lengths is None:
         return []
     symbols = length_symbols(wm) if not wm.wheels else {}

@@ -330,8 +330,20 @@ def _length_lines(inv: UrdfInventory) -> list[str]:
     a commented ``[geometry]`` to tie the ones the body has equal by design."""
     from .geometry import urdf_length_names
     names = urdf_length_names(inv.path.read_text(encoding="utf-8"))
+    axle: list[str] = []
+    if inv.pair is not None:        # a planar model names the axle's lengths R and L
+        parent = {child: (joint, up) for joint, _, up, child, _ in inv.joints}
+        for wheel in inv.pair:
+            link = wheel.link
+            while link in parent:
+                joint, link = parent[link]
+                axle.append(f"({joint})")
+        wheels = {f"radius({w.link})" for w in inv.pair}
+        names = [x for x in names if x[0] not in wheels and not x[0].endswith(tuple(axle))]
     lines = [f"# Lengths ({len(names)}), by the names a derivation's [symbols] may use "
              "(random parameter sets draw them):"]
+    if inv.pair is not None:
+        lines += ["#   R, L: the wheels' radius and half the track (the axle's lengths)"]
     lines += [f"#   {n:40} {v:<10.6g} {what}" for n, v, what in names] or ["#   none"]
     groups: list[list[tuple[str, float]]] = []
     for n, v, _ in names:

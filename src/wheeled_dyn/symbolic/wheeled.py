@@ -60,7 +60,8 @@ from ..coordinates.spec import CoordinateSet
 from ..errors import ModelError, UnknownNameError
 from ..models.builder import WheeledModel
 from ..models.geometry import identifier
-from .exact import exact_length, exact_model, exact_rotation, exact_translation
+from .lengths import length_symbols, translations
+from .exact import exact_length, exact_model
 from ..disk_cache import load, store
 from .cache import _code_digest, cache_dir, cached_symbolic_model, model_fingerprint
 from .kinematics import exact_number
@@ -178,41 +179,14 @@ def _numeric_setup(wm: WheeledModel, mode: str) -> dict:
         else:
             params[j] = [exact_number(x) for x in pi]
     geometry = {k: exact_length(v) for k, v in wm.named_lengths().items()}
-    translations = None
+    moved = None
     if mode == "standard" and wm.lengths is not None and not wm.wheels:
         lengths = length_symbols(wm)
         geometry.update({identifier(k): v for k, v in lengths.items()})
         geometry.update({k: v for k, v in lengths.items() if k in wm.geometry})
-        translations = _translations(wm, lengths)
-    return dict(params=params, gravity=None, translations=translations, armature=None,
+        moved = translations(wm, lengths)
+    return dict(params=params, gravity=None, translations=moved, armature=None,
                 radius=[exact_length(w.radius) for w in wm.wheels], geometry=geometry)
-
-
-def length_symbols(wm: WheeledModel) -> dict[str, sp.Expr]:
-    r"""The model's lengths and constants as its closed forms write them
-    (:func:`~wheeled_dyn.models.geometry.symbols`: a drawn length a symbol, a kept one its
-    exact number)."""
-    from ..models.geometry import symbols
-    return symbols(wm.lengths, exact_length) if wm.lengths is not None else {}
-
-
-def _translations(wm: WheeledModel, lengths: Mapping[str, sp.Expr]) -> dict | None:
-    r"""The joint placements' translations in the drawn lengths: for a moving joint of parent
-    link frame :math:`(R_p, p_p)` in its parent joint, :math:`p_p + R_p\,t` with :math:`t` its
-    origin (symbols where drawn); None where every one is a number."""
-    model = wm.model
-    out = {}
-    for j in range(1, model.njoints):
-        name = model.names[j]
-        t = [lengths.get(f"origin_{a}({name})") for a in "xyz"]
-        if any(x is None for x in t) or all(sp.sympify(x).is_Number for x in t):
-            continue
-        frame = model.frames[model.getFrameId(name, pin.FrameType.JOINT)]
-        parent = model.frames[frame.parentFrame].placement
-        t_num = np.array([wm.dimensions[f"origin_{a}({name})"] for a in "xyz"])
-        rest = model.jointPlacements[j].translation - parent.rotation @ t_num
-        out[j] = tuple(exact_translation(rest) + exact_rotation(parent.rotation) * sp.Matrix(t))
-    return out or None
 
 
 def _setup(wm: WheeledModel, parameters: str) -> dict:

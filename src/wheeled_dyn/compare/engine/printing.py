@@ -10,7 +10,9 @@ from collections.abc import Sequence
 import sympy as sp
 
 from ...derivations.schema import Derivation
+from ...models.registry import load_model
 from ..grid.assumptions import Assumptions
+from ..grid.samples import uniform_links
 from ..judge.draft import ElementDraft
 from ..presentation import closed_form
 from ..presentation.printing import printed
@@ -36,7 +38,8 @@ def print_drafts(d: Derivation, drafts: Sequence[ElementDraft], cs, texts: Seque
             frames[i] = t.weights
         elif t.factor is not None:
             frames[i] = t.factor
-    closed_form.annotate(d, list(drafts), cs, frames, families)
+    uniform = frozenset(uniform_links(load_model(d.model), assumed.families))
+    closed_form.annotate(d, list(drafts), cs, frames, families, uniform)
 
 
 __all__ = ["print_drafts"]

@@ -47,7 +47,7 @@ def _standard_names(model: str) -> Callable[[sp.Expr], sp.Expr]:
     with a constant → that constant), its other names (gravity) → their values as exact
     numbers, as in its closed forms."""
     from ...models.registry import load_model, model_parameters
-    from ...symbolic.wheeled import length_symbols
+    from ...symbolic.lengths import length_symbols
     wm = load_model(model)
     lengths = length_symbols(wm) if wm.lengths is not None else {}
     numbers = {sp.Symbol(k, real=True): lengths.get(k, sp.nsimplify(v, rational=True))
@@ -133,13 +133,12 @@ def family_substitution(families: tuple[str, ...]) -> dict[sp.Symbol, sp.Expr]:
     return out
 
 
-def uniform_substitution(d: Derivation, families: tuple[str, ...]) -> dict[sp.Symbol, sp.Expr]:
-    r"""A model without a physical record: its links the ``families`` keep uniform
-    (:func:`~wheeled_dyn.compare.grid.samples.uniform_family`, ``urdf_proportions``) as a
-    substitution of its closed forms' symbols. Each such link, alone with mass on its joint and
-    at its joint's frame, is the URDF's scaled by a length :math:`s` and its mass by
-    :math:`M/M_0`: its first moments
-    :math:`\mathrm{MX} = (M/M_0)\,\mathrm{MX}_0\,s`, its second
+def uniform_substitution(d: Derivation, links: frozenset[str]) -> dict[sp.Symbol, sp.Expr]:
+    r"""A model without a physical record: its ``links`` that the document's families keep
+    uniform (:func:`~wheeled_dyn.compare.grid.samples.uniform_links`) as a substitution of its
+    closed forms' symbols. Each such link, alone with mass on its joint and at its joint's
+    frame, is the URDF's scaled by a length :math:`s` and its mass by :math:`M/M_0`: its first
+    moments :math:`\mathrm{MX} = (M/M_0)\,\mathrm{MX}_0\,s`, its second
     :math:`\mathrm{XX} = (M/M_0)\,\mathrm{XX}_0\,s^2`, each length of its class
     :math:`\ell_0 s`, with :math:`s` one of them (one the document uses, if any) over its URDF
     value (:func:`~wheeled_dyn.models.geometry_apply.uniform_scales`)."""
@@ -148,14 +147,10 @@ def uniform_substitution(d: Derivation, families: tuple[str, ...]) -> dict[sp.Sy
     from ...models.geometry_apply import bodies_of, uniform_scales
     from ...models.registry import load_model
     from ...symbolic.parameters import PARAMETER_NAMES
-    from ...symbolic.wheeled import _standard_names, length_symbols
-    from ..grid.assumptions import declared
-    from ..grid.samples import special_cases, uniform_links
-    cases = [c for c in (*special_cases(d.model), *declared(d).families)
-             if c.name in families and c.uniform is not None]
+    from ...symbolic.lengths import length_symbols
+    from ...symbolic.wheeled import _standard_names
     wm = load_model(d.model)
-    links = uniform_links(wm, cases) if cases else set()
-    if not links or wm.lengths is None:
+    if not links or wm.lengths is None or model_entry(d.model).parameters is not None:
         return {}
     lengths = length_symbols(wm)
     names = _standard_names(wm)
@@ -196,14 +191,15 @@ def _row_label(label: str, row: int) -> str:
 
 
 def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, ...] | sp.Expr],
-             families: tuple[str, ...] = ()) -> None:
+             families: tuple[str, ...] = (), uniform: frozenset[str] = frozenset()) -> None:
     r"""Fill ``truth`` (every element) and ``residual`` (truth − document, expanded, for the
     elements that do not agree) of the ``drafts`` where the symbolic engine provides closed
     forms; without them the drafts keep their numeric verdicts. ``frames``: per row, the
     document's frame in its own symbols — a factor :math:`c` (the row is :math:`c` × the true
     one) or the weights :math:`f_i` of a combination of the true rows; rows absent from it get
     no residual. The truth and the document are both read under the parameter ``families`` the
-    document assumes (:func:`family_substitution`)."""
+    document assumes (:func:`family_substitution`), a model without a physical record with its
+    ``uniform`` links scaled as a whole (:func:`uniform_substitution`)."""
     try:
         from ...symbolic import true_expressions
     except ImportError:
@@ -213,7 +209,7 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
         return
     physical = model_entry(d.model).parameters is WipParameters
     to_model = model_expression(d, standard=not physical)
-    assumed = family_substitution(families) if physical else uniform_substitution(d, families)
+    assumed = family_substitution(families) if physical else uniform_substitution(d, uniform)
     if assumed:
         truth = {k: sp.sympify(v).xreplace(assumed) for k, v in truth.items()}
         plain = to_model
