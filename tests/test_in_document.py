@@ -22,7 +22,6 @@ import sympy as sp
 from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.compare.records import Verdict
 from wheeled_dyn.derivations import load_derivation
-from wheeled_dyn.models.registry import load_model
 
 ROS = Path(__file__).parent / "data" / "ros_balancer"
 SHIPPED = Path(__file__).parents[1] / "src" / "wheeled_dyn" / "data" / "derivations"
@@ -34,24 +33,14 @@ def engine():
     return ComparisonEngine(samples=200, param_sets=3, seed=SEED)
 
 
-def _value(name: str, model: str, expr: sp.Expr) -> sp.Expr:
-    r"""``name`` as the residual writes it: its symbol where the closed forms keep it, else
-    the model's number."""
-    symbol = sp.Symbol(name, real=True)
-    if symbol in expr.free_symbols:
-        return symbol
-    return sp.nsimplify(load_model(model).geometry[name], rational=True)
-
-
 def test_dropped_wheel_inertia_reads_in_the_files_symbols(engine):
     result = engine.compare(load_derivation(ROS / "ros_balancer_dropped_wheel.toml"))
     assert result.truth_in_document
     records = {r.element: r for r in result.records}
     wrong = [e for e, r in records.items() if r.verdict == Verdict.DIFFERS]
     assert wrong == ["A[1,1]"]
-    J_w = sp.Symbol("J_w", real=True)
-    residual = sp.sympify(records["A[1,1]"].residual, locals={"J_w": J_w})
-    R = _value("R", str(ROS / "ros_balancer.toml"), residual)
+    J_w, R = sp.Symbol("J_w", real=True), sp.Symbol("R", real=True)     # R: drawn, a symbol
+    residual = sp.sympify(records["A[1,1]"].residual, locals={"J_w": J_w, "R": R})
     assert sp.simplify(residual - 2 * J_w / R**2) == 0
     truth = records["A[1,1]"].truth
     assert "M_" not in truth and "YY_" not in truth          # no model parameter left

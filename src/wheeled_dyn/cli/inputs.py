@@ -50,6 +50,7 @@ def check_model_names(d) -> None:
     from sympy.core.function import AppliedUndef
 
     from ..derivations.errors import DerivationNameError
+    from ..derivations.expressions import GEOMETRY_NAMES
     from ..derivations.source import SourceText, read_small_text
     from ..models.registry import load_model, model_entry
     from ..compare.grid.samples import namespace_values
@@ -70,14 +71,19 @@ def check_model_names(d) -> None:
         for call in spec.value.atoms(AppliedUndef):
             link = str(call.args[0])
             args |= call.args[0].free_symbols
-            if link not in links:
+            key = f"{call.func.__name__}({link})"
+            geometric = call.func.__name__ in GEOMETRY_NAMES
+            if (link not in links or key not in values) and not geometric:
                 from ..models.link_parameters import merged_links
                 body = merged_links(wm).get(link)
-                kind = "link" if body is None else (
-                    f"link of its own (it is fixed to the rigid body named {body.carrier}: "
-                    f"{', '.join(body.members)}; name that body)")
+                if body is not None:        # a link fixed to another: no parameters of its own
+                    raise DerivationNameError(
+                        d.path, item, f"link of its own (it is fixed to the rigid body named "
+                        f"{body.carrier}: {', '.join(body.members)}; name that body)", link,
+                        links, line)
+            if link not in links:
+                kind = GEOMETRY_NAMES.get(call.func.__name__, "link")   # origin_x(joint)
                 raise DerivationNameError(d.path, item, kind, link, links, line)
-            key = f"{call.func.__name__}({link})"
             if key not in values:
                 raise DerivationNameError(d.path, item, "model parameter", key,
                                           [k for k in values if k.endswith(f"({link})")], line)

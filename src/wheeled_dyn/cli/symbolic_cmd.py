@@ -77,6 +77,8 @@ def _cmd_tree(args: argparse.Namespace, wm, cs, mode: str) -> int:
                "positions": [str(q) for q in red.q], "inputs": list(wm.input_names),
                "seconds": seconds, "operations": ops.__dict__,
                "assignments": [[str(w), _text(e)] for w, e in red.assignments],
+               "lengths": {n: {"value": v, "symbol": sym, "meaning": m}
+                           for n, v, sym, m in _lengths(wm)},
                **{k: [[_text(x) for x in row] for row in M.tolist()] for k, M in terms.items()},
                "expanded": {k: _text(v) for k, v in expanded.items()}}
         print(json.dumps(out, indent=2))
@@ -87,6 +89,7 @@ def _cmd_tree(args: argparse.Namespace, wm, cs, mode: str) -> int:
     print(f"parameters ({mode}): {', '.join(map(str, red.parameters))}")
     _print_link_parameters(wm)
     print(f"derived in {seconds:.2f} s with intermediate variables: {ops}")
+    _print_lengths(wm)
     print("A(q) nu' + C(q, nu) nu + Q(q) = B u, h = C nu; intermediate variables in order:")
     for w, e in red.assignments:
         print(f"  {w} = {_text(e)}")
@@ -96,6 +99,29 @@ def _cmd_tree(args: argparse.Namespace, wm, cs, mode: str) -> int:
     for label, e in expanded.items():
         print(f"{label} expanded = {_text(e)}")
     return 0
+
+
+def _lengths(wm) -> list[tuple[str, float, str, str]]:
+    r"""The model's named lengths and constants: (name, value, as the closed forms of
+    ``--parameters standard`` write it, what it is)."""
+    from ..symbolic.lengths import length_symbols
+    if wm.lengths is None:
+        return []
+    symbols = length_symbols(wm) if not wm.wheels else {}
+    out = [(k, d.value, _text(symbols.get(k, "")), d.meaning + ("" if d.drawn else "; kept"))
+           for k, d in wm.lengths.dimensions.items()]
+    out += [(k, c.value, _text(symbols.get(k, "")), c.meaning + ("" if c.drawn else "; kept"))
+            for k, c in wm.lengths.constants.items()]
+    return out
+
+
+def _print_lengths(wm) -> None:
+    rows = _lengths(wm)
+    if not rows:
+        return
+    print("lengths (names a derivation's [symbols] may use; random parameter sets draw them):")
+    for name, value, symbol, meaning in rows:
+        print(f"  {name:32} {value:<10.6g} {symbol:16} {meaning}")
 
 
 def _element(terms: dict, label: str, model: str):
@@ -141,7 +167,9 @@ def _cmd_symbolic(args: argparse.Namespace) -> int:
                "Q": [_text(x) for x in red.Q],
                "B": None if red.B is None else [[_text(x) for x in row]
                                                 for row in red.B.tolist()],
-               "h": [_text(x) for x in red.h]}
+               "h": [_text(x) for x in red.h],
+               "lengths": {n: {"value": v, "symbol": sym, "meaning": m}
+                           for n, v, sym, m in _lengths(wm)}}
         if red.G is not None:
             out["G"] = [[_text(x) for x in row] for row in red.G.tolist()]
         print(json.dumps(out, indent=2))
@@ -157,6 +185,7 @@ def _cmd_symbolic(args: argparse.Namespace) -> int:
           f"inputs {', '.join(wm.input_names)}")
     print(f"parameters ({mode}): {', '.join(map(str, red.parameters))}")
     _print_link_parameters(wm)
+    _print_lengths(wm)
     print("A(q) nu' + C(q, nu) nu + Q(q) = B u")
     for name, M in terms.items():
         print(f"{name}:")

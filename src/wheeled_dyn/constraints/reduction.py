@@ -95,7 +95,8 @@ class CoordinateMap:
         r"""Use the parameters (R, L, ...) and inertias of ``wm`` (same structure) from now on."""
         if wm is not None:
             self.wm = wm
-        self._p = [self.wm.geometry[p] for p in self._param_names]
+        lengths = self.wm.named_lengths()
+        self._p = [lengths[p] for p in self._param_names]
         self._data = self.wm.model.createData()
         self._lower = np.tril_indices(self.wm.model.nv, -1)   # lower triangle of A
         self._B = self.wm.input_matrix()

@@ -186,5 +186,6 @@ def builtin_coordinate_set(wm: WheeledModel, name: str | None = None) -> Coordin
 
 def parameter_names(wm: WheeledModel) -> tuple[str, ...]:
     r"""Parameters a coordinate expression may use: the model's geometry (the wheel radius R,
-    half track L of a wheeled model; the named constants of the others)."""
-    return tuple(wm.geometry)
+    half track L of a wheeled model; the named constants of the others) and its lengths as
+    identifiers (``radius_coin`` for ``radius(coin)``: :meth:`~.WheeledModel.named_lengths`)."""
+    return tuple(wm.named_lengths())

@@ -4,7 +4,8 @@ A coordinate set is data (a dict, e.g. a TOML table) with
 
 - ``positions``: the document's coordinate names, ``velocities`` (default ``d`` + name);
 - ``configuration``: each model coordinate as an expression of the document's positions and
-  the model's parameters (``R``, ``L``, ...); model coordinates not listed are 0. For a
+  the model's parameters (``R``, ``L``, ..., and its lengths as identifiers: ``radius_coin``
+  for ``radius(coin)``); model coordinates not listed are 0. For a
   ``quasi`` set this is a *representative* configuration: the reduced dynamics do not depend on
   the coordinates it leaves out (x0, y0, and wheel angles for a body on flat ground);
 - ``kind``:
@@ -157,7 +158,9 @@ def parse_coordinate_set(spec: Mapping[str, Any], name: str, coordinate_names: S
         if extra:
             raise UnknownNameError("velocity", sorted(extra)[0], velocities,
                                    where=f"{where}.velocity_map")
+    used = set().union(*(e.free_symbols for e in (*configuration.values(),
+                                                  *(velocity_map or {}).values())))
     return CoordinateSet(name=name, kind=kind, positions=positions, velocities=velocities,
                          rolling=rolling, configuration=configuration, velocity_map=velocity_map,
                          description=str(spec.get("description", "")),
-                         parameters=tuple(parameter_names))
+                         parameters=tuple(p for p in parameter_names if params[p] in used))

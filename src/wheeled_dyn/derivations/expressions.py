@@ -71,15 +71,26 @@ RESERVED_NAMES: frozenset[str] = frozenset(STANDARD_FUNCTIONS) | frozenset(CONST
 #: expressions: ``M(link)`` mass, ``MX MY MZ`` first moments, ``XX XY XZ YY YZ ZZ`` inertia
 #: tensor entries about the link frame origin.
 KHALIL_NAMES: tuple[str, ...] = ("M", "MX", "MY", "MZ", "XX", "XY", "XZ", "YY", "YZ", "ZZ")
+#: The model's lengths by name, as written in value expressions, with what names their argument
+#: (a URDF joint or link): the origin of a joint in its parent link's frame, along x, y or z
+#: (the URDF's ``<origin xyz>``), a link's radius (its rolling radius if it rolls, else its
+#: first sphere or cylinder) and length (its first cylinder), a rolling wheel's tyre radius, a
+#: spheroid's polar radius, and the radius of the fixed sphere or the vertex radius of the bowl
+#: a ball rolls on (named by the ball's link). See ``docs/derivation-format.md``.
+GEOMETRY_NAMES: Mapping[str, str] = {
+    "origin_x": "joint", "origin_y": "joint", "origin_z": "joint", "radius": "link",
+    "length": "link", "tyre_radius": "link", "polar_radius": "link", "surface_radius": "link",
+    "vertex_radius": "link"}
 KHALIL_FUNCTIONS: Mapping[str, sympy.FunctionClass] = {n: sympy.Function(n, real=True)
                                                        for n in KHALIL_NAMES}
 #: The physical parameters of a link (:mod:`wheeled_dyn.models.link_parameters`): ``CX CY CZ``
 #: the centre of mass in the link frame, ``IXX IXY IXZ IYY IYZ IZZ`` the inertia tensor entries
 #: about the centre of mass in the link's axes (``M`` is shared with Khalil's).
 PHYSICAL_NAMES: tuple[str, ...] = ("CX", "CY", "CZ", "IXX", "IXY", "IXZ", "IYY", "IYZ", "IZZ")
-#: Every function a value expression may apply to a link name.
+#: Every function a value expression may apply to a link (or, for a length, a joint) name.
 LINK_FUNCTIONS: Mapping[str, sympy.FunctionClass] = {
-    **KHALIL_FUNCTIONS, **{n: sympy.Function(n, real=True) for n in PHYSICAL_NAMES}}
+    **KHALIL_FUNCTIONS, **{n: sympy.Function(n, real=True)
+                           for n in (*PHYSICAL_NAMES, *GEOMETRY_NAMES)}}
 
 
 def physical_in_standard(expr: sympy.Expr) -> sympy.Expr:
@@ -366,20 +377,23 @@ def parse_model_expression(text: str, parameters: Collection[str] | None = None,
                            links: Collection[str] | None = None) -> sympy.Expr:
     r"""Parse a value expression in the model namespace.
 
-    Khalil parameters are written ``XX(body)`` (one link name as argument); every other name is
+    Khalil parameters are written ``XX(body)`` (one link name as argument), the model's lengths
+    ``origin_x(joint)``, ``radius(link)`` ... (:data:`GEOMETRY_NAMES`); every other name is
     a model parameter, a real symbol. With ``parameters``/``links`` given, names outside them
-    raise :class:`UndeclaredNameError` (kind ``"model parameter"``/``"link"``).
+    raise :class:`UndeclaredNameError` (kind ``"model parameter"``/``"link"``; the joint of
+    ``origin_x(joint)`` is checked by the comparison, which knows the model).
     """
     scanned = scan_names(text)
     local: dict[str, object] = {**STANDARD_FUNCTIONS, **CONSTANTS}
-    previous_khalil = False
+    previous_khalil: str | None = None
     for name, called in scanned:
         if previous_khalil:          # the argument of M(...), XX(...): a link name
-            previous_khalil = False
+            function, previous_khalil = previous_khalil, None
+            kind = GEOMETRY_NAMES.get(function, "link")
             if called:
-                raise ExpressionError(text, f"the argument of a Khalil parameter must be a link "
+                raise ExpressionError(text, f"the argument of {function}(...) must be a {kind} "
                                             f"name, not a call of {name!r}")
-            if links is not None and name not in links:
+            if links is not None and kind == "link" and name not in links:
                 raise UndeclaredNameError(text, name, "link")
             local[name] = sympy.Symbol(name)
             continue
@@ -388,7 +402,7 @@ def parse_model_expression(text: str, parameters: Collection[str] | None = None,
                 raise ExpressionError(text, f"{name!r} is a function; write {name}(...)")
         elif name in LINK_FUNCTIONS and called:
             local[name] = LINK_FUNCTIONS[name]
-            previous_khalil = True
+            previous_khalil = name
         elif name in CONSTANTS:
             continue
         else:
@@ -401,7 +415,8 @@ def parse_model_expression(text: str, parameters: Collection[str] | None = None,
     expr = _evaluate(text, local)
     for call in expr.atoms(sympy.core.function.AppliedUndef):
         if len(call.args) != 1 or not isinstance(call.args[0], sympy.Symbol):
-            raise ExpressionError(text, f"{call} must have exactly one link name as argument")
+            raise ExpressionError(text, f"{call} must have exactly one link or joint name as "
+                                        "argument")
     return expr
 
 

@@ -52,7 +52,7 @@ CONVENTIONS: tuple[str, ...] = ("declared", "unknown")
 #: Names that stand for NaN or an infinity (in Python, SymPy or TOML): not finite numbers.
 NON_FINITE_NAMES = frozenset({"nan", "inf", "infinity", "oo", "zoo"})
 #: Keys of ``[assumes]``: what the document assumes (see docs/derivation-format.md).
-ASSUMES_KEYS: tuple[str, ...] = ("families", "linearised_about", "potential", "text")
+ASSUMES_KEYS: tuple[str, ...] = ("families", "uniform", "linearised_about", "potential", "text")
 SYMBOL_KEYS: tuple[str, ...] = ("value", "units", "meaning", "input", "free", "latex")
 
 
@@ -424,14 +424,15 @@ def load_derivation(path: str | Path, *, parameters: Collection[str] | None = No
 
 def _assumes(ld: "_Loader", positions: tuple) -> Mapping[str, Any]:
     r"""``[assumes]``: ``families`` (names of the model's special parameter families),
-    ``linearised_about`` (position = number), ``potential = "equilibrium"``, ``text`` (other
-    assumptions in words). Family names are checked against the model by the comparison."""
+    ``uniform`` (links that are uniform bodies), ``linearised_about`` (position = number),
+    ``potential = "equilibrium"``, ``text`` (other assumptions in words). Family and link
+    names are checked against the model by the comparison."""
     raw = ld.table("assumes")
     for key in raw:
         if key not in ASSUMES_KEYS:
             raise ld.fail(f"assumes.{key}", "unknown key; valid: " + ", ".join(ASSUMES_KEYS),
                           ld.line("assumes", key))
-    for key in ("families", "text"):
+    for key in ("families", "uniform", "text"):
         if key in raw and not (isinstance(raw[key], list)
                                and all(isinstance(x, str) for x in raw[key])):
             raise ld.fail(f"assumes.{key}", "expected a list of strings", ld.line("assumes", key))
@@ -449,6 +450,7 @@ def _assumes(ld: "_Loader", positions: tuple) -> Mapping[str, Any]:
                       "giving every position (the equilibrium state)",
                       ld.line("assumes", "potential"))
     return MappingProxyType({"families": tuple(raw.get("families", ())),
+                             "uniform": tuple(raw.get("uniform", ())),
                              "linearised_about": MappingProxyType(
                                  {k: float(v) for k, v in point.items()}),
                              "potential": raw.get("potential"),

@@ -62,8 +62,10 @@ import numpy as np
 import pinocchio as pin
 
 from ..errors import ModelError, UnknownNameError
+from . import geometry as geo
 from .contact import BallContact, SphereContact
 from .conventions import ANGLE_TOL, check_sides
+from .geometry_constants import planar_lengths, unwheeled_lengths
 from .rolling_wheel import BoundWheelContact, WheelContact
 from .springs import SPRING_JOINTS, BoundSpring, JointSpring, spring_energy, spring_force
 from .urdf_checks import check_mimic
@@ -113,7 +115,7 @@ class ModelSpec:
     description: str = ""
     base: str = "planar"
     actuated: tuple[str, ...] = ()               # joint names with a motor (fixed/free bases)
-    geometry: Mapping[str, float] = field(default_factory=dict)
+    geometry: Mapping[str, object] = field(default_factory=dict)   # [geometry]: see .geometry
     contact: SphereContact | None = None
     rolling_wheels: tuple[WheelContact, ...] = ()   # tilting wheels on any link (fixed/free)
     locked: Mapping[str, float] = field(default_factory=dict)  # values of ``lock`` joints
@@ -123,6 +125,7 @@ class ModelSpec:
     source: Path | None = None                   # the model file, if the spec came from one
     springs: tuple[JointSpring, ...] = ()        # linear springs along or about joints
     forward: tuple[float, float, float] | None = None   # body's forward, link axes (planar)
+    fixed_geometry: tuple[str, ...] = ()         # [draw] fixed: names no parameter set draws
 
 
 @dataclass(frozen=True)
@@ -147,7 +150,8 @@ class WheeledModel:
     wheel joint axis, reaction on the wheel's parent), or one per joint of ``actuated``
     (velocity indices); ``geometry`` holds the named constants (``R`` wheel radius and ``L``
     half the distance between the wheel centres for a planar model, the spec's ``geometry``
-    otherwise); ``contact`` the rolling ball, if any.
+    otherwise); ``contact`` the rolling ball, if any; ``lengths`` the named lengths and
+    constants (:mod:`.geometry`: ``origin_x(joint)``, ``radius(link)`` ...).
     """
 
     name: str
@@ -163,6 +167,20 @@ class WheeledModel:
     contact: BallContact | None = None
     rolling_wheels: tuple[BoundWheelContact, ...] = ()
     springs: tuple[BoundSpring, ...] = ()
+    lengths: geo.GeometryTable | None = None
+
+    @property
+    def dimensions(self) -> dict[str, float]:
+        r"""The named lengths (:mod:`.geometry`): ``{"origin_x(elbow)": 1.0, ...}``."""
+        return {} if self.lengths is None else {k: d.value for k, d in
+                                                self.lengths.dimensions.items()}
+
+    def named_lengths(self) -> dict[str, float]:
+        r"""The names a coordinate expression may use: the constants (``R``, ``L``, ...) and
+        the lengths as identifiers (``radius_coin`` for ``radius(coin)``)."""
+        out = {geo.identifier(k): v for k, v in self.dimensions.items()}
+        out.update(self.geometry)
+        return out
 
     @property
     def nv(self) -> int:
@@ -379,9 +397,10 @@ def _build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
     inputs = tuple(spec.inputs) if spec.inputs is not None else ("tau_l", "tau_r")
     if len(inputs) != 2:
         raise ModelError(spec.name, None, f"{len(inputs)} input names for two wheel motors")
+    lengths = planar_lengths(spec, source, model, rl, half_track)
     return WheeledModel(spec.name, spec, model, geom, tuple(wheels), coordinate_names, inputs,
-                        {"R": rl, "L": half_track, **spec.geometry}, body_jid,
-                        springs=_bind_springs(spec, model, coordinate_names))
+                        lengths.constant_values(lengths.values()), body_jid,
+                        springs=_bind_springs(spec, model, coordinate_names), lengths=lengths)
 
 
 def _direction(spec: ModelSpec, what: str, value: Sequence[float], item: str) -> np.ndarray:
@@ -473,20 +492,12 @@ def _build_unwheeled(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
     if spec.body:
         source.link(spec.body)
         body_jid = model.frames[model.getFrameId(spec.body)].parentJoint
-    geometry = dict(spec.geometry)
     contact = None
     if spec.contact is not None:
         source.link(spec.contact.link)
         contact = BallContact(spec.contact, model.getFrameId(spec.contact.link))
-        if spec.contact.spheroid:                   # equatorial and polar radii
-            geometry.setdefault("a", float(spec.contact.radius))
-            geometry.setdefault("c", float(spec.contact.polar_radius))
-        else:
-            geometry.setdefault("r", float(spec.contact.radius))
-        if spec.contact.surface == "sphere":
-            geometry.setdefault("R1", float(spec.contact.surface_radius))
-        elif spec.contact.surface == "paraboloid":      # vertex radius of curvature
-            geometry.setdefault("a", float(spec.contact.vertex_radius))
+    lengths = unwheeled_lengths(spec, source, model)
+    geometry = lengths.constant_values(lengths.values())
     rolling_wheels = []
     for wc in spec.rolling_wheels:
         source.link(wc.link)
@@ -496,7 +507,7 @@ def _build_unwheeled(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
                                                 np.asarray(wc.centre, dtype=float)))
     return WheeledModel(spec.name, spec, model, geom, (), coordinate_names, inputs, geometry,
                         body_jid, tuple(actuated), contact, tuple(rolling_wheels),
-                        _bind_springs(spec, model, coordinate_names))
+                        _bind_springs(spec, model, coordinate_names), lengths)
 
 
 def _bind_springs(spec: ModelSpec, model: pin.Model, coordinate_names: Sequence[str]

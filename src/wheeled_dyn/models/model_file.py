@@ -42,7 +42,7 @@ if TYPE_CHECKING:
 #: Keys of a model file, by table (None: the top level).
 KEYS: Mapping[str | None, tuple[str, ...]] = MappingProxyType({
     None: ("name", "summary", "description", "parameters", "default_coordinates", "urdf",
-           "base", "wheels", "joints", "geometry", "contact", "rolling_wheel", "spring",
+           "base", "wheels", "joints", "geometry", "draw", "contact", "rolling_wheel", "spring",
            "coordinates", "checks"),
     "urdf": ("path", "package", "package_dirs"),
     "base": ("type", "body", "up", "pitch", "forward"),
@@ -53,6 +53,7 @@ KEYS: Mapping[str | None, tuple[str, ...]] = MappingProxyType({
     "rolling_wheel": ("link", "radius", "axis", "centre", "tyre_radius"),
     "spring": ("name", "joint", "stiffness", "rest"),
     "checks": ("accept_inertia",),
+    "draw": ("fixed",),
 })
 #: Physical-parameter records a model file may name (``parameters = "wip"``).
 PARAMETER_RECORDS: tuple[str, ...] = ("wip",)
@@ -124,7 +125,9 @@ class ModelFile:
             radius=float(wheels["radius"]) if "radius" in wheels else None,
             package_dirs=package_dirs, description=d.get("description", self.summary),
             base=base.get("type", "planar"), actuated=tuple(joints.get("actuated", ())),
-            geometry=MappingProxyType({k: float(v) for k, v in d.get("geometry", {}).items()}),
+            geometry=MappingProxyType({k: _geometry_value(v)
+                                       for k, v in d.get("geometry", {}).items()}),
+            fixed_geometry=tuple(d.get("draw", {}).get("fixed", ())),
             contact=SphereContact(**{k: tuple(v) if isinstance(v, list) else v
                                      for k, v in contact.items()}) if contact else None,
             rolling_wheels=tuple(WheelContact(**{k: tuple(v) if isinstance(v, list) else v
@@ -134,6 +137,18 @@ class ModelFile:
             accept_inertia=tuple(d.get("checks", {}).get("accept_inertia", ())),
             coordinate_sets=self.coordinate_sets,
             default_coordinates=d.get("default_coordinates"), source=self.path)
+
+
+def _geometry_value(value: Any) -> Any:
+    r"""A ``[geometry]`` value as the builder takes it (:mod:`.geometry`): a number as float,
+    an expression, a list of expressions, ``{ value = x }``."""
+    if isinstance(value, (int, float)):
+        return float(value)
+    if isinstance(value, list):
+        return tuple(value)
+    if isinstance(value, dict):
+        return MappingProxyType({"value": float(value["value"])})
+    return value
 
 
 def _names(mf: ModelFile, table: str | None, key: str, value: Any) -> None:
@@ -221,7 +236,11 @@ def _validate(mf: ModelFile) -> None:
     for name, value in geometry.items():
         if not name.isidentifier():
             raise mf.fail(name, "not a name", "geometry")
-        _number(mf, "geometry", name, value)
+        _geometry_entry(mf, name, value)
+    if "draw" in d:
+        _check_table(mf, "draw", d["draw"])
+        if "fixed" in d["draw"]:
+            _names(mf, "draw", "fixed", d["draw"]["fixed"])
     wheel_list = d.get("rolling_wheel", [])
     if not isinstance(wheel_list, list):
         raise mf.fail("rolling_wheel", "expected [[rolling_wheel]] tables")
@@ -233,6 +252,27 @@ def _validate(mf: ModelFile) -> None:
         raise mf.fail("coordinates", "expected [coordinates.<set name>] tables")
     if "parameters" in d and d["parameters"] not in PARAMETER_RECORDS:
         raise mf.fail("parameters", "expected one of " + ", ".join(PARAMETER_RECORDS))
+
+
+def _geometry_entry(mf: ModelFile, name: str, value: Any) -> None:
+    r"""A ``[geometry]`` entry: a number, an expression of the model's lengths, a list of
+    them (equal lengths), or ``{ value = number }`` (docs/model-format.md)."""
+    if isinstance(value, str) and value.strip():
+        return
+    if isinstance(value, list):
+        if value and all(isinstance(v, str) and v.strip() for v in value):
+            return
+        raise mf.fail(name, "expected a list of lengths that are equal (\"2*origin_y(j)\", "
+                      "...)", "geometry")
+    if isinstance(value, dict):
+        if set(value) != {"value"}:
+            raise mf.fail(name, "expected { value = number } (a constant of its own)",
+                          "geometry")
+        _number(mf, "geometry", name, value["value"])
+        return
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise mf.fail(name, "expected a number, a length of the model (\"radius(wheel)\"), a "
+                      f"list of equal lengths or {{ value = number }}; got {value!r}", "geometry")
 
 
 def _validate_springs(mf: ModelFile, springs: Any) -> None:

@@ -14,9 +14,10 @@ base does not pitch; their rolling is not modelled).
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 from pathlib import Path
+from types import MappingProxyType
 
 import numpy as np
 import pinocchio as pin
@@ -196,18 +197,28 @@ def apply_wip_parameters(wm: WheeledModel, p: WipParameters) -> WheeledModel:
         wheels.append(type(wheel)(wheel.link, wheel.side, wheel.joint_name, wheel.joint_id,
                                   wheel.v_index, p.R, wheel.width))
     model.gravity = pin.Motion(np.array([0.0, 0.0, -p.g]), np.zeros(3))
+    lengths = wm.lengths
+    if lengths is not None:                 # the wheels' radius R and half track L
+        radii = {f"radius({w.link})" for w in wm.wheels}
+        lengths = type(lengths)(
+            MappingProxyType({k: replace(d, value=p.R) if k in radii else d
+                              for k, d in lengths.dimensions.items()}),
+            MappingProxyType({k: replace(c, value={"R": p.R, "L": p.L}.get(k, c.value))
+                              for k, c in lengths.constants.items()}))
     return WheeledModel(wm.name, wm.spec, model, wm.visual_model, tuple(wheels),
-                        wm.coordinate_names, wm.input_names, {"R": p.R, "L": p.L}, body_jid)
+                        wm.coordinate_names, wm.input_names, {"R": p.R, "L": p.L}, body_jid,
+                        lengths=lengths)
 
 
 def model_parameters(wm: WheeledModel) -> dict[str, float]:
     r"""Numeric values of the model's named parameters: its geometry (R, L for a wheeled
-    model; the spec's named constants otherwise), g, each spring's ``k_<name>``,
+    model; the spec's named constants otherwise), its lengths keyed ``origin_x(joint)``,
+    ``radius(link)`` etc. (:mod:`.geometry`), g, each spring's ``k_<name>``,
     ``rest_<name>`` and, per rigid body with mass, named by the link carrying it, Khalil's
     standard parameters keyed ``XX(link)`` (about the link origin) and the physical ones keyed
     ``IXX(link)``, ``CX(link)`` (about the centre of mass), both in the link frame
     (:mod:`.link_parameters`)."""
     from .link_parameters import parameter_values
-    return {**{k: float(v) for k, v in wm.geometry.items()},
+    return {**{k: float(v) for k, v in wm.geometry.items()}, **wm.dimensions,
             "g": float(-wm.model.gravity.linear[2]), **spring_parameters(wm.springs),
             **parameter_values(wm)}

@@ -321,7 +321,49 @@ def starter_text(inv: UrdfInventory, out: Path | None) -> str:
     lines += [f"#   {n:32} {m:<10.6g} {note}".rstrip() for n, m, note in inv.links]
     lines += [f"# Joints ({len(inv.joints)}): name, type, parent -> child, axis"]
     lines += [f"#   {n:32} {t:10} {p} -> {c}  {a}".rstrip() for n, t, p, c, a in inv.joints]
+    lines += _length_lines(inv)
     return "\n".join(lines) + "\n"
+
+
+def _length_lines(inv: UrdfInventory) -> list[str]:
+    r"""The URDF's lengths by the names derivation files use (``l1 = "origin_x(elbow)"``) and
+    a commented ``[geometry]`` to tie the ones the body has equal by design."""
+    from .geometry import urdf_length_names
+    names = urdf_length_names(inv.path.read_text(encoding="utf-8"))
+    axle: list[str] = []
+    if inv.pair is not None:        # a planar model names the axle's lengths R and L
+        parent = {child: (joint, up) for joint, _, up, child, _ in inv.joints}
+        for wheel in inv.pair:
+            link = wheel.link
+            while link in parent:
+                joint, link = parent[link]
+                axle.append(f"({joint})")
+        wheels = {f"radius({w.link})" for w in inv.pair}
+        names = [x for x in names if x[0] not in wheels and not x[0].endswith(tuple(axle))]
+    lines = [f"# Lengths ({len(names)}), by the names a derivation's [symbols] may use "
+             "(random parameter sets draw them):"]
+    if inv.pair is not None:
+        lines += ["#   R, L: the wheels' radius and half the track (the axle's lengths)"]
+    lines += [f"#   {n:40} {v:<10.6g} {what}" for n, v, what in names] or ["#   none"]
+    groups: list[list[tuple[str, float]]] = []
+    for n, v, _ in names:
+        group = next((g for g in groups if abs(abs(g[0][1]) - abs(v)) <= 1e-9 * abs(v)), None)
+        if group is None:
+            groups.append([(n, v)])
+        else:
+            group.append((n, v))
+    equal = [g for g in groups if len(g) > 1]
+    lines += ["# Lengths the body has equal by design are drawn as one when [geometry] lists "
+              "them (docs/model-format.md).",
+              "# CHECK these, equal in the URDF (uncomment the ones that are one length, name "
+              "them as you like):" if equal else "# None are equal in this URDF."]
+    if equal:
+        lines += ["# [geometry]"]
+    for k, g in enumerate(equal):
+        first = g[0][1]
+        items = ", ".join(_q(n if v * first > 0 else f"-{n}") for n, v in g)
+        lines += [f"# length_{k + 1} = [{items}]    # {abs(first):g} m"]
+    return lines
 
 
 def write_starter(urdf: str | Path, out: str | Path | None,

@@ -18,6 +18,7 @@ prints those). Each element is then collected by parameter (:func:`~.simplify.si
 from __future__ import annotations
 
 import sympy as sp
+from sympy.polys.matrices.exceptions import DMNonInvertibleMatrixError
 
 from ..coordinates.spec import CoordinateSet
 from ..models.builder import WheeledModel
@@ -64,11 +65,16 @@ def expanded_tree(wm: WheeledModel, cs: CoordinateSet, parameters: str = "standa
     where the model has more than :data:`MAX_DOF` degrees of freedom, where it rolls on
     something other than upright wheels under a planar base (the tree's contact rows are
     those of :func:`~.tree_wheeled.tree_wheeled`: a sphere or a leaning disk is not one) or
-    an intermediate grows past ``limit`` terms."""
+    an intermediate grows past ``limit`` terms, or where the velocity basis has no closed
+    form in the drawn lengths (a set with fewer velocities than rolling motions whose
+    :math:`MM^T` is singular as a matrix of symbols)."""
     wheels = wm.spec.base == "planar" and bool(wm.wheels)
     if wm.model.nv > MAX_DOF or (cs.rolling != "none" and not wheels):
         return None
-    rt = tree_wheeled(wm, cs, parameters)
+    try:
+        rt = tree_wheeled(wm, cs, parameters)
+    except DMNonInvertibleMatrixError:  # rolling rows singular in the drawn R, L as symbols
+        return None
     full = _expander(rt, limit)
     pars = tuple(rt.parameters)
 
@@ -78,11 +84,11 @@ def expanded_tree(wm: WheeledModel, cs: CoordinateSet, parameters: str = "standa
         return simplify_matrix(M.applyfunc(full), pars)
 
     try:
-        A, C, Q, h = (done(M) for M in (rt.A, rt.C, rt.Q, rt.h))
+        A, C, Q, h, B = (done(M) for M in (rt.A, rt.C, rt.Q, rt.h, rt.B))
     except TooLarge:
         return None
     return ReducedTree(q=rt.q, nu=rt.nu, parameters=pars, assignments=(), A=A, C=C, Q=Q,
-                       h=h, B=rt.B)
+                       h=h, B=B)
 
 
 __all__ = ["MAX_DOF", "MAX_TERMS", "expanded_tree"]

@@ -131,7 +131,7 @@ def tree_wheeled(wm: WheeledModel, cs: CoordinateSet, parameters: str = "standar
                  ) -> ReducedTree:
     r""":class:`ReducedTree` of ``wm`` in the coordinate set ``cs`` (parameters as in
     :func:`~.wheeled.wheeled_symbolic`: ``"physical"``, ``"numbers"``, ``"standard"``)."""
-    setup = _setup(wm, parameters)
+    setup = _setup(wm, parameters, axle=True)
     model = exact_model(wm.model)
     g = _gravity(model, setup["gravity"])
     td = tree_dynamics(model, setup["params"], wm.coordinate_names, gravity=list(g),

@@ -60,6 +60,8 @@ from sympy.polys.matrices import DomainMatrix
 from ..coordinates.spec import CoordinateSet
 from ..errors import ModelError, UnknownNameError
 from ..models.builder import WheeledModel
+from ..models.geometry import identifier
+from .lengths import length_symbols, planar_translations, translations
 from .exact import exact_length, exact_model
 from ..disk_cache import load, store
 from .cache import _code_digest, cache_dir, cached_symbolic_model, model_fingerprint
@@ -170,7 +172,10 @@ def _standard_names(wm: WheeledModel) -> dict[int, str]:
     return names
 
 
-def _numeric_setup(wm: WheeledModel, mode: str) -> dict:
+def _numeric_setup(wm: WheeledModel, mode: str, axle: bool = False) -> dict:
+    r"""Standard or numeric parameters; with ``mode == "standard"`` the drawn lengths as
+    symbols (a planar wheeled model's ``R`` and ``L`` only with ``axle``: the tree's closed
+    forms, where the rolling rows stay polynomial in them)."""
     model = wm.model
     nums = numeric_parameters(model)
     names = _standard_names(wm)
@@ -180,17 +185,28 @@ def _numeric_setup(wm: WheeledModel, mode: str) -> dict:
             params[j] = [sp.Symbol(f"{k}_{names[j]}", real=True) for k in PARAMETER_NAMES]
         else:
             params[j] = [exact_number(x) for x in pi]
-    return dict(params=params, gravity=None, translations=None, armature=None,
-                radius=[exact_length(w.radius) for w in wm.wheels],
-                geometry={k: exact_length(v) for k, v in wm.geometry.items()})
+    geometry = {k: exact_length(v) for k, v in wm.named_lengths().items()}
+    moved, radius = None, [exact_length(w.radius) for w in wm.wheels]
+    planar = axle and bool(wm.wheels) and wm.spec.base == "planar"
+    if mode == "standard" and wm.lengths is not None and (planar or not wm.wheels):
+        lengths = length_symbols(wm)
+        geometry.update({identifier(k): v for k, v in lengths.items()})
+        geometry.update({k: v for k, v in lengths.items() if k in wm.geometry})
+        if planar:
+            moved = planar_translations(wm, lengths)
+            radius = [lengths.get("R", r) for r in radius]
+        else:
+            moved = translations(wm, lengths)
+    return dict(params=params, gravity=None, translations=moved, armature=None,
+                radius=radius, geometry=geometry)
 
 
-def _setup(wm: WheeledModel, parameters: str) -> dict:
+def _setup(wm: WheeledModel, parameters: str, axle: bool = False) -> dict:
     if parameters not in PARAMETER_MODES:
         raise UnknownNameError("parameter mode", parameters, PARAMETER_MODES)
     if parameters == "physical":
         return _physical_setup(wm)
-    return _numeric_setup(wm, parameters)
+    return _numeric_setup(wm, parameters, axle)
 
 
 # -- rolling ------------------------------------------------------------------------------

@@ -11,7 +11,9 @@ from dataclasses import dataclass, replace
 import sympy as sp
 
 from ...derivations.schema import Derivation
+from ...models.registry import load_model
 from ..grid.assumptions import Assumptions
+from ..grid.samples import uniform_links
 from ..judge.draft import ElementDraft
 from ..presentation import closed_form
 from ..presentation.in_document import corrected_row, written
@@ -41,7 +43,9 @@ def print_drafts(d: Derivation, drafts: Sequence[ElementDraft], cs, texts: Seque
             frames[i] = t.weights
         elif t.factor is not None:
             frames[i] = t.factor
-    return Corrections(closed_form.annotate(d, list(drafts), cs, frames, families), frames)
+    uniform = frozenset(uniform_links(load_model(d.model), assumed.families))
+    return Corrections(closed_form.annotate(d, list(drafts), cs, frames, families, uniform),
+                       frames)
 
 
 @dataclass(frozen=True)

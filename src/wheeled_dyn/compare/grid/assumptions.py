@@ -8,6 +8,9 @@ of the declared families, at the linearisation point), reports them once in one 
 and names as "agrees only if ..." only a condition the document did not state.
 
 - ``families``: names of the model's special parameter families (:mod:`.samples`);
+- ``uniform``: links that are uniform bodies (a disc, a ball, a rod): each is scaled as a whole
+  with its lengths (:func:`.samples.uniform_family`), so its inertia stays :math:`m r^2/2`,
+  :math:`\tfrac25 m r^2`, :math:`m l^2/12` of its drawn radius or length;
 - ``linearised_about``: position = value. The linearised equations are compared at that state
   (positions drawn there, velocities random): A and B there, the velocity products of h zero
   (a linearisation about rest has none);
@@ -26,8 +29,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...derivations.schema import Derivation
-from ...errors import DerivationError
-from .samples import SpecialCase, special_cases
+from ...errors import DerivationError, UnknownNameError
+from .samples import SpecialCase, family, special_cases, uniform_family
 
 
 @dataclass(frozen=True)
@@ -59,17 +62,43 @@ def declared(d: Derivation) -> Assumptions:
     r"""The assumptions ``d`` declares; an unknown family name is a
     :class:`~wheeled_dyn.errors.DerivationError` naming the file and the valid names."""
     raw: Mapping[str, Any] = d.assumes or {}          # as read from TOML
-    available = {c.name: c for c in special_cases(d.model)}
     families = []
     for name in raw.get("families", ()):
-        if name not in available:
+        try:
+            found = family(d.model, name)
+        except UnknownNameError as exc:
+            raise DerivationError(d.path, f"assumes.families.{name}", str(exc)) from None
+        if found is None:
             raise DerivationError(d.path, f"assumes.families.{name}",
                                   f"not a parameter family of model {d.model!r}; valid: "
-                                  + ", ".join(available))
-        families.append(available[name])
+                                  + ", ".join(c.name for c in special_cases(d.model)))
+        families.append(found)
+    uniform = raw.get("uniform", ())
+    links = tuple(str(x) for x in uniform) if isinstance(uniform, (list, tuple)) else ()
+    if links:
+        families.append(_uniform(d, links))
     point = tuple((k, float(v)) for k, v in dict(raw.get("linearised_about", {})).items())
     return Assumptions(tuple(families), point, raw.get("potential") == "equilibrium",
                        tuple(raw.get("text", ())))
+
+
+def _uniform(d: Derivation, links: tuple[str, ...]) -> SpecialCase:
+    r"""The family of ``[assumes] uniform``; a link the model lacks, or a model whose
+    parameters are a physical record (its own families say what is uniform), is a
+    :class:`~wheeled_dyn.errors.DerivationError` naming the file."""
+    from ...models.registry import load_model, model_entry
+    if model_entry(d.model).parameters is not None:
+        raise DerivationError(d.path, "assumes.uniform", f"model {d.model!r} has a physical "
+                              "parameter record: name its families instead; valid: "
+                              + ", ".join(c.name for c in special_cases(d.model)))
+    wm = load_model(d.model)
+    for link in links:
+        try:
+            wm.joint_id_of_link(link)
+        except UnknownNameError as exc:
+            raise DerivationError(d.path, "assumes.uniform", f"{link!r} is not a link of model "
+                                  f"{d.model!r}; valid: " + ", ".join(exc.valid or ())) from None
+    return uniform_family(links)
 
 
 def position_ranges(d: Derivation, positions: Sequence[str],

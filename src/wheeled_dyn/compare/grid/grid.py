@@ -77,7 +77,8 @@ def derivation_coordinate_set(d: Derivation, ps: ParameterSet) -> CoordinateSet:
             raise DerivationError(d.path, "coordinates", f"built-in set {spec.use!r} has "
                                   f"velocities {cs.velocities}, the file {d.velocities}")
         return cs
-    to_model = {s.symbol: s.value for s in d.symbols.values() if s.value is not None}
+    to_model = {s.symbol: _identifiers(s.value) for s in d.symbols.values()
+                if s.value is not None}
     raw = {"kind": spec.kind, "rolling": spec.rolling, "positions": list(spec.positions),
            "velocities": list(spec.velocities),
            "configuration": {k: str(sp.sympify(v).xreplace(to_model))
@@ -85,8 +86,18 @@ def derivation_coordinate_set(d: Derivation, ps: ParameterSet) -> CoordinateSet:
     if spec.velocity_map:
         raw["velocity_map"] = {k: str(sp.sympify(v).xreplace(to_model))
                                for k, v in spec.velocity_map.items()}
-    return parse_coordinate_set(raw, "inline", wm.coordinate_names, tuple(wm.geometry),
+    return parse_coordinate_set(raw, "inline", wm.coordinate_names, tuple(wm.named_lengths()),
                                 where=str(d.path))
+
+
+def _identifiers(expr: sp.Expr) -> sp.Expr:
+    r"""A model expression with its lengths as identifiers (``radius(coin)`` → ``radius_coin``,
+    as coordinate expressions write them)."""
+    from sympy.core.function import AppliedUndef
+
+    from ...models.geometry import call_name, identifier
+    calls = {c: sp.Symbol(identifier(call_name(c)), real=True) for c in expr.atoms(AppliedUndef)}
+    return expr.xreplace(calls) if calls else expr
 
 
 class Grids:

@@ -2,19 +2,25 @@ r"""Random, physically consistent parameter sets and the values of a model's par
 
 A comparison evaluates the document and the truth over K parameter sets × N states. Agreement
 at one set of numbers can hide errors (a product of inertia that happens to be 0 hides every
-term it multiplies), so the sets are random with every product of inertia and centre-of-mass
-offset nonzero, except where the model declares a symmetry: the two drive wheels of a wheeled
-model stay alike (one shared random scaling of the URDF's wheels). *Special cases* restrict them (e.g. products of inertia zero): an element that
-agrees under a special case only is reported as "agrees only if ...".
+term it multiplies; :math:`l^2` written for :math:`l` is invisible where :math:`l = 1`), so the
+sets are random: every product of inertia and centre-of-mass offset nonzero, and every length
+of the model drawn too (joint origins, wheel, ball and contact radii, track, the constants of
+its ``[geometry]``: :mod:`~wheeled_dyn.models.geometry_apply`), except where the model declares
+a symmetry: the two drive wheels of a wheeled model stay alike (one shared random scaling of
+the URDF's wheels), lengths its ``[geometry]`` lists as equal stay equal. *Special cases*
+restrict them (e.g. products of inertia zero, a uniform body): an element that agrees under a
+special case only is reported as "agrees only if ...".
 
 The model namespace a derivation's symbols are written in: the physical parameters of the
 model's record (``m_S, d, I1, ...`` for the WIP), the geometric ``R`` (wheel radius), ``L``
-(half track), ``g``, and Khalil's standard parameters of each link, keyed ``XX(body)``.
+(half track), ``g``, Khalil's standard parameters of each link, keyed ``XX(body)``, and the
+model's lengths, keyed ``origin_x(joint)``, ``radius(link)`` ...
+(:mod:`~wheeled_dyn.models.geometry`).
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Collection, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -22,6 +28,7 @@ import pinocchio as pin
 
 from ...errors import ParameterError
 from ...models.builder import WheeledModel
+from ...models.geometry_apply import apply_geometry, bodies_of, draw_geometry
 from ...models.registry import load_model, model_entry, model_parameters
 from ...models.springs import with_stiffness
 from ...models.wip_parameters import WipParameters, random_wip_parameters
@@ -29,11 +36,14 @@ from ...models.wip_parameters import WipParameters, random_wip_parameters
 
 @dataclass(frozen=True)
 class SpecialCase:
-    r"""A named restriction of the parameters (applied to a random set)."""
+    r"""A named restriction of the parameters (applied to a random set). ``uniform``: for a
+    model without a physical record, the links that stay uniform bodies (scaled as a whole,
+    their lengths with them); ``()``: every link; None: not such a family."""
 
     name: str
     description: str
     apply: Callable[[WipParameters], WipParameters]
+    uniform: tuple[str, ...] | None = None
 
 
 WIP_SPECIAL_CASES: tuple[SpecialCase, ...] = (
@@ -57,11 +67,21 @@ URDF_STRUCTURE = SpecialCase(
     "(coordinates and products of inertia that are zero there stay zero)", lambda p: p)
 
 
-#: Generic models: each link scaled as a whole (mass by one factor, lengths by another), so its
-#: shape stays the URDF's (a uniform sphere stays uniform, a rod stays a uniform rod).
+#: Generic models: each link scaled as a whole (mass by one factor, lengths by another, its radii,
+#: shapes and the origins of the joints it carries with them), so its shape stays the URDF's
+#: (a uniform ball stays uniform with its radius, a rod stays a uniform rod of its length).
 URDF_PROPORTIONS = SpecialCase(
     "urdf_proportions", "every link keeps the URDF's proportions (its mass and size scaled "
-    "as a whole: a uniform body stays uniform)", lambda p: p)
+    "as a whole, its lengths with it: a uniform body stays uniform)", lambda p: p, ())
+
+
+def uniform_family(links: Sequence[str]) -> SpecialCase:
+    r"""The family in which ``links`` stay uniform bodies (declared in a derivation's
+    ``[assumes] uniform``)."""
+    names = ", ".join(links)
+    verb = "is a uniform body" if len(links) == 1 else "are uniform bodies"
+    return SpecialCase(f"uniform({names})", f"{names} {verb} (mass and size scaled as a whole, "
+                       "its lengths with it)", lambda p: p, tuple(links))
 
 
 @dataclass(frozen=True)
@@ -80,26 +100,62 @@ def namespace_values(wm: WheeledModel, physical: WipParameters | None) -> dict[s
     return values
 
 
+#: Times a draw of the lengths that makes a contact invalid (a ball as large as its bowl) is
+#: made again.
+GEOMETRY_REDRAWS = 50
+
+
+def _with_geometry(wm: WheeledModel, rng: np.random.Generator, uniform: Collection[str]
+                   ) -> WheeledModel:
+    r"""``wm`` with random lengths (:func:`~wheeled_dyn.models.geometry_apply.draw_geometry`),
+    drawn again where a contact would be invalid."""
+    for _ in range(GEOMETRY_REDRAWS):
+        try:
+            return apply_geometry(wm, draw_geometry(wm, rng, uniform))
+        except ParameterError:
+            continue
+    return wm
+
+
+def uniform_links(wm: WheeledModel, special: Sequence[SpecialCase]) -> set[str]:
+    r"""The links the ``special`` families keep uniform (every link with mass for
+    ``urdf_proportions``)."""
+    out: set[str] = set()
+    masses = {link for jid, links in bodies_of(wm).items() for link in links
+              if jid and wm.lengths is not None and wm.lengths.inertials.get(link, (0.0,))[0] > 0}
+    for case in special:
+        if case.uniform == ():
+            out |= masses
+        elif case.uniform:
+            out |= set(case.uniform)
+    return out
+
+
 def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
-                          keep_structure: bool = False, proportional: bool = False) -> WheeledModel:
-    r"""Random, physically consistent inertias (log-Cholesky parameters) for every joint
-    that carries mass; a random gravity. With ``keep_structure`` the URDF's inertias are
-    rescaled instead: mass and each centre-of-mass coordinate by random factors, the principal
-    moments by random factors keeping the triangle inequality, the principal axes unchanged.
-    Each spring's stiffness is scaled by a random factor in [0.5, 2]."""
-    model = pin.Model(wm.model)
+                          keep_structure: bool = False,
+                          uniform: frozenset[str] | set[str] = frozenset()
+                          ) -> WheeledModel:
+    r"""Random lengths (the ``uniform`` links scaled as a whole with a random mass factor
+    each, and their bodies put together again from their links:
+    :mod:`~wheeled_dyn.models.geometry_apply`), and random, physically consistent inertias
+    (log-Cholesky parameters) for every other joint that carries mass; a random gravity. With
+    ``keep_structure`` the URDF's inertias are rescaled instead: mass and each centre-of-mass
+    coordinate by random factors, the principal moments by random factors keeping the triangle
+    inequality, the principal axes unchanged. Each spring's stiffness is scaled by a random
+    factor in [0.5, 2]."""
+    drawn = _with_geometry(wm, rng, uniform)
+    model = pin.Model(drawn.model)               # never the model of ``wm`` itself
+    composed = {jid for jid, links in bodies_of(wm).items() if uniform & set(links)}
     for jid in range(1, model.njoints):
-        if model.inertias[jid].mass > 0 and proportional:
-            old = model.inertias[jid]
-            mass, size = rng.uniform(0.5, 2.0), rng.uniform(0.8, 1.25)
-            model.inertias[jid] = pin.Inertia(old.mass * mass, old.lever * size,
-                                              old.inertia * mass * size**2)
+        if model.inertias[jid].mass > 0 and jid in composed:
+            continue                              # its links drawn with the lengths
         elif model.inertias[jid].mass > 0 and keep_structure:
             old = model.inertias[jid]
             eig, axes = np.linalg.eigh(old.inertia)
             second = 0.5 * (eig.sum() - 2 * eig)           # second moments along the axes
             second = np.maximum(second, 0.0) * rng.uniform(0.5, 2.0, 3)
-            moments = np.array([second[1] + second[2], second[0] + second[2], second[0] + second[1]])
+            moments = np.array([second[1] + second[2], second[0] + second[2],
+                                second[0] + second[1]])
             model.inertias[jid] = pin.Inertia(old.mass * rng.uniform(0.5, 2.0),
                                               old.lever * rng.uniform(0.5, 2.0, 3),
                                               axes @ np.diag(moments) @ axes.T)
@@ -110,17 +166,19 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
             theta[0] += 0.5 * scale / 3
             model.inertias[jid] = pin.Inertia.FromLogCholeskyParameters(
                 pin.LogCholeskyParameters(theta))
-    _alike_wheels(wm, model, rng)
+    if not composed & {w.joint_id for w in wm.wheels}:
+        _alike_wheels(wm, model, rng)
     model.gravity = pin.Motion(np.array([0.0, 0.0, -rng.uniform(5.0, 15.0)]), np.zeros(3))
     springs = with_stiffness(wm.springs, rng.uniform(0.5, 2.0, len(wm.springs))) \
         if wm.springs else None
-    return wm.with_model(model, springs)
+    return drawn.with_model(model, springs)
 
 
 def _alike_wheels(wm: WheeledModel, model: pin.Model, rng: np.random.Generator) -> None:
     r"""The two drive wheels of a wheeled model stay alike, as the model declares them: each
     is its URDF inertia scaled by one shared random mass factor and size factor (a centred,
-    axisymmetric wheel stays so; the two stay equal)."""
+    axisymmetric wheel stays so; the two stay equal; the size is not the drawn radius: a
+    document's disc wheel, I = m R²/2, needs a family)."""
     wheels = tuple(getattr(wm.spec, "wheels", ()) or ())
     if len(wheels) != 2:
         return
@@ -151,16 +209,46 @@ def parameter_sets(model_name: str, k: int, rng: np.random.Generator,
         return out
     base = load_model(model_name)
     keep = URDF_STRUCTURE in special
-    proportional = URDF_PROPORTIONS in special
+    uniform = uniform_links(base, special)
     for _ in range(k):
-        wm = _random_link_inertias(base, rng, keep, proportional)
+        wm = _random_link_inertias(base, rng, keep, uniform)
         out.append(ParameterSet(wm, namespace_values(wm, None)))
     return out
 
 
+def family(model_name: str, name: str) -> SpecialCase | None:
+    r"""The model's special family called ``name``: one of :func:`special_cases`, or
+    ``uniform(link, ...)`` (:func:`uniform_family`) for links of a model without a physical
+    record; None for another name (an unknown link is an
+    :class:`~wheeled_dyn.errors.UnknownNameError`)."""
+    found = next((c for c in special_cases(model_name) if c.name == name), None)
+    if found is not None or not (name.startswith("uniform(") and name.endswith(")")):
+        return found
+    if model_entry(model_name).parameters is not None:
+        return None
+    links = tuple(x.strip() for x in name[len("uniform("):-1].split(","))
+    wm = load_model(model_name)
+    for link in links:
+        wm.joint_id_of_link(link)
+    return uniform_family(links)
+
+
+#: A model without a physical record whose links with mass are at least two and at most this
+#: many also offers each of them uniform alone as a family (a per-link "agrees only if").
+UNIFORM_LINK_FAMILIES = 4
+
+
 def special_cases(model_name: str) -> tuple[SpecialCase, ...]:
-    return WIP_SPECIAL_CASES if model_entry(model_name).parameters is WipParameters \
-        else (URDF_STRUCTURE, URDF_PROPORTIONS)
+    r"""The special families of a model, weakest first: the WIP's
+    (:data:`WIP_SPECIAL_CASES`); for the others ``urdf_structure``, each link with mass
+    uniform alone (:func:`uniform_family`, two to :data:`UNIFORM_LINK_FAMILIES` such links)
+    and every link uniform (``urdf_proportions``)."""
+    if model_entry(model_name).parameters is WipParameters:
+        return WIP_SPECIAL_CASES
+    links = sorted(uniform_links(load_model(model_name), (URDF_PROPORTIONS,)))
+    each = tuple(uniform_family((link,)) for link in links) \
+        if 2 <= len(links) <= UNIFORM_LINK_FAMILIES else ()
+    return (URDF_STRUCTURE, *each, URDF_PROPORTIONS)
 
 
 def regular_states(cmap, q: np.ndarray, rng: np.random.Generator,
@@ -194,4 +282,4 @@ REDRAWS = 5
 
 __all__ = ["MAX_CONDITION", "ParameterSet", "SpecialCase", "WIP_SPECIAL_CASES",
            "namespace_values", "parameter_sets", "random_states", "regular_states",
-           "special_cases", "replace"]
+           "special_cases", "family", "uniform_family", "uniform_links", "replace"]

@@ -43,16 +43,24 @@ def _physical_symbols() -> dict[str, sp.Symbol]:
 
 def _standard_names(model: str) -> Callable[[sp.Expr], sp.Expr]:
     r"""For a model without a physical record: Khalil calls ``XX(link)`` → the symbolic
-    engine's symbols ``XX_link``, and the model's other names (geometry, gravity) → their
-    values as exact numbers, as in its closed forms."""
+    engine's symbols ``XX_link``, the model's lengths and constants as its closed forms write
+    them (a drawn length a symbol: ``origin_x(elbow)`` → ``origin_x_elbow``, a length listed
+    with a constant → that constant), its other names (gravity) → their values as exact
+    numbers, as in its closed forms."""
     from ...models.registry import load_model, model_parameters
-    numbers = {sp.Symbol(k, real=True): sp.nsimplify(v, rational=True)
-               for k, v in model_parameters(load_model(model)).items() if "(" not in k}
+    from ...symbolic.lengths import length_symbols
+    wm = load_model(model)
+    lengths = length_symbols(wm) if wm.lengths is not None else {}
+    numbers = {sp.Symbol(k, real=True): lengths.get(k, sp.nsimplify(v, rational=True))
+               for k, v in model_parameters(wm).items() if "(" not in k}
     plain = {sp.Symbol(s.name): v for s, v in numbers.items()}
 
     def convert(out: sp.Expr) -> sp.Expr:
-        calls = {c: sp.Symbol(f"{c.func.__name__}_{c.args[0]}", real=True)
-                 for c in out.atoms(AppliedUndef)}
+        calls = {}
+        for c in out.atoms(AppliedUndef):
+            name = f"{c.func.__name__}({c.args[0]})"
+            calls[c] = lengths[name] if name in lengths else \
+                sp.Symbol(f"{c.func.__name__}_{c.args[0]}", real=True)
         return out.xreplace(calls).xreplace(numbers).xreplace(plain)
 
     return convert
@@ -126,6 +134,54 @@ def family_substitution(families: tuple[str, ...]) -> dict[sp.Symbol, sp.Expr]:
     return out
 
 
+def uniform_substitution(d: Derivation, links: frozenset[str]) -> dict[sp.Symbol, sp.Expr]:
+    r"""A model without a physical record: its ``links`` that the document's families keep
+    uniform (:func:`~wheeled_dyn.compare.grid.samples.uniform_links`) as a substitution of its
+    closed forms' symbols. Each such link, alone with mass on its joint and at its joint's
+    frame, is the URDF's scaled by a length :math:`s` and its mass by :math:`M/M_0`: its first
+    moments :math:`\mathrm{MX} = (M/M_0)\,\mathrm{MX}_0\,s`, its second
+    :math:`\mathrm{XX} = (M/M_0)\,\mathrm{XX}_0\,s^2`, each length of its class
+    :math:`\ell_0 s`, with :math:`s` one of them (one the document uses, if any) over its URDF
+    value (:func:`~wheeled_dyn.models.geometry_apply.uniform_scales`)."""
+    import pinocchio as pin
+
+    from ...models.geometry_apply import bodies_of, uniform_scales
+    from ...models.registry import load_model
+    from ...symbolic.parameters import PARAMETER_NAMES
+    from ...symbolic.lengths import length_symbols
+    from ...symbolic.wheeled import _standard_names
+    wm = load_model(d.model)
+    if not links or wm.lengths is None or model_entry(d.model).parameters is not None:
+        return {}
+    lengths = length_symbols(wm)
+    names = _standard_names(wm)
+    used = {f"{c.func.__name__}({c.args[0]})" if isinstance(c, AppliedUndef) else c.name
+            for s in d.symbols.values() if s.value is not None
+            for c in (*s.value.atoms(AppliedUndef), *s.value.free_symbols)}
+    values = wm.lengths.values()
+    massive = {jid: [k for k in ks if wm.lengths.inertials.get(k, (0.0,))[0] > 0]
+               for jid, ks in bodies_of(wm).items()}
+    out: dict[sp.Symbol, sp.Expr] = {}
+    for link, (group, _, members) in uniform_scales(wm, links).items():
+        group = next((m for m in members if m in used and values.get(m)), group)
+        scale = lengths[group] / sp.nsimplify(values[group], rational=True)
+        for name in members:
+            symbol = lengths.get(name)
+            if isinstance(symbol, sp.Symbol) and symbol != lengths[group]:
+                out[symbol] = sp.nsimplify(values[name], rational=True) * scale
+        body = wm.joint_id_of_link(link)
+        frame = wm.model.frames[wm.model.getFrameId(link, pin.FrameType.BODY)]
+        if massive.get(body) != [link] or not frame.placement.isIdentity(1e-12):
+            continue
+        pi = wm.model.inertias[body].toDynamicParameters()
+        mass = sp.Symbol(f"M_{names[body]}", real=True) / sp.nsimplify(pi[0], rational=True)
+        for k, (key, x) in enumerate(zip(PARAMETER_NAMES, pi)):
+            if k:
+                out[sp.Symbol(f"{key}_{names[body]}", real=True)] = \
+                    mass * sp.nsimplify(x, rational=True) * scale ** (1 if k < 4 else 2)
+    return out
+
+
 def _row_label(label: str, row: int) -> str:
     r"""``A[2,3]`` → ``A[row+1,3]``, ``h[2]:dx*dpsi`` → ``h[row+1]:dx*dpsi``."""
     head, _, rest = label.partition("[")
@@ -136,16 +192,18 @@ def _row_label(label: str, row: int) -> str:
 
 
 def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, ...] | sp.Expr],
-             families: tuple[str, ...] = ()) -> dict[str, sp.Expr] | None:
+             families: tuple[str, ...] = (), uniform: frozenset[str] = frozenset()
+             ) -> dict[str, sp.Expr] | None:
     r"""Fill ``truth`` (every element) and ``residual`` (truth − document, expanded, for the
     elements that do not agree) of the ``drafts`` where the symbolic engine provides closed
     forms; without them the drafts keep their numeric verdicts. ``frames``: per row, the
     document's frame in its own symbols — a factor :math:`c` (the row is :math:`c` × the true
     one) or the weights :math:`f_i` of a combination of the true rows; rows absent from it get
     no residual. The truth and the document are both read under the parameter ``families`` the
-    document assumes (:func:`family_substitution`), in the document's own symbols where its
-    declarations determine the parameters (:func:`.in_document.in_document`: then the truth so
-    written is returned), else in the model's."""
+    document assumes (:func:`family_substitution`), a model without a physical record with its
+    ``uniform`` links scaled as a whole (:func:`uniform_substitution`); in the document's own
+    symbols where its declarations determine the parameters (:func:`.in_document.in_document`:
+    then the truth so written is returned), else in the model's."""
     try:
         from ...symbolic import true_expressions
     except ImportError:
@@ -155,8 +213,8 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
         return None
     physical = model_entry(d.model).parameters is WipParameters
     to_model = model_expression(d, standard=not physical)
-    assumed = family_substitution(families) if physical else {}
-    ours = in_document(d, truth, to_model, assumed if physical else None, families)
+    assumed = family_substitution(families) if physical else uniform_substitution(d, uniform)
+    ours = in_document(d, truth, to_model, assumed, families, standard=not physical)
     if ours is not None:
         truth, physical = ours, True
         values = {s.symbol: to_model(s.symbol) for s in d.symbols.values()}

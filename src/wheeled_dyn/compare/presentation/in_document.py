@@ -95,23 +95,25 @@ def _declarations(d: Derivation, to_model: ToModel) -> list[tuple[sp.Symbol, sp.
 
 
 def in_document(d: Derivation, truth: Mapping[str, sp.Expr], to_model: ToModel,
-                assumed: Mapping[sp.Symbol, sp.Expr] | None, families: Sequence[str] = ()
-                ) -> dict[str, sp.Expr] | None:
+                assumed: Mapping[sp.Symbol, sp.Expr], families: Sequence[str] = (),
+                standard: bool = False) -> dict[str, sp.Expr] | None:
     r"""The true elements (labels as the engine's) in the document's symbols where its
     declarations (``to_model``: a document expression in the model's parameters) determine
     the parameters (module text; the others stay model parameters), or None where they
-    determine none of them. ``assumed``: the physical families' substitution of a model with
-    a physical record, None for a model in Khalil's parameters (its families are
-    ``families``). Remembered: :data:`IN_DOCUMENT`."""
+    determine none of them. ``assumed``: the substitution the document's families make (a
+    physical record's families, or the uniform links of a model in Khalil's parameters);
+    with ``standard`` (a model in Khalil's parameters) the relations of
+    :mod:`.proportions` under ``families`` too. Remembered: :data:`IN_DOCUMENT`."""
     wm = load_model(d.model)
-    relations = dict(assumed) if assumed is not None else equalities(wm, families)
+    relations = {**(equalities(wm, families) if standard else {}), **assumed}
+    relations = {k: sp.sympify(v).xreplace(relations) for k, v in relations.items()}
     declared = _declarations(d, to_model)
-    values = () if assumed is not None else tuple(sorted(model_parameters(wm).items()))
+    values = tuple(sorted(model_parameters(wm).items())) if standard else ()
     key = (tuple(sorted(truth.items(), key=lambda kv: kv[0])), tuple(declared),
            tuple(sorted(relations.items(), key=str)), tuple(families), values,
            tuple(d.positions), tuple(d.velocities))
     return IN_DOCUMENT.get(key, lambda: _in_document(d, wm, truth, declared, relations,
-                                                     assumed is None, families))
+                                                     standard, families))
 
 
 def _in_document(d: Derivation, wm, truth: Mapping[str, sp.Expr],

@@ -1,0 +1,72 @@
+r"""A model's lengths in its closed forms: the drawn ones as symbols.
+
+The random parameter sets of a comparison draw every length of a model
+(:mod:`wheeled_dyn.models.geometry`), so the closed forms the reports print write them as
+symbols too: a drawn length as one symbol per group of equal lengths (``origin_y(spin_rl)`` →
+``W/2``, ``radius(coin)`` → ``R``), the others by their identifiers (``origin_x(elbow)`` →
+``origin_x_elbow``), a kept one as its exact number (:func:`length_symbols`); and the joint
+placements through them (:func:`translations`; a planar wheeled model's axle and wheels
+through ``R`` and ``L``, :func:`planar_translations`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+import pinocchio as pin
+import sympy as sp
+
+from ..models.builder import WheeledModel
+from .exact import exact_length, exact_rotation, exact_translation
+
+
+def length_symbols(wm: WheeledModel) -> dict[str, sp.Expr]:
+    r"""The model's lengths and constants as its closed forms write them
+    (:func:`~wheeled_dyn.models.geometry.symbols`: a drawn length a symbol, a kept one its
+    exact number)."""
+    from ..models.geometry import symbols
+    return symbols(wm.lengths, exact_length) if wm.lengths is not None else {}
+
+
+def translations(wm: WheeledModel, lengths: Mapping[str, sp.Expr]) -> dict | None:
+    r"""The joint placements' translations in the drawn lengths: for a moving joint of parent
+    link frame :math:`(R_p, p_p)` in its parent joint, :math:`p_p + R_p\,t` with :math:`t` its
+    origin (symbols where drawn); None where every one is a number."""
+    model = wm.model
+    out = {}
+    for j in range(1, model.njoints):
+        name = model.names[j]
+        t = [lengths.get(f"origin_{a}({name})") for a in "xyz"]
+        if any(x is None for x in t) or all(sp.sympify(x).is_Number for x in t):
+            continue
+        frame = model.frames[model.getFrameId(name, pin.FrameType.JOINT)]
+        parent = model.frames[frame.parentFrame].placement
+        t_num = np.array([wm.dimensions[f"origin_{a}({name})"] for a in "xyz"])
+        rest = model.jointPlacements[j].translation - parent.rotation @ t_num
+        out[j] = tuple(exact_translation(rest) + exact_rotation(parent.rotation) * sp.Matrix(t))
+    return out or None
+
+
+def planar_translations(wm: WheeledModel, lengths: Mapping[str, sp.Expr]) -> dict | None:
+    r"""A planar wheeled model's placements in its drawn ``R`` and ``L``, as the parameter sets
+    draw them (:func:`~wheeled_dyn.models.geometry_apply.apply_geometry`): the pitch joint (or,
+    without one, the wheels hanging from the yaw body) lifted by :math:`R - R_0`, each wheel at
+    :math:`m + (L/L_0)(t - m)` from the axle midpoint :math:`m` of its URDF placement
+    :math:`t`. None where neither is drawn."""
+    R, L = (sp.sympify(lengths.get(k, 0)) for k in ("R", "L"))
+    if len(wm.wheels) != 2 or (R.is_Number and L.is_Number):
+        return None
+    model = wm.model
+    lift = sp.Matrix([0, 0, R - exact_length(wm.geometry["R"])])
+    out: dict[int, tuple] = {}
+    if wm.spec.pitch:
+        j = model.getJointId("phi")
+        out[j] = tuple(exact_translation(model.jointPlacements[j].translation) + lift)
+        lift = sp.zeros(3, 1)
+    T = [exact_translation(model.jointPlacements[w.joint_id].translation) for w in wm.wheels]
+    mid = (T[0] + T[1]) / 2
+    half = exact_length(0.5 * float(np.linalg.norm(np.array(T[1] - T[0], dtype=float))))
+    for w, t in zip(wm.wheels, T):
+        out[w.joint_id] = tuple(mid + (L / half) * (t - mid) + lift)
+    return out

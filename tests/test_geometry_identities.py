@@ -1,0 +1,188 @@
+"""The truth on drawn geometry against independent computations.
+
+A random parameter set draws the model's lengths (joint origins, wheel and contact radii, the
+track, the constants of ``[geometry]``) and updates Pinocchio's model in place
+(``models/geometry_apply.py``). The same numbers written into a URDF and read again by
+Pinocchio's parser through the builder (``tests/drawn_urdf.py``) must give the same dynamics:
+A, n = C q̇ + Q, the rolling constraints and the reduced terms in the model's coordinates; and
+MuJoCo, loading that URDF, the same mass matrix and bias forces.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pinocchio as pin
+import pytest
+
+from conftest import SEED
+from drawn_urdf import drawn_urdf_text, rebuilt
+from wheeled_dyn import CoordinateMap, builtin_coordinate_set, load_model
+from wheeled_dyn.compare.grid.samples import (URDF_PROPORTIONS, URDF_STRUCTURE, parameter_sets,
+                                              uniform_family)
+from wheeled_dyn.constraints.rolling import contact_jacobian
+from wheeled_dyn.models.registry import model_parameters
+
+
+#: Agreement of two computations of the same quantity (relative to its size).
+EXACT_TOL = 1e-9
+#: Parameter sets and states per model.
+SETS, STATES = 3, 4
+ARM = str(Path(__file__).parent / "data" / "two_link_arm" / "two_link_arm.toml")
+
+MODELS = ["rod_pendulum", ARM, "rolling_disk", "differential", "car4", "sphere_paraboloid",
+          "sphere_sphere", "spheroid_plane", "wip_platform", "rolling_coin", "gyroscope"]
+FAMILIES = {"generic": (), "structure": (URDF_STRUCTURE,), "uniform": (URDF_PROPORTIONS,)}
+
+
+def _close(a: np.ndarray, b: np.ndarray, what: str) -> None:
+    assert a.shape == b.shape, what
+    if not b.size:
+        return
+    scale = max(1.0, float(np.abs(b).max()))
+    assert np.abs(a - b).max() <= EXACT_TOL * scale, (what, np.abs(a - b).max())
+
+
+def _states(wm, rng):
+    for _ in range(STATES):
+        q = rng.uniform(-1.0, 1.0, wm.nv)
+        yield q, rng.normal(size=wm.nv)
+
+
+@pytest.mark.parametrize("family", FAMILIES)
+@pytest.mark.parametrize("name", MODELS)
+def test_drawn_model_equals_the_urdf_written_with_its_numbers(name, family, tmp_path):
+    rng = np.random.default_rng(SEED)
+    base = load_model(name)
+    for k, ps in enumerate(parameter_sets(name, SETS, rng, FAMILIES[family])):
+        drawn = ps.model
+        assert drawn.dimensions != base.dimensions or not base.dimensions
+        other = rebuilt(base, drawn, tmp_path)
+        assert other.coordinate_names == drawn.coordinate_names
+        for key, value in drawn.geometry.items():
+            assert abs(other.geometry[key] - value) <= EXACT_TOL * max(1, abs(value)), key
+        mine, theirs = model_parameters(drawn), model_parameters(other)
+        for key, value in mine.items():
+            assert abs(theirs[key] - value) <= EXACT_TOL * max(1, abs(value)), (k, key)
+        d1, d2 = drawn.model.createData(), other.model.createData()
+        for q, v in _states(drawn, rng):
+            _close(pin.crba(drawn.model, d1, q), pin.crba(other.model, d2, q), "A")
+            _close(drawn.nonlinear_effects(d1, q, v), other.nonlinear_effects(d2, q, v), "n")
+            if drawn.wheels or drawn.contact is not None or drawn.rolling_wheels:
+                J1, dJ1 = contact_jacobian(drawn, q, v)
+                J2, dJ2 = contact_jacobian(other, q, v)
+                _close(J1, J2, "J_c")
+                _close(dJ1 @ v, dJ2 @ v, "dJ_c v")
+        cs = builtin_coordinate_set(drawn)
+        m1, m2 = CoordinateMap(drawn, cs), CoordinateMap(other, cs)
+        for _ in range(STATES):
+            qd = rng.uniform(-0.5, 0.5, len(cs.positions))
+            nu = rng.normal(size=len(cs.positions))
+            t1, t2 = m1.terms(qd, nu), m2.terms(qd, nu)
+            for key in ("A", "Q", "h", "B"):
+                _close(getattr(t1, key), getattr(t2, key), f"reduced {key}")
+
+
+@pytest.mark.parametrize("name", ["rolling_coin", "sphere_paraboloid", ARM])
+def test_a_uniform_body_keeps_its_shape_with_its_lengths(name):
+    r"""Under the uniform family the body's inertia is its URDF inertia scaled by its drawn
+    length: the coin's I = m r²/4, m r²/2, the ball's 2/5 m r², the arm's m l²/12."""
+    rng = np.random.default_rng(SEED)
+    base = load_model(name)
+    for ps in parameter_sets(name, SETS, rng, (URDF_PROPORTIONS,)):
+        wm, values = ps.model, ps.values
+        if name == "rolling_coin":
+            m, r = values["M(coin)"], values["radius(coin)"]
+            I = wm.model.inertias[wm.joint_id_of_link("coin")].inertia
+            assert abs(I[1, 1] - m * r**2 / 2) <= EXACT_TOL * m * r**2
+            assert abs(I[0, 0] - m * r**2 / 4) <= EXACT_TOL * m * r**2
+            assert abs(values["R"] - r) <= EXACT_TOL
+        elif name == "sphere_paraboloid":
+            m, r = values["M(ball)"], values["radius(ball)"]
+            I = wm.model.inertias[wm.joint_id_of_link("ball")].inertia
+            assert np.abs(I - 0.4 * m * r**2 * np.eye(3)).max() <= 1e-6 * m * r**2
+            assert values["a"] == values["vertex_radius(ball)"] and values["r"] == r
+        else:
+            for link, length in (("upper_arm", "l1"), ("forearm", "length(forearm)")):
+                m, l = values[f"M({link})"], values[length]
+                assert abs(values[f"YY({link})"] - m * l**2 / 3) <= EXACT_TOL * m * l**2
+                assert abs(values[f"MX({link})"] - m * l / 2) <= EXACT_TOL * m * l
+            assert values["length(upper_arm)"] == values["origin_x(elbow)"] == values["l1"]
+    assert base.dimensions == load_model(name).dimensions          # the base is not changed
+
+
+def test_lengths_drawn_apart_are_independent_and_listed_equal_ones_stay_equal():
+    r"""car4's [geometry] lists the wheel radii and the body's height as one length R, the
+    track W from four origins: they stay equal; the model's own lengths change."""
+    rng = np.random.default_rng(SEED)
+    base = load_model("car4")
+    radii = set()
+    for ps in parameter_sets("car4", 4, rng):
+        v = ps.values
+        assert {v[f"radius(wheel_{w})"] for w in ("rl", "rr", "fl", "fr")} == {v["R"]}
+        assert v["origin_z(theta)"] == v["R"]
+        assert v["origin_y(spin_rl)"] == -v["origin_y(spin_rr)"] == v["W"] / 2
+        assert v["origin_x(steer_fl)"] == v["a"] and v["origin_x(spin_rr)"] == -v["b"]
+        radii.add(v["R"])
+    assert len(radii) == 4 and base.geometry["R"] not in radii
+
+
+def test_a_uniform_family_per_link():
+    r"""``uniform(link)``: that link scaled as a whole, the others drawn freely."""
+    rng = np.random.default_rng(SEED)
+    for ps in parameter_sets(ARM, SETS, rng, (uniform_family(("forearm",)),)):
+        v = ps.values
+        m, l = v["M(forearm)"], v["length(forearm)"]
+        assert abs(v["YY(forearm)"] - m * l**2 / 3) <= EXACT_TOL * m * l**2
+        m1, l1 = v["M(upper_arm)"], v["l1"]
+        assert abs(v["YY(upper_arm)"] - m1 * l1**2 / 3) > 1e-3 * m1 * l1**2
+
+
+# -- MuJoCo ---------------------------------------------------------------------------------
+#: Models for MuJoCo (every moving link has mass: MuJoCo rejects a massless moving body), with
+#: whether their URDF inertias are positive definite (MuJoCo rejects a slender rod's zero
+#: moment about its axis, which the uniform family keeps).
+MUJOCO_MODELS = {"rod_pendulum": False, ARM: False, "compound_pendulum": True,
+                 "differential": True, "flywheel_rod": False}
+
+
+@pytest.mark.parametrize("name", MUJOCO_MODELS)
+def test_mujoco_agrees_on_the_drawn_urdf(name):
+    r"""MuJoCo loads the URDF written with a drawn set's numbers: its mass matrix and bias
+    forces equal Pinocchio's on the drawn model (joints matched by name)."""
+    mujoco = pytest.importorskip("mujoco", reason="MuJoCo is an optional test dependency "
+                                                  "(pip install mujoco)")
+    rng = np.random.default_rng(SEED)
+    base = load_model(name)
+    uniform = parameter_sets(name, SETS, rng, (URDF_PROPORTIONS,)) if MUJOCO_MODELS[name] \
+        else []
+    for ps in uniform + parameter_sets(name, SETS, rng):
+        wm = ps.model
+        m = mujoco.MjModel.from_xml_string(drawn_urdf_text(base, wm))
+        m.opt.gravity[:] = wm.model.gravity.linear
+        d = mujoco.MjData(m)
+        index = [m.jnt_dofadr[mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_JOINT, n)]
+                 for n in (wm.model.names[j] for j in range(1, wm.model.njoints))]
+        data = wm.model.createData()
+        for q, v in _states(wm, rng):
+            d.qpos[index], d.qvel[index] = q, v
+            mujoco.mj_forward(m, d)
+            M = np.zeros((m.nv, m.nv))
+            mujoco.mj_fullM(m, d, M)
+            _close(M[np.ix_(index, index)], pin.crba(wm.model, data, q), "mass matrix")
+            _close(d.qfrc_bias[index], wm.nonlinear_effects(data, q, v), "bias forces")
+
+
+@pytest.mark.parametrize("name", ["free_body", "rolling_coin"])
+def test_each_set_has_its_own_model_and_its_values_are_that_model_s(name):
+    r"""A model with no length to draw (free_body) and one with: every set is a model of its
+    own, its namespace values read from that model, and the registry's model is not changed."""
+    rng = np.random.default_rng(SEED)
+    before = model_parameters(load_model(name))
+    for family in FAMILIES.values():
+        sets = parameter_sets(name, SETS, rng, family)
+        assert len({id(ps.model.model) for ps in sets}) == len(sets)
+        for ps in sets:
+            assert ps.values == model_parameters(ps.model)
+    assert model_parameters(load_model(name)) == before
