@@ -140,10 +140,6 @@ def _in_document(d: Derivation, wm, truth: Mapping[str, sp.Expr],
     return out
 
 
-def _row_label(key: str, i: int, rest: str) -> str:
-    return f"{key}[{i + 1}{rest}"
-
-
 def corrected_row(d: Derivation, i: int, truth: Mapping[str, sp.Expr],
                   weights: Sequence[sp.Expr]) -> sp.Eq | None:
     r"""Equation ``i`` as it should read in the document's frame (``weights``: the true rows
