@@ -63,6 +63,29 @@ def test_values_of_other_code_are_not_served_and_their_file_goes(tmp_path, monke
     assert fresh.path().is_file() and not old_file.exists()
 
 
+def test_code_changed_while_running_keeps_nothing_and_a_missing_file_is_only_slower(
+        tmp_path, monkeypatch):
+    r"""Entries made by the code as it was when the memo was first read are never saved under
+    the digest of code edited since (they would be served as the new code's); a code file
+    that went away makes the memo compute without remembering, and save nothing, without an
+    error (saving runs at exit)."""
+    monkeypatch.setenv(CACHE_ENV, str(tmp_path / "cache"))
+    memo, code = _memo(tmp_path)
+    memo.get("key", lambda: "old code's value")
+    code.write_text("a = 2\n")                             # edited during the run
+    memo.save()
+    assert not memo.path().exists()
+    fresh = DiskMemo("test", "t", lambda: [code])
+    assert fresh.get("key", lambda: "new code's value") == "new code's value"
+    code.unlink()                                          # removed during the run
+    fresh.save()
+    save_memos()
+    gone = DiskMemo("test", "gone", lambda: [tmp_path / "missing.py"])
+    assert gone.get("k", lambda: "v") == "v" and gone.get("k", lambda: "w") == "v"
+    gone.save()
+    assert not (tmp_path / "cache").exists() or not any((tmp_path / "cache").rglob("gone-*"))
+
+
 def test_a_key_that_cannot_be_pickled_is_computed_each_time(tmp_path, monkeypatch):
     monkeypatch.setenv(CACHE_ENV, str(tmp_path / "cache"))
     memo, _ = _memo(tmp_path)

@@ -133,6 +133,7 @@ class DiskMemo:
     def __init__(self, kind: str, name: str, code: Callable[[], Iterable[Path]]) -> None:
         self.kind, self.name, self._code = kind, name, code
         self._entries: dict | None = None     # read from the file, and made here
+        self._first_path: Path | None = None  # the file they were read from
         self._made: dict = {}                 # made in this process, to be saved
         self._unkept: dict = {}               # made here with reuse off: never saved
         if not _MEMOS:                        # a program using the API saves on exit
@@ -140,6 +141,9 @@ class DiskMemo:
         _MEMOS.append(self)
 
     def path(self) -> Path:
+        r"""The file of this memo: its name with a digest of SymPy's version and the code it
+        remembers the output of (read from the source files now; an unreadable one raises
+        OSError)."""
         import sympy
         h = hashlib.sha256(sympy.__version__.encode())
         for code in sorted(self._code()):
@@ -152,7 +156,11 @@ class DiskMemo:
         if not reuse_enabled():
             return self._unkept
         if self._entries is None:
-            self._entries = {**(load(self.path(), dict) or {}), **self._made}
+            try:
+                self._first_path = self.path()
+            except OSError:                   # the code's files cannot be read: remember
+                return self._unkept           # nothing beyond this process
+            self._entries = {**(load(self._first_path, dict) or {}), **self._made}
         return self._entries
 
     def get(self, key: Hashable, compute: Callable[[], T]) -> T:
@@ -174,12 +182,18 @@ class DiskMemo:
     def forget(self) -> None:
         r"""Drop what is in memory (the next use reads the file again)."""
         self._entries, self._made, self._unkept = None, {}, {}
+        self._first_path = None
 
     def save(self) -> None:
         r"""Write the entries to the file when this process made any (best effort)."""
         if not self._made or not reuse_enabled():
             return
-        path = self.path()
+        try:
+            path = self.path()
+        except OSError:                       # the code's files went away: keep nothing
+            return
+        if path != self._first_path:          # the code changed while this process ran: its
+            return                            # entries are not the new code's
         entries = {**(load(path, dict) or {}), **(self._entries or {}), **self._made}
         if store(path, dict(list(entries.items())[-MEMO_LIMIT:])):
             self._made = {}
