@@ -188,6 +188,9 @@ def _raises_picklable(call, kind: type = WheeledDynError, *words: str) -> Wheele
     (lambda: wd.compare("wip", samples=2000, param_sets=1000), LimitError, ["1,000,000"]),
     (lambda: wd.compare(5), ArgumentError, ["compare(model=5)"]),
     (lambda: wd.compare("wip", coordinate="seed001"), ArgumentError, ["coordinate=", "tables"]),
+    (lambda: wd.CoordinateMap(7, None), ArgumentError, ["CoordinateMap(wm=7)", "load_model"]),
+    (lambda: wd.CoordinateMap(wd.load_model("wip"), "seed001"), ArgumentError,
+     ["CoordinateMap(cs='seed001')", "builtin_coordinate_set"]),
 ])
 def test_api_arguments_raise_the_projects_picklable_errors(call, kind, words):
     _raises_picklable(call, kind, *words)

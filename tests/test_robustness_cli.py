@@ -304,3 +304,16 @@ def test_ctrl_c_during_report(tmp_path):
     assert err.strip() == "wheeled-dyn: interrupted"
     assert sorted(p.name for p in out.iterdir()) == ["report.md"]
     assert (out / "report.md").read_text() == "previous"
+
+
+@pytest.mark.parametrize("module", ["wheeled_dyn", "wheeled_dyn.cli"])
+def test_python_dash_m_runs_the_command(module):
+    r"""``python -m wheeled_dyn`` (and ``.cli``) is the ``wheeled-dyn`` command: the same list
+    of models, and a bad sub-command is one usage error with exit code 2."""
+    ok = subprocess.run([sys.executable, "-m", module, "list"], capture_output=True, text=True,
+                        timeout=120)
+    assert ok.returncode == 0 and "wip" in ok.stdout, ok.stderr
+    bad = subprocess.run([sys.executable, "-m", module, "nope"], capture_output=True, text=True,
+                         timeout=120)
+    assert bad.returncode == 2 and "invalid choice: 'nope'" in bad.stderr
+    assert "Traceback" not in bad.stderr

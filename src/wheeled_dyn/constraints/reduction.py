@@ -53,6 +53,12 @@ class CoordinateMap:
     """
 
     def __init__(self, wm: WheeledModel, cs: CoordinateSet) -> None:
+        from ..errors import ArgumentError
+        if not isinstance(wm, WheeledModel):
+            raise ArgumentError("CoordinateMap", "wm", wm, "a model (wheeled_dyn.load_model)")
+        if not isinstance(cs, CoordinateSet):
+            raise ArgumentError("CoordinateMap", "cs", cs, "a coordinate set "
+                                "(wheeled_dyn.builtin_coordinate_set(model, name))")
         self.wm = wm
         self.cs = cs
         self.n = len(cs.positions)
