@@ -32,7 +32,7 @@ from .expressions import ExpressionError, split_nested
 from .latex import LatexSource, split_latex_matrix, unwrap_latex
 
 if TYPE_CHECKING:  # pragma: no cover
-    from .parse import _Loader
+    from .loader import _Loader
 
 #: Keys of ``[matrices]``.
 MATRIX_KEYS: tuple[str, ...] = ("A", "C", "Q", "B", "Gamma", "G", "equations")
