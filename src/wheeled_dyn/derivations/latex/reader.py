@@ -133,6 +133,7 @@ class Reader:
         return key
 
     def _node(self, node: Any) -> list[Any]:
+        r"""The atoms of one node other than characters and comments."""
         if isinstance(node, LatexGroupNode):
             return [Value(f"({self.expression(node.nodelist)})")]
         if isinstance(node, LatexMathNode):
@@ -142,6 +143,11 @@ class Reader:
                             "(a matrix is a whole value: A = { latex = '...' })")
         if isinstance(node, LatexSpecialsNode):
             raise self.fail(f"{node.specials_chars!r} outside a matrix")
+        return self._macro(node)
+
+    def _macro(self, node: Any) -> list[Any]:
+        r"""The atoms of a macro: a letter, ``\pi``, a font's content, a function, or (with
+        :meth:`_built`) a fraction, a root, a rate, an operator, nothing."""
         name = node.macroname
         args = [a for a in (node.nodeargd.argnlist if node.nodeargd else []) if a is not None]
         if len(args) < _ARGUMENTS.get(name, 0):
@@ -155,17 +161,17 @@ class Reader:
                               else args[-1:])
         if name in FUNCTIONS:
             return [Func(FUNCTIONS[name])]
+        return self._built(name, args)
+
+    def _built(self, name: str, args: list[Any]) -> list[Any]:
+        r"""The atoms of ``\frac``, ``\sqrt``, ``\dot``, ``\ddot``, an equation number, an
+        operator macro or an ignored one; any other macro is an error."""
         if name in ("frac", "tfrac", "dfrac"):
             num, den = (self.expression(a.nodelist if isinstance(a, LatexGroupNode) else [a])
                         for a in args)
             return [Value(f"({wrap(num)}/{wrap(den)})")]
         if name == "sqrt":
-            inner = self.expression(args[-1].nodelist if isinstance(args[-1], LatexGroupNode)
-                                    else args[-1:])
-            if len(args) == 2:
-                root = wrap(self.expression(args[0].nodelist))
-                return [Value(f"({wrap(inner)}**(1/{root}))")]
-            return [Value(f"sqrt({inner})")]
+            return [self._root(args)]
         if name in ("dot", "ddot"):
             arg = args[0].nodelist if isinstance(args[0], LatexGroupNode) else [args[0]]
             return [Rate(name, tuple(self.atoms(arg)))]
@@ -178,6 +184,15 @@ class Reader:
         if name == "\\":
             raise self.fail("'\\\\' outside a matrix")
         raise self.fail(f"unknown LaTeX macro \\{name}")
+
+    def _root(self, args: list[Any]) -> Value:
+        r"""``\sqrt{x}``, or ``\sqrt[n]{x}`` as a power ``1/n``."""
+        inner = self.expression(args[-1].nodelist if isinstance(args[-1], LatexGroupNode)
+                                else args[-1:])
+        if len(args) == 2:
+            root = wrap(self.expression(args[0].nodelist))
+            return Value(f"({wrap(inner)}**(1/{root}))")
+        return Value(f"sqrt({inner})")
 
     def _derivative(self, rate: Rate) -> str:
         r"""The velocity (``\dot``) or acceleration (``\ddot``) name of ``rate``; a subscript
