@@ -65,7 +65,7 @@ class Reader:
                         i += 1
                         continue
                     if pending:
-                        self._attach(out, pending, c, c)
+                        self._attach(out, pending, c)
                         pending, i = None, i + 1
                     elif c in "_^":
                         pending, i = c, i + 1
@@ -83,8 +83,7 @@ class Reader:
             elif isinstance(node, LatexCommentNode) or node is None:
                 continue
             elif pending:
-                self._attach(out, pending, node,
-                             self._key_text([node]) if pending == "_" else None)
+                self._attach(out, pending, node)
                 pending = None
             else:
                 out.extend(self._node(node))
@@ -92,9 +91,12 @@ class Reader:
             raise self.fail(f"{pending!r} without an argument")
         return [Value(self._derivative(a), a.sup) if isinstance(a, Rate) else a for a in out]
 
-    def _attach(self, out: list[Any], marker: str, arg: Any, key: str | None) -> None:
+    def _attach(self, out: list[Any], marker: str, arg: Any) -> None:
+        r"""Attach the subscript (``marker`` ``"_"``) or superscript (``"^"``) ``arg`` (one
+        character or a node) to the last atom of ``out``."""
         last = out[-1] if out else None
         if marker == "_":
+            key = arg if isinstance(arg, str) else self._key_text([arg])
             if not isinstance(last, (Letter, Rate)) or last.sub or last.sup:
                 raise self.fail(f"subscript _{key} after no letter")
             out[-1] = last._replace(sub=key)
@@ -254,7 +256,7 @@ class Reader:
 
     def text(self, atoms: list[Any], equation: bool = False) -> str:
         tokens = self._resolve(atoms)
-        sides = [[]]
+        sides: list[list[Any]] = [[]]
         for t in tokens:
             if isinstance(t, Op) and t.op == "=":
                 sides.append([])
