@@ -73,9 +73,10 @@ def declared_sets(model: str) -> Mapping[str, BuiltinSet]:
     if is_model_path(model):
         mf = read_model_file(model)
     else:
-        mf = shipped_model_files().get(model)
-        if mf is None:
+        shipped = shipped_model_files().get(model)
+        if shipped is None:
             return MappingProxyType({})
+        mf = shipped
     return MappingProxyType({name: _builtin_set(raw)
                              for name, raw in mf.coordinate_sets.items()})
 
@@ -152,6 +153,54 @@ def _per_position(path: Path, table: Mapping[str, Any], key: str, what: str,
         yield name, value
 
 
+def _declared_set(path: Path, table: Mapping[str, Any], model: str, use: Any,
+                  positions: tuple[str, ...] | None,
+                  line_of: Callable[[str | None], int | None]) -> BuiltinSet | None:
+    r"""The set ``use`` names among those the model file declares (None if it declares none
+    of that name and the file lists the positions itself)."""
+    if not isinstance(use, str):
+        raise DerivationError(path, "coordinates.use", "expected a name", line_of("use"))
+    try:
+        sets = declared_sets(model)
+    except InputFileError as exc:
+        raise DerivationError(path, "model", f"model file: {exc}", None) from None
+    builtin = sets.get(use)
+    if builtin is None and positions is None:
+        known = ", ".join(f"{model}:{name}" for name in sets) or "none"
+        raise DerivationError(path, "coordinates.use", f"{use!r} is not a coordinate set "
+                              f"declared by model {model!r}'s file (declared: {known}); "
+                              "list its positions too", line_of("use"))
+    for key in ("configuration", "velocity_map"):
+        if key in table:
+            raise DerivationError(path, f"coordinates.{key}", "not allowed with 'use' (the "
+                                  "model defines the built-in set's maps)", line_of(key))
+    if builtin is not None and positions is not None and positions != builtin.positions:
+        raise DerivationError(path, "coordinates.positions", f"set {use!r} has positions "
+                              f"{list(builtin.positions)}", line_of("positions"))
+    return builtin
+
+
+def _units(path: Path, table: Mapping[str, Any], builtin: BuiltinSet | None,
+           positions: tuple[str, ...], line_of: Callable[[str | None], int | None]
+           ) -> dict[str, str]:
+    r"""The units of the positions (the built-in set's, then ``units``), each checked; and
+    ``ranges``, each ``[low, high]`` with low < high."""
+    units = dict(builtin.units) if builtin else {}
+    for name, text in _per_position(path, table, "units", "units", positions, line_of):
+        try:
+            parse_units(str(text))
+        except ExpressionError as exc:
+            raise DerivationError(path, f"coordinates.units.{name}", exc.reason,
+                                  line_of("units")) from exc
+        units[name] = str(text)
+    for name, pair in _per_position(path, table, "ranges", "[low, high]", positions, line_of):
+        if (not isinstance(pair, list) or len(pair) != 2
+                or not all(isinstance(x, (int, float)) for x in pair) or not pair[0] < pair[1]):
+            raise DerivationError(path, f"coordinates.ranges.{name}", "expected [low, high] "
+                                  "with low < high", line_of("ranges"))
+    return units
+
+
 def coordinate_names(path: Path, table: Any, model: str,
                      line_of: Callable[[str | None], int | None]) -> CoordinateNames:
     r"""Read the names of ``[coordinates]``; ``line_of(key)`` locates a key for messages."""
@@ -162,32 +211,20 @@ def coordinate_names(path: Path, table: Any, model: str,
             raise DerivationError(path, f"coordinates.{key}", "unknown key; valid: "
                                   + ", ".join(COORDINATE_KEYS), line_of(key))
     use = table.get("use")
-    positions = _names_list(path, table, "positions", line_of("positions"), None)
+    listed = _names_list(path, table, "positions", line_of("positions"), None)
     builtin: BuiltinSet | None = None
     if use is not None:
-        if not isinstance(use, str):
-            raise DerivationError(path, "coordinates.use", "expected a name", line_of("use"))
-        try:
-            sets = declared_sets(model)
-        except InputFileError as exc:
-            raise DerivationError(path, "model", f"model file: {exc}", None) from None
-        builtin = sets.get(use)
-        if builtin is None and positions is None:
-            known = ", ".join(f"{model}:{name}" for name in sets) or "none"
-            raise DerivationError(path, "coordinates.use", f"{use!r} is not a coordinate set "
-                                  f"declared by model {model!r}'s file (declared: {known}); "
-                                  "list its positions too", line_of("use"))
-        for key in ("configuration", "velocity_map"):
-            if key in table:
-                raise DerivationError(path, f"coordinates.{key}", "not allowed with 'use' (the "
-                                      "model defines the built-in set's maps)", line_of(key))
-        if builtin is not None and positions is not None and positions != builtin.positions:
-            raise DerivationError(path, "coordinates.positions", f"set {use!r} has positions "
-                                  f"{list(builtin.positions)}", line_of("positions"))
-    elif positions is None:
+        builtin = _declared_set(path, table, model, use, listed, line_of)
+    elif listed is None:
         raise DerivationError(path, "coordinates", "give 'use' (a built-in set) or 'positions'",
                               line_of(None))
-    positions = positions or builtin.positions  # type: ignore[union-attr]
+    if listed:
+        positions = listed
+    elif builtin is not None:
+        positions = builtin.positions
+    else:
+        raise DerivationError(path, "coordinates.positions", "expected at least one position",
+                              line_of("positions"))
     n = len(positions)
     velocities = (_names_list(path, table, "velocities", line_of("velocities"), n)
                   or (builtin.velocities if builtin else tuple("d" + p for p in positions)))
@@ -205,19 +242,7 @@ def coordinate_names(path: Path, table: Any, model: str,
                               "write rolling = \"none\" (no rolling contact, or one the "
                               "coordinates already satisfy) or rolling = \"multipliers\"",
                               line_of("rolling") or line_of(None))
-    units = dict(builtin.units) if builtin else {}
-    for name, text in _per_position(path, table, "units", "units", positions, line_of):
-        try:
-            parse_units(str(text))
-        except ExpressionError as exc:
-            raise DerivationError(path, f"coordinates.units.{name}", exc.reason,
-                                  line_of("units")) from exc
-        units[name] = str(text)
-    for name, pair in _per_position(path, table, "ranges", "[low, high]", positions, line_of):
-        if (not isinstance(pair, list) or len(pair) != 2
-                or not all(isinstance(x, (int, float)) for x in pair) or not pair[0] < pair[1]):
-            raise DerivationError(path, f"coordinates.ranges.{name}", "expected [low, high] "
-                                  "with low < high", line_of("ranges"))
+    units = _units(path, table, builtin, positions, line_of)
     all_names = [*positions, *velocities, *accelerations]
     if len(set(all_names)) != len(all_names):
         raise DerivationError(path, "coordinates", "positions, velocities and accelerations "

@@ -72,8 +72,9 @@ def load_linear_document(path: str | Path = MEIJAARD_2007) -> LinearDocument:
     if k == 0:
         raise InputFileError(path, "[coordinates].positions is empty")
     table = data["form"]
-    form = SpeedForm(*(_matrix(path, table, key, k) for key in ("M", "C1", "K0", "K2")),
-                     float(table.get("g", 9.81)))
+    form = SpeedForm(M=_matrix(path, table, "M", k), C1=_matrix(path, table, "C1", k),
+                     K0=_matrix(path, table, "K0", k), K2=_matrix(path, table, "K2", k),
+                     g=float(table.get("g", 9.81)))
     claims = dict(data.get("claims", {}))
     eig = {}
     for row in claims.pop("eigenvalues", []):

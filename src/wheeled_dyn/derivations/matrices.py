@@ -32,7 +32,7 @@ from .expressions import ExpressionError, split_nested
 from .latex import LatexSource, split_latex_matrix, unwrap_latex
 
 if TYPE_CHECKING:  # pragma: no cover
-    from .parse import _Loader
+    from .loader import _Loader
 
 #: Keys of ``[matrices]``.
 MATRIX_KEYS: tuple[str, ...] = ("A", "C", "Q", "B", "Gamma", "G", "equations")
@@ -137,9 +137,10 @@ class MatrixReader:
         return sympy.Eq(self.ld.expr(lhs, item, table, key), self.ld.expr(rhs, item, table, key),
                         evaluate=False)
 
-    def read(self, table: dict[str, Any]) -> dict[str, sympy.ImmutableMatrix]:
-        r"""All matrices of ``[matrices]`` (and :attr:`equations`), shapes checked."""
-        ld, n, k = self.ld, self.n, len(self.inputs)
+    def _check_keys(self, table: dict[str, Any]) -> None:
+        r"""The keys of ``[matrices]`` are known and fit together: equations or matrices, B or
+        Gamma (and document inputs for them), something besides G."""
+        ld, k = self.ld, len(self.inputs)
         for key in table:
             if key not in MATRIX_KEYS:
                 raise ld.fail(f"matrices.{key}", "unknown key; valid: " + ", ".join(MATRIX_KEYS),
@@ -155,6 +156,23 @@ class MatrixReader:
         if given & {"B", "Gamma"} and k == 0:
             raise ld.fail("matrices", "B/Gamma need document inputs (symbols with input = true)",
                           ld.line("matrices", "B") or ld.line("matrices", "Gamma"))
+
+    def _equations(self, raw: Any) -> tuple[sympy.Eq, ...]:
+        r"""``equations = ["lhs = rhs", ...]``: one per position."""
+        eqs = unwrap_latex(raw)
+        if not isinstance(eqs, list):
+            raise self.ld.fail("equations", "expected a list of \"lhs = rhs\"",
+                               self.ld.line("matrices", "equations"))
+        if len(eqs) != self.n:
+            raise self.ld.fail("equations", f"{len(eqs)} equations for {self.n} positions",
+                               self.ld.line("matrices", "equations"))
+        return tuple(self.equation(t, f"equation {i + 1}", "matrices", "equations")
+                     for i, t in enumerate(eqs))
+
+    def read(self, table: dict[str, Any]) -> dict[str, sympy.ImmutableMatrix]:
+        r"""All matrices of ``[matrices]`` (and :attr:`equations`), shapes checked."""
+        n, k = self.n, len(self.inputs)
+        self._check_keys(table)
         out: dict[str, sympy.ImmutableMatrix] = {}
         for key in ("A", "C"):
             if key in table:
@@ -168,15 +186,7 @@ class MatrixReader:
         if "G" in table:
             out["G"] = self.grid("G", table["G"], None, n)
         if "equations" in table:
-            eqs = unwrap_latex(table["equations"])
-            if not isinstance(eqs, list):
-                raise ld.fail("equations", "expected a list of \"lhs = rhs\"",
-                              ld.line("matrices", "equations"))
-            if len(eqs) != n:
-                raise ld.fail("equations", f"{len(eqs)} equations for {n} positions",
-                              ld.line("matrices", "equations"))
-            self.equations = tuple(self.equation(t, f"equation {i + 1}", "matrices", "equations")
-                                   for i, t in enumerate(eqs))
+            self.equations = self._equations(table["equations"])
         self.shapes = {key: M.shape for key, M in out.items()}
         return out
 

@@ -193,17 +193,22 @@ class Derivation:
                                          self.path)
         else:
             qd = sympy.Matrix(self.velocities)
-            parts = [None if M is None else sympy.ImmutableMatrix(self._assumed(M, assume))
-                     for M in (self.A, None if self.C is None else self.C * qd, self.Q, self.B)]
-            if not assume and parts[3] is not None and self.assumptions:
-                parts[3] = parts[3].row_join(sympy.zeros(self.n, len(self.assumptions)))
-            terms = EquationTerms(*parts, inputs)
-        if unscale and self.row_scale is not None:
+            A, h, Q, B = (None if M is None else sympy.ImmutableMatrix(self._assumed(M, assume))
+                          for M in (self.A, None if self.C is None else self.C * qd, self.Q,
+                                    self.B))
+            if not assume and B is not None and self.assumptions:
+                B = B.row_join(sympy.zeros(self.n, len(self.assumptions)))
+            terms = EquationTerms(A, h, Q, B, inputs)
+        scale = self.row_scale
+        if unscale and scale is not None:
             # row by row, not diag(1/s) * M: a lost element ("?", nan) must stay in its row
             # (0 * nan is nan in a matrix product)
-            terms = EquationTerms(*[None if M is None else sympy.ImmutableMatrix(
-                M.rows, M.cols, lambda i, j, M=M: M[i, j] / self.row_scale[i])
-                for M in terms[:4]], inputs)
+            def unscaled(M: sympy.ImmutableMatrix | None) -> sympy.ImmutableMatrix | None:
+                return None if M is None else sympy.ImmutableMatrix(
+                    M.rows, M.cols, lambda i, j: M[i, j] / scale[i])
+
+            terms = EquationTerms(unscaled(terms.A), unscaled(terms.h), unscaled(terms.Q),
+                                  unscaled(terms.B), inputs)
         return terms
 
     def constraint_matrix(self) -> sympy.ImmutableMatrix | None:

@@ -33,7 +33,7 @@ from typing import Any
 import sympy
 
 from .coordinates import coordinate_names, resolve_model_reference
-from .parse import _Loader
+from .loader import _Loader
 from .schema import SymbolSpec
 from .source import read_toml
 

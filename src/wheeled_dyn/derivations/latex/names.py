@@ -40,17 +40,17 @@ class LatexNames:
             for key in _name_forms(name):
                 forms.setdefault(key, set()).add(name)
         for name, text in self.printed.items():
-            key = _printed_key(text)
-            if key is None:
+            printed_key = _printed_key(text)
+            if printed_key is None:
                 raise LatexError(text, f"the printed form of {name} is not a name")
-            forms.setdefault(key, set()).add(name)
+            forms.setdefault(printed_key, set()).add(name)
         object.__setattr__(self, "_forms", forms)       # read by the abbreviations' \dot{}
         object.__setattr__(self, "_abbrev", {})
         object.__setattr__(self, "_longest", max([len(b) for b, _ in forms] + [1]))
         abbrev = {}
         for text, value in self.abbreviations.items():
             atoms = Reader(self, text).atoms(parse_nodes(text))
-            if not atoms or any(a.sup or not (isinstance(a, Letter) or getattr(a, "number", 0))
+            if not atoms or any(a.sup or not (isinstance(a, Letter) or getattr(a, "number", False))
                                 for a in atoms):
                 raise LatexError(text, "an abbreviation is letters, digits and subscripts")
             abbrev[tuple(atom_key(a) for a in atoms)] = f"({value})"

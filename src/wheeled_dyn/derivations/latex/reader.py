@@ -65,7 +65,7 @@ class Reader:
                         i += 1
                         continue
                     if pending:
-                        self._attach(out, pending, c, c)
+                        self._attach(out, pending, c)
                         pending, i = None, i + 1
                     elif c in "_^":
                         pending, i = c, i + 1
@@ -83,8 +83,7 @@ class Reader:
             elif isinstance(node, LatexCommentNode) or node is None:
                 continue
             elif pending:
-                self._attach(out, pending, node,
-                             self._key_text([node]) if pending == "_" else None)
+                self._attach(out, pending, node)
                 pending = None
             else:
                 out.extend(self._node(node))
@@ -92,9 +91,12 @@ class Reader:
             raise self.fail(f"{pending!r} without an argument")
         return [Value(self._derivative(a), a.sup) if isinstance(a, Rate) else a for a in out]
 
-    def _attach(self, out: list[Any], marker: str, arg: Any, key: str | None) -> None:
+    def _attach(self, out: list[Any], marker: str, arg: Any) -> None:
+        r"""Attach the subscript (``marker`` ``"_"``) or superscript (``"^"``) ``arg`` (one
+        character or a node) to the last atom of ``out``."""
         last = out[-1] if out else None
         if marker == "_":
+            key = arg if isinstance(arg, str) else self._key_text([arg])
             if not isinstance(last, (Letter, Rate)) or last.sub or last.sup:
                 raise self.fail(f"subscript _{key} after no letter")
             out[-1] = last._replace(sub=key)
@@ -133,6 +135,7 @@ class Reader:
         return key
 
     def _node(self, node: Any) -> list[Any]:
+        r"""The atoms of one node other than characters and comments."""
         if isinstance(node, LatexGroupNode):
             return [Value(f"({self.expression(node.nodelist)})")]
         if isinstance(node, LatexMathNode):
@@ -142,6 +145,11 @@ class Reader:
                             "(a matrix is a whole value: A = { latex = '...' })")
         if isinstance(node, LatexSpecialsNode):
             raise self.fail(f"{node.specials_chars!r} outside a matrix")
+        return self._macro(node)
+
+    def _macro(self, node: Any) -> list[Any]:
+        r"""The atoms of a macro: a letter, ``\pi``, a font's content, a function, or (with
+        :meth:`_built`) a fraction, a root, a rate, an operator, nothing."""
         name = node.macroname
         args = [a for a in (node.nodeargd.argnlist if node.nodeargd else []) if a is not None]
         if len(args) < _ARGUMENTS.get(name, 0):
@@ -155,17 +163,17 @@ class Reader:
                               else args[-1:])
         if name in FUNCTIONS:
             return [Func(FUNCTIONS[name])]
+        return self._built(name, args)
+
+    def _built(self, name: str, args: list[Any]) -> list[Any]:
+        r"""The atoms of ``\frac``, ``\sqrt``, ``\dot``, ``\ddot``, an equation number, an
+        operator macro or an ignored one; any other macro is an error."""
         if name in ("frac", "tfrac", "dfrac"):
             num, den = (self.expression(a.nodelist if isinstance(a, LatexGroupNode) else [a])
                         for a in args)
             return [Value(f"({wrap(num)}/{wrap(den)})")]
         if name == "sqrt":
-            inner = self.expression(args[-1].nodelist if isinstance(args[-1], LatexGroupNode)
-                                    else args[-1:])
-            if len(args) == 2:
-                root = wrap(self.expression(args[0].nodelist))
-                return [Value(f"({wrap(inner)}**(1/{root}))")]
-            return [Value(f"sqrt({inner})")]
+            return [self._root(args)]
         if name in ("dot", "ddot"):
             arg = args[0].nodelist if isinstance(args[0], LatexGroupNode) else [args[0]]
             return [Rate(name, tuple(self.atoms(arg)))]
@@ -178,6 +186,15 @@ class Reader:
         if name == "\\":
             raise self.fail("'\\\\' outside a matrix")
         raise self.fail(f"unknown LaTeX macro \\{name}")
+
+    def _root(self, args: list[Any]) -> Value:
+        r"""``\sqrt{x}``, or ``\sqrt[n]{x}`` as a power ``1/n``."""
+        inner = self.expression(args[-1].nodelist if isinstance(args[-1], LatexGroupNode)
+                                else args[-1:])
+        if len(args) == 2:
+            root = wrap(self.expression(args[0].nodelist))
+            return Value(f"({wrap(inner)}**(1/{root}))")
+        return Value(f"sqrt({inner})")
 
     def _derivative(self, rate: Rate) -> str:
         r"""The velocity (``\dot``) or acceleration (``\ddot``) name of ``rate``; a subscript
@@ -239,7 +256,7 @@ class Reader:
 
     def text(self, atoms: list[Any], equation: bool = False) -> str:
         tokens = self._resolve(atoms)
-        sides = [[]]
+        sides: list[list[Any]] = [[]]
         for t in tokens:
             if isinstance(t, Op) and t.op == "=":
                 sides.append([])
