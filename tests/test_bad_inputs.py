@@ -270,3 +270,14 @@ def test_no_warning_from_a_shipped_model():
     with warnings.catch_warnings():
         warnings.simplefilter("error", ModelWarning)
         wd.load_model("tiago_base")
+
+
+def test_a_coordinate_table_without_positions_is_named(tmp_path):
+    r"""``positions = []`` and no set named: one error naming ``coordinates.positions`` (it
+    was an AttributeError)."""
+    path = tmp_path / "empty.toml"
+    path.write_text('title = "t"\nmodel = "wip"\n[coordinates]\npositions = []\n'
+                    '[matrices]\nA = [[1]]\n')
+    with pytest.raises(DerivationError) as err:
+        load_derivation(path)
+    assert "coordinates.positions" in str(err.value) and "at least one position" in str(err.value)
