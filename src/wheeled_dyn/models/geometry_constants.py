@@ -24,7 +24,7 @@ from .geometry import (SAME_TOL, Constant, ConstantKind, Dimension, GeometryTabl
                        call_name, dimensions, evaluate, link_inertials, table)
 
 if TYPE_CHECKING:
-    from .builder import ModelSpec
+    from .wheeled_model import ModelSpec
     from .urdf_source import UrdfSource
 
 

@@ -1,4 +1,4 @@
-r"""Model files: a model as data (TOML), read into the same :class:`~.builder.ModelSpec` as a
+r"""Model files: a model as data (TOML), read into the same :class:`~.wheeled_model.ModelSpec` as a
 model written in Python. Format and a complete example: ``docs/model-format.md``.
 
 .. code-block:: toml
@@ -37,7 +37,7 @@ from ..errors import InputFileError, OptionalDependencyError
 from .urdf_packages import PACKAGES, resolve_package
 
 if TYPE_CHECKING:
-    from .builder import ModelSpec
+    from .wheeled_model import ModelSpec
 
 #: Keys of a model file, by table (None: the top level).
 KEYS: Mapping[str | None, tuple[str, ...]] = MappingProxyType({
@@ -99,8 +99,8 @@ class ModelFile:
         return urdf, (*dirs, *pkg_dirs)
 
     def spec(self) -> "ModelSpec":
-        r"""The :class:`~.builder.ModelSpec` this file describes (the URDF resolved)."""
-        from .builder import ModelSpec
+        r"""The :class:`~.wheeled_model.ModelSpec` this file describes (the URDF resolved)."""
+        from .wheeled_model import ModelSpec
         from .contact import SphereContact
         from .rolling_wheel import WheelContact
         from .springs import JointSpring

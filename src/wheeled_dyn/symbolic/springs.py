@@ -22,7 +22,7 @@ from typing import TypeVar
 
 import sympy as sp
 
-from ..models.builder import WheeledModel
+from ..models.wheeled_model import WheeledModel
 from .kinematics import exact_number
 
 SpringTerm = tuple[int, sp.Expr, sp.Expr]       # (velocity index, stiffness, rest position)

@@ -23,7 +23,7 @@ import pinocchio as pin
 import sympy as sp
 
 from ..coordinates.spec import CoordinateSet
-from ..models.builder import WheeledModel
+from ..models.wheeled_model import WheeledModel
 from .exact import exact_model
 from .kinematics import forward_kinematics
 from .model import _gravity

@@ -59,7 +59,7 @@ from sympy.polys.matrices import DomainMatrix
 
 from ..coordinates.spec import CoordinateSet
 from ..errors import ModelError, UnknownNameError
-from ..models.builder import WheeledModel
+from ..models.wheeled_model import WheeledModel
 from ..models.geometry import identifier
 from .lengths import length_symbols, planar_translations, translations
 from .exact import exact_length, exact_model
