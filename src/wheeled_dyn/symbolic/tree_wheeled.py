@@ -3,7 +3,7 @@ r"""A wheeled model of any size in a document's coordinates, with intermediate v
 :func:`tree_wheeled` is :func:`~.wheeled.wheeled_symbolic` for robots whose expanded closed
 forms do not finish (TIAGo with its arm): the model's :math:`A`, :math:`c_{i,jk}`, :math:`Q` come
 from :func:`~.tree.tree_dynamics`, :math:`S(q)` and :math:`\dot S` from the same rolling
-reduction (:func:`~.wheeled.velocity_basis`; the contact rows need only the joints that carry
+reduction (:func:`~.basis.velocity_basis`; the contact rows need only the joints that carry
 the wheels), and the projection
 
 .. math::
@@ -24,12 +24,13 @@ import sympy as sp
 
 from ..coordinates.spec import CoordinateSet
 from ..models.wheeled_model import WheeledModel
+from .basis import velocity_basis
 from .exact import exact_model
 from .kinematics import forward_kinematics
 from .model import _gravity
+from .parameter_modes import parameter_setup
 from .springs import spring_terms, with_springs
 from .tree import TreeDynamics, _Namer, tree_dynamics
-from .wheeled import _setup, velocity_basis
 
 
 @dataclass(frozen=True, eq=False)
@@ -59,7 +60,7 @@ class ReducedTree:
 
 def _wheel_rows(wm: WheeledModel, model: pin.Model, td: TreeDynamics, radius,
                 translations=None) -> sp.Matrix:
-    r""":math:`J_c` (2 rows per wheel, as :func:`~.wheeled.contact_rows`) from the kinematics
+    r""":math:`J_c` (2 rows per wheel, as :func:`~.basis.contact_rows`) from the kinematics
     of the joints that carry the wheels only (a reduced model)."""
     keep = set()
     for w in wm.wheels:
@@ -131,7 +132,7 @@ def tree_wheeled(wm: WheeledModel, cs: CoordinateSet, parameters: str = "standar
                  ) -> ReducedTree:
     r""":class:`ReducedTree` of ``wm`` in the coordinate set ``cs`` (parameters as in
     :func:`~.wheeled.wheeled_symbolic`: ``"physical"``, ``"numbers"``, ``"standard"``)."""
-    setup = _setup(wm, parameters, axle=True)
+    setup = parameter_setup(wm, parameters, axle=True)
     model = exact_model(wm.model)
     g = _gravity(model, setup["gravity"])
     td = tree_dynamics(model, setup["params"], wm.coordinate_names, gravity=list(g),
