@@ -30,7 +30,8 @@ from .kinematics import forward_kinematics
 from .model import _gravity
 from .parameter_modes import parameter_setup
 from .springs import spring_terms, with_springs
-from .tree import TreeDynamics, _Namer, tree_dynamics
+from .tree import TreeDynamics, tree_dynamics
+from .tree_algebra import Namer
 
 
 @dataclass(frozen=True, eq=False)
@@ -94,7 +95,7 @@ def reduce_tree(td: TreeDynamics, S: sp.Matrix, Sdot: sp.Matrix, nu: Sequence[sp
                                                     sp.Matrix, sp.Matrix | None]:
     r"""``(new assignments, A_ν, C_ν, Q_ν, h_ν, B_ν)`` with :math:`\dot q = S\nu`; ``Sdot`` in
     the model velocities ``td.qd`` (replaced by :math:`S\nu`)."""
-    name = _Namer()
+    name = Namer()
     name.count = len(td.assignments)
     n, m = td.n, len(nu)
     Snu = [name(sp.Add(*[S[a, b] * nu[b] for b in range(m)]), "v") for a in range(n)]
