@@ -114,7 +114,8 @@ def spring_parameters(springs: Sequence[BoundSpring]) -> dict[str, float]:
     return out
 
 
-def with_stiffness(springs: Sequence[BoundSpring], factors: Sequence[float] | Mapping[str, float]
+def with_stiffness(springs: Sequence[BoundSpring],
+                   factors: Sequence[float] | np.ndarray | Mapping[str, float]
                    ) -> tuple[BoundSpring, ...]:
     r"""The springs with each stiffness multiplied by its factor (one per spring, in order, or
     by name)."""
