@@ -3,11 +3,11 @@ r"""Models: URDF loading, wheeled models on a ground-plane base, physical parame
 from .._lazy import attach
 
 __getattr__, __dir__, __all__ = attach(__name__, {
-    "ModelSpec": ".builder",
-    "Wheel": ".builder",
-    "WheeledModel": ".builder",
+    "ModelSpec": ".wheeled_model",
+    "Wheel": ".wheeled_model",
+    "WheeledModel": ".wheeled_model",
     "build_wheeled_model": ".builder",
-    "coordinate_vector": ".builder",
+    "coordinate_vector": ".wheeled_model",
     "UrdfSource": ".urdf_source",
     "read_urdf": ".urdf_source",
 })

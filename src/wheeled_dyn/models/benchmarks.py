@@ -51,7 +51,7 @@ from typing import TYPE_CHECKING
 from .listing import shipped_model_files
 
 if TYPE_CHECKING:       # the listing reads this module without Pinocchio
-    from .builder import ModelSpec
+    from .wheeled_model import ModelSpec
 
 #: Radius of the fixed sphere the ball of ``sphere_sphere`` rolls on (m) (``sphere_sphere.toml``).
 FIXED_SPHERE_RADIUS = 0.30

@@ -104,7 +104,7 @@ def _vec(v: np.ndarray) -> tuple[float, float, float]:
 
 
 def convention_table(wm) -> ConventionTable:
-    r"""The table of a built model (:class:`~.builder.WheeledModel`)."""
+    r"""The table of a built model (:class:`~.wheeled_model.WheeledModel`)."""
     import pinocchio as pin
     model = wm.model
     data = model.createData()
@@ -195,7 +195,7 @@ def _joint_table(wm) -> ConventionTable:
 
 
 def check_sides(spec, body_rot: np.ndarray, forward: np.ndarray) -> None:
-    r"""Check that a :class:`~.builder.ModelSpec` ``spec`` lists its wheels (left, right) as
+    r"""Check that a :class:`~.wheeled_model.ModelSpec` ``spec`` lists its wheels (left, right) as
     the geometry says (``body_rot`` the body's rotation and ``forward`` = up × (left → right),
     both in the URDF root's frame): a swapped list mirrors the model (forward reversed, every
     input's sign flipped). Forward is the spec's ``forward`` (in the body link's axes) when given, else the

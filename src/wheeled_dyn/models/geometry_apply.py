@@ -37,7 +37,7 @@ from types import MappingProxyType
 import numpy as np
 import pinocchio as pin
 
-from .builder import WheeledModel
+from .wheeled_model import WheeledModel
 from .geometry import ConstantKind, Dimension, GeometryTable
 
 #: Largest factor of a drawn length (and smallest: 1/FACTOR).

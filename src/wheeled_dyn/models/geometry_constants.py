@@ -24,7 +24,7 @@ from .geometry import (SAME_TOL, Constant, ConstantKind, Dimension, GeometryTabl
                        call_name, dimensions, evaluate, link_inertials, table)
 
 if TYPE_CHECKING:
-    from .builder import ModelSpec
+    from .wheeled_model import ModelSpec
     from .urdf_source import UrdfSource
 
 
@@ -145,7 +145,7 @@ def _contact_lengths(spec: "ModelSpec") -> tuple[dict[str, dict[str, float]], di
     sc = spec.contact
     if sc is not None:
         rolling[sc.link] = {"radius": float(sc.radius)}
-        if sc.spheroid:                             # equatorial and polar radii
+        if sc.polar_radius is not None:             # a spheroid: equatorial and polar radii
             rolling[sc.link]["polar_radius"] = float(sc.polar_radius)
             given.update(a=f"radius({sc.link})", c=f"polar_radius({sc.link})")
         else:

@@ -1,5 +1,6 @@
-r"""Model files: a model as data (TOML), read into the same :class:`~.builder.ModelSpec` as a
-model written in Python. Format and a complete example: ``docs/model-format.md``.
+r"""Model files: a model as data (TOML), read into the same
+:class:`~.wheeled_model.ModelSpec` as a model written in Python. Format and a complete
+example: ``docs/model-format.md``.
 
 .. code-block:: toml
 
@@ -37,7 +38,7 @@ from ..errors import InputFileError, OptionalDependencyError
 from .urdf_packages import PACKAGES, resolve_package
 
 if TYPE_CHECKING:
-    from .builder import ModelSpec
+    from .wheeled_model import ModelSpec
 
 #: Keys of a model file, by table (None: the top level).
 KEYS: Mapping[str | None, tuple[str, ...]] = MappingProxyType({
@@ -99,8 +100,8 @@ class ModelFile:
         return urdf, (*dirs, *pkg_dirs)
 
     def spec(self) -> "ModelSpec":
-        r"""The :class:`~.builder.ModelSpec` this file describes (the URDF resolved)."""
-        from .builder import ModelSpec
+        r"""The :class:`~.wheeled_model.ModelSpec` this file describes (the URDF resolved)."""
+        from .wheeled_model import ModelSpec
         from .contact import SphereContact
         from .rolling_wheel import WheelContact
         from .springs import JointSpring
@@ -116,9 +117,9 @@ class ModelFile:
         return ModelSpec(
             name=self.name, urdf=urdf, body=base.get("body", ""),
             wheels=tuple(wheels.get("links", ())),
-            up=tuple(float(x) for x in base.get("up", (0.0, 0.0, 1.0))),
+            up=_direction(base.get("up", (0.0, 0.0, 1.0))),
             pitch=bool(base.get("pitch", True)), lock=tuple(lock),
-            forward=tuple(float(x) for x in base["forward"]) if "forward" in base else None,
+            forward=_direction(base["forward"]) if "forward" in base else None,
             locked=MappingProxyType({k: float(v) for k, v in locked.items()}),
             aliases=MappingProxyType(dict(joints.get("aliases", {}))),
             inputs=tuple(inputs) if inputs is not None else None,
@@ -128,15 +129,25 @@ class ModelFile:
             geometry=MappingProxyType({k: _geometry_value(v)
                                        for k, v in d.get("geometry", {}).items()}),
             fixed_geometry=tuple(d.get("draw", {}).get("fixed", ())),
-            contact=SphereContact(**{k: tuple(v) if isinstance(v, list) else v
-                                     for k, v in contact.items()}) if contact else None,
-            rolling_wheels=tuple(WheelContact(**{k: tuple(v) if isinstance(v, list) else v
-                                                 for k, v in w.items()})
+            contact=SphereContact(**_arguments(contact)) if contact else None,
+            rolling_wheels=tuple(WheelContact(**_arguments(w))
                                  for w in d.get("rolling_wheel", ())),
             springs=tuple(JointSpring(**w) for w in d.get("spring", ())),
             accept_inertia=tuple(d.get("checks", {}).get("accept_inertia", ())),
             coordinate_sets=self.coordinate_sets,
             default_coordinates=d.get("default_coordinates"), source=self.path)
+
+
+def _direction(value: Any) -> tuple[float, float, float]:
+    r"""A ``[base]`` direction as three floats (:func:`_validate` checked there are three)."""
+    x, y, z = (float(v) for v in value)
+    return x, y, z
+
+
+def _arguments(table: Mapping[str, Any]) -> dict[str, Any]:
+    r"""A table's entries as keyword arguments of a record: lists as tuples (the records are
+    frozen; each checks its own values)."""
+    return {k: tuple(v) if isinstance(v, list) else v for k, v in table.items()}
 
 
 def _geometry_value(value: Any) -> Any:
@@ -178,65 +189,17 @@ def _check_table(mf: ModelFile, table: str, raw: Any, line_table: str | None = N
 
 
 def _validate(mf: ModelFile) -> None:
+    r"""Check every table of the file, in the order of ``docs/model-format.md``; the first
+    error found is raised (:meth:`ModelFile.fail`: the file, line and key)."""
     d = mf.data
-    for key in d:
-        if key not in KEYS[None]:
-            raise mf.fail(key, "unknown key or table; valid: " + ", ".join(KEYS[None]))
-    for key in ("name", "summary", "description", "parameters", "default_coordinates"):
-        if key in d and not isinstance(d[key], str):
-            raise mf.fail(key, "expected a string")
-    if "urdf" not in d:
-        raise mf.fail("urdf", "missing: give [urdf] path = \"...\" or package = \"...\"")
-    _check_table(mf, "urdf", d["urdf"])
-    urdf = d["urdf"]
-    if "path" not in urdf and "package" not in urdf:
-        raise mf.fail("urdf", "give path (relative to this file) or package (one of "
-                      + ", ".join(PACKAGES) + ")")
-    for key in ("path", "package"):
-        if key in urdf and not isinstance(urdf[key], str):
-            raise mf.fail(key, "expected a string", "urdf")
-    if "package_dirs" in urdf:
-        _names(mf, "urdf", "package_dirs", urdf["package_dirs"])
+    _validate_top(mf, d)
+    _validate_urdf(mf, d)
     for table in ("base", "wheels", "joints", "checks", "contact"):
         if table in d:
             _check_table(mf, table, d[table])
-    base = d.get("base", {})
-    for key in ("up", "forward"):
-        if key in base:
-            _numbers(mf, "base", key, base[key], 3)
-            if not math.hypot(*base[key]) > 0:
-                raise mf.fail(key, "expected a direction: three finite numbers, not all zero",
-                              "base")
-    if "pitch" in base and not isinstance(base["pitch"], bool):
-        raise mf.fail("pitch", "expected true or false", "base")
-    for table, key in (("base", "type"), ("base", "body")):
-        if key in d.get(table, {}) and not isinstance(d[table][key], str):
-            raise mf.fail(key, "expected a string", table)
-    wheels = d.get("wheels", {})
-    for table, key in (("wheels", "links"), ("wheels", "inputs"), ("joints", "lock"),
-                       ("joints", "actuated"), ("joints", "inputs"),
-                       ("checks", "accept_inertia")):
-        if key in d.get(table, {}):
-            _names(mf, table, key, d[table][key])
-    if "radius" in wheels:
-        _number(mf, "wheels", "radius", wheels["radius"])
-    joints = d.get("joints", {})
-    for key, check in (("locked", _number), ("aliases", None)):
-        raw = joints.get(key, {})
-        if not isinstance(raw, dict):
-            raise mf.fail(key, "expected a table joint = value", "joints")
-        for name, value in raw.items():
-            if check is not None:
-                check(mf, "joints", key, value)
-            elif not isinstance(value, str) or not value.isidentifier():
-                raise mf.fail(key, f"alias of {name!r}: expected a coordinate name", "joints")
-    geometry = d.get("geometry", {})
-    if not isinstance(geometry, dict):
-        raise mf.fail("geometry", "expected a table name = number")
-    for name, value in geometry.items():
-        if not name.isidentifier():
-            raise mf.fail(name, "not a name", "geometry")
-        _geometry_entry(mf, name, value)
+    _validate_base(mf, d.get("base", {}))
+    _validate_joints(mf, d)
+    _validate_geometry(mf, d.get("geometry", {}))
     if "draw" in d:
         _check_table(mf, "draw", d["draw"])
         if "fixed" in d["draw"]:
@@ -252,6 +215,81 @@ def _validate(mf: ModelFile) -> None:
         raise mf.fail("coordinates", "expected [coordinates.<set name>] tables")
     if "parameters" in d and d["parameters"] not in PARAMETER_RECORDS:
         raise mf.fail("parameters", "expected one of " + ", ".join(PARAMETER_RECORDS))
+
+
+def _validate_top(mf: ModelFile, d: Mapping[str, Any]) -> None:
+    r"""The top level: known keys only, and its texts are strings."""
+    for key in d:
+        if key not in KEYS[None]:
+            raise mf.fail(key, "unknown key or table; valid: " + ", ".join(KEYS[None]))
+    for key in ("name", "summary", "description", "parameters", "default_coordinates"):
+        if key in d and not isinstance(d[key], str):
+            raise mf.fail(key, "expected a string")
+
+
+def _validate_urdf(mf: ModelFile, d: Mapping[str, Any]) -> None:
+    r"""``[urdf]``: a path or a package (strings), optional package folders."""
+    if "urdf" not in d:
+        raise mf.fail("urdf", "missing: give [urdf] path = \"...\" or package = \"...\"")
+    _check_table(mf, "urdf", d["urdf"])
+    urdf = d["urdf"]
+    if "path" not in urdf and "package" not in urdf:
+        raise mf.fail("urdf", "give path (relative to this file) or package (one of "
+                      + ", ".join(PACKAGES) + ")")
+    for key in ("path", "package"):
+        if key in urdf and not isinstance(urdf[key], str):
+            raise mf.fail(key, "expected a string", "urdf")
+    if "package_dirs" in urdf:
+        _names(mf, "urdf", "package_dirs", urdf["package_dirs"])
+
+
+def _validate_base(mf: ModelFile, base: Mapping[str, Any]) -> None:
+    r"""``[base]``: directions of three finite numbers not all zero, ``pitch`` a boolean,
+    ``type`` and ``body`` strings."""
+    for key in ("up", "forward"):
+        if key in base:
+            _numbers(mf, "base", key, base[key], 3)
+            if not math.hypot(*base[key]) > 0:
+                raise mf.fail(key, "expected a direction: three finite numbers, not all zero",
+                              "base")
+    if "pitch" in base and not isinstance(base["pitch"], bool):
+        raise mf.fail("pitch", "expected true or false", "base")
+    for key in ("type", "body"):
+        if key in base and not isinstance(base[key], str):
+            raise mf.fail(key, "expected a string", "base")
+
+
+def _validate_joints(mf: ModelFile, d: Mapping[str, Any]) -> None:
+    r"""The lists of names of ``[wheels]``, ``[joints]`` and ``[checks]``, the wheel radius,
+    and ``[joints]``' tables ``locked`` (joint = number) and ``aliases`` (joint = name)."""
+    for table, key in (("wheels", "links"), ("wheels", "inputs"), ("joints", "lock"),
+                       ("joints", "actuated"), ("joints", "inputs"),
+                       ("checks", "accept_inertia")):
+        if key in d.get(table, {}):
+            _names(mf, table, key, d[table][key])
+    wheels = d.get("wheels", {})
+    if "radius" in wheels:
+        _number(mf, "wheels", "radius", wheels["radius"])
+    joints = d.get("joints", {})
+    for key in ("locked", "aliases"):
+        raw = joints.get(key, {})
+        if not isinstance(raw, dict):
+            raise mf.fail(key, "expected a table joint = value", "joints")
+        for name, value in raw.items():
+            if key == "locked":
+                _number(mf, "joints", key, value)
+            elif not isinstance(value, str) or not value.isidentifier():
+                raise mf.fail(key, f"alias of {name!r}: expected a coordinate name", "joints")
+
+
+def _validate_geometry(mf: ModelFile, geometry: Any) -> None:
+    r"""``[geometry]``: a table of names, each entry as :func:`_geometry_entry` takes it."""
+    if not isinstance(geometry, dict):
+        raise mf.fail("geometry", "expected a table name = number")
+    for name, value in geometry.items():
+        if not name.isidentifier():
+            raise mf.fail(name, "not a name", "geometry")
+        _geometry_entry(mf, name, value)
 
 
 def _geometry_entry(mf: ModelFile, name: str, value: Any) -> None:

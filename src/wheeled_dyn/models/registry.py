@@ -25,10 +25,11 @@ import pinocchio as pin
 from ..errors import ArgumentError, UnknownNameError
 from ..paths import file_stamp
 from .benchmarks import PYTHON_BENCHMARKS
-from .builder import ModelSpec, WheeledModel, build_wheeled_model
+from .builder import build_wheeled_model
 from .listing import shipped_model_files
 from .model_file import ModelFile, is_model_path, read_model_file
 from .springs import spring_parameters
+from .wheeled_model import ModelSpec, WheeledModel
 from .wip_parameters import STANDARD_NAMES, WipParameters, standard_parameters
 
 

@@ -12,8 +12,8 @@ A spring on a prismatic joint (a translational spring, stiffness in N/m) or a re
 where :math:`q_{j,0}` (``rest``) is the joint position at which the spring is relaxed (its free
 length, for a spring whose length is the joint's coordinate). So the model's
 :math:`Q = \partial U/\partial q` is Pinocchio's generalised gravity plus these terms, and its
-potential :math:`U` is Pinocchio's plus :math:`\sum U_s` (:meth:`~.builder.WheeledModel.
-potential_force`, :meth:`~.builder.WheeledModel.potential_energy`).
+potential :math:`U` is Pinocchio's plus :math:`\sum U_s` (:meth:`~.wheeled_model.WheeledModel.
+potential_force`, :meth:`~.wheeled_model.WheeledModel.potential_energy`).
 
 Each spring is named; derivation files refer to its stiffness and rest position as the model
 parameters ``k_<name>`` and ``rest_<name>`` (``K = { value = "k_radial" }``). Random parameter
@@ -114,7 +114,8 @@ def spring_parameters(springs: Sequence[BoundSpring]) -> dict[str, float]:
     return out
 
 
-def with_stiffness(springs: Sequence[BoundSpring], factors: Sequence[float] | Mapping[str, float]
+def with_stiffness(springs: Sequence[BoundSpring],
+                   factors: Sequence[float] | np.ndarray | Mapping[str, float]
                    ) -> tuple[BoundSpring, ...]:
     r"""The springs with each stiffness multiplied by its factor (one per spring, in order, or
     by name)."""

@@ -13,7 +13,7 @@ from .starter import UrdfInventory
 
 
 def starter_spec(inv: UrdfInventory):
-    r"""The :class:`~.builder.ModelSpec` the starting file describes: its text, written to a
+    r"""The :class:`~.wheeled_model.ModelSpec` the starting file describes: its text, written to a
     temporary folder and read back as any model file is (the URDF by its absolute path or its
     package, so that package meshes resolve)."""
     import tempfile

@@ -161,22 +161,24 @@ def check_mimic(path: str | Path, text: str, root: ET.Element, locked: Mapping[s
                                    "[joints] locked) or remove the <mimic>", line=line)
 
 
-def check_urdf_tree(path: str | Path, text: str, root: ET.Element,
-                    locked: tuple[str, ...] = (), accept: tuple[str, ...] = ()) -> None:
-    r"""Check the tree and inertial data of a parsed URDF (see the module docstring).
-
-    ``locked`` joints count as fixed (their subtree moves with the parent); the inertia tensors
-    of the links in ``accept`` are not checked (their mass still is)."""
-    path = Path(path)
+def _link_elements(path: Path, text: str, root: ET.Element) -> dict[str, ET.Element]:
+    r"""The ``<link>`` elements by name; each has a name, and one only."""
     links: dict[str, ET.Element] = {}
-    for link in root.findall("link"):
-        name = link.get("name")
+    for element in root.findall("link"):
+        name = element.get("name")
         if not name:
             raise InputFileError(path, "a <link> has no name")
         if name in links:
             raise InputFileError(path, f"link {name!r} is defined twice",
                                  line=_line_of(text, "link", name))
-        links[name] = link
+        links[name] = element
+    return links
+
+
+def _joint_ends(path: Path, text: str, root: ET.Element, links: Mapping[str, ET.Element]
+                ) -> tuple[dict[str, tuple[str, str, str]], dict[str, str]]:
+    r"""``({joint: (type, parent link, child link)}, {child link: joint})``: every joint named
+    once, its two ends defined links, every link the child of one joint at most."""
     joints: dict[str, tuple[str, str, str]] = {}
     parent_of: dict[str, str] = {}          # child link -> joint
     for joint in root.findall("joint"):
@@ -203,7 +205,14 @@ def check_urdf_tree(path: str | Path, text: str, root: ET.Element,
                                  line=line)
         parent_of[child] = name
         joints[name] = (joint.get("type", ""), parent, child)
-    for start in parent_of:                  # every link has at most one parent: follow them
+    return joints, parent_of
+
+
+def _check_no_cycle(path: Path, text: str, joints: Mapping[str, tuple[str, str, str]],
+                    parent_of: Mapping[str, str]) -> None:
+    r"""No chain of parents returns to its start (every link has one parent at most, so
+    following the parents from each link finds any cycle); the error names its joints."""
+    for start in parent_of:
         seen = [start]
         link = start
         while link in parent_of:
@@ -216,6 +225,18 @@ def check_urdf_tree(path: str | Path, text: str, root: ET.Element,
                                      + ", ".join(repr(j) for j in ring) + ")",
                                      line=_line_of(text, "joint", ring[-1]))
             seen.append(link)
+
+
+def check_urdf_tree(path: str | Path, text: str, root: ET.Element,
+                    locked: tuple[str, ...] = (), accept: tuple[str, ...] = ()) -> None:
+    r"""Check the tree and inertial data of a parsed URDF (see the module docstring).
+
+    ``locked`` joints count as fixed (their subtree moves with the parent); the inertia tensors
+    of the links in ``accept`` are not checked (their mass still is)."""
+    path = Path(path)
+    links = _link_elements(path, text, root)
+    joints, parent_of = _joint_ends(path, text, root, links)
+    _check_no_cycle(path, text, joints, parent_of)
     roots = [n for n in links if n not in parent_of]
     if len(roots) != 1:
         raise InputFileError(path, f"expected one root link, found {len(roots)}: {roots}")

@@ -25,6 +25,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass, fields
+from typing import Any
 
 import numpy as np
 
@@ -98,10 +99,10 @@ def check_inertia(name: str, inertia: np.ndarray) -> None:
                              "principal moments with I_max <= I_a + I_b (triangle inequality)")
 
 
-def standard_parameters(p: Mapping[str, object]) -> dict[str, dict[str, object]]:
+def standard_parameters(p: Mapping[str, Any]) -> dict[str, dict[str, Any]]:
     r"""Khalil's standard parameters of ``body``, ``wheel_left`` and ``wheel_right`` in their
     link frames, from the physical parameters ``p`` (numbers or SymPy symbols, keyed as the
-    fields of :class:`WipParameters`)."""
+    fields of :class:`WipParameters`; ``Any``: the same formulas serve both)."""
     m, cx, cy, cz = p["m_S"], p["d_x"], p["d"], p["d_z"]
     c = (cx, cy, cz)
     r2 = cx * cx + cy * cy + cz * cz

@@ -21,7 +21,7 @@ import sympy as sp
 from sympy.polys.matrices.exceptions import DMNonInvertibleMatrixError
 
 from ..coordinates.spec import CoordinateSet
-from ..models.builder import WheeledModel
+from ..models.wheeled_model import WheeledModel
 from .simplify import simplify_matrix
 from .tree_wheeled import ReducedTree, tree_wheeled
 

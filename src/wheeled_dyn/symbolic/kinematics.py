@@ -91,7 +91,7 @@ def exact_matrix(a: np.ndarray, tolerance: float = 1e-12) -> sp.Matrix:
     a = np.atleast_1d(np.asarray(a, dtype=float))
     if a.ndim == 1:
         a = a.reshape(-1, 1)
-    return sp.Matrix(a.shape[0], a.shape[1], lambda i, j: exact_number(a[i, j], tolerance))
+    return sp.Matrix(a.shape[0], a.shape[1], lambda i, j: exact_number(float(a[i, j]), tolerance))
 
 
 def skew(u: Sequence) -> sp.Matrix:

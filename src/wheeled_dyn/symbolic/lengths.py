@@ -17,7 +17,7 @@ import numpy as np
 import pinocchio as pin
 import sympy as sp
 
-from ..models.builder import WheeledModel
+from ..models.wheeled_model import WheeledModel
 from .exact import exact_length, exact_rotation, exact_translation
 
 

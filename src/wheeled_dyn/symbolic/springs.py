@@ -18,15 +18,21 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import replace
-from typing import TypeVar
+from typing import TYPE_CHECKING, TypeVar
 
 import sympy as sp
 
-from ..models.builder import WheeledModel
+from ..models.wheeled_model import WheeledModel
 from .kinematics import exact_number
 
+if TYPE_CHECKING:
+    from .model import SymbolicModel
+    from .tree import TreeDynamics
+
 SpringTerm = tuple[int, sp.Expr, sp.Expr]       # (velocity index, stiffness, rest position)
-T = TypeVar("T")
+#: The closed forms springs are added to (both frozen dataclasses with ``q``, ``Q`` and
+#: ``parameters``).
+T = TypeVar("T", "SymbolicModel", "TreeDynamics")
 
 
 def spring_terms(wm: WheeledModel, mode: str) -> tuple[SpringTerm, ...]:

@@ -51,8 +51,7 @@ from ..errors import ModelError
 from .exact import GEOMETRY_TOLERANCE, exact_length, exact_rotation, exact_translation
 from .kinematics import joint_kind, rodrigues
 from .parameters import resolve_parameters
-
-Vec = list  # three (or six) SymPy expressions
+from .tree_algebra import Body, Namer, Vec, cross, dot, motion_cross, mtv, mv, sym3
 
 
 @dataclass(frozen=True, eq=False)
@@ -103,82 +102,202 @@ class TreeDynamics:
         return out
 
 
-class _Namer:
-    r"""Records intermediate variables ``<prefix><n>``; numbers, symbols and their negatives
-    are kept as they are, an expression met before gets its earlier name."""
-
-    def __init__(self) -> None:
-        self.assignments: list[tuple[sp.Symbol, sp.Expr]] = []
-        self.seen: dict[sp.Expr, sp.Expr] = {}
-        self.count = 0
-
-    def __call__(self, e: sp.Expr, prefix: str) -> sp.Expr:
-        e = sp.expand(e) if e.is_Add or e.is_Mul else e
-        if e.is_Number or e.is_Symbol or (e.is_Mul and len(e.args) == 2 and e.args[0].is_Number
-                                          and e.args[1].is_Symbol):
-            return e
-        if e in self.seen:
-            return self.seen[e]
-        neg = -e
-        if neg in self.seen:
-            return -self.seen[neg]
-        self.count += 1
-        w = sp.Symbol(f"{prefix}{self.count}", real=True)
-        self.assignments.append((w, e))
-        self.seen[e] = w
-        return w
-
-    def vec(self, v: Vec, prefix: str) -> Vec:
-        return [self(x, prefix) for x in v]
-
-
-def _cross(a: Vec, b: Vec) -> Vec:
-    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-
-
-def _dot(a: Vec, b: Vec) -> sp.Expr:
-    return sp.Add(*[x * y for x, y in zip(a, b)])
-
-
-def _mv(R: sp.Matrix, v: Vec) -> Vec:
-    return [sp.Add(*[R[i, k] * v[k] for k in range(3)]) for i in range(3)]
-
-
-def _mtv(R: sp.Matrix, v: Vec) -> Vec:
-    return [sp.Add(*[R[k, i] * v[k] for k in range(3)]) for i in range(3)]
-
-
-def _sym3(I6: Vec) -> list[list[sp.Expr]]:
-    xx, xy, yy, xz, yz, zz = I6
-    return [[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]]
-
-
-@dataclass
-class _Body:
-    m: sp.Expr
-    h: Vec
-    I: Vec  # xx, xy, yy, xz, yz, zz (Pinocchio's order)
-
-    def apply(self, motion: Vec) -> Vec:
-        r"""The momentum :math:`K m` of the motion ``(ω, v)``: ``(n, f)`` with
-        :math:`n = I\omega + h\times v`, :math:`f = m v + \omega\times h`."""
-        w, v = motion[:3], motion[3:]
-        M = _sym3(self.I)
-        n = [sp.Add(*[M[i][k] * w[k] for k in range(3)]) for i in range(3)]
-        hv = _cross(self.h, v)
-        wh = _cross(w, self.h)
-        return [n[i] + hv[i] for i in range(3)] + [self.m * v[i] + wh[i] for i in range(3)]
-
-
-def _motion_cross(a: Vec, b: Vec) -> Vec:
-    w1, v1, w2, v2 = a[:3], a[3:], b[:3], b[3:]
-    x, y, z = _cross(w1, w2), _cross(w1, v2), _cross(v1, w2)
-    return x + [y[i] + z[i] for i in range(3)]
-
-
 def _placement(model: pin.Model, j: int, tolerance: float) -> tuple[sp.Matrix, sp.Matrix]:
     P = model.jointPlacements[j]
     return exact_rotation(P.rotation, tolerance), exact_translation(P.translation, tolerance)
+
+
+@dataclass(frozen=True)
+class _Tree:
+    r"""The joints of a tree in exact geometry: parent :math:`\lambda(j)`, velocity index,
+    kind, :math:`{}^{\lambda}T_j(q_j) = (R_j, p_j)`, motion subspace :math:`s_j` (frame
+    :math:`j`) and the chain of ancestors (root first, :math:`j` last) of each joint."""
+
+    parent: list[int]
+    vidx: dict[int, int]
+    kinds: dict[int, str]
+    R: dict[int, sp.Matrix]
+    p: dict[int, Vec]
+    s: dict[int, Vec]
+    ancestors: dict[int, list[int]]
+
+
+def _coordinates(model: pin.Model, coordinate_names: Sequence[str] | None
+                 ) -> tuple[tuple[sp.Symbol, ...], tuple[sp.Symbol, ...]]:
+    r"""``(q, qd)``: real symbols named after the coordinates and ``"d" + name``; a
+    :class:`ModelError` unless every joint has one coordinate, each named."""
+    n = model.nv
+    coords = list(coordinate_names) if coordinate_names is not None else \
+        [model.names[j] for j in range(1, model.njoints)]
+    if len(coords) != n or any(model.joints[j].nv != 1 for j in range(1, model.njoints)):
+        raise ModelError(model.name or "<pinocchio>", None,
+                         f"{len(coords)} coordinate names for nv={n}, or a joint that is not "
+                         "1-DoF: the tree closed forms need one coordinate per joint")
+    return (tuple(sp.Symbol(c, real=True) for c in coords),
+            tuple(sp.Symbol("d" + c, real=True) for c in coords))
+
+
+def _tree(model: pin.Model, q: Sequence[sp.Symbol], translations: Mapping | None,
+          tolerance: float) -> _Tree:
+    r"""The joints of ``model`` (:class:`_Tree`): a revolute joint about :math:`a` turns by
+    :math:`R_j = R^0_j\,\mathrm{rot}(a, q_j)`, a prismatic one moves :math:`p_j = p^0_j +
+    R^0_j a\,q_j`; ``translations`` replace placement translations."""
+    N = model.njoints
+    parent = [model.parents[j] for j in range(N)]
+    vidx = {j: model.joints[j].idx_v for j in range(1, N)}
+    kinds: dict[int, str] = {}
+    R: dict[int, sp.Matrix] = {}
+    p: dict[int, Vec] = {}
+    s: dict[int, Vec] = {}
+    for j in range(1, N):
+        kind, axis = joint_kind(model, j)
+        Rp, pp = _placement(model, j, tolerance)
+        if translations and j in translations:
+            pp = sp.Matrix([sp.sympify(x) for x in translations[j]])
+        qj = q[vidx[j]]
+        a = [sp.sympify(x) for x in axis]
+        if kind == "revolute":
+            R[j], p[j] = (Rp * rodrigues(sp.Matrix(a), qj)).applyfunc(sp.expand), list(pp)
+            s[j] = a + [0, 0, 0]
+        else:
+            R[j], p[j] = Rp, [pp[i] + (Rp * sp.Matrix(a))[i] * qj for i in range(3)]
+            s[j] = [0, 0, 0] + a
+        kinds[j] = kind
+    ancestors: dict[int, list[int]] = {0: []}
+    for j in range(1, N):
+        ancestors[j] = ancestors[parent[j]] + [j]          # root first, j last
+    return _Tree(parent, vidx, kinds, R, p, s, ancestors)
+
+
+def _composite_bodies(tree: _Tree, pis: Mapping[int, Sequence], name: Namer
+                      ) -> dict[int, Body]:
+    r""":math:`K_j` of every joint, leaves to root (module docstring)."""
+    N = len(tree.parent)
+    K: dict[int, Body] = {}
+    acc = {j: Body(*(lambda pi: (pi[0], list(pi[1:4]), list(pi[4:10])))(
+        [sp.sympify(x) for x in pis.get(j, (0,) * 10)])) for j in range(1, N)}
+    for j in range(N - 1, 0, -1):
+        b = acc[j]
+        K[j] = Body(name(b.m, "m"), name.vec(b.h, "h"), name.vec(b.I, "K"))
+        lam = tree.parent[j]
+        if lam == 0:
+            continue
+        k, Rj, pj = K[j], tree.R[j], tree.p[j]
+        Rh = name.vec(mv(Rj, k.h), "u")
+        I = sym3(k.I)
+        RI = [[sp.Add(*[Rj[r, c] * I[c][t] for c in range(3)]) for t in range(3)]
+              for r in range(3)]
+        RI = [name.vec(row, "u") for row in RI]
+        RIRt = [[sp.Add(*[RI[r][c] * Rj[t, c] for c in range(3)]) for t in range(3)]
+                for r in range(3)]
+        ph = dot(pj, Rh)
+        pp2 = dot(pj, pj)
+        Inew = [[RIRt[r][t] + (2 * ph + k.m * pp2 if r == t else 0) - Rh[r] * pj[t]
+                 - pj[r] * Rh[t] - k.m * pj[r] * pj[t] for t in range(3)] for r in range(3)]
+        add = [Inew[0][0], Inew[0][1], Inew[1][1], Inew[0][2], Inew[1][2], Inew[2][2]]
+        pa = acc[lam]
+        acc[lam] = Body(pa.m + k.m, [pa.h[i] + Rh[i] + k.m * pj[i] for i in range(3)],
+                         [pa.I[i] + add[i] for i in range(6)])
+    return K
+
+
+def _inertia_matrix(tree: _Tree, K: Mapping[int, Body], arm: Sequence[sp.Expr],
+                    name: Namer) -> tuple[sp.Matrix, dict[tuple[int, int], Vec]]:
+    r"""``(A, F)``: :math:`A` by the composite-rigid-body algorithm, armature on the diagonal,
+    and :math:`F_j^{(i)}` (``F[(j, i)]``) for every joint and each of its ancestors."""
+    n = len(arm)
+
+    def up(F: Vec, j: int) -> Vec:
+        f = mv(tree.R[j], F[3:])
+        nn = mv(tree.R[j], F[:3])
+        pf = cross(tree.p[j], f)
+        return name.vec([nn[i] + pf[i] for i in range(3)] + f, "f")
+
+    A = sp.zeros(n, n)
+    Fin: dict[tuple[int, int], Vec] = {}
+    vidx = tree.vidx
+    for j in range(1, len(tree.parent)):
+        F = name.vec(K[j].apply(tree.s[j]), "f")
+        Fin[(j, j)] = F
+        chain = tree.ancestors[j]
+        for i in reversed(chain[:-1]):
+            F = up(F, chain[chain.index(i) + 1])
+            Fin[(j, i)] = F
+        for i in chain:
+            a = name(dot(tree.s[i], Fin[(j, i)]), "A")
+            A[vidx[i], vidx[j]] = A[vidx[j], vidx[i]] = a
+    for i in range(n):
+        if arm[i] != 0:
+            A[i, i] = name(A[i, i] + arm[i], "A")
+    return A, Fin
+
+
+def _gravity_forces(tree: _Tree, K: Mapping[int, Body], g0: Vec, name: Namer, n: int
+                    ) -> list[sp.Expr]:
+    r""":math:`Q` (module docstring), gravity carried down the tree."""
+    Qv: list[sp.Expr] = [sp.Integer(0)] * n
+    gj: dict[int, Vec] = {0: g0}
+    for j in range(1, len(tree.parent)):
+        gj[j] = name.vec(mtv(tree.R[j], gj[tree.parent[j]]), "g")
+        revolute = tree.kinds[j] == "revolute"
+        a = tree.s[j][:3] if revolute else tree.s[j][3:]
+        force = cross(K[j].h, gj[j]) if revolute else [K[j].m * x for x in gj[j]]
+        Qv[tree.vidx[j]] = name(-dot(a, force), "Q")
+    return Qv
+
+
+def _christoffel(tree: _Tree, K: Mapping[int, Body], Fin: Mapping[tuple[int, int], Vec],
+                 name: Namer, n: int) -> list[list[list[sp.Expr]]]:
+    r""":math:`c_{i,jk}` (velocity indices) from :math:`\partial A_{ij}/\partial q_k` (module
+    docstring)."""
+    s, ancestors, parent = tree.s, tree.ancestors, tree.parent
+
+    def down(m: Vec, j: int) -> Vec:
+        w, v = m[:3], m[3:]
+        wp = cross(w, tree.p[j])
+        return name.vec(mtv(tree.R[j], w) + mtv(tree.R[j], [v[i] + wp[i] for i in range(3)]),
+                        "s")
+
+    # motion vectors of ancestors in descendant frames
+    sin_: dict[tuple[int, int], Vec] = {}
+    for k in range(1, len(parent)):
+        sin_[(k, k)] = s[k]
+        for i in ancestors[k][:-1]:
+            sin_[(i, k)] = down(sin_[(i, parent[k])] if parent[k] != i else s[i], k)
+
+    def dA(i: int, j: int, k: int) -> sp.Expr:
+        r""":math:`\partial A_{ij}/\partial q_k` (joint indices)."""
+        if i not in ancestors[j]:
+            if j not in ancestors[i]:
+                return sp.Integer(0)
+            i, j = j, i
+        if k in ancestors[i]:
+            return sp.Integer(0)
+        if k in ancestors[j]:                                   # i < k <= j
+            return name(-dot(motion_cross(s[k], sin_[(i, k)]), Fin[(j, k)]), "D")
+        if j in ancestors[k]:                                   # j < k
+            w, u = sin_[(i, k)], sin_[(j, k)]
+            Ku, Kw = K[k].apply(u), K[k].apply(w)
+            return name(-dot(motion_cross(s[k], w), Ku)
+                        - dot(Kw, motion_cross(s[k], u)), "D")
+        return sp.Integer(0)
+
+    joint_of = {v: j for j, v in tree.vidx.items()}
+    D: dict[tuple[int, int, int], sp.Expr] = {}
+
+    def d(a: int, b: int, k: int) -> sp.Expr:
+        key = (min(a, b), max(a, b), k)
+        if key not in D:
+            D[key] = dA(joint_of[key[0]], joint_of[key[1]], joint_of[k])
+        return D[key]
+
+    c = [[[sp.Integer(0)] * n for _ in range(n)] for _ in range(n)]
+    for i in range(n):
+        for j in range(n):
+            for k in range(j, n):
+                val = (d(i, j, k) + d(i, k, j) - d(j, k, i)) / 2
+                c[i][j][k] = c[i][k][j] = name(val, "c") if val != 0 else sp.Integer(0)
+    return c
 
 
 def tree_dynamics(model: pin.Model, params: Mapping[int, Sequence] | None = None,
@@ -196,147 +315,19 @@ def tree_dynamics(model: pin.Model, params: Mapping[int, Sequence] | None = None
     (:mod:`.exact`). Coordinates and velocities are real symbols named after
     ``coordinate_names`` (default the joint names) and ``"d" + name``.
     """
+    q, qd = _coordinates(model, coordinate_names)
     n = model.nv
-    coords = list(coordinate_names) if coordinate_names is not None else \
-        [model.names[j] for j in range(1, model.njoints)]
-    if len(coords) != n or any(model.joints[j].nv != 1 for j in range(1, model.njoints)):
-        raise ModelError(model.name or "<pinocchio>", None,
-                         f"{len(coords)} coordinate names for nv={n}, or a joint that is not "
-                         "1-DoF: the tree closed forms need one coordinate per joint")
-    q = tuple(sp.Symbol(c, real=True) for c in coords)
-    qd = tuple(sp.Symbol("d" + c, real=True) for c in coords)
     pis = resolve_parameters(model, params)
     g0 = list(exact_translation(model.gravity.linear, tolerance)) if gravity is None \
         else [sp.sympify(x) for x in gravity]
     arm = [exact_length(a, tolerance) for a in model.armature] if armature is None \
         else [sp.sympify(a) for a in armature]
-    name = _Namer()
-    N = model.njoints
-    parent = [model.parents[j] for j in range(N)]
-    vidx = {j: model.joints[j].idx_v for j in range(1, N)}
-    kinds, R, p, s = {}, {}, {}, {}
-    for j in range(1, N):
-        kind, axis = joint_kind(model, j)
-        Rp, pp = _placement(model, j, tolerance)
-        if translations and j in translations:
-            pp = sp.Matrix([sp.sympify(x) for x in translations[j]])
-        qj = q[vidx[j]]
-        a = [sp.sympify(x) for x in axis]
-        if kind == "revolute":
-            R[j], p[j] = (Rp * rodrigues(sp.Matrix(a), qj)).applyfunc(sp.expand), list(pp)
-            s[j] = a + [0, 0, 0]
-        else:
-            R[j], p[j] = Rp, [pp[i] + (Rp * sp.Matrix(a))[i] * qj for i in range(3)]
-            s[j] = [0, 0, 0] + a
-        kinds[j] = kind
-    ancestors = {0: []}
-    for j in range(1, N):
-        ancestors[j] = ancestors[parent[j]] + [j]          # root first, j last
-
-    # composite bodies, leaves to root
-    K: dict[int, _Body] = {}
-    acc = {j: _Body(*(lambda pi: (pi[0], list(pi[1:4]), list(pi[4:10])))(
-        [sp.sympify(x) for x in pis.get(j, (0,) * 10)])) for j in range(1, N)}
-    for j in range(N - 1, 0, -1):
-        b = acc[j]
-        K[j] = _Body(name(b.m, "m"), name.vec(b.h, "h"), name.vec(b.I, "K"))
-        lam = parent[j]
-        if lam == 0:
-            continue
-        k, Rj, pj = K[j], R[j], p[j]
-        Rh = name.vec(_mv(Rj, k.h), "u")
-        I = _sym3(k.I)
-        RI = [[sp.Add(*[Rj[r, c] * I[c][t] for c in range(3)]) for t in range(3)]
-              for r in range(3)]
-        RI = [name.vec(row, "u") for row in RI]
-        RIRt = [[sp.Add(*[RI[r][c] * Rj[t, c] for c in range(3)]) for t in range(3)]
-                for r in range(3)]
-        ph = _dot(pj, Rh)
-        pp2 = _dot(pj, pj)
-        Inew = [[RIRt[r][t] + (2 * ph + k.m * pp2 if r == t else 0) - Rh[r] * pj[t]
-                 - pj[r] * Rh[t] - k.m * pj[r] * pj[t] for t in range(3)] for r in range(3)]
-        add = [Inew[0][0], Inew[0][1], Inew[1][1], Inew[0][2], Inew[1][2], Inew[2][2]]
-        pa = acc[lam]
-        acc[lam] = _Body(pa.m + k.m, [pa.h[i] + Rh[i] + k.m * pj[i] for i in range(3)],
-                         [pa.I[i] + add[i] for i in range(6)])
-
-    def up(F: Vec, j: int) -> Vec:
-        f = _mv(R[j], F[3:])
-        nn = _mv(R[j], F[:3])
-        pf = _cross(p[j], f)
-        return name.vec([nn[i] + pf[i] for i in range(3)] + f, "f")
-
-    def down(m: Vec, j: int) -> Vec:
-        w, v = m[:3], m[3:]
-        wp = _cross(w, p[j])
-        return name.vec(_mtv(R[j], w) + _mtv(R[j], [v[i] + wp[i] for i in range(3)]), "s")
-
-    # inertia matrix: F_j carried to every ancestor
-    A = sp.zeros(n, n)
-    Fin: dict[tuple[int, int], Vec] = {}
-    for j in range(1, N):
-        F = name.vec(K[j].apply(s[j]), "f")
-        Fin[(j, j)] = F
-        chain = ancestors[j]
-        for i in reversed(chain[:-1]):
-            F = up(F, chain[chain.index(i) + 1])
-            Fin[(j, i)] = F
-        for i in chain:
-            a = name(_dot(s[i], Fin[(j, i)]), "A")
-            A[vidx[i], vidx[j]] = A[vidx[j], vidx[i]] = a
-    for i in range(n):
-        if arm[i] != 0:
-            A[i, i] = name(A[i, i] + arm[i], "A")
-
-    # gravity
-    Qv = [sp.Integer(0)] * n
-    gj: dict[int, Vec] = {0: g0}
-    for j in range(1, N):
-        gj[j] = name.vec(_mtv(R[j], gj[parent[j]]), "g")
-        a = s[j][:3] if kinds[j] == "revolute" else s[j][3:]
-        force = _cross(K[j].h, gj[j]) if kinds[j] == "revolute" else \
-            [K[j].m * x for x in gj[j]]
-        Qv[vidx[j]] = name(-_dot(a, force), "Q")
-
-    # motion vectors of ancestors in descendant frames
-    sin_: dict[tuple[int, int], Vec] = {}
-    for k in range(1, N):
-        sin_[(k, k)] = s[k]
-        for i in ancestors[k][:-1]:
-            sin_[(i, k)] = down(sin_[(i, parent[k])] if parent[k] != i else s[i], k)
-
-    def dA(i: int, j: int, k: int) -> sp.Expr:
-        r""":math:`\partial A_{ij}/\partial q_k` (joint indices)."""
-        if i not in ancestors[j]:
-            if j not in ancestors[i]:
-                return sp.Integer(0)
-            i, j = j, i
-        if k in ancestors[i]:
-            return sp.Integer(0)
-        if k in ancestors[j]:                                   # i < k <= j
-            return name(-_dot(_motion_cross(s[k], sin_[(i, k)]), Fin[(j, k)]), "D")
-        if j in ancestors[k]:                                   # j < k
-            w, u = sin_[(i, k)], sin_[(j, k)]
-            Ku, Kw = K[k].apply(u), K[k].apply(w)
-            return name(-_dot(_motion_cross(s[k], w), Ku)
-                        - _dot(Kw, _motion_cross(s[k], u)), "D")
-        return sp.Integer(0)
-
-    joint_of = {vidx[j]: j for j in range(1, N)}
-    D: dict[tuple[int, int, int], sp.Expr] = {}
-
-    def d(a: int, b: int, k: int) -> sp.Expr:
-        key = (min(a, b), max(a, b), k)
-        if key not in D:
-            D[key] = dA(joint_of[key[0]], joint_of[key[1]], joint_of[k])
-        return D[key]
-
-    c = [[[sp.Integer(0)] * n for _ in range(n)] for _ in range(n)]
-    for i in range(n):
-        for j in range(n):
-            for k in range(j, n):
-                val = (d(i, j, k) + d(i, k, j) - d(j, k, i)) / 2
-                c[i][j][k] = c[i][k][j] = name(val, "c") if val != 0 else sp.Integer(0)
+    name = Namer()
+    tree = _tree(model, q, translations, tolerance)
+    K = _composite_bodies(tree, pis, name)
+    A, Fin = _inertia_matrix(tree, K, arm, name)
+    Qv = _gravity_forces(tree, K, g0, name, n)
+    c = _christoffel(tree, K, Fin, name, n)
 
     special = set(q) | set(qd) | {w for w, _ in name.assignments}
     free: dict[sp.Symbol, None] = {}

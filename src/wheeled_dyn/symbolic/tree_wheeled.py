@@ -3,7 +3,7 @@ r"""A wheeled model of any size in a document's coordinates, with intermediate v
 :func:`tree_wheeled` is :func:`~.wheeled.wheeled_symbolic` for robots whose expanded closed
 forms do not finish (TIAGo with its arm): the model's :math:`A`, :math:`c_{i,jk}`, :math:`Q` come
 from :func:`~.tree.tree_dynamics`, :math:`S(q)` and :math:`\dot S` from the same rolling
-reduction (:func:`~.wheeled.velocity_basis`; the contact rows need only the joints that carry
+reduction (:func:`~.basis.velocity_basis`; the contact rows need only the joints that carry
 the wheels), and the projection
 
 .. math::
@@ -23,13 +23,15 @@ import pinocchio as pin
 import sympy as sp
 
 from ..coordinates.spec import CoordinateSet
-from ..models.builder import WheeledModel
+from ..models.wheeled_model import WheeledModel
+from .basis import velocity_basis
 from .exact import exact_model
 from .kinematics import forward_kinematics
 from .model import _gravity
+from .parameter_modes import parameter_setup
 from .springs import spring_terms, with_springs
-from .tree import TreeDynamics, _Namer, tree_dynamics
-from .wheeled import _setup, velocity_basis
+from .tree import TreeDynamics, tree_dynamics
+from .tree_algebra import Namer
 
 
 @dataclass(frozen=True, eq=False)
@@ -59,7 +61,7 @@ class ReducedTree:
 
 def _wheel_rows(wm: WheeledModel, model: pin.Model, td: TreeDynamics, radius,
                 translations=None) -> sp.Matrix:
-    r""":math:`J_c` (2 rows per wheel, as :func:`~.wheeled.contact_rows`) from the kinematics
+    r""":math:`J_c` (2 rows per wheel, as :func:`~.basis.contact_rows`) from the kinematics
     of the joints that carry the wheels only (a reduced model)."""
     keep = set()
     for w in wm.wheels:
@@ -93,7 +95,7 @@ def reduce_tree(td: TreeDynamics, S: sp.Matrix, Sdot: sp.Matrix, nu: Sequence[sp
                                                     sp.Matrix, sp.Matrix | None]:
     r"""``(new assignments, A_ν, C_ν, Q_ν, h_ν, B_ν)`` with :math:`\dot q = S\nu`; ``Sdot`` in
     the model velocities ``td.qd`` (replaced by :math:`S\nu`)."""
-    name = _Namer()
+    name = Namer()
     name.count = len(td.assignments)
     n, m = td.n, len(nu)
     Snu = [name(sp.Add(*[S[a, b] * nu[b] for b in range(m)]), "v") for a in range(n)]
@@ -131,7 +133,7 @@ def tree_wheeled(wm: WheeledModel, cs: CoordinateSet, parameters: str = "standar
                  ) -> ReducedTree:
     r""":class:`ReducedTree` of ``wm`` in the coordinate set ``cs`` (parameters as in
     :func:`~.wheeled.wheeled_symbolic`: ``"physical"``, ``"numbers"``, ``"standard"``)."""
-    setup = _setup(wm, parameters, axle=True)
+    setup = parameter_setup(wm, parameters, axle=True)
     model = exact_model(wm.model)
     g = _gravity(model, setup["gravity"])
     td = tree_dynamics(model, setup["params"], wm.coordinate_names, gravity=list(g),

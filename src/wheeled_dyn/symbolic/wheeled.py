@@ -43,271 +43,47 @@ Parameters (``parameters=``):
 
 :func:`true_expressions` gives the elements of the WIP's terms, labelled as the comparison
 engine labels them, cached in memory and on disk.
+
+The parts: :mod:`.parameter_modes` (what each mode gives the symbolic model),
+:mod:`.basis` (:math:`S`, :math:`\dot S`, the contact rows), :mod:`.trig_solve` (the exact
+solve), :mod:`.elements` (the labelled elements).
 """
 
 from __future__ import annotations
 
 import hashlib
-from collections.abc import Mapping, Sequence
-from dataclasses import fields, replace
-from typing import TYPE_CHECKING
+from dataclasses import replace
 
-import numpy as np
-import pinocchio as pin
 import sympy as sp
-from sympy.polys.matrices import DomainMatrix
 
 from ..coordinates.spec import CoordinateSet
-from ..errors import ModelError, UnknownNameError
-from ..models.builder import WheeledModel
-from ..models.geometry import identifier
-from .lengths import length_symbols, planar_translations, translations
-from .exact import exact_length, exact_model
 from ..disk_cache import load, store
+from ..errors import ModelError
+from ..models.wheeled_model import WheeledModel
+from .basis import RANK_TOL, ROW_SEED, contact_rows, independent_rows, velocity_basis
 from .cache import _code_digest, cache_dir, cached_symbolic_model, model_fingerprint
-from .kinematics import exact_number
+from .elements import coordinate_set_key, element_expressions, velocity_products
+from .exact import exact_model
 from .model import SymbolicModel
-from .parameters import PARAMETER_NAMES, numeric_parameters
-from .simplify import canonical_trig, simplify_expr
+from .parameter_modes import (PARAMETER_MODES, PHYSICAL_LATEX, PLACEMENT_TOL,
+                              _numeric_setup, has_physical_record, parameter_setup,
+                              physical_latex, physical_symbols, standard_names)
+from .simplify import simplify_expr
 from .springs import spring_terms, with_springs
-from .transform import ReducedSymbolic, time_derivative, transform
+from .transform import ReducedSymbolic, transform
+from .trig_solve import FLOAT_NOISE, trig_solve
 
-if TYPE_CHECKING:
-    from .tree_wheeled import ReducedTree
+#: The parameter setups under the private names they had here (``compare/presentation/
+#: closed_form.py`` imports ``_standard_names`` from this module).
+_setup, _standard_names = parameter_setup, standard_names
 
-#: Parameter modes of :func:`wheeled_symbolic`.
-PARAMETER_MODES: tuple[str, ...] = ("physical", "numbers", "standard")
-#: Seed of the random point at which independent constraint rows are chosen.
-ROW_SEED: int = 7
-#: Smallest singular value ratio for a constraint row to count as independent.
-RANK_TOL: float = 1e-9
-#: Largest distance between a model's joint placement and the symbolic one at its numbers.
-PLACEMENT_TOL: float = 1e-12
-
-
-# -- parameters ---------------------------------------------------------------------------
-def physical_symbols() -> dict[str, sp.Symbol]:
-    r"""``{name: Symbol(name, real=True)}`` for every field of
-    :class:`~wheeled_dyn.models.wip_parameters.WipParameters` (``m_S, m_C, R, L, d, g, ...``)."""
-    from ..models.wip_parameters import WipParameters
-    return {f.name: sp.Symbol(f.name, real=True) for f in fields(WipParameters)}
-
-
-#: LaTeX of the physical symbols (seed 001's notation).
-PHYSICAL_LATEX: dict[str, str] = {
-    "m_S": "m_S", "m_C": "m_C", "I1": "I_1", "I2": "I_2", "I3": "I_3", "Ixy": "I_{xy}",
-    "Ixz": "I_{xz}", "Iyz": "I_{yz}", "Iw2": "I_{w2}", "Iw3": "I_{w3}", "d_x": "d_x",
-    "d_z": "d_z", "I_a": "I_a"}
-
-
-def physical_latex() -> dict[sp.Symbol, str]:
-    """``{symbol: LaTeX}`` for :func:`~.printing.to_latex`'s ``names``."""
-    P = physical_symbols()
-    return {P[k]: v for k, v in PHYSICAL_LATEX.items() if k in P}
-
-
-def _has_physical_record(wm: WheeledModel) -> bool:
-    from ..models.registry import MODELS
-    from ..models.wip_parameters import WipParameters
-    entry = MODELS.get(wm.name)
-    return entry is not None and entry.parameters is WipParameters
-
-
-def _link_at_joint(wm: WheeledModel, link: str) -> int:
-    """The joint of ``link``, checking that the link frame is the joint frame."""
-    model = wm.model
-    if not model.existFrame(link):
-        raise UnknownNameError("link", link, [f.name for f in model.frames],
-                               where=f"model {wm.name}")
-    frame = model.frames[model.getFrameId(link)]
-    if not frame.placement.isIdentity(PLACEMENT_TOL):
-        raise ModelError(wm.name, link, "the link frame is not its joint frame: the physical "
-                                        "parameters are given in the link frame")
-    return frame.parentJoint
-
-
-def _physical_setup(wm: WheeledModel) -> dict:
-    r"""Arguments of :func:`~.model.symbolic_model` for the WIP in physical symbols."""
-    from ..models.wip_parameters import standard_parameters
-    if not _has_physical_record(wm):
-        raise ModelError(wm.name, None, "no physical-parameter record: use parameters="
-                                        "'numbers' or 'standard'")
-    P = physical_symbols()
-    std = standard_parameters(P)
-    model = wm.model
-    params: dict[int, list] = {j: [0] * 10 for j in range(1, model.njoints)}
-    body = _link_at_joint(wm, "body")
-    if body != wm.body_joint_id:
-        raise ModelError(wm.name, "body", "the body link is not on the pitch joint")
-    params[body] = [std["body"][k] for k in PARAMETER_NAMES]
-    translations = {body: (0, 0, P["R"])}
-    armature = [0] * model.nv
-    for wheel, sign in zip(wm.wheels, (-1, 1)):
-        j = _link_at_joint(wm, wheel.link)
-        params[j] = [std[wheel.link][k] for k in PARAMETER_NAMES]
-        translations[j] = (0, 0, sign * P["L"])
-        armature[wheel.v_index] = P["I_a"]
-    numbers = {P["R"]: wm.geometry["R"], P["L"]: wm.geometry["L"]}
-    for j, t in translations.items():
-        want = np.array([float(sp.sympify(x).xreplace(numbers)) for x in t])
-        if np.abs(model.jointPlacements[j].translation - want).max() > PLACEMENT_TOL:
-            raise ModelError(wm.name, model.names[j], "the joint placement is not the WIP's "
-                             f"(0, 0, R) / (0, 0, -+L): {model.jointPlacements[j].translation}")
-    return dict(params=params, gravity=P["g"], translations=translations, armature=armature,
-                radius=[P["R"]] * len(wm.wheels), geometry={"R": P["R"], "L": P["L"]})
-
-
-def _standard_names(wm: WheeledModel) -> dict[int, str]:
-    r"""The name of each joint body's standard parameters (in the joint frame): the link that
-    carries the rigid body (:mod:`~wheeled_dyn.models.link_parameters`) when its frame is the
-    joint frame, so that ``XX_link`` is what a derivation's ``XX(link)`` names; else the
-    joint's name (a merged link such as ``base_footprint`` never names the whole body)."""
-    from ..models.link_parameters import rigid_bodies
-    model = wm.model
-    names = {j: model.names[j] for j in range(1, model.njoints)}
-    for body in rigid_bodies(wm):
-        frame = model.frames[model.getFrameId(body.carrier, pin.FrameType.BODY)]
-        if frame.placement.isIdentity(PLACEMENT_TOL):
-            names[frame.parentJoint] = body.carrier
-    return names
-
-
-def _numeric_setup(wm: WheeledModel, mode: str, axle: bool = False) -> dict:
-    r"""Standard or numeric parameters; with ``mode == "standard"`` the drawn lengths as
-    symbols (a planar wheeled model's ``R`` and ``L`` only with ``axle``: the tree's closed
-    forms, where the rolling rows stay polynomial in them)."""
-    model = wm.model
-    nums = numeric_parameters(model)
-    names = _standard_names(wm)
-    params: dict[int, list] = {}
-    for j, pi in nums.items():
-        if mode == "standard" and any(abs(x) > 0 for x in pi):
-            params[j] = [sp.Symbol(f"{k}_{names[j]}", real=True) for k in PARAMETER_NAMES]
-        else:
-            params[j] = [exact_number(x) for x in pi]
-    geometry = {k: exact_length(v) for k, v in wm.named_lengths().items()}
-    moved, radius = None, [exact_length(w.radius) for w in wm.wheels]
-    planar = axle and bool(wm.wheels) and wm.spec.base == "planar"
-    if mode == "standard" and wm.lengths is not None and (planar or not wm.wheels):
-        lengths = length_symbols(wm)
-        geometry.update({identifier(k): v for k, v in lengths.items()})
-        geometry.update({k: v for k, v in lengths.items() if k in wm.geometry})
-        if planar:
-            moved = planar_translations(wm, lengths)
-            radius = [lengths.get("R", r) for r in radius]
-        else:
-            moved = translations(wm, lengths)
-    return dict(params=params, gravity=None, translations=moved, armature=None,
-                radius=radius, geometry=geometry)
-
-
-def _setup(wm: WheeledModel, parameters: str, axle: bool = False) -> dict:
-    if parameters not in PARAMETER_MODES:
-        raise UnknownNameError("parameter mode", parameters, PARAMETER_MODES)
-    if parameters == "physical":
-        return _physical_setup(wm)
-    return _numeric_setup(wm, parameters, axle)
-
-
-# -- rolling ------------------------------------------------------------------------------
-def contact_rows(sym: SymbolicModel, wm: WheeledModel, radius: Sequence[sp.Expr]) -> sp.Matrix:
-    r"""The symbolic :math:`J_c(q)` (2·wheels × nv): per wheel the world x and y components of
-    :math:`v_c + \rho\,e_z\times\omega` (:math:`v_c`, :math:`\omega` of the wheel joint frame
-    in world axes), differentiated by the velocities; canonical trigonometric form."""
-    if getattr(wm, "contact", None) is not None:
-        raise ModelError(wm.name, None, "the closed forms cover wheels, not a rolling ball")
-    kin = {k.index: k for k in sym.kinematics}
-    rows = []
-    for wheel, rho in zip(wm.wheels, radius):
-        k = kin[wheel.joint_id]
-        v, w = k.R * k.v, k.R * k.omega
-        rows += [v[0] - rho * w[1], v[1] + rho * w[0]]
-    if not rows:
-        return sp.zeros(0, sym.n)
-    return sp.Matrix(rows).jacobian(list(sym.qd)).applyfunc(canonical_trig)
-
-
-def _angles(exprs: Sequence[sp.Expr]) -> dict[sp.Expr, sp.Dummy]:
-    fwd = {}
-    for e in exprs:
-        for a in sp.sympify(e).atoms(sp.sin, sp.cos):
-            fwd.setdefault(a, sp.Dummy(f"{type(a).__name__}"))
-    return fwd
-
-
-def _reduce_fraction(e: sp.Expr) -> sp.Expr:
-    """A rational function of sines and cosines with numerator and denominator each in
-    canonical form (exact: both are reduced modulo :math:`\\sin^2 + \\cos^2 = 1`)."""
-    num, den = sp.fraction(sp.cancel(sp.together(e)))
-    num, den = canonical_trig(num), canonical_trig(den)
-    return sp.cancel(num / den) if not den.has(sp.sin, sp.cos) else num / den
-
-
-#: Floats below this size in a matrix to invert are rounding noise of composed rotations
-#: (a locked joint's 1e-16): taken as 0. Other floats become the rationals they print as, so
-#: the elimination runs over exact numbers (over floats it is slow and loses digits).
-FLOAT_NOISE = 1e-12
-
-
-def _exact_numbers(M: sp.Matrix) -> sp.Matrix:
-    r"""``M`` with its floats exact: noise (:data:`FLOAT_NOISE`) as 0, others as rationals."""
-    floats = M.atoms(sp.Float)
-    if not floats:
-        return M
-    return M.xreplace({f: sp.Integer(0) if abs(f) < FLOAT_NOISE
-                       else sp.nsimplify(f, rational=True) for f in floats})
-
-
-def trig_solve(M: sp.Matrix, E: sp.Matrix) -> sp.Matrix:
-    r""":math:`X = M^{-1}E` for a square ``M`` whose entries are polynomials in parameters and
-    in sines and cosines: exact Gaussian elimination over the fraction field with
-    :math:`\sin x, \cos x` as indeterminates, then each entry reduced (:func:`_reduce_fraction`)."""
-    M, E = _exact_numbers(M), _exact_numbers(E)
-    fwd = _angles(list(M) + list(E))
-    back = {d: a for a, d in fwd.items()}
-    Md, Ed = M.xreplace(fwd), E.xreplace(fwd)
-    dm = DomainMatrix.from_Matrix(Md).to_field()
-    de = DomainMatrix.from_Matrix(Ed)
-    K = dm.domain.unify(de.domain)
-    X = dm.convert_to(K).lu_solve(de.convert_to(K)).to_Matrix()
-    return X.applyfunc(lambda e: _reduce_fraction(sp.sympify(e).xreplace(back)))
-
-
-def _random_values(exprs: Sequence[sp.Expr], rng: np.random.Generator) -> dict:
-    free = set().union(*[sp.sympify(e).free_symbols for e in exprs])
-    return {s: float(rng.uniform(0.3, 1.3)) for s in free}
-
-
-def independent_rows(J: sp.Matrix, T: sp.Matrix) -> list[int]:
-    r"""Indices of rows of ``J`` that, with all of ``T``, are linearly independent at a random
-    point (a generic configuration and parameter set)."""
-    rng = np.random.default_rng(ROW_SEED)
-    vals = _random_values(list(J) + list(T), rng)
-    f = lambda M: np.array(M.xreplace(vals).evalf(), dtype=float).reshape(M.shape)  # noqa: E731
-    Jn, chosen = f(J), f(T)
-    keep = []
-    for i in range(Jn.shape[0]):
-        trial = np.vstack([chosen, Jn[i]])
-        if trial.shape[0] > trial.shape[1]:
-            break
-        s = np.linalg.svd(trial, compute_uv=False)
-        if s[-1] > RANK_TOL * s[0]:
-            chosen, keep = trial, keep + [i]
-    return keep
-
-
-# -- coordinate sets ----------------------------------------------------------------------
-def _velocity_jacobian(cs: CoordinateSet, sym: SymbolicModel, geometry: Mapping) -> sp.Matrix:
-    from ..coordinates.spec import model_symbols
-    mq, mv = model_symbols([str(s) for s in sym.q])
-    rename = dict(zip(mq, sym.q)) | dict(zip(mv, sym.qd)) | _geometry_subs(cs, geometry)
-    nu = sp.Matrix([cs.velocity_map[v] for v in cs.velocities]).xreplace(rename)
-    return nu.jacobian(list(sym.qd))
-
-
-def _geometry_subs(cs: CoordinateSet, geometry: Mapping) -> dict:
-    return {sp.Symbol(p, real=True): sp.sympify(geometry[p]) for p in cs.parameters
-            if p in geometry}
+#: Names importable from here, where every part of the closed forms lived before it had a
+#: module of its own.
+__all__ = ["FLOAT_NOISE", "PARAMETER_MODES", "PHYSICAL_LATEX", "PLACEMENT_TOL", "RANK_TOL",
+           "ROW_SEED", "STANDARD_MAX_DOF", "_numeric_setup", "_setup", "_standard_names",
+           "contact_rows", "coordinate_set_key", "element_expressions", "independent_rows",
+           "physical_latex", "physical_symbols", "symbolic_parts", "trig_solve",
+           "true_expressions", "velocity_basis", "velocity_products", "wheeled_symbolic"]
 
 
 def wheeled_symbolic(wm: WheeledModel, cs: CoordinateSet, parameters: str = "physical",
@@ -328,50 +104,11 @@ def wheeled_symbolic(wm: WheeledModel, cs: CoordinateSet, parameters: str = "phy
     return symbolic_parts(wm, cs, parameters, simplify, model_coordinates)[1]
 
 
-def velocity_basis(wm: WheeledModel, cs: CoordinateSet, setup: Mapping, q: Sequence[sp.Symbol],
-                   qd: Sequence[sp.Symbol], J: sp.Matrix | None
-                   ) -> tuple[sp.Matrix, sp.Matrix, dict, tuple, tuple]:
-    r"""``(S, Sdot, config, pos, nu)`` of the coordinate set ``cs`` (module docstring) for
-    model coordinates ``q`` and velocities ``qd``: :math:`\dot q = S\nu`, ``Sdot`` in ``q, qd``;
-    ``config`` maps each model coordinate to its expression in the document positions ``pos``
-    (dummies, as ``nu``); ``J``: the contact rows (:func:`contact_rows`) or None."""
-    sym = type("_Coordinates", (), {"q": tuple(q), "qd": tuple(qd)})
-    geo = _geometry_subs(cs, setup["geometry"])
-    pos = tuple(sp.Dummy(p) for p in cs.positions)
-    nu = tuple(sp.Dummy(v) for v in cs.velocities)
-    doc = dict(zip(cs.position_symbols(), pos))
-    config = {sym.q[i]: sp.sympify(cs.configuration.get(name, 0)).xreplace(doc).xreplace(geo)
-              for i, name in enumerate(wm.coordinate_names)}
-    n, m = len(sym.q), len(nu)
-    if cs.kind == "holonomic":
-        g = sp.Matrix([config[qi] for qi in sym.q])
-        S = g.jacobian(list(pos))
-        Sdot = time_derivative(S, pos, nu)
-    else:
-        T = _velocity_jacobian(cs, sym, setup["geometry"])
-        if cs.rolling == "eliminate":
-            rows = independent_rows(J, T)
-            M = J.extract(rows, list(range(n))).col_join(T)
-            E = sp.zeros(len(rows), m).col_join(sp.eye(m))
-            if M.shape[0] == n:
-                S = trig_solve(M, E)
-            else:  # fewer velocities than rolling motions: the minimum-norm S, as numerically
-                S = M.T * trig_solve((M * M.T).applyfunc(canonical_trig), E)
-                S = S.applyfunc(_reduce_fraction)
-        else:
-            if T.shape[0] != n:
-                raise ModelError(wm.name, cs.name, f"{T.shape[0]} velocities for {n} model "
-                                 "velocities without rolling elimination")
-            S = trig_solve(T, sp.eye(n))
-        Sdot = time_derivative(S, sym.q, sym.qd)
-    return S, Sdot, config, pos, nu
-
-
 def symbolic_parts(wm: WheeledModel, cs: CoordinateSet, parameters: str = "physical",
                    simplify: bool = True, model_coordinates: bool = False
                    ) -> tuple[SymbolicModel, ReducedSymbolic]:
     r"""(the model's :class:`~.model.SymbolicModel`, :func:`wheeled_symbolic`'s result)."""
-    setup = _setup(wm, parameters)
+    setup = parameter_setup(wm, parameters)
     sym = cached_symbolic_model(exact_model(wm.model), setup["params"], wm.coordinate_names,
                                 setup["gravity"], simplify, translations=setup["translations"],
                                 armature=setup["armature"], real=True)
@@ -405,62 +142,6 @@ def symbolic_parts(wm: WheeledModel, cs: CoordinateSet, parameters: str = "physi
                   A=ren(red.A), C=ren(red.C), Q=ren(red.Q), h=ren(red.h), B=ren(red.B),
                   S=ren(red.S), Sdot=ren(red.Sdot), G=ren(G))
     return sym, red
-
-
-# -- elements for the reports -------------------------------------------------------------
-def velocity_products(h: sp.Expr, nu: Sequence[sp.Symbol]) -> dict[tuple[int, int], sp.Expr]:
-    r"""``{(j, k): coefficient of}`` :math:`\nu_j\nu_k` (``j <= k``; for ``j < k`` the whole
-    coefficient of the product) in a quadratic form ``h`` of the velocities ``nu``."""
-    out: dict[tuple[int, int], sp.Expr] = {}
-    expanded = sp.expand(h)
-    if expanded == 0:
-        return out
-    poly = sp.Poly(expanded, *nu)
-    for mon, coef in poly.terms():
-        idx = [i for i, e in enumerate(mon) for _ in range(e)]
-        if len(idx) != 2:
-            raise ModelError("<symbolic>", None, f"h is not quadratic in {nu}: {mon}")
-        out[(idx[0], idx[1])] = out.get((idx[0], idx[1]), 0) + coef
-    return out
-
-
-def element_expressions(red: ReducedSymbolic | ReducedTree, inputs: Sequence[str] = ()) -> dict[str, sp.Expr]:
-    r"""The elements of ``red`` labelled as the comparison engine labels them (1-based):
-    ``"A[i,j]"``, ``"C[i,j]"``, ``"Q[i]"``, ``"B[i,j]"``, ``"G[i,j]"`` and ``"h[i]:a*b"`` (the
-    coefficient of the velocity product ``a*b``, ``a`` not after ``b`` in the velocity
-    order; products with a zero coefficient are listed as 0). Each is collected by parameter
-    (:func:`~.simplify.simplify_expr`)."""
-    nu, m = red.nu, len(red.nu)
-    pars = tuple(red.parameters)
-    out: dict[str, sp.Expr] = {}
-    for key in ("A", "C", "B", "G"):
-        M = getattr(red, key, None)
-        if M is None:
-            continue
-        for i in range(M.shape[0]):
-            for j in range(M.shape[1]):
-                out[f"{key}[{i + 1},{j + 1}]"] = M[i, j]
-    for i in range(m):
-        out[f"Q[{i + 1}]"] = red.Q[i]
-    for i in range(m):
-        coeffs = velocity_products(red.h[i], nu)
-        for j in range(m):
-            for k in range(j, m):
-                c = coeffs.get((j, k), sp.Integer(0))
-                out[f"h[{i + 1}]:{nu[j]}*{nu[k]}"] = simplify_expr(c, pars) if c != 0 else c
-    return out
-
-
-def coordinate_set_key(cs: CoordinateSet) -> str:
-    """A text that changes with anything of ``cs`` the closed forms depend on (not its name or
-    description)."""
-    def text(e):
-        return sp.srepr(sp.sympify(e))
-    parts = [cs.kind, cs.rolling, repr(cs.positions), repr(cs.velocities), repr(cs.parameters),
-             repr(sorted((k, text(v)) for k, v in cs.configuration.items())),
-             repr(None if cs.velocity_map is None else
-                  sorted((k, text(v)) for k, v in cs.velocity_map.items()))]
-    return "\x00".join(parts)
 
 
 _MEMORY: dict[str, dict[str, sp.Expr] | None] = {}
@@ -497,7 +178,7 @@ def true_expressions(model: str, cs: CoordinateSet, refresh: bool = False
     from .expanded import expanded_tree
     model_entry(model)  # unknown names raise here
     wm = load_model(model)
-    mode = "physical" if _has_physical_record(wm) else "standard"
+    mode = "physical" if has_physical_record(wm) else "standard"
     tree = mode == "standard" and (wm.spec.base != "fixed" or wm.model.nv > STANDARD_MAX_DOF)
     key = _true_key(model, cs, wm) + mode
     if key in _MEMORY and not refresh:

@@ -1,0 +1,177 @@
+r"""The planar base of a wheeled body: two drive wheels on one axle, checked and placed.
+
+From the wheel centres :math:`c_l, c_r` (URDF root frame, neutral configuration) and the
+declared up direction :math:`u` (body link axes, rotated to the root frame):
+
+.. math::
+
+    a = \frac{c_r - c_l}{\lVert c_r - c_l\rVert},\quad L = \tfrac12\lVert c_r - c_l\rVert,
+    \quad u \leftarrow \frac{u - (u\cdot a)\,a}{\lVert\cdot\rVert},\quad f = u \times a,
+    \quad \ell = u \times f,
+
+and the URDF tree hangs from the mount frame :math:`(R_{HJ} = [f;\ \ell;\ u],\ (0, 0, R))` of
+the heading joint (or of the pitch joint about :math:`a`), shifted by :math:`-\tfrac12(c_l +
+c_r)`: the axle midpoint at height :math:`R` above the point :math:`(x_0, y_0)`. Each wheel's
+spin axis must lie along the axle (:data:`~.conventions.ANGLE_TOL`), the axle be horizontal
+(:data:`HORIZONTAL_TOL`), the radii agree (:data:`RADIUS_TOL`), and each wheel hang from the
+body through fixed or locked joints only.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pinocchio as pin
+
+from ..errors import ModelError
+from .conventions import ANGLE_TOL, check_sides
+from .geometry_constants import planar_lengths
+from .model_joints import (bind_springs, finish_coordinates, joint_axis, move_joint_to,
+                           unit_direction)
+from .urdf_source import UrdfSource
+from .wheeled_model import ModelSpec, Wheel, WheeledModel
+
+#: Largest |cos| between the axle and the up direction for the axle to count as horizontal
+#: (:data:`~.conventions.ANGLE_TOL`: URDFs round their angles); within it, the up direction is
+#: made exactly perpendicular to the axle (the axle, from the wheel centres, is kept).
+HORIZONTAL_TOL = ANGLE_TOL
+#: Largest distance (m) of a wheel link's origin from its spin joint's axis.
+AXIS_TOL = 1e-9
+#: Largest relative difference between the two wheel radii.
+RADIUS_TOL = 1e-9
+#: Shortest direction vector (``up``, a wheel axis) taken as a direction.
+
+
+def _wheel_geometry(source: UrdfSource, spec: ModelSpec, model: pin.Model, data: pin.Data,
+                    link: str) -> tuple[np.ndarray, np.ndarray, float, float, str]:
+    """Centre, spin axis (in the URDF root frame), radius, width and joint name of a wheel
+    (the joint that spins it: the first moving joint above ``link``)."""
+    joint = source.joint_to(link)
+    while joint.type == "fixed" or joint.name in spec.lock:
+        joint = source.joint_to(joint.parent)
+    if joint.type not in ("continuous", "revolute"):
+        raise ModelError(spec.name, link, f"wheel joint {joint.name!r} is {joint.type!r}, "
+                                          "expected continuous or revolute")
+    jid = model.getJointId(joint.name)
+    centre = data.oMf[model.getFrameId(link, pin.FrameType.BODY)].translation.copy()
+    axis = data.oMi[jid].rotation @ joint_axis(model.joints[jid])
+    offset = centre - data.oMi[jid].translation
+    if np.linalg.norm(offset - (offset @ axis) * axis) > AXIS_TOL:
+        raise ModelError(spec.name, link, f"the wheel link's origin is not on the spin axis of "
+                                          f"joint {joint.name!r}")
+    cylinder = source.cylinder(link)
+    if spec.radius is not None:
+        radius = float(spec.radius)
+        width = cylinder[1] if cylinder else 0.05
+    elif cylinder is None:
+        raise ModelError(spec.name, link, "wheel has no cylinder geometry to read its radius "
+                                          "from; give the radius explicitly")
+    else:
+        radius, width = cylinder
+    if not radius > 0:
+        raise ModelError(spec.name, link, f"wheel radius {radius} is not positive")
+    return centre, axis, radius, width, joint.name
+
+
+
+def _check_on_body(spec: ModelSpec, source: UrdfSource, body: str, wheel: str,
+                   wheel_joint: str) -> None:
+    r"""The wheel's spin joint hangs from ``body`` through fixed or locked joints only (the
+    rolling constraint of a planar base needs the axle on one rigid body)."""
+    joint = source.joint_to(wheel)
+    while joint.name != wheel_joint:
+        joint = source.joint_to(joint.parent)
+    link = joint.parent
+    while link != body:
+        if link == source.root_link():
+            raise ModelError(spec.name, wheel, f"the wheel does not hang from the body {body!r}")
+        joint = source.joint_to(link)
+        if joint.type != "fixed" and joint.name not in spec.lock:
+            raise ModelError(spec.name, joint.name, f"this joint moves wheel {wheel!r} relative "
+                                                    f"to the body {body!r}: lock it (a planar "
+                                                    "base needs the axle on one rigid body), or "
+                                                    "use base 'free' with rolling wheels")
+        link = joint.parent
+
+
+
+def build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
+                 urdf_geom: pin.GeometryModel) -> WheeledModel:
+    r"""The planar (wheeled) model of ``spec`` on the URDF's model and visual geometry
+    (module docstring); :class:`ModelError` for wheels that do not fit a planar base."""
+    if not spec.body:
+        raise ModelError(spec.name, None, "a planar (wheeled) model needs its body link")
+    if len(spec.wheels) != 2:
+        raise ModelError(spec.name, None, f"a planar model needs two drive wheels (left, right), "
+                                          f"got {len(spec.wheels)}")
+    body_link = source.link(spec.body)
+    for w in spec.wheels:
+        source.link(w)
+    data = urdf_model.createData()
+    pin.forwardKinematics(urdf_model, data, pin.neutral(urdf_model))
+    pin.updateFramePlacements(urdf_model, data)
+
+    (cl, al, rl, wl, jl), (cr, ar, rr, wr, jr) = (
+        _wheel_geometry(source, spec, urdf_model, data, link) for link in spec.wheels)
+    for link, jname in ((spec.wheels[0], jl), (spec.wheels[1], jr)):
+        _check_on_body(spec, source, body_link, link, jname)
+    if abs(rl - rr) > RADIUS_TOL * max(rl, rr):
+        raise ModelError(spec.name, None, f"wheel radii differ: {rl} and {rr}")
+    axle = cr - cl
+    half_track = 0.5 * float(np.linalg.norm(axle))
+    if half_track <= 0:
+        raise ModelError(spec.name, None, "the two wheel centres coincide")
+    axle /= 2 * half_track
+    body_rot = data.oMf[urdf_model.getFrameId(body_link)].rotation
+    up = body_rot @ unit_direction(spec, "up", spec.up, body_link)
+    for link, axis in ((spec.wheels[0], al), (spec.wheels[1], ar)):
+        if np.linalg.norm(np.cross(axis, axle)) > np.sin(ANGLE_TOL):
+            raise ModelError(spec.name, link, "wheel spin axis is not along the axle (more "
+                                              f"than {ANGLE_TOL} rad off)")
+    if abs(float(up @ axle)) > np.sin(HORIZONTAL_TOL):
+        raise ModelError(spec.name, body_link, "the axle is not horizontal for the declared "
+                                               f"up direction {spec.up} (more than "
+                                               f"{HORIZONTAL_TOL} rad off)")
+    up = up - (up @ axle) * axle
+    up /= np.linalg.norm(up)
+    forward = np.cross(up, axle)
+    left = np.cross(up, forward)
+    check_sides(spec, body_rot, forward)
+    R_HJ = np.vstack([forward, left, up])        # root-frame vectors -> heading frame
+    centre = 0.5 * (cl + cr)
+
+    base = pin.Model()
+    base.name = spec.name
+    parent = 0
+    for name, jmodel in (("x0", pin.JointModelPX()), ("y0", pin.JointModelPY()),
+                         ("psi", pin.JointModelRZ())):
+        parent = base.addJoint(parent, jmodel, pin.SE3.Identity(), name)
+        base.appendBodyToJoint(parent, pin.Inertia.Zero(), pin.SE3.Identity())
+        base.addJointFrame(parent, -1)
+    # the mount frame has the URDF root's axes, at the axle midpoint, axle height above ground
+    mount_in_heading = pin.SE3(R_HJ, np.array([0.0, 0.0, rl]))
+    names = ["x0", "y0", "psi"]
+    if spec.pitch:
+        parent = base.addJoint(parent, pin.JointModelRevoluteUnaligned(axle), mount_in_heading,
+                               "phi")
+        base.appendBodyToJoint(parent, pin.Inertia.Zero(), pin.SE3.Identity())
+        names.append("phi")
+        mount_in_heading = pin.SE3.Identity()
+    frame = base.addFrame(pin.Frame("mount", parent, 0, mount_in_heading, pin.FrameType.OP_FRAME))
+    model, geom = pin.appendModel(base, urdf_model, pin.GeometryModel(), urdf_geom, frame,
+                                  pin.SE3(np.eye(3), -centre))
+    coordinate_names = finish_coordinates(spec, model, names)
+    wheels = []
+    for link, side, jname, width in ((spec.wheels[0], "left", jl, wl),
+                                     (spec.wheels[1], "right", jr, wr)):
+        jid = model.getJointId(jname)
+        move_joint_to(model, geom, jid, model.frames[model.getFrameId(link, pin.FrameType.BODY)])
+        wheels.append(Wheel(link, side, jname, jid, model.joints[jid].idx_v, rl, width))
+    body_jid = model.frames[model.getFrameId(body_link)].parentJoint
+    inputs = tuple(spec.inputs) if spec.inputs is not None else ("tau_l", "tau_r")
+    if len(inputs) != 2:
+        raise ModelError(spec.name, None, f"{len(inputs)} input names for two wheel motors")
+    lengths = planar_lengths(spec, source, model, rl, half_track)
+    return WheeledModel(spec.name, spec, model, geom, tuple(wheels), coordinate_names, inputs,
+                        lengths.constant_values(lengths.values()), body_jid,
+                        springs=bind_springs(spec, model, coordinate_names), lengths=lengths)
+
