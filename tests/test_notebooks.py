@@ -28,9 +28,20 @@ def _maker():
 
 
 def _kinds(nb) -> list[list[tuple[str, ...]]]:
-    r"""Per code cell, its outputs' kinds: stream name or the MIME types shown."""
-    return [[(o["output_type"], o.get("name", ""), *sorted(o.get("data", {})))
-             for o in c.get("outputs", [])] for c in nb.cells if c.cell_type == "code"]
+    r"""Per code cell, its outputs' kinds: stream name or the MIME types shown. Consecutive
+    chunks of one stream count once: how a kernel splits printed text into chunks depends on
+    when it flushes (a cold cache's longer first cell gave two where the stored run had one)."""
+    out = []
+    for c in nb.cells:
+        if c.cell_type != "code":
+            continue
+        kinds: list[tuple[str, ...]] = []
+        for o in c.get("outputs", []):
+            kind = (o["output_type"], o.get("name", ""), *sorted(o.get("data", {})))
+            if not (kind[0] == "stream" and kinds and kinds[-1] == kind):
+                kinds.append(kind)
+        out.append(kinds)
+    return out
 
 
 def _execute(nb, path: Path = NOTEBOOK_DIR):
