@@ -56,6 +56,7 @@ __getattr__, __dir__, __all__ = attach(__name__, {
     "element_expressions": ".elements",
     "physical_symbols": ".parameter_modes",
     "true_expressions": ".wheeled",
+    "lengths_are_symbols": ".wheeled",
     "velocity_products": ".elements",
     "wheeled_symbolic": ".wheeled",
 })

@@ -109,11 +109,12 @@ def lambdify_terms(sym: HasTerms, names: Sequence[str] | None = None,
 
 def parameter_vector(sym: HasTerms, model: pin.Model | None = None,
                      values: Mapping[sp.Symbol | str, float] | None = None) -> np.ndarray:
-    """Values of ``sym.parameters``: the inertial symbols of ``sym.params`` from ``model``'s
-    own inertias (when given), then ``values`` (by symbol or name; these win). Raises
+    """Values of ``sym.parameters``: the inertial symbols of ``sym.params`` and gravity's
+    magnitude ``g`` from ``model`` (when given), then ``values`` (by symbol or name; these win). Raises
     :class:`UnknownNameError` for a parameter left without a value."""
     table: dict[str, float] = {}
     if model is not None:
+        table["g"] = float(np.linalg.norm(model.gravity.linear))   # the magnitude's symbol
         nums = numeric_parameters(model)
         for j, pis in getattr(sym, "params", {}).items():
             for x, val in zip(pis, nums[j]):

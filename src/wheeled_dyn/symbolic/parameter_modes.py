@@ -126,9 +126,10 @@ def standard_names(wm: WheeledModel) -> dict[int, str]:
 
 
 def _numeric_setup(wm: WheeledModel, mode: str, axle: bool = False) -> dict:
-    r"""Standard or numeric parameters; with ``mode == "standard"`` the drawn lengths as
-    symbols (a planar wheeled model's ``R`` and ``L`` only with ``axle``: the tree's closed
-    forms, where the rolling rows stay polynomial in them)."""
+    r"""Standard or numeric parameters; with ``mode == "standard"`` gravity's magnitude as the
+    symbol ``g`` (the parameter sets draw it) and the drawn lengths as symbols (a planar
+    wheeled model's ``R`` and ``L`` only with ``axle``: the tree's closed forms, where the
+    rolling rows stay polynomial in them)."""
     model = wm.model
     nums = numeric_parameters(model)
     names = standard_names(wm)
@@ -145,13 +146,13 @@ def _numeric_setup(wm: WheeledModel, mode: str, axle: bool = False) -> dict:
         lengths = length_symbols(wm)
         geometry.update({identifier(k): v for k, v in lengths.items()})
         geometry.update({k: v for k, v in lengths.items() if k in wm.geometry})
-        if planar:
-            moved = planar_translations(wm, lengths)
+        moved = translations(wm, lengths)
+        if planar:                  # the axle and wheels through R and L, the rest by name
+            moved = {**(moved or {}), **(planar_translations(wm, lengths) or {})} or None
             radius = [lengths.get("R", r) for r in radius]
-        else:
-            moved = translations(wm, lengths)
-    return dict(params=params, gravity=None, translations=moved, armature=None,
-                radius=radius, geometry=geometry)
+    drawn_g = mode == "standard" and bool(np.any(model.gravity.linear))
+    return dict(params=params, gravity=sp.Symbol("g", real=True) if drawn_g else None,
+                translations=moved, armature=None, radius=radius, geometry=geometry)
 
 
 def parameter_setup(wm: WheeledModel, parameters: str, axle: bool = False) -> dict:

@@ -79,7 +79,7 @@ _setup, _standard_names = parameter_setup, standard_names
 
 #: Names importable from here, where every part of the closed forms lived before it had a
 #: module of its own.
-__all__ = ["FLOAT_NOISE", "PARAMETER_MODES", "PHYSICAL_LATEX", "PLACEMENT_TOL", "RANK_TOL",
+__all__ = ["FLOAT_NOISE", "lengths_are_symbols", "PARAMETER_MODES", "PHYSICAL_LATEX", "PLACEMENT_TOL", "RANK_TOL",
            "ROW_SEED", "STANDARD_MAX_DOF", "_numeric_setup", "_setup", "_standard_names",
            "contact_rows", "coordinate_set_key", "element_expressions", "independent_rows",
            "physical_latex", "physical_symbols", "symbolic_parts", "trig_solve",
@@ -162,6 +162,22 @@ def _true_key(model: str, cs: CoordinateSet, wm: WheeledModel) -> str:
     return h.hexdigest()
 
 
+def _tree(wm: WheeledModel, mode: str) -> bool:
+    return mode == "standard" and (wm.spec.base != "fixed" or wm.model.nv > STANDARD_MAX_DOF)
+
+
+def lengths_are_symbols(model: str) -> bool:
+    r"""Whether :func:`true_expressions` of ``model`` writes every length the parameter sets
+    draw as a symbol (the WIP's ``R, L``; a model without wheels; a planar wheeled model's
+    ``R, L`` in the tree's forms). Where not, its closed forms hold at the URDF's lengths
+    only: fit to print, not to be solved for a document's symbols or pasted back."""
+    from ..models.registry import load_model
+    wm = load_model(model)
+    if has_physical_record(wm) or wm.lengths is None or not wm.wheels:
+        return True
+    return _tree(wm, "standard") and wm.spec.base == "planar" and len(wm.wheels) == 2
+
+
 def true_expressions(model: str, cs: CoordinateSet, refresh: bool = False
                      ) -> dict[str, sp.Expr] | None:
     r"""The true elements of model ``model`` (a registry name) in the coordinate set ``cs``,
@@ -179,7 +195,7 @@ def true_expressions(model: str, cs: CoordinateSet, refresh: bool = False
     model_entry(model)  # unknown names raise here
     wm = load_model(model)
     mode = "physical" if has_physical_record(wm) else "standard"
-    tree = mode == "standard" and (wm.spec.base != "fixed" or wm.model.nv > STANDARD_MAX_DOF)
+    tree = _tree(wm, mode)
     key = _true_key(model, cs, wm) + mode
     if key in _MEMORY and not refresh:
         return _MEMORY[key]

@@ -12,6 +12,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from pathlib import Path
 
+import numpy as np
 import sympy as sp
 from sympy.core.function import AppliedUndef
 
@@ -45,12 +46,14 @@ def _standard_names(model: str) -> Callable[[sp.Expr], sp.Expr]:
     r"""For a model without a physical record: Khalil calls ``XX(link)`` → the symbolic
     engine's symbols ``XX_link``, the model's lengths and constants as its closed forms write
     them (a drawn length a symbol: ``origin_x(elbow)`` → ``origin_x_elbow``, a length listed
-    with a constant → that constant), its other names (gravity) → their values as exact
-    numbers, as in its closed forms."""
+    with a constant → that constant; gravity's magnitude ``g``), its other names → their
+    values as exact numbers, as in its closed forms."""
     from ...models.registry import load_model, model_parameters
     from ...symbolic.lengths import length_symbols
     wm = load_model(model)
     lengths = length_symbols(wm) if wm.lengths is not None else {}
+    if np.any(wm.model.gravity.linear):       # drawn: the symbol g, as the closed forms
+        lengths = {**lengths, "g": sp.Symbol("g", real=True)}
     numbers = {sp.Symbol(k, real=True): lengths.get(k, sp.nsimplify(v, rational=True))
                for k, v in model_parameters(wm).items() if "(" not in k}
     plain = {sp.Symbol(s.name): v for s, v in numbers.items()}
@@ -205,7 +208,7 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
     symbols where its declarations determine the parameters (:func:`.in_document.in_document`:
     then the truth so written is returned), else in the model's."""
     try:
-        from ...symbolic import true_expressions
+        from ...symbolic import lengths_are_symbols, true_expressions
     except ImportError:
         return None
     truth = true_expressions(d.model, cs)
@@ -214,7 +217,8 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
     physical = model_entry(d.model).parameters is WipParameters
     to_model = model_expression(d, standard=not physical)
     assumed = family_substitution(families) if physical else uniform_substitution(d, uniform)
-    ours = in_document(d, truth, to_model, assumed, families, standard=not physical)
+    ours = in_document(d, truth, to_model, assumed, families, standard=not physical) \
+        if lengths_are_symbols(d.model) else None        # else true at the URDF's lengths only
     if ours is not None:
         truth, physical = ours, True
         values = {s.symbol: to_model(s.symbol) for s in d.symbols.values()}
