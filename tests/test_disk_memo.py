@@ -148,3 +148,36 @@ def test_a_comparison_from_remembered_forms_is_the_comparison_from_scratch(tmp_p
     assert any(r.residual not in (None, "0") for r in cold.records)
     for memo in MEMOS:
         memo.forget()
+
+
+def test_a_second_process_finds_every_form_the_first_remembered(tmp_path, monkeypatch):
+    r"""Two processes with different hash seeds (as every two runs have) compare the same
+    derivation: the second finds every printed form, compiled function and truth in the
+    document's symbols the first remembered, so the memo files gain no entry. Keyed by the
+    pickles of SymPy expressions, which also hold the assumptions a process asked about, they
+    did (seed 001's Kim (6)-(8): the truth in its symbols and four compiled functions were made
+    again at every run)."""
+    import os
+    import subprocess
+    import sys
+
+    from wheeled_dyn.compare.presentation.in_document import IN_DOCUMENT
+    path = next(p for p in builtin_derivations("seed001") if p.name == "kim_eq6_8.toml")
+    code = ("import sys\nfrom wheeled_dyn.compare.engine import ComparisonEngine\n"
+            "from wheeled_dyn.derivations import load_derivation\n"
+            "ComparisonEngine(samples=100, param_sets=2, seed=1).compare("
+            "load_derivation(sys.argv[1]))\n")
+    monkeypatch.setenv(CACHE_ENV, str(tmp_path / "cache"))    # load() checks with its key
+    counts = []
+    for seed in ("1", "2"):
+        env = {**os.environ, CACHE_ENV: str(tmp_path / "cache"), "PYTHONHASHSEED": seed,
+               "WHEELED_DYN_REUSE": "forms"}
+        done = subprocess.run([sys.executable, "-c", code, str(path)], env=env,
+                              capture_output=True, text=True, timeout=600)
+        assert done.returncode == 0, done.stderr[-2000:]
+        files = sorted((tmp_path / "cache").rglob("*.pickle"))
+        counts.append({f.name: len(load(f, dict) or {}) for f in files
+                       if f.parent.name in ("compare", "compiled")})
+    assert counts[0] == counts[1]
+    assert any(name.startswith(IN_DOCUMENT.name) and n for name, n in counts[0].items())
+    assert all(counts[0].values())

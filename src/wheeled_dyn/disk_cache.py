@@ -165,11 +165,11 @@ class DiskMemo:
 
     def get(self, key: Hashable, compute: Callable[[], T]) -> T:
         r"""The value remembered under ``key``, else ``compute()``, remembered. Entries are
-        kept under the SHA-256 of the key's pickle (a SymPy expression pickles to the same
-        bytes in every process, and the file then holds no expressions to rebuild when
-        read); a key that cannot be pickled is computed every time."""
+        kept under the SHA-256 of the pickle of the key's :func:`canonical` form (the file
+        then holds no expressions to rebuild when read); a key that cannot be pickled is
+        computed every time."""
         try:
-            digest = hashlib.sha256(pickle.dumps(key, protocol=4)).digest()
+            digest = hashlib.sha256(pickle.dumps(canonical(key), protocol=4)).digest()
         except Exception:
             return compute()
         found = self.entries()
@@ -205,6 +205,24 @@ class DiskMemo:
                         pass
 
 
+def canonical(key: object) -> object:
+    r"""``key`` with each SymPy object replaced by its ``srepr`` (in tuples, lists, frozensets
+    and dictionaries, recursively). A SymPy object's pickle also holds the assumptions it was
+    asked about in this process (``_assumptions``), so equal expressions pickled to different
+    bytes in different runs and a remembered form was never found again; its ``srepr`` is its
+    structure only (a :class:`~sympy.core.symbol.Dummy`'s differs per process: a miss)."""
+    import sympy as sp
+    if isinstance(key, (sp.Basic, sp.MatrixBase)):
+        return ("sympy", sp.srepr(key))
+    if isinstance(key, (tuple, list)):
+        return type(key).__name__, tuple(canonical(k) for k in key)
+    if isinstance(key, frozenset):
+        return "frozenset", tuple(sorted((canonical(k) for k in key), key=repr))
+    if isinstance(key, dict):
+        return "dict", tuple((canonical(k), canonical(v)) for k, v in key.items())
+    return key
+
+
 #: Entries a :class:`DiskMemo` file keeps (the newest).
 MEMO_LIMIT = 20000
 _MEMOS: list[DiskMemo] = []
@@ -216,5 +234,5 @@ def save_memos() -> None:
         memo.save()
 
 
-__all__ = ["CACHE_ENV", "MAGIC", "MAX_ENTRY_BYTES", "REUSE_ENV", "DiskMemo", "cache_root", "load",
+__all__ = ["CACHE_ENV", "MAGIC", "canonical", "MAX_ENTRY_BYTES", "REUSE_ENV", "DiskMemo", "cache_root", "load",
            "reuse_enabled", "save_memos", "store", "without_reuse"]

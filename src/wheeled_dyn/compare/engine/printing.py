@@ -77,7 +77,7 @@ def corrected(d: Derivation, equations: Sequence[EquationRecord], fixes: Correct
         if row is None:
             out.append(e)
             continue
-        text, latex = written(d, row, names)
+        text, latex = written(row, names)
         out.append(replace(e, corrected=text, corrected_latex=latex))
     return out
 

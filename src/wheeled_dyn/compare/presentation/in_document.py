@@ -19,6 +19,7 @@ velocities and inputs, :math:`\sum_j T_{ij}\ddot q_j + \sum_{j\le k} T_{i,jk}\nu
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 
 import sympy as sp
@@ -140,50 +141,49 @@ def _in_document(d: Derivation, wm, truth: Mapping[str, sp.Expr],
     return out
 
 
+@dataclass(frozen=True)
+class CorrectedRow:
+    r"""An equation as it should read: its left side as ``terms`` (coefficient, then the
+    acceleration, the velocity product or 1 it multiplies, in the document's order) and its
+    right side ``rhs`` (the inputs)."""
+
+    terms: tuple[tuple[sp.Expr, sp.Expr], ...]
+    rhs: sp.Expr
+
+
 def corrected_row(d: Derivation, i: int, truth: Mapping[str, sp.Expr],
-                  weights: Sequence[sp.Expr]) -> sp.Eq | None:
+                  weights: Sequence[sp.Expr]) -> CorrectedRow | None:
     r"""Equation ``i`` as it should read in the document's frame (``weights``: the true rows
-    it combines, in the document's symbols), or None where an element is not known."""
-    n, v, a = d.n, d.velocities, d.accelerations
-    lhs, rhs = sp.Integer(0), sp.Integer(0)
-    for k, w in enumerate(weights):
-        if w == 0:
-            continue
-        row = sp.Integer(0)
-        for j in range(n):
-            t = truth.get(f"A[{k + 1},{j + 1}]")
-            if t is None:
-                return None
-            row += t * a[j]
-        for j in range(n):
-            for m in range(j, n):
-                t = truth.get(f"h[{k + 1}]:{v[j]}*{v[m]}")
-                if t is None:
-                    return None
-                row += t * v[j] * v[m]
-        q = truth.get(f"Q[{k + 1}]")
-        if q is None:
+    it combines, in the document's symbols): each coefficient :math:`\sum_k w_k T_{k\cdot}` of
+    the truth's already simplified elements (simplified again only where several rows are
+    combined), or None where an element is not known or the row is longer than
+    :data:`CORRECTED_LIMIT` operations."""
+    used = [(k, w) for k, w in enumerate(weights) if w != 0]
+    n, v = d.n, d.velocities
+    keys: list[tuple[str, sp.Expr]] = [(f"A[{{k}},{j + 1}]", d.accelerations[j])
+                                       for j in range(n)]
+    keys += [(f"h[{{k}}]:{v[j]}*{v[m]}", v[j] * v[m]) for j in range(n) for m in range(j, n)]
+    keys += [("Q[{k}]", sp.Integer(1))]
+    terms = []
+    for label, key in keys:
+        parts = [(w, truth.get(label.format(k=k + 1))) for k, w in used]
+        if any(t is None for _, t in parts):
             return None
-        lhs += w * (row + q)
-        rhs += w * _inputs(d, k, truth)
-    lhs, rhs = sp.expand(lhs), sp.expand(rhs)
-    if sp.count_ops(lhs) + sp.count_ops(rhs) > CORRECTED_LIMIT:
+        c = sp.Add(*(w * t for w, t in parts))
+        c = simplify_expr(c) if len(parts) > 1 else sp.factor_terms(c)
+        if c != 0:
+            terms.append((c, key))
+    rhs = sp.expand(sp.Add(*(w * _inputs(d, k, truth) for k, w in used)))
+    if sum(sp.count_ops(c) for c, _ in terms) + sp.count_ops(rhs) > CORRECTED_LIMIT:
         return None
-    return sp.Eq(lhs, rhs, evaluate=False)
+    return CorrectedRow(tuple(terms), rhs)
 
 
-def written(d: Derivation, row: sp.Eq, names: Mapping[sp.Symbol, str]) -> tuple[str, str]:
-    r"""Text and LaTeX of a corrected ``row``: its left side collected by the accelerations
-    and the velocity products (each coefficient simplified), ``names`` the LaTeX of the
-    velocities and accelerations."""
-    v = d.velocities
-    keys = [*d.accelerations, *(v[j] * v[k] for j in range(d.n) for k in range(j, d.n))]
-    collected = sp.collect(sp.expand(row.lhs), keys, evaluate=False)
-    terms = [(sp.factor_terms(sp.simplify(collected[k])), k) for k in keys if k in collected]
-    rest = sp.simplify(collected.get(sp.Integer(1), sp.Integer(0)))
-    terms += [(rest, sp.Integer(1))] if rest != 0 else []
-    text = _joined(terms, sp.sstr, "*")
-    latex = _joined(terms, lambda e: sp.latex(e, symbol_names=dict(names)), " ")
+def written(row: CorrectedRow, names: Mapping[sp.Symbol, str]) -> tuple[str, str]:
+    r"""Text and LaTeX of a corrected ``row`` (``names``: the LaTeX of the velocities and
+    accelerations)."""
+    text = _joined(row.terms, sp.sstr, "*")
+    latex = _joined(row.terms, lambda e: sp.latex(e, symbol_names=dict(names)), " ")
     return (f"{text} = {sp.sstr(row.rhs)}",
             f"{latex} = {sp.latex(row.rhs, symbol_names=dict(names))}")
 
@@ -218,4 +218,4 @@ def _inputs(d: Derivation, k: int, truth: Mapping[str, sp.Expr]) -> sp.Expr:
     return out
 
 
-__all__ = ["CORRECTED_LIMIT", "corrected_row", "in_document", "parameter_solution", "written"]
+__all__ = ["CORRECTED_LIMIT", "CorrectedRow", "corrected_row", "in_document", "parameter_solution", "written"]
