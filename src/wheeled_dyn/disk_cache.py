@@ -165,11 +165,11 @@ class DiskMemo:
 
     def get(self, key: Hashable, compute: Callable[[], T]) -> T:
         r"""The value remembered under ``key``, else ``compute()``, remembered. Entries are
-        kept under the SHA-256 of the pickle of the key's :func:`canonical` form (the file
+        kept under the SHA-256 of the key's bytes (:func:`key_bytes`) (the file
         then holds no expressions to rebuild when read); a key that cannot be pickled is
         computed every time."""
         try:
-            digest = hashlib.sha256(pickle.dumps(canonical(key), protocol=4)).digest()
+            digest = hashlib.sha256(key_bytes(key)).digest()
         except Exception:
             return compute()
         found = self.entries()
@@ -208,9 +208,10 @@ class DiskMemo:
 def canonical(key: object) -> object:
     r"""``key`` with each SymPy object replaced by its ``srepr`` (in tuples, lists, frozensets
     and dictionaries, recursively). A SymPy object's pickle also holds the assumptions it was
-    asked about in this process (``_assumptions``), so equal expressions pickled to different
-    bytes in different runs and a remembered form was never found again; its ``srepr`` is its
-    structure only (a :class:`~sympy.core.symbol.Dummy`'s differs per process: a miss)."""
+    asked about in this process, and the order of an ``Add``'s or ``Mul``'s arguments may
+    differ between processes, so equal expressions pickled to different bytes in different
+    runs and a remembered form was never found again; ``srepr`` prints the terms in their
+    canonical order (a :class:`~sympy.core.symbol.Dummy`'s differs per process: a miss)."""
     import sympy as sp
     if isinstance(key, (sp.Basic, sp.MatrixBase)):
         return ("sympy", sp.srepr(key))
@@ -221,6 +222,12 @@ def canonical(key: object) -> object:
     if isinstance(key, dict):
         return "dict", tuple((canonical(k), canonical(v)) for k, v in key.items())
     return key
+
+
+def key_bytes(key: object) -> bytes:
+    r"""The bytes a :class:`DiskMemo` digests for ``key``: the pickle of its
+    :func:`canonical` form, equal for equal keys in every process."""
+    return pickle.dumps(canonical(key), protocol=4)
 
 
 #: Entries a :class:`DiskMemo` file keeps (the newest).
@@ -234,5 +241,5 @@ def save_memos() -> None:
         memo.save()
 
 
-__all__ = ["CACHE_ENV", "MAGIC", "canonical", "MAX_ENTRY_BYTES", "REUSE_ENV", "DiskMemo", "cache_root", "load",
+__all__ = ["CACHE_ENV", "MAGIC", "canonical", "key_bytes", "MAX_ENTRY_BYTES", "REUSE_ENV", "DiskMemo", "cache_root", "load",
            "reuse_enabled", "save_memos", "store", "without_reuse"]
