@@ -205,6 +205,12 @@ class DiskMemo:
                         pass
 
 
+#: The ``srepr`` of expressions met in keys in this process (at most :data:`SREPR_LIMIT`):
+#: the same expression is looked up in several memos.
+_SREPR: dict = {}
+SREPR_LIMIT = 100_000
+
+
 def canonical(key: object) -> object:
     r"""``key`` with each SymPy object replaced by its ``srepr`` (in tuples, lists, frozensets
     and dictionaries, recursively). A SymPy object's pickle also holds the assumptions it was
@@ -213,7 +219,14 @@ def canonical(key: object) -> object:
     runs and a remembered form was never found again; ``srepr`` prints the terms in their
     canonical order (a :class:`~sympy.core.symbol.Dummy`'s differs per process: a miss)."""
     import sympy as sp
-    if isinstance(key, (sp.Basic, sp.MatrixBase)):
+    if isinstance(key, sp.Basic):
+        text = _SREPR.get(key)
+        if text is None:
+            if len(_SREPR) >= SREPR_LIMIT:
+                _SREPR.clear()
+            text = _SREPR[key] = sp.srepr(key)
+        return ("sympy", text)
+    if isinstance(key, sp.MatrixBase):
         return ("sympy", sp.srepr(key))
     if isinstance(key, (tuple, list)):
         return type(key).__name__, tuple(canonical(k) for k in key)
