@@ -23,6 +23,7 @@ from sympy.polys.matrices.exceptions import DMNonInvertibleMatrixError
 from ..coordinates.spec import CoordinateSet
 from ..models.wheeled_model import WheeledModel
 from .simplify import simplify_matrix
+from .tree_algebra import TooLarge, inliner
 from .tree_wheeled import ReducedTree, tree_wheeled
 
 #: Largest number of terms of one expanded intermediate variable (a free block's largest has
@@ -30,33 +31,6 @@ from .tree_wheeled import ReducedTree, tree_wheeled
 MAX_TERMS = 2000
 #: Largest number of degrees of freedom of the model tried at all (its tree is built first).
 MAX_DOF = 10
-
-
-class TooLarge(Exception):
-    r"""An intermediate variable grew past :data:`MAX_TERMS` (internal: :func:`expanded_tree`
-    returns None)."""
-
-
-def _expander(rt: ReducedTree, limit: int):
-    definitions = dict(rt.assignments)
-    memo: dict[sp.Symbol, sp.Expr] = {}
-
-    def full(e: sp.Expr) -> sp.Expr:
-        subs = {}
-        for s in e.free_symbols:
-            if s in definitions:
-                if s not in memo:
-                    out = sp.expand(full(definitions[s]))
-                    if len(sp.Add.make_args(out)) > limit:
-                        raise TooLarge(str(s))
-                    memo[s] = out
-                subs[s] = memo[s]
-        out = sp.expand(e.xreplace(subs)) if subs else sp.expand(e)
-        if len(sp.Add.make_args(out)) > limit:
-            raise TooLarge("element")
-        return out
-
-    return full
 
 
 def expanded_tree(wm: WheeledModel, cs: CoordinateSet, parameters: str = "standard",
@@ -75,7 +49,7 @@ def expanded_tree(wm: WheeledModel, cs: CoordinateSet, parameters: str = "standa
         rt = tree_wheeled(wm, cs, parameters)
     except DMNonInvertibleMatrixError:  # rolling rows singular in the drawn R, L as symbols
         return None
-    full = _expander(rt, limit)
+    full = inliner(rt.assignments, expand=True, limit=limit)
     pars = tuple(rt.parameters)
 
     def done(M: sp.Matrix | None) -> sp.Matrix | None:

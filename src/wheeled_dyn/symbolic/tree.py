@@ -51,7 +51,7 @@ from ..errors import ModelError
 from .exact import GEOMETRY_TOLERANCE, exact_length, exact_rotation, exact_translation
 from .kinematics import joint_kind, rodrigues
 from .parameters import resolve_parameters
-from .tree_algebra import Body, Namer, Vec, cross, dot, motion_cross, mtv, mv, sym3
+from .tree_algebra import Body, Namer, Vec, cross, dot, inliner, motion_cross, mtv, mv, sym3
 
 
 @dataclass(frozen=True, eq=False)
@@ -83,19 +83,7 @@ class TreeDynamics:
     def expand(self, expr: sp.Expr, simplify: bool = True) -> sp.Expr:
         r"""``expr`` with every intermediate variable replaced by its definition; collected by
         parameter and polished (:func:`~.simplify.simplify_expr`) with ``simplify``."""
-        definitions = dict(self.assignments)
-        memo: dict[sp.Symbol, sp.Expr] = {}
-
-        def full(e: sp.Expr) -> sp.Expr:
-            subs = {}
-            for s in e.free_symbols:
-                if s in definitions:
-                    if s not in memo:
-                        memo[s] = full(definitions[s])
-                    subs[s] = memo[s]
-            return e.xreplace(subs) if subs else e
-
-        out = sp.expand(full(sp.sympify(expr)))
+        out = sp.expand(inliner(self.assignments)(sp.sympify(expr)))
         if simplify:
             from .simplify import simplify_expr
             out = simplify_expr(out, self.parameters + self.qd)

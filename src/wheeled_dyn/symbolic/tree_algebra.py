@@ -15,6 +15,7 @@ r"""The algebra of the tree's closed forms (:mod:`.tree`): intermediate variable
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import sympy as sp
@@ -103,3 +104,36 @@ def motion_cross(a: Vec, b: Vec) -> Vec:
     w1, v1, w2, v2 = a[:3], a[3:], b[:3], b[3:]
     x, y, z = cross(w1, w2), cross(w1, v2), cross(v1, w2)
     return x + [y[i] + z[i] for i in range(3)]
+
+
+class TooLarge(Exception):
+    r"""An expression grew past the limit of :func:`inliner` (internal: callers give up)."""
+
+
+def inliner(assignments: Sequence[tuple[sp.Symbol, sp.Expr]], expand: bool = False,
+            limit: int | None = None) -> Callable[[sp.Expr], sp.Expr]:
+    r"""A function replacing every intermediate variable :math:`w_k = f_k(\dots)` of
+    ``assignments`` in an expression by its definition, each definition written out once (a
+    shared memo). With ``expand`` each one and the result are expanded, and an expression of
+    more than ``limit`` terms raises :class:`TooLarge`."""
+    definitions = dict(assignments)
+    memo: dict[sp.Symbol, sp.Expr] = {}
+
+    def done(e: sp.Expr, what: str) -> sp.Expr:
+        if not expand:
+            return e
+        out = sp.expand(e)
+        if limit is not None and len(sp.Add.make_args(out)) > limit:
+            raise TooLarge(what)
+        return out
+
+    def full(e: sp.Expr) -> sp.Expr:
+        subs = {}
+        for s in e.free_symbols:
+            if s in definitions:
+                if s not in memo:
+                    memo[s] = done(full(definitions[s]), str(s))
+                subs[s] = memo[s]
+        return done(e.xreplace(subs) if subs else e, "element")
+
+    return full
