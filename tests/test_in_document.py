@@ -100,3 +100,24 @@ def test_a_free_body_missing_its_gyroscopic_term(engine, tmp_path):
     written = sp.sympify(lhs, locals=names | {"dq": dq}) - sp.sympify(rhs, locals=names)
     assert sp.simplify(written - (dq + (I1 - I3) * p * r / I2)) == 0
     latex2mathml.converter.convert(eq.corrected_latex)
+
+
+def test_a_symbol_no_parameter_is_solved_from_reads_in_the_truths_symbols(engine, tmp_path):
+    r"""A second wheel mass ``m_w2 = M(right_wheel)``: the parameter sets keep the two wheels
+    alike, so nothing is solved from it (``m_w`` gave the mass already). The document's side is
+    read with ``m_w2`` as ``m_w``, and A[1,1] written ``m_b + m_w + m_w2`` leaves exactly the
+    dropped :math:`2J_w/R^2`, with no spurious ``m_w - m_w2``."""
+    text = (ROS / "ros_balancer_dropped_wheel.toml").read_text()
+    text = text.replace('model = "ros_balancer.toml"', f'model = "{ROS / "ros_balancer.toml"}"')
+    text = text.replace("  [m_b + 2*m_w,", "  [m_b + m_w + m_w2,")
+    text = text.replace('J_w  = { value = "IYY(left_wheel)"',
+                        'm_w2 = { value = "M(right_wheel)", units = "kg" }\n'
+                        'J_w  = { value = "IYY(left_wheel)"')
+    path = tmp_path / "two_wheel_masses.toml"
+    path.write_text(text)
+    result = engine.compare(load_derivation(path))
+    records = {r.element: r for r in result.records}
+    assert [e for e, r in records.items() if r.verdict == Verdict.DIFFERS] == ["A[1,1]"]
+    J_w, R = sp.Symbol("J_w", real=True), sp.Symbol("R", real=True)
+    residual = sp.sympify(records["A[1,1]"].residual, locals={"J_w": J_w, "R": R})
+    assert sp.simplify(residual - 2 * J_w / R**2) == 0, residual

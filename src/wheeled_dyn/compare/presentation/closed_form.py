@@ -219,13 +219,11 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
     assumed = family_substitution(families) if physical else uniform_substitution(d, uniform)
     ours = in_document(d, truth, to_model, assumed, families, standard=not physical) \
         if lengths_are_symbols(d.model) else None        # else true at the URDF's lengths only
-    if ours is not None:
-        truth, physical = ours, True
-        values = {s.symbol: to_model(s.symbol) for s in d.symbols.values()}
-        numbers = {k: v for k, v in values.items() if v is not None and sp.sympify(v).is_Number}
+    if ours is not None:                 # the document's side in the same symbols
+        truth, physical, unsolved = ours.truth, True, ours.unsolved
 
         def to_model(e: sp.Expr | None) -> sp.Expr | None:
-            return None if e is None else sp.sympify(e).xreplace(numbers)
+            return None if e is None else sp.sympify(e).xreplace(unsolved)
     elif assumed:
         truth = {k: sp.sympify(v).xreplace(assumed) for k, v in truth.items()}
         plain = to_model
@@ -262,7 +260,7 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
         if text != "0":
             r.diagnoses.append(Diagnosis(DiagnosisKind.RESIDUAL, f"truth − document = {text}",
                                          text))
-    return ours
+    return None if ours is None else ours.truth
 
 
 #: The texts of :func:`residual_text`, remembered across runs (the disk cache's

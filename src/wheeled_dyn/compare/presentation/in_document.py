@@ -95,13 +95,23 @@ def _declarations(d: Derivation, to_model: ToModel) -> list[tuple[sp.Symbol, sp.
     return out
 
 
+@dataclass(frozen=True)
+class InDocument:
+    r"""The truth in a document's symbols: ``truth``, the true elements (labels as the
+    engine's); ``unsolved``, each document symbol the solution does not give back as itself
+    (a declared number, or a declaration no parameter was solved from) as what it is in the
+    parameters left, so that the document's side is read in the same symbols as the truth."""
+
+    truth: dict[str, sp.Expr]
+    unsolved: dict[sp.Symbol, sp.Expr]
+
+
 def in_document(d: Derivation, truth: Mapping[str, sp.Expr], to_model: ToModel,
                 assumed: Mapping[sp.Symbol, sp.Expr], families: Sequence[str] = (),
-                standard: bool = False) -> dict[str, sp.Expr] | None:
-    r"""The true elements (labels as the engine's) in the document's symbols where its
-    declarations (``to_model``: a document expression in the model's parameters) determine
-    the parameters (module text; the others stay model parameters), or None where they
-    determine none of them. ``assumed``: the substitution the document's families make (a
+                standard: bool = False) -> InDocument | None:
+    r"""The true elements in the document's symbols where its declarations (``to_model``: a
+    document expression in the model's parameters) determine the parameters (module text;
+    the others stay model parameters), or None where they determine none of them. ``assumed``: the substitution the document's families make (a
     physical record's families, or the uniform links of a model in Khalil's parameters);
     with ``standard`` (a model in Khalil's parameters) the relations of
     :mod:`.proportions` under ``families`` too. Remembered: :data:`IN_DOCUMENT`."""
@@ -120,7 +130,7 @@ def in_document(d: Derivation, truth: Mapping[str, sp.Expr], to_model: ToModel,
 def _in_document(d: Derivation, wm, truth: Mapping[str, sp.Expr],
                  declared: Sequence[tuple[sp.Symbol, sp.Expr]],
                  relations: Mapping[sp.Symbol, sp.Expr], standard: bool,
-                 families: Sequence[str]) -> dict[str, sp.Expr] | None:
+                 families: Sequence[str]) -> InDocument | None:
     motion = {*d.positions, *d.velocities}
     exprs = {k: sp.sympify(v).xreplace(relations) for k, v in truth.items()}
     names = {str(x): x for x in motion}
@@ -138,7 +148,12 @@ def _in_document(d: Derivation, wm, truth: Mapping[str, sp.Expr],
                         if s.name in names and s not in motion})
         pars = sorted(e.free_symbols - motion, key=str)
         out[k] = simplify_expr(e, pars) if e.free_symbols else sp.nsimplify(e)
-    return out
+    unsolved = {}
+    for symbol, value in declared:
+        back = sp.simplify(value.xreplace(relations).xreplace(solution))
+        if back != symbol:
+            unsolved[symbol] = back
+    return InDocument(out, unsolved)
 
 
 @dataclass(frozen=True)
@@ -218,4 +233,4 @@ def _inputs(d: Derivation, k: int, truth: Mapping[str, sp.Expr]) -> sp.Expr:
     return out
 
 
-__all__ = ["CORRECTED_LIMIT", "CorrectedRow", "corrected_row", "in_document", "parameter_solution", "written"]
+__all__ = ["CORRECTED_LIMIT", "CorrectedRow", "InDocument", "corrected_row", "in_document", "parameter_solution", "written"]
