@@ -152,11 +152,11 @@ def test_a_comparison_from_remembered_forms_is_the_comparison_from_scratch(tmp_p
 
 def test_a_second_process_finds_every_form_the_first_remembered(tmp_path, monkeypatch):
     r"""Two processes with different hash seeds (as every two runs have) compare the same
-    derivation: the second finds every printed form, compiled function and truth in the
-    document's symbols the first remembered, so the memo files gain no entry. Keyed by the
-    pickles of SymPy expressions, which also hold the assumptions a process asked about, they
-    did (seed 001's Kim (6)-(8): the truth in its symbols and four compiled functions were made
-    again at every run)."""
+    derivation: the second, which reads the closed forms the first derived back from disk,
+    finds every printed form, compiled function and truth in the document's symbols the first
+    remembered, so the memo files gain no entry. Keyed by the pickles of SymPy expressions
+    (which record which parts are one object in memory: not the same for an expression read
+    back), they did not (seed 001's Kim (6)-(8): the truth in its symbols was made again)."""
     import os
     import subprocess
     import sys

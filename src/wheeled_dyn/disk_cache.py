@@ -213,11 +213,11 @@ SREPR_LIMIT = 100_000
 
 def canonical(key: object) -> object:
     r"""``key`` with each SymPy object replaced by its ``srepr`` (in tuples, lists, frozensets
-    and dictionaries, recursively). A SymPy object's pickle also holds the assumptions it was
-    asked about in this process, and the order of an ``Add``'s or ``Mul``'s arguments may
-    differ between processes, so equal expressions pickled to different bytes in different
-    runs and a remembered form was never found again; ``srepr`` prints the terms in their
-    canonical order (a :class:`~sympy.core.symbol.Dummy`'s differs per process: a miss)."""
+    and dictionaries, recursively). A pickle records which parts of an expression are one
+    object in memory, and that depends on how the process built it (computed, or read back
+    from the disk cache's closed forms), so equal expressions pickled to different bytes in
+    different runs and a remembered form was never found again; ``srepr`` writes the
+    structure only (a :class:`~sympy.core.symbol.Dummy`'s differs per process: a miss)."""
     import sympy as sp
     if isinstance(key, sp.Basic):
         text = _SREPR.get(key)
