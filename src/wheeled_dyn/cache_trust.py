@@ -152,6 +152,20 @@ def _make_private(folder: Path) -> None:
         os.chmod(p, FOLDER_MODE)
 
 
+def _created(folder: Path, root: Path, then: str) -> bool:
+    r"""``folder`` exists or is made private now; where it cannot be made, one warning (once
+    per ``root``) naming it and what ``then`` happens, and False."""
+    if os.path.lexists(folder):
+        return True
+    try:
+        _make_private(folder)
+    except OSError as exc:
+        warn_once(f"write {root}", f"the cache folder {folder} cannot be created "
+                  f"({exc.strerror}); {then}")
+        return False
+    return True
+
+
 def trusted_root(root: str | Path | None = None, create: bool = False) -> Path | None:
     r"""The cache root if the cache may be used (the switch is on, the root and every folder
     above it pass the checks of the module docstring), else None after one warning. With
@@ -159,13 +173,8 @@ def trusted_root(root: str | Path | None = None, create: bool = False) -> Path |
     if not reuse_enabled():
         return None
     path = cache_root(root)
-    if create and not os.path.lexists(path):
-        try:
-            _make_private(path)
-        except OSError as exc:
-            warn_once(f"write {path}", f"the cache folder {path} cannot be created "
-                      f"({exc.strerror}); running without it (only slower)")
-            return None
+    if create and not _created(path, path, "running without it (only slower)"):
+        return None
     if not os.path.isdir(path):
         if create:
             warn_once(f"write {path}", f"the cache folder {path} is not a folder; running "
@@ -189,13 +198,8 @@ def trusted_folder(root: Path, kind: str, create: bool = False) -> Path | None:
     r"""The folder ``<root>/<kind>`` if it may be used (created private with ``create``),
     else None (with one warning when it exists and fails the checks)."""
     folder = root / kind
-    if create and not os.path.lexists(folder):
-        try:
-            _make_private(folder)
-        except OSError as exc:
-            warn_once(f"write {root}", f"the cache folder {folder} cannot be created "
-                      f"({exc.strerror}); results are not kept (only slower)")
-            return None
+    if create and not _created(folder, root, "results are not kept (only slower)"):
+        return None
     if not os.path.lexists(folder):
         return None
     if (why := _why_untrusted(folder, own=True)) is not None or os.path.islink(folder):

@@ -70,3 +70,15 @@ def planar_translations(wm: WheeledModel, lengths: Mapping[str, sp.Expr]) -> dic
     for w, t in zip(wm.wheels, T):
         out[w.joint_id] = tuple(mid + (L / half) * (t - mid) + lift)
     return out
+
+
+def gravity_symbol(wm: WheeledModel) -> sp.Symbol | None:
+    r"""Gravity's magnitude as the closed forms in Khalil's parameters write it: the symbol
+    ``g`` (the parameter sets draw it), None for a model without gravity."""
+    return sp.Symbol("g", real=True) if np.any(wm.model.gravity.linear) else None
+
+
+def axle_symbols(wm: WheeledModel) -> bool:
+    r"""Whether the tree's closed forms write the model's axle through its drawn ``R`` and
+    ``L`` (:func:`planar_translations`): a planar model on its two wheels."""
+    return wm.spec.base == "planar" and len(wm.wheels) == 2

@@ -30,7 +30,8 @@ from ..models.geometry import identifier
 from ..models.wheeled_model import WheeledModel
 from .exact import exact_length
 from .kinematics import exact_number
-from .lengths import length_symbols, planar_translations, translations
+from .lengths import (axle_symbols, gravity_symbol, length_symbols, planar_translations,
+                      translations)
 from .parameters import PARAMETER_NAMES, numeric_parameters
 
 #: Parameter modes of :func:`~.wheeled.wheeled_symbolic`.
@@ -141,7 +142,7 @@ def _numeric_setup(wm: WheeledModel, mode: str, axle: bool = False) -> dict:
             params[j] = [exact_number(x) for x in pi]
     geometry = {k: exact_length(v) for k, v in wm.named_lengths().items()}
     moved, radius = None, [exact_length(w.radius) for w in wm.wheels]
-    planar = axle and bool(wm.wheels) and wm.spec.base == "planar"
+    planar = axle and axle_symbols(wm)
     if mode == "standard" and wm.lengths is not None and (planar or not wm.wheels):
         lengths = length_symbols(wm)
         geometry.update({identifier(k): v for k, v in lengths.items()})
@@ -150,8 +151,7 @@ def _numeric_setup(wm: WheeledModel, mode: str, axle: bool = False) -> dict:
         if planar:                  # the axle and wheels through R and L, the rest by name
             moved = {**(moved or {}), **(planar_translations(wm, lengths) or {})} or None
             radius = [lengths.get("R", r) for r in radius]
-    drawn_g = mode == "standard" and bool(np.any(model.gravity.linear))
-    return dict(params=params, gravity=sp.Symbol("g", real=True) if drawn_g else None,
+    return dict(params=params, gravity=gravity_symbol(wm) if mode == "standard" else None,
                 translations=moved, armature=None, radius=radius, geometry=geometry)
 
 

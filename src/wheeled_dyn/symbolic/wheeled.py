@@ -64,6 +64,7 @@ from .basis import RANK_TOL, ROW_SEED, contact_rows, independent_rows, velocity_
 from .cache import _code_digest, cache_dir, cached_symbolic_model, model_fingerprint
 from .elements import coordinate_set_key, element_expressions, velocity_products
 from .exact import exact_model
+from .lengths import axle_symbols
 from .model import SymbolicModel
 from .parameter_modes import (PARAMETER_MODES, PHYSICAL_LATEX, PLACEMENT_TOL,
                               _numeric_setup, has_physical_record, parameter_setup,
@@ -175,7 +176,7 @@ def lengths_are_symbols(model: str) -> bool:
     wm = load_model(model)
     if has_physical_record(wm) or wm.lengths is None or not wm.wheels:
         return True
-    return _tree(wm, "standard") and wm.spec.base == "planar" and len(wm.wheels) == 2
+    return _tree(wm, "standard") and axle_symbols(wm)
 
 
 def true_expressions(model: str, cs: CoordinateSet, refresh: bool = False

@@ -12,7 +12,6 @@ from __future__ import annotations
 from collections.abc import Callable
 from pathlib import Path
 
-import numpy as np
 import sympy as sp
 from sympy.core.function import AppliedUndef
 
@@ -49,11 +48,11 @@ def _standard_names(model: str) -> Callable[[sp.Expr], sp.Expr]:
     with a constant → that constant; gravity's magnitude ``g``), its other names → their
     values as exact numbers, as in its closed forms."""
     from ...models.registry import load_model, model_parameters
-    from ...symbolic.lengths import length_symbols
+    from ...symbolic.lengths import gravity_symbol, length_symbols
     wm = load_model(model)
     lengths = length_symbols(wm) if wm.lengths is not None else {}
-    if np.any(wm.model.gravity.linear):       # drawn: the symbol g, as the closed forms
-        lengths = {**lengths, "g": sp.Symbol("g", real=True)}
+    if (g := gravity_symbol(wm)) is not None:     # drawn: the symbol g, as the closed forms
+        lengths = {**lengths, "g": g}
     numbers = {sp.Symbol(k, real=True): lengths.get(k, sp.nsimplify(v, rational=True))
                for k, v in model_parameters(wm).items() if "(" not in k}
     plain = {sp.Symbol(s.name): v for s, v in numbers.items()}
