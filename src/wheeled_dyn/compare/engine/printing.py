@@ -73,7 +73,7 @@ def corrected(d: Derivation, equations: Sequence[EquationRecord], fixes: Correct
             continue
         weights = frame if isinstance(frame, tuple) else tuple(
             frame if k == e.index else sp.Integer(0) for k in range(d.n))
-        row = corrected_row(d, e.index, fixes.truth, weights)
+        row = corrected_row(d, fixes.truth, weights)
         if row is None:
             out.append(e)
             continue

@@ -166,10 +166,10 @@ class CorrectedRow:
     rhs: sp.Expr
 
 
-def corrected_row(d: Derivation, i: int, truth: Mapping[str, sp.Expr],
+def corrected_row(d: Derivation, truth: Mapping[str, sp.Expr],
                   weights: Sequence[sp.Expr]) -> CorrectedRow | None:
-    r"""Equation ``i`` as it should read in the document's frame (``weights``: the true rows
-    it combines, in the document's symbols): each coefficient :math:`\sum_k w_k T_{k\cdot}` of
+    r"""An equation as it should read in the document's frame (``weights``: the true rows it
+    combines, in the document's symbols): each coefficient :math:`\sum_k w_k T_{k\cdot}` of
     the truth's already simplified elements (simplified again only where several rows are
     combined), or None where an element is not known or the row is longer than
     :data:`CORRECTED_LIMIT` operations."""
