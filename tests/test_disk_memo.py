@@ -181,3 +181,36 @@ def test_a_second_process_finds_every_form_the_first_remembered(tmp_path, monkey
     assert counts[0] == counts[1]
     assert any(name.startswith(IN_DOCUMENT.name) and n for name, n in counts[0].items())
     assert all(counts[0].values())
+
+
+def test_keys_are_equal_exactly_for_equal_expressions():
+    r"""A memo's key (:func:`wheeled_dyn.disk_cache.key_bytes`) is the same for expressions
+    SymPy holds equal however they were built, and differs wherever SymPy's ``==`` does: a
+    symbol's assumptions, a float's precision, an undefined function's assumptions, a
+    rational for a float of the same value, the order of an unevaluated sum (``srepr``, the
+    key before, printed ``f`` with and without ``real=True`` alike)."""
+    from wheeled_dyn.disk_cache import key_bytes
+    y = sp.Symbol("y")
+    built = [(x + 2 * phi) * sp.sin(phi), sp.sin(phi) * (2 * phi + x),
+             sp.sympify("sin(phi)*(x + 2*phi)", locals={"x": x, "phi": phi})]
+    assert len({key_bytes(("A", e)) for e in built}) == 1
+    f_real, f_plain = sp.Function("f", real=True), sp.Function("f")
+    different = [x, sp.Symbol("x"), sp.Symbol("x", positive=True), sp.Float("1.5"),
+                 sp.Float("1.5", 30), sp.Rational(3, 2), f_real(y), f_plain(y),
+                 sp.Add(x, y, evaluate=False), sp.Add(y, x, evaluate=False), sp.pi, sp.E,
+                 sp.Matrix([[x, y]]), sp.Matrix([[x], [y]]), sp.ImmutableMatrix([[x, y]])]
+    for a in different:
+        for b in different:
+            assert (key_bytes(a) == key_bytes(b)) == (a is b or (a == b and type(a) is type(b)
+                                                                 and getattr(a, "shape", 0)
+                                                                 == getattr(b, "shape", 0))), (a, b)
+
+
+def test_a_function_compiled_again_is_the_one_made_before():
+    r"""Equal expressions give the same compiled function object in a process (made once);
+    a different expression, or the same one with the arguments in another order, does not."""
+    f = compiled.numpy_function([x, phi], x * sp.sin(phi) + 1)
+    assert compiled.numpy_function([x, phi], sp.sin(phi) * x + 1) is f
+    assert compiled.numpy_function([phi, x], x * sp.sin(phi) + 1) is not f
+    assert compiled.numpy_function([x, phi], x * sp.cos(phi) + 1) is not f
+    assert f(2.0, 0.5) == 2.0 * np.sin(0.5) + 1

@@ -205,29 +205,57 @@ class DiskMemo:
                         pass
 
 
-#: The ``srepr`` of expressions met in keys in this process (at most :data:`SREPR_LIMIT`):
-#: the same expression is looked up in several memos.
-_SREPR: dict = {}
-SREPR_LIMIT = 100_000
+#: The structure of expressions met in keys in this process (at most
+#: :data:`STRUCTURE_LIMIT`): the same expression is looked up in several memos.
+_STRUCTURE: dict = {}
+STRUCTURE_LIMIT = 100_000
+
+
+def _node(expr: object) -> object:
+    r"""The structure of one SymPy node: its class and, recursively, its hashable content
+    (what SymPy's ``==`` compares: the arguments in SymPy's canonical order, a symbol's name
+    and assumptions, a number's digits and precision). A class SymPy did not define (an
+    undefined function ``f``, a subclass of ours) is named with its keyword arguments
+    (assumptions) where SymPy keeps them, else by its ``srepr``."""
+    import sympy as sp
+    if not isinstance(expr, sp.Basic):
+        if isinstance(expr, tuple):
+            return tuple(_node(e) for e in expr)
+        return expr
+    found = _STRUCTURE.get(expr)
+    if found is not None:
+        return found
+    cls = type(expr)
+    module = cls.__module__ or ""
+    if module.startswith("sympy."):
+        head: object = f"{module}.{cls.__qualname__}"
+    elif hasattr(cls, "_kwargs"):                    # an undefined function f(x)
+        head = ("function", cls.__name__, tuple(sorted(cls._kwargs.items())))
+    else:
+        head = ("srepr", sp.srepr(expr))
+    node = (head, tuple(_node(e) for e in expr._hashable_content()))
+    if len(_STRUCTURE) >= STRUCTURE_LIMIT:
+        _STRUCTURE.clear()
+    _STRUCTURE[expr] = node
+    return node
 
 
 def canonical(key: object) -> object:
-    r"""``key`` with each SymPy object replaced by its ``srepr`` (in tuples, lists, frozensets
-    and dictionaries, recursively). A pickle records which parts of an expression are one
-    object in memory, and that depends on how the process built it (computed, or read back
-    from the disk cache's closed forms), so equal expressions pickled to different bytes in
-    different runs and a remembered form was never found again; ``srepr`` writes the
-    structure only (a :class:`~sympy.core.symbol.Dummy`'s differs per process: a miss)."""
+    r"""``key`` with each SymPy object replaced by its structure (:func:`_node`; in tuples,
+    lists, frozensets and dictionaries, recursively). A pickle records which parts of an
+    expression are one object in memory, and that depends on how the process built it
+    (computed, or read back from the disk cache's closed forms), so equal expressions pickled
+    to different bytes in different runs and a remembered form was never found again. The
+    structure holds what SymPy's ``==`` compares and nothing else: equal expressions give
+    equal keys in every process, unequal ones different keys (a
+    :class:`~sympy.core.symbol.Dummy`'s index differs per process: a miss). It is read from
+    the expression's own arguments, which SymPy keeps in its canonical order (``srepr``,
+    used before, sorted the terms again at every node and took a tenth of a report's time)."""
     import sympy as sp
     if isinstance(key, sp.Basic):
-        text = _SREPR.get(key)
-        if text is None:
-            if len(_SREPR) >= SREPR_LIMIT:
-                _SREPR.clear()
-            text = _SREPR[key] = sp.srepr(key)
-        return ("sympy", text)
+        return ("sympy-structure", _node(key))
     if isinstance(key, sp.MatrixBase):
-        return ("sympy", sp.srepr(key))
+        return ("sympy-matrix", type(key).__name__, key.shape, tuple(_node(e) for e in key))
     if isinstance(key, (tuple, list)):
         return type(key).__name__, tuple(canonical(k) for k in key)
     if isinstance(key, frozenset):
