@@ -95,6 +95,13 @@ def _frozen(expr) -> Hashable:
     return expr
 
 
+#: The functions made in this process, by key (at most :data:`MADE_LIMIT`): a comparison
+#: compiles the same element again for several readings, and a function made from the same
+#: code is the same function.
+_MADE: dict[tuple, Callable] = {}
+MADE_LIMIT = 20_000
+
+
 def numpy_function(args: Sequence[sp.Symbol], expr, cse: bool = False) -> Callable:
     r"""``sympy.lambdify(args, expr, "numpy", cse=cse)`` (``expr`` an expression or a nested
     list or tuple of them), without a docstring; its code remembered (:data:`SOURCES`)."""
@@ -105,6 +112,9 @@ def numpy_function(args: Sequence[sp.Symbol], expr, cse: bool = False) -> Callab
     if hasattr(expr, "atoms"):
         namespace.update({str(s): s for s in expr.atoms(sp.Symbol)})
     key = (tuple(a.name for a in args), _frozen(expr), cse)
+    made = _MADE.get(key)
+    if made is not None:
+        return made
     source, imports = SOURCES.get(key, lambda: _written(args, expr, cse))
     for module, names in imports:
         for name in names:
@@ -113,7 +123,10 @@ def numpy_function(args: Sequence[sp.Symbol], expr, cse: bool = False) -> Callab
     namespace.update({"builtins": builtins, "range": range})
     local: dict[str, Callable] = {}
     exec(compile(source, "<compiled>", "exec"), namespace, local)
-    return local["_lambdifygenerated"]
+    if len(_MADE) >= MADE_LIMIT:
+        _MADE.clear()
+    _MADE[key] = local["_lambdifygenerated"]
+    return _MADE[key]
 
 
 def grouped_function(groups: Sequence[Sequence[sp.Symbol]], expr) -> Callable:

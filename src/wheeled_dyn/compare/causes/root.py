@@ -44,7 +44,6 @@ import sympy as sp
 
 from ...compiled import numpy_function
 from ..judge.diagnose import AGREE_TOL, agrees
-from ..sides.document import _h_tensor
 from ..sides.evaluation import Evaluation
 from ..records import (SPECIFIC_KINDS, Cause, CauseKind, DiagnosisKind as K, ElementRecord, Step,
                        Verdict, first_of)
@@ -58,22 +57,26 @@ RANK_TOL = 1e-9
 EXPLAINED_VERDICTS = (Verdict.DIFFERS, Verdict.AGREES_IF, Verdict.UNDECIDED)
 
 
+def christoffel_tensor(A: sp.MatrixBase, positions: Sequence[sp.Symbol]) -> list:
+    r"""The Christoffel symbols of the first kind of ``A``,
+    :math:`H_{ijk} = \tfrac12(\partial_k A_{ij} + \partial_j A_{ik} - \partial_i A_{jk})`
+    (nested lists ``[i][j][k]``, symmetric in j, k), so that
+    :math:`h^{chr}_i = \sum_{jk} H_{ijk}\nu_j\nu_k`."""
+    n = len(positions)
+    dA = [A.diff(p) for p in positions]
+    return [[[(dA[k][i, j] + dA[j][i, k] - dA[i][j, k]) / 2 for k in range(n)]
+             for j in range(n)] for i in range(n)]
+
+
 def christoffel_h(A: sp.MatrixBase, positions: Sequence[sp.Symbol],
                   velocities: Sequence[sp.Symbol]) -> sp.Matrix:
     r""":math:`h^{chr}` of the module text: the Christoffel terms of ``A`` with velocity
     :math:`k` taken as the rate of position :math:`k`."""
     n = len(positions)
-    dA = [A.diff(p) for p in positions]
-    out = []
-    for i in range(n):
-        expr = sp.Integer(0)
-        for j in range(n):
-            for k in range(n):
-                c = dA[k][i, j] + dA[j][i, k] - dA[i][j, k]
-                if c != 0:
-                    expr += c * velocities[j] * velocities[k] / 2
-        out.append(expr)
-    return sp.Matrix(out)
+    H = christoffel_tensor(A, positions)
+    return sp.Matrix([sp.Add(*[H[i][j][k] * velocities[j] * velocities[k]
+                               for j in range(n) for k in range(n) if H[i][j][k] != 0])
+                      for i in range(n)])
 
 
 def _product(element: str) -> tuple[int, str] | None:
@@ -90,9 +93,9 @@ def _own_christoffel(ev: Evaluation, d) -> dict[tuple[int, int, int], bool] | No
     A, h = ev.funcs.exprs.get("A"), ev.funcs.exprs.get("h")
     if A is None or h is None or ev.doc.H is None or sp.Matrix(A).has(sp.nan):
         return None
-    scale = sp.diag(*[1 if c is None else sp.nsimplify(1 / c) for c in ev.row_factor])
-    chr_h = scale * christoffel_h(sp.Matrix(A), d.positions, d.velocities)
-    H = _h_tensor(chr_h, d.velocities)
+    scale = [1 if c is None else sp.nsimplify(1 / c) for c in ev.row_factor]
+    H = sp.Array([[[scale[i] * x for x in row] for row in plane]
+                  for i, plane in enumerate(christoffel_tensor(sp.Matrix(A), d.positions))])
     flat = sp.flatten(H.tolist())
     fn = numpy_function(ev.funcs.args, flat)
     rows = ev.truth.H_rows if ev.truth.H_rows is not None else np.arange(len(ev.q))
@@ -382,6 +385,6 @@ def root_causes(ev: Evaluation | None, d, records: Sequence, energy, asymmetric:
     return tuple(out)
 
 
-__all__ = ["christoffel_h", "claim_causes", "constraint_cause",
+__all__ = ["christoffel_h", "christoffel_tensor", "claim_causes", "constraint_cause",
            "covered_products", "document_causes", "method_causes", "root_causes",
            "term_causes"]

@@ -71,6 +71,17 @@ def document_symbol_values(d: Derivation, ps: ParameterSet, rng: np.random.Gener
     return out
 
 
+_EXPANDED: dict[sp.Expr, sp.Expr] = {}
+
+
+def expanded(expr: sp.Expr) -> sp.Expr:
+    r"""``sympy.expand(expr)``, once per expression in this process (a row of h is expanded
+    for its tensor and for each velocity product's coefficient)."""
+    if expr not in _EXPANDED:
+        _EXPANDED[expr] = sp.expand(expr)
+    return _EXPANDED[expr]
+
+
 def _h_tensor(h: sp.MatrixBase, velocities: Sequence[sp.Symbol]) -> sp.Array:
     r""":math:`H_{i,jk}` with :math:`h_i = \sum_{jk} H_{i,jk}\nu_j\nu_k`, symmetric, from the
     polynomial coefficients of h in the velocities."""
@@ -84,17 +95,28 @@ def _h_tensor(h: sp.MatrixBase, velocities: Sequence[sp.Symbol]) -> sp.Array:
                 for k in range(n):
                     H[i][j][k] = sp.nan
             continue
-        for monomial, coeff in sp.Poly(h[i], *velocities).terms():
-            idx = [j for j, e in enumerate(monomial) for _ in range(e)]
-            if len(idx) != 2:
-                continue                      # read_off has already rejected other degrees
-            j, k = idx
+        for (j, k), coeff in _quadratic_coefficients(expanded(h[i]), velocities).items():
             if j == k:
-                H[i][j][j] += coeff
+                H[i][j][j] = coeff
             else:
-                H[i][j][k] += coeff / 2
-                H[i][k][j] += coeff / 2
+                H[i][j][k] = H[i][k][j] = coeff / 2
     return sp.Array(H)
+
+
+def _quadratic_coefficients(expr: sp.Expr, velocities: Sequence[sp.Symbol]
+                            ) -> dict[tuple[int, int], sp.Expr]:
+    r"""The coefficient of each product :math:`\nu_j\nu_k` (:math:`j \le k`) in the expanded
+    ``expr``: its terms grouped by their velocity factor (a term of another degree in the
+    velocities is left out: ``read_off`` has rejected such documents)."""
+    index = {v: j for j, v in enumerate(velocities)}
+    parts: dict[tuple[int, int], list[sp.Expr]] = {}
+    for term in sp.Add.make_args(expr):
+        coeff, product = term.as_independent(*velocities, as_Add=False)
+        idx = sorted(index[v] for v, e in product.as_powers_dict().items() if v in index
+                     for _ in range(int(e)))
+        if len(idx) == 2:
+            parts.setdefault((idx[0], idx[1]), []).append(coeff)
+    return {jk: sp.Add(*terms) for jk, terms in parts.items()}
 
 
 class DocumentFunctions:

@@ -18,7 +18,7 @@ import sympy as sp
 
 from ...derivations.schema import Derivation
 from ..grid.arrays import Arrays
-from ..sides.document import DocumentFunctions
+from ..sides.document import DocumentFunctions, expanded
 
 
 
@@ -56,15 +56,6 @@ def element_expr(exprs: Mapping[str, Any], key: str, index: tuple[int, ...],
             return h.coeff(velocities[j], 2)
         return h.coeff(velocities[j], 1).coeff(velocities[k], 1)
     return M[index]
-
-
-_EXPANDED: dict[sp.Expr, sp.Expr] = {}
-
-
-def expanded(expr: sp.Expr) -> sp.Expr:
-    if expr not in _EXPANDED:
-        _EXPANDED[expr] = sp.expand(expr)
-    return _EXPANDED[expr]
 
 
 def element_values(funcs: DocumentFunctions, doc: Arrays, truth: Arrays, B_true, n: int):

@@ -49,10 +49,10 @@ def table_documents(table: ComparisonTable, derived, reference) -> tuple[Derivat
 def _substitution_failures(table: ComparisonTable, sets: Sequence[ParameterSet]) -> list[str]:
     r"""Substituted symbols whose model value differs from their substitution at some set."""
     failing = []
+    per_set = [{s.symbol: model_value(s.value, ps.values) for s in table.symbols.values()
+                if s.value is not None} for ps in sets]
     for symbol, expr in table.substitution.items():
-        for ps in sets:
-            values = {s.symbol: model_value(s.value, ps.values) for s in table.symbols.values()
-                      if s.value is not None}
+        for values in per_set:
             lhs = values[symbol]
             rhs = float(expr.xreplace(values))
             if abs(lhs - rhs) > CHECK_TOL * max(1.0, abs(lhs), abs(rhs)):
