@@ -97,7 +97,8 @@ def _frozen(expr) -> Hashable:
 
 #: The functions made in this process, by key (at most :data:`MADE_LIMIT`): a comparison
 #: compiles the same element again for several readings, and a function made from the same
-#: code is the same function.
+#: code is the same function. Looked up after :data:`SOURCES`, which so still remembers every
+#: code a process used.
 _MADE: dict[tuple, Callable] = {}
 MADE_LIMIT = 20_000
 
@@ -107,15 +108,15 @@ def numpy_function(args: Sequence[sp.Symbol], expr, cse: bool = False) -> Callab
     list or tuple of them), without a docstring; its code remembered (:data:`SOURCES`)."""
     if _import is None or not _plain(args):
         return sp.lambdify(args, expr, "numpy", cse=cse, docstring_limit=0)
+    key = (tuple(a.name for a in args), _frozen(expr), cse)
+    source, imports = SOURCES.get(key, lambda: _written(args, expr, cse))
+    made = _MADE.get(key)
+    if made is not None:
+        return made
     _import("numpy")
     namespace = dict(MODULES["numpy"][0])
     if hasattr(expr, "atoms"):
         namespace.update({str(s): s for s in expr.atoms(sp.Symbol)})
-    key = (tuple(a.name for a in args), _frozen(expr), cse)
-    made = _MADE.get(key)
-    if made is not None:
-        return made
-    source, imports = SOURCES.get(key, lambda: _written(args, expr, cse))
     for module, names in imports:
         for name in names:
             if name not in namespace:
