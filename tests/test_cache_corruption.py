@@ -18,6 +18,7 @@ from hypothesis import strategies as st  # noqa: E402
 
 from wheeled_dyn import cache_trust, compiled, disk_cache  # noqa: E402
 from wheeled_dyn.cli import compare_cmd as commands  # noqa: E402
+from wheeled_dyn.compare.judge import document_checks  # noqa: E402
 from wheeled_dyn.compare.other_documents import tables as seed_table  # noqa: E402
 from wheeled_dyn.compare.presentation import closed_form, printing  # noqa: E402
 from wheeled_dyn.derivations import builtin_derivations  # noqa: E402
@@ -30,8 +31,8 @@ from wheeled_dyn.symbolic import wheeled  # noqa: E402
 QUICK_EXAMPLES, COMPARISON_EXAMPLES = 1000, 40
 #: A small grid: the verdicts only have to be the same as from an intact cache.
 SAMPLES, PARAM_SETS = 30, 1
-MEMOS = (printing.PRINTED, closed_form.RESIDUALS, compiled.SOURCES, seed_table.SHOWN,
-         symbols.RENDERED, html_text.MATHML)
+MEMOS = (printing.PRINTED, closed_form.RESIDUALS, document_checks.RESIDUALS, compiled.SOURCES,
+         seed_table.SHOWN, symbols.RENDERED, html_text.MATHML)
 
 #: A value with the kinds of objects entries hold.
 VALUE = {"text": "x*cos(phi)**2", "numbers": (1.0, 2, None), "bytes": b"\x00\x01" * 40}

@@ -9,6 +9,7 @@ import sympy as sp
 
 from conftest import SEED
 from wheeled_dyn import compiled
+from wheeled_dyn.compare.judge import document_checks
 from wheeled_dyn.compare.other_documents import tables as seed_table
 from wheeled_dyn.compare.presentation import closed_form, printing
 from wheeled_dyn.compare.engine import ComparisonEngine
@@ -17,7 +18,8 @@ from wheeled_dyn.disk_cache import CACHE_ENV, MAGIC, DiskMemo, load, save_memos
 
 x, phi = sp.symbols("x phi", real=True)
 #: The memos a comparison fills (all of them are emptied between the two runs below).
-MEMOS = (printing.PRINTED, closed_form.RESIDUALS, compiled.SOURCES, seed_table.SHOWN)
+MEMOS = (printing.PRINTED, closed_form.RESIDUALS, document_checks.RESIDUALS, compiled.SOURCES,
+         seed_table.SHOWN)
 
 
 def _memo(tmp_path, name="t", code_text="a = 1\n"):

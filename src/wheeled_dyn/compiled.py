@@ -95,11 +95,12 @@ def _frozen(expr) -> Hashable:
     return expr
 
 
-#: The functions made in this process, by key (at most :data:`MADE_LIMIT`): a comparison
-#: compiles the same element again for several readings, and a function made from the same
-#: code is the same function. Looked up after :data:`SOURCES`, which so still remembers every
-#: code a process used.
-_MADE: dict[tuple, Callable] = {}
+#: The functions made in this process, by key and code (at most :data:`MADE_LIMIT`): a
+#: comparison compiles the same element again for several readings, and a function made from
+#: the same code is the same function. Looked up with the code :data:`SOURCES` serves, so that
+#: memo still records every code a run used, and code served otherwise (its file read again)
+#: is run as served.
+_MADE: dict[tuple[tuple, str], Callable] = {}
 MADE_LIMIT = 20_000
 
 
@@ -110,7 +111,7 @@ def numpy_function(args: Sequence[sp.Symbol], expr, cse: bool = False) -> Callab
         return sp.lambdify(args, expr, "numpy", cse=cse, docstring_limit=0)
     key = (tuple(a.name for a in args), _frozen(expr), cse)
     source, imports = SOURCES.get(key, lambda: _written(args, expr, cse))
-    made = _MADE.get(key)
+    made = _MADE.get((key, source))
     if made is not None:
         return made
     _import("numpy")
@@ -126,8 +127,8 @@ def numpy_function(args: Sequence[sp.Symbol], expr, cse: bool = False) -> Callab
     exec(compile(source, "<compiled>", "exec"), namespace, local)
     if len(_MADE) >= MADE_LIMIT:
         _MADE.clear()
-    _MADE[key] = local["_lambdifygenerated"]
-    return _MADE[key]
+    made = _MADE[(key, source)] = local["_lambdifygenerated"]
+    return made
 
 
 def grouped_function(groups: Sequence[Sequence[sp.Symbol]], expr) -> Callable:

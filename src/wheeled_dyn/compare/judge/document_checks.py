@@ -14,11 +14,13 @@ what its constraint rows are.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from pathlib import Path
 
 import numpy as np
 import sympy as sp
 
 from ...compiled import numpy_function
+from ...disk_cache import DiskMemo
 from ...derivations.schema import Derivation
 from .diagnose import AGREE_TOL, agrees
 from ..grid.arrays import Arrays
@@ -61,11 +63,20 @@ def energy_check(funcs: DocumentFunctions, doc: Arrays, row_factor, q, nu, value
         return None                           # values not finite: the identity is undecided
     ref = max(float(parts[0].max()), float(parts[1].max()), 1e-300)
     conserves = bool(np.abs(P).max() <= AGREE_TOL * ref * 10)
-    residual = "0"
-    if not conserves:
-        expr = sp.expand(sp.expand_trig(power))
-        residual = sp.sstr(sp.factor(expr) if sp.count_ops(expr) <= FACTOR_LIMIT else expr)
+    residual = "0" if conserves else RESIDUALS.get(("power", power),
+                                                   lambda: _residual_text(power))
     return EnergyCheck(conserves, float(np.abs(P).max()), residual)
+
+
+#: The printed power residuals (:func:`_residual_text`), remembered between runs.
+RESIDUALS = DiskMemo("compare", "power", lambda: [Path(__file__)])
+
+
+def _residual_text(power: sp.Expr) -> str:
+    r"""The power residual :math:`\nu^T h - \tfrac12\nu^T\dot A\nu` printed: expanded
+    with the trigonometric identities, factorised when it is short."""
+    expr = sp.expand(sp.expand_trig(power))
+    return sp.sstr(sp.factor(expr) if sp.count_ops(expr) <= FACTOR_LIMIT else expr)
 
 
 def position_rates(d: Derivation) -> dict[sp.Symbol, sp.Expr | None]:
