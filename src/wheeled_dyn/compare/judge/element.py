@@ -44,15 +44,20 @@ class Trials:
         self.funcs, self.argv, self.size = funcs, list(argv), size
         self.position = {a: k for k, a in enumerate(funcs.args)}
         self.screen = np.linspace(0, size - 1, min(SCREEN_SAMPLES, size)).astype(int)
+        self.screened = self.at(self.screen)
+
+    def at(self, rows: np.ndarray) -> list:
+        r"""The arguments at the samples ``rows`` (a number stays a number)."""
+        return [x[rows] if np.ndim(x) and len(x) == self.size else x for x in self.argv]
 
     def swapped(self, key: str, index: tuple[int, ...], a: sp.Symbol, b: sp.Symbol,
                 rows: np.ndarray | None = None) -> np.ndarray:
         r"""The element with symbol ``a`` read as ``b`` (argument arrays permuted), at every
         sample or at the samples ``rows``."""
-        trial = list(self.argv)
-        trial[self.position[a]] = self.argv[self.position[b]]
-        if rows is not None:
-            trial = [x[rows] if np.ndim(x) and len(x) == self.size else x for x in trial]
+        given = self.argv if rows is None else self.screened if rows is self.screen \
+            else self.at(rows)
+        trial = list(given)
+        trial[self.position[a]] = given[self.position[b]]
         out = np.broadcast_to(self.funcs.element_function(key, index)(*trial),
                               (self.size if rows is None else len(rows),))
         return out.astype(float)

@@ -72,7 +72,7 @@ def product_swaps(expr: sp.Expr, trials, groups: Sequence[Sequence[sp.Symbol]], 
     if not candidates:
         return found
     screen = trials.screen
-    argv = [x[screen] if np.ndim(x) and len(x) == trials.size else x for x in trials.argv]
+    argv = trials.screened
     with np.errstate(all="ignore"):
         values = trials.funcs.compiled(tuple(c[3] for c in candidates))(*argv)
     for (term, written, fits, trial), v in zip(candidates, values):
