@@ -22,6 +22,8 @@ dimension. Dimensions are exponent vectors over
 
 from __future__ import annotations
 
+import functools
+
 from collections.abc import Mapping
 
 import sympy as sp
@@ -49,8 +51,10 @@ def _add(a: Dim, b: Dim, k=1) -> Dim:
     return tuple(sp.Rational(x) + k * sp.Rational(y) for x, y in zip(a, b))
 
 
+@functools.lru_cache(maxsize=1024)
 def units_dim(text: str | None) -> Dim | None:
-    r"""The dimension of a units text, or None when not given."""
+    r"""The dimension of a units text, or None when not given (each text parsed once per
+    process: a step file's symbols are looked up at every step)."""
     if text is None:
         return None
     expr = parse_units(str(text))
