@@ -55,3 +55,34 @@ def test_arguments_lambdify_must_rename_go_to_lambdify():
     dummy = sp.Dummy("u")
     f = numpy_function([odd, dummy], odd * 2 + dummy)
     assert f(1.5, 2.0) == 5.0
+
+
+def test_the_names_given_to_the_code_are_lambdifys_without_numpys_submodules():
+    r"""In a fresh interpreter, the namespace the compiled code runs in holds every name of
+    ``lambdify``'s NumPy namespace, each the same object, except the NumPy submodules a star
+    import loads (``testing``, ``f2py`` ...); making it loads none of them (a compiled
+    function is made and run before lambdify's namespace is)."""
+    import subprocess
+    import sys
+    code = (
+        "import sys, importlib\n"
+        "import sympy as sp\n"
+        "from wheeled_dyn import compiled\n"
+        "x = sp.Symbol('x', real=True)\n"
+        "f = compiled.numpy_function([x], [sp.sin(x) + sp.Abs(x), sp.Heaviside(x)], cse=True)\n"
+        "assert abs(f(0.5)[0] - 0.979425538604203) < 1e-15, f(0.5)\n"
+        "loaded = [m for m in ('numpy.testing', 'numpy.f2py', 'numpy.ma') if m in sys.modules]\n"
+        "assert not loaded, loaded\n"
+        "mine = dict(compiled._numpy_namespace())\n"
+        "L = importlib.import_module('sympy.utilities.lambdify')\n"
+        "L._import('numpy')\n"
+        "ref = L.MODULES['numpy'][0]\n"
+        "import types\n"
+        "extra = {k for k in set(ref) - set(mine) if isinstance(ref[k], types.ModuleType)}\n"
+        "assert set(mine) == set(ref) - extra, (set(mine) ^ set(ref)) - extra\n"
+        "assert all(mine[k] is ref[k] for k in mine)\n"
+        "print(sorted(extra))\n")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=300)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert "testing" in done.stdout

@@ -211,7 +211,20 @@ def feeding_files(d: Derivation) -> list[Path]:
 
 
 def _feeding(path: Path) -> list[Path]:
-    return [p for p in _neighbours(path) if path.stem in _load(p).feeds]
+    return [p for p in _neighbours(path) if path.stem in _feeds(p)]
+
+
+def _feeds(path: Path) -> tuple[str, ...]:
+    r"""The derivations a step file names in ``feeds``, read from its TOML alone (the
+    whole file is read as a derivation only where it feeds the one compared: three of seed
+    001's four step files feed other derivations). Malformed TOML is the loader's error; a
+    ``feeds`` that is not a list of names is read by the loader, so its error is the loader's
+    too."""
+    from ...derivations.source import read_toml
+    feeds = read_toml(path)[0].get("feeds", [])
+    if not isinstance(feeds, list) or not all(isinstance(x, str) for x in feeds):
+        return _load(path).feeds
+    return tuple(feeds)
 
 
 def _fed_records(path: Path, seed: int) -> list[tuple[Path, list[ElementRecord]]]:
