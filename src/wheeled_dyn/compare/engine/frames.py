@@ -13,7 +13,7 @@ import numpy as np
 from ...derivations.schema import Derivation
 from ..judge.fitting import bases, fit_factor
 from ..readings.frames import (Frame, FrameKind, FrameRule, candidate_rules, choose,
-                               elements_of, evaluate_rule, score)
+                               combination_variants, elements_of, evaluate_rule, score)
 from ..records import Verdict
 from ..sides.both import Sides
 from ..sides.document import DocumentFunctions
@@ -44,10 +44,11 @@ def choose_frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], d
         right = decision is not None and decision.equations[i].verdict == Verdict.AGREES
         has_declared = d.row_scale is not None
         declared_scale = declared_weights(d, main, i, funcs) if has_declared else None
-        rule = choose(i, candidate_rules(i, on, False, simple), on,
-                      has_declared and not right, right)
+        rules_i = candidate_rules(i, on, False, simple)
+        totals: dict[FrameRule, int] = {}
+        rule = choose(i, rules_i, on, has_declared and not right, right, totals)
         if not right and not has_declared and _differing(i, rule, main) > d.n:
-            rule = choose(i, candidate_rules(i, on, True, simple), on, False)
+            rule = choose(i, rules_i + combination_variants(on), on, False, totals=totals)
         evaluated = evaluate_rule(i, rule, main.doc, main.truth, main.doc.B, main.B_true,
                                   declared_scale)
         if evaluated is None:

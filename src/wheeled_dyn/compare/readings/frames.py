@@ -257,11 +257,18 @@ def candidate_rules(i: int, grids: Sequence[tuple[Arrays, Arrays, np.ndarray | N
                 if not any(r.kind == FrameKind.FUNCTION and r.partner == k for r in out):
                     out.append(rule)
     out.append(FrameRule(FrameKind.COMBINATION))
-    if robust:
-        m = 0 if doc0.B is None or B0 is None else doc0.B.shape[2]
-        out += [FrameRule(FrameKind.COMBINATION, variant=(j, c))
-                for j in range(n) for c in range(-1, m)]
-    return out
+    return out + combination_variants(grids) if robust else out
+
+
+def combination_variants(grids: Sequence[tuple[Arrays, Arrays, np.ndarray | None]]
+                         ) -> list[FrameRule]:
+    r"""The combinations with one inertia column replaced (the rules ``candidate_rules`` adds
+    for an equation that is not right)."""
+    doc0, truth0, B0 = grids[0]
+    n = truth0.need("A").shape[1]
+    m = 0 if doc0.B is None or B0 is None else doc0.B.shape[2]
+    return [FrameRule(FrameKind.COMBINATION, variant=(j, c))
+            for j in range(n) for c in range(-1, m)]
 
 
 def _agreeing(D: np.ndarray | None, T: np.ndarray | None, tol: float,
@@ -315,40 +322,67 @@ def elements_of(doc_row: Arrays) -> int:
 
 
 def choose(i: int, rules: Sequence[FrameRule], grids: Sequence[tuple[Arrays, Arrays,
-           np.ndarray | None]], declared: bool, right: bool = False) -> FrameRule:
+           np.ndarray | None]], declared: bool, right: bool = False,
+           totals: dict[FrameRule, int] | None = None) -> FrameRule:
     r"""The rule of row ``i`` (module text), scored over ``grids`` ((document, truth, true B in
     the document's inputs) each, the document's B in its ``Arrays.B``). For an equation that
     is ``right``: the simplest rule under which every element agrees on the first grid. Else
     the rule under which most elements agree beyond the weights it fits
     (:func:`freedom`), summed over the grids, the simplest on a tie; a ``declared`` factor is
-    kept."""
+    kept. ``totals``: the scores of rules scored before on the same grids (not ``right``),
+    filled with those scored here."""
     if declared:
         return FrameRule(FrameKind.DECLARED)
     n = grids[0][1].need("A").shape[1]
     best: tuple[int, int, FrameRule] | None = None
     for order, rule in enumerate(rules):
-        total = 0
-        for g, (doc, truth, B_true) in enumerate(grids):
-            if right and g:
-                break
-            frame = evaluate_rule(i, rule, doc, truth, doc.B, B_true)
-            if frame is None:
-                total = -10 ** 9
-                break
-            row = row_of(doc, i)
-            got = score(row, framed(frame.weights, truth, B_true, full=False))
-            if right:
-                if got == elements_of(row):
-                    return rule
-                total = -10 ** 9
-                break
-            total += got - freedom(rule, n)
+        floor = None if best is None else best[0]
+        if right or totals is None:
+            total = _total(i, rule, grids, right, n, floor)
+        elif rule in totals:
+            total = totals[rule]
+        else:
+            total = _total(i, rule, grids, right, n, floor)
+            if total is not None:
+                totals[rule] = total
+        if total is None:
+            continue                     # it cannot score more than the best so far
+        if total == _RIGHT:
+            return rule
         if total > -10 ** 9 and (best is None or total > best[0]):
             best = (total, -order, rule)
     return best[2] if best is not None else FrameRule(FrameKind.IDENTITY)
 
 
+#: :func:`_total`'s answer for a rule under which every element of a right row agrees.
+_RIGHT = 10 ** 12
+
+
+def _total(i: int, rule: FrameRule, grids: Sequence[tuple[Arrays, Arrays, np.ndarray | None]],
+           right: bool, n: int, floor: int | None = None) -> int | None:
+    r"""The score of ``rule`` for row ``i`` (:func:`choose`), summed over the grids; -10⁹
+    where it has no frame; :data:`_RIGHT` where ``right`` and every element agrees; None as
+    soon as it cannot exceed ``floor`` (the best score so far: every element of the grids
+    left agreeing would not lift it above), so that the rest is not scored."""
+    total = 0
+    for g, (doc, truth, B_true) in enumerate(grids):
+        if right and g:
+            break
+        frame = evaluate_rule(i, rule, doc, truth, doc.B, B_true)
+        if frame is None:
+            return -10 ** 9
+        row = row_of(doc, i)
+        got = score(row, framed(frame.weights, truth, B_true, full=False))
+        if right:
+            return _RIGHT if got == elements_of(row) else -10 ** 9
+        total += got - freedom(rule, n)
+        left = len(grids) - g - 1
+        if floor is not None and left and \
+                total + left * (elements_of(row) - freedom(rule, n)) <= floor:
+            return None
+    return total
+
+
 __all__ = ["CONSTANT_SPREAD", "Frame", "FrameKind", "FrameRule", "RATIO_TOL", "VOTE_FLOOR",
-           "candidate_rules", "choose", "combination_weights", "elements_of", "evaluate_rule", "freedom",
-           "paired",
-           "score"]
+           "candidate_rules", "choose", "combination_variants", "combination_weights",
+           "elements_of", "evaluate_rule", "freedom", "paired", "score"]
