@@ -10,6 +10,7 @@ there, so the verdicts are those of the full grid.
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Sequence
 
 import numpy as np
@@ -68,7 +69,7 @@ def product_swaps(expr: sp.Expr, trials, groups: Sequence[Sequence[sp.Symbol]], 
     everywhere else as printed): ``"lc1**2 where l1**2 fits in the term m2*lc1**2"``. The
     trials are compiled together and screened on a few samples first."""
     found: list[Diagnosis] = []
-    candidates = list(_one_factor_trials(expr, groups))[:MAX_PRODUCT_TRIALS]
+    candidates = list(itertools.islice(_one_factor_trials(expr, groups), MAX_PRODUCT_TRIALS))
     if not candidates:
         return found
     screen = trials.screen
