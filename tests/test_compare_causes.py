@@ -18,7 +18,8 @@ import pytest
 import sympy as sp
 
 from wheeled_dyn.compare import ComparisonEngine
-from wheeled_dyn.compare.causes.root import christoffel_h
+from wheeled_dyn.compare.causes.root import christoffel_h, christoffel_tensor
+from wheeled_dyn.compare.sides.document import _h_tensor
 from wheeled_dyn.derivations import load_derivation
 
 from conftest import SEED
@@ -96,6 +97,36 @@ def test_christoffel_h_is_lagrange_form():
     energy = (v.T * A * v)[0]
     lagrange = Adot * v - sp.Matrix([energy.diff(x) for x in q]) / 2
     assert sp.simplify(christoffel_h(A, q, dq) - lagrange) == sp.zeros(3, 1)
+    H = christoffel_tensor(A, q)                 # h_i = sum_jk H_ijk dq_j dq_k, H symmetric
+    assert all(sp.simplify(H[i][j][k] - H[i][k][j]) == 0
+               for i in range(3) for j in range(3) for k in range(3))
+    tensor = sp.Matrix([sum(H[i][j][k] * dq[j] * dq[k] for j in range(3) for k in range(3))
+                        for i in range(3)])
+    assert sp.simplify(tensor - lagrange) == sp.zeros(3, 1)
+
+
+@pytest.mark.parametrize("name", ["seed001/sec5_nonholonomic.toml",
+                                  "seed000/p7_2_euler_equations.toml",
+                                  "seed001/kim_eq6_8.toml"])
+def test_velocity_products_are_polys_coefficients(name):
+    r"""The velocity products of a document's h (:func:`_h_tensor`, from its expanded terms
+    grouped by their velocities) are ``sympy.Poly``'s coefficients: :math:`H_{i,jj}` the
+    coefficient of :math:`\nu_j^2`, :math:`H_{i,jk} = H_{i,kj}` half that of
+    :math:`\nu_j\nu_k`."""
+    d = load_derivation(SHIPPED / name)
+    h = d.read_off(assume=True, unscale=False).h
+    H = _h_tensor(h, d.velocities)
+    n = len(d.velocities)
+    for i in range(h.shape[0]):
+        if h[i] == 0 or h[i].has(sp.nan):
+            continue
+        expected = [[sp.Integer(0)] * n for _ in range(n)]
+        for monomial, coeff in sp.Poly(h[i], *d.velocities).terms():
+            j, k = [a for a, e in enumerate(monomial) for _ in range(e)]
+            expected[j][k] += coeff if j == k else coeff / 2
+            expected[k][j] += 0 if j == k else coeff / 2
+        assert all(sp.expand(H[i, j, k] - expected[j][k]) == 0
+                   for j in range(n) for k in range(n)), (name, i)
 
 
 # -- right derivations: no cause --------------------------------------------------------------

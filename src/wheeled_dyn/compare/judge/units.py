@@ -23,7 +23,6 @@ dimension. Dimensions are exponent vectors over
 from __future__ import annotations
 
 import functools
-
 from collections.abc import Mapping
 
 import sympy as sp

@@ -107,16 +107,31 @@ def _quadratic_coefficients(expr: sp.Expr, velocities: Sequence[sp.Symbol]
                             ) -> dict[tuple[int, int], sp.Expr]:
     r"""The coefficient of each product :math:`\nu_j\nu_k` (:math:`j \le k`) in the expanded
     ``expr``: its terms grouped by their velocity factor (a term of another degree in the
-    velocities is left out: ``read_off`` has rejected such documents)."""
+    velocities is left out: ``read_off`` has rejected such documents). A term whose velocity
+    factor is not a monomial (a velocity inside a function) is read by ``Poly``, as before."""
     index = {v: j for j, v in enumerate(velocities)}
     parts: dict[tuple[int, int], list[sp.Expr]] = {}
     for term in sp.Add.make_args(expr):
         coeff, product = term.as_independent(*velocities, as_Add=False)
-        idx = sorted(index[v] for v, e in product.as_powers_dict().items() if v in index
-                     for _ in range(int(e)))
+        powers = product.as_powers_dict()
+        if not all(v in index and e.is_Integer and e > 0 for v, e in powers.items()
+                   if v != 1):
+            return _poly_coefficients(expr, velocities)
+        idx = sorted(index[v] for v, e in powers.items() if v in index for _ in range(int(e)))
         if len(idx) == 2:
             parts.setdefault((idx[0], idx[1]), []).append(coeff)
     return {jk: sp.Add(*terms) for jk, terms in parts.items()}
+
+
+def _poly_coefficients(expr: sp.Expr, velocities: Sequence[sp.Symbol]
+                       ) -> dict[tuple[int, int], sp.Expr]:
+    r""":func:`_quadratic_coefficients` read by ``sympy.Poly`` in the velocities."""
+    out: dict[tuple[int, int], sp.Expr] = {}
+    for monomial, coeff in sp.Poly(expr, *velocities, expand=False).terms():
+        idx = [j for j, e in enumerate(monomial) for _ in range(e)]
+        if len(idx) == 2:
+            out[(idx[0], idx[1])] = out.get((idx[0], idx[1]), sp.Integer(0)) + coeff
+    return out
 
 
 class DocumentFunctions:
