@@ -62,17 +62,8 @@ def declared(d: Derivation) -> Assumptions:
     r"""The assumptions ``d`` declares; an unknown family name is a
     :class:`~wheeled_dyn.errors.DerivationError` naming the file and the valid names."""
     raw: Mapping[str, Any] = d.assumes or {}          # as read from TOML
-    families = []
-    for name in raw.get("families", ()):
-        try:
-            found = family(d.model, name)
-        except UnknownNameError as exc:
-            raise DerivationError(d.path, f"assumes.families.{name}", str(exc)) from None
-        if found is None:
-            raise DerivationError(d.path, f"assumes.families.{name}",
-                                  f"not a parameter family of model {d.model!r}; valid: "
-                                  + ", ".join(c.name for c in special_cases(d.model)))
-        families.append(found)
+    families = [named_family(d, name, f"assumes.families.{name}")
+                for name in raw.get("families", ())]
     uniform = raw.get("uniform", ())
     links = tuple(str(x) for x in uniform) if isinstance(uniform, (list, tuple)) else ()
     if links:
@@ -80,6 +71,24 @@ def declared(d: Derivation) -> Assumptions:
     point = tuple((k, float(v)) for k, v in dict(raw.get("linearised_about", {})).items())
     return Assumptions(tuple(families), point, raw.get("potential") == "equilibrium",
                        tuple(raw.get("text", ())))
+
+
+def named_family(d: Derivation, name: str, where: str) -> SpecialCase:
+    r"""The parameter family ``name`` of ``d``'s model (:func:`.samples.family`: one of its
+    special cases, or ``uniform(link, ...)``); anything else is a
+    :class:`~wheeled_dyn.errors.DerivationError` at ``where`` listing the valid names."""
+    from ...models.registry import model_entry
+    try:
+        found = family(d.model, name)
+    except UnknownNameError as exc:
+        raise DerivationError(d.path, where, f"{name!r}: {exc}") from None
+    if found is None:
+        valid = [c.name for c in special_cases(d.model)]
+        if model_entry(d.model).parameters is None:
+            valid.append("uniform(link, ...)")
+        raise DerivationError(d.path, where, f"{name!r} is not a parameter family of model "
+                              f"{d.model!r}; valid: " + ", ".join(valid))
+    return found
 
 
 def _uniform(d: Derivation, links: tuple[str, ...]) -> SpecialCase:

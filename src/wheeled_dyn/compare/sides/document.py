@@ -15,10 +15,9 @@ import sympy as sp
 from sympy.core.function import AppliedUndef
 
 from ...derivations.schema import Derivation
-from ...errors import DerivationError
 from ...compiled import numpy_function
 from ..grid.arrays import Arrays
-from ..grid.samples import ParameterSet, family, parameter_sets, special_cases
+from ..grid.samples import ParameterSet, parameter_sets
 
 #: Range of the random values of a document's free symbols (present on both sides).
 FREE_RANGE = (0.5, 2.0)
@@ -204,17 +203,6 @@ def given_parameter_sets(d: Derivation, given: Sequence[str], k: int,
     r"""``k`` random parameter sets of ``d``'s model restricted by the special families named
     in a step's ``given`` (the model's families, or ``uniform(link, ...)``); an unknown name
     is a :class:`DerivationError` listing the model's."""
-    from ...errors import UnknownNameError
-    cases = []
-    for name in given:
-        try:
-            case = family(d.model, name)
-        except UnknownNameError as exc:
-            raise DerivationError(d.path, "step.given", f"{name!r}: {exc}") from None
-        if case is None:
-            raise DerivationError(d.path, "step.given", f"{name!r} is not a parameter family "
-                                  f"of model {d.model}; valid: " + ", ".join(
-                                      [c.name for c in special_cases(d.model)]
-                                      + ["uniform(link, ...)"]))
-        cases.append(case)
+    from ..grid.assumptions import named_family
+    cases = [named_family(d, name, "step.given") for name in given]
     return parameter_sets(d.model, k, rng, tuple(cases))
