@@ -228,3 +228,29 @@ def test_coordinate_ranges_are_checked(tmp_path):
         with pytest.raises(DerivationError) as err:
             load_derivation(path)
         assert where in str(err.value)
+
+
+@pytest.mark.parametrize("value", ['"eq25_lagrange"', "3", '["eq25_lagrange", 2]'])
+def test_feeds_must_be_a_list_of_names(tmp_path, value):
+    r"""A step file's ``feeds`` is a list of derivation names: a single string was read as its
+    letters (the file then fed nothing), a number raised a raw TypeError."""
+    from pathlib import Path
+    shipped = next(p for p in builtin_derivations("seed001") if p.name == "eq25_lagrange.toml")
+    steps = (Path(shipped).parent / "s4_energy_steps.toml").read_text()
+    assert 'feeds = ["eq25_lagrange"]' in steps
+    text = steps.replace('feeds = ["eq25_lagrange"]', f"feeds = {value}")
+    with pytest.raises(DerivationError, match="feeds: expected a list") as caught:
+        load_derivation(_write(tmp_path, text, "s4_copy_steps.toml"))
+    assert caught.value.line == _line_of(text, "feeds =")
+
+
+@pytest.mark.parametrize("key, value", [("kind", '"holonomic"'), ("rolling", '"multipliers"')])
+def test_a_built_in_set_is_not_redeclared(tmp_path, key, value):
+    r"""``[coordinates] use = "seed001"`` with another ``kind`` or ``rolling`` than the model's
+    set: the file was loaded with its own, and compared with the model's."""
+    shipped = next(p for p in builtin_derivations("seed001") if p.name == "kim_eq1_3.toml")
+    text = shipped.read_text()
+    assert 'use = "seed001"' in text
+    text = text.replace('use = "seed001"', f'use = "seed001"\n{key} = {value}', 1)
+    with pytest.raises(DerivationError, match=f"coordinates.{key}: set 'seed001' has {key}"):
+        load_derivation(_write(tmp_path, text))

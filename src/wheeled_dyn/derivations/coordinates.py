@@ -235,6 +235,11 @@ def coordinate_names(path: Path, table: Any, model: str,
     rolling = _choice(path, table, "rolling", ROLLING,
                       builtin.rolling if builtin else
                       ("eliminate" if kind == "quasi" else "none"), line_of("rolling"))
+    for key, value in (("kind", kind), ("rolling", rolling)):
+        if builtin is not None and value != getattr(builtin, key):
+            raise DerivationError(path, f"coordinates.{key}", f"set {use!r} has {key} = "
+                                  f"{getattr(builtin, key)!r} (the model's file defines the "
+                                  "built-in set; the comparison reads it so)", line_of(key))
     if kind == "holonomic" and rolling == "eliminate":
         said = "'eliminate'" if "rolling" in table else f"'eliminate' (set {use!r})"
         raise DerivationError(path, "coordinates.rolling", f"{said}: eliminating rolling "

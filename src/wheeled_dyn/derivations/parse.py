@@ -205,8 +205,18 @@ def load_derivation(path: str | Path, *, parameters: Collection[str] | None = No
                          lambda text, item: ld.expr(text, item, None, "step", step_names),
                          ld.fail),
         jerks=tuple(jerks.values()),
-        feeds=tuple(str(f) for f in data.get("feeds", ())), assumes=assumes,
+        feeds=_feeds(ld), assumes=assumes,
         latex_input=MappingProxyType(dict(ld.latex_input)), convention=convention)
+
+
+def _feeds(ld: "_Loader") -> tuple[str, ...]:
+    r"""``feeds``: the names (file stems) of the derivations a step file leads to, a list of
+    strings (a single string is not read as its letters)."""
+    feeds = ld.data.get("feeds", [])
+    if not isinstance(feeds, list) or not all(isinstance(f, str) for f in feeds):
+        raise ld.fail("feeds", "expected a list of derivation file names without .toml, "
+                      'e.g. ["eq25_lagrange"]', ld.line(None, "feeds"))
+    return tuple(feeds)
 
 
 def _assumes(ld: "_Loader", positions: tuple) -> Mapping[str, Any]:
