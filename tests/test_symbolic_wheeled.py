@@ -314,3 +314,25 @@ def test_cli_text_latex_json(capsys):
     assert {"A", "C", "Q", "B", "h"} <= set(data)
     assert len(data["A"]) == 3 and len(data["h"]) == 3 and len(data["B"][0]) == 2
     assert all(isinstance(x, str) for row in data["C"] for x in row)
+
+
+def test_closed_forms_are_keyed_by_which_lengths_are_drawn():
+    r"""A model file whose ``[draw] fixed`` changed (one length kept instead of drawn, so a
+    number where a symbol was) gets closed forms of its own: the key holds the lengths' table
+    (before, only the numeric model and the named constants: the old forms were served)."""
+    import dataclasses
+    import types
+
+    from wheeled_dyn.coordinates import builtin_coordinate_set
+    from wheeled_dyn.models.registry import load_model
+    from wheeled_dyn.symbolic.wheeled import _true_key
+    wm = load_model("rolling_coin")
+    table = wm.lengths
+    name = next(iter(table.dimensions))
+    dims = dict(table.dimensions)
+    dims[name] = dataclasses.replace(dims[name], drawn=not dims[name].drawn)
+    kept = dataclasses.replace(wm, lengths=dataclasses.replace(
+        table, dimensions=types.MappingProxyType(dims)))
+    cs = builtin_coordinate_set(wm)
+    assert _true_key("rolling_coin", cs, wm) == _true_key("rolling_coin", cs, wm)
+    assert _true_key("rolling_coin", cs, wm) != _true_key("rolling_coin", cs, kept)
