@@ -186,3 +186,31 @@ def test_each_set_has_its_own_model_and_its_values_are_that_model_s(name):
         for ps in sets:
             assert ps.values == model_parameters(ps.model)
     assert model_parameters(load_model(name)) == before
+
+
+def _model_copy(tmp_path, model: str, extra: str, name: str) -> str:
+    from wheeled_dyn.models.listing import shipped_model_files
+    text = shipped_model_files()[model].path.read_text()
+    path = tmp_path / f"{name}.toml"
+    path.write_text(text.replace(f'name = "{model}"', f'name = "{name}"') + extra)
+    return str(path)
+
+
+def test_geometry_may_not_change_a_length_the_model_has(tmp_path):
+    r"""``[geometry] R = 0.31`` on a model whose R (its wheels' radius) is 0.25: the model
+    loaded with R = 0.31 as its named value while Pinocchio's wheels kept 0.25. Saying what R
+    is drawn with (``R = "radius(wheel_left)"``-like entries of the shipped models) stays."""
+    from wheeled_dyn.errors import ModelError
+    with pytest.raises(ModelError, match=r"\(geometry.R\): R is 0.25 in the model"):
+        load_model(_model_copy(tmp_path, "wip_platform", "\n[geometry]\nR = 0.31\n", "r031"))
+
+
+def test_a_constant_drawn_with_lengths_is_not_kept_alone(tmp_path):
+    r"""``[draw] fixed = ["R"]`` where ``R = "radius(coin)"``: the closed forms wrote R as a
+    number while every parameter set drew the coin's radius (and R with it)."""
+    from wheeled_dyn.errors import ModelError
+    with pytest.raises(ModelError, match=r"\(draw.fixed\): R = radius"):
+        load_model(_model_copy(tmp_path, "rolling_coin", '\n[draw]\nfixed = ["R"]\n', "coinR"))
+    wm = load_model(_model_copy(tmp_path, "rolling_coin",
+                                '\n[draw]\nfixed = ["radius(coin)"]\n', "coinr"))
+    assert not wm.lengths.dimensions["radius(coin)"].drawn

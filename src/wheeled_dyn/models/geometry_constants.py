@@ -104,12 +104,18 @@ def _same(spec_name: str, name: str, entries: list, dims: Mapping[str, Dimension
 
 
 def check_fixed(spec_name: str, fixed: Sequence[str], geometry: GeometryTable) -> None:
-    r"""Every name of ``[draw] fixed`` is a dimension or a constant."""
+    r"""Every name of ``[draw] fixed`` is a dimension or a constant drawn on its own or with
+    its equal lengths; a constant written as an expression of lengths is drawn with them (to
+    keep it, keep them)."""
     for name in fixed:
         if name not in geometry.dimensions and name not in geometry.constants:
             raise ModelError(spec_name, "draw.fixed", f"{name} is not a length or constant of "
                              "the model; valid: " + ", ".join((*geometry.dimensions,
                                                                *geometry.constants)))
+        c = geometry.constants.get(name)
+        if c is not None and c.kind == ConstantKind.DERIVED:
+            raise ModelError(spec_name, "draw.fixed", f"{name} = {c.expression} is drawn with "
+                             "those lengths: keep them instead (list them in [draw] fixed)")
 
 
 
@@ -129,9 +135,15 @@ def _lengths(spec: "ModelSpec", source: "UrdfSource", dims: Mapping[str, Dimensi
              given: Mapping[str, Constant]) -> GeometryTable:
     r"""The model's lengths and constants (:mod:`.geometry`): the builder's ``given`` names
     where ``[geometry]`` does not name them, then ``[geometry]``'s; the links' own inertias."""
-    given = {k: c for k, c in given.items() if k not in spec.geometry}
-    out = table(dims, constants(spec.name, spec.geometry, dims, given, spec.fixed_geometry),
+    kept = {k: c for k, c in given.items() if k not in spec.geometry}
+    out = table(dims, constants(spec.name, spec.geometry, dims, kept, spec.fixed_geometry),
                 link_inertials(source.text))
+    for name, c in given.items():                  # [geometry] says what it is drawn with
+        value = out.constants[name].value if name in out.constants else c.value
+        if abs(value - c.value) > SAME_TOL * max(1.0, abs(c.value)):
+            raise ModelError(spec.name, f"geometry.{name}", f"{name} is {c.value:g} in the "
+                             f"model ({c.meaning}), {value:g} as written: [geometry] may say "
+                             "which lengths it is drawn with, not change it")
     check_fixed(spec.name, spec.fixed_geometry, out)
     return out
 
