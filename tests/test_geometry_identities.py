@@ -20,7 +20,7 @@ from conftest import SEED
 from drawn_urdf import drawn_urdf_text, rebuilt
 from wheeled_dyn import CoordinateMap, builtin_coordinate_set, load_model
 from wheeled_dyn.compare.grid.samples import (URDF_PROPORTIONS, URDF_STRUCTURE, parameter_sets,
-                                              uniform_family)
+                                              special_cases, uniform_family)
 from wheeled_dyn.constraints.rolling import contact_jacobian
 from wheeled_dyn.models.registry import model_parameters
 
@@ -214,3 +214,16 @@ def test_a_constant_drawn_with_lengths_is_not_kept_alone(tmp_path):
     wm = load_model(_model_copy(tmp_path, "rolling_coin",
                                 '\n[draw]\nfixed = ["radius(coin)"]\n', "coinr"))
     assert not wm.lengths.dimensions["radius(coin)"].drawn
+
+
+@pytest.mark.parametrize("family", ["uniform(wheel_left)", "uniform(wheel_right)"])
+def test_the_drive_wheels_stay_alike_when_one_is_uniform(family):
+    r"""``uniform(wheel_left)`` on the platform: the right wheel was drawn a random inertia of
+    its own (masses 9.86 and 1.93), so the two wheels the model declares alike were not, and a
+    truth written with ``M_wheel_right = M_wheel_left`` did not hold on the sets."""
+    case = next(c for c in special_cases("wip_platform") if c.name == family)
+    for ps in parameter_sets("wip_platform", 4, np.random.default_rng(SEED), (case,)):
+        left, right = (ps.model.model.inertias[ps.model.joint_id_of_link(w.link)]
+                       for w in ps.model.wheels)
+        assert left.mass == pytest.approx(right.mass, rel=1e-12)
+        np.testing.assert_allclose(left.inertia, right.inertia, rtol=1e-12, atol=1e-15)

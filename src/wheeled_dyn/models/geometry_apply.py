@@ -135,15 +135,17 @@ def draw_geometry(wm: WheeledModel, rng: np.random.Generator,
         for d in dims:
             values[d] = table.dimensions[d].value * f
     links: dict[str, tuple[float, float]] = {}
-    wheels = [w.link for w in wm.wheels]
+    wheels = {w.link for w in wm.wheels}
+    masses: dict[str, float] = {}            # the drive wheels share one factor, in any order
     for body, names in bodies_of(wm).items():
         if not uniform & set(names):
             continue
         for link in names:
             size = factor(("link", link)) if link in uniform else 1.0
-            mass = links[wheels[0]][1] if link in wheels[1:] and wheels[0] in links \
-                else float(rng.uniform(*MASS_FACTORS))
-            links[link] = (size, mass)
+            key = "wheels" if link in wheels else link
+            if key not in masses:
+                masses[key] = float(rng.uniform(*MASS_FACTORS))
+            links[link] = (size, masses[key])
     return GeometryDraw(MappingProxyType(values), MappingProxyType(links))
 
 

@@ -119,7 +119,8 @@ def _with_geometry(wm: WheeledModel, rng: np.random.Generator, uniform: Collecti
 
 def uniform_links(wm: WheeledModel, special: Sequence[SpecialCase]) -> set[str]:
     r"""The links the ``special`` families keep uniform (every link with mass for
-    ``urdf_proportions``)."""
+    ``urdf_proportions``); a drive wheel with the others (the model declares them alike: one
+    uniform and the other drawn freely would not be)."""
     out: set[str] = set()
     masses = {link for jid, links in bodies_of(wm).items() for link in links
               if jid and wm.lengths is not None and wm.lengths.inertials.get(link, (0.0,))[0] > 0}
@@ -128,7 +129,8 @@ def uniform_links(wm: WheeledModel, special: Sequence[SpecialCase]) -> set[str]:
             out |= masses
         elif case.uniform:
             out |= set(case.uniform)
-    return out
+    wheels = {w.link for w in wm.wheels}
+    return out | wheels if out & wheels else out
 
 
 def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
