@@ -254,3 +254,17 @@ def test_a_built_in_set_is_not_redeclared(tmp_path, key, value):
     text = text.replace('use = "seed001"', f'use = "seed001"\n{key} = {value}', 1)
     with pytest.raises(DerivationError, match=f"coordinates.{key}: set 'seed001' has {key}"):
         load_derivation(_write(tmp_path, text))
+
+
+def test_an_unknown_uniform_link_is_named(tmp_path):
+    r"""``[assumes] uniform`` names links of the model: another name is the file's error,
+    naming the link and the model's links (read as the family ``uniform(link, ...)``)."""
+    from pathlib import Path
+
+    from wheeled_dyn.compare.grid.assumptions import declared
+    source = Path(__file__).parent / "data" / "geometry" / "rod_pendulum_lengths.toml"
+    text = source.read_text()
+    assert 'uniform = ["rod"]' in text
+    path = _write(tmp_path, text.replace('uniform = ["rod"]', 'uniform = ["nope"]'))
+    with pytest.raises(DerivationError, match=r"assumes.uniform.*'nope'.*rod"):
+        declared(load_derivation(path))

@@ -30,7 +30,7 @@ import numpy as np
 
 from ...derivations.schema import Derivation
 from ...errors import DerivationError, UnknownNameError
-from .samples import SpecialCase, family, special_cases, uniform_family
+from .samples import SpecialCase, family, special_cases
 
 
 @dataclass(frozen=True)
@@ -66,8 +66,8 @@ def declared(d: Derivation) -> Assumptions:
                 for name in raw.get("families", ())]
     uniform = raw.get("uniform", ())
     links = tuple(str(x) for x in uniform) if isinstance(uniform, (list, tuple)) else ()
-    if links:
-        families.append(_uniform(d, links))
+    if links:             # the family uniform(link, ...) of a model without a physical record
+        families.append(named_family(d, f"uniform({', '.join(links)})", "assumes.uniform"))
     point = tuple((k, float(v)) for k, v in dict(raw.get("linearised_about", {})).items())
     return Assumptions(tuple(families), point, raw.get("potential") == "equilibrium",
                        tuple(raw.get("text", ())))
@@ -89,25 +89,6 @@ def named_family(d: Derivation, name: str, where: str) -> SpecialCase:
         raise DerivationError(d.path, where, f"{name!r} is not a parameter family of model "
                               f"{d.model!r}; valid: " + ", ".join(valid))
     return found
-
-
-def _uniform(d: Derivation, links: tuple[str, ...]) -> SpecialCase:
-    r"""The family of ``[assumes] uniform``; a link the model lacks, or a model whose
-    parameters are a physical record (its own families say what is uniform), is a
-    :class:`~wheeled_dyn.errors.DerivationError` naming the file."""
-    from ...models.registry import load_model, model_entry
-    if model_entry(d.model).parameters is not None:
-        raise DerivationError(d.path, "assumes.uniform", f"model {d.model!r} has a physical "
-                              "parameter record: name its families instead; valid: "
-                              + ", ".join(c.name for c in special_cases(d.model)))
-    wm = load_model(d.model)
-    for link in links:
-        try:
-            wm.joint_id_of_link(link)
-        except UnknownNameError as exc:
-            raise DerivationError(d.path, "assumes.uniform", f"{link!r} is not a link of model "
-                                  f"{d.model!r}; valid: " + ", ".join(exc.valid or ())) from None
-    return uniform_family(links)
 
 
 def position_ranges(d: Derivation, positions: Sequence[str],
