@@ -14,7 +14,8 @@ is an :class:`ExpressionError`; an undeclared name is an :class:`UndeclaredNameE
 the name. Unknown names are errors, never new symbols: a typo in a file is reported, not
 silently turned into a fresh parameter. Every expression is held to the limits of
 :mod:`.limits` (:data:`MAX_TOKENS`, :data:`MAX_NESTING`, :data:`MAX_EXPONENT`,
-:data:`MAX_CONSTANT`, :data:`MAX_EXPANDED_TERMS`).
+:data:`MAX_CONSTANT`); the document expressions of a derivation file (elements, equations,
+definitions, inputs, steps: read by its loader) also to :data:`MAX_EXPANDED_TERMS`.
 
 Two namespaces exist (:mod:`.namespace`): the *document* namespace (:func:`parse_expression`:
 what the document writes) and the *model* namespace (:func:`parse_model_expression`: values of

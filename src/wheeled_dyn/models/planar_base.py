@@ -38,7 +38,6 @@ HORIZONTAL_TOL = ANGLE_TOL
 AXIS_TOL = 1e-9
 #: Largest relative difference between the two wheel radii.
 RADIUS_TOL = 1e-9
-#: Shortest direction vector (``up``, a wheel axis) taken as a direction.
 
 
 def _wheel_geometry(source: UrdfSource, spec: ModelSpec, model: pin.Model, data: pin.Data,

@@ -83,7 +83,8 @@ def _matrix(result: DerivationResult, key: str, names: Notation, document: bool)
         label = ("document, in the model's parameters" if closed else
                  "document as printed; below each, its number at the reference state")
     else:
-        label = "truth" if closed else "truth: numbers at the reference state"
+        label = ("truth, in the document's symbols" if result.truth_in_document else
+                 "truth" if closed else "truth: numbers at the reference state")
     return (f'<div><b>{key}</b> <span class="note">({label})</span>'
             f'<table class="mat">{"".join(rows)}</table></div>')
 

@@ -127,13 +127,13 @@ def inliner(assignments: Sequence[tuple[sp.Symbol, sp.Expr]], expand: bool = Fal
             raise TooLarge(what)
         return out
 
-    def full(e: sp.Expr) -> sp.Expr:
+    def full(e: sp.Expr, what: str = "element") -> sp.Expr:
         subs = {}
         for s in e.free_symbols:
             if s in definitions:
                 if s not in memo:
-                    memo[s] = done(full(definitions[s]), str(s))
+                    memo[s] = full(definitions[s], str(s))      # expanded once, checked
                 subs[s] = memo[s]
-        return done(e.xreplace(subs) if subs else e, "element")
+        return done(e.xreplace(subs) if subs else e, what)
 
     return full

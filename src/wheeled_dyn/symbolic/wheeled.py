@@ -39,7 +39,8 @@ Parameters (``parameters=``):
   gravity, wheel radius);
 - ``"standard"``: Khalil symbols ``M_<link>, MX_<link>, ..., ZZ_<link>`` (link frame = joint
   frame where a joint carries one link at its origin, else named after the joint) for every
-  joint that carries mass; numbers for the rest.
+  joint that carries mass, gravity's magnitude ``g``, and the lengths the parameter sets draw
+  as symbols where :func:`lengths_are_symbols` says so; numbers for the rest.
 
 :func:`true_expressions` gives the elements of the WIP's terms, labelled as the comparison
 engine labels them, cached in memory and on disk.
@@ -147,9 +148,10 @@ def symbolic_parts(wm: WheeledModel, cs: CoordinateSet, parameters: str = "physi
 
 
 _MEMORY: dict[str, dict[str, sp.Expr] | None] = {}
-#: Models without a physical record get closed forms in standard parameters for the reports
-#: when they have a fixed base and at most this many joints (the benchmark bodies of seed 000
-#: take a tenth of a second; a free body in body rates takes minutes).
+#: Models without a physical record get closed forms in standard parameters from the
+#: Lagrangian when they have a fixed base and at most this many joints (the benchmark bodies
+#: of seed 000 take a tenth of a second); the others from the tree's forms written out
+#: (:func:`~.expanded.expanded_tree`; a free body in body rates took minutes the other way).
 STANDARD_MAX_DOF = 4
 
 
@@ -191,7 +193,8 @@ def true_expressions(model: str, cs: CoordinateSet, refresh: bool = False
     r"""The true elements of model ``model`` (a registry name) in the coordinate set ``cs``,
     in the model's physical parameters (:func:`wheeled_symbolic` with ``"physical"``) or, for a
     model without a physical-parameter record, in Khalil's standard parameters of its links
-    (``"standard"``: symbols ``XX_link`` ..., geometry as exact numbers), labelled as
+    (``"standard"``: symbols ``XX_link`` ..., ``g``, the drawn lengths as symbols where
+:func:`lengths_are_symbols`, other geometry as exact numbers), labelled as
     :func:`element_expressions` does; ``"B[i,j]"`` in the model's inputs. None where the
     symbolic engine does not fit the model.
 
