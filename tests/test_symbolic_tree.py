@@ -160,3 +160,18 @@ def test_symbolic_command_intermediate_form(capsys):
     assert out["operations"]["multiplications"] > 0
     assert set(out["expanded"]) == {"A[1,1]", "Q[2]"}
     assert main(["symbolic", "tiago_base", "--form", "intermediate", "--expand", "A[9,9]"]) == 2
+
+
+def test_the_lengths_column_is_what_the_printed_forms_write(capsys):
+    r"""``symbolic wip_platform --form intermediate --parameters standard``: the tree's forms
+    write the wheels' radius and half track as ``R`` and ``L`` (they are free symbols of A),
+    and the lengths table says so; it printed no symbol for any wheeled model."""
+    import sympy as sp
+    assert main(["symbolic", "wip_platform", "--form", "intermediate", "--parameters",
+                 "standard", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    symbols = {name: entry["symbol"] for name, entry in out["lengths"].items()}
+    assert symbols["R"] == "R" and symbols["L"] == "L"
+    assert symbols["radius(wheel_left)"] == "R"
+    written = set().union(*(sp.sympify(e).free_symbols for _, e in out["assignments"]))
+    assert {"R", "L"} <= {str(s) for s in written}

@@ -78,7 +78,7 @@ def _cmd_tree(args: argparse.Namespace, wm, cs, mode: str) -> int:
                "seconds": seconds, "operations": ops.__dict__,
                "assignments": [[str(w), _text(e)] for w, e in red.assignments],
                "lengths": {n: {"value": v, "symbol": sym, "meaning": m}
-                           for n, v, sym, m in _lengths(wm)},
+                           for n, v, sym, m in _lengths(wm, mode, True)},
                **{k: [[_text(x) for x in row] for row in M.tolist()] for k, M in terms.items()},
                "expanded": {k: _text(v) for k, v in expanded.items()}}
         print(json.dumps(out, indent=2))
@@ -89,7 +89,7 @@ def _cmd_tree(args: argparse.Namespace, wm, cs, mode: str) -> int:
     print(f"parameters ({mode}): {', '.join(map(str, red.parameters))}")
     _print_link_parameters(wm)
     print(f"derived in {seconds:.2f} s with intermediate variables: {ops}")
-    _print_lengths(wm)
+    _print_lengths(wm, mode, True)
     print("A(q) nu' + C(q, nu) nu + Q(q) = B u, h = C nu; intermediate variables in order:")
     for w, e in red.assignments:
         print(f"  {w} = {_text(e)}")
@@ -101,13 +101,13 @@ def _cmd_tree(args: argparse.Namespace, wm, cs, mode: str) -> int:
     return 0
 
 
-def _lengths(wm) -> list[tuple[str, float, str, str]]:
-    r"""The model's named lengths and constants: (name, value, as the closed forms of
-    ``--parameters standard`` write it, what it is)."""
-    from ..symbolic.lengths import length_symbols
+def _lengths(wm, mode: str, tree: bool) -> list[tuple[str, float, str, str]]:
+    r"""The model's named lengths and constants: (name, value, as the closed forms printed
+    (``mode``, the tree's forms or not) write it, what it is)."""
+    from ..symbolic.parameter_modes import drawn_symbols
     if wm.lengths is None:
         return []
-    symbols = length_symbols(wm) if not wm.wheels else {}
+    symbols = drawn_symbols(wm, mode, axle=tree)
     out = [(k, d.value, _text(symbols.get(k, "")), d.meaning + ("" if d.drawn else "; kept"))
            for k, d in wm.lengths.dimensions.items()]
     out += [(k, c.value, _text(symbols.get(k, "")), c.meaning + ("" if c.drawn else "; kept"))
@@ -115,8 +115,8 @@ def _lengths(wm) -> list[tuple[str, float, str, str]]:
     return out
 
 
-def _print_lengths(wm) -> None:
-    rows = _lengths(wm)
+def _print_lengths(wm, mode: str, tree: bool) -> None:
+    rows = _lengths(wm, mode, tree)
     if not rows:
         return
     print("lengths (names a derivation's [symbols] may use; random parameter sets draw them):")
@@ -169,7 +169,7 @@ def _cmd_symbolic(args: argparse.Namespace) -> int:
                                                 for row in red.B.tolist()],
                "h": [_text(x) for x in red.h],
                "lengths": {n: {"value": v, "symbol": sym, "meaning": m}
-                           for n, v, sym, m in _lengths(wm)}}
+                           for n, v, sym, m in _lengths(wm, mode, False)}}
         if red.G is not None:
             out["G"] = [[_text(x) for x in row] for row in red.G.tolist()]
         print(json.dumps(out, indent=2))
@@ -185,7 +185,7 @@ def _cmd_symbolic(args: argparse.Namespace) -> int:
           f"inputs {', '.join(wm.input_names)}")
     print(f"parameters ({mode}): {', '.join(map(str, red.parameters))}")
     _print_link_parameters(wm)
-    _print_lengths(wm)
+    _print_lengths(wm, mode, False)
     print("A(q) nu' + C(q, nu) nu + Q(q) = B u")
     for name, M in terms.items():
         print(f"{name}:")

@@ -126,6 +126,16 @@ def standard_names(wm: WheeledModel) -> dict[int, str]:
     return names
 
 
+def drawn_symbols(wm: WheeledModel, mode: str, axle: bool = False) -> dict[str, sp.Expr]:
+    r"""The lengths the closed forms of ``mode`` write as symbols, by name (empty where they
+    hold numbers): in standard parameters, a model without wheels' and a planar wheeled
+    model's with ``axle`` (:func:`_numeric_setup`)."""
+    if mode != "standard" or wm.lengths is None or (wm.wheels and not
+                                                     (axle and axle_symbols(wm))):
+        return {}
+    return length_symbols(wm)
+
+
 def _numeric_setup(wm: WheeledModel, mode: str, axle: bool = False) -> dict:
     r"""Standard or numeric parameters; with ``mode == "standard"`` gravity's magnitude as the
     symbol ``g`` (the parameter sets draw it) and the drawn lengths as symbols (a planar
@@ -143,8 +153,8 @@ def _numeric_setup(wm: WheeledModel, mode: str, axle: bool = False) -> dict:
     geometry = {k: exact_length(v) for k, v in wm.named_lengths().items()}
     moved, radius = None, [exact_length(w.radius) for w in wm.wheels]
     planar = axle and axle_symbols(wm)
-    if mode == "standard" and wm.lengths is not None and (planar or not wm.wheels):
-        lengths = length_symbols(wm)
+    lengths = drawn_symbols(wm, mode, axle)
+    if lengths:
         geometry.update({identifier(k): v for k, v in lengths.items()})
         geometry.update({k: v for k, v in lengths.items() if k in wm.geometry})
         moved = translations(wm, lengths)
