@@ -5,11 +5,12 @@ at one set of numbers can hide errors (a product of inertia that happens to be 0
 term it multiplies; :math:`l^2` written for :math:`l` is invisible where :math:`l = 1`), so the
 sets are random: every product of inertia and centre-of-mass offset nonzero, and every length
 of the model drawn too (joint origins, wheel, ball and contact radii, track, the constants of
-its ``[geometry]``: :mod:`~wheeled_dyn.models.geometry_apply`), except where the model declares
-a symmetry: the two drive wheels of a wheeled model stay alike (one shared random scaling of
-the URDF's wheels), lengths its ``[geometry]`` lists as equal stay equal. *Special cases*
-restrict them (e.g. products of inertia zero, a uniform body): an element that agrees under a
-special case only is reported as "agrees only if ...".
+its ``[geometry]``: :mod:`~wheeled_dyn.models.geometry_apply`; for a model with a physical
+parameter record, the record's lengths — its links' shapes stay the URDF's), except where the
+model declares a symmetry: the two drive wheels of a wheeled model stay alike (one shared
+random scaling of the URDF's wheels), lengths its ``[geometry]`` lists as equal stay equal.
+*Special cases* restrict them (e.g. products of inertia zero, a uniform body): an element that
+agrees under a special case only is reported as "agrees only if ...".
 
 The model namespace a derivation's symbols are written in: the physical parameters of the
 model's record (``m_S, d, I1, ...`` for the WIP), the geometric ``R`` (wheel radius), ``L``

@@ -111,7 +111,8 @@ def in_document(d: Derivation, truth: Mapping[str, sp.Expr], to_model: ToModel,
                 standard: bool = False) -> InDocument | None:
     r"""The true elements in the document's symbols where its declarations (``to_model``: a
     document expression in the model's parameters) determine the parameters (module text;
-    the others stay model parameters), or None where they determine none of them. ``assumed``: the substitution the document's families make (a
+    the others stay model parameters), or None where they determine none of them.
+    ``assumed``: the substitution the document's families make (a
     physical record's families, or the uniform links of a model in Khalil's parameters);
     with ``standard`` (a model in Khalil's parameters) the relations of
     :mod:`.proportions` under ``families`` too. Remembered: :data:`IN_DOCUMENT`."""
@@ -122,7 +123,8 @@ def in_document(d: Derivation, truth: Mapping[str, sp.Expr], to_model: ToModel,
     values = tuple(sorted(model_parameters(wm).items())) if standard else ()
     key = (tuple(sorted(truth.items(), key=lambda kv: kv[0])), tuple(declared),
            tuple(sorted(relations.items(), key=str)), tuple(families), values,
-           tuple(d.positions), tuple(d.velocities))
+           tuple(d.positions), tuple(d.velocities), d.model,
+           tuple(sorted((spec.symbol for spec in d.symbols.values()), key=str)))
     return IN_DOCUMENT.get(key, lambda: _in_document(d, wm, truth, declared, relations,
                                                      standard, families))
 
