@@ -70,20 +70,16 @@ from .lengths import axle_symbols
 from .model import SymbolicModel
 from .parameter_modes import (PARAMETER_MODES, PHYSICAL_LATEX, PLACEMENT_TOL,
                               _numeric_setup, has_physical_record, parameter_setup,
-                              physical_latex, physical_symbols, standard_names)
+                              physical_latex, physical_symbols)
 from .simplify import simplify_expr
 from .springs import spring_terms, with_springs
 from .transform import ReducedSymbolic, transform
 from .trig_solve import FLOAT_NOISE, trig_solve
 
-#: The parameter setups under the private names they had here (``compare/presentation/
-#: closed_form.py`` imports ``_standard_names`` from this module).
-_setup, _standard_names = parameter_setup, standard_names
-
 #: Names importable from here, where every part of the closed forms lived before it had a
 #: module of its own.
 __all__ = ["FLOAT_NOISE", "lengths_are_symbols", "PARAMETER_MODES", "PHYSICAL_LATEX", "PLACEMENT_TOL", "RANK_TOL",
-           "ROW_SEED", "STANDARD_MAX_DOF", "_numeric_setup", "_setup", "_standard_names",
+           "ROW_SEED", "STANDARD_MAX_DOF", "_numeric_setup",
            "contact_rows", "coordinate_set_key", "element_expressions", "independent_rows",
            "physical_latex", "physical_symbols", "symbolic_parts", "trig_solve",
            "true_expressions", "velocity_basis", "velocity_products", "wheeled_symbolic"]

@@ -151,12 +151,12 @@ def uniform_substitution(d: Derivation, links: frozenset[str]) -> dict[sp.Symbol
     from ...models.registry import load_model
     from ...symbolic.parameters import PARAMETER_NAMES
     from ...symbolic.lengths import length_symbols
-    from ...symbolic.wheeled import _standard_names
+    from ...symbolic.parameter_modes import standard_names
     wm = load_model(d.model)
     if not links or wm.lengths is None or model_entry(d.model).parameters is not None:
         return {}
     lengths = length_symbols(wm)
-    names = _standard_names(wm)
+    names = standard_names(wm)
     used = {f"{c.func.__name__}({c.args[0]})" if isinstance(c, AppliedUndef) else c.name
             for s in d.symbols.values() if s.value is not None
             for c in (*s.value.atoms(AppliedUndef), *s.value.free_symbols)}
