@@ -125,3 +125,44 @@ def test_internal_errors_pickle():
         back = pickle.loads(pickle.dumps(err))
         assert type(back) is type(err) and str(back) == str(err)
         assert vars(back) == vars(err)
+
+
+def test_symbol_values_are_held_to_the_expanded_limit(tmp_path):
+    r"""A ``[symbols]`` value is substituted and solved for (the truth in the document's
+    symbols): one whose expansion has about 9·10⁷ terms is refused when the file is read,
+    naming its line, where it took minutes in the comparison before."""
+    path, line = _mutated(tmp_path, 'value = "m_C"',
+                          'value = "m_C + 1e-30*(m_C + m_S + d + R + I3 + Iw3 + g)**60"')
+    with pytest.raises(DerivationError) as err:
+        load_derivation(path)
+    assert (err.value.line, err.value.item) == (line, "symbols.m_c.value")
+    assert f"at most {MAX_EXPANDED_TERMS}" in str(err.value)
+
+
+ROS = os.path.join(os.path.dirname(__file__), "data", "ros_balancer")
+
+
+@pytest.mark.parametrize("expression,reason", [
+    ("phi + 0*len(().__class__.__mro__)", "token '.' is not allowed"),
+    ("phi + (x0 + y0 + psi + R)**40/10**30", f"at most {MAX_EXPANDED_TERMS}"),
+    ("phi if x0 else psi", "Python keyword")])
+def test_a_model_files_coordinate_sets_are_read_as_a_derivations_expressions(
+        expression, reason, tmp_path):
+    r"""A model file's ``[coordinates.<set>]`` is the user's text: it passes the same token
+    scan and limits as a derivation's expressions before SymPy's parser (which evaluates
+    Python) reads it, and the error names the model and the item."""
+    import shutil
+
+    from wheeled_dyn import builtin_coordinate_set, load_model
+    from wheeled_dyn.errors import WheeledDynError
+    shutil.copy(os.path.join(ROS, "ros_balancer.urdf"), tmp_path)
+    text = open(os.path.join(ROS, "ros_balancer.toml")).read().replace(
+        'name = "ros_balancer"', 'name = "ros_balancer_coords"')
+    text += ('\n[coordinates.mine]\npositions = ["x0", "y0", "psi", "phi"]\n'
+             f'configuration = {{ x0 = "x0", y0 = "y0", psi = "psi", phi = "{expression}" }}\n')
+    (tmp_path / "robot.toml").write_text(text)
+    wm = load_model(str(tmp_path / "robot.toml"))
+    with pytest.raises(WheeledDynError) as err:
+        builtin_coordinate_set(wm, "mine")
+    assert reason in str(err.value) and "configuration.phi" in str(err.value)
+    assert builtin_coordinate_set(wm, "heading").positions      # the others still read

@@ -55,10 +55,18 @@ def parse_expression(text: str | int | float, names: Mapping[str, sp.Basic], *, 
     r"""Parse SymPy syntax with only ``names`` (and sin, cos, ..., pi) known.
 
     An unknown name raises :class:`UnknownNameError` naming ``where`` and ``item``; a syntax
-    error raises :class:`DerivationError`.
+    error, a token a derivation's expression may not hold (attribute access, a string, a
+    keyword, ...) or an expression over the limits of :mod:`~wheeled_dyn.derivations.limits`
+    raises :class:`DerivationError`: the text is checked by the derivations' token scan before
+    SymPy reads it, as a model file's coordinate sets are the user's text too.
     """
+    from ..derivations.expressions import ExpressionError, check_expanded, scan_names
     if isinstance(text, (int, float)):
         return sp.nsimplify(text) if float(text).is_integer() else sp.Float(text)
+    try:
+        scan_names(str(text))
+    except ExpressionError as exc:
+        raise DerivationError(where, item, exc.reason) from None
     local = {**_FUNCTIONS, **names}
     try:
         expr = parse_expr(str(text), local_dict=local, global_dict={"Integer": sp.Integer,
@@ -70,6 +78,10 @@ def parse_expression(text: str | int | float, names: Mapping[str, sp.Basic], *, 
     unknown = {s.name for s in expr.free_symbols} - set(names)
     if unknown:
         raise UnknownNameError("symbol", sorted(unknown)[0], names, where=f"{where}, {item}")
+    try:
+        check_expanded(str(text), expr)
+    except ExpressionError as exc:
+        raise DerivationError(where, item, exc.reason) from None
     return expr
 
 

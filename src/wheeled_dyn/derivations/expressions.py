@@ -15,7 +15,8 @@ the name. Unknown names are errors, never new symbols: a typo in a file is repor
 silently turned into a fresh parameter. Every expression is held to the limits of
 :mod:`.limits` (:data:`MAX_TOKENS`, :data:`MAX_NESTING`, :data:`MAX_EXPONENT`,
 :data:`MAX_CONSTANT`); the document expressions of a derivation file (elements, equations,
-definitions, inputs, steps: read by its loader) also to :data:`MAX_EXPANDED_TERMS`.
+definitions, inputs, steps: read by its loader, with its definitions substituted) and every
+model expression (:func:`parse_model_expression`) also to :data:`MAX_EXPANDED_TERMS`.
 
 Two namespaces exist (:mod:`.namespace`): the *document* namespace (:func:`parse_expression`:
 what the document writes) and the *model* namespace (:func:`parse_model_expression`: values of
@@ -130,7 +131,9 @@ def parse_model_expression(text: str, parameters: Collection[str] | None = None,
     ``origin_x(joint)``, ``radius(link)`` ... (:data:`GEOMETRY_NAMES`); every other name is
     a model parameter, a real symbol. With ``parameters``/``links`` given, names outside them
     raise :class:`UndeclaredNameError` (kind ``"model parameter"``/``"link"``; the joint of
-    ``origin_x(joint)`` is checked by the comparison, which knows the model).
+    ``origin_x(joint)`` is checked by the comparison, which knows the model). Held to
+    :data:`MAX_EXPANDED_TERMS` like a document's expressions: a value is substituted and
+    solved for.
     """
     scanned = scan_names(text)
     local: dict[str, object] = {**STANDARD_FUNCTIONS, **CONSTANTS}
@@ -166,6 +169,7 @@ def parse_model_expression(text: str, parameters: Collection[str] | None = None,
         if len(call.args) != 1 or not isinstance(call.args[0], sympy.Symbol):
             raise ExpressionError(text, f"{call} must have exactly one link or joint name as "
                                         "argument")
+    check_expanded(text, expr)
     return expr
 
 
