@@ -154,6 +154,35 @@ def main() -> None:
         (first,) = _command_times("report", runs=1, env={"WHEELED_DYN_CACHE": empty})
     print(f"wheeled-dyn report with an empty cache folder (closed forms derived, nothing "
           f"printed before): {first:.2f} s")
+    raw = _raw_pinocchio(wm)
+    print(f"this machine's speed: raw Pinocchio crba+coriolis+gravity on the WIP "
+          f"{raw * 1e6:.1f} us/state, {raw / REFERENCE_RAW:.2f}x its "
+          f"{REFERENCE_RAW * 1e6:.1f} us of {REFERENCE_DAY} (the targets above are absolute)")
+
+
+#: Raw Pinocchio's time per state (crba, Coriolis matrix, gravity of the WIP; as
+#: ``bench_core.py``) on :data:`REFERENCE_DAY`, when ``compare`` of eq. 25 took 0.80–0.88 s and
+#: ``report`` 2.40–2.48 s: the same code's figures scale with it on these shared machines.
+REFERENCE_RAW, REFERENCE_DAY = 2.8e-6, "2026-11-25"
+
+
+def _raw_pinocchio(wm, states: int = 2000) -> float:
+    r"""The best of three: seconds per state of ``crba``, ``computeCoriolisMatrix`` and
+    ``computeGeneralizedGravity`` on ``wm``'s full model (code this project does not change:
+    a measure of the machine)."""
+    import pinocchio as pin
+    rng = np.random.default_rng(7)
+    model, data = wm.model, wm.model.createData()
+    pairs = [(rng.uniform(-3, 3, model.nq), rng.normal(size=model.nv)) for _ in range(states)]
+    best = np.inf
+    for _ in range(3):
+        t0 = time.perf_counter()
+        for q, v in pairs:
+            pin.crba(model, data, q)
+            pin.computeCoriolisMatrix(model, data, q, v)
+            pin.computeGeneralizedGravity(model, data, q)
+        best = min(best, (time.perf_counter() - t0) / states)
+    return best
 
 
 if __name__ == "__main__":

@@ -30,6 +30,7 @@ KIND_TEXT = {
     "c_inconsistent_with_a": "C not consistent with the document's own A",
     "claimed_relation": "claimed relation is wrong", "upstream_step": "an earlier step",
     "sign": "sign", "power": "power", "factor": "factor", "swap": "swapped symbol",
+    "small_angle": "small-angle approximation",
     "swapped_inputs": "swapped inputs", "dimension": "units", "missing_physics": "missing physics",
     "assumption": "holds only if", "energy": "energy", "not_positive_definite":
     "A not positive definite", "file_error": "error of the derivation file",
@@ -117,6 +118,7 @@ def _diagnosis_kind(record: ElementRecord, diagnosis: Diagnosis | None) -> str:
         return "differs"
     return {K.MISSING: "missing", K.EXTRA: "extra", K.DIMENSION: "dimension", K.SIGN: "sign",
             K.FACTOR: "factor", K.SWAP: "swap", K.POWER: "power",
+            K.SMALL_ANGLE: "small_angle",
             K.POINT_MASS: "point_mass"}.get(diagnosis.kind, "differs")
 
 
@@ -154,8 +156,8 @@ def _first_diagnosis(record: ElementRecord) -> Diagnosis | None:
 
 
 #: Order of the grouped kinds: typos, then physics, factorisation, conditions.
-_GROUP_ORDER = ("dimension", "sign", "power", "factor", "swap", "point_mass", "missing",
-                "extra", "differs",
+_GROUP_ORDER = ("dimension", "sign", "power", "factor", "swap", "small_angle", "point_mass",
+                "missing", "extra", "differs",
                 "factorization", "assumption")
 
 

@@ -282,6 +282,7 @@ TERM_KINDS = (
     (K.POWER, CauseKind.POWER, "a symbol to the wrong power"),
     (K.FACTOR, CauseKind.FACTOR, "a constant factor"),
     (K.SWAP, CauseKind.SWAP, "one symbol written for another"),
+    (K.SMALL_ANGLE, CauseKind.SMALL_ANGLE, "a small-angle approximation"),
     (K.MISSING, CauseKind.MISSING_PHYSICS, "a term the document leaves out"),
     (K.EXTRA, CauseKind.MISSING_PHYSICS, "a term the truth does not have"),
 )
@@ -318,6 +319,11 @@ def term_causes(records: Sequence, explained: set[str],
             if hit is not None:
                 detail = hit.detail or sentence
                 detail = _one_swap(r, hit) if dkind == K.SWAP else detail
+                if dkind == K.SMALL_ANGLE:            # one cause per coordinate
+                    detail = (f"the document takes {hit.position} as small (sin({hit.position})"
+                              f" ≈ {hit.position}, cos({hit.position}) ≈ 1) but declares no "
+                              "linearisation (linearised_about): compared with the exact "
+                              "equations")
                 key = (kind, sentence if kind == CauseKind.MISSING_PHYSICS else detail)
                 groups.setdefault(key, []).append(r.element)
                 break

@@ -124,7 +124,7 @@ def judge(d: ElementDraft, problems: Sequence[str], trials: Trials,
 
 def specific(diagnoses: Sequence[Diagnosis]) -> bool:
     r"""A diagnosis naming one term's error precisely (no family search is needed then)."""
-    return has_kind(diagnoses, K.DIMENSION, K.SIGN, K.FACTOR, K.SWAP)
+    return has_kind(diagnoses, K.DIMENSION, K.SIGN, K.FACTOR, K.SWAP, K.SMALL_ANGLE)
 
 
 __all__ = ["SCREEN_SAMPLES", "Trials", "judge", "specific"]

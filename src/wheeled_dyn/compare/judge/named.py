@@ -29,7 +29,7 @@ from .fitting import RATIO_TOL, fit_factor, fit_sum
 
 #: Diagnoses after which no term is named (the error is named already); a constant factor
 #: may still be a point mass's (m l² for the uniform rod's m l²/3 is "factor 3/4").
-NAMED = (K.SIGN, K.POWER, K.SWAP, K.DIMENSION, K.EXTRA, K.UNDECIDED, K.POINT_MASS)
+NAMED = (K.SIGN, K.POWER, K.SWAP, K.SMALL_ANGLE, K.DIMENSION, K.EXTRA, K.UNDECIDED, K.POINT_MASS)
 #: Axes of a link's own moments of inertia.
 AXES = ("x", "y", "z")
 #: Most elements of one derivation whose terms are named (each is a search).

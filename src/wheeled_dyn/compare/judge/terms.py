@@ -12,16 +12,18 @@ import sympy as sp
 
 from ..records import Diagnosis
 from .diagnose import agrees, power_diagnoses, term_diagnoses, trig_swap_diagnoses
+from .small_angle import small_angle_diagnoses
 from ..sides.document import DocumentFunctions
 
 
 def trig_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.ndarray],
                     factor: float | None, D: np.ndarray, T: np.ndarray, scale: float,
                     check: bool = False) -> list[Diagnosis]:
-    r"""A sin written for a cos in ``expr`` (:func:`.diagnose.trig_swap_diagnoses`), the
-    document's values divided by its row ``factor``. ``check``: only when ``expr`` evaluated on
-    ``argv`` gives the element's own values ``D`` (a velocity product's coefficient is sampled
-    on its own grid)."""
+    r"""A sin written for a cos in ``expr`` (:func:`.diagnose.trig_swap_diagnoses`), else a
+    small-angle approximation (:func:`.small_angle.small_angle_diagnoses`), the document's
+    values divided by its row ``factor``. ``check``: only when ``expr`` evaluated on ``argv``
+    gives the element's own values ``D`` (a velocity product's coefficient is sampled on its
+    own grid)."""
     c = 1.0 if factor is None else factor
 
     def evaluate_many(exprs: list) -> list[np.ndarray]:
@@ -31,7 +33,8 @@ def trig_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.nd
         return []
     if check and not agrees(evaluate_many([expr])[0], D, scale):
         return []
-    return trig_swap_diagnoses(expr, evaluate_many, T, scale)
+    return trig_swap_diagnoses(expr, evaluate_many, T, scale) or small_angle_diagnoses(
+        expr, funcs.d.positions, evaluate_many, T, scale)
 
 
 def element_term_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.ndarray],
@@ -40,7 +43,7 @@ def element_term_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequen
     r"""A parameter to the wrong power (also where a constant factor fits: with a geometry
     constant the sets do not vary, G for G² *is* a factor), then, when the element has no
     diagnosis yet, one additive term with the wrong sign or factor, then a sin written for a
-    cos (:mod:`.diagnose`)."""
+    cos (:mod:`.diagnose`) or a small angle (:mod:`.small_angle`)."""
     c = 1.0 if factor is None else factor
 
     def evaluate(e: sp.Expr) -> np.ndarray:

@@ -18,7 +18,8 @@ class Diagnosis:
     (or power, or velocity product) the document wrote and the one that fits, ``condition``
     the special values an element needs, ``terms`` terms named one by one (missing or extra),
     ``rows`` 0-based equations concerned, ``product`` the velocity or acceleration product
-    whose coefficient an earlier step's finding is about (``"dx*dpsi"``)."""
+    whose coefficient an earlier step's finding is about (``"dx*dpsi"``), ``position`` the
+    coordinate a small-angle approximation is made in."""
 
     kind: DiagnosisKind
     text: str
@@ -31,13 +32,14 @@ class Diagnosis:
     terms: tuple[str, ...] = ()
     rows: tuple[int, ...] = ()
     product: str = ""
+    position: str = ""
 
     def __str__(self) -> str:
         return self.text
 
     def as_dict(self) -> dict[str, object]:
         out: dict[str, object] = {"kind": self.kind.value, "text": self.text}
-        for name in ("term", "factor", "written", "fits", "condition", "product"):
+        for name in ("term", "factor", "written", "fits", "condition", "product", "position"):
             if getattr(self, name):
                 out[name] = getattr(self, name)
         if self.terms:

@@ -35,6 +35,7 @@ class CauseKind(StrEnum):
     POWER = "power"                    # a symbol to the wrong power (G for G², R for R²)
     FACTOR = "factor"                  # a constant factor
     SWAP = "swap"                      # one variable or symbol written for another
+    SMALL_ANGLE = "small_angle"        # sin x ≈ x, cos x ≈ 1 in equations compared as exact
     SWAPPED_INPUTS = "swapped_inputs"  # input columns exchanged
     DIMENSION = "dimension"            # a term with inconsistent units
     MISSING_PHYSICS = "missing_physics"  # an effect the document leaves out and does not state
@@ -85,7 +86,8 @@ class DiagnosisKind(StrEnum):
     ``SIGN``, ``FACTOR`` (``factor``), ``POWER``/``SWAP`` (``written`` where ``fits`` fits),
     ``MISSING``/``EXTRA`` (the document has 0 / the truth is 0; with ``terms``: the terms
     named one by one), ``POINT_MASS`` (a body's own inertia about its centre is missing),
-    ``DIMENSION``; ``CONDITION`` (agrees only if ``condition``), ``FACTORIZATION`` (C differs,
+    ``DIMENSION``; ``SMALL_ANGLE`` (``written`` where ``fits`` fits, e.g. ``phi`` where
+    ``sin(phi)`` fits, in ``position``); ``CONDITION`` (agrees only if ``condition``), ``FACTORIZATION`` (C differs,
     C q̇ agrees), ``UNDECIDED`` (values not finite), ``RESIDUAL`` (truth − document, as
     text), ``COINCIDENCE`` (numerically equal only because an inconsistent term vanishes
     here), ``NOT_EQUIVALENT`` (an equation that is no combination of the true ones),
@@ -96,6 +98,7 @@ class DiagnosisKind(StrEnum):
     FACTOR = "factor"
     POWER = "power"
     SWAP = "swap"
+    SMALL_ANGLE = "small_angle"
     MISSING = "missing"
     EXTRA = "extra"
     POINT_MASS = "point_mass"
@@ -113,4 +116,5 @@ class DiagnosisKind(StrEnum):
 #: Diagnoses that name one term's error precisely (an element carrying one is left to its
 #: single-term cause rather than to a method cause).
 SPECIFIC_KINDS = frozenset({DiagnosisKind.SIGN, DiagnosisKind.FACTOR, DiagnosisKind.SWAP,
+                            DiagnosisKind.SMALL_ANGLE,
                             DiagnosisKind.POWER, DiagnosisKind.DIMENSION})

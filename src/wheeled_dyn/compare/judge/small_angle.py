@@ -1,0 +1,82 @@
+r"""A small-angle approximation in equations compared as exact: the document writes
+:math:`x` where :math:`\sin x` fits, or drops a factor :math:`\cos x` (:math:`\cos x \approx 1`),
+for a position :math:`x`, without declaring a linearisation (``linearised_about``).
+
+An explanation of an element that differs, never a verdict: a trial reading is named only
+where it agrees with the truth at every sample, as every other diagnosis
+(:mod:`.diagnose`). Trials, in order, for each position :math:`x`:
+
+- the whole element: every :math:`x` outside a trigonometric function read as
+  :math:`\sin x`; the element times :math:`\cos x`; both;
+- one additive term (as printed, else expanded), the others as written: the same three.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+
+import numpy as np
+import sympy as sp
+
+from ..records import Diagnosis, DiagnosisKind as K, diagnosis
+from .diagnose import MAX_TERMS, agrees
+
+#: The trials of one expression: (what the document wrote, what fits, the trial expression).
+Trial = tuple[str, str, sp.Expr]
+
+
+def bare(expr: sp.Expr, x: sp.Symbol, replacement: sp.Expr) -> sp.Expr:
+    r"""``expr`` with the occurrences of ``x`` outside :math:`\sin, \cos, \tan` replaced."""
+    inside = {f: sp.Dummy() for f in expr.atoms(sp.sin, sp.cos, sp.tan) if f.has(x)}
+    back = {v: k for k, v in inside.items()}
+    return expr.xreplace(inside).xreplace({x: replacement}).xreplace(back)
+
+
+def _trials(expr: sp.Expr, x: sp.Symbol) -> list[Trial]:
+    r"""The three readings of ``expr`` for position ``x`` (module text) that change it."""
+    sin_read = bare(expr, x, sp.sin(x))
+    out: list[Trial] = []
+    if sin_read != expr:
+        out.append((sp.sstr(x), sp.sstr(sp.sin(x)), sin_read))
+    out.append(("1", sp.sstr(sp.cos(x)), expr * sp.cos(x)))
+    if sin_read != expr:
+        out.append((f"{sp.sstr(x)} and 1", f"{sp.sstr(sp.sin(x))} and {sp.sstr(sp.cos(x))}",
+                    sin_read * sp.cos(x)))
+    return out
+
+
+def _found(x: sp.Symbol, written: str, fits: str, term: str = "") -> Diagnosis:
+    where = f" in the term {term}" if term else ""
+    return diagnosis(K.SMALL_ANGLE, f"{written} where {fits} fits{where} (small angles: "
+                     f"sin({x}) ≈ {x}, cos({x}) ≈ 1; no linearisation is declared)",
+                     written=written, fits=fits, term=term, position=sp.sstr(x))
+
+
+def small_angle_diagnoses(expr: sp.Expr, positions: Sequence[sp.Symbol],
+                          evaluate_many: Callable[[list], list[np.ndarray]], T: np.ndarray,
+                          scale: float) -> list[Diagnosis]:
+    r"""The small-angle readings of ``expr`` (module text) that agree with ``T``; ``evaluate_many``
+    evaluates a list of expressions at the samples in one compiled call; each diagnosis names
+    its ``position`` (one cause per position)."""
+    if not positions:
+        return []
+    whole = [(x, t) for x in positions for t in _trials(expr, x)]
+    values = evaluate_many([t[2] for _, t in whole])
+    found = [_found(x, w, f) for (x, (w, f, _)), v in zip(whole, values) if agrees(v, T, scale)]
+    if found:
+        return found[:1]
+    for terms in (sp.Add.make_args(expr), sp.Add.make_args(sp.expand(expr))):
+        if len(terms) < 2 or len(terms) > MAX_TERMS:
+            continue
+        per = [(k, x, t) for k, term in enumerate(terms) for x in positions
+               for t in _trials(term, x)]
+        values = evaluate_many([*terms, *(t[2] for _, _, t in per)])
+        total = sum(values[:len(terms)])
+        found = [_found(x, w, f, sp.sstr(terms[k])) for (k, x, (w, f, _)), v
+                 in zip(per, values[len(terms):]) if agrees(total - values[k] + v, T, scale)]
+        if found:
+            return found[:1]
+    return []
+
+
+__all__ = ["bare", "small_angle_diagnoses"]
