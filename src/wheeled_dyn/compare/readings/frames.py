@@ -232,7 +232,9 @@ def candidate_rules(i: int, grids: Sequence[tuple[Arrays, Arrays, np.ndarray | N
                     ) -> list[FrameRule]:
     r"""The rules tried for row ``i``: the identity; for each true row the elements vote for
     on some grid ((document, truth, true B) each, the document's B in its ``Arrays.B``), the
-    constant they share there, else a function; the combination :math:`A_{doc,i}A^{-1}`, and
+    constant they share there, else a function (``identified`` where ``simple`` finds its
+    ratio a simple expression of the document's names on the first grid, however many
+    elements share it: as good as a constant); the combination :math:`A_{doc,i}A^{-1}`, and
     with ``robust`` (an equation that is not right) its variants with one inertia column
     replaced."""
     doc0, truth0, B0 = grids[0]
@@ -253,7 +255,8 @@ def candidate_rules(i: int, grids: Sequence[tuple[Arrays, Arrays, np.ndarray | N
                                for r in out):
                         out.append(rule)
             else:
-                rule = FrameRule(FrameKind.FUNCTION, k, identified=votes < 2)
+                identified = votes < 2 or (g == 0 and simple is not None and simple(ratio))
+                rule = FrameRule(FrameKind.FUNCTION, k, identified=identified)
                 if not any(r.kind == FrameKind.FUNCTION and r.partner == k for r in out):
                     out.append(rule)
     out.append(FrameRule(FrameKind.COMBINATION))
@@ -296,16 +299,27 @@ def score(doc_row: Arrays, true_row: Arrays) -> int:
 #: Free weights a frame fits per sample (its degrees of freedom): a frame that fits more
 #: must explain that many more elements to be preferred (a combination of n rows fits any n
 #: elements of the row).
-def freedom(rule: FrameRule, n: int) -> int:
+def freedom(rule: FrameRule, n: int, solved: bool = False) -> int:
     r"""0 for the identity, a declared factor and a constant (one number for every sample: it
     is taken only where an element of A shares it exactly), 1 for a function (a number per
-    sample), n for a combination."""
+    sample), n for a combination — 0 for :math:`A_{doc,i}A^{-1}` where the row is ``solved``
+    for its acceleration (:math:`A_{doc,i} = e_i`: the form says which combination it is,
+    row :math:`i` of :math:`A^{-1}`; nothing is fitted)."""
     if rule.kind in (FrameKind.IDENTITY, FrameKind.DECLARED, FrameKind.CONSTANT) or \
             rule.identified:
         return 0
     if rule.kind == FrameKind.FUNCTION:
         return 1
-    return n
+    return 0 if solved and rule.variant is None else n
+
+
+def solved_row(doc: Arrays, i: int) -> bool:
+    r"""Whether the document's row ``i`` is solved for its acceleration: its inertia row is
+    the unit row :math:`e_i` at every sample."""
+    A = doc.need("A")[:, i, :]
+    unit = np.zeros(A.shape[1])
+    unit[i] = 1.0
+    return bool(np.all(A == unit))
 
 
 def elements_of(doc_row: Arrays) -> int:
@@ -375,14 +389,15 @@ def _total(i: int, rule: FrameRule, grids: Sequence[tuple[Arrays, Arrays, np.nda
         got = score(row, framed(frame.weights, truth, B_true, full=False))
         if right:
             return _RIGHT if got == elements_of(row) else -10 ** 9
-        total += got - freedom(rule, n)
+        fitted = freedom(rule, n, solved_row(doc, i))
+        total += got - fitted
         left = len(grids) - g - 1
         if floor is not None and left and \
-                total + left * (elements_of(row) - freedom(rule, n)) <= floor:
+                total + left * (elements_of(row) - fitted) <= floor:
             return None
     return total
 
 
 __all__ = ["CONSTANT_SPREAD", "Frame", "FrameKind", "FrameRule", "RATIO_TOL", "VOTE_FLOOR",
            "candidate_rules", "choose", "combination_variants", "combination_weights",
-           "elements_of", "evaluate_rule", "freedom", "paired", "score"]
+           "elements_of", "evaluate_rule", "freedom", "paired", "score", "solved_row"]
