@@ -36,7 +36,8 @@ KIND_TEXT = {
     "A not positive definite", "file_error": "error of the derivation file",
     # kinds of the grouping by diagnosis
     "extra": "extra term", "missing": "missing term", "factorization": "factorisation of C only",
-    "differs": "differs", "point_mass": "a point mass", "not_equivalent": "not equivalent",
+    "differs": "differs", "point_mass": "a point mass",
+    "parallel_axis": "parallel-axis term missing", "not_equivalent": "not equivalent",
     "undecided": "undecided",
 }
 #: Verdicts that are shown as findings (everything but "agrees").
@@ -119,7 +120,8 @@ def _diagnosis_kind(record: ElementRecord, diagnosis: Diagnosis | None) -> str:
     return {K.MISSING: "missing", K.EXTRA: "extra", K.DIMENSION: "dimension", K.SIGN: "sign",
             K.FACTOR: "factor", K.SWAP: "swap", K.POWER: "power",
             K.SMALL_ANGLE: "small_angle",
-            K.POINT_MASS: "point_mass"}.get(diagnosis.kind, "differs")
+            K.POINT_MASS: "point_mass", K.PARALLEL_AXIS: "parallel_axis"
+            }.get(diagnosis.kind, "differs")
 
 
 def condition(record: ElementRecord) -> str:
@@ -157,7 +159,7 @@ def _first_diagnosis(record: ElementRecord) -> Diagnosis | None:
 
 #: Order of the grouped kinds: typos, then physics, factorisation, conditions.
 _GROUP_ORDER = ("dimension", "sign", "power", "factor", "swap", "small_angle", "point_mass",
-                "missing", "extra", "differs",
+                "parallel_axis", "missing", "extra", "differs",
                 "factorization", "assumption")
 
 

@@ -278,6 +278,8 @@ TERM_KINDS = (
     (K.DIMENSION, CauseKind.DIMENSION, "a term with inconsistent units"),
     (K.POINT_MASS, CauseKind.POINT_MASS, "a body's own inertia about its centre of mass is "
      "missing (a point mass)"),
+    (K.PARALLEL_AXIS, CauseKind.PARALLEL_AXIS, "a body's inertia about its centre of mass "
+     "written where the one about the joint's axis fits (the parallel-axis term is missing)"),
     (K.SIGN, CauseKind.SIGN, "the document has the opposite sign"),
     (K.POWER, CauseKind.POWER, "a symbol to the wrong power"),
     (K.FACTOR, CauseKind.FACTOR, "a constant factor"),

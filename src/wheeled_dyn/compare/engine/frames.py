@@ -12,8 +12,9 @@ import numpy as np
 
 from ...derivations.schema import Derivation
 from ..judge.fitting import bases, fit_factor
-from ..readings.frames import (Frame, FrameKind, FrameRule, candidate_rules, choose,
-                               combination_variants, elements_of, evaluate_rule, score)
+from ..readings.frame_choice import choose, elements_of, score
+from ..readings.frames import (Frame, FrameKind, FrameRule, candidate_rules,
+                               combination_variants, evaluate_rule)
 from ..records import Verdict
 from ..sides.both import Sides
 from ..sides.document import DocumentFunctions

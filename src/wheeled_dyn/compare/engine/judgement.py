@@ -238,7 +238,8 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     if unnamed and id_sides is not None:
         name_terms(drafts, _id_values(d, funcs, id_sides, frames_on_id), found,
                    own_moments([ps.values for ps in id_sides.grid.sets], ID_STATES),
-                   _geometric(d), d.positions, row_factors(rules, frames_on_id))
+                   _geometric(d), d.positions, row_factors(rules, frames_on_id),
+                   own_moments([ps.values for ps in id_sides.grid.sets], ID_STATES, True))
     if decision is not None and not decision.equivalent and combined and id_sides is not None \
             and id_sides.doc.A is not None:
         solved = inertia_diagnoses(id_sides.doc.A, id_sides.doc.B, id_sides.truth.need("A"),

@@ -7,7 +7,11 @@ On the identification grid (many parameter sets) :math:`\Delta` is fitted
 1. as a body's own inertia about its centre of mass (one link's moment about one of its axes,
    or the same moment of two links), times a monomial in the document's names: the document
    treats the body as a point mass, or drops its inertia (a wheel's spin inertia
-   :math:`2 I_w / r^2`) — ``point_mass``;
+   :math:`2 I_w / r^2`) — ``point_mass``; but where :math:`\Delta` is exactly a link's
+   parallel-axis term :math:`M (c_y^2 + c_z^2)` (the mass times its centre's squared distance
+   from the axis) and not exactly its own moment, the document wrote the inertia about the
+   centre of mass where the one about the joint's axis fits — ``parallel_axis`` (for a
+   uniform rod :math:`m l^2/4` is also 3 × its own moment: the exact fit is the one named);
 2. as a monomial, or a sum of two products, in the document's symbols, positions and their
    sines and cosines (:mod:`.fitting`): the terms the document lacks (those of
    :math:`\Delta`) — ``missing`` with the terms named, ``"the document lacks m*l**2/3"``.
@@ -29,31 +33,44 @@ from .fitting import RATIO_TOL, fit_factor, fit_sum
 
 #: Diagnoses after which no term is named (the error is named already); a constant factor
 #: may still be a point mass's (m l² for the uniform rod's m l²/3 is "factor 3/4").
-NAMED = (K.SIGN, K.POWER, K.SWAP, K.SMALL_ANGLE, K.DIMENSION, K.EXTRA, K.UNDECIDED, K.POINT_MASS)
+NAMED = (K.SIGN, K.POWER, K.SWAP, K.SMALL_ANGLE, K.DIMENSION, K.EXTRA, K.UNDECIDED,
+         K.POINT_MASS, K.PARALLEL_AXIS)
 #: Axes of a link's own moments of inertia.
 AXES = ("x", "y", "z")
 #: Most elements of one derivation whose terms are named (each is a search).
 MAX_NAMED = 12
 
 
-def own_moments(values: Sequence[Mapping[str, float]], states: int) -> dict[str, np.ndarray]:
+def own_moments(values: Sequence[Mapping[str, float]], states: int, parallel: bool = False
+                ) -> dict[str, np.ndarray]:
     r"""Every link's moments about its centre of mass along its own axes, per sample of a grid
     (``values``: each parameter set's namespace values; ``states`` per set):
-    :math:`I_{xx,c} = XX - (MY^2 + MZ^2)/M` and likewise."""
+    :math:`I_{xx,c} = XX - (MY^2 + MZ^2)/M` and likewise; with ``parallel`` their
+    parallel-axis parts instead, :math:`(MY^2 + MZ^2)/M = M (c_y^2 + c_z^2)` (keys
+    ``Pxx(link)``), and each part :math:`M c_y^2` (``P:y(link)``, once for both axes it
+    belongs to)."""
     links = sorted({k[2:-1] for k in values[0] if k.startswith("M(")})
     out: dict[str, np.ndarray] = {}
     for link in links:
         for a, axis in enumerate(AXES):
             others = [x for x in AXES if x != axis]
             vals = []
+            parts: dict[str, list[float]] = {}
             for v in values:
                 m = v.get(f"M({link})", 0.0)
                 first = [v.get(f"M{o.upper()}({link})", 0.0) for o in others]
                 moment = v.get(f"{axis.upper() * 2}({link})", 0.0)
-                vals.append(moment - sum(f * f for f in first) / m if m > 0 else 0.0)
+                shift = sum(f * f for f in first) / m if m > 0 else 0.0
+                vals.append(shift if parallel else moment - shift if m > 0 else 0.0)
+                for o, f in zip(others, first):
+                    parts.setdefault(o, []).append(f * f / m if m > 0 else 0.0)
             arr = np.repeat(np.asarray(vals, float), states)
             if np.abs(arr).max(initial=0.0) > 0:
-                out[f"I{axis}{axis}({link})"] = arr
+                out[f"{'P' if parallel else 'I'}{axis}{axis}({link})"] = arr
+            for o, part in parts.items() if parallel else ():
+                arr = np.repeat(np.asarray(part, float), states)
+                if np.abs(arr).max(initial=0.0) > 0:
+                    out[f"P:{o}({link})"] = arr
     return out
 
 
@@ -81,6 +98,25 @@ def _point_mass(residual: np.ndarray, moments: Mapping[str, np.ndarray],
     return None
 
 
+def _parallel_axis(r: ElementDraft, name: str, term: sp.Expr | None) -> None:
+    r"""Name on ``r`` the parallel-axis term ``name`` (``Pyy(body)``) it lacks, as ``term`` in
+    the document's symbols where one fits; a factor found for the whole element (the term is
+    a constant fraction of it only under a family that keeps proportions) goes."""
+    parts = []
+    for one in name.split(" + "):
+        link = one[one.index("(") + 1:-1]
+        parts.append(f"the part M c_{one[2]}² of {link}'s parallel-axis term" if one[1] == ":"
+                     else f"the parallel-axis term of {link} about its {one[1]} axis")
+    written = f" ({sp.sstr(term)} in the document's symbols)" if term is not None else ""
+    r.diagnoses[:] = [x for x in r.diagnoses if x.kind != K.FACTOR]
+    r.diagnoses.insert(0, diagnosis(
+        K.PARALLEL_AXIS, f"{' and '.join(parts)}{written} is missing: the document takes the "
+        "inertia about the centre of mass where the one about the joint's axis fits (the "
+        "parallel-axis theorem adds the mass times the centre's squared distance from the "
+        "axis)", prefix="missing", terms=(sp.sstr(term),) if term is not None else (),
+        fits=name))
+
+
 def _lacks(expr: sp.Expr) -> str:
     r"""``"lacks a and b"`` / ``"has c too much"`` for the terms of truth − document."""
     terms = sp.Add.make_args(sp.expand(expr))
@@ -98,14 +134,16 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
                tuple[np.ndarray, np.ndarray]], bases: Sequence[tuple[sp.Expr, np.ndarray]],
                moments: Mapping[str, np.ndarray], geometric: set[sp.Symbol],
                positions: Sequence[sp.Symbol] = (),
-               factors: Mapping[int, np.ndarray] | None = None) -> None:
+               factors: Mapping[int, np.ndarray] | None = None,
+               parallel: Mapping[str, np.ndarray] | None = None) -> None:
     r"""Name the differing terms of the drafts (module text), in place. ``on_id``: each
     element's (document, truth in frame) values on the identification grid; ``geometric``
     the document's lengths, the only names a point-mass multiplier may contain (never a
     position: a body's own inertia enters the inertia matrix as a constant times
     lengths); ``factors``: per row, the factor the row is of the true equation (on the same
     grid), divided out of a residual before it is compared with a body's own inertia (an
-    equation divided by m l has m l²/3 as l/3)."""
+    equation divided by m l has m l²/3 as l/3); ``parallel`` the links' parallel-axis parts
+    (:func:`own_moments`)."""
     lengths = [(e, v) for e, v in bases if e.free_symbols <= geometric
                and not e.has(*positions)]
     named = 0
@@ -125,6 +163,10 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
             continue                          # agrees on these sets (a family's condition)
         own = residual if not factors or r.row not in factors else residual / factors[r.row]
         hit = _point_mass(own, moments, lengths) if r.key == "A" else None
+        steiner = _point_mass(own, parallel, lengths) if r.key == "A" and parallel else None
+        if steiner is not None and steiner[1] == 1 and (hit is None or hit[1] != 1):
+            _parallel_axis(r, steiner[0], fit_factor(residual, bases))
+            continue
         if hit is None and has_kind(r.diagnoses, K.FACTOR):
             continue
         if hit is not None:

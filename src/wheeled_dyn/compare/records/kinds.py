@@ -40,6 +40,7 @@ class CauseKind(StrEnum):
     DIMENSION = "dimension"            # a term with inconsistent units
     MISSING_PHYSICS = "missing_physics"  # an effect the document leaves out and does not state
     POINT_MASS = "point_mass"          # a rigid body treated as a point mass
+    PARALLEL_AXIS = "parallel_axis"    # the inertia about the centre where the pivot's fits
     ASSUMPTION = "assumption"          # holds only under a condition the document did not state
     ENERGY = "energy"                  # the model as printed does not conserve energy
     NOT_POSITIVE_DEFINITE = "not_positive_definite"
@@ -86,6 +87,8 @@ class DiagnosisKind(StrEnum):
     ``SIGN``, ``FACTOR`` (``factor``), ``POWER``/``SWAP`` (``written`` where ``fits`` fits),
     ``MISSING``/``EXTRA`` (the document has 0 / the truth is 0; with ``terms``: the terms
     named one by one), ``POINT_MASS`` (a body's own inertia about its centre is missing),
+    ``PARALLEL_AXIS`` (its mass times its centre's squared distance from the joint's axis is:
+    the inertia about the centre written for the one about the axis; ``fits`` ``Pyy(link)``),
     ``DIMENSION``; ``SMALL_ANGLE`` (``written`` where ``fits`` fits, e.g. ``phi`` where
     ``sin(phi)`` fits, in ``position``); ``CONDITION`` (agrees only if ``condition``), ``FACTORIZATION`` (C differs,
     C q̇ agrees), ``UNDECIDED`` (values not finite), ``RESIDUAL`` (truth − document, as
@@ -102,6 +105,7 @@ class DiagnosisKind(StrEnum):
     MISSING = "missing"
     EXTRA = "extra"
     POINT_MASS = "point_mass"
+    PARALLEL_AXIS = "parallel_axis"
     DIMENSION = "dimension"
     CONDITION = "condition"
     FACTORIZATION = "factorization"

@@ -1,0 +1,142 @@
+r"""Which frame rule a row is explained in (:mod:`.frames`): each candidate scored by the
+number of the row's elements that agree under it beyond the weights it fits
+(:func:`freedom`), summed over the grids; the simplest on a tie; a declared factor kept; for
+an equation that is right, the simplest rule under which every element agrees."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from ..grid.arrays import Arrays
+from ..judge.diagnose import AGREE_TOL
+from ..sides.framed import framed, row_of, row_scale
+from .frames import FrameKind, FrameRule, evaluate_rule
+
+
+def _agreeing(D: np.ndarray | None, T: np.ndarray | None, tol: float,
+              mask: np.ndarray | None = None) -> int:
+    if D is None or T is None:
+        return 0
+    with np.errstate(invalid="ignore"):
+        ok = (np.isfinite(D).all(axis=0) & np.isfinite(T).all(axis=0)
+              & (np.abs(D - T).max(axis=0, initial=0.0) <= tol))
+    return int((ok & mask).sum() if mask is not None else ok.sum())
+
+
+def score(doc_row: Arrays, true_row: Arrays) -> int:
+    r"""The number of the row's A, Q, B elements and velocity products of H that agree."""
+    tol = AGREE_TOL * row_scale(doc_row, true_row)
+    count = _agreeing(doc_row.A, true_row.A, tol) + _agreeing(doc_row.Q, true_row.Q, tol)
+    count += _agreeing(doc_row.B, true_row.B, tol) + _agreeing(doc_row.K, true_row.K, tol)
+    if doc_row.H is not None and true_row.H is not None:
+        n = doc_row.H.shape[2]
+        count += _agreeing(doc_row.H, true_row.H, tol,
+                           np.triu(np.ones((n, n), dtype=bool))[None, :, :])
+    return count
+
+
+#: Free weights a frame fits per sample (its degrees of freedom): a frame that fits more
+#: must explain that many more elements to be preferred (a combination of n rows fits any n
+#: elements of the row).
+def freedom(rule: FrameRule, n: int, solved: bool = False) -> int:
+    r"""0 for the identity, a declared factor and a constant (one number for every sample: it
+    is taken only where an element of A shares it exactly), 1 for a function (a number per
+    sample), n for a combination — 0 for :math:`A_{doc,i}A^{-1}` where the row is ``solved``
+    for its acceleration (:math:`A_{doc,i} = e_i`: the form says which combination it is,
+    row :math:`i` of :math:`A^{-1}`; nothing is fitted)."""
+    if rule.kind in (FrameKind.IDENTITY, FrameKind.DECLARED, FrameKind.CONSTANT) or \
+            rule.identified:
+        return 0
+    if rule.kind == FrameKind.FUNCTION:
+        return 1
+    return 0 if solved and rule.variant is None else n
+
+
+def solved_row(doc: Arrays, i: int) -> bool:
+    r"""Whether the document's row ``i`` is solved for its acceleration: its inertia row is
+    the unit row :math:`e_i` at every sample."""
+    A = doc.need("A")[:, i, :]
+    unit = np.zeros(A.shape[1])
+    unit[i] = 1.0
+    return bool(np.all(A == unit))
+
+
+def elements_of(doc_row: Arrays) -> int:
+    r"""The number of A, Q, B elements and velocity products of H in one row."""
+    count = 0
+    for name in ("A", "Q", "B", "K"):
+        M = getattr(doc_row, name)
+        if M is not None:
+            count += int(np.prod(M.shape[2:])) if M.ndim > 2 else 1
+    if doc_row.H is not None:
+        n = doc_row.H.shape[2]
+        count += n * (n + 1) // 2
+    return count
+
+
+def choose(i: int, rules: Sequence[FrameRule], grids: Sequence[tuple[Arrays, Arrays,
+           np.ndarray | None]], declared: bool, right: bool = False,
+           totals: dict[FrameRule, int] | None = None) -> FrameRule:
+    r"""The rule of row ``i`` (module text), scored over ``grids`` ((document, truth, true B in
+    the document's inputs) each, the document's B in its ``Arrays.B``). For an equation that
+    is ``right``: the simplest rule under which every element agrees on the first grid. Else
+    the rule under which most elements agree beyond the weights it fits
+    (:func:`freedom`), summed over the grids, the simplest on a tie; a ``declared`` factor is
+    kept. ``totals``: the scores of rules scored before on the same grids (not ``right``),
+    filled with those scored here."""
+    if declared:
+        return FrameRule(FrameKind.DECLARED)
+    n = grids[0][1].need("A").shape[1]
+    best: tuple[int, int, FrameRule] | None = None
+    for order, rule in enumerate(rules):
+        floor = None if best is None else best[0]
+        if right or totals is None:
+            total = _total(i, rule, grids, right, n, floor)
+        elif rule in totals:
+            total = totals[rule]
+        else:
+            total = _total(i, rule, grids, right, n, floor)
+            if total is not None:
+                totals[rule] = total
+        if total is None:
+            continue                     # it cannot score more than the best so far
+        if total == _RIGHT:
+            return rule
+        if total > -10 ** 9 and (best is None or total > best[0]):
+            best = (total, -order, rule)
+    return best[2] if best is not None else FrameRule(FrameKind.IDENTITY)
+
+
+#: :func:`_total`'s answer for a rule under which every element of a right row agrees.
+_RIGHT = 10 ** 12
+
+
+def _total(i: int, rule: FrameRule, grids: Sequence[tuple[Arrays, Arrays, np.ndarray | None]],
+           right: bool, n: int, floor: int | None = None) -> int | None:
+    r"""The score of ``rule`` for row ``i`` (:func:`choose`), summed over the grids; -10⁹
+    where it has no frame; :data:`_RIGHT` where ``right`` and every element agrees; None as
+    soon as it cannot exceed ``floor`` (the best score so far: every element of the grids
+    left agreeing would not lift it above), so that the rest is not scored."""
+    total = 0
+    for g, (doc, truth, B_true) in enumerate(grids):
+        if right and g:
+            break
+        frame = evaluate_rule(i, rule, doc, truth, doc.B, B_true)
+        if frame is None:
+            return -10 ** 9
+        row = row_of(doc, i)
+        got = score(row, framed(frame.weights, truth, B_true, full=False))
+        if right:
+            return _RIGHT if got == elements_of(row) else -10 ** 9
+        fitted = freedom(rule, n, solved_row(doc, i))
+        total += got - fitted
+        left = len(grids) - g - 1
+        if floor is not None and left and \
+                total + left * (elements_of(row) - fitted) <= floor:
+            return None
+    return total
+
+
+__all__ = ["choose", "elements_of", "freedom", "score", "solved_row"]
