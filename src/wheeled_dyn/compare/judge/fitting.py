@@ -1,7 +1,8 @@
 r"""Fitting a quantity known at samples with a short expression in a document's names.
 
 The candidate *bases* are the document's symbols (parameters), its positions and their sines
-and cosines, with their values at the samples (:func:`bases`). A quantity is fitted as a
+and cosines, and the sines and cosines it writes of combinations of its positions
+(:math:`\cos(q_1 + q_2)`), with their values at the samples (:func:`bases`). A quantity is fitted as a
 monomial
 
 .. math::
@@ -52,6 +53,7 @@ def bases(d: Derivation, q: np.ndarray, values: Mapping[sp.Symbol, np.ndarray]
             out.append((s, np.broadcast_to(np.asarray(v, dtype=float), (n,))))
     for a, p in enumerate(d.positions):
         out += [(p, q[:, a]), (sp.cos(p), np.cos(q[:, a])), (sp.sin(p), np.sin(q[:, a]))]
+    out += _compound_trig(d, q)
     unique: list[tuple[sp.Expr, np.ndarray]] = []
     for expr, v in out:
         if np.abs(v).min() == 0 or not np.isfinite(v).all():
@@ -60,6 +62,27 @@ def bases(d: Derivation, q: np.ndarray, values: Mapping[sp.Symbol, np.ndarray]
             continue
         unique.append((expr, v))
     return unique
+
+
+def _compound_trig(d: Derivation, q: np.ndarray) -> list[tuple[sp.Expr, np.ndarray]]:
+    r"""The sines and cosines the document writes of a combination of its positions
+    (:math:`\cos(q_1 + q_2)` of a two-link arm), with their values at the samples."""
+    from ...compiled import numpy_function
+    found: set[sp.Expr] = set()
+    for M in (d.A, d.C, d.Q, d.B):
+        if M is not None:
+            found |= M.atoms(sp.sin, sp.cos)
+    for eq in d.equations or ():
+        found |= eq.atoms(sp.sin, sp.cos)
+    positions = set(d.positions)
+    out = []
+    for f in sorted(found, key=sp.default_sort_key):
+        arg = f.args[0]
+        if arg in positions or not arg.free_symbols or not arg.free_symbols <= positions:
+            continue
+        value = numpy_function(d.positions, f)(*q.T)
+        out.append((f, np.broadcast_to(np.asarray(value, float), (len(q),))))
+    return out
 
 
 def _constant(ratio: np.ndarray, product: np.ndarray) -> sp.Rational | None:

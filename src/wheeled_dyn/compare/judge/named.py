@@ -14,7 +14,8 @@ On the identification grid (many parameter sets) :math:`\Delta` is fitted
    uniform rod :math:`m l^2/4` is also 3 × its own moment: the exact fit is the one named);
 2. as a monomial, or a sum of two products, in the document's symbols, positions and their
    sines and cosines (:mod:`.fitting`): the terms the document lacks (those of
-   :math:`\Delta`) — ``missing`` with the terms named, ``"the document lacks m*l**2/3"``.
+   :math:`\Delta`) — ``missing`` with the terms named, ``"the document lacks m*l**2/3"``
+   (``extra`` where it only has terms too many).
 
 A fit must reproduce :math:`\Delta` at every sample of every set. Nothing here changes a
 verdict.
@@ -182,9 +183,11 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
         found = found if found is not None else fit_sum(residual, bases)
         if found is None:
             continue
-        terms = tuple(sp.sstr(t) for t in sp.Add.make_args(sp.expand(found)))
-        r.diagnoses.append(diagnosis(K.MISSING, f"{_lacks(found)} (truth − document = "
-                                     f"{sp.sstr(found)})", prefix="terms", terms=terms))
+        parts = sp.Add.make_args(sp.expand(found))
+        extra = all(t.could_extract_minus_sign() for t in parts)   # only terms too many
+        r.diagnoses.append(diagnosis(K.EXTRA if extra else K.MISSING,
+                                     f"{_lacks(found)} (truth − document = {sp.sstr(found)})",
+                                     prefix="terms", terms=tuple(sp.sstr(t) for t in parts)))
 
 
 __all__ = ["AXES", "NAMED", "name_terms", "own_moments"]

@@ -196,9 +196,9 @@ def _row_label(label: str, row: int) -> str:
 def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, ...] | sp.Expr],
              families: tuple[str, ...] = (), uniform: frozenset[str] = frozenset()
              ) -> dict[str, sp.Expr] | None:
-    r"""Fill ``truth`` (every element) and ``residual`` (truth − document, expanded, for the
-    elements that do not agree) of the ``drafts`` where the symbolic engine provides closed
-    forms; without them the drafts keep their numeric verdicts. ``frames``: per row, the
+    r"""Fill ``truth`` (every element, in its row's frame: the truth it is compared with) and
+    ``residual`` (truth − document, expanded, for the elements that do not agree) of the
+    ``drafts`` where the symbolic engine provides closed forms; without them the drafts keep their numeric verdicts. ``frames``: per row, the
     document's frame in its own symbols — a factor :math:`c` (the row is :math:`c` × the true
     one) or the weights :math:`f_i` of a combination of the true rows; rows absent from it get
     no residual. The truth and the document are both read under the parameter ``families`` the
@@ -236,22 +236,16 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
         expr = truth.get(r.element)
         if expr is None or r.key == "B":
             continue
-        names = {sym: by_name[sym.name] for sym in expr.free_symbols if sym.name in by_name}
-        r.truth, r.truth_latex = printed(expr, names)
         frame = frames.get(r.row)
-        if r.verdict == "agrees" or frame is None:
+        in_frame = None if frame is None else _in_frame(r.element, expr, frame, truth, to_model)
+        shown = expr if in_frame is None else in_frame     # the truth the row is compared with
+        names = {sym: by_name[sym.name] for sym in shown.free_symbols if sym.name in by_name}
+        r.truth, r.truth_latex = printed(shown, names)
+        if r.verdict == "agrees" or in_frame is None:
             continue
         doc = to_model(r.expr)
         if doc is None:
             continue
-        if isinstance(frame, tuple):
-            parts = [(w, truth.get(_row_label(r.element, k))) for k, w in enumerate(frame)
-                     if w != 0]
-            if any(t is None for _, t in parts):
-                continue
-            in_frame = sp.Add(*(to_model(w) * t for w, t in parts))
-        else:
-            in_frame = expr * to_model(frame)
         text = residual_text(in_frame, doc, physical)
         if text is None:
             continue
@@ -260,6 +254,20 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
             r.diagnoses.append(Diagnosis(DiagnosisKind.RESIDUAL, f"truth − document = {text}",
                                          text))
     return None if ours is None else ours.truth
+
+
+def _in_frame(element: str, expr: sp.Expr, frame: tuple[sp.Expr, ...] | sp.Expr,
+              truth: dict[str, sp.Expr], to_model: Callable[[sp.Expr | None], sp.Expr | None]
+              ) -> sp.Expr | None:
+    r"""The true ``element`` (``expr``) in its row's ``frame``: the factor times it, or the
+    combination of the true rows' same elements; None where one of them has no closed form."""
+    if not isinstance(frame, tuple):
+        factor = to_model(frame)
+        return None if factor is None else expr if factor == 1 else expr * factor
+    parts = [(w, truth.get(_row_label(element, k))) for k, w in enumerate(frame) if w != 0]
+    terms = [(to_model(w), t) for w, t in parts]
+    return sp.Add(*(w * t for w, t in terms if w is not None and t is not None)) \
+        if all(w is not None and t is not None for w, t in terms) else None
 
 
 #: The texts of :func:`residual_text`, remembered across runs (the disk cache's
