@@ -5,7 +5,8 @@ as a textbook linearises it without saying so — sin φ ≈ φ, cos φ ≈ 1, a
 inverted pendulum of Ogata, *Modern Control Engineering*, §3-5, or Franklin, Powell &
 Emami-Naeini, *Feedback Control of Dynamic Systems*, §2.1 — every element it changes differs
 and is named a small-angle approximation in φ, in one cause; a different error in the same
-element (a factor 2, a sign) is not called one."""
+element (a factor 2, a sign) is not called one. On the same file, one wheel's spin inertia
+left out is named by its term's factor, not also as a body treated as a point mass."""
 
 from __future__ import annotations
 
@@ -91,3 +92,14 @@ def test_other_errors_are_not_called_small_angles(engine, tmp_path, q, kind):
     assert not _small_angle(records["Q[2]"])
     assert any(d.kind == kind for d in records["Q[2]"].diagnoses)
     assert not any(c.kind == CauseKind.SMALL_ANGLE for c in causes)
+
+
+def test_one_terms_factor_is_not_also_called_a_point_mass(engine, tmp_path):
+    r"""One wheel's spin inertia left out of A[1,1] (J_w/r² for 2 J_w/r²): the term's factor
+    1/2 names it; the residual J_w/r² is not offered as a body treated as a point mass."""
+    records, causes = _compare(engine, tmp_path, [("2*m_w + 2*J_w/r**2", "2*m_w + J_w/r**2")])
+    a = records["A[1,1]"]
+    assert [(d.term, d.factor) for d in a.diagnoses if d.kind == DiagnosisKind.FACTOR] == \
+        [("J_w/r**2", "1/2")]
+    assert not any(d.kind == DiagnosisKind.POINT_MASS for d in a.diagnoses)
+    assert [c.kind for c in causes if "A[1,1]" in c.elements] == [CauseKind.FACTOR]

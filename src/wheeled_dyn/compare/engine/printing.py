@@ -29,7 +29,7 @@ def print_drafts(d: Derivation, drafts: Sequence[ElementDraft], cs, texts: Seque
     document's read-off matrices (its compiled functions'), C as the file prints it. Returns
     what :func:`corrected` needs: the truth in the document's symbols (None where the closed
     forms or the declarations do not give it) and each row's frame."""
-    as_printed = {**{k: exprs[k] for k in ("A", "Q", "B", "h")}, "C": d.C}
+    as_printed = {**{k: exprs[k] for k in ("A", "Q", "B", "h", "K")}, "C": d.C}
     names = latex_names(d)
     families = tuple(c.name for c in assumed.families)
     mapped = closed_form.document_in_model(d, families)
@@ -44,8 +44,10 @@ def print_drafts(d: Derivation, drafts: Sequence[ElementDraft], cs, texts: Seque
         elif t.factor is not None:
             frames[i] = t.factor
     uniform = frozenset(uniform_links(load_model(d.model), assumed.families))
-    return Corrections(closed_form.annotate(d, list(drafts), cs, frames, families, uniform),
-                       frames)
+    linearised = () if not assumed.linearised_about else (assumed.linearised_about,
+                                                          assumed.equilibrium_potential)
+    return Corrections(closed_form.annotate(d, list(drafts), cs, frames, families, uniform,
+                                            linearised), frames)
 
 
 @dataclass(frozen=True)

@@ -152,8 +152,9 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
         if named >= MAX_NAMED:
             break
         if r.verdict not in (Verdict.DIFFERS, Verdict.AGREES_IF) or r.key == "C" \
-                or has_kind(r.diagnoses, *NAMED) or (r.key, r.index) not in on_id:
-            continue
+                or has_kind(r.diagnoses, *NAMED) or (r.key, r.index) not in on_id \
+                or any(x.kind == K.FACTOR and x.term for x in r.diagnoses):
+            continue                      # named already (one term's factor: that term)
         D, T = on_id[(r.key, r.index)]
         if not (np.isfinite(D).all() and np.isfinite(T).all()):
             continue

@@ -22,6 +22,7 @@ from ...models.registry import model_entry
 from ...models.wip_parameters import WipParameters, standard_parameters
 from ..records import Diagnosis, DiagnosisKind
 from .in_document import in_document
+from .linearised import linearised_truth
 from .printing import printed
 
 #: Residuals up to this many operations are expanded with trigonometric identities for display
@@ -194,8 +195,8 @@ def _row_label(label: str, row: int) -> str:
 
 
 def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, ...] | sp.Expr],
-             families: tuple[str, ...] = (), uniform: frozenset[str] = frozenset()
-             ) -> dict[str, sp.Expr] | None:
+             families: tuple[str, ...] = (), uniform: frozenset[str] = frozenset(),
+             linearised: tuple = ()) -> dict[str, sp.Expr] | None:
     r"""Fill ``truth`` (every element, in its row's frame: the truth it is compared with) and
     ``residual`` (truth − document, expanded, for the elements that do not agree) of the
     ``drafts`` where the symbolic engine provides closed forms; without them the drafts keep their numeric verdicts. ``frames``: per row, the
@@ -205,7 +206,10 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
     document assumes (:func:`family_substitution`), a model without a physical record with its
     ``uniform`` links scaled as a whole (:func:`uniform_substitution`); in the document's own
     symbols where its declarations determine the parameters (:func:`.in_document.in_document`:
-    then the truth so written is returned), else in the model's."""
+    then the truth so written is returned), else in the model's. ``linearised``: (the
+    point, whether the potential is measured from the equilibrium) of a document that
+    declares ``linearised_about``: the truth linearised there
+    (:func:`.linearised.linearised_truth`), as it is judged."""
     try:
         from ...symbolic import lengths_are_symbols, true_expressions
     except ImportError:
@@ -230,6 +234,8 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
         def to_model(e: sp.Expr | None) -> sp.Expr | None:
             out = plain(e)
             return None if out is None else out.xreplace(assumed)
+    if linearised:
+        truth = linearised_truth(truth, d.positions, *linearised)
     dots = {v: rf"\dot{{{sp.latex(q)}}}" for q, v in zip(d.positions, d.velocities)}
     by_name = {str(v): text for v, text in dots.items()}
     for r in drafts:
@@ -253,7 +259,7 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
         if text != "0":
             r.diagnoses.append(Diagnosis(DiagnosisKind.RESIDUAL, f"truth − document = {text}",
                                          text))
-    return None if ours is None else ours.truth
+    return None if ours is None else truth
 
 
 def _in_frame(element: str, expr: sp.Expr, frame: tuple[sp.Expr, ...] | sp.Expr,

@@ -1,0 +1,49 @@
+r"""A linearised document's report shows the truth it is judged against: the linearisation of
+the true equations at the declared point, so that truth − document names the stiffness and the
+corrected equation is linear.
+
+The uniform rod hinged at one end, linearised about hanging straight down (θ = 0, θ measured
+from the downward vertical): (m l²/3) θ̈ + (m g l/2) θ = 0, ω² = 3g/(2l) (Meriam & Kraige,
+*Engineering Mechanics: Dynamics*, the compound pendulum; seed 000's 4.4), divided by m l²/3
+as a textbook writes it, θ̈ + (3g/2l) θ = 0. With the stiffness doubled the report shows
+K = 3g/(2l) beside the document's 3g/l, truth − document −3g/(2l), and the corrected
+equation θ̈ + 3gθ/(2l) = 0 (no sin θ: the truth linearised)."""
+
+from __future__ import annotations
+
+import pytest
+import sympy as sp
+
+import wheeled_dyn as wd
+from wheeled_dyn.compare.records import DiagnosisKind as K, Verdict
+
+g, l, theta = sp.symbols("g l theta")
+
+
+def _rod(stiffness):
+    return wd.compare(
+        "rod_pendulum", coordinates={"positions": ["theta"], "configuration": {"theta": "theta"}},
+        A=sp.Matrix([[1]]), C=sp.zeros(1, 1), Q=sp.Matrix([stiffness * theta]),
+        symbols={"m": "M(rod)", "l": "length(rod)", "g": "g"},
+        assumes={"uniform": ["rod"], "linearised_about": {"theta": 0.0}})
+
+
+def test_the_right_linearisation_agrees_and_shows_the_linear_truth():
+    result = _rod(3 * g / (2 * l))
+    records = {r.element: r for r in result.records}
+    assert all(r.verdict == Verdict.AGREES for r in records.values())
+    assert sp.simplify(sp.sympify(records["Q[1]"].truth) - 3 * g * theta / (2 * l)) == 0
+    assert sp.simplify(sp.sympify(records["K[1,1]"].truth) - 3 * g / (2 * l)) == 0
+
+
+@pytest.mark.parametrize("wrong,kind", [(3 * g / l, K.FACTOR), (-3 * g / (2 * l), K.SIGN)])
+def test_a_wrong_stiffness_is_shown_against_the_linearised_truth(wrong, kind):
+    result = _rod(wrong)
+    k = next(r for r in result.records if r.element == "K[1,1]")
+    assert k.verdict == Verdict.DIFFERS and any(d.kind == kind for d in k.diagnoses)
+    truth, document, residual = (sp.sympify(x) for x in (k.truth, k.document, k.residual))
+    assert sp.simplify(document - wrong) == 0
+    assert sp.simplify(truth - 3 * g / (2 * l)) == 0
+    assert sp.simplify(truth - document - residual) == 0
+    (equation,) = [e for e in result.equations if e.verdict == Verdict.DIFFERS]
+    assert "sin" not in equation.corrected and "theta" in equation.corrected
