@@ -46,14 +46,18 @@ def _standard_names(model: str) -> Callable[[sp.Expr], sp.Expr]:
     r"""For a model without a physical record: Khalil calls ``XX(link)`` → the symbolic
     engine's symbols ``XX_link``, the model's lengths and constants as its closed forms write
     them (a drawn length a symbol: ``origin_x(elbow)`` → ``origin_x_elbow``, a length listed
-    with a constant → that constant; gravity's magnitude ``g``), its other names → their
-    values as exact numbers, as in its closed forms."""
+    with a constant → that constant; gravity's magnitude ``g``; a spring's stiffness and rest
+    position ``k_<name>``, ``rest_<name>``), its other names → their values as exact
+    numbers, as in its closed forms."""
     from ...models.registry import load_model, model_parameters
     from ...symbolic.lengths import gravity_symbol, length_symbols
     wm = load_model(model)
     lengths = length_symbols(wm) if wm.lengths is not None else {}
     if (g := gravity_symbol(wm)) is not None:     # drawn: the symbol g, as the closed forms
         lengths = {**lengths, "g": g}
+    for spring in wm.springs:                      # symbols in the closed forms, drawn
+        lengths = {**lengths, **{n: sp.Symbol(n, real=True)
+                                 for n in spring.spec.parameter_names}}
     numbers = {sp.Symbol(k, real=True): lengths.get(k, sp.nsimplify(v, rational=True))
                for k, v in model_parameters(wm).items() if "(" not in k}
     plain = {sp.Symbol(s.name): v for s, v in numbers.items()}
