@@ -329,6 +329,42 @@ def test_an_entry_over_the_size_bound_is_a_miss(cache, monkeypatch):
     assert load(entry, str) is None
 
 
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="needs FIFOs (POSIX)")
+def test_an_entry_that_is_a_fifo_or_a_folder_is_a_miss_at_once(cache):
+    r"""An entry replaced by a FIFO (whose opening waited for a writer: the run hung) or by
+    a folder is a miss, without waiting."""
+    import subprocess
+    import sys
+    entry = cache / "results" / "x.pickle"
+    assert store(entry, "remembered")
+    entry.unlink()
+    os.mkfifo(entry)
+    probe = ("import sys; from pathlib import Path; from wheeled_dyn.disk_cache import load; "
+             "print(load(Path(sys.argv[1]), str))")
+    done = subprocess.run([sys.executable, "-c", probe, str(entry)], capture_output=True,
+                          text=True, timeout=60, env=os.environ)
+    assert done.stdout.strip() == "None", done.stderr
+    entry.unlink()
+    entry.mkdir()
+    assert load(entry, str) is None
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="needs FIFOs (POSIX)")
+@pytest.mark.parametrize("kind", ["folder", "fifo"])
+def test_a_key_that_is_not_a_file_turns_the_cache_off_with_one_warning(cache, kind):
+    r"""The signing key replaced by a folder (the run failed: "Is a directory") or a FIFO (it
+    would wait): one warning, and the run goes on without the cache."""
+    entry = cache / "results" / "x.pickle"
+    assert store(entry, "remembered")
+    key = cache / cache_trust.KEY_NAME
+    key.unlink()
+    key.mkdir() if kind == "folder" else os.mkfifo(key)
+    cache_trust.forget_keys()
+    with pytest.warns(CacheWarning, match="not a regular file"):
+        assert load(entry, str) is None
+    assert not store(entry, "again")
+
+
 def test_the_no_cache_flag_reads_and_writes_nothing(tmp_path):
     r"""``compare --no-cache`` with reuse on in the environment: the cache folder is not even
     created (nothing read, nothing written), and the verdicts are printed."""

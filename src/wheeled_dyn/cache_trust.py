@@ -220,7 +220,8 @@ def signing_key(root: Path, create: bool = False) -> bytes | None:
     if create and not os.path.lexists(path):
         _new_key(root, path)
     try:
-        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0))
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0)
+                     | getattr(os, "O_NOFOLLOW", 0))
     except FileNotFoundError:
         return None
     except OSError as exc:
@@ -229,11 +230,18 @@ def signing_key(root: Path, create: bool = False) -> bytes | None:
         return None
     try:
         st = os.fstat(fd)
-        key = os.read(fd, KEY_BYTES + 1)
+        key = os.read(fd, KEY_BYTES + 1) if stat.S_ISREG(st.st_mode) else b""
+    except OSError as exc:
+        warn_once(f"trust {path}", f"the cache's key {path} cannot be read ({exc.strerror}): "
+                  "the cache is not used")
+        return None
     finally:
         os.close(fd)
-    if not stat.S_ISREG(st.st_mode) or (_uid() is not None and (st.st_uid != _uid()
-                                                                or st.st_mode & 0o077)):
+    if not stat.S_ISREG(st.st_mode):
+        warn_once(f"trust {path}", f"the cache's key {path} is not a regular file: the cache "
+                  "is not used (remove it to start anew)")
+        return None
+    if _uid() is not None and (st.st_uid != _uid() or st.st_mode & 0o077):
         warn_once(f"trust {path}", f"the cache's key {path} is not private to this user "
                   f"(owner uid {st.st_uid}, mode {stat.S_IMODE(st.st_mode):04o}): the cache "
                   "is not used (delete the file to start anew)")

@@ -32,6 +32,7 @@ import hashlib
 import hmac
 import os
 import pickle
+import stat
 import tempfile
 from collections.abc import Callable, Hashable, Iterable
 from pathlib import Path
@@ -94,16 +95,20 @@ def store(path: Path, obj: object) -> bool:
 
 
 def load(path: Path, kind: type[T]) -> T | None:
-    r"""The entry at ``path`` if reuse is on, its folder is the user's, its signature is the
-    cache key's for its own name, and it unpickles to a ``kind``; else None (a miss, whatever
-    went wrong)."""
+    r"""The entry at ``path`` if reuse is on, its folder is the user's, it is a regular file
+    (not a link, a FIFO, a folder), its signature is the cache key's for its own name, and it
+    unpickles to a ``kind``; else None (a miss, whatever went wrong)."""
     root, folder, name = _place(path)
     if (trusted_root(root) is None or trusted_folder(root, folder) is None
             or (key := signing_key(root)) is None):
         return None
     try:
-        with open(path, "rb") as fh:
-            if os.fstat(fh.fileno()).st_size > MAX_ENTRY_BYTES:
+        # never blocks (a FIFO planted as an entry), never follows a link
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0)
+                     | getattr(os, "O_NOFOLLOW", 0))
+        with os.fdopen(fd, "rb") as fh:
+            st = os.fstat(fh.fileno())
+            if not stat.S_ISREG(st.st_mode) or st.st_size > MAX_ENTRY_BYTES:
                 return None
             data = fh.read(MAX_ENTRY_BYTES + 1)
         head = len(MAGIC) + _SIGNATURE
