@@ -19,6 +19,7 @@ from .dynamics import Terms
 from .errors import ArgumentError, DerivationError, LimitError, StateError
 from .models import WheeledModel
 from .models.registry import load_model
+from .models.urdf_values import MAX_MODEL_NUMBER, MAX_MODEL_TEXT
 
 
 def matrices(model: WheeledModel | str, coords: str | None = None, **state: float) -> Terms:
@@ -31,16 +32,39 @@ def matrices(model: WheeledModel | str, coords: str | None = None, **state: floa
         raise ArgumentError("matrices", "coords", coords, "the name of a coordinate set")
     for name, value in state.items():
         if not _real(value):
-            raise StateError(name, value, "a finite real number")
+            raise StateError(name, value, "a finite real number of magnitude at most "
+                                          f"{MAX_MODEL_TEXT}")
     wm = model if isinstance(model, WheeledModel) else load_model(model)
     cmap = CoordinateMap(wm, builtin_coordinate_set(wm, coords))
     q, nu = cmap.state_from(state)
-    return cmap.terms(q, nu)
+    return finite_terms(cmap, q, nu)
+
+
+def finite_terms(cmap: CoordinateMap, q: Any, nu: Any) -> Terms:
+    r"""``cmap.terms(q, nu)`` if every entry of A, C, Q, B, h (and G) is finite; else
+    :class:`LimitError` naming the first element that is not (numbers so large that a product
+    overflows, without NumPy's warnings): a result is never given on NaN or infinity."""
+    import numpy as np
+    with np.errstate(over="ignore", invalid="ignore"):
+        terms = cmap.terms(q, nu)
+    model, coords = cmap.wm.name, cmap.cs.name
+    for name in ("A", "C", "Q", "B", "h", "G"):
+        value = getattr(terms, name)
+        if value is None:
+            continue
+        bad = np.argwhere(~np.isfinite(np.atleast_1d(np.asarray(value, dtype=float))))
+        if bad.size:
+            index = ",".join(str(i + 1) for i in bad[0])
+            raise LimitError(f"model {model}, coordinates {coords}: {name}[{index}]",
+                             value[tuple(bad[0])], "a finite number", "the numbers of the "
+                             "model or the state are too large: a product overflows floating "
+                             "point; give smaller ones")
+    return terms
 
 
 def _real(value: object) -> bool:
     return (not isinstance(value, bool) and isinstance(value, numbers.Real)
-            and math.isfinite(float(value)))
+            and math.isfinite(float(value)) and abs(float(value)) <= MAX_MODEL_NUMBER)
 
 
 def _integer(name: str, value: object, low: int, high: int) -> int:
@@ -113,7 +137,7 @@ def compare(model: str | Path, *, samples: int = 1000, param_sets: int = 5, seed
         assert not [r for r in result.records if r.verdict == "differs"]
     """
     from .cache_trust import without_reuse
-    from .cli.inputs import MAX_PARAM_SETS, MAX_SAMPLES, MAX_STATES, check_model_names
+    from .compare.grid.inputs import MAX_PARAM_SETS, MAX_SAMPLES, MAX_STATES, check_model_names
     from .compare.engine import ComparisonEngine
     from .derivations.from_python import derivation_from_sympy
     from .models.registry import model_entry
@@ -139,4 +163,4 @@ def compare(model: str | Path, *, samples: int = 1000, param_sets: int = 5, seed
         return ComparisonEngine(samples=samples, param_sets=param_sets, seed=seed).compare(d)
 
 
-__all__ = ["EXPRESSION_TABLES", "TABLES", "compare", "matrices"]
+__all__ = ["EXPRESSION_TABLES", "TABLES", "compare", "finite_terms", "matrices"]

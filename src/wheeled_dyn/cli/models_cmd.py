@@ -14,7 +14,10 @@ if TYPE_CHECKING:       # NumPy, Pinocchio and the registry load in the handlers
 
 def parse_assignments(text: str | None, what: str) -> dict[str, float]:
     r"""``"a=1,b=-0.5"`` → ``{"a": 1.0, "b": -0.5}``; a malformed item, a name given twice or
-    a value that is not a finite number raises :class:`StateError` naming it."""
+    a value that is not a finite number of magnitude at most
+    :data:`~wheeled_dyn.models.urdf_values.MAX_MODEL_NUMBER` raises :class:`StateError`
+    naming it."""
+    from ..models.urdf_values import MAX_MODEL_NUMBER, MAX_MODEL_TEXT
     out: dict[str, float] = {}
     if not text:
         return out
@@ -31,6 +34,8 @@ def parse_assignments(text: str | None, what: str) -> dict[str, float]:
             raise StateError(key, value, "a number") from None
         if number != number or number in (float("inf"), float("-inf")):
             raise StateError(key, value, "a finite number")
+        if abs(number) > MAX_MODEL_NUMBER:
+            raise StateError(key, value, f"a number of magnitude at most {MAX_MODEL_TEXT}")
         out[key] = number
     return out
 
@@ -89,9 +94,10 @@ def _cmd_model(args: argparse.Namespace) -> int:
 
     from ..models.starter import inspect_urdf
     from ..models.starter_summary import summary_lines
-    inventory = inspect_urdf(args.urdf)
+    accept = tuple(n.strip() for n in (args.accept_inertia or "").split(",") if n.strip())
+    inventory = inspect_urdf(args.urdf, accept)
+    summary = "\n".join(summary_lines(inventory))     # before writing: a failure leaves no file
     text = write_starter(args.urdf, args.out, inventory)
-    summary = "\n".join(summary_lines(inventory))
     if args.out is None:            # the file on stdout (to redirect), what was decided on stderr
         print(text, end="")
         print(summary, file=sys.stderr)
@@ -109,7 +115,8 @@ def _cmd_matrices(args: argparse.Namespace) -> int:
     cs = builtin_coordinate_set(wm, args.coords)
     cmap = CoordinateMap(wm, cs)
     q, nu = cmap.state_from(parse_assignments(args.state, "--state"))
-    terms = cmap.terms(q, nu)
+    from ..api import finite_terms
+    terms = finite_terms(cmap, q, nu)
     if args.json:
         out = {"model": wm.name, "coordinates": cs.name,
                "state": {**dict(zip(cs.positions, q.tolist())),
@@ -141,6 +148,9 @@ def add_commands(sub: argparse._SubParsersAction) -> None:
     p.add_argument("urdf", help="URDF file")
     p.add_argument("--out", default=None, help="model file to write (default: print it)")
     p.add_argument("--force", action="store_true", help="replace an existing --out file")
+    p.add_argument("--accept-inertia", default=None, metavar="LINKS",
+                   help="links whose inertia fails the URDF checks, accepted as written "
+                        "(comma-separated; listed in the file's [checks] accept_inertia)")
     p.set_defaults(handler=_cmd_model)
     p = sub.add_parser("matrices", help="A, C, Q, B, h of a model in a coordinate set")
     p.add_argument("model", help="model name (see 'wheeled-dyn list') or model file (.toml)")

@@ -62,7 +62,7 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pinocchio as pin
 
-from ..errors import ModelError, UnknownNameError
+from ..errors import InputFileError, ModelError, UnknownNameError
 from .model_joints import DIRECTION_TOL, GRAVITY
 from .planar_base import AXIS_TOL, HORIZONTAL_TOL, RADIUS_TOL, build_planar
 from .unwheeled_base import build_unwheeled
@@ -83,7 +83,11 @@ def _urdf_models(source: UrdfSource, spec: ModelSpec) -> tuple[pin.Model, pin.Ge
     joints frozen at their ``locked`` values (their inertia merged into their parents)."""
     check_mimic(source.path, source.text, ET.fromstring(source.text), spec.locked, spec.lock)
     text = source.pinocchio_text()
-    model = pin.buildModelFromXML(text)
+    try:
+        model = pin.buildModelFromXML(text)
+    except (ValueError, RuntimeError) as exc:   # what the checks before did not foresee
+        raise InputFileError(source.path, f"Pinocchio cannot read this URDF ({exc}); its "
+                                          "reader's 'Error:' lines above say where") from None
     geom = visual_geometry(source, spec.name, spec.package_dirs, model, text)
     for name in spec.locked:
         if name not in spec.lock:
@@ -106,6 +110,22 @@ def _urdf_models(source: UrdfSource, spec: ModelSpec) -> tuple[pin.Model, pin.Ge
     return model, geom
 
 
+def _check_names(spec: ModelSpec, source: UrdfSource) -> None:
+    r"""The links and joints the spec names only to describe them (``[joints] aliases``,
+    ``[checks] accept_inertia``) exist in the URDF: a misspelt one would change nothing,
+    silently. :class:`UnknownNameError` names the model file (or model), the key and the
+    valid names."""
+    where = str(spec.source) if spec.source is not None else f"model {spec.name}"
+    for joint in spec.aliases:
+        if joint not in source.joint_names:
+            raise UnknownNameError("joint", joint, source.joint_names,
+                                   where=f"{where}: [joints] aliases")
+    for link in spec.accept_inertia:
+        if link not in source.link_names:
+            raise UnknownNameError("link", link, source.link_names,
+                                   where=f"{where}: [checks] accept_inertia")
+
+
 def build_wheeled_model(spec: ModelSpec) -> WheeledModel:
     r"""Build the model described by ``spec`` (see the module docstring)."""
     if spec.base not in BASES:
@@ -117,6 +137,7 @@ def build_wheeled_model(spec: ModelSpec) -> WheeledModel:
         raise ModelError(spec.name, spec.contact.link, "a rolling ball needs base 'free' or "
                                                        "'fixed', not 'planar'")
     source = read_urdf(spec.urdf, tuple(spec.lock), tuple(spec.accept_inertia))
+    _check_names(spec, source)
     urdf_model, urdf_geom = _urdf_models(source, spec)
     if spec.base == "planar":
         return build_planar(spec, source, urdf_model, urdf_geom)

@@ -32,14 +32,16 @@ import math
 from dataclasses import dataclass
 
 from ..errors import ParameterError
+from .urdf_values import MAX_MODEL_NUMBER, MAX_MODEL_TEXT
 
 SURFACES = ("plane", "sphere", "paraboloid")
 
 
 def _positive(x: object) -> bool:
-    r"""A finite positive number (not a bool)."""
+    r"""A finite positive number (not a bool) of at most
+    :data:`~.urdf_values.MAX_MODEL_NUMBER`."""
     return (isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
-            and x > 0)
+            and 0 < x <= MAX_MODEL_NUMBER)
 
 
 @dataclass(frozen=True)
@@ -66,7 +68,8 @@ class SphereContact:
             raise ParameterError("contact surface", self.surface, f"one of {SURFACES}")
         if not _positive(self.radius):
             name = "spheroid equatorial radius (radius)" if self.spheroid else "ball radius"
-            raise ParameterError(name, self.radius, "a positive number")
+            raise ParameterError(name, self.radius,
+                                 f"a positive number of at most {MAX_MODEL_TEXT}")
         if self.spheroid:
             self._check_spheroid()
         if self.surface == "sphere" and not self.surface_radius > 0:

@@ -46,12 +46,15 @@ import xml.etree.ElementTree as ET
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from enum import Enum
+from pathlib import Path
 from types import MappingProxyType
 from typing import Any
 
 import numpy as np
 import sympy as sp
 from sympy.core.function import AppliedUndef
+
+from ..errors import InputFileError
 
 
 #: Relative agreement of the entries of a ``[geometry]`` list (and of a number with a length
@@ -211,9 +214,11 @@ def urdf_length_names(text: str) -> list[tuple[str, float, str]]:
     return out
 
 
-def link_inertials(text: str) -> dict[str, tuple[float, ...]]:
+def link_inertials(text: str, path: Path | None = None) -> dict[str, tuple[float, ...]]:
     r"""Each link's own ``<inertial>`` in its link frame, as Pinocchio's dynamic parameters
-    :math:`(m, mc, I_O)` (links without one are left out)."""
+    :math:`(m, mc, I_O)` (links without one are left out). An inertia Pinocchio refuses (a
+    negative moment about an axis, listed in ``accept_inertia``) raises
+    :class:`~wheeled_dyn.errors.InputFileError` naming the URDF ``path`` and the link."""
     import pinocchio as pin
     out: dict[str, tuple[float, ...]] = {}
     for link in ET.fromstring(text).iter("link"):
@@ -232,7 +237,11 @@ def link_inertials(text: str) -> dict[str, tuple[float, ...]]:
                                   [get("ixy"), get("iyy"), get("iyz")],
                                   [get("ixz"), get("iyz"), get("izz")]])
         R = pin.rpy.rpyToMatrix(rpy)
-        inertia = pin.Inertia(float(mass.get("value", "0")), xyz, R @ tensor_matrix @ R.T)
+        try:
+            inertia = pin.Inertia(float(mass.get("value", "0")), xyz, R @ tensor_matrix @ R.T)
+        except (RuntimeError, ValueError) as exc:
+            raise InputFileError(path or Path("<URDF>"), f"link {link.get('name')!r}: "
+                                 f"Pinocchio cannot take its inertia ({exc})") from None
         out[link.get("name", "")] = tuple(float(x) for x in inertia.toDynamicParameters())
     return out
 

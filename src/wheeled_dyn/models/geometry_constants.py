@@ -137,7 +137,7 @@ def _lengths(spec: "ModelSpec", source: "UrdfSource", dims: Mapping[str, Dimensi
     where ``[geometry]`` does not name them, then ``[geometry]``'s; the links' own inertias."""
     kept = {k: c for k, c in given.items() if k not in spec.geometry}
     out = table(dims, constants(spec.name, spec.geometry, dims, kept, spec.fixed_geometry),
-                link_inertials(source.text))
+                link_inertials(source.text, source.path))
     for name, c in given.items():                  # [geometry] says what it is drawn with
         value = out.constants[name].value if name in out.constants else c.value
         if abs(value - c.value) > SAME_TOL * max(1.0, abs(c.value)):

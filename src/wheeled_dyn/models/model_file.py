@@ -36,6 +36,7 @@ from typing import TYPE_CHECKING, Any
 from ..derivations.source import SourceText, read_toml
 from ..errors import InputFileError, OptionalDependencyError
 from .urdf_packages import PACKAGES, resolve_package
+from .urdf_values import MAX_MODEL_NUMBER, MAX_MODEL_TEXT
 
 if TYPE_CHECKING:
     from .wheeled_model import ModelSpec
@@ -167,16 +168,24 @@ def _names(mf: ModelFile, table: str | None, key: str, value: Any) -> None:
         raise mf.fail(key, "expected a list of names", table)
 
 
+def _finite(value: Any) -> bool:
+    r"""Whether ``value`` is a number (not a boolean) of magnitude at most
+    :data:`~.urdf_values.MAX_MODEL_NUMBER` (a radius of 1e300 makes every result NaN)."""
+    return (isinstance(value, (int, float)) and not isinstance(value, bool)
+            and math.isfinite(value) and abs(value) <= MAX_MODEL_NUMBER)
+
+
 def _numbers(mf: ModelFile, table: str | None, key: str, value: Any, n: int | None) -> None:
-    ok = isinstance(value, list) and all(isinstance(x, (int, float)) and not
-                                         isinstance(x, bool) and math.isfinite(x) for x in value)
+    ok = isinstance(value, list) and all(_finite(x) for x in value)
     if not ok or (n is not None and len(value) != n):
-        raise mf.fail(key, f"expected {n or 'a list of'} finite numbers", table)
+        raise mf.fail(key, f"expected {n or 'a list of'} finite numbers of magnitude at most "
+                      f"{MAX_MODEL_TEXT}", table)
 
 
 def _number(mf: ModelFile, table: str | None, key: str, value: Any) -> None:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise mf.fail(key, f"expected a finite number, got {value!r}", table)
+    if not _finite(value):
+        raise mf.fail(key, f"expected a finite number of magnitude at most "
+                      f"{MAX_MODEL_TEXT}, got {value!r}", table)
 
 
 def _check_table(mf: ModelFile, table: str, raw: Any, line_table: str | None = None) -> None:
@@ -308,9 +317,10 @@ def _geometry_entry(mf: ModelFile, name: str, value: Any) -> None:
                           "geometry")
         _number(mf, "geometry", name, value["value"])
         return
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise mf.fail(name, "expected a number, a length of the model (\"radius(wheel)\"), a "
-                      f"list of equal lengths or {{ value = number }}; got {value!r}", "geometry")
+    if not _finite(value):
+        raise mf.fail(name, f"expected a number (magnitude at most {MAX_MODEL_TEXT}), a "
+                      "length of the model (\"radius(wheel)\"), a list of equal lengths or "
+                      f"{{ value = number }}; got {value!r}", "geometry")
 
 
 def _validate_springs(mf: ModelFile, springs: Any) -> None:

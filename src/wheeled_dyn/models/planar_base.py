@@ -27,7 +27,7 @@ from .conventions import ANGLE_TOL, check_sides
 from .geometry_constants import planar_lengths
 from .model_joints import (bind_springs, finish_coordinates, joint_axis, move_joint_to,
                            unit_direction)
-from .urdf_source import UrdfSource
+from .urdf_source import JointInfo, UrdfSource
 from .wheeled_model import ModelSpec, Wheel, WheeledModel
 
 #: Largest |cos| between the axle and the up direction for the axle to count as horizontal
@@ -40,13 +40,32 @@ AXIS_TOL = 1e-9
 RADIUS_TOL = 1e-9
 
 
+def _spin_joint(source: UrdfSource, spec: ModelSpec, link: str) -> JointInfo:
+    r"""The first moving joint above the wheel ``link`` (through fixed and locked joints);
+    :class:`ModelError` naming the model file's ``[wheels] links`` entry when the link is the
+    body, the root or fixed to either (nothing turns it: it cannot be a wheel)."""
+    where = f" ({spec.source})" if spec.source is not None else ""
+    path = []
+    current = link
+    while current != source.root_link() and current != spec.body:
+        joint = source.joint_to(current)
+        if joint.type != "fixed" and joint.name not in spec.lock:
+            return joint
+        path.append(joint.name)
+        current = joint.parent
+    what = "the body" if current == spec.body else "the root link"
+    how = f"{link} is {what}" if current == link else \
+        f"{link} is fixed to {what} {current} through joints {', '.join(path)}"
+    raise ModelError(spec.name, link, f"[wheels] links entry {link!r} cannot be a wheel: "
+                                      f"{how}, so no continuous or revolute joint turns it"
+                                      f"{where}")
+
+
 def _wheel_geometry(source: UrdfSource, spec: ModelSpec, model: pin.Model, data: pin.Data,
                     link: str) -> tuple[np.ndarray, np.ndarray, float, float, str]:
     """Centre, spin axis (in the URDF root frame), radius, width and joint name of a wheel
     (the joint that spins it: the first moving joint above ``link``)."""
-    joint = source.joint_to(link)
-    while joint.type == "fixed" or joint.name in spec.lock:
-        joint = source.joint_to(joint.parent)
+    joint = _spin_joint(source, spec, link)
     if joint.type not in ("continuous", "revolute"):
         raise ModelError(spec.name, link, f"wheel joint {joint.name!r} is {joint.type!r}, "
                                           "expected continuous or revolute")

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ParameterError
+from .urdf_values import MAX_MODEL_NUMBER, MAX_MODEL_TEXT
 
 
 @dataclass(frozen=True)
@@ -39,10 +40,12 @@ class WheelContact:
     def __post_init__(self) -> None:
         for name, value, positive in (("wheel radius", self.radius, True),
                                       ("tyre radius", self.tyre_radius, False)):
-            ok = isinstance(value, (int, float)) and math.isfinite(value)
+            ok = (isinstance(value, (int, float)) and math.isfinite(value)
+                  and value <= MAX_MODEL_NUMBER)
             if not ok or (value <= 0 if positive else value < 0):
                 raise ParameterError(f"{name} of {self.link}", value,
-                                     "a positive number" if positive else "a number >= 0")
+                                     ("a positive number" if positive else "a number >= 0")
+                                     + f" of at most {MAX_MODEL_TEXT}")
         for name, vec in (("axis", self.axis), ("centre", self.centre)):
             if len(vec) != 3 or not all(math.isfinite(float(x)) for x in vec):
                 raise ParameterError(f"wheel {name} of {self.link}", vec, "three finite numbers")

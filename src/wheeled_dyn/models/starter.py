@@ -1,6 +1,7 @@
 r"""A starting model file from a URDF: ``wheeled-dyn model robot.urdf [--out robot.toml]``.
 
-The URDF is checked (:mod:`.urdf_checks`) and inspected with yourdfpy at its zero
+The URDF is checked (:mod:`.urdf_checks`, :mod:`.urdf_values`; a link inertia that fails is
+an error unless ``--accept-inertia`` names it) and inspected with yourdfpy at its zero
 configuration. *Candidate wheels* are links with a cylinder (collision first, then visual)
 whose axis is parallel to the axis of the revolute or continuous joint that turns them (the
 first moving joint above the link, through fixed joints) and whose joint carries no other
@@ -22,13 +23,18 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import ModelError
+from ..errors import InputFileError, ModelError
 from .conventions import ANGLE_TOL
+from .urdf_checks import ACCEPT_HINT
 from .urdf_packages import package_reference
-from .urdf_source import read_urdf
+from .urdf_source import check_link_names, read_urdf
 
 #: Largest relative difference of two wheel radii to pair them.
 PAIR_RADIUS_TOL = 1e-6
+#: How to write a starting file for a URDF whose link inertia is known to be wrong.
+STARTER_ACCEPT_HINT = ("; fix the URDF, or give 'wheeled-dyn model --accept-inertia {link}' to "
+                       "write the model file anyway (it lists the link in [checks] "
+                       "accept_inertia)")
 
 
 @dataclass(frozen=True)
@@ -55,7 +61,7 @@ class UrdfInventory:
     candidates: tuple[WheelCandidate, ...]
     pair: tuple[WheelCandidate, WheelCandidate] | None
     path_joints: tuple[str, ...]                        # moving joints body -> wheels
-    bad_inertia: tuple[str, ...] = ()                   # links failing the inertia checks
+    bad_inertia: tuple[str, ...] = ()                   # links accepted (--accept-inertia)
     rejected: tuple[tuple[str, str], ...] = ()          # (moving joint, why not a wheel)
     body: str = ""                                      # the link carrying the axle
     up: tuple[float, float, float] = (0.0, 0.0, 1.0)    # in the body's link axes
@@ -72,21 +78,29 @@ def _cylinder(link) -> tuple[float, float, np.ndarray, str] | None:
     return None
 
 
-def _read(path: str | Path):
-    r"""The URDF's source (bad link inertias accepted and listed) and its yourdfpy model."""
+def _read(path: str | Path, accept: tuple[str, ...] = ()):
+    r"""The URDF's source and its yourdfpy model. A link whose inertia fails the checks is an
+    error unless ``accept`` lists it (``--accept-inertia``: the file then lists it in
+    ``[checks] accept_inertia``); a link of ``accept`` that the URDF does not have is an
+    error too."""
     import yourdfpy
-    accept: list[str] = []
-    while True:                       # a bad link inertia is reported, not fatal, here
-        try:
-            source = read_urdf(path, accept_inertia=tuple(accept))
-            break
-        except ModelError as exc:
-            if "inertia" not in exc.reason or exc.item in accept or exc.item is None:
-                raise
-            accept.append(exc.item)
-    urdf = yourdfpy.URDF.load(io.BytesIO(source.text.encode("utf-8")), build_scene_graph=True,
-                              load_meshes=False, load_collision_meshes=False)
-    return source, urdf, tuple(accept)
+    try:
+        source = read_urdf(path, accept_inertia=accept)
+    except ModelError as exc:
+        if exc.item is None or ACCEPT_HINT not in exc.reason:
+            raise
+        check_link_names(Path(path), accept, "--accept-inertia")     # a misspelt name first
+        raise ModelError(exc.model, exc.item, exc.reason.replace(
+            ACCEPT_HINT, STARTER_ACCEPT_HINT.format(link=exc.item))) from None
+    check_link_names(source.path, accept, "--accept-inertia")
+    try:
+        urdf = yourdfpy.URDF.load(io.BytesIO(source.text.encode("utf-8")),
+                                  build_scene_graph=True, load_meshes=False,
+                                  load_collision_meshes=False)
+    except Exception as exc:  # yourdfpy raises assorted types for what the checks let through
+        raise InputFileError(source.path, f"invalid URDF (yourdfpy: {type(exc).__name__}: "
+                                          f"{exc})") from None
+    return source, urdf, accept
 
 
 def _carriers(robot, parent_joint) -> set[str]:
@@ -141,9 +155,10 @@ def _path_joints(pair, parent_joint) -> tuple[str, ...]:
     return tuple(out)
 
 
-def inspect_urdf(path: str | Path) -> UrdfInventory:
-    r"""Links, joints and candidate wheels of a URDF (see the module docstring)."""
-    source, urdf, accept = _read(path)
+def inspect_urdf(path: str | Path, accept_inertia: tuple[str, ...] = ()) -> UrdfInventory:
+    r"""Links, joints and candidate wheels of a URDF (see the module docstring); the links of
+    ``accept_inertia`` may have an inertia that fails the checks."""
+    source, urdf, accept = _read(path, tuple(accept_inertia))
     robot = urdf.robot
     root = source.root_link()
     parent_joint = {j.child: j for j in robot.joints}
@@ -270,9 +285,9 @@ def starter_text(inv: UrdfInventory, out: Path | None) -> str:
         lines += [""]
     if inv.bad_inertia:
         lines += ["[checks]",
-                  "# CHECK: these links' inertias fail the URDF checks (not a mass "
-                  "distribution); accepted",
-                  "# so the file builds. Fix the URDF, or keep them if they are small parts "
+                  "# CHECK: these links' inertias are accepted as written (--accept-inertia) "
+                  "even if they fail",
+                  "# the URDF checks. Fix the URDF, or keep them if they are small parts "
                   "of a larger body.",
                   "accept_inertia = [" + ", ".join(_q(n) for n in inv.bad_inertia) + "]", ""]
     if inv.pair is None:

@@ -9,8 +9,9 @@ link or joint:
   named twice; a joint without ``<parent link>``/``<child link>`` or naming a missing link; a
   link that is the child of two joints; a cycle of joints; more than one root link; more
   than :data:`MAX_MOVING_JOINTS` moving joints (:class:`~wheeled_dyn.errors.LimitError`).
-- **inertial data** (:class:`~wheeled_dyn.errors.ModelError`): a mass that is not a finite
-  positive number (a zero mass with a zero inertia is a massless frame, as real URDFs write
+- **inertial data** (:class:`~wheeled_dyn.errors.ModelError`): an ``<inertial>`` without
+  ``<inertia>`` or one of its six entries; a mass that is not a finite positive number (of at
+  most :data:`~.urdf_values.MAX_MODEL_NUMBER`) (a zero mass with a zero inertia is a massless frame, as real URDFs write
   ``base_footprint``, and counts as no ``<inertial>``); an inertia tensor :math:`I` (about the centre of mass) with a non-finite
   entry, with a negative principal moment (not positive semi-definite) or whose principal
   moments violate the triangle inequality :math:`I_a + I_b \ge I_c` (no mass distribution has
@@ -30,7 +31,6 @@ inertia about the missing axes.
 from __future__ import annotations
 
 import math
-import re
 import xml.etree.ElementTree as ET
 from collections.abc import Mapping
 from pathlib import Path
@@ -38,6 +38,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputFileError, LimitError, ModelError
+from .urdf_values import MAX_MODEL_NUMBER, MAX_MODEL_TEXT, line_of as _line_of
 
 #: Relative tolerance (of the largest principal moment) for PSD and triangle checks.
 INERTIA_TOL = 1e-9
@@ -54,12 +55,8 @@ FIXED_TYPES = ("fixed",)
 MAX_MOVING_JOINTS = 100
 #: Largest relative difference between a locked mimic joint's value and its leader's image.
 MIMIC_TOL = 1e-9
-
-
-def _line_of(text: str, tag: str, name: str) -> int | None:
-    r"""1-based line of ``<tag ... name="name"`` in ``text``, or None."""
-    match = re.search(rf"<{tag}\b[^>]*\bname\s*=\s*[\"']{re.escape(name)}[\"']", text)
-    return text.count("\n", 0, match.start()) + 1 if match else None
+#: The entries of an ``<inertia>`` (all required).
+INERTIA_KEYS = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 
 
 def _float(value: str | None) -> float:
@@ -81,22 +78,36 @@ def _check_inertial(path: Path, text: str, link: ET.Element, accept: tuple[str, 
         raise ModelError(path.stem, name, f"<inertial> without <mass> ({where})")
     mass = _float(mass_el.get("value"))
     inertia = inertial.find("inertia")
-    values = {k: _float(inertia.get(k, "0")) if inertia is not None else 0.0
-              for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
+    if inertia is None:
+        raise ModelError(path.stem, name, "<inertial> without <inertia ixx=... ixy=... ixz=... "
+                                          f"iyy=... iyz=... izz=...> ({where})")
+    absent = [k for k in INERTIA_KEYS if inertia.get(k) is None]
+    if absent:
+        raise ModelError(path.stem, name, f"<inertia> without {', '.join(absent)} (the six "
+                                          f"entries are required) ({where})")
+    values = {k: _float(inertia.get(k)) for k in INERTIA_KEYS}
     massless_frame = mass == 0 and all(v == 0 for v in values.values())
-    if not (math.isfinite(mass) and mass > 0) and not massless_frame:
+    if not (math.isfinite(mass) and 0 < mass <= MAX_MODEL_NUMBER) and not massless_frame:
         raise ModelError(path.stem, name, f"mass {mass_el.get('value')!r} is not a finite "
-                                          f"positive number ({where})")
-    bad = [k for k, v in values.items() if not math.isfinite(v)]
+                                          f"positive number of at most {MAX_MODEL_TEXT} "
+                                          f"kg ({where})")
+    bad = [k for k, v in values.items() if not (math.isfinite(v) and abs(v) <= MAX_MODEL_NUMBER)]
     if bad:
-        raise ModelError(path.stem, name, f"inertia entry {bad[0]} is not a finite number "
-                                          f"({where})")
+        raise ModelError(path.stem, name, f"inertia entry {bad[0]} = {inertia.get(bad[0])!r} "
+                                          "is not a finite number of magnitude at most "
+                                          f"{MAX_MODEL_TEXT} ({where})")
     I = np.array([[values["ixx"], values["ixy"], values["ixz"]],
                   [values["ixy"], values["iyy"], values["iyz"]],
                   [values["ixz"], values["iyz"], values["izz"]]])
     moments = np.linalg.eigvalsh(I)
     tol = max(INERTIA_TOL * float(np.abs(moments).max()), INERTIA_ABS_TOL)
     if name in accept:
+        negative = [k for k in ("ixx", "iyy", "izz") if values[k] < 0]
+        if negative:            # Pinocchio refuses it: accepting cannot let it through
+            raise ModelError(path.stem, name, f"inertia entry {negative[0]} = "
+                                              f"{inertia.get(negative[0])} is negative: no mass "
+                                              "distribution has it and Pinocchio cannot take it"
+                                              f", even in accept_inertia ({where})")
         return mass
     if moments[0] < -tol:
         raise ModelError(path.stem, name, "inertia is not positive semi-definite (principal "

@@ -22,6 +22,7 @@ from pathlib import Path
 from ..disk_cache import cache_root, load, store
 from ..errors import InputFileError, ModelError, UnknownNameError
 from .urdf_checks import check_urdf_tree
+from .urdf_values import check_urdf_values
 
 #: Limits written for ``continuous`` joints turned ``revolute`` (radians): wheels never reach them.
 UNBOUNDED_LIMIT = 1.0e6
@@ -149,13 +150,23 @@ class UrdfSource:
         return ET.tostring(root, encoding="unicode")
 
 
+def check_link_names(path: Path, names: tuple[str, ...], where: str) -> None:
+    r"""Every one of ``names`` is a link of the URDF at ``path`` (read once before: it parses);
+    else :class:`UnknownNameError` naming ``where`` (an option, a key) and the links."""
+    links = [el.get("name", "") for el in ET.parse(path).getroot().findall("link")]
+    for name in names:
+        if name not in links:
+            raise UnknownNameError("link", name, links, where=f"{path}: {where}")
+
+
 def read_urdf(path: str | Path, locked: tuple[str, ...] = (),
               accept_inertia: tuple[str, ...] = ()) -> UrdfSource:
     r"""Read and check a URDF file.
 
     Raises :class:`InputFileError` if the file is missing, is not well-formed XML (with line and
-    column), has no ``<robot>`` root, fails the tree checks of :mod:`.urdf_checks` or is
-    rejected by yourdfpy (with its reason); :class:`ModelError` for bad inertial data
+    column), has no ``<robot>`` root, fails the tree checks of :mod:`.urdf_checks` or the checks
+    of its numbers and joints of :mod:`.urdf_values`, or is rejected by yourdfpy (with its
+    reason); :class:`ModelError` for bad inertial data
     (``locked`` joints count as fixed there, the links of ``accept_inertia`` are not checked).
     """
     path = Path(path)
@@ -174,6 +185,7 @@ def read_urdf(path: str | Path, locked: tuple[str, ...] = (),
     if root.tag != "robot":
         raise InputFileError(path, f"root element is <{root.tag}>, expected <robot>", line=1)
     check_urdf_tree(path, text, root, tuple(locked), tuple(accept_inertia))
+    check_urdf_values(path, text, root)
     source = UrdfSource(path=path, text=text, outline=_outline(path, text))
     for joint in source.outline.joints:
         if joint.parent not in source.link_names or joint.child not in source.link_names:
