@@ -238,13 +238,18 @@ class CoordinateMap:
         errors of :math:`S^TAS`, :math:`\dot S`, ..."""
         q_doc = np.atleast_2d(np.asarray(q_doc, dtype=float))
         N = len(q_doc)
-        if self.cs.kind == "holonomic":
-            M = self._S_batch(N, *q_doc.T, *self._p)
-        else:
-            q = self._config_batch(N, *q_doc.T, *self._p)[:, :, 0]
-            M = self._T_batch(N, *q.T, *self._p)
+        with np.errstate(all="ignore"):         # sqrt(theta) at theta < 0: NaN, redrawn
+            if self.cs.kind == "holonomic":
+                M = self._S_batch(N, *q_doc.T, *self._p)
+            else:
+                q = self._config_batch(N, *q_doc.T, *self._p)[:, :, 0]
+                M = self._T_batch(N, *q.T, *self._p)
+        M = np.asarray(M, dtype=float)
+        out = np.full(N, np.inf)
+        finite = np.all(np.isfinite(M.reshape(N, -1)), axis=1)   # a map undefined there
         with np.errstate(all="ignore"):
-            out = np.linalg.cond(M)
+            if finite.any():
+                out[finite] = np.linalg.cond(M[finite])
         return np.where(np.isfinite(out), out, np.inf)
 
     def terms(self, q_doc: np.ndarray, nu: np.ndarray) -> Terms:

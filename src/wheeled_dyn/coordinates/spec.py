@@ -37,8 +37,11 @@ from ..errors import DerivationError, UnknownNameError, WheeledDynError
 
 KINDS = ("holonomic", "quasi")
 ROLLING = ("eliminate", "multipliers", "none")
-_FUNCTIONS = {name: getattr(sp, name) for name in
-              ("sin", "cos", "tan", "sqrt", "exp", "atan2", "asin", "acos", "atan")}
+#: The functions a coordinate set's expressions may call: a derivation's standard functions
+#: (any other name called is an unknown function, refused).
+_FUNCTIONS: dict[str, Any] = {name: getattr(sp, name) for name in
+                              ("sin", "cos", "tan", "cot", "sec", "csc", "asin", "acos", "atan",
+                               "atan2", "sinh", "cosh", "tanh", "sqrt", "exp", "log")}
 _FUNCTIONS["pi"] = sp.pi
 
 
@@ -78,6 +81,12 @@ def parse_expression(text: str | int | float, names: Mapping[str, sp.Basic], *, 
     unknown = {s.name for s in expr.free_symbols} - set(names)
     if unknown:
         raise UnknownNameError("symbol", sorted(unknown)[0], names, where=f"{where}, {item}")
+    calls = sorted(str(c.func) for c in expr.atoms(sp.core.function.AppliedUndef))
+    if calls or expr.has(sp.Abs, sp.sign):
+        called = calls[0] if calls else "Abs" if expr.has(sp.Abs) else "sign"
+        raise DerivationError(where, item, f"{called}(...): a coordinate map is differentiated "
+                              "and may call only the smooth functions "
+                              + ", ".join(sorted(f for f in _FUNCTIONS if f != "pi")))
     try:
         check_expanded(str(text), expr)
     except ExpressionError as exc:

@@ -27,6 +27,7 @@ may ``use`` another set (one every model offers, e.g. ``heading``) if it also li
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -37,6 +38,7 @@ import sympy
 
 from ..errors import DerivationError, InputFileError
 from .expressions import ExpressionError, parse_model_expression, parse_units, scan_names
+from .limits import MAX_CONSTANT
 from .schema import CoordinateSpec
 
 KINDS: tuple[str, ...] = ("holonomic", "quasi")
@@ -195,9 +197,12 @@ def _units(path: Path, table: Mapping[str, Any], builtin: BuiltinSet | None,
         units[name] = str(text)
     for name, pair in _per_position(path, table, "ranges", "[low, high]", positions, line_of):
         if (not isinstance(pair, list) or len(pair) != 2
-                or not all(isinstance(x, (int, float)) for x in pair) or not pair[0] < pair[1]):
+                or not all(isinstance(x, (int, float)) and not isinstance(x, bool)
+                           and math.isfinite(x) and abs(x) <= MAX_CONSTANT for x in pair)
+                or not pair[0] < pair[1]):
             raise DerivationError(path, f"coordinates.ranges.{name}", "expected [low, high] "
-                                  "with low < high", line_of("ranges"))
+                                  f"with low < high, finite numbers of magnitude at most "
+                                  f"{MAX_CONSTANT:g}", line_of("ranges"))
     return units
 
 
@@ -256,6 +261,20 @@ def coordinate_names(path: Path, table: Any, model: str,
                            MappingProxyType(units))
 
 
+def _check_positions_used(path: Path, positions: tuple[str, ...],
+                          configuration: Mapping[str, sympy.Expr], line: int | None) -> None:
+    r"""Every position of a holonomic set enters the configuration map: a position no model
+    coordinate depends on makes the map's Jacobian singular (``{ theta = "0" }``)."""
+    used = {str(s) for e in configuration.values() for s in e.free_symbols}
+    for name in positions:
+        if name not in used:
+            raise DerivationError(path, "coordinates.configuration", "no model coordinate "
+                                  f"depends on the position {name!r}: the map does not "
+                                  "determine it (its Jacobian is singular); give the model "
+                                  f"coordinate {name!r} stands for as an expression of it",
+                                  line)
+
+
 def coordinate_spec(path: Path, table: Mapping[str, Any], names: CoordinateNames,
                     parse_doc: Callable[[str, str, str], sympy.Expr],
                     line_of: Callable[[str | None], int | None]) -> CoordinateSpec:
@@ -278,8 +297,16 @@ def coordinate_spec(path: Path, table: Mapping[str, Any], names: CoordinateNames
             if not model_name.isidentifier():
                 raise DerivationError(path, f"coordinates.configuration.{model_name}",
                                       "not a model coordinate name", line_of("configuration"))
-            configuration[model_name] = parse_doc(text, f"coordinates.configuration.{model_name}",
-                                                  "configuration")
+            item = f"coordinates.configuration.{model_name}"
+            configuration[model_name] = parse_doc(text, item, "configuration")
+            if configuration[model_name].has(sympy.Abs, sympy.sign):
+                raise DerivationError(path, item, "Abs and sign have no derivative where their "
+                                      "argument is 0: a configuration map is differentiated "
+                                      "(velocities, Coriolis terms); write the branch the "
+                                      "document means", line_of("configuration"))
+        if names.kind == "holonomic":
+            _check_positions_used(path, names.positions, configuration,
+                                  line_of("configuration"))
         if names.kind == "quasi":
             missing = [v for v in names.velocities if v not in raw_vel]
             if missing:

@@ -2,15 +2,18 @@ r"""Limits on the size of an expression of a derivation file, checked on the tex
 (or NumPy) sees it, so that no expression can make the parser recurse without end, allocate a
 number of billions of digits, or hang the comparison: at most :data:`MAX_TOKENS` tokens,
 :data:`MAX_NESTING` levels of parentheses, every exponent a constant number of magnitude at most
-:data:`MAX_EXPONENT`, every constant part (``9**9``, ``1e400``) of magnitude at most
-:data:`MAX_CONSTANT` (:func:`check_limits`); once parsed, at most :data:`MAX_EXPANDED_TERMS`
-terms multiplied out (:func:`check_expanded`). The largest expression of the shipped files has
+:data:`MAX_EXPONENT`, every constant part (``9**9``, ``1e400``, ``exp(1e99)``) of magnitude at
+most :data:`MAX_CONSTANT` and, unless zero, at least its inverse, every number a function is
+applied to at most :data:`MAX_FUNCTION_ARGUMENT` (:func:`check_limits`); once parsed, the same
+for the numbers SymPy made, and at most :data:`MAX_EXPANDED_TERMS` terms multiplied out
+(:func:`check_expanded`). The largest expression of the shipped files has
 about 300 tokens, 4 levels and exponents up to 4.
 """
 
 from __future__ import annotations
 
 import ast
+import decimal
 import math
 import operator
 import tokenize
@@ -30,6 +33,9 @@ MAX_NESTING = 32
 MAX_EXPONENT = 64
 #: Largest magnitude of a number written in an expression, or of a constant part of one.
 MAX_CONSTANT = 1e100
+#: Largest magnitude of a number given to a function (``sin(1e99)``): NumPy computes it on
+#: floats, and beyond 2**53 a float does not hold it exactly (beyond 2**63, not at all).
+MAX_FUNCTION_ARGUMENT = 1e15
 #: Most terms an expression may have once multiplied out (:func:`expanded_terms`): the
 #: comparison expands every element (its time grows faster than the number of terms: 210 terms
 #: take 9 s), and ``(a + b + c + d + e)**16`` has 4845 terms. Shipped elements have at most 8.
@@ -38,6 +44,15 @@ MAX_EXPANDED_TERMS = 100
 _ARITHMETIC: dict[type[ast.operator], Callable[[float, float], float]] = {
     ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul,
     ast.Div: operator.truediv}
+#: The standard functions computed on a constant argument, in floating point, so that a
+#: value beyond :data:`MAX_CONSTANT` (``exp(1e99)``, ``cosh(1e50)``) is refused before SymPy
+#: keeps it as an exact number NumPy cannot compute with.
+_FUNCTIONS: dict[str, Callable[..., float]] = {
+    "sin": math.sin, "cos": math.cos, "tan": math.tan, "cot": lambda x: 1 / math.tan(x),
+    "sec": lambda x: 1 / math.cos(x), "csc": lambda x: 1 / math.sin(x), "asin": math.asin,
+    "acos": math.acos, "atan": math.atan, "atan2": math.atan2, "sinh": math.sinh,
+    "cosh": math.cosh, "tanh": math.tanh, "sqrt": math.sqrt, "exp": math.exp,
+    "log": math.log, "Abs": abs, "sign": lambda x: math.copysign(1.0, x) if x else 0.0}
 
 
 def check_limits(text: str, src: str, tokens: list[tokenize.TokenInfo]) -> None:
@@ -53,6 +68,9 @@ def check_limits(text: str, src: str, tokens: list[tokenize.TokenInfo]) -> None:
         depth -= tok.string == ")"
         if depth > MAX_NESTING:
             raise ExpressionError(text, f"parentheses nested deeper than {MAX_NESTING} levels")
+    for tok in tokens:
+        if tok.type == tokenize.NUMBER:
+            _check_literal(text, tok.string)
     try:
         tree = ast.parse(src.replace("^", "**"), mode="eval")
     except (SyntaxError, ValueError):
@@ -60,6 +78,18 @@ def check_limits(text: str, src: str, tokens: list[tokenize.TokenInfo]) -> None:
     except (RecursionError, MemoryError):
         raise ExpressionError(text, "expression nested too deeply") from None
     _check_constants(text, tree.body)
+
+
+def _check_literal(text: str, number: str) -> None:
+    r"""A number as written: nonzero and below ``1/MAX_CONSTANT`` in magnitude (``1e-5000``,
+    which a float reads as 0 but SymPy as a fraction of thousands of digits) is refused."""
+    try:
+        value = decimal.Decimal(number.replace("_", ""))
+    except decimal.InvalidOperation:
+        return                                  # 0x10, 0o7: the tokenizer's, no exponent
+    if value and abs(value) < decimal.Decimal(1) / decimal.Decimal(MAX_CONSTANT):
+        raise ExpressionError(text, f"number {number} smaller than {1 / MAX_CONSTANT:g} in "
+                                    "magnitude (write 0, or scale the quantity)")
 
 
 def _check_constants(text: str, root: ast.AST) -> None:
@@ -91,6 +121,8 @@ def _constant_value(text: str, node: ast.AST, values: dict[int, float | None]) -
     if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.UAdd, ast.USub)):
         v = values.get(id(node.operand))
         return None if v is None else (-v if isinstance(node.op, ast.USub) else v)
+    if isinstance(node, ast.Call):
+        return _call_value(text, node, values)
     if not isinstance(node, ast.BinOp):
         return None
     a, b = values.get(id(node.left)), values.get(id(node.right))
@@ -105,6 +137,29 @@ def _constant_value(text: str, node: ast.AST, values: dict[int, float | None]) -
         return None                             # SymPy reports a division by zero
 
 
+def _call_value(text: str, node: ast.Call, values: dict[int, float | None]) -> float | None:
+    r"""The value of a standard function of constant arguments (``exp(1e99)``), None if an
+    argument is not constant or outside the function's domain (SymPy reports that); a
+    constant argument beyond :data:`MAX_FUNCTION_ARGUMENT` is refused."""
+    name = node.func.id if isinstance(node.func, ast.Name) else ""
+    args = [values.get(id(a)) for a in node.args]
+    for a in args:
+        if a is not None and abs(a) > MAX_FUNCTION_ARGUMENT:
+            raise ExpressionError(text, f"{name}({a:.6g}): a function's argument is at most "
+                                        f"{MAX_FUNCTION_ARGUMENT:g} in magnitude")
+    function = _FUNCTIONS.get(name)
+    if function is None or node.keywords or not args or any(a is None for a in args):
+        return None
+    try:
+        value = function(*args)
+    except OverflowError:
+        raise ExpressionError(text, f"{name}(...) is a constant larger than "
+                                    f"{MAX_CONSTANT:g}") from None
+    except (ValueError, ZeroDivisionError, TypeError):
+        return None
+    return _bounded(text, value, "constant")
+
+
 def _power_value(text: str, node: ast.BinOp, a: float | None, b: float | None) -> float | None:
     r"""The value of the power ``a ** b`` (``node``) if its base is constant; its exponent
     ``b`` must be a constant of magnitude at most :data:`MAX_EXPONENT`."""
@@ -117,16 +172,21 @@ def _power_value(text: str, node: ast.BinOp, a: float | None, b: float | None) -
     if a is None:
         return None
     try:
-        return _bounded(text, math.pow(a, b), "constant")
+        value = math.pow(a, b)
     except (OverflowError, ValueError, ZeroDivisionError):
         if a == 0 or a < 0:
             return None                     # 0**-1, (-1)**0.5: SymPy reports these
         raise ExpressionError(text, f"constant larger than {MAX_CONSTANT:g}") from None
+    if value == 0 and a != 0:                   # (1e100)**(-64): a fraction of 6400 digits
+        raise ExpressionError(text, f"constant smaller than {1 / MAX_CONSTANT:g} in magnitude")
+    return _bounded(text, value, "constant")
 
 
 def _bounded(text: str, value: float, what: str) -> float:
     if not math.isfinite(value) or abs(value) > MAX_CONSTANT:
         raise ExpressionError(text, f"{what} larger than {MAX_CONSTANT:g}")
+    if value and abs(value) < 1 / MAX_CONSTANT:
+        raise ExpressionError(text, f"{what} smaller than {1 / MAX_CONSTANT:g} in magnitude")
     return value
 
 
@@ -158,9 +218,26 @@ def expanded_terms(expr: sympy.Basic) -> int:
         return 10 ** 12
 
 
+def _check_numbers(text: str, expr: sympy.Basic) -> None:
+    r"""The numbers of ``expr`` as SymPy simplified it: none with a numerator or denominator
+    beyond :data:`MAX_CONSTANT` (``(x*1e100)**(-64)`` holds a fraction of 6400 digits, which
+    no printer writes), no function of a number beyond :data:`MAX_FUNCTION_ARGUMENT`."""
+    bits = int(MAX_CONSTANT).bit_length()
+    for number in expr.atoms(sympy.Rational):
+        if max(abs(int(number.p)), int(number.q)).bit_length() > bits:
+            raise ExpressionError(text, f"a number larger than {MAX_CONSTANT:g} or smaller than "
+                                        f"{1 / MAX_CONSTANT:g} in magnitude once simplified")
+    for call in expr.atoms(sympy.Function):
+        for arg in call.args:
+            if arg.is_Number and abs(arg) > MAX_FUNCTION_ARGUMENT:
+                raise ExpressionError(text, f"{call.func}(...): a function's argument is at "
+                                            f"most {MAX_FUNCTION_ARGUMENT:g} in magnitude")
+
+
 def check_expanded(text: str, expr: sympy.Basic) -> None:
     r"""Raise :class:`ExpressionError` if ``expr`` (parsed from ``text``, with any definitions
     substituted) has more than :data:`MAX_EXPANDED_TERMS` terms once multiplied out."""
+    _check_numbers(text, expr)
     n = expanded_terms(expr)
     if n > MAX_EXPANDED_TERMS:
         size = f"{n}" if n < 10 ** 12 else "more than 10**12"
@@ -169,5 +246,5 @@ def check_expanded(text: str, expr: sympy.Basic) -> None:
 
 
 
-__all__ = ["MAX_CONSTANT", "MAX_EXPANDED_TERMS", "MAX_EXPONENT", "MAX_NESTING", "MAX_TOKENS",
+__all__ = ["MAX_CONSTANT", "MAX_EXPANDED_TERMS", "MAX_EXPONENT", "MAX_FUNCTION_ARGUMENT", "MAX_NESTING", "MAX_TOKENS",
            "check_expanded", "check_limits", "expanded_terms"]

@@ -64,6 +64,8 @@ def load_linear_document(path: str | Path = MEIJAARD_2007) -> LinearDocument:
         raise InputFileError(path, f"cannot read: {exc.strerror}") from None
     except tomllib.TOMLDecodeError as exc:
         raise InputFileError(path, f"not valid TOML: {exc}") from None
+    except RecursionError:
+        raise InputFileError(path, "not valid TOML: arrays or tables nested too deeply") from None
     for key in ("model", "coordinates", "form"):
         if key not in data:
             raise InputFileError(path, f"missing [{key}]" if key != "model" else "missing model")

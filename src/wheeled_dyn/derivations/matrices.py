@@ -81,7 +81,15 @@ class MatrixReader:
         if text.strip() == MISSING_ELEMENT:
             self.missing.append(label)
             return sympy.nan
-        return self.ld.expr(text, label, "matrices", key)
+        value = self.ld.expr(text, label, "matrices", key)
+        accelerations = sorted(str(s) for s in value.free_symbols
+                               if self.ld.kinds.get(str(s)) == "acceleration")
+        if accelerations:
+            raise self.ld.fail(label, f"holds the acceleration {accelerations[0]}: the "
+                               "matrices A, C, Q, B (Gamma) and G hold positions and "
+                               "velocities only (the accelerations are what A multiplies)",
+                               self.ld.line("matrices", key, accelerations[0]))
+        return value
 
     def _shape_error(self, key: str, got: str, rows: int | None, cols: int) -> Exception:
         expected = f"{rows if rows is not None else 'm'}×{cols}"

@@ -21,6 +21,8 @@ file's namespace and its declaring sections: :mod:`.loader`; the matrices and eq
 
 from __future__ import annotations
 
+import math
+import os
 from collections.abc import Collection, Iterable, Mapping
 from pathlib import Path
 from types import MappingProxyType
@@ -28,11 +30,13 @@ from typing import Any
 
 import sympy
 
+from ..errors import ArgumentError
 from .builtin import derivation_files
 from .coordinates import (CoordinateNames, coordinate_names, coordinate_spec,
                           resolve_model_reference)
 from .expressions import real_symbol
 from .latex import unwrap_latex
+from .limits import MAX_CONSTANT
 from .loader import _Loader
 from .matrices import MatrixReader
 from .schema import Derivation
@@ -159,6 +163,9 @@ def load_derivation(path: str | Path, *, parameters: Collection[str] | None = No
     line and column) and :class:`~wheeled_dyn.errors.DerivationError` for content that does
     not fit.
     """
+    if not isinstance(path, (str, os.PathLike)):
+        raise ArgumentError("load_derivation", "path", path, "the path of a derivation file "
+                            "(str or pathlib.Path)")
     p = Path(path)
     data, src = read_toml(p)
     ld = _Loader(p, data, src, parameters, links)
@@ -241,6 +248,11 @@ def _assumes(ld: "_Loader", positions: tuple) -> Mapping[str, Any]:
         raise ld.fail("assumes.linearised_about", "expected { position = number, ... } with "
                       "positions among " + ", ".join(sorted(names)),
                       ld.line("assumes", "linearised_about"))
+    for k, v in point.items():
+        if not math.isfinite(v) or abs(v) > MAX_CONSTANT:
+            raise ld.fail(f"assumes.linearised_about.{k}", f"{v} is not a finite number of "
+                          f"magnitude at most {MAX_CONSTANT:g}",
+                          ld.line("assumes", "linearised_about"))
     if raw.get("potential", "equilibrium") != "equilibrium" or (
             "potential" in raw and set(point) != names):
         raise ld.fail("assumes.potential", 'expected "equilibrium", with linearised_about '

@@ -11,6 +11,7 @@ from __future__ import annotations
 import re
 import tomllib
 from dataclasses import dataclass
+from functools import cached_property
 from pathlib import Path
 from typing import Any
 
@@ -22,29 +23,46 @@ _TOML_POSITION = re.compile(r"\(at line (\d+), column (\d+)\)")
 _TABLE_HEADER = re.compile(r"^\[\[?\s*([A-Za-z0-9_.\-\" ]+?)\s*\]\]?\s*(#.*)?$")
 
 
+#: The key a line starts with (``key =``, ``"key" =``, ``'key' =``), for :class:`SourceText`'s
+#: index.
+_KEY_AT_START = re.compile(r"""^\s*(?:"([^"]*)"|'([^']*)'|([^\s="']+))\s*=""")
+
+
 @dataclass(frozen=True)
 class SourceText:
-    r"""The text of a file, for locating keys and fragments (1-based line numbers)."""
+    r"""The text of a file, for locating keys and fragments (1-based line numbers). The
+    headers and keys are indexed once (:attr:`_index`), so that locating every key of a file of
+    many thousands is linear in its size."""
 
     path: Path
     text: str
 
-    @property
+    @cached_property
     def lines(self) -> list[str]:
         return self.text.splitlines()
 
-    def _key_line(self, table: str | None, key: str) -> int | None:
+    @cached_property
+    def _index(self) -> tuple[dict[str, int], dict[tuple[str | None, str], int]]:
+        r"""(table -> line of its first header, (table or None, key) -> first line of the key
+        in that table, or anywhere)."""
+        headers: dict[str, int] = {}
+        keys: dict[tuple[str | None, str], int] = {}
         current: str | None = None
-        key_re = re.compile(r'^\s*(?:"' + re.escape(key) + r'"|\'' + re.escape(key) + r"'|"
-                            + re.escape(key) + r")\s*=")
         for number, line in enumerate(self.lines, start=1):
             header = _TABLE_HEADER.match(line)
             if header:
                 current = header.group(1).strip()
+                headers.setdefault(current, number)
                 continue
-            if (table is None or current == table) and key_re.match(line):
-                return number
-        return None
+            found = _KEY_AT_START.match(line)
+            if found:
+                key = next(g for g in found.groups() if g is not None)
+                keys.setdefault((current, key), number)
+                keys.setdefault((None, key), number)
+        return headers, keys
+
+    def _key_line(self, table: str | None, key: str) -> int | None:
+        return self._index[1].get((table, key))
 
     def line_of(self, table: str | None, key: str | None = None,
                 fragment: str | None = None) -> int | None:
@@ -53,11 +71,7 @@ class SourceText:
         if not found."""
         lines = self.lines
         if key is None:
-            for number, line in enumerate(lines, start=1):
-                header = _TABLE_HEADER.match(line)
-                if header and header.group(1).strip() == table:
-                    return number
-            return None
+            return None if table is None else self._index[0].get(table)
         start = self._key_line(table, key)
         if start is None or fragment is None:
             return start
@@ -123,4 +137,6 @@ def read_toml(path: str | Path) -> tuple[dict[str, Any], SourceText]:
         elif "end of document" in message:
             line = len(text.splitlines()) or 1
         raise InputFileError(p, f"malformed TOML: {message}", line=line, column=column) from exc
+    except RecursionError:
+        raise InputFileError(p, "malformed TOML: arrays or tables nested too deeply") from None
     return data, SourceText(p, text)

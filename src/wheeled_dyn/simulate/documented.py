@@ -27,7 +27,7 @@ from ..compare.sides.document import document_symbol_values
 from ..compare.grid.samples import ParameterSet, namespace_values
 from ..constraints.reduction import CoordinateMap
 from ..derivations.schema import Derivation
-from ..errors import StateError
+from ..errors import DerivationError, StateError
 from ..models.registry import load_model, model_entry
 from .reduced import RTOL, ATOL, Trajectory, simulate
 
@@ -82,8 +82,16 @@ def simulate_document(d: Derivation, params: ParameterSet, q0: np.ndarray, nu0: 
 
     def rhs(t, y):
         a = [*y]
-        force = Bu - np.ravel(fh(*a)) - np.ravel(fQ(*a))
-        return np.concatenate([y[n:], np.linalg.solve(np.asarray(fA(*a), dtype=float), force)])
+        with np.errstate(all="ignore"):
+            force = Bu - _real(fh(*a), d, t, y) - _real(fQ(*a), d, t, y)
+            mass = _real(fA(*a), d, t, y).reshape(n, n)
+            try:
+                acc = np.linalg.solve(mass, force)
+            except np.linalg.LinAlgError:
+                raise _unusable(d, t, y, "A is singular") from None
+        if not np.all(np.isfinite(acc)):
+            raise _unusable(d, t, y, "the accelerations are not finite")
+        return np.concatenate([y[n:], acc])
 
     t_eval = np.linspace(0.0, duration, int(round(duration * rate)) + 1)
     y0 = np.concatenate([q0, nu0]).astype(float)
@@ -95,6 +103,33 @@ def simulate_document(d: Derivation, params: ParameterSet, q0: np.ndarray, nu0: 
     energy = np.array([float(fE(*y)) for y in sol.y.T])
     # the document's model may blow up: what was integrated is kept (sol.t ends early)
     return DocumentTrajectory(sol.t, sol.y[:n].T, sol.y[n:].T, energy, U is not None)
+
+
+def _unusable(d: Derivation, t: float, y: np.ndarray, why: str) -> DerivationError:
+    r"""The error for a document whose equations cannot be integrated at time ``t``,
+    state ``y`` (its positions, then its velocities)."""
+    names = [*d.positions, *d.velocities]
+    state = ", ".join(f"{s} = {v:.4g}" for s, v in zip(names, np.real(y)))
+    return DerivationError(d.path, "equations" if d.equations else "matrices",
+                           f"{why} at t = {t:.4g} s ({state}): the document's equations "
+                           "cannot be integrated there")
+
+
+def _real(value: object, d: Derivation, t: float, y: np.ndarray) -> np.ndarray:
+    r"""``value`` (a term of the document at time ``t``, state ``y``) as a flat array of
+    finite real numbers; else :func:`_unusable` (``sqrt(-1 - theta**2)`` is imaginary,
+    ``exp(exp(exp(10)))`` does not fit a float)."""
+    try:
+        arr = np.asarray(value, dtype=complex).ravel()
+    except (TypeError, ValueError, OverflowError):
+        raise _unusable(d, t, y, "a term is not a number") from None
+    if not np.all(np.isfinite(arr)):
+        raise _unusable(d, t, y, "a term is not finite (a square root or logarithm of a "
+                        "negative number, a division by zero?)")
+    if np.any(arr.imag != 0):
+        raise _unusable(d, t, y, "a term is not real (a square root or logarithm of a "
+                        "negative number?)")
+    return arr.real
 
 
 @dataclass(frozen=True)

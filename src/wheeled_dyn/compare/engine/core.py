@@ -28,13 +28,16 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import replace
+from os import PathLike
 
 import numpy as np
 
 from ...derivations.schema import Derivation
+from ...errors import ArgumentError
 from ...models.registry import model_version
 from .conventions import convention_finding, unknown_convention
 from ..causes.root import root_causes
+from ..grid.inputs import check_model_names, grid_size
 from ..grid.grid import Grids
 from .judgement import Judgement, judge_derivation
 from ..records import Cause, Convention, ConventionSummary, DerivationResult
@@ -58,9 +61,13 @@ class ComparisonEngine:
 
     def __init__(self, samples: int = 1000, param_sets: int = 5, seed: int = 2026,
                  parallel_steps: bool = False, on_stage: StageCallback | None = None) -> None:
-        self.samples = samples
-        self.param_sets = param_sets
-        self.seed = seed
+        self.samples, self.param_sets, self.seed = grid_size(samples, param_sets, seed)
+        if not isinstance(parallel_steps, bool):
+            raise ArgumentError("ComparisonEngine", "parallel_steps", parallel_steps,
+                                "True or False")
+        if on_stage is not None and not callable(on_stage):
+            raise ArgumentError("ComparisonEngine", "on_stage", on_stage,
+                                "a function (file name, stage name) or None")
         self.parallel_steps = parallel_steps
         self.on_stage = on_stage
         self.grids = Grids(seed, truth_for)
@@ -70,14 +77,28 @@ class ComparisonEngine:
         if self.on_stage is not None:
             self.on_stage(d.path.name, name)
 
-    def compare(self, d: Derivation) -> DerivationResult:
-        r"""The comparison of one derivation (memoised per file and content)."""
-        key = (str(d.path), d.path.stat().st_mtime_ns if d.path.exists() else 0,
-               model_version(d.model))          # and per content of the model's files
+    def compare(self, d: Derivation | str | PathLike) -> DerivationResult:
+        r"""The comparison of one derivation (memoised per file and content); a path is loaded
+        (:func:`~wheeled_dyn.derivations.load_derivation`) and its names checked against its
+        model first, as the command line does."""
+        if isinstance(d, (str, PathLike)):
+            from ...derivations import load_derivation
+            derivation = load_derivation(d)
+            check_model_names(derivation)
+        elif isinstance(d, Derivation):
+            derivation = d
+        else:
+            raise ArgumentError("ComparisonEngine.compare", "d", d, "a Derivation "
+                                "(wheeled_dyn.derivations.load_derivation) or the path of a "
+                                "derivation file")
+        key = (str(derivation.path),
+               derivation.path.stat().st_mtime_ns if derivation.path.exists() else 0,
+               model_version(derivation.model))          # and per content of the model's files
         if key not in self._results:
             from ..steps.chain import with_steps       # earlier steps, upstream causes
-            self._results[key] = with_steps(d, self._compare, self.seed, self.parallel_steps,
-                                            lambda stage: self.stage(d, stage))
+            self._results[key] = with_steps(derivation, self._compare, self.seed,
+                                            self.parallel_steps,
+                                            lambda stage: self.stage(derivation, stage))
         return self._results[key]
 
     def judge(self, d: Derivation, announce: bool = False) -> Judgement:

@@ -143,12 +143,38 @@ class Grids:
         ranges = position_ranges(d, cs.positions, assumed)
         q, nu = random_states(n, k * n_states, rng, ranges)
         q = regular_states(cmap, q, rng, ranges)
+        check_finite_map(d, cmap, q)
         q, nu = q.reshape(k, n_states, n), nu.reshape(k, n_states, n)
         if on_truth is not None:
             on_truth()
         truth = self.truth(cmap, sets, q, nu)
         apply_to_truth(truth, assumed)
         return Grid(truth, tuple(sets), q, nu, cs, cmap, tuple((lo, hi) for lo, hi in ranges))
+
+
+def check_finite_map(d: Derivation, cmap: CoordinateMap, q: np.ndarray) -> None:
+    r"""Raise :class:`DerivationError` if the document's coordinate map (its configuration
+    map, and for a holonomic set its Jacobian) is not finite at one of the states ``q`` left
+    after :func:`.samples.regular_states` redrew those where it was not: ``sqrt(theta)``,
+    ``asin(theta)``, ``log(theta)`` outside their domain on much of the drawn range."""
+    N = len(q)
+    params = cmap._p
+    with np.errstate(all="ignore"):
+        bad = ~np.isfinite(np.asarray(cmap._config_batch(N, *q.T, *params),
+                                      dtype=float)[:, :, 0])
+        if cmap.cs.kind == "holonomic":
+            S = np.asarray(cmap._S_batch(N, *q.T, *params), dtype=float)
+            bad |= ~np.all(np.isfinite(S), axis=2)
+    rows, cols = np.nonzero(bad)
+    if not rows.size:
+        return
+    name = cmap.wm.coordinate_names[cols[0]]
+    state = ", ".join(f"{p} = {v:.4g}" for p, v in zip(cmap.cs.positions, q[rows[0]]))
+    item = "coordinates.use" if d.coordinates.use else f"coordinates.configuration.{name}"
+    raise DerivationError(d.path, item, f"the map to model coordinate {name!r} or its "
+                          f"derivative is not finite at {state} (a square root, logarithm or "
+                          "inverse sine outside its domain?); say where the comparison draws "
+                          "the positions: [coordinates] ranges = { position = [low, high] }")
 
 
 def special_states(grid: Grid) -> tuple[np.ndarray, np.ndarray]:
@@ -172,5 +198,5 @@ def special_states(grid: Grid) -> tuple[np.ndarray, np.ndarray]:
     return np.concatenate(qs), np.concatenate(owner)
 
 
-__all__ = ["Grid", "Grids", "ROWS_KEY", "SPECIAL_STATES_PER_SET", "SPECIAL_VALUES",
+__all__ = ["Grid", "Grids", "ROWS_KEY", "check_finite_map", "SPECIAL_STATES_PER_SET", "SPECIAL_VALUES",
            "TruthFunction", "derivation_coordinate_set", "special_states"]

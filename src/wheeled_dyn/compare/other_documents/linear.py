@@ -46,7 +46,7 @@ def is_linear_document(path: str | Path) -> bool:
     from ...errors import InputFileError
     try:                                  # a regular file of bounded size only (not a FIFO)
         data = tomllib.loads(read_small_text(Path(path)))
-    except (InputFileError, OSError, tomllib.TOMLDecodeError):
+    except (InputFileError, OSError, tomllib.TOMLDecodeError, RecursionError):
         return False
     return isinstance(data.get("form"), dict) and "matrices" not in data
 

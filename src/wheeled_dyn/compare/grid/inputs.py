@@ -1,0 +1,87 @@
+r"""What a comparison is given, checked before anything is compared (by the engine, the
+command line and the Python API alike): the size of its grid, and the names a derivation uses
+of its model."""
+
+from __future__ import annotations
+
+import numbers
+
+from ...errors import ArgumentError, LimitError
+
+#: Ranges of --samples and --param-sets, and of their product (the states of one comparison):
+#: memory and time grow with it (at 10**9 states the comparison asked for 112 GiB).
+MAX_SAMPLES, MAX_PARAM_SETS, MAX_STATES = 100_000, 1000, 1_000_000
+
+
+def grid_size(samples: object, param_sets: object, seed: object,
+              where: str = "ComparisonEngine") -> tuple[int, int, int]:
+    r"""``(samples, param_sets, seed)`` checked: each an integer in its range
+    (:data:`MAX_SAMPLES`, :data:`MAX_PARAM_SETS`), their product at most :data:`MAX_STATES`;
+    :class:`ArgumentError` naming ``where`` for a value that is not an integer in range,
+    :class:`LimitError` for too many states."""
+    checked = []
+    for name, value, low, high in (("samples", samples, 1, MAX_SAMPLES),
+                                   ("param_sets", param_sets, 1, MAX_PARAM_SETS),
+                                   ("seed", seed, 0, 2 ** 63 - 1)):
+        if (isinstance(value, bool) or not isinstance(value, numbers.Integral)
+                or not low <= int(value) <= high):
+            raise ArgumentError(where, name, value, f"an integer from {low} to {high:,}")
+        checked.append(int(value))
+    if checked[0] * checked[1] > MAX_STATES:
+        raise LimitError("samples × param_sets", checked[0] * checked[1],
+                         f"at most {MAX_STATES:,} states", "memory and time grow with them")
+    return checked[0], checked[1], checked[2]
+
+
+def check_model_names(d) -> None:
+    r"""The names derivation ``d`` uses of its model, checked before comparing: every key of
+    ``[inputs]`` is a model input, every value of ``[symbols]`` uses the model's parameters
+    and links. Raises :class:`~wheeled_dyn.derivations.errors.DerivationNameError` naming the
+    file, the line, the item and the valid names."""
+    from sympy.core.function import AppliedUndef
+
+    from ...derivations.errors import DerivationNameError
+    from ...derivations.expressions import GEOMETRY_NAMES
+    from ...derivations.source import SourceText, read_small_text
+    from ...models.registry import load_model, model_entry
+    from .samples import namespace_values
+    wm = load_model(d.model)
+    entry = model_entry(d.model)
+    values = namespace_values(wm, entry.parameters() if entry.parameters else None)
+    src = SourceText(d.path, read_small_text(d.path) if d.path.is_file() else "")  # or Python
+    for key in d.inputs:
+        if key not in wm.input_names:
+            raise DerivationNameError(d.path, f"inputs.{key}", "model input", key,
+                                      wm.input_names, src.line_of("inputs", key))
+    links = sorted({k[k.index("(") + 1:-1] for k in values if "(" in k})
+    for name, spec in d.symbols.items():
+        if spec.value is None:
+            continue
+        item, line = f"symbols.{name}.value", src.line_of("symbols", name)
+        args = set()
+        for call in spec.value.atoms(AppliedUndef):
+            link = str(call.args[0])
+            args |= call.args[0].free_symbols
+            key = f"{call.func.__name__}({link})"
+            geometric = call.func.__name__ in GEOMETRY_NAMES
+            if (link not in links or key not in values) and not geometric:
+                from ...models.link_parameters import merged_links
+                body = merged_links(wm).get(link)
+                if body is not None:        # a link fixed to another: no parameters of its own
+                    raise DerivationNameError(
+                        d.path, item, f"link of its own (it is fixed to the rigid body named "
+                        f"{body.carrier}: {', '.join(body.members)}; name that body)", link,
+                        links, line)
+            if link not in links:
+                kind = GEOMETRY_NAMES.get(call.func.__name__, "link")   # origin_x(joint)
+                raise DerivationNameError(d.path, item, kind, link, links, line)
+            if key not in values:
+                raise DerivationNameError(d.path, item, "model parameter", key,
+                                          [k for k in values if k.endswith(f"({link})")], line)
+        for symbol in spec.value.free_symbols - args:
+            if symbol.name not in values:
+                raise DerivationNameError(d.path, item, "model parameter", symbol.name,
+                                          [k for k in values if "(" not in k], line)
+
+
+__all__ = ["MAX_PARAM_SETS", "MAX_SAMPLES", "MAX_STATES", "check_model_names", "grid_size"]

@@ -1,0 +1,198 @@
+r"""Bad derivation files, ``simulate`` inputs and API arguments: one clear, picklable error of
+the project's own, naming the file and the item, never a traceback of NumPy or SymPy, never a
+hang (README "Bad input and limits")."""
+
+from __future__ import annotations
+
+import pickle
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from wheeled_dyn.compare.engine import ComparisonEngine
+from wheeled_dyn.compare.other_documents.linear import is_linear_document
+from wheeled_dyn.derivations import load_derivation
+from wheeled_dyn.errors import (ArgumentError, DerivationError, InputFileError, LimitError,
+                                WheeledDynError)
+
+#: A small valid file (the shipped rod pendulum in its mass and length); ``_write`` replaces
+#: its lines.
+ROD = '''title = "Uniform rod pendulum"
+model = "rod_pendulum"
+[coordinates]
+positions = ["theta"]
+configuration = { theta = "theta" }
+[symbols]
+m = { value = "M(rod)" }
+l = { value = "length(rod)" }
+g = "g"
+[assumes]
+uniform = ["rod"]
+[matrices]
+equations = ["1/3*m*l**2*ddtheta + m*g*l/2*sin(theta) = 0"]
+'''
+EQUATION = 'equations = ["1/3*m*l**2*ddtheta + m*g*l/2*sin(theta) = 0"]'
+
+
+def _write(tmp_path: Path, old: str = "", new: str = "", text: str = ROD) -> Path:
+    assert old in text
+    path = tmp_path / "bad.toml"
+    path.write_text(text.replace(old, new) if old else text, encoding="utf-8")
+    return path
+
+
+def _clear(err: WheeledDynError, path: Path, *words: str) -> None:
+    r"""``err`` names ``path`` and each of ``words``, and survives a pickle round trip."""
+    text = str(err)
+    assert str(path) in text, text
+    for word in words:
+        assert word in text, (word, text)
+    again = pickle.loads(pickle.dumps(err))
+    assert type(again) is type(err) and str(again) == text
+
+
+def _equation(term: str) -> tuple[str, str]:
+    return EQUATION, EQUATION.replace("sin(theta)", f"sin(theta)*{term}")
+
+
+# -- [coordinates] ---------------------------------------------------------------------------
+def test_a_configuration_that_loses_a_position(tmp_path):
+    path = _write(tmp_path, 'theta = "theta" }', 'theta = "0" }')
+    with pytest.raises(DerivationError) as info:
+        load_derivation(path)
+    assert info.value.item == "coordinates.configuration"
+    _clear(info.value, path, "'theta'", "Jacobian is singular")
+
+
+@pytest.mark.parametrize("function", ["Abs", "sign"])
+def test_a_configuration_without_a_derivative(tmp_path, function):
+    path = _write(tmp_path, 'theta = "theta" }', f'theta = "{function}(theta)" }}')
+    with pytest.raises(DerivationError) as info:
+        load_derivation(path)
+    assert info.value.item == "coordinates.configuration.theta"
+    _clear(info.value, path, "coordinates.configuration.theta", "derivative")
+
+
+@pytest.mark.parametrize("function", ["sqrt", "asin", "log"])
+def test_a_configuration_not_finite_where_the_comparison_draws(tmp_path, function):
+    path = _write(tmp_path, 'theta = "theta" }', f'theta = "{function}(theta)" }}')
+    d = load_derivation(path)
+    with pytest.raises(DerivationError) as info:
+        ComparisonEngine(samples=20, param_sets=1).compare(d)
+    assert info.value.item == "coordinates.configuration.theta"
+    _clear(info.value, path, "not finite at theta = ", "ranges")
+
+
+@pytest.mark.parametrize("pair", ["[-1e308, 1e308]", "[-inf, 0.0]", "[0.0, 1e200]"])
+def test_ranges_finite_and_bounded(tmp_path, pair):
+    path = _write(tmp_path, 'theta = "theta" }', f'theta = "theta" }}\nranges = {{ theta = {pair} }}')
+    with pytest.raises(DerivationError) as info:
+        load_derivation(path)
+    _clear(info.value, path, "coordinates.ranges.theta", "finite")
+
+
+@pytest.mark.parametrize("value", ["nan", "inf", "-inf", "1e300"])
+def test_linearised_about_finite_and_bounded(tmp_path, value):
+    path = _write(tmp_path, 'uniform = ["rod"]',
+                  f'uniform = ["rod"]\nlinearised_about = {{ theta = {value} }}')
+    with pytest.raises(DerivationError) as info:
+        load_derivation(path)
+    _clear(info.value, path, "assumes.linearised_about.theta", "finite")
+
+
+# -- expressions -----------------------------------------------------------------------------
+@pytest.mark.parametrize("term, reason", [
+    ("exp(1e99)", "argument"), ("cosh(1e50)", "argument"), ("sin(1e99)", "argument"),
+    ("exp(exp(exp(10)))", "larger than"), ("exp(300)", "larger than"),
+    ("(1e100)**(-64)", "smaller than"), ("(theta*1e100)**(-64)", "smaller than"),
+    ("1e-5000", "smaller than")])
+def test_constants_numpy_cannot_compute_with(tmp_path, term, reason):
+    path = _write(tmp_path, *_equation(term))
+    with pytest.raises(DerivationError) as info:
+        load_derivation(path)
+    assert info.value.item == "equation 1"
+    _clear(info.value, path, "equation 1", reason)
+
+
+def test_an_acceleration_in_C(tmp_path):
+    path = _write(tmp_path, EQUATION, 'A = "[[m*l**2/3]]"\nC = "[[ddtheta]]"\n'
+                                      'Q = "[m*g*l/2*sin(theta)]"')
+    with pytest.raises(DerivationError) as info:
+        load_derivation(path)
+    assert info.value.item == "C[1,1]"
+    _clear(info.value, path, "C[1,1]", "ddtheta", "positions and velocities only")
+
+
+# -- the TOML itself -------------------------------------------------------------------------
+@pytest.mark.parametrize("value", ["[" * 3000 + "]" * 3000, "{ a = " * 500 + "1" + " }" * 500])
+def test_toml_nested_too_deeply(tmp_path, value):
+    path = _write(tmp_path, text=ROD + f"\n[source]\nnotes = {value}\n")
+    assert not is_linear_document(path)
+    with pytest.raises(InputFileError) as info:
+        load_derivation(path)
+    _clear(info.value, path, "nested too deeply")
+
+
+def test_many_symbols_do_not_hang(tmp_path):
+    many = "\n".join(f's{i} = "g"' for i in range(20_000))
+    path = _write(tmp_path, 'g = "g"', 'g = "g"\n' + many)
+    code = ("import sys; from wheeled_dyn.derivations import load_derivation; "
+            "print(len(load_derivation(sys.argv[1]).symbols))")
+    done = subprocess.run([sys.executable, "-c", code, str(path)], capture_output=True,
+                          text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == "20003"
+
+
+# -- simulate --------------------------------------------------------------------------------
+_SIMULATE = """
+import pickle, sys
+from wheeled_dyn.derivations import load_derivation
+from wheeled_dyn.errors import WheeledDynError
+from wheeled_dyn.simulate.documented import side_by_side
+try:
+    side_by_side(load_derivation(sys.argv[1]), {}, 0.1, row_factors=(None,))
+except WheeledDynError as err:
+    print(type(err).__name__, str(pickle.loads(pickle.dumps(err))) == str(err), err)
+"""
+
+
+def test_simulate_a_document_with_imaginary_terms_stops(tmp_path):
+    path = _write(tmp_path, "sin(theta) = 0", "sqrt(-1 - theta**2) = 0")
+    done = subprocess.run([sys.executable, "-c", _SIMULATE, str(path)], capture_output=True,
+                          text=True, timeout=60)
+    kind, pickles, message = done.stdout.strip().split(" ", 2)
+    assert (kind, pickles) == ("DerivationError", "True"), done.stderr
+    assert str(path) in message and "equations" in message and "t = 0 s" in message
+
+
+# -- the Python API --------------------------------------------------------------------------
+@pytest.mark.parametrize("value", [5, None, 2.5, ["a.toml"]])
+def test_load_derivation_of_a_non_path(value):
+    with pytest.raises(ArgumentError) as info:
+        load_derivation(value)
+    assert "load_derivation(path=" in str(info.value) and "path" in info.value.expected
+    assert str(pickle.loads(pickle.dumps(info.value))) == str(info.value)
+
+
+@pytest.mark.parametrize("kwargs, error, name", [
+    ({"samples": 0}, ArgumentError, "samples"), ({"param_sets": -5}, ArgumentError, "param_sets"),
+    ({"samples": 10 ** 7, "param_sets": 10 ** 4}, ArgumentError, "samples"),
+    ({"samples": 100_000, "param_sets": 11}, LimitError, "samples × param_sets"),
+    ({"samples": 2.5}, ArgumentError, "samples"), ({"seed": -1}, ArgumentError, "seed")])
+def test_engine_grid_size_checked_as_the_cli_does(kwargs, error, name):
+    with pytest.raises(error) as info:
+        ComparisonEngine(**kwargs)
+    assert info.value.name == name
+    assert str(pickle.loads(pickle.dumps(info.value))) == str(info.value)
+
+
+def test_engine_compares_a_path_and_refuses_anything_else(tmp_path):
+    engine = ComparisonEngine(samples=20, param_sets=1)
+    with pytest.raises(ArgumentError) as info:
+        engine.compare(5)                              # type: ignore[arg-type]
+    assert "ComparisonEngine.compare(d=5)" in str(info.value)
+    path = _write(tmp_path)
+    assert engine.compare(str(path)).equivalent
