@@ -49,7 +49,8 @@ def _found(x: sp.Symbol, written: str, fits: str, term: str = "") -> Diagnosis:
     where = f" in the term {term}" if term else ""
     return diagnosis(K.SMALL_ANGLE, f"{written} where {fits} fits{where} (small angles: "
                      f"sin({x}) ≈ {x}, cos({x}) ≈ 1; no linearisation is declared)",
-                     written=written, fits=fits, term=term, position=sp.sstr(x))
+                     prefix="small angle", written=written, fits=fits, term=term,
+                     position=sp.sstr(x))
 
 
 def small_angle_diagnoses(expr: sp.Expr, positions: Sequence[sp.Symbol],
