@@ -221,8 +221,8 @@ def _compose(model: pin.Model, body: int, links: list[str], table: GeometryTable
     each scaled by its (size, mass) factors: :math:`\mu m`, :math:`s c`, :math:`\mu s^2 I_G`."""
     total = pin.Inertia.Zero()
     for link in links:
-        if link not in table.inertials:
-            continue
+        if link not in table.inertials or table.inertials[link][0] <= 0:
+            continue                  # no mass (a ROS base_footprint): nothing to add
         own = pin.Inertia.FromDynamicParameters(np.asarray(table.inertials[link]))
         size, mass = factors.get(link, (1.0, 1.0))
         own = pin.Inertia(own.mass * mass, own.lever * size, own.inertia * mass * size**2)
