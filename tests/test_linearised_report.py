@@ -47,3 +47,11 @@ def test_a_wrong_stiffness_is_shown_against_the_linearised_truth(wrong, kind):
     assert sp.simplify(truth - document - residual) == 0
     (equation,) = [e for e in result.equations if e.verdict == Verdict.DIFFERS]
     assert "sin" not in equation.corrected and "theta" in equation.corrected
+
+
+def test_the_stiffness_is_in_the_reports_matrices():
+    r"""The HTML report's matrices show K beside A, C, Q, B (its Q cell agrees at the point;
+    the stiffness that differs is K's cell, marked)."""
+    from wheeled_dyn.report.html import derivation_html
+    page = derivation_html(_rod(3 * g / l))
+    assert "<b>K</b>" in page and 'class="v-differs"' in page.split("<b>K</b>", 1)[1]

@@ -90,8 +90,10 @@ def _matrix(result: DerivationResult, key: str, names: Notation, document: bool)
 
 
 def matrices(result: DerivationResult, names: Notation) -> str:
+    r"""The document's matrices beside the truth's: A, C, Q, B, and a linearised document's
+    stiffness K (its Q is judged at the point, K carries its slopes)."""
     out = []
-    for key in ("A", "C", "Q", "B"):
+    for key in ("A", "C", "Q", "K", "B"):
         doc = _matrix(result, key, names, True)
         if doc:
             out.append(f'<div class="pair"><div class="pane">{doc}</div><div class="pane">'
