@@ -140,7 +140,9 @@ def simplify_expr(expr: sp.Expr, parameters: Iterable[sp.Symbol] | None = None,
     try:
         ring, (p,) = TrigRing.from_exprs([expr])
     except NotPolynomial:
-        return sp.trigsimp(expr)
+        # trigsimp factors: with the floats of a rounded URDF angle (cos(1.57)) in a quotient
+        # it ran for minutes; such an expression is left as it is
+        return expr if expr.has(sp.Float) else sp.trigsimp(expr)
     return collect_terms(ring, p, parameters, chop=chop, trig=trig)
 
 

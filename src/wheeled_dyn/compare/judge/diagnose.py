@@ -32,12 +32,23 @@ def max_error(D: np.ndarray, T: np.ndarray) -> float:
     return float(np.max(np.abs(D - T), initial=0.0))
 
 
+#: Relative distance within which a factor is the simple fraction it is near.
+FRACTION_TOL = 1e-9
+
+
 def nice_number(c: float) -> str:
-    r"""``c`` as a simple fraction when it is one (1/2, -2, 3/4 ...), else 4 significant digits."""
-    frac = sp.nsimplify(c, tolerance=1e-6, rational=True)
-    if frac.q <= 12 and abs(float(frac) - c) <= 1e-6 * max(1.0, abs(c)):
+    r"""``c`` as a simple fraction when it is one (1/2, -2, 3/4 ...), else 4 significant
+    digits, more where 4 would print a simple fraction it is not (0.9999997, not "1": a
+    wheel axis tilted by a rounded angle scales an element by that)."""
+    frac = sp.nsimplify(c, tolerance=FRACTION_TOL, rational=True)
+    if frac.q <= 12 and abs(float(frac) - c) <= FRACTION_TOL * max(1.0, abs(c)):
         return str(frac)
-    return f"{c:.4g}"
+    for digits in range(4, 17):
+        text = f"{c:.{digits}g}"
+        near = sp.nsimplify(float(text), rational=True)
+        if near.q > 12 or float(near) != float(text) or abs(c) > 1e3:
+            return text
+    return repr(c)
 
 
 def value_diagnoses(D: np.ndarray, T: np.ndarray, scale: float) -> list[Diagnosis]:

@@ -1,0 +1,81 @@
+r"""A URDF whose wheel joints are turned by a rounded angle, as ROS users write them
+(``<origin rpy="-1.57 0 0"/>`` with ``<axis xyz="0 0 1"/>``, the turtlebot3 style): the
+comparison runs on the numbers as written, without closed forms (the rolling constraints hold
+cos(1.57) = 0.000796..., which the exact elimination ran on for more than five minutes), and
+the ``symbolic`` command says which number is not exact and how to write the angle. A factor
+near 1 that is not 1 is printed with the digits that show it (0.9999997, not "1")."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import sympy as sp
+
+from wheeled_dyn.compare.judge.diagnose import nice_number
+from wheeled_dyn.errors import ModelError
+from wheeled_dyn.symbolic.trig_solve import trig_solve
+
+ROS = Path(__file__).parent / "data" / "ros_balancer"
+#: Seconds a command may take here (it took more than 300 before).
+LIMIT = 240
+
+
+def _rounded_model(tmp_path: Path) -> Path:
+    text = (ROS / "ros_balancer.urdf").read_text()
+    for side, y, rpy, axis in (("left", "0.22", "-1.57", "0 1 0"), ("right", "-0.22", "1.57",
+                                                                     "0 -1 0")):
+        old = (f'<origin xyz="0 {y} 0" rpy="0 0 0"/>\n    <axis xyz="{axis}"/>')
+        assert old in text, side
+        text = text.replace(old, f'<origin xyz="0 {y} 0" rpy="{rpy} 0 0"/>\n'
+                                 '    <axis xyz="0 0 1"/>')
+    (tmp_path / "rounded.urdf").write_text(text)
+    model = (ROS / "ros_balancer.toml").read_text().replace(
+        'path = "ros_balancer.urdf"', 'path = "rounded.urdf"').replace(
+        'name = "ros_balancer"', 'name = "ros_rounded"')
+    (tmp_path / "rounded.toml").write_text(model)
+    derivation = (ROS / "ros_balancer_heading.toml").read_text().replace(
+        'model = "ros_balancer.toml"', 'model = "rounded.toml"')
+    (tmp_path / "doc.toml").write_text(derivation)
+    return tmp_path
+
+
+def _command(*args: str, cwd: Path) -> subprocess.CompletedProcess:
+    exe = Path(sys.executable).with_name("wheeled-dyn")
+    env = {**os.environ, "WHEELED_DYN_CACHE": str(cwd / "cache")}
+    return subprocess.run([str(exe), *args], cwd=cwd, capture_output=True, text=True,
+                          timeout=LIMIT, env=env)
+
+
+def test_the_comparison_runs_on_the_numbers_as_written(tmp_path):
+    folder = _rounded_model(tmp_path)
+    done = _command("compare", "rounded.toml", "doc.toml", "--out", "out", "--samples", "200",
+                    "--param-sets", "2", cwd=folder)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert (folder / "out" / "report.json").is_file()
+
+
+def test_the_symbolic_command_names_the_number_that_is_not_exact(tmp_path):
+    folder = _rounded_model(tmp_path)
+    done = _command("symbolic", "rounded.toml", cwd=folder)
+    assert done.returncode == 2
+    line = done.stderr.strip().splitlines()[-1]
+    assert "not an exact one" in line and "1.5707963267948966" in line
+
+
+def test_trig_solve_refuses_a_number_that_is_not_exact_and_takes_a_simple_one():
+    s, c = sp.sin(sp.Symbol("psi")), sp.cos(sp.Symbol("psi"))
+    M = sp.Matrix([[c, -s], [s, c]])
+    assert trig_solve(M * sp.Float(0.5), sp.eye(2)) == sp.Matrix([[2 * c, 2 * s], [-2 * s, 2 * c]])
+    with pytest.raises(ModelError, match="not an exact one"):
+        trig_solve(M * sp.Float(0.999999682931835), sp.eye(2))
+
+
+@pytest.mark.parametrize("c,text", [(0.9999997, "0.9999997"), (-1.0000004, "-1.0000004"),
+                                    (0.5, "1/2"), (0.75000000001, "3/4"), (0.3734, "0.3734"),
+                                    (2.00004, "2.00004")])
+def test_a_factor_near_a_simple_one_shows_its_digits(c, text):
+    assert nice_number(c) == text
