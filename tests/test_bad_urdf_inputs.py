@@ -201,3 +201,35 @@ def test_overflowing_terms_are_an_error_not_nan(tmp_path, capsys):
     captured = capsys.readouterr()
     assert "nan" not in captured.out and "finite" in captured.err
     assert len(captured.err.strip().splitlines()) == 1, captured.err
+
+
+def test_every_link_whose_inertia_fails_is_named_in_one_error(tmp_path, capsys):
+    r"""Both wheels' inertias not positive semi-definite: one error names both and the one
+    option that writes the file (a newcomer re-ran the command once per link)."""
+    bad = LEFT_INERTIA.replace('ixy="0"', 'ixy="0.01"')
+    path = tmp_path / "both.urdf"
+    path.write_text(URDF_TEXT.replace(LEFT_INERTIA, bad))
+    assert main(["model", str(path), "--out", str(tmp_path / "both.toml")]) == 2
+    line = _one_error_line(capsys)
+    assert "left_wheel" in line and "right_wheel" in line
+    assert "--accept-inertia left_wheel,right_wheel" in line
+    assert not (tmp_path / "both.toml").exists()
+    out = tmp_path / "ok.toml"
+    assert main(["model", str(path), "--out", str(out), "--accept-inertia",
+                 "left_wheel,right_wheel"]) == 0
+    assert load_model(out).name == "ros_balancer"
+
+
+def test_a_starting_file_that_does_not_build_says_so(tmp_path, capsys):
+    r"""A URDF with a <mimic> joint: the file is written (a start), and the last line says it
+    does not build yet instead of sending the user to run matrices on it."""
+    text = URDF_TEXT.replace('<joint name="right_wheel_joint" type="continuous">',
+                             '<joint name="right_wheel_joint" type="continuous">\n'
+                             '    <mimic joint="left_wheel_joint" multiplier="1" offset="0"/>',
+                             1)
+    path = tmp_path / "mimic.urdf"
+    path.write_text(text)
+    out = tmp_path / "mimic.toml"
+    assert main(["model", str(path), "--out", str(out)]) == 0
+    last = capsys.readouterr().out.strip().splitlines()[-1]
+    assert "does not build yet" in last and "check the lines marked CHECK" not in last

@@ -96,6 +96,8 @@ def _real_errors() -> dict[type, list[WheeledDynError]]:
             errors.UnknownNameError("coordinate set", "nope", specs, where="model wip"),
             errors.UnknownNameError("link", "x", (n for n in ("a", "b")))],
         errors.ModelError: [errors.ModelError("wip", "wheel_left", "radius 0 is not positive")],
+        errors.InertiaError: [errors.InertiaError("robot", "caster",
+                                                  "inertia violates the triangle inequality")],
         errors.ParameterError: [errors.ParameterError("m_S", np.float64(-1.0), "positive")],
         errors.StateError: [errors.StateError("phi", np.array([np.nan, 1.0]), "finite")],
         errors.DerivationError: [errors.DerivationError("eq.toml", "A[1,2]", "bad", line=4)],

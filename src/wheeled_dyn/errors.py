@@ -135,6 +135,12 @@ class ModelError(WheeledDynError):
         super().__init__(f"model {model}{at}: {reason}")
 
 
+class InertiaError(ModelError):
+    """A link's URDF inertia that is not a mass distribution's (not positive semi-definite,
+    principal moments against the triangle inequality): a model file may accept it as written
+    (``[checks] accept_inertia``). Attributes as :class:`ModelError`'s."""
+
+
 class ParameterError(WheeledDynError, ValueError):
     """A physical parameter is not physical (negative mass, inertia violating the triangle
     inequality, ...). Attributes: ``name``, ``value``, ``expected``."""

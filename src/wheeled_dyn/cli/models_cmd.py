@@ -93,18 +93,20 @@ def _cmd_model(args: argparse.Namespace) -> int:
     import sys
 
     from ..models.starter import inspect_urdf
-    from ..models.starter_summary import summary_lines
+    from ..models.starter_summary import summary
     accept = tuple(n.strip() for n in (args.accept_inertia or "").split(",") if n.strip())
     inventory = inspect_urdf(args.urdf, accept)
-    summary = "\n".join(summary_lines(inventory))     # before writing: a failure leaves no file
+    lines, builds = summary(inventory)            # before writing: a failure leaves no file
     text = write_starter(args.urdf, args.out, inventory)
     if args.out is None:            # the file on stdout (to redirect), what was decided on stderr
         print(text, end="")
-        print(summary, file=sys.stderr)
+        print("\n".join(lines), file=sys.stderr)
     else:
-        print(summary)
-        print(f"wrote {args.out}: check the lines marked CHECK, then run "
-              f"'wheeled-dyn matrices {args.out}'")
+        print("\n".join(lines))
+        print(f"wrote {args.out}: " + ("check the lines marked CHECK, then run "
+              f"'wheeled-dyn matrices {args.out}'" if builds else "it does not build yet "
+              "(the reason above): edit it first (docs/model-format.md), then run "
+              f"'wheeled-dyn matrices {args.out}'"))
     return 0
 
 

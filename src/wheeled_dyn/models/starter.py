@@ -23,7 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import InputFileError, ModelError
+from ..errors import InertiaError, InputFileError, ModelError
 from .conventions import ANGLE_TOL
 from .urdf_checks import ACCEPT_HINT
 from .urdf_packages import package_reference
@@ -84,15 +84,26 @@ def _read(path: str | Path, accept: tuple[str, ...] = ()):
     ``[checks] accept_inertia``); a link of ``accept`` that the URDF does not have is an
     error too."""
     import yourdfpy
-    try:
-        source = read_urdf(path, accept_inertia=accept)
-    except ModelError as exc:
-        if exc.item is None or ACCEPT_HINT not in exc.reason:
-            raise
-        check_link_names(Path(path), accept, "--accept-inertia")     # a misspelt name first
-        raise ModelError(exc.model, exc.item, exc.reason.replace(
-            ACCEPT_HINT, STARTER_ACCEPT_HINT.format(link=exc.item))) from None
-    check_link_names(source.path, accept, "--accept-inertia")
+    failing: list[InertiaError] = []
+    while True:                        # every link that fails, named in one error
+        try:
+            source = read_urdf(path, accept_inertia=accept + tuple(e.item or "" for e in failing))
+            break
+        except InertiaError as exc:
+            if exc.item is None or exc.item in accept or any(e.item == exc.item for e in failing):
+                raise
+            failing.append(exc)
+        except ModelError:
+            if not failing:
+                raise
+            break        # accepting the links found does not build either: name those first
+    check_link_names(Path(path), accept, "--accept-inertia")     # a misspelt name first
+    if failing:
+        first, links = failing[0], ",".join(e.item or "" for e in failing)
+        others = f" (and {', '.join(e.item or '' for e in failing[1:])}, likewise)" \
+            if len(failing) > 1 else ""
+        raise ModelError(first.model, first.item, first.reason.replace(
+            ACCEPT_HINT, others + STARTER_ACCEPT_HINT.format(link=links)))
     try:
         urdf = yourdfpy.URDF.load(io.BytesIO(source.text.encode("utf-8")),
                                   build_scene_graph=True, load_meshes=False,

@@ -29,7 +29,12 @@ def starter_spec(inv: UrdfInventory):
 
 def summary_lines(inv: UrdfInventory) -> list[str]:
     r"""The summary (see the module docstring); a model that does not build as suggested is
-    reported in one line with the reason, not raised."""
+    reported in one line with the reason, not raised (:func:`summary`)."""
+    return summary(inv)[0]
+
+
+def summary(inv: UrdfInventory) -> tuple[list[str], bool]:
+    r"""The summary lines, and whether the suggested model builds."""
     from ..errors import WheeledDynError
     from .builder import build_wheeled_model
     from .conventions import convention_table
@@ -54,11 +59,11 @@ def summary_lines(inv: UrdfInventory) -> list[str]:
     try:
         wm = build_wheeled_model(starter_spec(inv))
     except WheeledDynError as exc:
-        return lines + [f"the suggested model does not build: {exc}"]
+        return lines + [f"the suggested model does not build: {exc}"], False
     lines += convention_table(wm).lines()
     lines.append("parameters a derivation may name (per rigid body, by the link carrying it):")
     lines += parameter_listing(wm)
-    return lines
+    return lines, True
 
 
 def _axis(v: tuple[float, float, float]) -> str:

@@ -37,7 +37,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import InputFileError, LimitError, ModelError
+from ..errors import InertiaError, InputFileError, LimitError, ModelError
 from .urdf_values import MAX_MODEL_NUMBER, MAX_MODEL_TEXT, line_of as _line_of
 
 #: Relative tolerance (of the largest principal moment) for PSD and triangle checks.
@@ -110,14 +110,14 @@ def _check_inertial(path: Path, text: str, link: ET.Element, accept: tuple[str, 
                                               f", even in accept_inertia ({where})")
         return mass
     if moments[0] < -tol:
-        raise ModelError(path.stem, name, "inertia is not positive semi-definite (principal "
-                                          f"moments {', '.join(f'{m:.6g}' for m in moments)}) "
-                                          f"({where}){ACCEPT_HINT}")
+        raise InertiaError(path.stem, name, "inertia is not positive semi-definite (principal "
+                                            f"moments {', '.join(f'{m:.6g}' for m in moments)}) "
+                                            f"({where}){ACCEPT_HINT}")
     if moments[0] + moments[1] < moments[2] - tol:
-        raise ModelError(path.stem, name, "inertia violates the triangle inequality "
-                                          f"I_a + I_b >= I_c (principal moments "
-                                          f"{', '.join(f'{m:.6g}' for m in moments)}) ({where})"
-                                          + ACCEPT_HINT)
+        raise InertiaError(path.stem, name, "inertia violates the triangle inequality "
+                                            f"I_a + I_b >= I_c (principal moments "
+                                            f"{', '.join(f'{m:.6g}' for m in moments)}) ({where})"
+                                            + ACCEPT_HINT)
     return mass
 
 
