@@ -13,11 +13,8 @@ import sys
 from pathlib import Path
 
 import pytest
-import sympy as sp
 
 from wheeled_dyn.compare.judge.diagnose import nice_number
-from wheeled_dyn.errors import ModelError
-from wheeled_dyn.symbolic.trig_solve import trig_solve
 
 ROS = Path(__file__).parent / "data" / "ros_balancer"
 #: Seconds a command may take here (it took more than 300 before).
@@ -63,15 +60,15 @@ def test_the_symbolic_command_names_the_number_that_is_not_exact(tmp_path):
     done = _command("symbolic", "rounded.toml", cwd=folder)
     assert done.returncode == 2
     line = done.stderr.strip().splitlines()[-1]
-    assert "not an exact one" in line and "1.5707963267948966" in line
+    assert "rounded angle" in line and "1.5707963267948966" in line
 
 
-def test_trig_solve_refuses_a_number_that_is_not_exact_and_takes_a_simple_one():
-    s, c = sp.sin(sp.Symbol("psi")), sp.cos(sp.Symbol("psi"))
-    M = sp.Matrix([[c, -s], [s, c]])
-    assert trig_solve(M * sp.Float(0.5), sp.eye(2)) == sp.Matrix([[2 * c, 2 * s], [-2 * s, 2 * c]])
-    with pytest.raises(ModelError, match="not an exact one"):
-        trig_solve(M * sp.Float(0.999999682931835), sp.eye(2))
+def test_a_rounded_rotation_is_found_and_an_exact_or_generic_one_is_not(tmp_path):
+    from wheeled_dyn.models.registry import load_model
+    from wheeled_dyn.symbolic.basis import rounded_rotation
+    assert rounded_rotation(load_model(str(_rounded_model(tmp_path) / "rounded.toml")))[0] \
+        in ("left_wheel_joint", "right_wheel_joint")
+    assert rounded_rotation(load_model(str(ROS / "ros_balancer.toml"))) is None   # rpy 0 0 0.4
 
 
 @pytest.mark.parametrize("c,text", [(0.9999997, "0.9999997"), (-1.0000004, "-1.0000004"),

@@ -16,25 +16,18 @@ planar base needs the axle on one rigid body). Every suggestion is marked
 
 from __future__ import annotations
 
-import io
 import os
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from ..errors import InertiaError, InputFileError, ModelError
 from .conventions import ANGLE_TOL
-from .urdf_checks import ACCEPT_HINT
+from .starter_urdf import read_checked
 from .urdf_packages import package_reference
-from .urdf_source import check_link_names, read_urdf
 
 #: Largest relative difference of two wheel radii to pair them.
 PAIR_RADIUS_TOL = 1e-6
-#: How to write a starting file for a URDF whose link inertia is known to be wrong.
-STARTER_ACCEPT_HINT = ("; fix the URDF, or give 'wheeled-dyn model --accept-inertia {link}' to "
-                       "write the model file anyway (it lists the link in [checks] "
-                       "accept_inertia)")
 
 
 @dataclass(frozen=True)
@@ -76,42 +69,6 @@ def _cylinder(link) -> tuple[float, float, np.ndarray, str] | None:
                 origin = shape.origin if shape.origin is not None else np.eye(4)
                 return float(cyl.radius), float(cyl.length), np.asarray(origin)[:3, 2], kind
     return None
-
-
-def _read(path: str | Path, accept: tuple[str, ...] = ()):
-    r"""The URDF's source and its yourdfpy model. A link whose inertia fails the checks is an
-    error unless ``accept`` lists it (``--accept-inertia``: the file then lists it in
-    ``[checks] accept_inertia``); a link of ``accept`` that the URDF does not have is an
-    error too."""
-    import yourdfpy
-    failing: list[InertiaError] = []
-    while True:                        # every link that fails, named in one error
-        try:
-            source = read_urdf(path, accept_inertia=accept + tuple(e.item or "" for e in failing))
-            break
-        except InertiaError as exc:
-            if exc.item is None or exc.item in accept or any(e.item == exc.item for e in failing):
-                raise
-            failing.append(exc)
-        except ModelError:
-            if not failing:
-                raise
-            break        # accepting the links found does not build either: name those first
-    check_link_names(Path(path), accept, "--accept-inertia")     # a misspelt name first
-    if failing:
-        first, links = failing[0], ",".join(e.item or "" for e in failing)
-        others = f" (and {', '.join(e.item or '' for e in failing[1:])}, likewise)" \
-            if len(failing) > 1 else ""
-        raise ModelError(first.model, first.item, first.reason.replace(
-            ACCEPT_HINT, others + STARTER_ACCEPT_HINT.format(link=links)))
-    try:
-        urdf = yourdfpy.URDF.load(io.BytesIO(source.text.encode("utf-8")),
-                                  build_scene_graph=True, load_meshes=False,
-                                  load_collision_meshes=False)
-    except Exception as exc:  # yourdfpy raises assorted types for what the checks let through
-        raise InputFileError(source.path, f"invalid URDF (yourdfpy: {type(exc).__name__}: "
-                                          f"{exc})") from None
-    return source, urdf, accept
 
 
 def _carriers(robot, parent_joint) -> set[str]:
@@ -169,7 +126,7 @@ def _path_joints(pair, parent_joint) -> tuple[str, ...]:
 def inspect_urdf(path: str | Path, accept_inertia: tuple[str, ...] = ()) -> UrdfInventory:
     r"""Links, joints and candidate wheels of a URDF (see the module docstring); the links of
     ``accept_inertia`` may have an inertia that fails the checks."""
-    source, urdf, accept = _read(path, tuple(accept_inertia))
+    source, urdf, accept = read_checked(path, tuple(accept_inertia))
     robot = urdf.robot
     root = source.root_link()
     parent_joint = {j.child: j for j in robot.joints}

@@ -101,6 +101,27 @@ def geometry_subs(cs: CoordinateSet, geometry: Mapping) -> dict:
             if p in geometry}
 
 
+#: How close a joint's rotation entry may come to 0, ±1/2, ±√2/2, ±√3/2 or ±1 without being
+#: it: closer (but farther than :data:`ANGLE_NOISE`) it is an angle rounded from a right or
+#: simple one (``rpy="-1.57 0 0"``: cos = 0.000796...; TIAGo's -1.57079632679: 4.9e-12, noise).
+ROUNDED_ANGLE_TOL, ANGLE_NOISE = 1e-2, 1e-9
+_SIMPLE = (0.0, 0.5, 2 ** -0.5, 3 ** 0.5 / 2, 1.0)
+
+
+def rounded_rotation(wm: WheeledModel) -> tuple[str, float] | None:
+    r"""The first joint (name, rotation entry) whose placement's rotation is near but not at
+    a simple value (:data:`ROUNDED_ANGLE_TOL`); None when every rotation is exact."""
+    model = wm.model
+    placements = [(model.names[j], model.jointPlacements[j]) for j in range(1, model.njoints)]
+    placements += [(f.name, f.placement) for f in model.frames]
+    for name, placement in placements:
+        for x in np.abs(np.asarray(placement.rotation, dtype=float).ravel()):
+            gap = min(abs(x - s) for s in _SIMPLE)
+            if ANGLE_NOISE < gap < ROUNDED_ANGLE_TOL:
+                return name, float(x)
+    return None
+
+
 def velocity_basis(wm: WheeledModel, cs: CoordinateSet, setup: Mapping, q: Sequence[sp.Symbol],
                    qd: Sequence[sp.Symbol], J: sp.Matrix | None
                    ) -> tuple[sp.Matrix, sp.Matrix, dict, tuple, tuple]:
@@ -125,6 +146,12 @@ def velocity_basis(wm: WheeledModel, cs: CoordinateSet, setup: Mapping, q: Seque
         if cs.rolling == "eliminate":
             if J is None:
                 raise ModelError(wm.name, cs.name, "rolling elimination needs the contact rows")
+            if (rounded := rounded_rotation(wm)) is not None:   # the elimination would not end
+                raise ModelError(wm.name, rounded[0], f"its rotation holds {rounded[1]:.15g}, "
+                                 "near but not at a simple value: a rounded angle (rpy=\"-1.57 "
+                                 "0 0\" for -pi/2; write -1.5707963267948966)? Closed forms "
+                                 "of the rolling constraints need exact angles (the comparison, "
+                                 "matrices and simulate use the numbers as written)")
             rows = independent_rows(J, T)
             M = J.extract(rows, list(range(n))).col_join(T)
             E = sp.zeros(len(rows), m).col_join(sp.eye(m))

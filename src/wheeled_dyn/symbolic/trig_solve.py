@@ -4,7 +4,7 @@ sines and cosines of angles.
 :math:`X = M^{-1}E` by Gaussian elimination over the fraction field
 :math:`\mathbb Q(p_1, \dots, s_1, c_1, \dots)` with :math:`s_k = \sin x_k`,
 :math:`c_k = \cos x_k` as independent indeterminates (SymPy's ``DomainMatrix``), floats made
-exact first (:data:`FLOAT_NOISE`, :data:`MAX_EXACT_DENOMINATOR`); each entry's numerator and denominator are then reduced
+exact first (:data:`FLOAT_NOISE`); each entry's numerator and denominator are then reduced
 modulo :math:`s_k^2 + c_k^2 = 1` (:func:`~.simplify.canonical_trig`), which is exact because
 the identity holds on the whole domain.
 """
@@ -41,31 +41,13 @@ def reduce_fraction(e: sp.Expr) -> sp.Expr:
 FLOAT_NOISE = 1e-12
 
 
-#: Largest denominator of a float's exact rational for the elimination to run on it:
-#: ``cos(1.57)`` of a joint's rounded ``rpy="-1.57 0 0"`` is 0.000796326710733263, and the
-#: fraction field's gcds on such numbers (or on them as indeterminates) ran for minutes.
-MAX_EXACT_DENOMINATOR = 10 ** 6
-
-
 def _exact_numbers(M: sp.Matrix) -> sp.Matrix:
-    r"""``M`` with its floats exact: noise (:data:`FLOAT_NOISE`) as 0, others as rationals;
-    :class:`~wheeled_dyn.errors.ModelError` for a float whose rational needs a denominator
-    above :data:`MAX_EXACT_DENOMINATOR` (an angle that is not exact: closed forms are not
-    made; the comparison goes on with numbers)."""
+    r"""``M`` with its floats exact: noise (:data:`FLOAT_NOISE`) as 0, others as rationals."""
     floats = M.atoms(sp.Float)
     if not floats:
         return M
-    exact = {f: sp.Integer(0) if abs(f) < FLOAT_NOISE else sp.nsimplify(f, rational=True)
-             for f in floats}
-    rough = sorted((f for f, r in exact.items() if r.q > MAX_EXACT_DENOMINATOR), key=abs)
-    if rough:
-        from ..errors import ModelError
-        raise ModelError("closed forms", None, f"the rolling constraints hold the number "
-                         f"{float(rough[0]):.15g}, not an exact one: a joint's rotation is "
-                         "probably a rounded angle (rpy=\"-1.57 0 0\" for -pi/2; write "
-                         "-1.5707963267948966); closed forms need exact angles (the comparison "
-                         "and matrices use the numbers as written)")
-    return M.xreplace(exact)
+    return M.xreplace({f: sp.Integer(0) if abs(f) < FLOAT_NOISE
+                       else sp.nsimplify(f, rational=True) for f in floats})
 
 
 def trig_solve(M: sp.Matrix, E: sp.Matrix) -> sp.Matrix:

@@ -1,0 +1,56 @@
+r"""The URDF a starting model file is made from (:mod:`.starter`): read and checked
+(:mod:`.urdf_checks`, :mod:`.urdf_values`), every link whose inertia fails the checks named in
+one error with the option that writes the file anyway, and its yourdfpy model."""
+
+from __future__ import annotations
+
+import io
+from pathlib import Path
+
+from ..errors import InertiaError, InputFileError, ModelError
+from .urdf_checks import ACCEPT_HINT
+from .urdf_source import check_link_names, read_urdf
+
+#: How to write a starting file for a URDF whose link inertia is known to be wrong.
+STARTER_ACCEPT_HINT = ("; fix the URDF, or give 'wheeled-dyn model --accept-inertia {link}' to "
+                       "write the model file anyway (it lists the link in [checks] "
+                       "accept_inertia)")
+
+
+def read_checked(path: str | Path, accept: tuple[str, ...] = ()):
+    r"""The URDF's source and its yourdfpy model. A link whose inertia fails the checks is an
+    error unless ``accept`` lists it (``--accept-inertia``: the file then lists it in
+    ``[checks] accept_inertia``); a link of ``accept`` that the URDF does not have is an
+    error too."""
+    import yourdfpy
+    failing: list[InertiaError] = []
+    while True:                        # every link that fails, named in one error
+        try:
+            source = read_urdf(path, accept_inertia=accept + tuple(e.item or "" for e in failing))
+            break
+        except InertiaError as exc:
+            if exc.item is None or exc.item in accept or any(e.item == exc.item for e in failing):
+                raise
+            failing.append(exc)
+        except ModelError:
+            if not failing:
+                raise
+            break        # accepting the links found does not build either: name those first
+    check_link_names(Path(path), accept, "--accept-inertia")     # a misspelt name first
+    if failing:
+        first, links = failing[0], ",".join(e.item or "" for e in failing)
+        others = f" (and {', '.join(e.item or '' for e in failing[1:])}, likewise)" \
+            if len(failing) > 1 else ""
+        raise ModelError(first.model, first.item, first.reason.replace(
+            ACCEPT_HINT, others + STARTER_ACCEPT_HINT.format(link=links)))
+    try:
+        urdf = yourdfpy.URDF.load(io.BytesIO(source.text.encode("utf-8")),
+                                  build_scene_graph=True, load_meshes=False,
+                                  load_collision_meshes=False)
+    except Exception as exc:  # yourdfpy raises assorted types for what the checks let through
+        raise InputFileError(source.path, f"invalid URDF (yourdfpy: {type(exc).__name__}: "
+                                          f"{exc})") from None
+    return source, urdf, accept
+
+
+__all__ = ["STARTER_ACCEPT_HINT", "read_checked"]
