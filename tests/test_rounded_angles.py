@@ -71,6 +71,23 @@ def test_a_rounded_rotation_is_found_and_an_exact_or_generic_one_is_not(tmp_path
     assert rounded_rotation(load_model(str(ROS / "ros_balancer.toml"))) is None   # rpy 0 0 0.4
 
 
+def test_a_rounded_angle_off_the_wheels_path_keeps_the_closed_forms(tmp_path):
+    r"""A camera's optical frame turned by a rounded angle (``rpy="-1.5708 0 -1.5708"``, as
+    ROS writes it) is not on the rolling constraints' path: it does not cost the model its
+    closed forms."""
+    from wheeled_dyn.models.registry import load_model
+    from wheeled_dyn.symbolic.basis import rounded_rotation
+    text = (ROS / "ros_balancer.urdf").read_text().replace("</robot>", (
+        '  <link name="camera_optical"/>\n  <joint name="camera_optical_joint" type="fixed">\n'
+        '    <parent link="torso"/>\n    <child link="camera_optical"/>\n'
+        '    <origin xyz="0 0 0.3" rpy="-1.5708 0 -1.5708"/>\n  </joint>\n</robot>'))
+    (tmp_path / "camera.urdf").write_text(text)
+    (tmp_path / "camera.toml").write_text((ROS / "ros_balancer.toml").read_text().replace(
+        'path = "ros_balancer.urdf"', 'path = "camera.urdf"').replace(
+        'name = "ros_balancer"', 'name = "ros_camera"'))
+    assert rounded_rotation(load_model(str(tmp_path / "camera.toml"))) is None
+
+
 @pytest.mark.parametrize("c,text", [(0.9999997, "0.9999997"), (-1.0000004, "-1.0000004"),
                                     (0.5, "1/2"), (0.75000000001, "3/4"), (0.3734, "0.3734"),
                                     (2.00004, "2.00004")])

@@ -109,11 +109,18 @@ _SIMPLE = (0.0, 0.5, 2 ** -0.5, 3 ** 0.5 / 2, 1.0)
 
 
 def rounded_rotation(wm: WheeledModel) -> tuple[str, float] | None:
-    r"""The first joint (name, rotation entry) whose placement's rotation is near but not at
-    a simple value (:data:`ROUNDED_ANGLE_TOL`); None when every rotation is exact."""
+    r"""The first joint or frame (name, rotation entry) the rolling constraints pass through
+    — the joints from the root to each rolling link's joint, and that link's frame — whose
+    rotation is near but not at a simple value (:data:`ROUNDED_ANGLE_TOL`); None when each
+    is exact. A camera's optical frame turned by a rounded ``-1.5708`` is not on that path."""
+    import pinocchio as pin
+
     model = wm.model
-    placements = [(model.names[j], model.jointPlacements[j]) for j in range(1, model.njoints)]
-    placements += [(f.name, f.placement) for f in model.frames]
+    links = [w.link for w in wm.wheels] + [w.link for w in wm.rolling_wheels]
+    frames = [model.frames[model.getFrameId(link, pin.FrameType.BODY)] for link in links]
+    chain = sorted({j for f in frames for j in model.supports[f.parentJoint] if j > 0})
+    placements = [(model.names[j], model.jointPlacements[j]) for j in chain]
+    placements += [(f.name, f.placement) for f in frames]
     for name, placement in placements:
         for x in np.abs(np.asarray(placement.rotation, dtype=float).ravel()):
             gap = min(abs(x - s) for s in _SIMPLE)
