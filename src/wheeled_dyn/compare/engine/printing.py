@@ -44,8 +44,8 @@ def print_drafts(d: Derivation, drafts: Sequence[ElementDraft], cs, texts: Seque
         elif t.factor is not None:
             frames[i] = t.factor
     uniform = frozenset(uniform_links(load_model(d.model), assumed.families))
-    linearised = () if not assumed.linearised_about else (assumed.linearised_about,
-                                                          assumed.equilibrium_potential)
+    linearised = None if not assumed.linearised_about else (assumed.linearised_about,
+                                                            assumed.equilibrium_potential)
     return Corrections(closed_form.annotate(d, list(drafts), cs, frames, families, uniform,
                                             linearised), frames)
 

@@ -200,10 +200,12 @@ def _row_label(label: str, row: int) -> str:
 
 def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, ...] | sp.Expr],
              families: tuple[str, ...] = (), uniform: frozenset[str] = frozenset(),
-             linearised: tuple = ()) -> dict[str, sp.Expr] | None:
+             linearised: tuple[tuple[tuple[str, float], ...], bool] | None = None
+             ) -> dict[str, sp.Expr] | None:
     r"""Fill ``truth`` (every element, in its row's frame: the truth it is compared with) and
     ``residual`` (truth − document, expanded, for the elements that do not agree) of the
-    ``drafts`` where the symbolic engine provides closed forms; without them the drafts keep their numeric verdicts. ``frames``: per row, the
+    ``drafts`` where the symbolic engine provides closed forms; without them the drafts keep
+    their numeric verdicts. ``frames``: per row, the
     document's frame in its own symbols — a factor :math:`c` (the row is :math:`c` × the true
     one) or the weights :math:`f_i` of a combination of the true rows; rows absent from it get
     no residual. The truth and the document are both read under the parameter ``families`` the
@@ -238,7 +240,7 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
         def to_model(e: sp.Expr | None) -> sp.Expr | None:
             out = plain(e)
             return None if out is None else out.xreplace(assumed)
-    if linearised:
+    if linearised is not None:
         truth = linearised_truth(truth, d.positions, *linearised)
     dots = {v: rf"\dot{{{sp.latex(q)}}}" for q, v in zip(d.positions, d.velocities)}
     by_name = {str(v): text for v, text in dots.items()}
@@ -274,10 +276,15 @@ def _in_frame(element: str, expr: sp.Expr, frame: tuple[sp.Expr, ...] | sp.Expr,
     if not isinstance(frame, tuple):
         factor = to_model(frame)
         return None if factor is None else expr if factor == 1 else expr * factor
-    parts = [(w, truth.get(_row_label(element, k))) for k, w in enumerate(frame) if w != 0]
-    terms = [(to_model(w), t) for w, t in parts]
-    return sp.Add(*(w * t for w, t in terms if w is not None and t is not None)) \
-        if all(w is not None and t is not None for w, t in terms) else None
+    out = sp.Integer(0)
+    for k, w in enumerate(frame):
+        if w == 0:
+            continue
+        weight, true = to_model(w), truth.get(_row_label(element, k))
+        if weight is None or true is None:
+            return None
+        out += weight * true
+    return out
 
 
 #: The texts of :func:`residual_text`, remembered across runs (the disk cache's

@@ -27,8 +27,8 @@ def linearised_truth(truth: Mapping[str, sp.Expr], positions: Sequence[sp.Symbol
                      ) -> dict[str, sp.Expr]:
     r"""The true elements (labels as the engine's: ``A[1,2]``, ``h[1]:dx*dpsi``, ``Q[3]``)
     linearised about ``point`` (module text), with ``K[i,j]`` added unless ``equilibrium``."""
-    at = {p: sp.nsimplify(dict(point)[p.name], rational=True) for p in positions
-          if p.name in dict(point)}
+    values = dict(point)
+    at = {p: sp.nsimplify(values[p.name], rational=True) for p in positions if p.name in values}
     out: dict[str, sp.Expr] = {}
     for label, expr in truth.items():
         key = label.partition("[")[0]
