@@ -67,14 +67,6 @@ def _real(value: object) -> bool:
             and math.isfinite(float(value)) and abs(float(value)) <= MAX_MODEL_NUMBER)
 
 
-def _integer(name: str, value: object, low: int, high: int) -> int:
-    r"""``value`` if it is an integer from ``low`` to ``high``, else :class:`ArgumentError`."""
-    if (isinstance(value, bool) or not isinstance(value, numbers.Integral)
-            or not low <= int(value) <= high):
-        raise ArgumentError("compare", name, value, f"an integer from {low} to {high:,}")
-    return int(value)
-
-
 #: The tables :func:`compare` takes (as a derivation file has them).
 TABLES = ("coordinates", "symbols", "inputs", "A", "C", "Q", "B", "G", "equations", "assumes",
           "title", "source")
@@ -137,18 +129,13 @@ def compare(model: str | Path, *, samples: int = 1000, param_sets: int = 5, seed
         assert not [r for r in result.records if r.verdict == "differs"]
     """
     from .cache_trust import without_reuse
-    from .compare.grid.inputs import MAX_PARAM_SETS, MAX_SAMPLES, MAX_STATES, check_model_names
+    from .compare.grid.inputs import check_model_names, grid_size
     from .compare.engine import ComparisonEngine
     from .derivations.from_python import derivation_from_sympy
     from .models.registry import model_entry
     if not isinstance(model, (str, Path)):
         raise ArgumentError("compare", "model", model, "a model name or a model file path")
-    samples = _integer("samples", samples, 1, MAX_SAMPLES)
-    param_sets = _integer("param_sets", param_sets, 1, MAX_PARAM_SETS)
-    seed = _integer("seed", seed, 0, 2 ** 63 - 1)
-    if samples * param_sets > MAX_STATES:
-        raise LimitError("samples × param_sets", samples * param_sets,
-                         f"at most {MAX_STATES:,} states", "memory and time grow with them")
+    samples, param_sets, seed = grid_size(samples, param_sets, seed, "compare")
     if not isinstance(reuse, bool):
         raise ArgumentError("compare", "reuse", reuse, "True or False")
     unknown = sorted(set(tables) - set(TABLES))

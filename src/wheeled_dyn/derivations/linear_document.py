@@ -9,7 +9,6 @@ reduced dynamics (:func:`.rolling_linear.speed_form`).
 
 from __future__ import annotations
 
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -18,6 +17,7 @@ import numpy as np
 from ..errors import InputFileError
 from ..paths import DATA_DIR
 from ..constraints.rolling_linear import SpeedForm
+from .source import read_toml
 
 #: The shipped transcription of Meijaard et al. (2007).
 MEIJAARD_2007 = DATA_DIR / "linearised" / "meijaard2007_benchmark.toml"
@@ -58,14 +58,7 @@ def _matrix(path: Path, table: dict, key: str, k: int) -> np.ndarray:
 def load_linear_document(path: str | Path = MEIJAARD_2007) -> LinearDocument:
     r"""Read a linearised-equation file; :class:`InputFileError` names what is missing."""
     path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise InputFileError(path, f"cannot read: {exc.strerror}") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise InputFileError(path, f"not valid TOML: {exc}") from None
-    except RecursionError:
-        raise InputFileError(path, "not valid TOML: arrays or tables nested too deeply") from None
+    data, _ = read_toml(path)
     for key in ("model", "coordinates", "form"):
         if key not in data:
             raise InputFileError(path, f"missing [{key}]" if key != "model" else "missing model")

@@ -27,14 +27,9 @@ def starter_spec(inv: UrdfInventory):
         return read_model_file(path).spec()
 
 
-def summary_lines(inv: UrdfInventory) -> list[str]:
-    r"""The summary (see the module docstring); a model that does not build as suggested is
-    reported in one line with the reason, not raised (:func:`summary`)."""
-    return summary(inv)[0]
-
-
 def summary(inv: UrdfInventory) -> tuple[list[str], bool]:
-    r"""The summary lines, and whether the suggested model builds."""
+    r"""The summary lines (see the module docstring), and whether the suggested model builds:
+    one that does not is reported in one line with the reason, not raised."""
     from ..errors import WheeledDynError
     from .builder import build_wheeled_model
     from .conventions import convention_table
