@@ -101,7 +101,8 @@ def simulate_document(d: Derivation, params: ParameterSet, q0: np.ndarray, nu0: 
     E = (v.T * A * v)[0] / 2 + (U if U is not None else 0)
     fE = sp.lambdify(args, E, "numpy")
     energy = np.array([float(fE(*y)) for y in sol.y.T])
-    # the document's model may blow up: what was integrated is kept (sol.t ends early)
+    # the document's model may blow up: where the integrator gives up first, what was
+    # integrated is kept (sol.t ends early); accelerations that are not finite raise above
     return DocumentTrajectory(sol.t, sol.y[:n].T, sol.y[n:].T, energy, U is not None)
 
 
