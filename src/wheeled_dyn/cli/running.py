@@ -19,13 +19,33 @@ if TYPE_CHECKING:       # the heavy modules load in the functions (a quick --hel
     from ..derivations.schema import Derivation
 
 
+class _Silent:
+    r"""The progress bar where stderr is not a terminal: it shows nothing (and ``tqdm``, with
+    the package metadata it reads, is not loaded for it)."""
+
+    disable = True
+
+    def __enter__(self) -> _Silent:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        return None
+
+    def update(self, n: int = 1) -> None:
+        return None
+
+    def set_postfix_str(self, text: str) -> None:
+        return None
+
+
 def progress(total: int, what: str):
     r"""A progress bar on stderr (``tqdm``) when stderr is a terminal; silent otherwise."""
     import sys
 
+    if not sys.stderr.isatty():
+        return _Silent()
     from tqdm import tqdm
-    return tqdm(total=total, desc=what, unit="file", file=sys.stderr, leave=False,
-                disable=not sys.stderr.isatty())
+    return tqdm(total=total, desc=what, unit="file", file=sys.stderr, leave=False)
 
 
 def stage_display(bar) -> Callable[[str, str], None]:
@@ -170,8 +190,9 @@ def compare_report(files: Sequence[Path], samples: int, param_sets: int,
         for t in builtin_tables(table_group):
             table_docs |= set(load_comparison_table(t).documents)
     groups = _groups(derivations, frozenset(table_docs))
-    from ..compare.runtime.result_cache import package_digest
-    package_digest()                     # once, in the parent: the forked workers inherit it
+    from ..compare.runtime.result_cache import package_digest, results_reused
+    if results_reused():
+        package_digest()                 # once, in the parent: the forked workers inherit it
     owner = next((k for k, g in enumerate(groups) if any(paths[i].name in table_docs
                                                         for i in g)), 0)
     jobs = [(paths, g, samples, param_sets, table_group if k == owner else None)

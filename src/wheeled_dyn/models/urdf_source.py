@@ -12,7 +12,7 @@ limits, so that every wheel angle is one coordinate (Pinocchio would otherwise u
 from __future__ import annotations
 
 import hashlib
-import importlib.metadata
+import importlib.util
 import io
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
@@ -83,9 +83,11 @@ def _outline(path: Path, text: str) -> UrdfOutline:
 @lru_cache(maxsize=1)
 def _reader_digest() -> str:
     r"""What an outline depends on besides the text: :data:`OUTLINE_VERSION`, yourdfpy's
-    version and this module's code."""
-    h = hashlib.sha256(f"{OUTLINE_VERSION}\0{importlib.metadata.version('yourdfpy')}\0"
-                       .encode())
+    reader (its ``urdf.py``, found without importing yourdfpy) and this module's code."""
+    h = hashlib.sha256(f"{OUTLINE_VERSION}\0".encode())
+    spec = importlib.util.find_spec("yourdfpy")   # a dependency: None only if uninstalled
+    h.update(b"-" if spec is None or spec.origin is None
+             else Path(spec.origin).with_name("urdf.py").read_bytes())
     h.update(Path(__file__).read_bytes())
     return h.hexdigest()
 

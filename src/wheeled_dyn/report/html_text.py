@@ -6,10 +6,8 @@ from __future__ import annotations
 
 import functools
 import html
+import importlib.util
 from pathlib import Path
-
-import latex2mathml.converter as latex2mathml
-from latex2mathml.converter import convert
 
 from ..disk_cache import DiskMemo
 
@@ -26,7 +24,16 @@ def num_text(x: float, digits: int = 4) -> str:
 #: The MathML of LaTeX texts, remembered across runs (the disk cache's
 #: ``report/mathml-<code>.pickle``, named by SymPy's version, this file and latex2mathml's
 #: converter: MathML made by other code is not read).
-MATHML = DiskMemo("report", "mathml", lambda: [Path(__file__), Path(latex2mathml.__file__)])
+MATHML = DiskMemo("report", "mathml", lambda: [Path(__file__), _converter_file()])
+
+
+def _converter_file() -> Path:
+    r"""latex2mathml's converter, found without importing it: a report whose MathML is all
+    remembered does not load it (with the XML and URL modules it imports)."""
+    spec = importlib.util.find_spec("latex2mathml")     # the package found, not run
+    if spec is None or spec.origin is None:
+        raise OSError("latex2mathml is not installed")
+    return Path(spec.origin).with_name("converter.py")
 
 
 @functools.lru_cache(maxsize=8192)
@@ -36,6 +43,7 @@ def mathml(latex: str) -> str:
 
 
 def _converted(latex: str) -> str:
+    from latex2mathml.converter import convert
     try:
         return convert(latex)
     except Exception:          # an expression latex2mathml cannot read is shown as text

@@ -27,7 +27,6 @@ except where they test it).
 from __future__ import annotations
 
 import hashlib
-import importlib.metadata
 from collections.abc import Callable, Iterable
 from functools import lru_cache
 from pathlib import Path
@@ -48,6 +47,7 @@ _PARSED: dict[Path, tuple | None] = {}
 @lru_cache(maxsize=1)
 def package_digest() -> str:
     r"""SHA-256 of the package's files and of the numerical libraries' versions."""
+    import importlib.metadata          # here: it loads the email package, needed nowhere else
     h = hashlib.sha256()
     for name in ("numpy", "sympy", "pin"):
         try:
