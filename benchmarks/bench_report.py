@@ -109,6 +109,7 @@ def _check_after_saving(derivation: Path) -> list[float]:
 
 def main() -> None:
     os.environ["WHEELED_DYN_REUSE"] = "forms"  # every figure is a first check: no results reused
+    raw_before = _raw_pinocchio(load_model("wip"))
     files = builtin_derivations("seed001")
     compare_report(files, DEFAULT_SAMPLES, DEFAULT_PARAM_SETS, table_group="seed001")  # fills
     t0 = time.perf_counter()
@@ -133,9 +134,10 @@ def main() -> None:
     print(f"baseline, the truth alone for one coordinate set on the same grid ({n} states): "
           f"{truth:.2f} s; report / baseline = {total / truth:.1f}x")
     eq25 = BUILTIN_DIR / "seed001" / "eq25_lagrange.toml"
+    commands = {}
     for what, args, target in (("compare wip eq25_lagrange.toml",
                                 ("compare", "wip", str(eq25)), 1), ("report", ("report",), 3)):
-        times = _command_times(*args)
+        times = commands[what] = _command_times(*args)
         print(f"wheeled-dyn {what}, results cache off, wall incl. start-up and writing, "
               f"{RUNS} runs: {min(times):.2f} .. {max(times):.2f} s (target < {target} s)")
         warm = _command_times(*args, reuse="1")
@@ -154,16 +156,26 @@ def main() -> None:
         (first,) = _command_times("report", runs=1, env={"WHEELED_DYN_CACHE": empty})
     print(f"wheeled-dyn report with an empty cache folder (closed forms derived, nothing "
           f"printed before): {first:.2f} s")
-    raw = _raw_pinocchio(wm)
+    raw = (raw_before + _raw_pinocchio(wm)) / 2
+    slower = raw / REFERENCE_RAW
     print(f"this machine's speed: raw Pinocchio crba+coriolis+gravity on the WIP "
-          f"{raw * 1e6:.1f} us/state, {raw / REFERENCE_RAW:.2f}x its "
-          f"{REFERENCE_RAW * 1e6:.1f} us of {REFERENCE_DAY} (the targets above are absolute)")
+          f"{raw * 1e6:.1f} us/state (mean of the run's start and end), {slower:.2f}x its "
+          f"{REFERENCE_RAW * 1e6:.1f} us of {REFERENCE_DAY}; python -c pass {min(start):.3f} s, "
+          f"{min(start) / REFERENCE_START:.2f}x its {REFERENCE_START:.3f} s (the targets above "
+          f"are absolute)")
+    scaled = [f"{what} {min(t) / slower:.2f} .. {max(t) / slower:.2f} s (target < {target} s)"
+              for (what, t), target in zip(commands.items(), (1, 3))]
+    print(f"the same divided by {slower:.2f} (this machine against {REFERENCE_DAY}'s, by the "
+          f"line above): default report {total / slower:.2f} s (target <= 3 s); "
+          + "; ".join(scaled))
 
 
 #: Raw Pinocchio's time per state (crba, Coriolis matrix, gravity of the WIP; as
 #: ``bench_core.py``) on :data:`REFERENCE_DAY`, when ``compare`` of eq. 25 took 0.80–0.88 s and
 #: ``report`` 2.40–2.48 s: the same code's figures scale with it on these shared machines.
 REFERENCE_RAW, REFERENCE_DAY = 2.8e-6, "2026-11-25"
+#: ``python -c pass`` on :data:`REFERENCE_DAY` (seconds).
+REFERENCE_START = 0.015
 
 
 def _raw_pinocchio(wm, states: int = 2000) -> float:
