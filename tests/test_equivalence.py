@@ -146,3 +146,36 @@ def test_overflow_never_decides():
     decision = equivalence.decide(equivalence.Side(A.copy(), doc, None), truth, 2)
     assert decision.equations[0].verdict == "differs"
     assert np.isfinite(decision.equations[0].max_error)
+
+
+def test_an_equation_divided_by_a_vanishing_factor_is_the_one_named(engine, tmp_path):
+    r"""The arm's second equation divided by cos(q2): undefined where cos(q2) = 0, so the
+    equations are not equivalent there — and it is that equation, not the untouched first,
+    that is named (det W changes sign through a pole, not a zero)."""
+    import published_forms as P
+    path = P.write(tmp_path, "arm", "equations", None)
+    text = path.read_text()
+    second = [line.strip().strip('",') for line in
+              text.split("equations = [")[1].split("]")[0].strip().splitlines()][1]
+    lhs, rhs = second.split(" = ")
+    path.write_text(text.replace(second, f"({lhs})/cos(q2) = ({rhs})/cos(q2)"))
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False
+    first, divided = result.equations
+    assert first.verdict == "agrees", first.texts
+    assert divided.verdict == "differs"
+    assert K.SINGULAR in [d.kind for d in divided.diagnoses], divided.texts
+    assert "unbounded" in next(d.text for d in divided.diagnoses if d.kind == K.SINGULAR)
+
+
+@pytest.mark.parametrize("pole", [True, False])
+def test_a_sign_change_through_a_pole_or_a_zero_names_its_equation(pole):
+    r"""W = diag(1, f(θ)) with f = 1/cos θ (a pole) or cos θ (a zero), θ drawn at random: the
+    second equation is the one named either way, and the kind is told apart."""
+    theta = np.random.default_rng(SEED).uniform(-np.pi, np.pi, 400)
+    f = 1 / np.cos(theta) if pole else np.cos(theta)
+    W = np.zeros((len(theta), 2, 2))
+    W[:, 0, 0], W[:, 1, 1] = 1.0, f
+    W[:, 0, 1] = 0.3 * np.sin(theta)                 # a weight that does not vanish with f
+    rows, through_pole = equivalence.sign_changes(W, 1)
+    assert rows == (1,) and through_pole is pole

@@ -101,8 +101,10 @@ details{margin:.6em 0}summary{cursor:pointer;font-weight:bold}
 def _counts(result: DerivationResult) -> str:
     r"""The verdict counts as pills; a count of 0 is neutral ("0 differ" is not red)."""
     c = result.counts()
-    return "".join(f'<span class="pill {f"v-{v}" if n else "zero"}">{n} {SHORT[v]}</span>'
-                   for v, n in c.items() if n or v in ("agrees", "differs"))
+    pills = "".join(f'<span class="pill {f"v-{v}" if n else "zero"}">{n} {SHORT[v]}</span>'
+                    for v, n in c.items() if n or v in ("agrees", "differs"))
+    whole = S.system_word(result)
+    return pills + (f'<span class="pill v-differs">{esc(whole)}</span>' if whole else "")
 
 
 # -- the top of the report --------------------------------------------------------------------

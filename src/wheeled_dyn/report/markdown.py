@@ -43,7 +43,8 @@ def summary_lines(result: DerivationResult) -> list[str]:
     c = result.counts()
     lines = [f"{c['agrees']} agree, {c['agrees_if']} agree only for special parameter values, "
              f"{c['factorization']} differ in factorisation only, {c['differs']} differ"
-             + (f", {c['undecided']} undecided" if c.get("undecided") else "")]
+             + (f", {c['undecided']} undecided" if c.get("undecided") else "")
+             + (f"; {S.system_word(result)}" if S.system_word(result) else "")]
     lines += [line.one_line() for line in S.cause_lines(result)]
     factors = S.row_factor_line(result)
     if factors:
@@ -54,8 +55,9 @@ def summary_lines(result: DerivationResult) -> list[str]:
 def _counts(result: DerivationResult) -> str:
     short = {"agrees": "agree", "agrees_if": "only if", "factorization": "factorisation",
              "differs": "differ", "undecided": "undecided"}
-    return ", ".join(f"{n} {short[v]}" for v, n in result.counts().items()
-                     if n or v in ("agrees", "differs"))
+    counts = ", ".join(f"{n} {short[v]}" for v, n in result.counts().items()
+                       if n or v in ("agrees", "differs"))
+    return f"{counts}; **{S.system_word(result)}**" if S.system_word(result) else counts
 
 
 def _cell(text: str) -> str:

@@ -198,7 +198,16 @@ def equations_line(result: DerivationResult) -> str:
         verdict = VERDICT_WORDS.get(e.verdict.value, e.verdict.value)
         frame = "" if e.frame == "the true equation" else f" ({e.frame})"
         parts.append(f"{e.label} {verdict}{frame}")
+    if result.constraints_agree is False:
+        parts.append("its constraints are not the model's rolling constraints")
     return f"{whole}: " + "; ".join(parts)
+
+
+def system_word(result: DerivationResult) -> str:
+    r"""``"not right as a system"`` where the equations are decided not equivalent to the true
+    ones (also when every element agrees: an equation multiplied by a factor that vanishes,
+    lost, repeated; its constraints not the model's), else ``""``."""
+    return "not right as a system" if result.equations and result.equivalent is False else ""
 
 
 #: Words for an equation's verdict.

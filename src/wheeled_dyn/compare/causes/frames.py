@@ -34,16 +34,17 @@ def frame_causes(d: Derivation, texts: Sequence[FrameText], rules: Sequence[Fram
              for i, (t, r) in enumerate(zip(texts, rules))
              if t.text and r.kind not in (FrameKind.IDENTITY, FrameKind.DECLARED)
              and not (r.kind == FrameKind.CONSTANT and r.partner == i)]
-    if shown:
-        out.append(Cause(CauseKind.CONVENTION, (), "; ".join(shown) + ": its elements are "
-                         "compared in that frame (an equation divided by a quantity that does "
-                         "not vanish, or replaced by an invertible combination of the "
-                         "equations, has the same solutions)"))
     # singular W is its own cause only where the equations are otherwise combinations of the
     # true ones (scaled by a vanishing factor, lost, repeated); where an equation is no
     # combination, its terms say why (a singular A_doc follows from them)
     singular = [e for e in equations if first_of(e.diagnoses, K.SINGULAR) is not None
                 and first_of(e.diagnoses, K.NOT_EQUIVALENT) is None]
+    if shown:
+        out.append(Cause(CauseKind.CONVENTION, (), "; ".join(shown) + ": its elements are "
+                         "compared in that frame" + ("" if singular else (
+                             " (an equation divided by a quantity that does not vanish, or "
+                             "replaced by an invertible combination of the equations, has the "
+                             "same solutions)"))))
     if singular:
         why = first_of(singular[0].diagnoses, K.SINGULAR)
         out.append(Cause(CauseKind.NOT_EQUIVALENT, tuple(e.label for e in singular),

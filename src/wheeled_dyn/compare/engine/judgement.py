@@ -12,7 +12,7 @@ checks (energy, symmetry, constraint rows); the printed forms for the reports.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import sympy as sp
@@ -23,7 +23,7 @@ from ..grid.assumptions import Assumptions, declared
 from ..grid.grid import special_states
 from ..grid.samples import special_cases
 from ..judge import equivalence, families
-from ..judge.document_checks import asymmetry, constraint_rows, energy_check
+from ..judge.document_checks import asymmetry, constraint_problems, constraint_rows, energy_check
 from ..judge.draft import ElementDraft
 from ..judge.element import Trials, judge
 from ..judge.factorization import factorization
@@ -35,7 +35,7 @@ from ..judge.unsolved import inertia_diagnoses
 from ..readings.describe import describe
 from ..readings.frames import Frame, FrameKind, evaluate_rule
 from .frames import choose_frames, declared_weights, id_frames, row_factors
-from ..records import Cause, DerivationResult, Verdict, has_kind
+from ..records import Cause, CauseKind, DerivationResult, Verdict, has_kind
 from ..sides.both import Sides, both_sides
 from ..sides.document import DocumentFunctions
 from ..sides.elements import swap_groups
@@ -88,14 +88,16 @@ def _stiffness(d: Derivation, terms) -> sp.ImmutableMatrix | None:
     return sp.ImmutableMatrix(terms.Q.jacobian(sp.Matrix(d.positions)))
 
 
-def _n(a, B) -> equivalence.Side | None:
+def _n(a, B, multipliers: bool = False) -> equivalence.Side | None:
     r"""An :class:`~..judge.equivalence.Side` of arrays ``a`` (n = h + Q where given; a
-    linearised document's stiffness K compared with its inputs' columns)."""
+    linearised document's stiffness K compared with its inputs' columns; with
+    ``multipliers``, the coefficients :math:`G^T` of the multipliers)."""
     if a.A is None:
         return None
     parts = [x for x in (a.h, a.Q) if x is not None]
     n = None if not parts else sum(parts[1:], parts[0])
-    return equivalence.Side(a.A, n, _with_stiffness(a.K, B))
+    L = np.swapaxes(a.G, 1, 2) if multipliers and a.G is not None else None
+    return equivalence.Side(a.A, n, _with_stiffness(a.K, B), L)
 
 
 def _with_stiffness(K: np.ndarray | None, B: np.ndarray | None) -> np.ndarray | None:
@@ -109,13 +111,15 @@ def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides
     r"""The equations' verdicts on the main grid (None where the document gives no A)."""
     doc, truth = sides.doc, sides.truth
     both_n = doc.h is not None or doc.Q is not None
-    doc_side = _n(doc, doc.B if sides.B_true is not None else None)
+    kept = doc.G is not None and truth.G is not None      # both keep the constraints
+    doc_side = _n(doc, doc.B if sides.B_true is not None else None, kept)
     if doc_side is None or truth.A is None:
         return None
     parts = [truth.need(k) for k, y in (("h", doc.h), ("Q", doc.Q)) if y is not None]
     true_n = sum(parts[1:], parts[0]) if both_n else None
     true_side = equivalence.Side(truth.A, true_n, _with_stiffness(
-        truth.K if doc.K is not None else None, sides.B_true))
+        truth.K if doc.K is not None else None, sides.B_true),
+        np.swapaxes(truth.G, 1, 2) if kept and truth.G is not None else None)
     first = equivalence.decide(doc_side, true_side, len(sides.grid.sets))
     # the special positions matter where an equation is otherwise a combination of the true
     # ones with weights that vary (a factor that may vanish there: sin θ)
@@ -314,7 +318,14 @@ def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed
         latex_input=dict(d.latex_input), row_functions=functions, row_combination=combination,
         equations=tuple(equations), truth_in_document=in_document)
     causes = frame_causes(d, texts, rules, result.equations, declared_wrong)
+    wrong = constraint_problems(d, funcs, sides.doc, sides.truth, sides.argv, sides.size)
+    if wrong is not None:
+        result = replace(result, constraints_agree=not wrong)
+        if wrong:
+            causes.append(Cause(CauseKind.NOT_EQUIVALENT, (), "the document's constraints "
+                                "are not the model's rolling constraints: " + "; ".join(wrong)))
     return Judgement(result, ev, tuple(causes), sides, funcs)
+
 
 
 def _diagonal(d: Derivation, texts, rules) -> list[sp.Expr] | None:

@@ -208,5 +208,64 @@ def constraint_rows(doc: Arrays, truth: Arrays, scales) -> tuple[str, ...]:
     return tuple(out)
 
 
-__all__ = ["FACTOR_LIMIT", "RATE_POINT_SEED", "RATE_RANK_TOL", "asymmetry", "constraint_rows",
-           "energy_check", "independent_rows", "position_rates", "solve_rates"]
+#: A constraint row's singular value, relative to the largest at its sample, above which it
+#: counts as independent.
+RANK_TOL = 1e-8
+
+
+def constraint_space(rows: np.ndarray, true_G: np.ndarray) -> tuple[str, ...]:
+    r"""Why the document's constraint rows (S × m × n: :math:`G_{doc}\dot q = 0`) do not
+    restrict the velocities as the model's rolling constraints :math:`G\dot q = 0` do: a row
+    that is no combination of the true rows, fewer independent rows than the true ones (a
+    constraint missing). Empty when they span the same space at every sample where both are
+    finite."""
+    ok = np.isfinite(rows).all(axis=(1, 2)) & np.isfinite(true_G).all(axis=(1, 2))
+    if not ok.any():
+        return ()
+    D, T = rows[ok], true_G[ok]
+    out = []
+    proj = np.linalg.pinv(T) @ T                     # projector on the true row space
+    off = np.abs(D @ proj - D).max(axis=2) / np.maximum(np.abs(D).max(axis=2), 1e-300)
+    for r in np.flatnonzero(off.max(axis=0) > 1e-6):
+        out.append(f"its constraint row {r + 1} is no combination of the model's rolling "
+                   f"constraints (off by {float(off[:, r].max()):.2g} of its size)")
+
+    def rank(M: np.ndarray) -> np.ndarray:
+        sv = np.linalg.svd(M, compute_uv=False)
+        return (sv > RANK_TOL * np.maximum(sv[:, :1], 1e-300)).sum(axis=1)
+    short = rank(T) - rank(D)
+    if (short > 0).any():
+        k = int(short.max())
+        out.append(f"it states {int(rank(D).min())} independent constraint rows where the "
+                   f"model has {int(rank(T).max())}: {k} rolling constraint"
+                   f"{'s' if k > 1 else ''} missing")
+    return tuple(out)
+
+
+def constraint_problems(d: Derivation, funcs: DocumentFunctions, doc: Arrays, truth: Arrays,
+                        argv: Sequence[np.ndarray], size: int) -> tuple[str, ...] | None:
+    r"""Where the document keeps the rolling constraints (its G, its ``[constraints]``
+    equations) and so does the truth: what is wrong with them
+    (:func:`constraint_space`, named by where the file states
+    them); None where either side eliminates them. ``doc``, ``truth``: both sides' arrays
+    on the samples, ``argv`` the document's arguments there (``size`` samples)."""
+    if truth.G is None:
+        return None
+    stated = []
+    if doc.G is not None:
+        stated.append(("G", doc.G))
+    if d.G is not None and d.constraints is not None:     # both: [constraints] on its own
+        M = d.constraint_matrix()
+        if M is not None:
+            rows = np.stack([np.stack([np.broadcast_to(np.asarray(
+                funcs.compiled(M[r, c])(*argv), dtype=float), (size,))
+                for c in range(M.cols)], axis=1) for r in range(M.rows)], axis=1)
+            stated.append(("[constraints]", rows))
+    if not stated:
+        return None
+    return tuple(f"{where}: {text}" for where, rows in stated
+                 for text in constraint_space(rows, truth.G))
+
+
+__all__ = ["FACTOR_LIMIT", "RANK_TOL", "RATE_POINT_SEED", "RATE_RANK_TOL", "asymmetry",
+           "constraint_problems", "constraint_rows", "constraint_space", "energy_check", "independent_rows", "position_rates", "solve_rates"]

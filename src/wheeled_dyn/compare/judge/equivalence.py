@@ -39,6 +39,7 @@ These are pure functions of numbers; the engine supplies both sides on the same 
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass
 
 import numpy as np
@@ -65,6 +66,9 @@ class Side:
     A: np.ndarray
     n: np.ndarray | None
     B: np.ndarray | None
+    #: the multipliers' coefficients :math:`G^T` of a form that keeps the rolling constraints
+    #: (S × n × m: :math:`A\ddot q + n = B u + G^T\lambda`), None where it eliminates them
+    L: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -134,12 +138,56 @@ def _part(doc: np.ndarray, true: np.ndarray, w: np.ndarray, inertia: np.ndarray
     return relative, finite, scale
 
 
-def decide_row(i: int, doc: Side, truth: Side, W: np.ndarray) -> EquationDecision:
-    r"""The verdict on equation ``i`` (module text), :math:`W` known."""
+def multiplier_terms(doc_L: np.ndarray, true_L: np.ndarray, W: np.ndarray) -> np.ndarray:
+    r"""The true multipliers' coefficients recombined for the document (S × n × m_doc):
+    :math:`G^T M` with :math:`M` the least-squares solution of :math:`W G^T M = G_{doc}^T`
+    per sample. The multipliers are unknowns of the equations, so a document may name any
+    invertible combination of the true ones (:math:`\lambda = M\lambda_{doc}`); its equation
+    :math:`i` is then a combination of the true ones only if its coefficients of
+    :math:`\lambda_{doc}` are row :math:`i` of :math:`W G^T M`. :math:`M` is fitted on every
+    equation; where they do not all fit, on all but one, else all but two (as many as
+    multipliers left at least), the subset that fits (a wrong equation does not make the
+    right ones differ). NaN where a side is not finite."""
+    out = np.full(doc_L.shape, np.nan)
+    ok = (np.isfinite(W).all(axis=(1, 2)) & np.isfinite(true_L).all(axis=(1, 2))
+          & np.isfinite(doc_L).all(axis=(1, 2)))
+    if not ok.any():
+        return out
+    mixed, D = W[ok] @ true_L[ok], doc_L[ok]
+    n, m = D.shape[1], true_L.shape[2]
+
+    def fit(left_out: tuple[int, ...]) -> tuple[float, np.ndarray]:
+        rows = [i for i in range(n) if i not in left_out]
+        M = np.linalg.pinv(mixed[:, rows]) @ D[:, rows]
+        fitted = mixed[:, rows] @ M
+        scale = np.maximum(np.abs(D[:, rows]).max(axis=2), np.abs(fitted).max(axis=2))
+        floor = FLOOR * float(scale.max(initial=0.0))
+        off = np.abs(D[:, rows] - fitted).max(axis=2) / np.maximum(np.maximum(scale, floor),
+                                                                    1e-300)
+        return float(off.max(initial=0.0)), M
+
+    best = fit(())
+    for size in (1, 2):
+        if best[0] <= AGREE_TOL or n - size < m:
+            break
+        fits = [fit(c) for c in itertools.combinations(range(n), size)]
+        found = min(fits, key=lambda f: f[0])
+        if found[0] <= AGREE_TOL:
+            best = found
+    M = best[1]
+    out[ok] = true_L[ok] @ M
+    return out
+
+
+def decide_row(i: int, doc: Side, truth: Side, W: np.ndarray,
+               multipliers: np.ndarray | None = None) -> EquationDecision:
+    r"""The verdict on equation ``i`` (module text), :math:`W` known; ``multipliers``: the
+    true multipliers' coefficients recombined for the document (:func:`multiplier_terms`),
+    where both sides keep the constraints."""
     w = W[:, i, :]
     inertia = np.abs(doc.A[:, i, :]).max(axis=1)
     residuals, masks = [], []
-    for D, T in ((doc.n, truth.n), (doc.B, truth.B)):
+    for D, T in ((doc.n, truth.n), (doc.B, truth.B), (doc.L, multipliers)):
         if D is None or T is None:
             continue
         D2 = D[:, i:i + 1] if D.ndim == 2 else D[:, i, :]
@@ -154,7 +202,8 @@ def decide_row(i: int, doc: Side, truth: Side, W: np.ndarray) -> EquationDecisio
     if worst > AGREE_TOL:
         return EquationDecision(Verdict.DIFFERS, (diagnosis(
             DiagnosisKind.NOT_EQUIVALENT, f"equation {i + 1} is no combination of the true "
-            f"equations (W = A_doc A⁻¹ does not carry its velocity, gravity and input terms; "
+            f"equations (W = A_doc A⁻¹ does not carry its velocity, gravity, input or "
+            f"multiplier terms; "
             f"off by {worst:.2g} of the row's size at the worst of {total} samples)",
             prefix="differs", rows=(i,)),), worst, w)
     if not finite.all():
@@ -183,19 +232,35 @@ def singular_everywhere(doc_A: np.ndarray, true_A: np.ndarray, W: np.ndarray
     return _null_rows(W[k])
 
 
-def sign_changes(W: np.ndarray, sets: int) -> tuple[int, ...] | None:
-    r"""The equations involved where :math:`\det W` takes both signs among the samples of one
-    parameter set (it vanishes between them), else None. ``sets``: the number of parameter
-    sets, the samples being grouped by set (K × N in order)."""
+def sign_changes(W: np.ndarray, sets: int) -> tuple[tuple[int, ...], bool] | None:
+    r"""Where :math:`\det W` takes both signs among the samples of one parameter set: the
+    equations involved and whether it passes through a pole rather than a zero, else None.
+    ``sets``: the number of parameter sets, the samples being grouped by set (K × N in
+    order). Between random samples a zero and a pole look alike by sign; they differ by
+    magnitude: the samples nearest a zero make :math:`|\det W|` small against its median, those
+    nearest a pole large. At a zero the equations are those the null vector of :math:`W^T`
+    involves; at a pole (an equation divided by a factor that vanishes) those whose weights
+    :math:`w_i` grow there against their median."""
     det = np.full(len(W), np.nan)
     finite = np.isfinite(W).all(axis=(1, 2))
     det[finite] = np.linalg.det(W[finite])
     for group in np.array_split(np.arange(len(W)), sets):
         d = det[group]
         d = d[np.isfinite(d)]
-        if len(d) and (d > 0).any() and (d < 0).any():
-            k = group[np.nanargmin(np.abs(det[group]))]
-            return _null_rows(W[k])
+        if not (len(d) and (d > 0).any() and (d < 0).any()):
+            continue
+        size = np.abs(d)
+        middle = float(np.median(size))
+        low, high = float(size.min()), float(size.max())
+        if middle > 0 and low > 0 and high / middle > middle / low:        # a pole
+            members = group[np.isfinite(det[group])]
+            k = int(np.argmax(np.abs(det[members])))
+            norms = np.linalg.norm(W[members], axis=2)
+            growth = norms[k] / np.maximum(np.median(norms, axis=0), 1e-300)
+            return tuple(int(i) for i in np.flatnonzero(growth >= NULL_SHARE * growth.max())
+                         if growth[i] > 1.0), True
+        k = group[np.nanargmin(np.abs(det[group]))]
+        return _null_rows(W[k]), False
     return None
 
 
@@ -222,12 +287,17 @@ def decide(doc: Side, truth: Side, sets: int, special: tuple[np.ndarray, np.ndar
     None)."""
     n = truth.A.shape[1]
     W = combination_rows(doc.A, truth.A)
-    decisions = [decide_row(i, doc, truth, W) for i in range(n)]
+    multipliers = None if doc.L is None or truth.L is None else \
+        multiplier_terms(doc.L, truth.L, W)
+    decisions = [decide_row(i, doc, truth, W, multipliers) for i in range(n)]
     lost = singular_everywhere(doc.A, truth.A, W)
     where = "at every sample" if lost is not None else ""
     rows = lost
+    pole = False
     if rows is None:
-        rows = sign_changes(W, sets)
+        changes = sign_changes(W, sets)
+        if changes is not None and changes[0]:
+            rows, pole = changes
         where = "somewhere: det W changes sign between states of one parameter set" \
             if rows is not None else ""
     if rows is None and special is not None:
@@ -238,8 +308,11 @@ def decide(doc: Side, truth: Side, sets: int, special: tuple[np.ndarray, np.ndar
         rows = tuple(wrong) or rows     # an equation that is no combination explains it
         names = ", ".join(str(k + 1) for k in rows)
         which = f"equations {names} are" if len(rows) > 1 else f"equation {names} is"
-        text = (f"{which} not independent {where}: W = A_doc A⁻¹ is singular there (an "
-                "equation lost, repeated, or multiplied by a factor that vanishes)")
+        text = (f"{which} not defined everywhere ({where[0].lower() + where[1:]}): "
+                "W = A_doc A⁻¹ is unbounded there (an equation divided by a factor that "
+                "vanishes: where it does, the equation is not defined)") if pole else (
+            f"{which} not independent {where}: W = A_doc A⁻¹ is singular there (an "
+            "equation lost, repeated, or multiplied by a factor that vanishes)")
         for k in rows:
             e = decisions[k]
             extra = diagnosis(DiagnosisKind.SINGULAR, text, prefix="not equivalent",
@@ -250,5 +323,6 @@ def decide(doc: Side, truth: Side, sets: int, special: tuple[np.ndarray, np.ndar
 
 
 __all__ = ["EquationDecision", "FLOOR", "NULL_SHARE", "SINGULAR_TOL", "Side", "SystemDecision",
-           "combination_rows", "decide", "decide_row", "relative_det", "sign_changes",
+           "combination_rows", "decide", "decide_row", "multiplier_terms", "relative_det",
+           "sign_changes",
            "singular_everywhere", "vanishing_at"]

@@ -207,15 +207,20 @@ class DerivationResult:
     #: the truths of the records are written in the document's own symbols (solved from its
     #: declarations); else in the model's parameters
     truth_in_document: bool = False
+    #: whether a form that keeps the rolling constraints states them as the model's (its
+    #: constraint rows span the true ones: none wrong, none missing); None where neither side
+    #: keeps them
+    constraints_agree: bool | None = None
 
     @property
     def equivalent(self) -> bool | None:
         r"""Whether the document's equations have the truth's solutions (every equation
-        agrees, W invertible); None when no equation was decided (a file of steps) or one is
+        agrees, W invertible, the constraints it keeps are the model's); None when no equation was decided (a file of steps) or one is
         undecided."""
         if not self.equations or any(e.verdict == Verdict.UNDECIDED for e in self.equations):
             return None
-        return all(e.verdict == Verdict.AGREES for e in self.equations)
+        return all(e.verdict == Verdict.AGREES for e in self.equations) \
+            and self.constraints_agree is not False
 
     def counts(self) -> dict[str, int]:
         out = {v: 0 for v in VERDICTS}
