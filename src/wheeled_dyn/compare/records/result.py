@@ -217,10 +217,13 @@ class DerivationResult:
         r"""Whether the document's equations have the truth's solutions (every equation
         agrees, W invertible, the constraints it keeps are the model's); None when no equation was decided (a file of steps) or one is
         undecided."""
-        if not self.equations or any(e.verdict == Verdict.UNDECIDED for e in self.equations):
+        if not self.equations:
             return None
-        return all(e.verdict == Verdict.AGREES for e in self.equations) \
-            and self.constraints_agree is not False
+        if self.constraints_agree is False:         # whatever the equations: not the motions
+            return False
+        if any(e.verdict == Verdict.UNDECIDED for e in self.equations):
+            return None
+        return all(e.verdict == Verdict.AGREES for e in self.equations)
 
     def counts(self) -> dict[str, int]:
         out = {v: 0 for v in VERDICTS}
