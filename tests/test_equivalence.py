@@ -179,3 +179,25 @@ def test_a_sign_change_through_a_pole_or_a_zero_names_its_equation(pole):
     W[:, 0, 1] = 0.3 * np.sin(theta)                 # a weight that does not vanish with f
     rows, through_pole = equivalence.sign_changes(W, 1)
     assert rows == (1,) and through_pole is pole
+
+
+@pytest.mark.parametrize("printed, agrees", [("2*", True), ("", False)])
+def test_a_declared_row_scale_binds(engine, tmp_path, printed, agrees):
+    r"""``[rows] scale = ["2"]``: the file says the document printed 2 × the true equation.
+    Printed so, it agrees (and no undeclared factor is reported); printed unscaled, the
+    equation is right in itself but not as declared: it differs as declared, its elements
+    named as a factor 1/2, and a ``file_error`` cause says the declaration is probably wrong."""
+    path = tmp_path / "declared.toml"
+    path.write_text(ROD.format(name="declared", assumes="", equation=(
+        f"{printed}(1/3*m*l**2*ddtheta + m*g*l/2*sin(theta)) = 0")) + '[rows]\nscale = ["2"]\n')
+    result = engine.compare(load_derivation(path))
+    (equation,) = result.equations
+    assert result.row_factors == (None,)
+    if agrees:
+        assert result.equivalent is True and equation.verdict == "agrees"
+        assert not any(c.kind == "file_error" for c in result.causes)
+        return
+    assert result.equivalent is False and equation.verdict == "differs"
+    assert K.DECLARED in [d.kind for d in equation.diagnoses]
+    assert any(c.kind == "file_error" for c in result.causes), result.causes
+    assert any(d.kind == K.FACTOR for r in result.records for d in r.diagnoses)

@@ -8,20 +8,20 @@ equations contradict.
   the true one, :mod:`..judge.equivalence`);
 - equations multiplied by a factor that vanishes somewhere, lost or repeated: a
   ``not_equivalent`` cause naming them;
-- a row scale the file declares that the equation contradicts, although the equation is
-  right: a ``file_error`` cause (the declaration is wrong, not the document).
+- a row scale the file declares that the equation contradicts, although the equation as
+  printed is right: the equation differs as declared (declarations bind), and a
+  ``file_error`` cause says the declaration is probably wrong.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 
-import sympy as sp
 
 from ...derivations.schema import Derivation
 from ..readings.describe import FrameText
 from ..readings.frames import FrameKind, FrameRule
-from ..records import Cause, CauseKind, DiagnosisKind as K, EquationRecord, Verdict, first_of
+from ..records import Cause, CauseKind, DiagnosisKind as K, EquationRecord, first_of
 
 
 def frame_causes(d: Derivation, texts: Sequence[FrameText], rules: Sequence[FrameRule],
@@ -50,12 +50,9 @@ def frame_causes(d: Derivation, texts: Sequence[FrameText], rules: Sequence[Fram
         out.append(Cause(CauseKind.NOT_EQUIVALENT, tuple(e.label for e in singular),
                          why.detail if why is not None else ""))
     for i in declared_wrong:
-        if i < len(equations) and equations[i].verdict == Verdict.AGREES:
-            scale = sp.sstr(d.row_scale[i]) if d.row_scale is not None else "1"
-            out.append(Cause(CauseKind.FILE_ERROR, (equations[i].label,), (
-                f"the file declares equation {i + 1} as the true one times {scale}, but it "
-                f"is {texts[i].text or 'the true equation'}: the declaration is wrong, the "
-                "equation is right")))
+        found = first_of(equations[i].diagnoses, K.DECLARED) if i < len(equations) else None
+        if found is not None:
+            out.append(Cause(CauseKind.FILE_ERROR, (equations[i].label,), found.detail))
     return out
 
 

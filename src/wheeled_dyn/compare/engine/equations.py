@@ -76,7 +76,7 @@ def equation_records(d: Derivation, decision, drafts: Sequence[ElementDraft],
             verdict = Verdict.UNDECIDED
             diags = [diagnosis(K.UNDECIDED, f"{', '.join(lost)} lost in the extracted text: "
                                "the equation is not decided")]
-        singular = first_of(diags, K.SINGULAR) is not None
+        singular = first_of(diags, K.SINGULAR, K.DECLARED) is not None  # no family mends
         if verdict == Verdict.DIFFERS and not singular and on_families is not None \
                 and on_families.equations[i].verdict == Verdict.AGREES:
             text = _family_condition(row) or "the model's special parameter families hold"

@@ -2,20 +2,26 @@ r"""The frame each equation of a document is explained in, chosen on the grids (
 use of :mod:`..readings.frames`): per row, the simplest rule under which every element agrees
 when the equation is right; else the rule under which most elements agree beyond the weights
 it fits — the combinations that replace one inertia column only where the simple rules leave
-more differing elements than a combination has weights. A factor the file declares is kept,
-and where a right equation contradicts it, the row is listed (a ``file_error`` cause).
+more differing elements than a combination has weights. A factor the file declares is kept
+(declarations bind), and where a right equation contradicts it, the row is listed: the
+equation differs as declared (:func:`bind_declared`; a ``file_error`` cause).
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+from dataclasses import replace
+
 import numpy as np
+import sympy as sp
 
 from ...derivations.schema import Derivation
+from ..judge.equivalence import EquationDecision, SystemDecision
 from ..judge.fitting import bases, fit_factor
 from ..readings.frame_choice import choose, elements_of, score
 from ..readings.frames import (Frame, FrameKind, FrameRule, candidate_rules,
                                combination_variants, evaluate_rule)
-from ..records import Verdict
+from ..records import DiagnosisKind, Verdict, diagnosis
 from ..sides.both import Sides
 from ..sides.document import DocumentFunctions
 from ..sides.framed import framed, row_of
@@ -56,14 +62,39 @@ def choose_frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], d
             rule = FrameRule(FrameKind.IDENTITY)
         frame = evaluated if evaluated is not None else _always(i, rule, main)
         if declared_scale is not None and rule.kind != FrameKind.DECLARED:
-            if _same(frame.weights, i, declared_scale):
-                rule = FrameRule(FrameKind.DECLARED)
-                frame = _always(i, rule, main, declared_scale)
-            elif right:
+            if right and not _same(frame.weights, i, declared_scale):
                 wrong.append(i)
+            rule = FrameRule(FrameKind.DECLARED)      # binding: the row is read as declared
+            frame = _always(i, rule, main, declared_scale)
         rules.append(rule)
         frames.append(frame)
     return rules, frames, wrong
+
+
+def bind_declared(d: Derivation, decision: SystemDecision, wrong: Sequence[int]
+                  ) -> SystemDecision:
+    r"""``decision`` with each equation of ``wrong`` (right as printed, its declared row scale
+    contradicted: :func:`choose_frames`) differing, as the file declares it to be read: a
+    ``DECLARED`` diagnosis says what the equation is instead."""
+    if not wrong or d.row_scale is None:
+        return decision
+    equations = list(decision.equations)
+    for i in wrong:
+        e = equations[i]
+        others = np.delete(e.w, i, axis=1)
+        own = e.w[:, i]
+        factor = float(np.median(own))
+        constant = (not others.size or np.abs(others).max() <= 1e-9 * np.abs(own).max()) \
+            and np.ptp(own) <= 1e-9 * abs(factor)
+        actual = f"the true one times {factor:.6g}" if constant else \
+            "another combination of the true ones"
+        text = (f"the file declares equation {i + 1} as the true one times "
+                f"{sp.sstr(d.row_scale[i])}, but as printed it is {actual}: read as declared "
+                "it differs (the equation as printed is right: the declaration is probably "
+                "wrong)")
+        equations[i] = EquationDecision(Verdict.DIFFERS, (
+            *e.diagnoses, diagnosis(DiagnosisKind.DECLARED, text, prefix="")), e.max_error, e.w)
+    return replace(decision, equations=tuple(equations))
 
 
 def _always(i: int, rule: FrameRule, main: Sides, declared: np.ndarray | None = None) -> Frame:
@@ -120,4 +151,4 @@ def id_frames(d: Derivation, funcs: DocumentFunctions, rules: list[FrameRule],
             for i, rule in enumerate(rules)]
 
 
-__all__ = ["SIMPLE_SAMPLES", "choose_frames", "declared_weights", "id_frames", "row_factors"]
+__all__ = ["SIMPLE_SAMPLES", "bind_declared", "choose_frames", "declared_weights", "id_frames", "row_factors"]

@@ -34,7 +34,7 @@ from ..judge.units import DimensionChecker
 from ..judge.unsolved import inertia_diagnoses
 from ..readings.describe import describe
 from ..readings.frames import Frame, FrameKind, evaluate_rule
-from .frames import choose_frames, declared_weights, id_frames, row_factors
+from .frames import bind_declared, choose_frames, declared_weights, id_frames, row_factors
 from ..records import Cause, CauseKind, DerivationResult, Verdict, has_kind
 from ..sides.both import Sides, both_sides
 from ..sides.document import DocumentFunctions
@@ -217,6 +217,8 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     grids = _grids(engine, d, funcs, sides, cases, assumed)
     stage("frames")
     rules, frames, declared_wrong = choose_frames(d, funcs, grids, decision)
+    if decision is not None:
+        decision = bind_declared(d, decision, declared_wrong)
     stage("judging")
     label = equation_labels(str(d.source.get("equations", "")))
     drafts, gammas = _row_drafts(d, funcs, sides, frames, DimensionChecker(d), label)
@@ -296,7 +298,8 @@ def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed
                     scales=scales, q=grid.flat_q, nu=grid.flat_nu, values=sides.values,
                     row_factor=no_factor, kind=grid.cs.kind)
     constants = tuple(None if t.factor is None or not t.factor.is_number or t.factor == 1
-                      or f.rule.partner not in (i, -1) else sp.sstr(t.factor)
+                      or f.rule.partner not in (i, -1) or f.rule.kind == FrameKind.DECLARED
+                      else sp.sstr(t.factor)
                       for i, (t, f) in enumerate(zip(texts, frames)))
     functions = tuple(None if f.rule.kind != FrameKind.FUNCTION or t.factor is None
                       or f.rule.partner != i else sp.sstr(t.factor)

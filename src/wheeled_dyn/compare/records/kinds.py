@@ -95,7 +95,8 @@ class DiagnosisKind(StrEnum):
     text), ``COINCIDENCE`` (numerically equal only because an inconsistent term vanishes
     here), ``NOT_EQUIVALENT`` (an equation that is no combination of the true ones),
     ``SINGULAR`` (equations lost, repeated, or scaled by a factor that vanishes somewhere:
-    :math:`W` singular), ``NOTE`` (words only)."""
+    :math:`W` singular), ``NOTE`` (words only), ``DECLARED`` (an equation right as printed but
+    not as the file declares it: its declared row scale contradicted; the declaration binds)."""
 
     SIGN = "sign"
     FACTOR = "factor"
@@ -115,6 +116,7 @@ class DiagnosisKind(StrEnum):
     NOT_EQUIVALENT = "not_equivalent"
     SINGULAR = "singular"
     NOTE = "note"
+    DECLARED = "declared"
 
 
 #: Diagnoses that name one term's error precisely (an element carrying one is left to its
