@@ -17,7 +17,9 @@ potential_force`, :meth:`~.wheeled_model.WheeledModel.potential_energy`).
 
 Each spring is named; derivation files refer to its stiffness and rest position as the model
 parameters ``k_<name>`` and ``rest_<name>`` (``K = { value = "k_radial" }``). Random parameter
-sets scale every stiffness (:mod:`wheeled_dyn.compare.grid.samples`).
+sets scale every stiffness and every rest position that is not 0
+(:mod:`wheeled_dyn.compare.grid.samples`): a document writing the model's rest length as a
+number is then right for that model only, and differs.
 """
 
 from __future__ import annotations
@@ -67,17 +69,18 @@ class JointSpring:
 @dataclass(frozen=True)
 class BoundSpring:
     r"""A :class:`JointSpring` bound to a built model: the joint's position index ``q_index``
-    and velocity index ``v_index``; ``stiffness`` may differ from the spec's (random parameter
-    sets scale it)."""
+    and velocity index ``v_index``; ``stiffness`` and the rest position may differ from the
+    spec's (random parameter sets scale them: ``rest_value``, None for the spec's)."""
 
     spec: JointSpring
     q_index: int
     v_index: int
     stiffness: float
+    rest_value: float | None = None
 
     @property
     def rest(self) -> float:
-        return float(self.spec.rest)
+        return float(self.spec.rest if self.rest_value is None else self.rest_value)
 
 
 def spring_force(springs: Sequence[BoundSpring], q: np.ndarray, nv: int) -> np.ndarray:
@@ -115,14 +118,19 @@ def spring_parameters(springs: Sequence[BoundSpring]) -> dict[str, float]:
 
 
 def with_stiffness(springs: Sequence[BoundSpring],
-                   factors: Sequence[float] | np.ndarray | Mapping[str, float]
+                   factors: Sequence[float] | np.ndarray | Mapping[str, float],
+                   rest_factors: Sequence[float] | np.ndarray | None = None
                    ) -> tuple[BoundSpring, ...]:
     r"""The springs with each stiffness multiplied by its factor (one per spring, in order, or
-    by name)."""
+    by name), and each rest position by its ``rest_factors`` entry (in order; a rest position
+    0 stays 0)."""
     if isinstance(factors, Mapping):
         factors = [factors.get(s.spec.name, 1.0) for s in springs]
-    return tuple(BoundSpring(s.spec, s.q_index, s.v_index, s.stiffness * float(f))
-                 for s, f in zip(springs, factors, strict=True))
+    rests = [None] * len(springs) if rest_factors is None else \
+        [s.rest * float(f) for s, f in zip(springs, rest_factors, strict=True)]
+    return tuple(BoundSpring(s.spec, s.q_index, s.v_index, s.stiffness * float(f),
+                             s.rest_value if r is None else r)
+                 for s, f, r in zip(springs, factors, rests, strict=True))
 
 
 __all__ = ["BoundSpring", "JointSpring", "SPRING_JOINTS", "spring_energy", "spring_force",

@@ -144,8 +144,8 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
     (log-Cholesky parameters) for every other joint that carries mass; a random gravity. With
     ``keep_structure`` the URDF's inertias are rescaled instead: mass and each centre-of-mass
     coordinate by random factors, the principal moments by random factors keeping the triangle
-    inequality, the principal axes unchanged. Each spring's stiffness is scaled by a random
-    factor in [0.5, 2]."""
+    inequality, the principal axes unchanged. Each spring's stiffness and rest position are
+    scaled by random factors in [0.5, 2]."""
     drawn = _with_geometry(wm, rng, uniform)
     model = pin.Model(drawn.model)               # never the model of ``wm`` itself
     composed = {jid for jid, links in bodies_of(wm).items() if uniform & set(links)}
@@ -172,7 +172,8 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
     if not composed & {w.joint_id for w in wm.wheels}:
         _alike_wheels(wm, model, rng)
     model.gravity = pin.Motion(np.array([0.0, 0.0, -rng.uniform(5.0, 15.0)]), np.zeros(3))
-    springs = with_stiffness(wm.springs, rng.uniform(0.5, 2.0, len(wm.springs))) \
+    springs = with_stiffness(wm.springs, rng.uniform(0.5, 2.0, len(wm.springs)),
+                             rng.uniform(0.5, 2.0, len(wm.springs))) \
         if wm.springs else None
     return drawn.with_model(model, springs)
 
