@@ -99,12 +99,17 @@ details{margin:.6em 0}summary{cursor:pointer;font-weight:bold}
 
 
 def _counts(result: DerivationResult) -> str:
-    r"""The verdict counts as pills; a count of 0 is neutral ("0 differ" is not red)."""
+    r"""The verdict counts as pills; a count of 0 is neutral ("0 differ" is not red), but where
+    no element differs and the equations are not equivalent (a factor that vanishes, an
+    equation lost, the constraints) that pill says so."""
     c = result.counts()
-    pills = "".join(f'<span class="pill {f"v-{v}" if n else "zero"}">{n} {SHORT[v]}</span>'
-                    for v, n in c.items() if n or v in ("agrees", "differs"))
     whole = S.system_word(result)
-    return pills + (f'<span class="pill v-differs">{esc(whole)}</span>' if whole else "")
+
+    def pill(v: str, n: int) -> str:
+        if v == "differs" and not n and whole:
+            return f'<span class="pill v-differs" title="{esc(whole)}">not equivalent</span>'
+        return f'<span class="pill {f"v-{v}" if n else "zero"}">{n} {SHORT[v]}</span>'
+    return "".join(pill(v, n) for v, n in c.items() if n or v in ("agrees", "differs"))
 
 
 # -- the top of the report --------------------------------------------------------------------

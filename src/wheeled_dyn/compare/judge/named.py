@@ -84,6 +84,7 @@ def _point_mass(residual: np.ndarray, moments: Mapping[str, np.ndarray],
     trials = [(name, v) for name, v in items]
     trials += [(f"{a} + {b}", va + vb) for k, (a, va) in enumerate(items)
                for b, vb in items[k + 1:] if a[:3] == b[:3]]
+    found: list[tuple[str, sp.Expr]] = []
     for name, v in trials:
         if np.abs(v).min() <= 0:
             continue
@@ -92,11 +93,22 @@ def _point_mass(residual: np.ndarray, moments: Mapping[str, np.ndarray],
             c = sp.nsimplify(float(np.median(ratio)), rational=True, tolerance=1e-9)
             if c != 0 and abs(float(c) - float(np.median(ratio))) <= 1e-9 * abs(float(c)) \
                     and sp.Rational(c).q <= 12:
-                return name, c
-        found = fit_factor(ratio, bases)
-        if found is not None:
-            return name, found
-    return None
+                found.append((name, c))
+                continue
+        fitted = fit_factor(ratio, bases)
+        if fitted is not None:
+            found.append((name, fitted))
+    # a moment the document lacks (never one it has too much: that is no point mass); where
+    # several fit (a family keeps a body's moments proportional), the simplest multiplier
+    lacking = [(name, c) for name, c in found if not c.could_extract_minus_sign()]
+    return min(lacking, key=lambda f: _plainness(f[1]), default=None)
+
+
+def _plainness(c: sp.Expr) -> tuple[int, int]:
+    r"""How plain a multiplier is: its operations, then its rational coefficient's size."""
+    coeff = c.as_coeff_Mul()[0]
+    size = int(abs(coeff.p) + coeff.q) if isinstance(coeff, sp.Rational) else 10 ** 6
+    return int(sp.count_ops(c)), size
 
 
 def _parallel_axis(r: ElementDraft, name: str, term: sp.Expr | None) -> None:
@@ -169,8 +181,8 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
         if steiner is not None and steiner[1] == 1 and (hit is None or hit[1] != 1):
             _parallel_axis(r, steiner[0], fit_factor(residual, bases))
             continue
-        if hit is None and has_kind(r.diagnoses, K.FACTOR):
-            continue
+        if has_kind(r.diagnoses, K.FACTOR) and (hit is None or hit[1] != 1):
+            continue                          # a constant factor says it more plainly
         if hit is not None:
             name, c = hit
             times = "" if c == 1 else f" × {sp.sstr(c)}"
