@@ -130,6 +130,8 @@ def pole_forms(error: str | None = None) -> dict[str, list[str]]:
         "divided": [f"{_s(cart)} = 0", f"({_s(pole)})/(m*l) = 0"],
         "solved": [f"ddx = {_s(x_acc.subs(T, ddth))}", f"ddtheta = {_s(theta_acc)}"],
         "kane": [f"{_s(-cart)} = 0", f"{_s(-pole)} = 0"],
+        # the pole's reaction eliminated from the cart's equation, as for the cart's force
+        "combined": [f"{_s(cart)} - (3*cos(theta)/(4*l))*({_s(pole)}) = 0", f"{_s(pole)} = 0"],
     }
 
 

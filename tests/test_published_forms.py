@@ -157,3 +157,29 @@ def test_a_point_mass_for_the_pole_is_named_as_such(engine, tmp_path):
     (record,) = [r for r in result.records if r.verdict == "differs"]
     assert record.kinds[0] == K.POINT_MASS and "pole" in record.texts[0], record.texts
     assert any(c.kind == "point_mass" and record.element in c.elements for c in result.causes)
+
+
+def test_a_row_with_the_reaction_eliminated_names_an_error_of_its_own_terms(engine, tmp_path):
+    r"""The cart's equation with the pole's reaction eliminated, eq1 − (3 cos θ/(4l)) eq2 (the
+    weights are simple expressions of the document's names: the form's own combination, as
+    good as a constant). Right, it agrees; the centripetal sign flipped in it, or its gravity
+    term (3/4) m g sin θ cos θ written with 1/4, has exactly that element flagged and named —
+    not the row's inertia elements, which agree in that frame. (An error in the pole's own
+    equation, carried into the combined row with it, is not yet undone there.)"""
+    right = P.write(tmp_path, "pole", "combined", None)
+    result = engine.compare(load_derivation(right))
+    assert result.equivalent is True and all(r.verdict == "agrees" for r in result.records)
+    sign = P.write(tmp_path, "pole", "combined", "sign")
+    flagged = {r.element: r for r in engine.compare(load_derivation(sign)).records
+               if r.verdict != "agrees"}
+    assert set(flagged) == {"h[1]:dtheta*dtheta"}, set(flagged)
+    assert K.SIGN in flagged["h[1]:dtheta*dtheta"].kinds
+    text = right.read_text()
+    gravity = "- (3*cos(theta)/(4*l))*("
+    assert gravity in text
+    wrong = tmp_path / "pole_combined_gravity.toml"
+    wrong.write_text(text.replace(gravity, "- (3*cos(theta)/(4*l))*(g*l*m*sin(theta)*2/3 + ", 1))
+    flagged = {r.element: r for r in engine.compare(load_derivation(wrong)).records
+               if r.verdict != "agrees"}
+    assert set(flagged) == {"Q[1]"}, set(flagged)
+    assert set(flagged["Q[1]"].kinds) & {K.FACTOR, K.EXTRA, K.MISSING}, flagged["Q[1]"].texts

@@ -257,14 +257,35 @@ def candidate_rules(i: int, grids: Sequence[tuple[Arrays, Arrays, np.ndarray | N
                 rule = FrameRule(FrameKind.FUNCTION, k, identified=identified)
                 if not any(r.kind == FrameKind.FUNCTION and r.partner == k for r in out):
                     out.append(rule)
-    out.append(FrameRule(FrameKind.COMBINATION))
+    out.append(_combination(i, grids[0], simple))
     return out + combination_variants(grids) if robust else out
+
+
+def _combination(i: int, grid: tuple[Arrays, Arrays, np.ndarray | None],
+                 simple: Callable[[np.ndarray], bool] | None) -> FrameRule:
+    r"""The combination :math:`A_{doc,i}A^{-1}` of row ``i``, ``identified`` where ``simple``
+    finds each of its weights on ``grid`` a simple expression of the document's names (a row
+    replaced by eq1 − 3 cos θ/(2L) eq2: the weights are the form's, as good as fitted none)."""
+    rule = FrameRule(FrameKind.COMBINATION)
+    if simple is None:
+        return rule
+    doc, truth, B_true = grid
+    w = combination_weights(i, rule, doc, truth, doc.B, B_true)
+    if not np.isfinite(w).all():
+        return rule
+    size = float(np.abs(w).max(initial=0.0))
+    columns = [w[:, k] for k in range(w.shape[1]) if np.abs(w[:, k]).max() > 1e-12 * size]
+    if columns and all(simple(c) for c in columns):
+        return FrameRule(FrameKind.COMBINATION, identified=True)
+    return rule
 
 
 def combination_variants(grids: Sequence[tuple[Arrays, Arrays, np.ndarray | None]]
                          ) -> list[FrameRule]:
     r"""The combinations with one inertia column replaced (the rules ``candidate_rules`` adds
-    for an equation that is not right)."""
+    for an equation that is not right). Never ``identified``: their weights are fitted to
+    the row with one inertia column left out, so simple weights there say nothing of the
+    form."""
     doc0, truth0, B0 = grids[0]
     n = truth0.need("A").shape[1]
     m = 0 if doc0.B is None or B0 is None else doc0.B.shape[2]
