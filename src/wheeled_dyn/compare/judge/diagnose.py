@@ -151,13 +151,29 @@ def term_diagnoses(expr: sp.Expr, evaluate: Callable[[sp.Expr], np.ndarray], D: 
 _TRIG_SWAP = {sp.sin: sp.cos, sp.cos: sp.sin}
 
 
+def _argument_trials(expr: sp.Expr) -> list[tuple[sp.Expr, sp.Expr]]:
+    r"""(written, trial) for the arguments of ``expr``'s sines, cosines and tangents: a tangent
+    read as the sine of its argument, and an argument that is a sum with one of its terms'
+    sign flipped or the term left out (cos(θ₁ + θ₂) where cos(θ₁ − θ₂) fits; cos(q₁ + q₂)
+    where cos q₂ does)."""
+    out = [(f, sp.sin(f.args[0])) for f in sorted(expr.atoms(sp.tan), key=sp.default_sort_key)]
+    for f in sorted(expr.atoms(sp.sin, sp.cos, sp.tan), key=sp.default_sort_key):
+        a = f.args[0]
+        if not isinstance(a, sp.Add):
+            continue
+        for t in sp.Add.make_args(a):
+            out += [(f, f.func(a - 2 * t)), (f, f.func(a - t))]
+    return out
+
+
 def trig_swap_diagnoses(expr: sp.Expr, evaluate_many: Callable[[list], list[np.ndarray]],
                         T: np.ndarray, scale: float) -> list[Diagnosis]:
     r"""A sin written for a cos (or the reverse): everywhere it occurs, both exchanged for one
-    argument, or — when neither fits — in one printed (else expanded) additive term only.
+    argument, or — when neither fits — in one printed (else expanded) additive term only; a
+    tangent for a sine, and a wrong argument (:func:`_argument_trials`) everywhere it occurs.
     ``evaluate_many`` evaluates a list of expressions at the samples in one compiled call."""
     atoms = sorted(expr.atoms(sp.sin, sp.cos), key=sp.default_sort_key)
-    if not atoms:
+    if not atoms and not expr.has(sp.tan):
         return []
     args = sorted({f.args[0] for f in atoms}, key=sp.default_sort_key)
     whole = [(diagnosis(K.SWAP, f"{sp.sstr(f)} where {sp.sstr(_TRIG_SWAP[f.func](*f.args))} "
@@ -168,6 +184,9 @@ def trig_swap_diagnoses(expr: sp.Expr, evaluate_many: Callable[[list], list[np.n
                          fits=sp.sstr(sp.cos(a))),
                expr.xreplace({sp.sin(a): sp.cos(a), sp.cos(a): sp.sin(a)}))
               for a in args if expr.has(sp.sin(a)) and expr.has(sp.cos(a))]
+    whole += [(diagnosis(K.SWAP, f"{sp.sstr(f)} where {sp.sstr(o)} fits", written=sp.sstr(f),
+                         fits=sp.sstr(o)), expr.xreplace({f: o}))
+              for f, o in _argument_trials(expr)]
     values = evaluate_many([e for _, e in whole])
     found = [text for (text, _), v in zip(whole, values) if agrees(v, T, scale)]
     singles = [x for x in found if x.detail.endswith("fits")]

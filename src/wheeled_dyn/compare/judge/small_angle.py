@@ -8,7 +8,11 @@ where it agrees with the truth at every sample, as every other diagnosis
 
 - the whole element: every :math:`x` outside a trigonometric function read as
   :math:`\sin x`; the element times :math:`\cos x`; both;
-- one additive term (as printed, else expanded), the others as written: the same three.
+- one additive term (as printed, else expanded), the others as written: the same three;
+  then two terms read as sines together.
+
+The angles are the positions and the sums and differences of them the document takes sines or
+cosines of (:meth:`~..sides.document.DocumentFunctions.angles`).
 """
 
 from __future__ import annotations
@@ -25,19 +29,35 @@ from .diagnose import MAX_TERMS, agrees
 Trial = tuple[str, str, sp.Expr]
 
 
-def bare(expr: sp.Expr, x: sp.Symbol, replacement: sp.Expr) -> sp.Expr:
-    r"""``expr`` with the occurrences of ``x`` outside :math:`\sin, \cos, \tan` replaced."""
+def bare(expr: sp.Expr, x: sp.Expr, replacement: sp.Expr) -> sp.Expr:
+    r"""``expr`` with the occurrences of ``x`` outside :math:`\sin, \cos, \tan` replaced. A
+    sum of positions (:math:`q_1 + q_2`) is found however the document grouped it
+    (:math:`m g q_1 + m g q_2` too): written in a new variable :math:`X = x` for one of its
+    positions, expanded, read, and written back."""
+    if not isinstance(x, sp.Symbol):
+        X = sp.Dummy("X")
+        q, c = next((s, x.coeff(s)) for s in sorted(x.free_symbols, key=sp.default_sort_key)
+                    if x.coeff(s) != 0)
+        moved = sp.expand(expr.subs(q, (X - (x - c * q)) / c))
+        read = bare(moved, X, replacement.subs(x, X)).subs(X, x)
+        return expr if sp.expand(read - expr) == 0 else read
     inside = {f: sp.Dummy() for f in expr.atoms(sp.sin, sp.cos, sp.tan) if f.has(x)}
     back = {v: k for k, v in inside.items()}
     return expr.xreplace(inside).xreplace({x: replacement}).xreplace(back)
 
 
-def _trials(expr: sp.Expr, x: sp.Symbol) -> list[Trial]:
-    r"""The three readings of ``expr`` for position ``x`` (module text) that change it."""
+def _trials(expr: sp.Expr, x: sp.Expr) -> list[Trial]:
+    r"""The three readings of ``expr`` for angle ``x`` (module text) that change it; none
+    multiplying by :math:`\cos x` where ``expr`` divides by it or has :math:`\tan x` (that
+    only cancels: a tangent written for a sine is a swap, :mod:`.diagnose`)."""
     sin_read = bare(expr, x, sp.sin(x))
     out: list[Trial] = []
     if sin_read != expr:
         out.append((sp.sstr(x), sp.sstr(sp.sin(x)), sin_read))
+    divides = expr.has(sp.tan(x)) or any(
+        p.base == sp.cos(x) and p.exp.is_negative for p in expr.atoms(sp.Pow))
+    if divides:
+        return out
     out.append(("1", sp.sstr(sp.cos(x)), expr * sp.cos(x)))
     if sin_read != expr:
         out.append((f"{sp.sstr(x)} and 1", f"{sp.sstr(sp.sin(x))} and {sp.sstr(sp.cos(x))}",
@@ -77,6 +97,15 @@ def small_angle_diagnoses(expr: sp.Expr, positions: Sequence[sp.Symbol],
                  in zip(per, values[len(terms):]) if agrees(total - values[k] + v, T, scale)]
         if found:
             return found[:1]
+        # two terms read so together (m₁a₁gθ + m₂l₁gθ, a bare θ elsewhere in the row kept)
+        sines = {(k, x): v for (k, x, (w, _, _)), v in zip(per, values[len(terms):])
+                 if w == sp.sstr(x)}
+        for (k, x), v in sines.items():
+            for (j, y), u in sines.items():
+                if j > k and y == x and agrees(total - values[k] - values[j] + v + u, T,
+                                               scale):
+                    return [_found(x, sp.sstr(x), sp.sstr(sp.sin(x)),
+                                   f"{sp.sstr(terms[k])} and {sp.sstr(terms[j])}")]
     return []
 
 

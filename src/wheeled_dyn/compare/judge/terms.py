@@ -34,7 +34,7 @@ def trig_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.nd
     if check and not agrees(evaluate_many([expr])[0], D, scale):
         return []
     return trig_swap_diagnoses(expr, evaluate_many, T, scale) or small_angle_diagnoses(
-        expr, funcs.d.positions, evaluate_many, T, scale)
+        expr, funcs.angles(), evaluate_many, T, scale)
 
 
 def element_term_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.ndarray],

@@ -8,7 +8,7 @@ namespace, at each parameter set.
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 
 import numpy as np
 import sympy as sp
@@ -133,6 +133,23 @@ def _poly_coefficients(expr: sp.Expr, velocities: Sequence[sp.Symbol]
     return out
 
 
+def trig_angles(positions: Sequence[sp.Symbol], exprs: Iterable[sp.Basic | None]
+                ) -> list[sp.Expr]:
+    r"""The angles a small-angle reading is tried for: the positions, and the sums and
+    differences of them that ``exprs`` (the document's matrices) take sines or cosines of
+    (:math:`q_1 + q_2` written where :math:`\sin(q_1 + q_2)` fits)."""
+    found: dict[sp.Expr, None] = {}
+    names = set(positions)
+    for M in exprs:
+        if M is None:
+            continue
+        for f in M.atoms(sp.sin, sp.cos, sp.tan):
+            a = f.args[0]
+            if isinstance(a, sp.Add) and a.free_symbols <= names:
+                found.setdefault(a, None)
+    return [*positions, *sorted(found, key=sp.default_sort_key)]
+
+
 class DocumentFunctions:
     r"""The document's elements compiled once (one function per matrix); evaluated at any
     samples."""
@@ -146,6 +163,7 @@ class DocumentFunctions:
         self._fns = {}
         self._element_fns: dict[tuple, object] = {}
         self._compiled: dict[sp.Expr, object] = {}
+        self._angles: list[sp.Expr] | None = None
         for key, M in self.exprs.items():
             if M is None:
                 continue
@@ -172,6 +190,13 @@ class DocumentFunctions:
                 arr = arr[..., 0]
             setattr(out, key, arr)
         return out
+
+    def angles(self) -> list[sp.Expr]:
+        r"""The positions and the sums of them the document takes sines or cosines of
+        (:func:`trig_angles`), found once."""
+        if self._angles is None:
+            self._angles = trig_angles(self.d.positions, self.exprs.values())
+        return self._angles
 
     def compiled(self, expr: sp.Expr):
         r"""``expr`` (in the document's positions, velocities and symbols) compiled once;

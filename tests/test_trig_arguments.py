@@ -1,0 +1,91 @@
+r"""Errors in the arguments of sines and cosines, and approximations of them, named in the
+document's symbols: on the two-link arm of Spong, Hutchinson & Vidyasagar (*Robot Modeling
+and Control*, §7.4: gravity :math:`m_2l_{c2}g\cos(q_1 + q_2)`, inertia
+:math:`m_2l_1l_{c2}\cos q_2`) and the cart-pole of Florian (2007) (gravity
+:math:`mgl\sin\theta`), both written by SymPy (:mod:`published_forms`):
+
+- a sign flipped inside an argument (cos(q1 − q2) where cos(q1 + q2) fits), a position added
+  to one (cos(q1 + q2) where cos q2 fits), a tangent for a sine — each a ``swap`` naming what
+  is written and what fits;
+- a small angle in a sum of positions (1 written where cos(q1 + q2) fits) — a
+  ``small_angle`` in q1 + q2.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+import published_forms as P
+from conftest import SEED
+from wheeled_dyn.compare.engine import ComparisonEngine
+from wheeled_dyn.compare.records import DiagnosisKind as K
+from wheeled_dyn.derivations import load_derivation
+
+SAMPLES, PARAM_SETS = 200, 3
+
+
+@pytest.fixture(scope="module")
+def engine():
+    return ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED)
+
+
+def _flagged(engine, tmp_path, system: str, old: str, new: str, count: int = 1):
+    path = P.write(tmp_path, system, "equations", None)
+    text = path.read_text()
+    assert text.count(old) >= count, (old, text)
+    path.write_text(text.replace(old, new, count))
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False
+    return {r.element: r for r in result.records if r.verdict != "agrees"}
+
+
+@pytest.mark.parametrize("system, old, new, element, written, fits", [
+    ("arm", "g*lc2*m2*cos(q1 + q2)", "g*lc2*m2*cos(q1 - q2)", "Q[1]", "cos(q1 - q2)",
+     "cos(q1 + q2)"),
+    ("arm", "ddq2*(I2 + m2*(l1*lc2*cos(q2)", "ddq2*(I2 + m2*(l1*lc2*cos(q1 + q2)", "A[1,2]",
+     "cos(q1 + q2)", "cos(q2)"),
+    ("pole", "g*l*m*sin(theta)", "g*l*m*tan(theta)", "Q[2]", "tan(theta)", "sin(theta)"),
+])
+def test_a_wrong_argument_or_function_is_named(engine, tmp_path, system, old, new, element,
+                                               written, fits):
+    flagged = _flagged(engine, tmp_path, system, old, new)
+    assert flagged
+    assert set(flagged) == {element}, set(flagged)
+    for record in flagged.values():
+        swaps = [d for d in record.diagnoses if d.kind == K.SWAP]
+        assert swaps and swaps[0].written == written, record.texts
+        assert swaps[0].fits == fits
+
+
+def test_a_small_angle_in_a_sum_of_positions_is_named(engine, tmp_path):
+    r"""The arm's first gravity term cos(q1 + q2) taken as 1 (angles from the horizontal: the
+    link near it), the second equation keeping it: a small angle in q1 + q2, named so."""
+    flagged = _flagged(engine, tmp_path, "arm", "g*lc2*m2*cos(q1 + q2)", "g*lc2*m2")
+    assert set(flagged) == {"Q[1]"}, set(flagged)
+    small = [d for d in flagged["Q[1]"].diagnoses if d.kind == K.SMALL_ANGLE]
+    assert small and small[0].position == "q1 + q2", flagged["Q[1]"].texts
+    assert small[0].fits == "cos(q1 + q2)"
+
+
+def test_two_terms_read_as_small_angles_together_beside_a_bare_angle(engine, tmp_path):
+    r"""A double pendulum with torsional springs (``data/published/double_pendulum_springs``,
+    right: it agrees): its first gravity terms m1 a1 g sin θ1 + m2 L1 g sin θ1 written with
+    θ1 for sin θ1 in both, while the spring's k1 (θ1 − r1) keeps its own bare θ1 (reading
+    every θ1 as sin θ1 does not fit, nor one term alone): a small angle in θ1, both terms."""
+    from pathlib import Path
+    data = Path(__file__).parent / "data" / "published"
+    for name in ("double_pendulum.toml", "double_pendulum.urdf"):
+        (tmp_path / name).write_text((data / name).read_text())
+    text = (data / "double_pendulum_springs.toml").read_text()
+    right = tmp_path / "right.toml"
+    right.write_text(text)
+    assert engine.compare(load_derivation(right)).equivalent is True
+    old = "m1*a1*g*sin(th1) + m2*L1*g*sin(th1)"
+    assert old in text
+    wrong = tmp_path / "wrong.toml"
+    wrong.write_text(text.replace(old, "m1*a1*g*th1 + m2*L1*g*th1"))
+    flagged = {r.element: r for r in engine.compare(load_derivation(wrong)).records
+               if r.verdict != "agrees"}
+    assert set(flagged) == {"Q[1]"}, set(flagged)
+    small = [d for d in flagged["Q[1]"].diagnoses if d.kind == K.SMALL_ANGLE]
+    assert small and small[0].position == "th1", flagged["Q[1]"].texts
