@@ -236,10 +236,20 @@ class DimensionChecker:
         return _add(_add(row, qj, -1), (0, 0, {"A": 2, "C": 1, "K": 0}[key]))
 
     def check(self, key: str, index: tuple[int, ...], expr: sp.Expr) -> list[str]:
-        r"""Problems of one element: inconsistent terms, or a dimension other than expected."""
+        r"""Problems of one element: inconsistent terms, or a dimension other than expected.
+        Where the row says what the element's dimension is and one of its terms has it, the
+        terms named are those that do not (not those fewer than the others: in I2*L1 +
+        L1*a2*m2, written for (I2 + a2²m2) L1/a2, the wrong one)."""
         problems: list[str] = []
-        got = self.dim(expr, problems)
         want = self.expected(key, index)
+        e = sp.sympify(expr)
+        if want is not None and isinstance(e, sp.Add):
+            dims = [(t, self.dim(t, problems)) for t in e.args]
+            if any(d == want for _, d in dims):
+                return problems + [f"term {sp.sstr(t)} is {format_dim(d)} beside "
+                                   f"{format_dim(want)}" for t, d in dims
+                                   if d is not None and d != want]
+        got = self.dim(expr, problems)
         if got is not None and want is not None and got != want and sp.sympify(expr) != 0:
             problems.append(f"has {format_dim(got)}, expected {format_dim(want)}")
         return problems
