@@ -48,6 +48,11 @@ PLANTED = {
                            "[constraints]: its constraint row 1"),
     "robot G sign": (ROBOT, "[0, 0, 1, -R/(2*L), R/(2*L)]]", "[0, 0, 1, R/(2*L), R/(2*L)]]",
                      "G: its constraint row 3"),
+    "no constraints stated": (DISK, DISK_G + "\n\n[constraints]\nequations = "
+                              '["dx + r*cos(phi)*dpsi = 0", "dy + r*sin(phi)*dpsi = 0"]', "",
+                              "it states no constraints"),
+    "G zero row": (DISK, DISK_G, 'G = "[[1, 0, 0, 0, r*cos(phi)], [0, 0, 0, 0, 0]]"',
+                   "1 rolling constraint missing"),
 }
 
 
@@ -116,3 +121,38 @@ def test_multiplier_terms_allow_any_mixing_of_the_multipliers():
     rest = [0, 1, 3, 4]
     assert np.allclose(fitted[:, rest], doc_L[:, rest])
     assert not np.allclose(fitted[:, 2], doc_L[:, 2])
+
+
+def test_only_constraints_stated_wrong_is_named_so(engine, tmp_path):
+    r"""A file with ``[constraints]`` and no G: its multiplier terms are those rows', and a
+    wrong one is named where the file states it, not as "G"."""
+    text = (DATA / DISK).read_text().replace(DISK_G + "\n", "")
+    text = text.replace('"dx + r*cos(phi)*dpsi = 0"', '"dx - r*cos(phi)*dpsi = 0"')
+    path = tmp_path / "only_constraints.toml"
+    path.write_text(text)
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False and result.constraints_agree is False
+    causes = [c.explanation for c in result.causes if c.kind == CauseKind.NOT_EQUIVALENT]
+    assert any("[constraints]: its constraint row 1" in c for c in causes), causes
+    assert not any("G:" in c for c in causes), causes
+
+
+@pytest.mark.parametrize("factor", ["r*1000000", "(2 + cos(theta))"])
+def test_a_constraint_row_scaled_is_the_same_constraint(engine, tmp_path, factor):
+    result = _compare(engine, tmp_path, DISK, DISK_G,
+                      DISK_G.replace("[1, 0, 0, 0, r*cos(phi)]",
+                                     f"[{factor}, 0, 0, 0, {factor}*r*cos(phi)]"))
+    assert result.constraints_agree is True
+    assert result.equivalent is True, [c.explanation for c in result.causes]
+
+
+def test_the_equation_wrong_with_its_multipliers_is_the_one_named(engine, tmp_path):
+    r"""The disk's first equation doubled (A and velocity terms) with its multiplier term as
+    G states it: either the first or the fifth equation could be left out of the
+    multipliers' fit; the mixing nearest the one G gives names the first."""
+    text = (DATA / DISK).read_text()
+    first = text.split("equations = [\n")[1].splitlines()[0].strip().strip('",')
+    lhs = first.split(" = ")[0]
+    result = _compare(engine, tmp_path, DISK, first, f"2*({lhs}) = 0")
+    assert [e.verdict for e in result.equations] == ["differs", "agrees", "agrees", "agrees",
+                                                     "agrees"]

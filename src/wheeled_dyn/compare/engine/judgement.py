@@ -12,6 +12,7 @@ checks (energy, symmetry, constraint rows); the printed forms for the reports.
 
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -111,7 +112,10 @@ def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides
     r"""The equations' verdicts on the main grid (None where the document gives no A)."""
     doc, truth = sides.doc, sides.truth
     both_n = doc.h is not None or doc.Q is not None
-    kept = doc.G is not None and truth.G is not None      # both keep the constraints
+    kept = truth.G is not None          # the coordinates keep the rolling constraints
+    if kept and doc.G is None:          # a document stating none: no multiplier terms
+        doc = copy.copy(doc)
+        doc.G = np.zeros_like(truth.G)
     doc_side = _n(doc, doc.B if sides.B_true is not None else None, kept)
     if doc_side is None or truth.A is None:
         return None

@@ -197,20 +197,37 @@ def constraint_rows(doc: Arrays, truth: Arrays, scales) -> tuple[str, ...]:
     if truth.G is None:
         return ("the document keeps constraints the coordinate set eliminates: G not compared",)
     out = []
-    Gt = truth.G
+    ok = np.isfinite(doc.G).all(axis=(1, 2)) & np.isfinite(truth.G).all(axis=(1, 2))
+    Gt = truth.G[ok]
     proj = np.linalg.pinv(Gt) @ Gt                      # projector on the true row space
     for r in range(doc.G.shape[1]):
-        row = doc.G[:, r, :]
+        row = doc.G[ok, r, :]
+        size = np.abs(row).max(axis=1, initial=0.0)
+        if not ok.any():
+            out.append(f"G row {r + 1}: not finite at any sample: not compared")
+            continue
+        if not size.any():
+            out.append(f"G row {r + 1}: zero (no constraint)")
+            continue
         off = np.einsum("si,sij->sj", row, proj) - row
-        worst = float((np.abs(off).max(axis=1) / np.maximum(np.abs(row).max(axis=1), 1e-12)).max())
+        worst = float((np.abs(off).max(axis=1) / np.maximum(size, 1e-300)).max())
         out.append(f"G row {r + 1}: " + ("a rolling constraint of the model" if worst < 1e-6 else
                                           f"not a rolling constraint of the model (off by {worst:.2g})"))
     return tuple(out)
 
 
 #: A constraint row's singular value, relative to the largest at its sample, above which it
-#: counts as independent.
-RANK_TOL = 1e-8
+#: counts as independent (the rows each scaled to 1 first); a row smaller than ROUND_OFF of
+#: the largest on its sample is round-off (a constraint the coordinates satisfy identically).
+RANK_TOL, ROUND_OFF = 1e-8, 1e-12
+
+
+def _unit_rows(G: np.ndarray) -> np.ndarray:
+    r"""Each constraint row divided by its largest entry (per sample); a row of round-off
+    beside the others (below :data:`ROUND_OFF` of the largest on its sample) is 0."""
+    size = np.abs(G).max(axis=2, keepdims=True)
+    real = size > ROUND_OFF * size.max(axis=1, keepdims=True)
+    return np.where(real, G / np.where(real, size, 1.0), 0.0)
 
 
 def constraint_space(rows: np.ndarray, true_G: np.ndarray) -> tuple[str, ...]:
@@ -222,7 +239,7 @@ def constraint_space(rows: np.ndarray, true_G: np.ndarray) -> tuple[str, ...]:
     ok = np.isfinite(rows).all(axis=(1, 2)) & np.isfinite(true_G).all(axis=(1, 2))
     if not ok.any():
         return ()
-    D, T = rows[ok], true_G[ok]
+    D, T = _unit_rows(rows[ok]), _unit_rows(true_G[ok])     # a row's scale says nothing
     out = []
     proj = np.linalg.pinv(T) @ T                     # projector on the true row space
     off = np.abs(D @ proj - D).max(axis=2) / np.maximum(np.abs(D).max(axis=2), 1e-300)
@@ -236,8 +253,9 @@ def constraint_space(rows: np.ndarray, true_G: np.ndarray) -> tuple[str, ...]:
     short = rank(T) - rank(D)
     if (short > 0).any():
         k = int(short.max())
-        out.append(f"it states {int(rank(D).min())} independent constraint rows where the "
-                   f"model has {int(rank(T).max())}: {k} rolling constraint"
+        have, want = int(rank(D).min()), int(rank(T).max())
+        out.append(f"it states {have} independent constraint row{'s' if have != 1 else ''} "
+                   f"where the model has {want}: {k} rolling constraint"
                    f"{'s' if k > 1 else ''} missing")
     return tuple(out)
 
@@ -253,7 +271,7 @@ def constraint_problems(d: Derivation, funcs: DocumentFunctions, doc: Arrays, tr
         return None
     stated = []
     if doc.G is not None:
-        stated.append(("G", doc.G))
+        stated.append(("G" if d.G is not None else "[constraints]", doc.G))
     if d.G is not None and d.constraints is not None:     # both: [constraints] on its own
         M = d.constraint_matrix()
         if M is not None:
@@ -262,10 +280,11 @@ def constraint_problems(d: Derivation, funcs: DocumentFunctions, doc: Arrays, tr
                 for c in range(M.cols)], axis=1) for r in range(M.rows)], axis=1)
             stated.append(("[constraints]", rows))
     if not stated:
-        return None
+        return ("it states no constraints (neither G nor [constraints]) though its "
+                "coordinates keep them: its equations have no multiplier terms",)
     return tuple(f"{where}: {text}" for where, rows in stated
                  for text in constraint_space(rows, truth.G))
 
 
-__all__ = ["FACTOR_LIMIT", "RANK_TOL", "RATE_POINT_SEED", "RATE_RANK_TOL", "asymmetry",
+__all__ = ["FACTOR_LIMIT", "RANK_TOL", "ROUND_OFF", "RATE_POINT_SEED", "RATE_RANK_TOL", "asymmetry",
            "constraint_problems", "constraint_rows", "constraint_space", "energy_check", "independent_rows", "position_rates", "solve_rates"]

@@ -146,8 +146,12 @@ def multiplier_terms(doc_L: np.ndarray, true_L: np.ndarray, W: np.ndarray) -> np
     :math:`i` is then a combination of the true ones only if its coefficients of
     :math:`\lambda_{doc}` are row :math:`i` of :math:`W G^T M`. :math:`M` is fitted on every
     equation; where they do not all fit, on all but one, else all but two (as many as
-    multipliers left at least), the subset that fits (a wrong equation does not make the
-    right ones differ). NaN where a side is not finite."""
+    multipliers left at least): of the subsets that fit, the one whose mixing is nearest the
+    one the document's constraint rows give (:math:`G_{doc} = PG`, :math:`M = P^T`) — a wrong
+    equation does not make the right ones differ, nor a right one take the blame. NaN where
+    a side is not finite."""
+    if doc_L.shape == true_L.shape and not np.any(doc_L):
+        return true_L.copy()        # no multipliers at all: none to mix, the terms must vanish
     out = np.full(doc_L.shape, np.nan)
     ok = (np.isfinite(W).all(axis=(1, 2)) & np.isfinite(true_L).all(axis=(1, 2))
           & np.isfinite(doc_L).all(axis=(1, 2)))
@@ -166,14 +170,21 @@ def multiplier_terms(doc_L: np.ndarray, true_L: np.ndarray, W: np.ndarray) -> np
                                                                     1e-300)
         return float(off.max(initial=0.0)), M
 
+    # the mixing the document's own constraint rows give (G_doc = P G: M = Pᵀ): among the
+    # subsets that fit, the one closest to it (leaving out either of two equations may fit)
+    reference = np.linalg.pinv(true_L[ok]) @ D
+
+    def distance(M: np.ndarray) -> float:
+        return float(np.nanmean(np.abs(M - reference)))
+
     best = fit(())
     for size in (1, 2):
         if best[0] <= AGREE_TOL or n - size < m:
             break
-        fits = [fit(c) for c in itertools.combinations(range(n), size)]
-        found = min(fits, key=lambda f: f[0])
-        if found[0] <= AGREE_TOL:
-            best = found
+        fits = [f for f in (fit(c) for c in itertools.combinations(range(n), size))
+                if f[0] <= AGREE_TOL]
+        if fits:
+            best = min(fits, key=lambda f: distance(f[1]))
     M = best[1]
     out[ok] = true_L[ok] @ M
     return out

@@ -264,6 +264,7 @@ class DerivationResult:
                 "row_combination": [list(r) for r in self.row_combination],
                 "equations": [e.as_dict() for e in self.equations],
                 "equivalent": self.equivalent,
+                "constraints_agree": self.constraints_agree,
                 "truth_in_document": self.truth_in_document,
                 "energy": self.energy.as_dict() if self.energy else None,
                 "asymmetric": list(self.asymmetric), "constraints": list(self.constraints),
