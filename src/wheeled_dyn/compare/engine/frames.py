@@ -151,4 +151,5 @@ def id_frames(d: Derivation, funcs: DocumentFunctions, rules: list[FrameRule],
             for i, rule in enumerate(rules)]
 
 
-__all__ = ["SIMPLE_SAMPLES", "bind_declared", "choose_frames", "declared_weights", "id_frames", "row_factors"]
+__all__ = ["SIMPLE_SAMPLES", "bind_declared", "choose_frames", "declared_weights", "id_frames",
+           "row_factors"]

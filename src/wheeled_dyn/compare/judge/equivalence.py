@@ -268,9 +268,11 @@ def sign_changes(W: np.ndarray, sets: int) -> tuple[tuple[int, ...], bool] | Non
             k = int(np.argmax(np.abs(det[members])))
             norms = np.linalg.norm(W[members], axis=2)
             growth = norms[k] / np.maximum(np.median(norms, axis=0), 1e-300)
-            return tuple(int(i) for i in np.flatnonzero(growth >= NULL_SHARE * growth.max())
-                         if growth[i] > 1.0), True
-        k = group[np.nanargmin(np.abs(det[group]))]
+            rows = tuple(int(i) for i in np.flatnonzero(growth >= NULL_SHARE * growth.max())
+                         if growth[i] > 1.0)
+            if rows:
+                return rows, True
+        k = group[np.nanargmin(np.abs(det[group]))]    # a zero (or a pole no row shows)
         return _null_rows(W[k]), False
     return None
 
@@ -307,7 +309,7 @@ def decide(doc: Side, truth: Side, sets: int, special: tuple[np.ndarray, np.ndar
     pole = False
     if rows is None:
         changes = sign_changes(W, sets)
-        if changes is not None and changes[0]:
+        if changes is not None:
             rows, pole = changes
         where = "somewhere: det W changes sign between states of one parameter set" \
             if rows is not None else ""
