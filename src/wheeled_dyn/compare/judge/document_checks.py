@@ -211,8 +211,9 @@ def constraint_rows(doc: Arrays, truth: Arrays, scales) -> tuple[str, ...]:
             continue
         off = np.einsum("si,sij->sj", row, proj) - row
         worst = float((np.abs(off).max(axis=1) / np.maximum(size, 1e-300)).max())
-        out.append(f"G row {r + 1}: " + ("a rolling constraint of the model" if worst < 1e-6 else
-                                          f"not a rolling constraint of the model (off by {worst:.2g})"))
+        out.append(f"G row {r + 1}: " + (
+            "a rolling constraint of the model" if worst < 1e-6 else
+            f"not a rolling constraint of the model (off by {worst:.2g})"))
     return tuple(out)
 
 
@@ -287,4 +288,5 @@ def constraint_problems(d: Derivation, funcs: DocumentFunctions, doc: Arrays, tr
 
 
 __all__ = ["FACTOR_LIMIT", "RANK_TOL", "ROUND_OFF", "RATE_POINT_SEED", "RATE_RANK_TOL", "asymmetry",
-           "constraint_problems", "constraint_rows", "constraint_space", "energy_check", "independent_rows", "position_rates", "solve_rates"]
+           "constraint_problems", "constraint_rows", "constraint_space", "energy_check",
+           "independent_rows", "position_rates", "solve_rates"]

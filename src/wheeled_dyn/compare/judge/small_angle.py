@@ -97,7 +97,7 @@ def small_angle_diagnoses(expr: sp.Expr, positions: Sequence[sp.Symbol],
                  in zip(per, values[len(terms):]) if agrees(total - values[k] + v, T, scale)]
         if found:
             return found[:1]
-        # two terms read so together (m₁a₁gθ + m₂l₁gθ, a bare θ elsewhere in the row kept)
+        # two terms read so together (m₁a₁gθ + m₂l₁gθ; a bare θ elsewhere in the row kept)
         sines = {(k, x): v for (k, x, (w, _, _)), v in zip(per, values[len(terms):])
                  if w == sp.sstr(x)}
         for (k, x), v in sines.items():
