@@ -84,3 +84,24 @@ def test_a_printed_relation_is_rendered_side_by_side():
     latex = text_latex("-F*a*cos(theta) = I_g*ddtheta", names, "fallback")
     assert latex.count("=") == 1 and r"\ddot" in latex and "ddtheta" not in latex
     assert text_latex("a = b = c", names, "fallback") == "fallback"
+
+
+def test_printed_names_read_back_as_symbols_not_sympy_constants():
+    r"""A residual printed in the document's names and read back for its LaTeX keeps them:
+    the rolling disk's I and J (not the imaginary unit), E, Q, gamma as plain symbols."""
+    from pathlib import Path
+
+    import sympy as sp
+
+    from wheeled_dyn.compare.causes.root import _power_latex
+    from wheeled_dyn.derivations import load_derivation
+    from wheeled_dyn.sympy_text import parse
+    expr = parse("I*E + Q*gamma + sin(I)")
+    assert expr is not None and not expr.has(sp.I) and not expr.has(sp.E)
+    assert {s.name for s in expr.free_symbols} == {"I", "E", "Q", "gamma"}
+    d = load_derivation(Path(__file__).parent / "data" / "published"
+                        / "rolling_disk_multipliers.toml")
+    latex = _power_latex("dphi*dtheta*(I - J)", d)
+    import re
+    assert r"\left(I - J\right)" in latex, latex
+    assert not re.search(r"(?<![A-Za-z\\])i(?![A-Za-z])", latex), latex   # no imaginary unit

@@ -13,7 +13,8 @@ from ..compare.records import DerivationResult, DiagnosisKind, ElementRecord
 from . import summary as S
 from .html_text import esc, math_box, mathml, num_text
 from .markdown import VERDICT_TEXT
-from .symbols import Notation, difference_latex, parse, product_latex, text_latex
+from ..sympy_text import parse
+from .symbols import Notation, difference_latex, product_latex, text_latex
 
 
 #: Marks of a matrix cell by verdict (besides its colour).

@@ -25,8 +25,6 @@ Three rules.
 
 from __future__ import annotations
 
-import functools
-import keyword
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -35,6 +33,7 @@ from pathlib import Path
 import sympy as sp
 
 from ..disk_cache import DiskMemo
+from ..sympy_text import parse
 
 #: Names written as Greek letters (lower case; a capitalised one is the capital letter).
 GREEK = ("alpha", "beta", "gamma", "delta", "epsilon", "varepsilon", "zeta", "eta", "theta",
@@ -42,24 +41,11 @@ GREEK = ("alpha", "beta", "gamma", "delta", "epsilon", "varepsilon", "zeta", "et
          "upsilon", "phi", "varphi", "chi", "psi", "omega")
 _CAPITAL_GREEK = ("Gamma", "Delta", "Theta", "Lambda", "Xi", "Pi", "Sigma", "Upsilon", "Phi",
                   "Psi", "Omega")
-#: Function names kept as SymPy functions when expressions are re-read.
-FUNCTIONS: Mapping[str, object] = {
-    name: getattr(sp, name) for name in (
-        "sin", "cos", "tan", "cot", "sec", "csc", "asin", "acos", "atan", "atan2", "sinh",
-        "cosh", "tanh", "exp", "log", "sqrt", "Abs", "sign", "Min", "Max", "Piecewise",
-        "Heaviside", "re", "im")}
-#: Constants kept as SymPy constants (``pi``); everything else is a symbol.
-CONSTANTS: Mapping[str, object] = {"pi": sp.pi, "oo": sp.oo, "nan": sp.nan, "zoo": sp.zoo}
-#: Expressions longer than this (characters of text) are not re-read (shown as text).
-MAX_TEXT = 6000
 
 #: Differences up to this many operations are simplified for display.
 SIMPLIFY_LIMIT = 80
 #: Simplified differences up to this many operations get their common factors pulled out.
 FACTOR_LIMIT = 40
-
-_IDENT = re.compile(r"[A-Za-z_][A-Za-z_0-9]*")
-
 
 def _split(name: str) -> tuple[str, str]:
     r"""(LaTeX of the base letter(s), subscript text) of a name by rule 1."""
@@ -203,28 +189,6 @@ def notation_of(d) -> Notation:
     return Notation(out.positions, out.special, {k: str(v) for k, v in d.assumptions.items()})
 
 
-@functools.lru_cache(maxsize=8192)
-def parse(text: str) -> sp.Expr | None:
-    r"""An expression from SymPy's text form with every name a plain symbol (``I`` is a
-    symbol, not :math:`\sqrt{-1}`); None when the text cannot be read."""
-    if not text or len(text) > MAX_TEXT:
-        return None
-    local: dict[str, object] = {}
-    for name in set(_IDENT.findall(text)):
-        if name in FUNCTIONS:
-            local[name] = FUNCTIONS[name]
-        elif name in CONSTANTS:
-            local[name] = CONSTANTS[name]
-        elif re.search(rf"\b{re.escape(name)}\s*\(", text):
-            local[name] = sp.Function(name)
-        else:
-            local[name] = sp.Symbol(name)
-    if any(keyword.iskeyword(n) for n in local):
-        return None
-    try:
-        return sp.sympify(text, locals=local, rational=False)
-    except (sp.SympifyError, SyntaxError, TypeError, ValueError, AttributeError):
-        return None
 
 
 def expression_latex(expr: sp.Basic, names: Notation) -> str:

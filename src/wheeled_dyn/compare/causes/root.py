@@ -43,6 +43,7 @@ import numpy as np
 import sympy as sp
 
 from ...compiled import numpy_function
+from ...sympy_text import parse
 from ..judge.diagnose import AGREE_TOL, agrees
 from ..sides.evaluation import Evaluation
 from ..records import (SPECIFIC_KINDS, Cause, CauseKind, DiagnosisKind as K, ElementRecord, Step,
@@ -213,9 +214,8 @@ def _missing_terms_latex(records: Sequence, d) -> str:
         p = _product(r.element)
         if p is None or not r.residual:
             continue
-        try:
-            coeff = sp.sympify(r.residual)
-        except (sp.SympifyError, TypeError, SyntaxError):
+        coeff = parse(r.residual)
+        if coeff is None:
             return ""
         velocity = {str(v): v for v in d.velocities}
         product = sp.Mul(*(velocity[name] for name in p[1].split("*") if name in velocity))
@@ -363,10 +363,11 @@ def _power_latex(residual: str, d) -> str:
     ``""``."""
     if d is None:
         return ""
-    try:
-        expr = sp.sympify(residual, locals={str(s): s for s in (*d.positions, *d.velocities)})
-    except (sp.SympifyError, TypeError, SyntaxError):
+    expr = parse(residual)
+    if expr is None:
         return ""
+    own = {str(v): v for v in (*d.positions, *d.velocities)}
+    expr = expr.xreplace({s: own[s.name] for s in expr.free_symbols if s.name in own})
     return r"\nu^T h - \tfrac{1}{2}\nu^T \dot A \nu = " + sp.latex(
         expr, symbol_names=velocity_latex(d))
 
