@@ -326,11 +326,10 @@ def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed
         equations=tuple(equations), truth_in_document=in_document)
     causes = frame_causes(d, texts, rules, result.equations, declared_wrong)
     wrong = constraint_problems(d, funcs, sides.doc, sides.truth, sides.argv, sides.size)
-    if wrong is not None:
-        result = replace(result, constraints_agree=not wrong)
-        if wrong:
-            causes.append(Cause(CauseKind.NOT_EQUIVALENT, (), "the document's constraints "
-                                "are not the model's rolling constraints: " + "; ".join(wrong)))
+    if wrong:
+        causes.append(Cause(CauseKind.NOT_EQUIVALENT, (), "the document's constraints are "
+                            "not the model's rolling constraints: " + "; ".join(wrong)))
+    result = replace(result, constraints_agree=None if wrong is None else not wrong)
     return Judgement(result, ev, tuple(causes), sides, funcs)
 
 
