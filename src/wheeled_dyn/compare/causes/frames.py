@@ -21,14 +21,23 @@ from collections.abc import Sequence
 from ...derivations.schema import Derivation
 from ..readings.describe import FrameText
 from ..readings.frames import FrameKind, FrameRule
-from ..records import Cause, CauseKind, DiagnosisKind as K, EquationRecord, first_of
+from ..records import (Cause, CauseKind, DiagnosisKind as K, ElementRecord, EquationRecord,
+                       Verdict, first_of)
 
 
 def frame_causes(d: Derivation, texts: Sequence[FrameText], rules: Sequence[FrameRule],
-                 equations: Sequence[EquationRecord], declared_wrong: Sequence[int] = ()
-                 ) -> list[Cause]:
-    r"""The causes of the module text."""
+                 equations: Sequence[EquationRecord], declared_wrong: Sequence[int] = (),
+                 records: Sequence[ElementRecord] = ()) -> list[Cause]:
+    r"""The causes of the module text; and an equation that is no combination of the true
+    ones while every element of its row agrees in its frame (its multiplier terms, a
+    difference below each element's tolerance) is its own ``not_equivalent`` cause: a verdict
+    is never left without one."""
     out: list[Cause] = []
+    for e in equations:
+        why = first_of(e.diagnoses, K.NOT_EQUIVALENT)
+        if why is not None and not any(r.index[0] == e.index and r.verdict != Verdict.AGREES
+                                       for r in records if r.key in "ACQBhK"):
+            out.append(Cause(CauseKind.NOT_EQUIVALENT, (e.label,), why.detail))
     shown = [f"equation {i + 1} is {t.text}" if not t.text.startswith("=") else
              f"equation {i + 1} {t.text}"
              for i, (t, r) in enumerate(zip(texts, rules))

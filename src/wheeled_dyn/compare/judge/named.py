@@ -130,11 +130,23 @@ def _parallel_axis(r: ElementDraft, name: str, term: sp.Expr | None) -> None:
         fits=name))
 
 
-def _lacks(expr: sp.Expr) -> str:
-    r"""``"lacks a and b"`` / ``"has c too much"`` for the terms of truth − document."""
+def _too_much(term: sp.Expr, written: frozenset) -> bool:
+    r"""Whether a term of truth − document is one the document has too much: its negative is
+    a term the document writes (``written``: its expanded terms); else, by its sign."""
+    if -term in written:
+        return True
+    if term in written:
+        return False
+    return term.could_extract_minus_sign()
+
+
+def _lacks(expr: sp.Expr, written: frozenset = frozenset()) -> str:
+    r"""``"lacks a and b"`` / ``"has c too much"`` for the terms of truth − document (a term
+    the document writes with the wrong sign or too much is one it has too much: ``m`` for
+    ``m_c`` makes −2 d m_w; lacking +2 d m_w is the same sum, told backwards)."""
     terms = sp.Add.make_args(sp.expand(expr))
-    lacks = [t for t in terms if not t.could_extract_minus_sign()]
-    extra = [-t for t in terms if t.could_extract_minus_sign()]
+    lacks = [t for t in terms if not _too_much(t, written)]
+    extra = [-t for t in terms if _too_much(t, written)]
     parts = []
     if lacks:
         parts.append("lacks " + " and ".join(sp.sstr(t) for t in lacks))
@@ -197,9 +209,12 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
         if found is None:
             continue
         parts = sp.Add.make_args(sp.expand(found))
-        extra = all(t.could_extract_minus_sign() for t in parts)   # only terms too many
+        written = frozenset(sp.Add.make_args(sp.expand(r.expr))) if r.expr is not None \
+            and sp.count_ops(r.expr) <= 200 else frozenset()
+        extra = all(_too_much(t, written) for t in parts)   # only terms too many
         r.diagnoses.append(diagnosis(K.EXTRA if extra else K.MISSING,
-                                     f"{_lacks(found)} (truth − document = {sp.sstr(found)})",
+                                     f"{_lacks(found, written)} (truth − document = "
+                                     f"{sp.sstr(found)})",
                                      prefix="terms", terms=tuple(sp.sstr(t) for t in parts)))
 
 
