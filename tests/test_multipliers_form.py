@@ -156,3 +156,16 @@ def test_the_equation_wrong_with_its_multipliers_is_the_one_named(engine, tmp_pa
     result = _compare(engine, tmp_path, DISK, first, f"2*({lhs}) = 0")
     assert [e.verdict for e in result.equations] == ["differs", "agrees", "agrees", "agrees",
                                                      "agrees"]
+
+
+@pytest.mark.parametrize("factor", ["sin(phi)", "1/cos(theta)"])
+def test_a_constraint_row_times_a_vanishing_factor_is_not_the_same(engine, tmp_path, factor):
+    r"""G's first row times sin φ (lost where φ = 0) or divided by cos θ (undefined where
+    θ = π/2, inside the file's range): not the model's constraints, as an equation so scaled
+    is not the true one."""
+    result = _compare(engine, tmp_path, DISK, DISK_G,
+                      DISK_G.replace("[1, 0, 0, 0, r*cos(phi)]",
+                                     f"[{factor}, 0, 0, 0, {factor}*r*cos(phi)]"))
+    assert result.constraints_agree is False and result.equivalent is False
+    causes = [c.explanation for c in result.causes if c.kind == CauseKind.NOT_EQUIVALENT]
+    assert any("vanishes or is unbounded" in c for c in causes), causes

@@ -325,7 +325,7 @@ def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed
         latex_input=dict(d.latex_input), row_functions=functions, row_combination=combination,
         equations=tuple(equations), truth_in_document=in_document)
     causes = frame_causes(d, texts, rules, result.equations, declared_wrong, result.records)
-    wrong = constraint_problems(d, funcs, sides.doc, sides.truth, sides.argv, sides.size)
+    wrong = constraint_problems(d, funcs, sides)
     if wrong:
         causes.append(Cause(CauseKind.NOT_EQUIVALENT, (), "the document's constraints are "
                             "not the model's rolling constraints: " + "; ".join(wrong)))

@@ -24,6 +24,7 @@ from ...disk_cache import DiskMemo
 from ...derivations.schema import Derivation
 from .diagnose import AGREE_TOL, agrees
 from ..grid.arrays import Arrays
+from ..sides.both import Sides
 from ..sides.document import DocumentFunctions
 from ..records import EnergyCheck
 
@@ -231,12 +232,14 @@ def _unit_rows(G: np.ndarray) -> np.ndarray:
     return np.where(real, G / np.where(real, size, 1.0), 0.0)
 
 
-def constraint_space(rows: np.ndarray, true_G: np.ndarray) -> tuple[str, ...]:
+def constraint_space(rows: np.ndarray, true_G: np.ndarray, sets: int = 1) -> tuple[str, ...]:
     r"""Why the document's constraint rows (S × m × n: :math:`G_{doc}\dot q = 0`) do not
     restrict the velocities as the model's rolling constraints :math:`G\dot q = 0` do: a row
     that is no combination of the true rows, fewer independent rows than the true ones (a
-    constraint missing). Empty when they span the same space at every sample where both are
-    finite."""
+    constraint missing), rows that are combinations of the true ones :math:`G_{doc} = PG`
+    with :math:`\det P` changing sign among the samples of one of the ``sets`` parameter sets
+    (a row multiplied by a factor that vanishes: the constraint is lost there). Empty when
+    they span the same space at every sample where both are finite."""
     ok = np.isfinite(rows).all(axis=(1, 2)) & np.isfinite(true_G).all(axis=(1, 2))
     if not ok.any():
         return ()
@@ -258,16 +261,37 @@ def constraint_space(rows: np.ndarray, true_G: np.ndarray) -> tuple[str, ...]:
         out.append(f"it states {have} independent constraint row{'s' if have != 1 else ''} "
                    f"where the model has {want}: {k} rolling constraint"
                    f"{'s' if k > 1 else ''} missing")
+    if not out and _vanishing(D, T, ok, sets):
+        out.append("its constraint rows are the model's times a factor that vanishes or "
+                   "is unbounded somewhere (det P of G_doc = P G changes sign within a "
+                   "parameter set): a constraint is lost or undefined there")
     return tuple(out)
 
 
-def constraint_problems(d: Derivation, funcs: DocumentFunctions, doc: Arrays, truth: Arrays,
-                        argv: Sequence[np.ndarray], size: int) -> tuple[str, ...] | None:
+def _vanishing(D: np.ndarray, T: np.ndarray, ok: np.ndarray, sets: int) -> bool:
+    r"""Whether :math:`\det P` (:math:`D = PT'`, :math:`T'` the true rows that are not
+    round-off) takes both signs among the finite samples ``ok`` of one parameter set."""
+    real = np.flatnonzero(np.abs(T).max(axis=(0, 2)) > 0)
+    if len(real) != D.shape[1]:
+        return False
+    P = D @ np.linalg.pinv(T[:, real, :])
+    det = np.full(len(ok), np.nan)
+    det[ok] = np.linalg.det(P)
+    for group in np.array_split(det, max(sets, 1)):
+        g = group[np.isfinite(group)]
+        if (g > 0).any() and (g < 0).any():
+            return True
+    return False
+
+
+def constraint_problems(d: Derivation, funcs: DocumentFunctions, sides: Sides
+                        ) -> tuple[str, ...] | None:
     r"""Where the document keeps the rolling constraints (its G, its ``[constraints]``
     equations) and so does the truth: what is wrong with them
     (:func:`constraint_space`, named by where the file states
-    them); None where either side eliminates them. ``doc``, ``truth``: both sides' arrays
-    on the samples, ``argv`` the document's arguments there (``size`` samples)."""
+    them); None where either side eliminates them."""
+    doc, truth, argv, size, sets = (sides.doc, sides.truth, sides.argv, sides.size,
+                                    len(sides.grid.sets))
     if truth.G is None:
         return None
     stated = []
@@ -284,7 +308,7 @@ def constraint_problems(d: Derivation, funcs: DocumentFunctions, doc: Arrays, tr
         return ("it states no constraints (neither G nor [constraints]) though its "
                 "coordinates keep them: its equations have no multiplier terms",)
     return tuple(f"{where}: {text}" for where, rows in stated
-                 for text in constraint_space(rows, truth.G))
+                 for text in constraint_space(rows, truth.G, sets))
 
 
 __all__ = ["FACTOR_LIMIT", "RANK_TOL", "ROUND_OFF", "RATE_POINT_SEED", "RATE_RANK_TOL", "asymmetry",
