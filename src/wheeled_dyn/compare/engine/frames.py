@@ -18,7 +18,7 @@ import sympy as sp
 from ...derivations.schema import Derivation
 from ..judge.equivalence import EquationDecision, SystemDecision
 from ..judge.fitting import bases, fit_factor
-from ..readings.frame_choice import choose, elements_of, score
+from ..readings.frame_choice import choose, elements_of, score, solved_row
 from ..readings.frames import (Frame, FrameKind, FrameRule, candidate_rules,
                                combination_variants, evaluate_rule)
 from ..records import DiagnosisKind, Verdict, diagnosis
@@ -54,7 +54,8 @@ def choose_frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], d
         rules_i = candidate_rules(i, on, False, simple)
         totals: dict[FrameRule, int] = {}
         rule = choose(i, rules_i, on, has_declared and not right, right, totals)
-        if not right and not has_declared and _differing(i, rule, main) > d.n:
+        if not right and not has_declared and not solved_row(main.doc, i) \
+                and _differing(i, rule, main) > d.n:     # a solved row's form is its frame
             rule = choose(i, rules_i + combination_variants(on), on, False, totals=totals)
         evaluated = evaluate_rule(i, rule, main.doc, main.truth, main.doc.B, main.B_true,
                                   declared_scale)

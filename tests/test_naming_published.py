@@ -1,5 +1,5 @@
-r"""Errors in the arguments of sines and cosines, and approximations of them, named in the
-document's symbols: on the two-link arm of Spong, Hutchinson & Vidyasagar (*Robot Modeling
+r"""Errors named in the document's symbols on systems no shipped file covers. Errors in the
+arguments of sines and cosines, and approximations of them, on the two-link arm of Spong, Hutchinson & Vidyasagar (*Robot Modeling
 and Control*, §7.4: gravity :math:`m_2l_{c2}g\cos(q_1 + q_2)`, inertia
 :math:`m_2l_1l_{c2}\cos q_2`) and the cart-pole of Florian (2007) (gravity
 :math:`mgl\sin\theta`), both written by SymPy (:mod:`published_forms`):
@@ -8,7 +8,10 @@ and Control*, §7.4: gravity :math:`m_2l_{c2}g\cos(q_1 + q_2)`, inertia
   to one (cos(q1 + q2) where cos q2 fits), a tangent for a sine — each a ``swap`` naming what
   is written and what fits;
 - a small angle in a sum of positions (1 written where cos(q1 + q2) fits) — a
-  ``small_angle`` in q1 + q2.
+  ``small_angle`` in q1 + q2; two terms approximated together beside a bare angle that is
+  right, on a sprung double pendulum (``data/published/double_pendulum*``);
+- the same pendulum solved for its accelerations with a wrong inverted inertia: the symbol
+  written for another, in the solved rows' own frame.
 """
 
 from __future__ import annotations
@@ -89,3 +92,27 @@ def test_two_terms_read_as_small_angles_together_beside_a_bare_angle(engine, tmp
     assert set(flagged) == {"Q[1]"}, set(flagged)
     small = [d for d in flagged["Q[1]"].diagnoses if d.kind == K.SMALL_ANGLE]
     assert small and small[0].position == "th1", flagged["Q[1]"].texts
+
+
+def test_a_solved_form_names_the_symbol_of_its_wrong_inverted_inertia(engine, tmp_path):
+    r"""The sprung double pendulum solved for its accelerations as simulation code writes it
+    (θ̈ = D⁻¹ f with the 2 × 2 inverse written out): right, it agrees; with the link's inertia
+    about its centre I1 written where the one about the hip J1 belongs in the inverted
+    matrix, the rows keep their solved frame (the form says which combination they are) and
+    the error is named in the document's symbols: I1 where J1 fits."""
+    from pathlib import Path
+    data = Path(__file__).parent / "data" / "published"
+    for name in ("double_pendulum.toml", "double_pendulum.urdf"):
+        (tmp_path / name).write_text((data / name).read_text())
+    text = (data / "double_pendulum_solved.toml").read_text()
+    right = tmp_path / "solved.toml"
+    right.write_text(text)
+    assert engine.compare(load_derivation(right)).equivalent is True
+    wrong = tmp_path / "solved_I1.toml"
+    wrong.write_text(text.replace('a11 = "J1 + m2*L1**2"', 'a11 = "I1 + m2*L1**2"'))
+    result = engine.compare(load_derivation(wrong))
+    assert result.equivalent is False
+    swaps = [d for r in result.records for d in r.diagnoses if d.kind == K.SWAP]
+    assert any(d.written == "I1" and d.fits == "J1" for d in swaps), \
+        [r.texts for r in result.records if r.verdict != "agrees"]
+    assert all(r.verdict == "agrees" for r in result.records if r.key == "A")
