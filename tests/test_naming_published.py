@@ -1,6 +1,6 @@
-r"""Errors named in the document's symbols on systems no shipped file covers. Errors in the
-arguments of sines and cosines, and approximations of them, on the two-link arm of Spong, Hutchinson & Vidyasagar (*Robot Modeling
-and Control*, §7.4: gravity :math:`m_2l_{c2}g\cos(q_1 + q_2)`, inertia
+r"""Errors named in the document's symbols on systems no shipped file covers: errors in the
+arguments of sines and cosines, and approximations of them, on the two-link arm of Spong,
+Hutchinson & Vidyasagar (*Robot Modeling and Control*, §7.4: gravity :math:`m_2l_{c2}g\cos(q_1 + q_2)`, inertia
 :math:`m_2l_1l_{c2}\cos q_2`) and the cart-pole of Florian (2007) (gravity
 :math:`mgl\sin\theta`), both written by SymPy (:mod:`published_forms`):
 
