@@ -116,3 +116,28 @@ def test_a_solved_form_names_the_symbol_of_its_wrong_inverted_inertia(engine, tm
     assert any(d.written == "I1" and d.fits == "J1" for d in swaps), \
         [r.texts for r in result.records if r.verdict != "agrees"]
     assert all(r.verdict == "agrees" for r in result.records if r.key == "A")
+
+
+@pytest.mark.parametrize("old, new, element, kind", [
+    ("+ k1*(th1 - r1) -", "- k1*(th1 - r1) -", "Q[1]", K.SIGN),
+    ("sin(th2) + k2*(th2 - th1 - r2)", "sin(th2) + 2*k2*(th2 - th1 - r2)", "Q[2]", K.FACTOR),
+])
+def test_a_spring_term_of_several_parts_is_named_whole(engine, tmp_path, old, new, element,
+                                                      kind):
+    r"""The sprung double pendulum's k1 (θ1 − r1) with its sign flipped, k2 (θ2 − θ1 − r2)
+    doubled: one printed term of two or three expanded ones, named as a whole (its terms with
+    k1, or k2), where each expanded term alone fits nothing."""
+    from pathlib import Path
+    data = Path(__file__).parent / "data" / "published"
+    for name in ("double_pendulum.toml", "double_pendulum.urdf"):
+        (tmp_path / name).write_text((data / name).read_text())
+    text = (data / "double_pendulum_springs.toml").read_text()
+    assert old in text
+    wrong = tmp_path / "spring.toml"
+    wrong.write_text(text.replace(old, new))
+    flagged = {r.element: r for r in engine.compare(load_derivation(wrong)).records
+               if r.verdict != "agrees"}
+    assert set(flagged) == {element}, set(flagged)
+    named = [d for d in flagged[element].diagnoses if d.kind == kind]
+    assert named and ("k1" if element == "Q[1]" else "k2") in named[0].term, \
+        flagged[element].texts

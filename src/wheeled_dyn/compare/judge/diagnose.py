@@ -126,10 +126,18 @@ def term_diagnoses(expr: sp.Expr, evaluate: Callable[[sp.Expr], np.ndarray], D: 
                    T: np.ndarray, scale: float) -> list[Diagnosis]:
     r"""One additive term :math:`t` of the element wrong, the rest right: with the wrong sign
     (:math:`D - 2t = T`) or a constant factor :math:`c` (:math:`D + (1/c - 1)\,t = T`, the
-    document's term is :math:`c` × the one that fits)."""
-    terms = sp.Add.make_args(sp.expand(expr))
-    if not 1 < len(terms) <= MAX_TERMS:
+    document's term is :math:`c` × the one that fits). The terms tried: those expanded, those
+    as printed (:math:`k_1(\theta_1 - r_1)` whole), and the sum of the expanded terms that
+    hold one symbol (the spring's two terms with :math:`k_1`)."""
+    expanded = sp.Add.make_args(sp.expand(expr))
+    if not 1 < len(expanded) <= MAX_TERMS:
         return []
+    terms = list(dict.fromkeys((*expanded, *sp.Add.make_args(expr))))
+    for sym in sorted(expr.free_symbols, key=sp.default_sort_key):
+        holding = [t for t in expanded if t.has(sym)]
+        if 1 < len(holding) < len(expanded):
+            terms.append(sp.factor_terms(sp.Add(*holding)))
+    terms = list(dict.fromkeys(terms))
     found = []
     for t in terms:
         tv = np.broadcast_to(np.asarray(evaluate(t), float), D.shape)
