@@ -16,6 +16,8 @@ Hutchinson & Vidyasagar (*Robot Modeling and Control*, §7.4: gravity :math:`m_2
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
 import published_forms as P
@@ -25,6 +27,15 @@ from wheeled_dyn.compare.records import DiagnosisKind as K
 from wheeled_dyn.derivations import load_derivation
 
 SAMPLES, PARAM_SETS = 200, 3
+DATA = Path(__file__).parent / "data" / "published"
+
+
+def _pendulum(folder: Path, name: str) -> str:
+    r"""The text of the sprung double pendulum's derivation ``name``, its model copied into
+    ``folder`` (the file names it by a relative path)."""
+    for own in ("double_pendulum.toml", "double_pendulum.urdf"):
+        (folder / own).write_text((DATA / own).read_text())
+    return (DATA / name).read_text()
 
 
 @pytest.fixture(scope="module")
@@ -75,11 +86,7 @@ def test_two_terms_read_as_small_angles_together_beside_a_bare_angle(engine, tmp
     right: it agrees): its first gravity terms m1 a1 g sin θ1 + m2 L1 g sin θ1 written with
     θ1 for sin θ1 in both, while the spring's k1 (θ1 − r1) keeps its own bare θ1 (reading
     every θ1 as sin θ1 does not fit, nor one term alone): a small angle in θ1, both terms."""
-    from pathlib import Path
-    data = Path(__file__).parent / "data" / "published"
-    for name in ("double_pendulum.toml", "double_pendulum.urdf"):
-        (tmp_path / name).write_text((data / name).read_text())
-    text = (data / "double_pendulum_springs.toml").read_text()
+    text = _pendulum(tmp_path, "double_pendulum_springs.toml")
     right = tmp_path / "right.toml"
     right.write_text(text)
     assert engine.compare(load_derivation(right)).equivalent is True
@@ -100,11 +107,7 @@ def test_a_solved_form_names_the_symbol_of_its_wrong_inverted_inertia(engine, tm
     about its centre I1 written where the one about the hip J1 belongs in the inverted
     matrix, the rows keep their solved frame (the form says which combination they are) and
     the error is named in the document's symbols: I1 where J1 fits."""
-    from pathlib import Path
-    data = Path(__file__).parent / "data" / "published"
-    for name in ("double_pendulum.toml", "double_pendulum.urdf"):
-        (tmp_path / name).write_text((data / name).read_text())
-    text = (data / "double_pendulum_solved.toml").read_text()
+    text = _pendulum(tmp_path, "double_pendulum_solved.toml")
     right = tmp_path / "solved.toml"
     right.write_text(text)
     assert engine.compare(load_derivation(right)).equivalent is True
@@ -127,11 +130,7 @@ def test_a_spring_term_of_several_parts_is_named_whole(engine, tmp_path, old, ne
     r"""The sprung double pendulum's k1 (θ1 − r1) with its sign flipped, k2 (θ2 − θ1 − r2)
     doubled: one printed term of two or three expanded ones, named as a whole (its terms with
     k1, or k2), where each expanded term alone fits nothing."""
-    from pathlib import Path
-    data = Path(__file__).parent / "data" / "published"
-    for name in ("double_pendulum.toml", "double_pendulum.urdf"):
-        (tmp_path / name).write_text((data / name).read_text())
-    text = (data / "double_pendulum_springs.toml").read_text()
+    text = _pendulum(tmp_path, "double_pendulum_springs.toml")
     assert old in text
     wrong = tmp_path / "spring.toml"
     wrong.write_text(text.replace(old, new))
