@@ -140,3 +140,14 @@ def test_a_spring_term_of_several_parts_is_named_whole(engine, tmp_path, old, ne
     named = [d for d in flagged[element].diagnoses if d.kind == kind]
     assert named and ("k1" if element == "Q[1]" else "k2") in named[0].term, \
         flagged[element].texts
+
+
+def test_a_dropped_inertia_is_named_in_the_documents_symbols(engine, tmp_path):
+    r"""The arm with I1 left out of d11: a body treated as a point mass, the missing moment
+    named by the model's link and, in the document's symbols, as I1."""
+    path = P.write(tmp_path, "arm", "equations", "dropped")
+    flagged = {r.element: r for r in engine.compare(load_derivation(path)).records
+               if r.verdict != "agrees"}
+    assert set(flagged) == {"A[1,1]"}, set(flagged)
+    point = [d for d in flagged["A[1,1]"].diagnoses if d.kind == K.POINT_MASS]
+    assert point and point[0].terms == ("I1",), flagged["A[1,1]"].texts
