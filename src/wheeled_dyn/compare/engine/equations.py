@@ -85,7 +85,9 @@ def equation_records(d: Derivation, decision, drafts: Sequence[ElementDraft],
         diags += _reconcile(verdict, row)
         if solved is not None and verdict == Verdict.DIFFERS:
             diags.append(solved)
-        out.append(EquationRecord(index=i, label=f"equation {i + 1} ({d.positions[i]})",
+        # an equation is named by its velocity where the velocities are no positions' rates
+        own = d.velocities[i] if d.coordinates.kind == "quasi" else d.positions[i]
+        out.append(EquationRecord(index=i, label=f"equation {i + 1} ({own})",
                                   verdict=verdict, diagnoses=tuple(diags),
                                   frame=texts[i].text or "the true equation",
                                   max_error=e.max_error, equation=label))
