@@ -199,11 +199,11 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
             name, c = hit
             times = "" if c == 1 else f" × {sp.sstr(c)}"
             term = fit_factor(residual, bases) if np.abs(residual).min() > 0 else None
-            written = f" ({sp.sstr(term)} in the document's symbols)" if term is not None \
+            own = f" ({sp.sstr(term)} in the document's symbols)" if term is not None \
                 else ""
             r.diagnoses.insert(0, diagnosis(
                 K.POINT_MASS, f"the moment of inertia {name} about its own centre of mass"
-                f"{times}{written} is missing: the document treats the body as a point mass "
+                f"{times}{own} is missing: the document treats the body as a point mass "
                 "(or drops its inertia)", prefix="missing",
                 terms=(sp.sstr(term) if term is not None else f"{sp.sstr(c)}*{name}",),
                 fits=name, factor=sp.sstr(c)))
