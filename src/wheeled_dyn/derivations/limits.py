@@ -100,10 +100,9 @@ def _check_constants(text: str, root: ast.AST) -> None:
     stack: list[tuple[ast.AST, bool]] = [(root, False)]
     while stack:
         node, done = stack.pop()
-        children = list(ast.iter_child_nodes(node))
         if not done:
             stack.append((node, True))
-            stack.extend((c, False) for c in children)
+            stack.extend((c, False) for c in ast.iter_child_nodes(node))
             continue
         values[id(node)] = _constant_value(text, node, values)
 
