@@ -151,3 +151,19 @@ def test_a_dropped_inertia_is_named_in_the_documents_symbols(engine, tmp_path):
     assert set(flagged) == {"A[1,1]"}, set(flagged)
     point = [d for d in flagged["A[1,1]"].diagnoses if d.kind == K.POINT_MASS]
     assert point and point[0].terms == ("I1",), flagged["A[1,1]"].texts
+
+
+def test_a_row_divided_by_a_two_term_inertia_of_a_larger_system_is_identified(engine,
+                                                                               tmp_path):
+    r"""A three-link planar arm (``data/published/three_link_arm*``, the Lagrange equations
+    derived with SymPy) with its third equation divided by its diagonal inertia
+    I3 + lc3² m3: right, and the divisor named — the search for a short sum, refused over
+    more than 16 candidate names, goes on over those without a sine or cosine."""
+    for own in ("three_link_arm.toml", "three_link_arm.urdf"):
+        (tmp_path / own).write_text((DATA / own).read_text())
+    path = tmp_path / "divided.toml"
+    path.write_text((DATA / "three_link_arm_divided.toml").read_text())
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is True
+    assert result.equations[2].frame == "the true equation divided by I3 + lc3**2*m3", \
+        result.equations[2].frame

@@ -194,8 +194,13 @@ def fit_sum(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> 
     coefficients equal to ``target`` at every sample (the quantity a row was divided by when
     it is a sum, :math:`I_g + m a^2`). Every pair is tried at once through the Gram matrix
     (the residual of each 2 × 2 least-squares fit), and the few that fit are checked
-    exactly. Not searched with more than :data:`SUM_BASES` bases."""
-    if not bases or len(bases) > SUM_BASES or not np.isfinite(target).all():
+    exactly. Not searched with more than :data:`SUM_BASES` bases: then among those without a
+    sine or cosine, where they are few enough (a three-link arm's row divided by
+    :math:`I_3 + m_3 l_{c3}^2`)."""
+    if len(bases) > SUM_BASES:
+        plain = [b for b in bases if not b[0].has(sp.sin, sp.cos)]
+        return fit_sum(target, plain) if 0 < len(plain) < len(bases) else None
+    if not bases or not np.isfinite(target).all():
         return None
     groups, X = _products(bases, SUM_DEGREE)
 
