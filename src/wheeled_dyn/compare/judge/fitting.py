@@ -27,6 +27,7 @@ import numpy as np
 import sympy as sp
 
 from ...derivations.schema import Derivation
+from ..sides.document import compound_trig
 
 #: Relative agreement of a fit with every sample.
 RATIO_TOL = 1e-8
@@ -66,22 +67,13 @@ def bases(d: Derivation, q: np.ndarray, values: Mapping[sp.Symbol, np.ndarray]
 
 def _compound_trig(d: Derivation, q: np.ndarray) -> list[tuple[sp.Expr, np.ndarray]]:
     r"""The sines and cosines the document writes of a combination of its positions
-    (:math:`\cos(q_1 + q_2)` of a two-link arm), with their values at the samples."""
+    (:func:`~..sides.document.compound_trig`), with their values at the samples."""
     from ...compiled import numpy_function
-    found: set[sp.Expr] = set()
-    for M in (d.A, d.C, d.Q, d.B):
-        if M is not None:
-            found |= M.atoms(sp.sin, sp.cos)
-    for eq in d.equations or ():
-        found |= eq.atoms(sp.sin, sp.cos)
-    positions = set(d.positions)
     out = []
-    for f in sorted(found, key=sp.default_sort_key):
-        arg = f.args[0]
-        if arg in positions or not arg.free_symbols or not arg.free_symbols <= positions:
-            continue
-        value = numpy_function(d.positions, f)(*q.T)
-        out.append((f, np.broadcast_to(np.asarray(value, float), (len(q),))))
+    for f in compound_trig(d):
+        if isinstance(f, (sp.sin, sp.cos)):
+            value = numpy_function(d.positions, f)(*q.T)
+            out.append((f, np.broadcast_to(np.asarray(value, float), (len(q),))))
     return out
 
 

@@ -8,7 +8,7 @@ namespace, at each parameter set.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 import sympy as sp
@@ -133,21 +133,19 @@ def _poly_coefficients(expr: sp.Expr, velocities: Sequence[sp.Symbol]
     return out
 
 
-def trig_angles(positions: Sequence[sp.Symbol], exprs: Iterable[sp.Basic | None]
-                ) -> list[sp.Expr]:
-    r"""The angles a small-angle reading is tried for: the positions, and the sums and
-    differences of them that ``exprs`` (the document's matrices) take sines or cosines of
-    (:math:`q_1 + q_2` written where :math:`\sin(q_1 + q_2)` fits)."""
-    found: dict[sp.Expr, None] = {}
-    names = set(positions)
-    for M in exprs:
-        if M is None:
-            continue
-        for f in M.atoms(sp.sin, sp.cos, sp.tan):
-            a = f.args[0]
-            if isinstance(a, sp.Add) and a.free_symbols <= names:
-                found.setdefault(a, None)
-    return [*positions, *sorted(found, key=sp.default_sort_key)]
+def compound_trig(d: Derivation) -> list[sp.Expr]:
+    r"""The sines, cosines and tangents the document writes (its matrices or equations as
+    printed) of a combination of its positions that is not one position alone
+    (:math:`\cos(q_1 + q_2)` of a two-link arm), sorted: bases of the fits
+    (:func:`~..judge.fitting.bases`) and angles of the small-angle readings
+    (:meth:`DocumentFunctions.angles`)."""
+    found: set[sp.Expr] = set()
+    for M in (d.A, d.C, d.Q, d.B, *(d.equations or ())):
+        if M is not None:
+            found |= M.atoms(sp.sin, sp.cos, sp.tan)
+    positions = set(d.positions)
+    return sorted((f for f in found if f.args[0] not in positions and f.args[0].free_symbols
+                   and f.args[0].free_symbols <= positions), key=sp.default_sort_key)
 
 
 class DocumentFunctions:
@@ -192,10 +190,12 @@ class DocumentFunctions:
         return out
 
     def angles(self) -> list[sp.Expr]:
-        r"""The positions and the sums of them the document takes sines or cosines of
-        (:func:`trig_angles`), found once."""
+        r"""The angles a small-angle reading is tried for: the positions, and the combinations
+        of them the document takes sines or cosines of (:func:`compound_trig`; q1 + q2
+        written where sin(q1 + q2) fits), found once."""
         if self._angles is None:
-            self._angles = trig_angles(self.d.positions, self.exprs.values())
+            compound = dict.fromkeys(f.args[0] for f in compound_trig(self.d))
+            self._angles = [*self.d.positions, *compound]
         return self._angles
 
     def compiled(self, expr: sp.Expr):
