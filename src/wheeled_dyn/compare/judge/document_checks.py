@@ -197,31 +197,39 @@ def constraint_rows(doc: Arrays, truth: Arrays, scales) -> tuple[str, ...]:
         return ()
     if truth.G is None:
         return ("the document keeps constraints the coordinate set eliminates: G not compared",)
+    ok, off = _row_offsets(doc.G, truth.G)
     out = []
-    ok = np.isfinite(doc.G).all(axis=(1, 2)) & np.isfinite(truth.G).all(axis=(1, 2))
-    Gt = truth.G[ok]
-    proj = np.linalg.pinv(Gt) @ Gt                      # projector on the true row space
     for r in range(doc.G.shape[1]):
-        row = doc.G[ok, r, :]
-        size = np.abs(row).max(axis=1, initial=0.0)
         if not ok.any():
             out.append(f"G row {r + 1}: not finite at any sample: not compared")
-            continue
-        if not size.any():
+        elif not np.abs(doc.G[ok, r, :]).any():
             out.append(f"G row {r + 1}: zero (no constraint)")
-            continue
-        off = np.einsum("si,sij->sj", row, proj) - row
-        worst = float((np.abs(off).max(axis=1) / np.maximum(size, 1e-300)).max())
-        out.append(f"G row {r + 1}: " + (
-            "a rolling constraint of the model" if worst < 1e-6 else
-            f"not a rolling constraint of the model (off by {worst:.2g})"))
+        else:
+            worst = float(off[:, r].max())
+            out.append(f"G row {r + 1}: " + (
+                "a rolling constraint of the model" if worst <= ROW_TOL else
+                f"not a rolling constraint of the model (off by {worst:.2g})"))
     return tuple(out)
+
+
+def _row_offsets(rows: np.ndarray, true_G: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    r"""The samples where both sides are finite, and there how far each of the document's
+    constraint rows is from the true rows' span, relative to its size (each row scaled to 1
+    first: a row's scale says nothing)."""
+    ok = np.isfinite(rows).all(axis=(1, 2)) & np.isfinite(true_G).all(axis=(1, 2))
+    D, T = _unit_rows(rows[ok]), _unit_rows(true_G[ok])
+    proj = np.linalg.pinv(T) @ T                     # projector on the true row space
+    off = np.abs(D @ proj - D).max(axis=2) / np.maximum(np.abs(D).max(axis=2), 1e-300)
+    return ok, off
 
 
 #: A constraint row's singular value, relative to the largest at its sample, above which it
 #: counts as independent (the rows each scaled to 1 first); a row smaller than ROUND_OFF of
 #: the largest on its sample is round-off (a constraint the coordinates satisfy identically).
 RANK_TOL, ROUND_OFF = 1e-8, 1e-12
+#: A constraint row farther than this from the true rows' span (relative to its size) is
+#: not a combination of them.
+ROW_TOL = 1e-6
 
 
 def _unit_rows(G: np.ndarray) -> np.ndarray:
@@ -240,14 +248,12 @@ def constraint_space(rows: np.ndarray, true_G: np.ndarray, sets: int = 1) -> tup
     with :math:`\det P` changing sign among the samples of one of the ``sets`` parameter sets
     (a row multiplied by a factor that vanishes: the constraint is lost there). Empty when
     they span the same space at every sample where both are finite."""
-    ok = np.isfinite(rows).all(axis=(1, 2)) & np.isfinite(true_G).all(axis=(1, 2))
+    ok, off = _row_offsets(rows, true_G)
     if not ok.any():
         return ()
-    D, T = _unit_rows(rows[ok]), _unit_rows(true_G[ok])     # a row's scale says nothing
+    D, T = _unit_rows(rows[ok]), _unit_rows(true_G[ok])
     out = []
-    proj = np.linalg.pinv(T) @ T                     # projector on the true row space
-    off = np.abs(D @ proj - D).max(axis=2) / np.maximum(np.abs(D).max(axis=2), 1e-300)
-    for r in np.flatnonzero(off.max(axis=0) > 1e-6):
+    for r in np.flatnonzero(off.max(axis=0) > ROW_TOL):
         out.append(f"its constraint row {r + 1} is no combination of the model's rolling "
                    f"constraints (off by {float(off[:, r].max()):.2g} of its size)")
 
@@ -311,6 +317,6 @@ def constraint_problems(d: Derivation, funcs: DocumentFunctions, sides: Sides
                  for text in constraint_space(rows, truth.G, sets))
 
 
-__all__ = ["FACTOR_LIMIT", "RANK_TOL", "ROUND_OFF", "RATE_POINT_SEED", "RATE_RANK_TOL", "asymmetry",
+__all__ = ["FACTOR_LIMIT", "RANK_TOL", "ROUND_OFF", "ROW_TOL", "RATE_POINT_SEED", "RATE_RANK_TOL", "asymmetry",
            "constraint_problems", "constraint_rows", "constraint_space", "energy_check",
            "independent_rows", "position_rates", "solve_rates"]
