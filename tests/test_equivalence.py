@@ -166,6 +166,8 @@ def test_an_equation_divided_by_a_vanishing_factor_is_the_one_named(engine, tmp_
     assert divided.verdict == "differs"
     assert K.SINGULAR in [d.kind for d in divided.diagnoses], divided.texts
     assert "unbounded" in next(d.text for d in divided.diagnoses if d.kind == K.SINGULAR)
+    from wheeled_dyn.report.markdown import summary_lines
+    assert summary_lines(result)[0].endswith("; not right as a system")  # though 0 differ
 
 
 @pytest.mark.parametrize("pole", [True, False])

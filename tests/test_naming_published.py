@@ -167,3 +167,44 @@ def test_a_row_divided_by_a_two_term_inertia_of_a_larger_system_is_identified(en
     assert result.equivalent is True
     assert result.equations[2].frame == "the true equation divided by I3 + lc3**2*m3", \
         result.equations[2].frame
+
+
+def test_units_name_the_term_whose_dimension_differs_from_the_rows(engine, tmp_path):
+    r"""The pendulum's second equation multiplied through by L1/a2 (a dimensionless ratio)
+    and expanded, with I2*L1 written for I2*L1/a2: the term of A[2,2] whose dimension is not
+    the row's is named, not its right neighbour L1*a2*m2."""
+    text = _pendulum(tmp_path, "double_pendulum_springs.toml")
+    second = [line.strip().strip('",') for line in
+              text.split("equations = [")[1].split("]")[0].strip().splitlines()][1]
+    scaled = ("m2*L1**2*cos(th1 - th2)*ddth1 + (I2*L1 + m2*a2*L1)*ddth2 - m2*L1**2*sin(th1 - "
+              "th2)*dth1**2 + m2*L1*g*sin(th2) + k2*L1/a2*(th2 - th1 - r2) = L1*T2/a2")
+    path = tmp_path / "scaled.toml"
+    path.write_text(text.replace(second, scaled))
+    records = {r.element: r for r in engine.compare(load_derivation(path)).records}
+    units = [d.text for d in records["A[2,2]"].diagnoses if d.kind == K.DIMENSION]
+    assert units and "I2*L1 is" in units[0], records["A[2,2]"].texts
+
+
+def test_a_term_written_too_much_is_named_so(engine, tmp_path):
+    r"""The arm's d11 with a term −lc2² m1 written in it that the truth lacks: the document
+    has it too much (truth − document = +lc2² m1 is the same sum, told backwards)."""
+    path = P.write(tmp_path, "arm", "matrices", None)
+    text = path.read_text()
+    assert "lc1**2*m1" in text
+    path.write_text(text.replace("lc1**2*m1", "lc1**2*m1 - lc2**2*m1", 1))
+    flagged = {r.element: r for r in engine.compare(load_derivation(path)).records
+               if r.verdict != "agrees"}
+    assert set(flagged) == {"A[1,1]"}, set(flagged)
+    extra = [d for d in flagged["A[1,1]"].diagnoses if d.kind == K.EXTRA]
+    assert extra and "has -lc2**2*m1 too much" in extra[0].text, flagged["A[1,1]"].texts
+
+
+def test_quasi_velocity_equations_are_labelled_by_their_velocity(engine):
+    r"""Seed 000's Euler equations of a free body in its body rates p, q, r (quasi-velocities):
+    equation 4 is p's, not the yaw angle's."""
+    from wheeled_dyn.derivations import builtin_derivations
+    path = next(p for p in builtin_derivations("seed000") if p.name.startswith("p7_2_euler"))
+    d = load_derivation(path)
+    assert d.coordinates.kind == "quasi"
+    labels = [e.label for e in engine.compare(d).equations]
+    assert labels == [f"equation {i + 1} ({v})" for i, v in enumerate(d.velocities)], labels
