@@ -156,6 +156,10 @@ def test_the_equation_wrong_with_its_multipliers_is_the_one_named(engine, tmp_pa
     result = _compare(engine, tmp_path, DISK, first, f"2*({lhs}) = 0")
     assert [e.verdict for e in result.equations] == ["differs", "agrees", "agrees", "agrees",
                                                      "agrees"]
+    # its elements agree in its frame (the equation times 2): the multiplier terms are the
+    # difference, and a cause says so (a verdict is never left without one)
+    causes = [c for c in result.causes if c.kind == CauseKind.NOT_EQUIVALENT]
+    assert any(result.equations[0].label in c.elements for c in causes), result.causes
 
 
 @pytest.mark.parametrize("factor", ["sin(phi)", "1/cos(theta)"])
