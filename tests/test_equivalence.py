@@ -203,3 +203,18 @@ def test_a_declared_row_scale_binds(engine, tmp_path, printed, agrees):
     assert K.DECLARED in [d.kind for d in equation.diagnoses]
     assert any(c.kind == "file_error" for c in result.causes), result.causes
     assert any(d.kind == K.FACTOR for r in result.records for d in r.diagnoses)
+
+
+def test_constraints_stated_where_the_model_has_none_are_not_left_aside(engine, tmp_path):
+    r"""The rod pendulum (no rolling) with a constraint its file states, θ̇ = 0: the model
+    has no such constraint, so the document is not right, whatever its equation — the
+    declaration binds, it is not set aside with a note."""
+    path = tmp_path / "constrained.toml"
+    path.write_text(ROD.format(name="constrained", assumes="", equation=(
+        "1/3*m*l**2*ddtheta + m*g*l/2*sin(theta) = 0"))
+        + '[constraints]\nequations = ["dtheta = 0"]\n')
+    result = engine.compare(load_derivation(path))
+    assert result.constraints_agree is False and result.equivalent is False
+    assert all(e.verdict == "agrees" for e in result.equations)
+    assert any(c.kind == "not_equivalent" and "does not have" in c.explanation
+               for c in result.causes), result.causes

@@ -196,7 +196,8 @@ def constraint_rows(doc: Arrays, truth: Arrays, scales) -> tuple[str, ...]:
     if doc.G is None:
         return ()
     if truth.G is None:
-        return ("the document keeps constraints the coordinate set eliminates: G not compared",)
+        return ("the document states constraint rows where the coordinates leave the model "
+                "none: not the model's",)
     ok, off = _row_offsets(doc.G, truth.G)
     out = []
     for r in range(doc.G.shape[1]):
@@ -292,14 +293,20 @@ def _vanishing(D: np.ndarray, T: np.ndarray, ok: np.ndarray, sets: int) -> bool:
 
 def constraint_problems(d: Derivation, funcs: DocumentFunctions, sides: Sides
                         ) -> tuple[str, ...] | None:
-    r"""Where the document keeps the rolling constraints (its G, its ``[constraints]``
-    equations) and so does the truth: what is wrong with them
-    (:func:`constraint_space`, named by where the file states
-    them); None where either side eliminates them."""
+    r"""Where the truth keeps the rolling constraints in the document's coordinates: what is
+    wrong with those the document states (its G, its ``[constraints]`` equations:
+    :func:`constraint_space`, named by where the file states them). Where the coordinates
+    eliminate them, constraint rows the document states are constraints the model does not
+    have (a file's declarations bind: they are not left aside). None where neither side has
+    any."""
     doc, truth, argv, size, sets = (sides.doc, sides.truth, sides.argv, sides.size,
                                     len(sides.grid.sets))
     if truth.G is None:
-        return None
+        if doc.G is None or not np.any(np.nan_to_num(doc.G)):
+            return None
+        return ("it states constraint rows, but its coordinates leave the model no rolling "
+                "constraint (they eliminate them, or there are none): constraints the model "
+                "does not have",)
     stated = []
     if doc.G is not None:
         stated.append(("G" if d.G is not None else "[constraints]", doc.G))
