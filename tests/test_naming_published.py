@@ -208,3 +208,18 @@ def test_quasi_velocity_equations_are_labelled_by_their_velocity(engine):
     assert d.coordinates.kind == "quasi"
     labels = [e.label for e in engine.compare(d).equations]
     assert labels == [f"equation {i + 1} ({v})" for i, v in enumerate(d.velocities)], labels
+
+
+def test_a_moment_written_too_large_is_a_factor_not_a_point_mass(engine, tmp_path):
+    r"""The cart-pole's uniform pole with 2 m l² for 4/3 m l² about its hinge: the document
+    has more than the truth, so no body is treated as a point mass (that would be a moment
+    lacking, × −2 of its own moment here); the element is a factor 3/2 of the truth."""
+    path = P.write(tmp_path, "pole", "equations", None)
+    text = path.read_text()
+    assert "4*ddtheta*l**2*m/3" in text
+    path.write_text(text.replace("4*ddtheta*l**2*m/3", "2*ddtheta*l**2*m"))
+    flagged = {r.element: r for r in engine.compare(load_derivation(path)).records
+               if r.verdict != "agrees"}
+    assert set(flagged) == {"A[2,2]"}, set(flagged)
+    kinds = [d.kind for d in flagged["A[2,2]"].diagnoses]
+    assert K.FACTOR in kinds and K.POINT_MASS not in kinds, flagged["A[2,2]"].texts
