@@ -216,3 +216,26 @@ def test_a_function_compiled_again_is_the_one_made_before():
     assert compiled.numpy_function([phi, x], x * sp.sin(phi) + 1) is not f
     assert compiled.numpy_function([x, phi], x * sp.cos(phi) + 1) is not f
     assert f(2.0, 0.5) == 2.0 * np.sin(0.5) + 1
+
+
+def test_the_command_saves_its_memos_before_it_ends(tmp_path):
+    r"""The command ends without the interpreter's shutdown (``cli.main._exit_now``), but only
+    after its exit handlers: the memos made in the run are on disk, the exit code is the
+    command's (0, then 2 for a missing file, with one error line)."""
+    import os
+    import subprocess
+    import sys
+    path = next(p for p in builtin_derivations("seed001") if p.name.startswith("kim_eq1_3"))
+    env = {**os.environ, CACHE_ENV: str(tmp_path / "cache"), "WHEELED_DYN_REUSE": "forms"}
+    run = [sys.executable, "-m", "wheeled_dyn", "compare", "wip"]
+    done = subprocess.run([*run, str(path), "--out", str(tmp_path / "out")], env=env,
+                          capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert (tmp_path / "out" / "report.json").is_file()
+    saved = {f.parent.name: len(load(f, dict) or {})
+             for f in (tmp_path / "cache").rglob("*.pickle") if f.parent.name != "results"}
+    assert saved.get("compare") and saved.get("report"), saved
+    missing = subprocess.run([*run, str(tmp_path / "none.toml")], env=env,
+                             capture_output=True, text=True, timeout=600)
+    assert missing.returncode == 2
+    assert missing.stderr.strip().startswith("wheeled-dyn: error:"), missing.stderr
