@@ -219,9 +219,10 @@ def test_a_function_compiled_again_is_the_one_made_before():
 
 
 def test_the_command_saves_its_memos_before_it_ends(tmp_path):
-    r"""The command ends without the interpreter's shutdown (``cli.main._exit_now``), but only
-    after its exit handlers: the memos made in the run are on disk, the exit code is the
-    command's (0, then 2 for a missing file, with one error line)."""
+    r"""The command ends without the interpreter's shutdown (``cli.main._exit_now``): what it
+    made is still on disk — its reports, the memos of the run (saved as it writes its
+    reports, the exit handlers saving any left) — and the exit code is the command's (0,
+    then 2 for a missing file, with one error line)."""
     import os
     import subprocess
     import sys
