@@ -153,21 +153,21 @@ def _pairs(n: int) -> tuple[np.ndarray, np.ndarray]:
     return i, j
 
 
-def _products(bases: Sequence[tuple[sp.Expr, np.ndarray]], degree: int
+def _products(bases: Sequence[np.ndarray], degree: int
               ) -> tuple[list[tuple[int, ...]], np.ndarray]:
-    r"""Every product of at most ``degree`` of the bases (repetitions allowed): the bases'
-    indices of each, and their values (samples × products)."""
+    r"""Every product of at most ``degree`` of the bases' values (repetitions allowed): the
+    bases' indices of each, and their values (samples × products)."""
     groups = [g for k in range(1, degree + 1)
               for g in itertools.combinations_with_replacement(range(len(bases)), k)]
-    values = np.column_stack([np.prod([bases[i][1] for i in g], axis=0) for g in groups])
+    values = np.column_stack([np.prod([bases[i] for i in g], axis=0) for g in groups])
     return groups, values
 
 
-def _exact_sum(X: np.ndarray, y: np.ndarray, chosen: Sequence[int],
-               terms: Sequence[sp.Expr]) -> sp.Expr | None:
-    r"""The sum of the ``chosen`` columns (``terms``) with simple rational coefficients equal
-    to ``y``, or None."""
-    sub = X[:, list(chosen)]
+def _exact_sum(columns: Sequence[np.ndarray], y: np.ndarray, terms: Sequence[sp.Expr]
+               ) -> sp.Expr | None:
+    r"""The sum of ``terms`` (their values: ``columns``) with simple rational coefficients
+    equal to ``y`` at every sample, or None."""
+    sub = np.column_stack(columns)
     coef = np.linalg.lstsq(sub, y, rcond=None)[0]
     exact = [sp.Rational(c).limit_denominator(MAX_DENOMINATOR) for c in coef]
     if any(c == 0 for c in exact):
@@ -179,45 +179,50 @@ def _exact_sum(X: np.ndarray, y: np.ndarray, chosen: Sequence[int],
 
 #: Most bases :func:`fit_sum` searches (its products of three grow as the cube).
 SUM_BASES = 16
+#: Most samples the search screens on (evenly spaced; every sample checks what it finds).
+SCREEN_SAMPLES = 400
 
 
 def fit_sum(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> sp.Expr | None:
     r"""One product, or a sum of two, of at most :data:`SUM_DEGREE` bases with simple rational
     coefficients equal to ``target`` at every sample (the quantity a row was divided by when
     it is a sum, :math:`I_g + m a^2`). Every pair is tried at once through the Gram matrix
-    (the residual of each 2 × 2 least-squares fit), and the few that fit are checked
-    exactly. Not searched with more than :data:`SUM_BASES` bases: then among those without a
-    sine or cosine, where they are few enough (a three-link arm's row divided by
-    :math:`I_3 + m_3 l_{c3}^2`)."""
+    (the residual of each 2 × 2 least-squares fit) on at most :data:`SCREEN_SAMPLES` distinct
+    samples, and the few that fit there are checked exactly at every sample. Not searched
+    with more than :data:`SUM_BASES` bases: then among those without a sine or cosine, where
+    they are few enough (a three-link arm's row divided by :math:`I_3 + m_3 l_{c3}^2`)."""
     if len(bases) > SUM_BASES:
         plain = [b for b in bases if not b[0].has(sp.sin, sp.cos)]
         return fit_sum(target, plain) if 0 < len(plain) < len(bases) else None
     if not bases or not np.isfinite(target).all():
         return None
-    groups, X = _products(bases, SUM_DEGREE)
+    full = [np.broadcast_to(np.asarray(v, float), np.shape(target)) for _, v in bases]
+    step = max(1, len(target) // SCREEN_SAMPLES)
+    screen = np.unique(np.column_stack([*(v[::step] for v in full), target[::step]]), axis=0)
+    groups, X = _products(list(screen[:, :-1].T), SUM_DEGREE)
+    y = screen[:, -1]
 
-    def term(k: int) -> sp.Expr:
-        return sp.Mul(*(bases[i][0] for i in groups[k]))
+    def fit(ks: Sequence[int]) -> sp.Expr | None:
+        columns = [np.prod([full[i] for i in groups[k]], axis=0) for k in ks]
+        terms = [sp.Mul(*(bases[i][0] for i in groups[k])) for k in ks]
+        return _exact_sum(columns, target, terms)
 
-    X = np.unique(np.column_stack([X, target]), axis=0)
-    X, y = X[:, :-1], X[:, -1]
     norms = np.linalg.norm(X, axis=0)
     Xn = X / np.where(norms > 0, norms, 1.0)           # unit columns: a well-scaled Gram
     G, c, yy = Xn.T @ Xn, Xn.T @ y, float(y @ y)
     floor = SCREEN_TOL * yy
     for k in np.flatnonzero(yy - c ** 2 <= floor)[:MAX_CANDIDATES]:
-        found = _exact_sum(X, y, (int(k),), (term(k),))
+        found = fit((int(k),))
         if found is not None:
             return found
     i, j = _pairs(len(groups))
-    det = 1.0 - G[i, j] ** 2
-    with np.errstate(all="ignore"):
-        a = (c[i] - c[j] * G[i, j]) / det
-        b = (c[j] - c[i] * G[i, j]) / det
-        residual = yy - a * c[i] - b * c[j]
+    g, ci, cj = G[i, j], c[i], c[j]
+    det = 1.0 - g * g
+    with np.errstate(all="ignore"):                    # |y|² less its projection on (i, j)
+        residual = yy - (ci * ci + cj * cj - 2.0 * g * ci * cj) / det
     fits = np.flatnonzero((residual <= floor) & (det > SCREEN_TOL))
     for k in fits[np.argsort(residual[fits])][:MAX_CANDIDATES]:
-        found = _exact_sum(X, y, (int(i[k]), int(j[k])), (term(i[k]), term(j[k])))
+        found = fit((int(i[k]), int(j[k])))
         if found is not None:
             return found
     return None

@@ -29,11 +29,22 @@ from .diagnose import MAX_TERMS, agrees
 Trial = tuple[str, str, sp.Expr]
 
 
+def _outside_trig(expr: sp.Expr) -> set[sp.Basic]:
+    r"""The symbols of ``expr`` that occur outside :math:`\sin, \cos, \tan`."""
+    if isinstance(expr, sp.Symbol):
+        return {expr}
+    if isinstance(expr, (sp.sin, sp.cos, sp.tan)):
+        return set()
+    return set().union(*(_outside_trig(a) for a in expr.args))
+
+
 def bare(expr: sp.Expr, x: sp.Expr, replacement: sp.Expr) -> sp.Expr:
     r"""``expr`` with the occurrences of ``x`` outside :math:`\sin, \cos, \tan` replaced. A
     sum of positions (:math:`q_1 + q_2`) is found however the document grouped it
     (:math:`m g q_1 + m g q_2` too): written in a new variable :math:`X = x` for one of its
     positions, expanded, read, and written back."""
+    if not x.free_symbols & _outside_trig(expr):   # nothing of x to read (most elements)
+        return expr
     if not isinstance(x, sp.Symbol):
         X = sp.Dummy("X")
         q, c = next((s, x.coeff(s)) for s in sorted(x.free_symbols, key=sp.default_sort_key)
