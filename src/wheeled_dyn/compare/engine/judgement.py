@@ -20,9 +20,8 @@ import sympy as sp
 
 from ...derivations.schema import Derivation, equation_labels
 from ..causes.frames import frame_causes
-from ..grid.assumptions import Assumptions, declared
+from ..grid.assumptions import Assumptions, declared, undeclared_cases
 from ..grid.grid import special_states
-from ..grid.samples import special_cases
 from ..judge import equivalence, families
 from ..judge.document_checks import asymmetry, constraint_problems, constraint_rows, energy_check
 from ..judge.draft import ElementDraft
@@ -217,7 +216,7 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     sides = both_sides(d, funcs, grid, engine.seed, with_gamma=True)
     stage("equivalence")
     decision = decide(d, funcs, sides)
-    cases = tuple(c for c in special_cases(d.model) if c not in assumed.families)
+    cases = undeclared_cases(d, assumed)
     grids = _grids(engine, d, funcs, sides, cases, assumed)
     stage("frames")
     rules, frames, declared_wrong = choose_frames(d, funcs, grids, decision)

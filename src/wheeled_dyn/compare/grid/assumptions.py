@@ -29,8 +29,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...derivations.schema import Derivation
-from ...errors import DerivationError, UnknownNameError
-from .samples import SpecialCase, family, special_cases
+from ...errors import DerivationError, ParameterError, UnknownNameError
+from .samples import SpecialCase, family, massless_family, special_cases
 
 
 @dataclass(frozen=True)
@@ -80,7 +80,7 @@ def named_family(d: Derivation, name: str, where: str) -> SpecialCase:
     from ...models.registry import model_entry
     try:
         found = family(d.model, name)
-    except UnknownNameError as exc:
+    except (UnknownNameError, ParameterError) as exc:
         raise DerivationError(d.path, where, f"{name!r}: {exc}") from None
     if found is None:
         valid = [c.name for c in special_cases(d.model)]
@@ -89,6 +89,59 @@ def named_family(d: Derivation, name: str, where: str) -> SpecialCase:
         raise DerivationError(d.path, where, f"{name!r} is not a parameter family of model "
                               f"{d.model!r}; valid: " + ", ".join(valid))
     return found
+
+
+def undeclared_cases(d: Derivation, assumed: Assumptions) -> tuple[SpecialCase, ...]:
+    r"""The parameter families ``d`` does not declare, weakest first: its model's special
+    cases, then, for a model without a physical record, the links the document leaves out
+    carrying no mass (:func:`left_out`)."""
+    cases = [c for c in special_cases(d.model) if c not in assumed.families]
+    links = left_out(d)
+    if links and not any(set(links) <= set(c.massless) for c in assumed.families):
+        them = "it" if len(links) == 1 else "them"
+        cases.append(massless_family(links, f"no symbol of the document names {them}"))
+    return tuple(cases)
+
+
+def left_out(d: Derivation) -> tuple[str, ...]:
+    r"""The links with mass that nothing of ``d`` names, each the only link with mass of its
+    rigid body: none of its symbols' values calls them (``M(link)``, ``radius(link)``) or
+    the joint that carries them (``origin_x(joint)``), its coordinates do not move that joint,
+    and they are not wheels or contacts of the model. Only where the document names some link
+    by its mass or inertia (it names bodies by their links, so one it never names is one it
+    leaves out: a caster of a differential-drive robot); none for a model with a physical
+    record."""
+    import pinocchio as pin
+    from sympy.core.function import AppliedUndef
+
+    from ...models.geometry_apply import bodies_of
+    from ...models.registry import load_model, model_entry
+    from ...symbolic.parameters import PARAMETER_NAMES
+    if model_entry(d.model).parameters is not None or d.coordinates.use:
+        return ()
+    wm = load_model(d.model)
+    if wm.lengths is None:
+        return ()
+    calls = [c for s in d.symbols.values() if s.value is not None
+             for c in s.value.atoms(AppliedUndef) if c.args]
+    inertial = {*PARAMETER_NAMES, "CX", "CY", "CZ", "IXX", "IYY", "IZZ", "IXY", "IXZ", "IYZ"}
+    if not any(c.func.__name__ in inertial for c in calls):
+        return ()
+    named = {str(c.args[0]) for c in calls} | set(d.coordinates.configuration)
+    kept = {w.link for w in wm.wheels} | {w.link for w in wm.rolling_wheels}
+    if wm.contact is not None:
+        kept.add(wm.contact.spec.link)
+    model, masses = wm.model, wm.lengths.inertials
+    out: list[str] = []
+    for jid, links in bodies_of(wm).items():
+        massive = [k for k in links if masses.get(k, (0.0,))[0] > 0]
+        carriers = {model.frames[model.frames[model.getFrameId(k, pin.FrameType.BODY)]
+                                 .parentFrame].name
+                    for k in links}                       # the fixed joints that attach them
+        if jid and massive and not (set(links) | carriers | {model.names[jid]}) & named \
+                and not set(links) & kept:
+            out += massive
+    return tuple(out)
 
 
 def position_ranges(d: Derivation, positions: Sequence[str],

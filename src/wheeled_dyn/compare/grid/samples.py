@@ -45,6 +45,7 @@ class SpecialCase:
     description: str
     apply: Callable[[WipParameters], WipParameters]
     uniform: tuple[str, ...] | None = None
+    massless: tuple[str, ...] = ()
 
 
 WIP_SPECIAL_CASES: tuple[SpecialCase, ...] = (
@@ -83,6 +84,35 @@ def uniform_family(links: Sequence[str]) -> SpecialCase:
     verb = "is a uniform body" if len(links) == 1 else "are uniform bodies"
     return SpecialCase(f"uniform({names})", f"{names} {verb} (mass and size scaled as a whole, "
                        "its lengths with it)", lambda p: p, tuple(links))
+
+
+def massless_family(links: Sequence[str], why: str = "") -> SpecialCase:
+    r"""The family in which ``links`` carry no mass (each the only link with mass of its rigid
+    body): a body a document leaves out (a caster it does not model: ``why`` says how it was
+    found), or declares left out (``[assumes] families = ["massless(link, ...)"]``)."""
+    names = ", ".join(links)
+    verb = "carries no mass" if len(links) == 1 else "carry no mass"
+    return SpecialCase(f"massless({names})", f"{names} {verb}" + (f" ({why})" if why else ""),
+                       lambda p: p, massless=tuple(links))
+
+
+def _massless_bodies(wm: WheeledModel, links: Collection[str]) -> list[int]:
+    r"""The rigid bodies of ``links`` (their joint ids); a
+    :class:`~wheeled_dyn.errors.ParameterError` where one of them shares its body with a link
+    with mass that is not among them (its mass cannot be taken out alone)."""
+    inertials = wm.lengths.inertials if wm.lengths is not None else {}
+    out = []
+    for jid, members in bodies_of(wm).items():
+        named = set(members) & set(links)
+        if not named or not jid:
+            continue
+        others = [m for m in members if m not in named and inertials.get(m, (0.0,))[0] > 0]
+        if others:
+            raise ParameterError(f"massless({', '.join(sorted(named))})", others[0],
+                                 f"among the links named: {others[0]} is in the same rigid "
+                                 "body and has mass")
+        out.append(jid)
+    return out
 
 
 @dataclass(frozen=True)
@@ -136,8 +166,8 @@ def uniform_links(wm: WheeledModel, special: Sequence[SpecialCase]) -> set[str]:
 
 def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
                           keep_structure: bool = False,
-                          uniform: frozenset[str] | set[str] = frozenset()
-                          ) -> WheeledModel:
+                          uniform: frozenset[str] | set[str] = frozenset(),
+                          massless: Collection[str] = ()) -> WheeledModel:
     r"""Random lengths (the ``uniform`` links scaled as a whole with a random mass factor
     each, and their bodies put together again from their links:
     :mod:`~wheeled_dyn.models.geometry_apply`), and random, physically consistent inertias
@@ -145,7 +175,7 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
     ``keep_structure`` the URDF's inertias are rescaled instead: mass and each centre-of-mass
     coordinate by random factors, the principal moments by random factors keeping the triangle
     inequality, the principal axes unchanged. Each spring's stiffness and rest position are
-    scaled by random factors in [0.5, 2]."""
+    scaled by random factors in [0.5, 2]. The bodies of the ``massless`` links carry none."""
     drawn = _with_geometry(wm, rng, uniform)
     model = pin.Model(drawn.model)               # never the model of ``wm`` itself
     composed = {jid for jid, links in bodies_of(wm).items() if uniform & set(links)}
@@ -171,6 +201,8 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
                 pin.LogCholeskyParameters(theta))
     if not composed & {w.joint_id for w in wm.wheels}:
         _alike_wheels(wm, model, rng)
+    for jid in _massless_bodies(wm, massless):
+        model.inertias[jid] = pin.Inertia.Zero()
     model.gravity = pin.Motion(np.array([0.0, 0.0, -rng.uniform(5.0, 15.0)]), np.zeros(3))
     springs = with_stiffness(wm.springs, rng.uniform(0.5, 2.0, len(wm.springs)),
                              rng.uniform(0.5, 2.0, len(wm.springs))) \
@@ -214,26 +246,31 @@ def parameter_sets(model_name: str, k: int, rng: np.random.Generator,
     base = load_model(model_name)
     keep = URDF_STRUCTURE in special
     uniform = uniform_links(base, special)
+    massless = {link for case in special for link in case.massless}
     for _ in range(k):
-        wm = _random_link_inertias(base, rng, keep, uniform)
+        wm = _random_link_inertias(base, rng, keep, uniform, massless)
         out.append(ParameterSet(wm, namespace_values(wm, None)))
     return out
 
 
 def family(model_name: str, name: str) -> SpecialCase | None:
     r"""The model's special family called ``name``: one of :func:`special_cases`, or
-    ``uniform(link, ...)`` (:func:`uniform_family`) for links of a model without a physical
-    record; None for another name (an unknown link is an
+    ``uniform(link, ...)`` (:func:`uniform_family`) or ``massless(link, ...)``
+    (:func:`massless_family`) for links of a model without a physical record; None for another name (an unknown link is an
     :class:`~wheeled_dyn.errors.UnknownNameError`)."""
     found = next((c for c in special_cases(model_name) if c.name == name), None)
-    if found is not None or not (name.startswith("uniform(") and name.endswith(")")):
+    head = next((h for h in ("uniform(", "massless(") if name.startswith(h)), None)
+    if found is not None or head is None or not name.endswith(")"):
         return found
     if model_entry(model_name).parameters is not None:
         return None
-    links = tuple(x.strip() for x in name[len("uniform("):-1].split(","))
+    links = tuple(x.strip() for x in name[len(head):-1].split(","))
     wm = load_model(model_name)
     for link in links:
         wm.joint_id_of_link(link)
+    if head == "massless(":
+        _massless_bodies(wm, links)
+        return massless_family(links)
     return uniform_family(links)
 
 
@@ -286,4 +323,4 @@ REDRAWS = 5
 
 __all__ = ["MAX_CONDITION", "ParameterSet", "SpecialCase", "WIP_SPECIAL_CASES",
            "namespace_values", "parameter_sets", "random_states", "regular_states",
-           "special_cases", "family", "uniform_family", "uniform_links", "replace"]
+           "special_cases", "family", "massless_family", "uniform_family", "uniform_links", "replace"]
