@@ -53,6 +53,21 @@ def test_starter_without_a_wheel_pair_is_a_fixed_base_that_loads(tmp_path):
     assert load_model(str(out)).model.nv >= 1
 
 
+def test_starter_names_a_swivel_caster_and_its_lock_loads(tmp_path):
+    r"""A ROS robot's swivel caster (two continuous joints that are not wheels) is named with
+    a CHECK line, and the lock it suggests, uncommented, makes the caster part of the body."""
+    from pathlib import Path
+    urdf = Path(__file__).parent / "data" / "published" / "dd_swivel.urdf"
+    out = tmp_path / "robot.toml"
+    assert main(["model", str(urdf), "--out", str(out)]) == 0
+    text = out.read_text()
+    assert "# CHECK: caster_swivel_joint, caster_wheel_joint move freely" in text
+    assert "caster_swivel_joint" in load_model(str(out)).coordinate_names
+    out.write_text(text.replace("# lock = [", "lock = ["))
+    names = load_model(str(out)).coordinate_names
+    assert "caster_swivel_joint" not in names and "caster_wheel_joint" not in names
+
+
 def test_existing_file_is_kept_without_force(tmp_path, capsys):
     out = tmp_path / "robot.toml"
     out.write_text("mine")

@@ -286,8 +286,9 @@ def starter_text(inv: UrdfInventory, out: Path | None) -> str:
         lines += [f"# {note}" for note in inv.notes]
         lines += [f"links = [{_q(left.link)}, {_q(right.link)}]   # left, right",
                   f"radius = {left.radius:.6g}    # CHECK: the rolling radius; read from "
-                  f"{left.link}'s {left.geometry} cylinder", "",
-                  "[joints.aliases]          # the wheel angles' coordinate names",
+                  f"{left.link}'s {left.geometry} cylinder", ""]
+        lines += _free_joint_lines(inv)
+        lines += ["[joints.aliases]          # the wheel angles' coordinate names",
                   f"{_q(left.joint)} = \"theta_l\"", f"{_q(right.joint)} = \"theta_r\"", ""]
         if inv.path_joints:
             lines += ["[joints.locked]",
@@ -306,6 +307,25 @@ def starter_text(inv: UrdfInventory, out: Path | None) -> str:
     lines += [f"#   {n:32} {t:10} {p} -> {c}  {a}".rstrip() for n, t, p, c, a in inv.joints]
     lines += _length_lines(inv)
     return "\n".join(lines) + "\n"
+
+
+def _free_joint_lines(inv: UrdfInventory) -> list[str]:
+    r"""A ``[joints]`` table naming the moving joints of a wheeled model that are neither its
+    wheels' nor locked (a swivel caster's): the model does not roll them, and a derivation
+    that leaves them out holds them at 0 with their links' mass on the body."""
+    assert inv.pair is not None
+    own = {w.joint for w in inv.pair} | set(inv.path_joints)
+    free = [j[0] for j in inv.joints if j[1] in ("continuous", "revolute", "prismatic")
+            and j[0] not in own]
+    if not free:
+        return []
+    names = ", ".join(_q(j) for j in free)
+    return ["[joints]",
+            f"# CHECK: {', '.join(free)} move freely (a caster?): the model does not roll",
+            "# them. A derivation that leaves them out holds them at 0, its truth carrying "
+            "their links' mass",
+            "# ('agrees only if ... carry no mass'). To make them part of the body, lock them:",
+            f"# lock = [{names}]", ""]
 
 
 def _length_lines(inv: UrdfInventory) -> list[str]:
