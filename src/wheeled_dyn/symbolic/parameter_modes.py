@@ -126,6 +126,55 @@ def standard_names(wm: WheeledModel) -> dict[int, str]:
     return names
 
 
+def carrier_parameters(wm: WheeledModel) -> dict[str, dict[str, sp.Expr]]:
+    r"""A derivation's Khalil parameters of a carrying link whose frame is not its joint frame
+    (a ROS ``base_link`` above the ``base_footprint`` a planar base moves), in the closed
+    forms' symbols of the body, named after the joint (:func:`standard_names`). With the
+    link frame at :math:`(R, p)` in the joint frame, the body's first moments
+    :math:`MS_j = R\,MS_l + M p` and inertia about the joint-frame origin
+
+    .. math::
+        J_j = R J_l R^T + 2 (p\cdot s) I - s p^T - p s^T + M (|p|^2 I - p p^T),
+        \qquad s = R\,MS_l,
+
+    solved for the link's :math:`MS_l, J_l`. Only where :math:`(R, p)` are exact numbers the
+    parameter sets do not draw (no fixed joint between them has a drawn origin)."""
+    from ..models.link_parameters import rigid_bodies
+    from .exact import exact_rotation, exact_translation
+    model, names = wm.model, standard_names(wm)
+    drawn = {k for k, v in length_symbols(wm).items() if not sp.sympify(v).is_Number}
+    out: dict[str, dict[str, sp.Expr]] = {}
+    for body in rigid_bodies(wm):
+        fid = model.getFrameId(body.carrier, pin.FrameType.BODY)
+        frame, jid = model.frames[fid], model.frames[fid].parentJoint
+        if names[jid] == body.carrier or _drawn_between(model, fid, drawn):
+            continue
+        R = exact_rotation(frame.placement.rotation)
+        p = exact_translation(frame.placement.translation)
+        M, *rest = (sp.Symbol(f"{k}_{names[jid]}", real=True) for k in PARAMETER_NAMES)
+        s = sp.Matrix(rest[:3]) - M * p
+        xx, xy, yy, xz, yz, zz = rest[3:]
+        J = sp.Matrix([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])
+        J = J - (2 * p.dot(s) * sp.eye(3) - s * p.T - p * s.T
+                 + M * (p.dot(p) * sp.eye(3) - p * p.T))
+        MS, J = R.T * s, R.T * J * R
+        out[body.carrier] = dict(zip(PARAMETER_NAMES, (M, *MS, J[0, 0], J[0, 1], J[1, 1],
+                                                       J[0, 2], J[1, 2], J[2, 2])))
+    return out
+
+
+def _drawn_between(model: pin.Model, fid: int, drawn: set[str]) -> bool:
+    r"""Whether a fixed joint between frame ``fid`` and its joint has a drawn origin."""
+    frame = model.frames[fid]
+    while frame.type in (pin.FrameType.BODY, pin.FrameType.FIXED_JOINT) and \
+            frame.parentFrame != 0:
+        if frame.type == pin.FrameType.FIXED_JOINT and \
+                any(f"origin_{a}({frame.name})" in drawn for a in "xyz"):
+            return True
+        frame = model.frames[frame.parentFrame]
+    return False
+
+
 def drawn_symbols(wm: WheeledModel, mode: str, axle: bool = False) -> dict[str, sp.Expr]:
     r"""The lengths the closed forms of ``mode`` write as symbols, by name (empty where they
     hold numbers): in standard parameters, a model without wheels' and a planar wheeled

@@ -44,13 +44,16 @@ def _physical_symbols() -> dict[str, sp.Symbol]:
 
 def _standard_names(model: str) -> Callable[[sp.Expr], sp.Expr]:
     r"""For a model without a physical record: Khalil calls ``XX(link)`` → the symbolic
-    engine's symbols ``XX_link``, the model's lengths and constants as its closed forms write
+    engine's symbols ``XX_link`` (of a link whose frame is not its body's joint frame, the
+    body's symbols moved to it: :func:`~wheeled_dyn.symbolic.parameter_modes.carrier_parameters`),
+    the model's lengths and constants as its closed forms write
     them (a drawn length a symbol: ``origin_x(elbow)`` → ``origin_x_elbow``, a length listed
     with a constant → that constant; gravity's magnitude ``g``; a spring's stiffness and rest
     position ``k_<name>``, ``rest_<name>``), its other names → their values as exact
     numbers, as in its closed forms."""
     from ...models.registry import load_model, model_parameters
     from ...symbolic.lengths import gravity_symbol, length_symbols
+    from ...symbolic.parameter_modes import carrier_parameters
     wm = load_model(model)
     lengths = length_symbols(wm) if wm.lengths is not None else {}
     if (g := gravity_symbol(wm)) is not None:     # drawn: the symbol g, as the closed forms
@@ -61,12 +64,15 @@ def _standard_names(model: str) -> Callable[[sp.Expr], sp.Expr]:
     numbers = {sp.Symbol(k, real=True): lengths.get(k, sp.nsimplify(v, rational=True))
                for k, v in model_parameters(wm).items() if "(" not in k}
     plain = {sp.Symbol(s.name): v for s, v in numbers.items()}
+    carried = carrier_parameters(wm)
 
     def convert(out: sp.Expr) -> sp.Expr:
         calls = {}
         for c in out.atoms(AppliedUndef):
             name = f"{c.func.__name__}({c.args[0]})"
-            calls[c] = lengths[name] if name in lengths else \
+            body = carried.get(str(c.args[0]), {})
+            calls[c] = lengths[name] if name in lengths else body[c.func.__name__] \
+                if c.func.__name__ in body else \
                 sp.Symbol(f"{c.func.__name__}_{c.args[0]}", real=True)
         return out.xreplace(calls).xreplace(numbers).xreplace(plain)
 

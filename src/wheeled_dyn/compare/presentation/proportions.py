@@ -28,6 +28,8 @@ import sympy as sp
 
 from ...models.builder import WheeledModel
 from ...models.registry import model_parameters
+from ...symbolic.parameter_modes import carrier_parameters
+from ...symbolic.parameters import PARAMETER_NAMES
 
 #: The size power of each standard parameter in a link scaled as a whole.
 POWERS: dict[str, int] = {"M": 0, "MX": 1, "MY": 1, "MZ": 1, "XX": 2, "XY": 2, "XZ": 2,
@@ -69,10 +71,19 @@ def equalities(wm: WheeledModel, families: Sequence[str]) -> dict[sp.Symbol, sp.
     grouped = {link for g in groups for link in g}
     out: dict[sp.Symbol, sp.Expr] = {}
     zeros = "urdf_structure" in families or "urdf_proportions" in families
+    carried = carrier_parameters(wm)
     for link in _links(values):
+        if link in carried:                # its body's zeros, in its joint frame (below)
+            continue
         if zeros or link in grouped:
             out.update({_symbol(k, link): sp.Integer(0) for k in POWERS
                         if values.get(f"{k}({link})") == 0.0})
+    for link, symbols in carried.items():  # the draws keep the joint frame's zeros
+        if zeros or link in grouped:
+            jid = wm.model.getJointId(symbols["M"].name[len("M_"):])
+            body = wm.model.inertias[jid].toDynamicParameters()
+            out.update({sp.Symbol(f"{k}_{symbols['M'].name[len('M_'):]}", real=True):
+                        sp.Integer(0) for k, v in zip(PARAMETER_NAMES, body) if v == 0.0})
     for group in groups:
         first: dict[tuple[int, float], sp.Symbol] = {}
         for link in group:
