@@ -223,3 +223,27 @@ def test_a_moment_written_too_large_is_a_factor_not_a_point_mass(engine, tmp_pat
     assert set(flagged) == {"A[2,2]"}, set(flagged)
     kinds = [d.kind for d in flagged["A[2,2]"].diagnoses]
     assert K.FACTOR in kinds and K.POINT_MASS not in kinds, flagged["A[2,2]"].texts
+
+
+@pytest.mark.parametrize("old, new, kind, term", [
+    ("dq1**2*(l1*l2*m3*sin(q2) + l1*lc2*m2*sin(q2)",
+     "dq1**2*(l1*l2*m3*sin(q2) - l1*lc2*m2*sin(q2)", K.SIGN, "-l1*lc2*m2*sin(q2)"),
+    ("dq1**2*(l1*l2*m3*sin(q2) + l1*lc2*m2*sin(q2)",
+     "dq1**2*(2*l1*l2*m3*sin(q2) + l1*lc2*m2*sin(q2)", K.FACTOR, "2*l1*l2*m3*sin(q2)"),
+])
+def test_one_term_inside_a_velocity_products_coefficient_is_named(engine, tmp_path, old, new,
+                                                                  kind, term):
+    r"""One of the three terms of the three-link arm's h₂ coefficient of q̇₁² with its sign
+    flipped, or doubled: that term is named (it was "the document lacks 2 l1 lc2 m2 sin q2":
+    the coefficient is sampled on its own grid, where the numeric term trials do not run)."""
+    for own in ("three_link_arm.toml", "three_link_arm.urdf"):
+        (tmp_path / own).write_text((DATA / own).read_text())
+    text = (DATA / "three_link_arm_divided.toml").read_text()
+    assert old in text
+    path = tmp_path / "planted.toml"
+    path.write_text(text.replace(old, new))
+    flagged = {r.element: r for r in engine.compare(load_derivation(path)).records
+               if r.verdict != "agrees"}
+    assert set(flagged) == {"h[2]:dq1*dq1"}, set(flagged)
+    hit = flagged["h[2]:dq1*dq1"].diagnoses[0]
+    assert hit.kind == kind and hit.term == term, flagged["h[2]:dq1*dq1"].texts

@@ -28,7 +28,8 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import sympy as sp
 
-from ..records import DiagnosisKind as K, Verdict, diagnosis, has_kind
+from ..records import Diagnosis, DiagnosisKind as K, Verdict, diagnosis, has_kind
+from .diagnose import nice_number
 from .draft import ElementDraft
 from .fitting import RATIO_TOL, fit_factor, fit_sum
 
@@ -40,6 +41,8 @@ NAMED = (K.SIGN, K.POWER, K.SWAP, K.SMALL_ANGLE, K.DIMENSION, K.EXTRA, K.UNDECID
 AXES = ("x", "y", "z")
 #: Most elements of one derivation whose terms are named (each is a search).
 MAX_NAMED = 12
+#: Largest expressions (operations) whose printed terms are compared with a residual.
+MAX_WRITTEN_OPS = 200
 
 
 def own_moments(values: Sequence[Mapping[str, float]], states: int, parallel: bool = False
@@ -140,6 +143,30 @@ def _too_much(term: sp.Expr, written: frozenset) -> bool:
     return term.could_extract_minus_sign()
 
 
+def _written_term(found: sp.Expr, expr: sp.Expr) -> Diagnosis | None:
+    r"""Truth − document ``found`` a rational multiple :math:`c\,t` of one term :math:`t` the
+    document writes in ``expr`` (expanded, or as printed): that term has the wrong sign
+    (:math:`c = -2`) or is :math:`1/(1 + c)` × what fits (a velocity product's coefficient,
+    which the numeric term trials of :mod:`.diagnose` do not see: it is sampled on its own
+    grid). None where no term is (:math:`c = -1`, a term too much, is told by
+    :func:`_lacks`)."""
+    if sp.count_ops(expr) > MAX_WRITTEN_OPS or sp.count_ops(found) > MAX_WRITTEN_OPS:
+        return None
+    terms = dict.fromkeys((*sp.Add.make_args(sp.expand(expr)), *sp.Add.make_args(expr)))
+    for t in terms:
+        c = sp.cancel(found / t)
+        if not c.is_Rational or c == 0 or c == -1:
+            continue
+        text = sp.sstr(t)
+        if c == -2:
+            return diagnosis(K.SIGN, f"the term {text} has the wrong sign", term=text,
+                             factor="-1")
+        times = nice_number(float(1 / (1 + c)))
+        return diagnosis(K.FACTOR, f"the term {text} is {times} × what fits", term=text,
+                         factor=times)
+    return None
+
+
 def _lacks(expr: sp.Expr, written: frozenset = frozenset()) -> str:
     r"""``"lacks a and b"`` / ``"has c too much"`` for the terms of truth − document (a term
     the document writes with the wrong sign or too much is one it has too much: ``m`` for
@@ -211,6 +238,10 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
         found = fit_factor(residual, bases) if np.abs(residual).min() > 0 else None
         found = found if found is not None else fit_sum(residual, bases)
         if found is None:
+            continue
+        written_wrong = _written_term(found, r.expr) if r.expr is not None else None
+        if written_wrong is not None:
+            r.diagnoses.insert(0, written_wrong)
             continue
         parts = sp.Add.make_args(sp.expand(found))
         written = frozenset(sp.Add.make_args(sp.expand(r.expr))) if r.expr is not None \
