@@ -247,3 +247,44 @@ def test_one_term_inside_a_velocity_products_coefficient_is_named(engine, tmp_pa
     assert set(flagged) == {"h[2]:dq1*dq1"}, set(flagged)
     hit = flagged["h[2]:dq1*dq1"].diagnoses[0]
     assert hit.kind == kind and hit.term == term, flagged["h[2]:dq1*dq1"].texts
+
+
+#: The differential-drive robot's (v, ω) equations (``data/published/dd_swivel_vw.toml``, on
+#: the caster-free robot) solved for the accelerations, as simulation code integrates them.
+DD_SOLVED = '''equations = [
+  "dv = (m_c*d*omega**2 + (tau_R + tau_L)/R)/(m + 2*I_w/R**2)",
+  "domega = (-m_c*d*omega*v + L*(tau_R - tau_L)/R)/(I + 2*L**2*I_w/R**2)",
+]
+'''
+
+
+def _dd_solved(tmp_path: Path, old: str = "", new: str = "") -> Path:
+    text = (DATA / "dd_swivel_vw.toml").read_text()
+    text = text.replace('model = "dd_swivel.toml"', 'model = "dd_robot.toml"')
+    text = text[:text.index("equations = [")] + DD_SOLVED.replace(old, new)
+    for own in ("dd_robot.toml", "dd_robot.urdf"):
+        (tmp_path / own).write_text((DATA / own).read_text())
+    path = tmp_path / "solved.toml"
+    path.write_text(text)
+    return path
+
+
+def test_rows_solved_for_a_diagonal_inertia_are_told_solved(engine, tmp_path):
+    r"""Both rows solved (the robot's inertia is diagonal in (v, ω)): each is told "solved for
+    the accelerations", the weights of its form, where it was "times a function of the state
+    and parameters (not identified)"."""
+    result = engine.compare(load_derivation(_dd_solved(tmp_path)))
+    assert result.equivalent is True
+    for e in result.equations:
+        assert e.frame.startswith("solved for the accelerations"), e.frame
+
+
+def test_a_dropped_symbolic_factor_is_named(engine, tmp_path):
+    r"""L dropped from L (τ_R − τ_L)/R in the solved yaw equation: both input elements "lack a
+    factor L" (they had no diagnosis: the ratio is no number, and no term is missing)."""
+    path = _dd_solved(tmp_path, "+ L*(tau_R - tau_L)/R", "+ (tau_R - tau_L)/R")
+    flagged = {r.element: r for r in engine.compare(load_derivation(path)).records
+               if r.verdict != "agrees"}
+    assert set(flagged) == {"B[2,1]", "B[2,2]"}, set(flagged)
+    for r in flagged.values():
+        assert r.diagnoses[0].kind == K.FACTOR and r.diagnoses[0].factor == "1/L", r.texts

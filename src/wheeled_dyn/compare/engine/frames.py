@@ -59,6 +59,8 @@ def choose_frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], d
             rule = choose(i, rules_i + combination_variants(on), on, False, totals=totals)
         evaluated = evaluate_rule(i, rule, main.doc, main.truth, main.doc.B, main.B_true,
                                   declared_scale)
+        if evaluated is not None and solved_row(main.doc, i):
+            rule, evaluated = _solved(i, rule, evaluated, main)
         if evaluated is None:
             rule = FrameRule(FrameKind.IDENTITY)
         frame = evaluated if evaluated is not None else _always(i, rule, main)
@@ -70,6 +72,25 @@ def choose_frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], d
         rules.append(rule)
         frames.append(frame)
     return rules, frames, wrong
+
+
+def _solved(i: int, rule: FrameRule, frame: Frame, main: Sides) -> tuple[FrameRule, Frame]:
+    r"""A row solved for its acceleration read as a function of the true row (not identified)
+    whose weights are those of its solved form, row :math:`i` of :math:`A^{-1}` (a diagonal
+    inertia): told as solved, which names it, with the same weights."""
+    if rule.kind != FrameKind.FUNCTION or rule.identified:
+        return rule, frame
+    solved = FrameRule(FrameKind.COMBINATION)
+    other = evaluate_rule(i, solved, main.doc, main.truth, main.doc.B, main.B_true)
+    if other is None or not np.isfinite(other.weights).all() or \
+            np.abs(other.weights - frame.weights).max() > \
+            SAME_WEIGHTS * np.abs(frame.weights).max():
+        return rule, frame
+    return solved, other
+
+
+#: Relative agreement of two frames' weights that are the same.
+SAME_WEIGHTS = 1e-9
 
 
 def bind_declared(d: Derivation, decision: SystemDecision, wrong: Sequence[int]

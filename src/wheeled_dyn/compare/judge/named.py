@@ -143,6 +143,24 @@ def _too_much(term: sp.Expr, written: frozenset) -> bool:
     return term.could_extract_minus_sign()
 
 
+def _missing_factor(D: np.ndarray, T: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
+                    ) -> Diagnosis | None:
+    r"""The truth a monomial :math:`f` in the document's names (not a number: a constant factor
+    is :func:`.diagnose.value_diagnoses`') times the document: a factor it lacks
+    (:math:`L` dropped from :math:`L(\tau_R - \tau_L)/R`), or has too much (:math:`f = 1/L`)."""
+    if not D.size or np.abs(D).min() <= 0:
+        return None
+    f = fit_factor(T / D, bases)
+    if f is None or f.is_number:
+        return None
+    numerator, denominator = sp.fraction(f)
+    what = f"lacks a factor {sp.sstr(f)}" if denominator == 1 else \
+        f"has a factor {sp.sstr(1 / f)} too much" if numerator == 1 else \
+        f"lacks a factor {sp.sstr(f)}"
+    return diagnosis(K.FACTOR, f"the document {what}: it is {sp.sstr(1 / f)} × the truth",
+                     factor=sp.sstr(1 / f))
+
+
 def _written_term(found: sp.Expr, expr: sp.Expr) -> Diagnosis | None:
     r"""Truth − document ``found`` a rational multiple :math:`c\,t` of one term :math:`t` the
     document writes in ``expr`` (expanded, or as printed): that term has the wrong sign
@@ -234,6 +252,10 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
                 "(or drops its inertia)", prefix="missing",
                 terms=(sp.sstr(term) if term is not None else f"{sp.sstr(c)}*{name}",),
                 fits=name, factor=sp.sstr(c)))
+            continue
+        missing = _missing_factor(D, T, bases)
+        if missing is not None:
+            r.diagnoses.insert(0, missing)
             continue
         found = fit_factor(residual, bases) if np.abs(residual).min() > 0 else None
         found = found if found is not None else fit_sum(residual, bases)
