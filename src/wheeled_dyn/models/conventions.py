@@ -36,6 +36,21 @@ from ..errors import ModelError
 #: compared (a wheel's cylinder and its joint axis, an axle and the body's y, left and right):
 #: URDFs round π/2 as 1.5708 (3.7e-6 rad off) or 1.57 (8e-4 rad off).
 ANGLE_TOL = 1e-2
+#: Largest distance (rad) of an inertia's orientation angle from a multiple of π/2 for it to
+#: be read as that multiple (:func:`right_angles`): URDFs round π/2 as 1.5708 or 1.57 and π as
+#: 3.1416 or 3.14 (1.6e-3 rad off).
+RIGHT_ANGLE_TOL = 2e-3
+
+
+def right_angles(rpy: np.ndarray) -> np.ndarray:
+    r"""An ``<inertial>``'s ``rpy`` with each angle within :data:`RIGHT_ANGLE_TOL` of a
+    multiple of :math:`\pi/2` made that multiple: the author turned the inertia by a right
+    angle, and the rounding would leave it products of inertia of that angle's order (a
+    wheel's tensor turned by 1.5708 about x: :math:`3.7\cdot10^{-6}(I_{yy} - I_{zz})`),
+    which a derivation that takes its axes as principal does not have."""
+    rpy = np.asarray(rpy, dtype=float)
+    nearest = np.round(rpy / (np.pi / 2)) * (np.pi / 2)
+    return np.where(np.abs(rpy - nearest) <= RIGHT_ANGLE_TOL, nearest, rpy)
 
 
 class Positive(Enum):

@@ -91,6 +91,29 @@ def _wheel_geometry(source: UrdfSource, spec: ModelSpec, model: pin.Model, data:
 
 
 
+def _along_axle(model: pin.Model, jid: int) -> None:
+    r"""Turn wheel joint ``jid`` (and what it carries) about its origin so that its spin axis
+    lies exactly along the axle, the heading frame's :math:`y` at the neutral configuration:
+    within :data:`~.conventions.ANGLE_TOL` of it (checked before), as a URDF's rounded
+    :math:`\pi/2` leaves it (``rpy="-1.57 0 0"``: 8e-4 rad), the wheel of a planar model is
+    meant on the axle. With :math:`a` the axis in the world and :math:`t = \pm y`, the
+    rotation :math:`\delta` taking :math:`a` to :math:`t` is applied in the parent's frame:
+    :math:`{}^{p}R_j \leftarrow {}^{o}R_p^T\,\delta\,{}^{o}R_p\,{}^{p}R_j`."""
+    data = model.createData()
+    pin.forwardKinematics(model, data, pin.neutral(model))
+    axis = data.oMi[jid].rotation @ joint_axis(model.joints[jid])
+    target = np.array([0.0, np.sign(axis[1]) or 1.0, 0.0])
+    turn = np.cross(axis, target)
+    sine, cosine = float(np.linalg.norm(turn)), float(axis @ target)
+    if sine == 0.0:
+        return
+    delta = pin.exp3(turn / sine * np.arctan2(sine, cosine))
+    parent = data.oMi[model.parents[jid]].rotation
+    placement = model.jointPlacements[jid]
+    model.jointPlacements[jid] = pin.SE3(parent.T @ delta @ parent @ placement.rotation,
+                                         placement.translation)
+
+
 def _check_on_body(spec: ModelSpec, source: UrdfSource, body: str, wheel: str,
                    wheel_joint: str) -> None:
     r"""The wheel's spin joint hangs from ``body`` through fixed or locked joints only (the
@@ -184,6 +207,8 @@ def build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
         jid = model.getJointId(jname)
         move_joint_to(model, geom, jid, model.frames[model.getFrameId(link, pin.FrameType.BODY)])
         wheels.append(Wheel(link, side, jname, jid, model.joints[jid].idx_v, rl, width))
+    for w in wheels:
+        _along_axle(model, w.joint_id)
     body_jid = model.frames[model.getFrameId(body_link)].parentJoint
     inputs = tuple(spec.inputs) if spec.inputs is not None else ("tau_l", "tau_r")
     if len(inputs) != 2:

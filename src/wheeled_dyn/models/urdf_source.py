@@ -19,8 +19,11 @@ from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
+import numpy as np
+
 from ..disk_cache import cache_root, load, store
 from ..errors import InputFileError, ModelError, UnknownNameError
+from .conventions import right_angles
 from .urdf_checks import check_urdf_tree
 from .urdf_values import check_urdf_values
 
@@ -137,8 +140,14 @@ class UrdfSource:
                      if name == link_name), None)
 
     def pinocchio_text(self) -> str:
-        r"""The URDF text with ``continuous`` joints rewritten as unlimited ``revolute`` ones."""
+        r"""The URDF text with ``continuous`` joints rewritten as unlimited ``revolute`` ones,
+        and the ``<inertial>`` orientations within a rounding of right angles made right
+        angles (:func:`~.conventions.right_angles`)."""
         root = ET.fromstring(self.text)
+        for origin in root.iterfind("link/inertial/origin"):
+            if origin.get("rpy") is not None:
+                rpy = right_angles(np.array([float(x) for x in origin.get("rpy", "").split()]))
+                origin.set("rpy", " ".join(repr(float(x)) for x in rpy))
         for joint in root.iter("joint"):
             if joint.get("type") == "continuous":
                 joint.set("type", "revolute")

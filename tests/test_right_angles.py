@@ -1,0 +1,72 @@
+r"""Right angles as URDFs write them: π/2 rounded to 1.57 (8e-4 rad off) or 1.5708 (3.7e-6),
+π to 3.14. A differential-drive robot written the TurtleBot way — wheel joints turned by
+``rpy="-1.57 0 0"`` about a z axis, each wheel's inertia turned by ``rpy="1.5708 0 0"`` — is
+the robot of ``data/published/dd_robot.urdf`` (exact angles) as its author meant it. Before,
+its wheels spun about axes 8e-4 rad off the axle (every input element "0.9999997 × the truth")
+and its wheel inertias had products of inertia of 3.7e-6 of their moments (a correct
+derivation "not right as a system", off by 1.7e-7): a planar model's wheels are now turned onto
+their axle, and an inertia's orientation within :data:`RIGHT_ANGLE_TOL` of a right angle is
+read as one."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pinocchio as pin
+import pytest
+
+from conftest import SEED
+from wheeled_dyn.compare.engine import ComparisonEngine
+from wheeled_dyn.derivations import load_derivation
+from wheeled_dyn.models.conventions import RIGHT_ANGLE_TOL, right_angles
+from wheeled_dyn.models.registry import load_model
+
+DATA = Path(__file__).parent / "data" / "published"
+EXACT = "-1.5707963267948966 0 0"
+WHEEL = ('<origin xyz="0 0 0"/><mass value="0.5"/>\n      <inertia ixx="0.0009" ixy="0" '
+         'ixz="0" iyy="0.0009" iyz="0" izz="0.0016"/>')
+#: The same wheel tensor written about axes turned by a right angle about x (spin axis y).
+TURNED = ('<origin xyz="0 0 0" rpy="1.5708 0 0"/><mass value="0.5"/>\n      <inertia '
+          'ixx="0.0009" ixy="0" ixz="0" iyy="0.0016" iyz="0" izz="0.0009"/>')
+#: Agreement of the rounded robot's inertias with the exact one's.
+SAME_TOL = 1e-15
+
+
+@pytest.mark.parametrize("angle, expected", [
+    (1.5708, np.pi / 2), (-1.57, -np.pi / 2), (3.14, np.pi), (0.0015, 0.0), (0.005, 0.005),
+    (1.56, 1.56)])
+def test_right_angles_within_the_tolerance_only(angle, expected):
+    assert right_angles(np.array([angle]))[0] == pytest.approx(expected, abs=0.0, rel=1e-15)
+    assert RIGHT_ANGLE_TOL < 0.005
+
+
+def _rounded(tmp_path: Path) -> Path:
+    text = (DATA / "dd_robot.urdf").read_text()
+    assert text.count(EXACT) == 2 and text.count(WHEEL) == 2
+    text = text.replace(EXACT, "-1.57 0 0").replace(WHEEL, TURNED)
+    (tmp_path / "dd_robot.urdf").write_text(text)
+    (tmp_path / "dd_robot.toml").write_text((DATA / "dd_robot.toml").read_text())
+    return tmp_path / "dd_robot.toml"
+
+
+def test_the_rounded_robot_is_the_exact_one(tmp_path):
+    rounded, exact = load_model(str(_rounded(tmp_path))), load_model(str(DATA / "dd_robot.toml"))
+    data = rounded.model.createData()
+    pin.forwardKinematics(rounded.model, data, pin.neutral(rounded.model))
+    for w, e in zip(rounded.wheels, exact.wheels):
+        axis = data.oMi[w.joint_id].rotation @ np.array([0.0, 0.0, 1.0])
+        assert abs(abs(axis[1]) - 1.0) <= SAME_TOL, axis
+        a = rounded.model.inertias[w.joint_id].toDynamicParameters()
+        b = exact.model.inertias[e.joint_id].toDynamicParameters()
+        assert np.abs(a - b).max() <= SAME_TOL, (a, b)
+
+
+def test_a_correct_derivation_of_the_rounded_robot_is_right(tmp_path):
+    model = _rounded(tmp_path)
+    text = (DATA / "dd_swivel_vw.toml").read_text().replace('model = "dd_swivel.toml"',
+                                                            f'model = "{model.name}"')
+    (tmp_path / "doc.toml").write_text(text)
+    result = ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(
+        load_derivation(tmp_path / "doc.toml"))
+    assert result.equivalent is True, [c.explanation for c in result.causes]
