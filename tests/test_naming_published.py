@@ -19,6 +19,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+import sympy as sp
 
 import published_forms as P
 from conftest import SEED
@@ -288,3 +289,29 @@ def test_a_dropped_symbolic_factor_is_named(engine, tmp_path):
     assert set(flagged) == {"B[2,1]", "B[2,2]"}, set(flagged)
     for r in flagged.values():
         assert r.diagnoses[0].kind == K.FACTOR and r.diagnoses[0].factor == "1/L", r.texts
+
+
+@pytest.mark.parametrize("error", [None, "sign"])
+def test_a_row_divided_by_a_long_sum_it_prints_is_identified(engine, tmp_path, error):
+    r"""The arm's first equation divided by its whole diagonal inertia d11 (five terms, one
+    with cos q2), as printed: "the true equation divided by" that sum, where it was "times a
+    function of the state and parameters (not identified)" (the sum search stops at two
+    products); with the sign of h q̇₂² planted, that term is named in that frame."""
+    path = P.write(tmp_path, "arm", "equations", error)
+    text = path.read_text()
+    D, c, phi = P.arm(error)
+    first = (D[0, :] * sp.Matrix([P.ddq1, P.ddq2]))[0] + c[0] + phi[0]
+    head, rest = text.split("equations = [\n")
+    second = rest.splitlines()[1]
+    path.write_text(f'{head}equations = [\n  "({P._s(first)})/({P._s(D[0, 0])}) = '
+                    f'tau1/({P._s(D[0, 0])})",\n{second}\n]\n')
+    result = engine.compare(load_derivation(path))
+    assert result.equations[0].frame == (
+        "the true equation divided by I1 + I2 + lc1**2*m1 + m2*(l1**2 + 2*l1*lc2*cos(q2) + "
+        "lc2**2)"), result.equations[0].frame
+    flagged = {r.element: r for r in result.records if r.verdict != "agrees"}
+    if error is None:
+        assert result.equivalent is True and not flagged
+    else:
+        assert set(flagged) == {"h[1]:dq2*dq2"}, set(flagged)
+        assert flagged["h[1]:dq2*dq2"].diagnoses[0].kind == K.SIGN

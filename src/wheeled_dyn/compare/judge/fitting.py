@@ -27,7 +27,7 @@ import numpy as np
 import sympy as sp
 
 from ...derivations.schema import Derivation
-from ..sides.document import compound_trig
+from ..sides.document import compound_trig, written_divisors
 
 #: Relative agreement of a fit with every sample.
 RATIO_TOL = 1e-8
@@ -55,6 +55,7 @@ def bases(d: Derivation, q: np.ndarray, values: Mapping[sp.Symbol, np.ndarray]
     for a, p in enumerate(d.positions):
         out += [(p, q[:, a]), (sp.cos(p), np.cos(q[:, a])), (sp.sin(p), np.sin(q[:, a]))]
     out += _compound_trig(d, q)
+    out += _divisors(d, q, values)
     unique: list[tuple[sp.Expr, np.ndarray]] = []
     for expr, v in out:
         if np.abs(v).min() == 0 or not np.isfinite(v).all():
@@ -74,6 +75,23 @@ def _compound_trig(d: Derivation, q: np.ndarray) -> list[tuple[sp.Expr, np.ndarr
         if isinstance(f, (sp.sin, sp.cos)):
             value = numpy_function(d.positions, f)(*q.T)
             out.append((f, np.broadcast_to(np.asarray(value, float), (len(q),))))
+    return out
+
+
+def _divisors(d: Derivation, q: np.ndarray, values: Mapping[sp.Symbol, np.ndarray]
+              ) -> list[tuple[sp.Expr, np.ndarray]]:
+    r"""The sums the document divides by (:func:`~..sides.document.written_divisors`) whose
+    names the samples give, with their values there."""
+    from ...compiled import numpy_function
+    args = [*d.positions, *values]
+    out = []
+    for x in written_divisors(d):
+        if not x.free_symbols <= set(args):
+            continue
+        with np.errstate(all="ignore"):
+            value = numpy_function(args, x)(*q.T, *(np.asarray(v, float)
+                                                    for v in values.values()))
+        out.append((x, np.broadcast_to(np.asarray(value, float), (len(q),))))
     return out
 
 

@@ -148,6 +148,20 @@ def compound_trig(d: Derivation) -> list[sp.Expr]:
                    and f.args[0].free_symbols <= positions), key=sp.default_sort_key)
 
 
+def written_divisors(d: Derivation) -> list[sp.Expr]:
+    r"""The sums of parameters and positions the document divides by as printed
+    (:math:`(\ldots)/(m_c + 2 m_w + 2 I_w/R^2)` of a row divided by, or solved with, its
+    inertia), sorted: bases of the fits (:func:`~..judge.fitting.bases`), so that a row
+    divided by one is named however many terms it has."""
+    found: set[sp.Expr] = set()
+    for M in (d.A, d.C, d.Q, d.B, *(d.equations or ())):
+        if M is not None:
+            found |= {p.base for p in M.atoms(sp.Pow) if p.exp.is_negative
+                      and isinstance(p.base, sp.Add)}
+    moving = {*d.velocities, *d.accelerations, *d.input_symbols}
+    return sorted((x for x in found if not x.free_symbols & moving), key=sp.default_sort_key)
+
+
 class DocumentFunctions:
     r"""The document's elements compiled once (one function per matrix); evaluated at any
     samples."""
