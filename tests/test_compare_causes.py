@@ -18,7 +18,7 @@ import pytest
 import sympy as sp
 
 from wheeled_dyn.compare import ComparisonEngine
-from wheeled_dyn.compare.causes.root import christoffel_h, christoffel_tensor
+from wheeled_dyn.compare.causes.methods import christoffel_h, christoffel_tensor
 from wheeled_dyn.compare.sides.document import _h_tensor
 from wheeled_dyn.derivations import load_derivation
 
@@ -450,3 +450,33 @@ def test_constraint_substituted_into_the_lagrangian():
     assert "on the admissible motions it equals the true kinetic energy" in cause.explanation
     assert all(x.endswith("a rolling constraint of the model") and "not" not in x
                for x in result.constraints), result.constraints
+
+
+def test_no_quasi_coordinate_cause_where_no_velocity_term_came_from_the_documents_a(tmp_path):
+    r"""A differential-drive robot whose wheels carry a small product of inertia (ixz, as CAD
+    exports write it) and the (v, ω) equations of Dhaouadi & Abu Hatab (2013), which take the
+    wheels as symmetric: the truth's q̇₁² and ω² terms of the second equation are missing. The
+    document's A is constant, so its own Christoffel terms are all zero and none of its velocity
+    terms (m_c d ω², m_c d ω v) is one: the missing terms are physics it leaves out, not the
+    Boltzmann–Hamel terms of a C taken from A (the cause said so before)."""
+    from pathlib import Path
+
+    from conftest import SEED
+    from wheeled_dyn.compare.engine import ComparisonEngine
+    from wheeled_dyn.compare.records import CauseKind
+    from wheeled_dyn.derivations import load_derivation
+    data = Path(__file__).parent / "data" / "published"
+    urdf = (data / "dd_robot.urdf").read_text()
+    wheel = 'ixx="0.0009" ixy="0" ixz="0" iyy="0.0009"'
+    assert urdf.count(wheel) == 2
+    (tmp_path / "dd_robot.urdf").write_text(urdf.replace(wheel, wheel.replace(
+        'ixz="0"', 'ixz="3e-8"')))
+    (tmp_path / "dd_robot.toml").write_text((data / "dd_robot.toml").read_text())
+    (tmp_path / "doc.toml").write_text((data / "dd_swivel_vw.toml").read_text().replace(
+        'model = "dd_swivel.toml"', 'model = "dd_robot.toml"'))
+    result = ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(
+        load_derivation(tmp_path / "doc.toml"))
+    assert result.equivalent is False
+    kinds = [c.kind for c in result.causes]
+    assert CauseKind.QUASI_COORDINATE_CHRISTOFFEL not in kinds, kinds
+    assert CauseKind.MISSING_PHYSICS in kinds, kinds
