@@ -480,3 +480,44 @@ def test_no_quasi_coordinate_cause_where_no_velocity_term_came_from_the_document
     kinds = [c.kind for c in result.causes]
     assert CauseKind.QUASI_COORDINATE_CHRISTOFFEL not in kinds, kinds
     assert CauseKind.MISSING_PHYSICS in kinds, kinds
+
+
+def test_an_equation_no_element_of_which_differs_is_not_agrees_only_if(tmp_path, monkeypatch):
+    r"""The robot's wheels with a product of inertia of 1e-10 kg m² the (v, ω) equations leave
+    out: every element agrees within its tolerance, the second equation does not (3.4e-6 of its
+    size). Where the grid of the undeclared families finds it a combination of the true ones
+    (made so here), the equation said "agrees only if the model's special parameter families
+    hold", no family named and none of its elements needing one; it now differs, saying the
+    difference is spread over its terms and how large it is."""
+    from dataclasses import replace
+    from pathlib import Path
+
+    from conftest import SEED
+    from wheeled_dyn.compare.engine import ComparisonEngine, judgement
+    from wheeled_dyn.compare.records import Verdict
+    from wheeled_dyn.derivations import load_derivation
+    data = Path(__file__).parent / "data" / "published"
+    wheel = 'ixx="0.0009" ixy="0" ixz="0" iyy="0.0009"'
+    (tmp_path / "dd_robot.urdf").write_text((data / "dd_robot.urdf").read_text().replace(
+        wheel, wheel.replace('ixz="0"', 'ixz="1e-10"')))
+    (tmp_path / "dd_robot.toml").write_text((data / "dd_robot.toml").read_text())
+    (tmp_path / "doc.toml").write_text((data / "dd_swivel_vw.toml").read_text().replace(
+        'model = "dd_swivel.toml"', 'model = "dd_robot.toml"'))
+    calls = []
+    decide = judgement.decide
+
+    def on_families_agree(d, funcs, sides):
+        found = decide(d, funcs, sides)
+        calls.append(sides)
+        if len(calls) == 1 or found is None:
+            return found
+        return replace(found, equations=tuple(replace(e, verdict=Verdict.AGREES)
+                                              for e in found.equations))
+    monkeypatch.setattr(judgement, "decide", on_families_agree)
+    result = ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(
+        load_derivation(tmp_path / "doc.toml"))
+    assert len(calls) >= 2                    # the families' grid was asked
+    assert all(r.verdict == Verdict.AGREES for r in result.records)
+    second = result.equations[1]
+    assert second.verdict == Verdict.DIFFERS, second.diagnoses
+    assert any("spread over its terms (at most" in t for t in second.texts), second.texts

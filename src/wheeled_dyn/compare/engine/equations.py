@@ -13,6 +13,8 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+import numpy as np
+
 from ...derivations.schema import Derivation
 from ..judge.draft import ElementDraft
 from ..readings.describe import FrameText
@@ -31,9 +33,10 @@ def _family_condition(row: Sequence[ElementDraft]) -> str:
     return " and ".join(dict.fromkeys(conditions))
 
 
-def _reconcile(verdict: Verdict, row: Sequence[ElementDraft]) -> list[Diagnosis]:
+def _reconcile(verdict: Verdict, row: Sequence[ElementDraft], error: float = float("nan")
+               ) -> list[Diagnosis]:
     r"""Make the row's elements say what the equation says (module text); the equation's
-    extra diagnoses."""
+    extra diagnoses (``error``: its largest residual relative to its terms)."""
     if verdict == Verdict.AGREES:
         for r in row:
             if r.verdict in (Verdict.AGREES, Verdict.FACTORIZATION):
@@ -50,8 +53,9 @@ def _reconcile(verdict: Verdict, row: Sequence[ElementDraft]) -> list[Diagnosis]
         return []
     if verdict == Verdict.DIFFERS and not any(
             r.verdict in (Verdict.DIFFERS, Verdict.AGREES_IF) and r.key != "C" for r in row):
+        size = f" (at most {error:.2g} of their size)" if np.isfinite(error) else ""
         return [diagnosis(K.NOTE, "no single element of it differs in its frame: the "
-                          "difference is spread over its terms", prefix="")]
+                          f"difference is spread over its terms{size}", prefix="")]
     return []
 
 
@@ -77,12 +81,14 @@ def equation_records(d: Derivation, decision, drafts: Sequence[ElementDraft],
             diags = [diagnosis(K.UNDECIDED, f"{', '.join(lost)} lost in the extracted text: "
                                "the equation is not decided")]
         singular = first_of(diags, K.SINGULAR, K.DECLARED) is not None  # no family mends
+        spread = not any(r.verdict in (Verdict.DIFFERS, Verdict.AGREES_IF) and r.key != "C"
+                         for r in row)              # no element differs: no family is named
         if verdict == Verdict.DIFFERS and not singular and on_families is not None \
-                and on_families.equations[i].verdict == Verdict.AGREES:
+                and on_families.equations[i].verdict == Verdict.AGREES and not spread:
             text = _family_condition(row) or "the model's special parameter families hold"
             verdict = Verdict.AGREES_IF
             diags = [Diagnosis(K.CONDITION, f"agrees only if {text}", text, condition=text)]
-        diags += _reconcile(verdict, row)
+        diags += _reconcile(verdict, row, e.max_error)
         if solved is not None and verdict == Verdict.DIFFERS:
             diags.append(solved)
         # an equation is named by its velocity where the velocities are no positions' rates
