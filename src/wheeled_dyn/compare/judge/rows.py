@@ -56,10 +56,31 @@ def drafts_of_row(doc_row: Arrays, true_row: Arrays, i: int, exprs: Mapping[str,
         if label in lost or (expr is not None and sp.sympify(expr).has(sp.nan)) or (
                 key == "h" and whole is not None and sp.sympify(whole[i]).has(sp.nan)):
             continue
+        D, T = np.asarray(D, float), np.asarray(T, float)
+        own = scale if key == "C" else element_scale(D, T, scale)
         out.append(ElementDraft(element=label, key=key, index=index, verdict=Verdict.DIFFERS,
-                                diagnoses=[], D=np.asarray(D, float), T=np.asarray(T, float),
-                                scale=scale, expr=expr, equation=equation))
+                                diagnoses=[], D=D, T=T, scale=own, expr=expr,
+                                equation=equation))
     return out
+
+
+#: An element of A, Q, B, K or h is compared relative to its own size, or to this fraction
+#: of its row's scale where it is smaller: the truth's rounding in the shipped comparisons
+#: reaches 4e-13 of the row's scale in A and 5e-11 in h (C, whose factorisation is not
+#: unique, 5e-10: it keeps the row's scale).
+ELEMENT_FLOOR = 1e-2
+
+
+def element_scale(D: np.ndarray, T: np.ndarray, row: float) -> float:
+    r"""The scale an element is judged at: the larger of its own largest finite magnitude (on
+    either side) and :data:`ELEMENT_FLOOR` of its ``row``'s scale, at most the row's. An
+    element is not made to agree by the size of its neighbours: the inertias of an arm with
+    lengths in millimetres are 1e-4 of its gravity terms (accelerations of 1 in SI units are
+    small there), and a typo in one agreed."""
+    values = np.abs(np.concatenate([D.ravel(), T.ravel()]))
+    values = values[np.isfinite(values)]
+    own = float(values.max()) if values.size else 0.0
+    return min(row, max(own, ELEMENT_FLOOR * row))
 
 
 __all__ = ["drafts_of_row", "row_values"]

@@ -47,16 +47,19 @@ def row_of(doc: Arrays, i: int) -> Arrays:
 
 
 def row_scale(doc_row: Arrays, true_row: Arrays) -> float:
-    r"""The row's scale: the largest finite magnitude of its A, C, Q and H entries on either
-    side (1 for a row of zeros)."""
+    r"""The row's scale: the largest magnitude of its A, C, Q and H entries on either side
+    among the entries finite at every sample (1 for a row of zeros). An entry that overflows
+    somewhere never sets it, not even where it is finite: a term of 1e299 there would make
+    every other element of its row agree whatever it is."""
     s = 0.0
     for a in (doc_row, true_row):
         for name in ("A", "C", "Q", "H"):
             M = getattr(a, name)
-            if M is not None:
-                finite = M[np.isfinite(M)]
-                if finite.size:
-                    s = max(s, float(np.abs(finite).max()))
+            if M is not None and M.size:
+                entries = np.abs(M).reshape(M.shape[0], -1)
+                finite = np.isfinite(entries).all(axis=0)
+                if finite.any():
+                    s = max(s, float(entries[:, finite].max()))
     return s if s > 0 else 1.0
 
 
