@@ -101,6 +101,9 @@ def _evaluate(text: str, local: Mapping[str, object]) -> sympy.Expr:
         raise ExpressionError(text, f"not a scalar expression (got {type(expr).__name__})")
     if expr.has(sympy.zoo, sympy.nan, sympy.oo, -sympy.oo):
         raise ExpressionError(text, "evaluates to infinity or an undefined value")
+    if expr.has(sympy.I):
+        raise ExpressionError(text, "not a real expression: it holds the imaginary unit (the "
+                                    "square root or logarithm of a negative number?)")
     return expr
 
 

@@ -124,8 +124,13 @@ def _row_scale(ld: _Loader, n: int) -> tuple[sympy.Expr, ...] | None:
     if len(scale) != n:
         raise ld.fail("rows.scale", f"{len(scale)} factors for {n} rows",
                       ld.line("rows", "scale"))
-    return tuple(ld.expr(t, f"rows.scale[{i + 1}]", "rows", "scale")
-                 for i, t in enumerate(scale))
+    out = tuple(ld.expr(t, f"rows.scale[{i + 1}]", "rows", "scale")
+                for i, t in enumerate(scale))
+    for i, factor in enumerate(out):
+        if factor.is_zero:
+            raise ld.fail(f"rows.scale[{i + 1}]", f"{factor}: a row's factor must not be zero "
+                          "(every equation times 0 is 0 = 0)", ld.line("rows", "scale"))
+    return out
 
 
 def _constraints(ld: _Loader, reader: MatrixReader) -> tuple[sympy.Eq, ...] | None:

@@ -257,6 +257,8 @@ def candidate_rules(i: int, grids: Sequence[tuple[Arrays, Arrays, np.ndarray | N
                 rule = FrameRule(FrameKind.FUNCTION, k, identified=identified)
                 if not any(r.kind == FrameKind.FUNCTION and r.partner == k for r in out):
                     out.append(rule)
+    if doc0.A is None:                    # no inertia: no combination to find
+        return out
     out.append(_combination(i, grids[0], simple))
     return out + combination_variants(grids) if robust else out
 
