@@ -138,9 +138,10 @@ INERTIAL_CASES = {
     "inf_inertia": (_in_link(BASE, "wheel_left", r'izz="[^"]*"', 'izz="inf"'), "wheel_left",
                     ("izz", "not a finite number")),
     "no_inertial": (_in_link(BASE, "wheel_left", r"<inertial>.*?</inertial>", ""), "wheel_left",
-                    ("wheel_left_joint", "no inertial data")),
+                    ("wheel_left_joint", "has no mass")),
     "massless_moving": (_inertia(_mass(BASE, "wheel_left", "0"), "wheel_left", np.diag([0.0] * 3)),
-                        "wheel_left", ("wheel_left_joint", "no inertial data")),
+                        "wheel_left", ("wheel_left_joint", "has no mass",
+                                       'lock = ["wheel_left_joint"]')),
 }
 
 

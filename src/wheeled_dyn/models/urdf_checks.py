@@ -263,7 +263,10 @@ def check_urdf_tree(path: str | Path, text: str, root: ET.Element,
         if jtype in FIXED_TYPES or jname in locked:
             continue
         if subtree[child] <= 0:
-            raise ModelError(path.stem, child, f"link moved by joint {jname!r} has no inertial "
-                                               "data, nor has anything it carries: the joint's "
-                                               "coordinate would have no inertia "
+            raise ModelError(path.stem, child, f"link moved by joint {jname!r} has no mass (no "
+                                               "<inertial>, or mass 0), nor has anything it "
+                                               "carries: the joint's coordinate would have no "
+                                               "inertia; give the link its mass, or lock the "
+                                               "joint in the model file ([joints] lock = "
+                                               f"[\"{jname}\"]) "
                                                f"({path.name}:{_line_of(text, 'link', child)})")
