@@ -68,6 +68,28 @@ def test_starter_names_a_swivel_caster_and_its_lock_loads(tmp_path):
     assert "caster_swivel_joint" not in names and "caster_wheel_joint" not in names
 
 
+def test_starter_pairs_the_wheels_on_one_axle_of_a_skid_steer(tmp_path):
+    r"""Four wheels of one radius (a skid-steer: the robot of ``dd_robot.urdf`` with rear
+    wheels added 0.3 m behind): the drive wheels are two on one axle, where the pair farthest
+    apart (a diagonal one, whose wheels spin about parallel axes off the line between them)
+    was taken and the model it wrote did not load; the model loads."""
+    from pathlib import Path
+    text = (Path(__file__).parent / "data" / "published" / "dd_robot.urdf").read_text()
+    start = text.index('  <joint name="left_wheel_joint"')
+    end = text.index('  <joint name="caster_joint"') if '  <joint name="caster_joint"' in text \
+        else text.index("</link>", text.index('<link name="right_wheel">')) + len("</link>\n")
+    rear = text[start:end].replace("left_wheel", "rear_left_wheel").replace(
+        "right_wheel", "rear_right_wheel").replace('xyz="0 0.18 0"', 'xyz="-0.3 0.18 0"').replace(
+        'xyz="0 -0.18 0"', 'xyz="-0.3 -0.18 0"')
+    urdf = tmp_path / "skid.urdf"
+    urdf.write_text(text[:end] + rear + text[end:])
+    out = tmp_path / "robot.toml"
+    assert main(["model", str(urdf), "--out", str(out)]) == 0
+    wm = load_model(str(out))
+    assert {w.link for w in wm.wheels} in ({"left_wheel", "right_wheel"},
+                                           {"rear_left_wheel", "rear_right_wheel"})
+
+
 def test_existing_file_is_kept_without_force(tmp_path, capsys):
     out = tmp_path / "robot.toml"
     out.write_text("mine")

@@ -40,6 +40,7 @@ class WheelCandidate:
     width: float
     position: tuple[float, float, float]      # link origin in the root frame, zero configuration
     geometry: str                             # "collision" or "visual"
+    axis: tuple[float, float, float] = (0.0, 1.0, 0.0)   # spin axis in the root frame
 
 
 @dataclass(frozen=True)
@@ -107,7 +108,9 @@ def _candidate(urdf, link, cyl, parent_joint, carriers, root: str, why: dict[str
                            f"axis (at most {ANGLE_TOL} rad for a wheel)")
         return None
     pos = tuple(float(x) for x in urdf.get_transform(link.name, root)[:3, 3])
-    return WheelCandidate(link.name, joint.name, cyl[0], cyl[1], pos, cyl[3])  # type: ignore[arg-type]
+    spin = urdf.get_transform(joint.child, root)[:3, :3] @ (axis / np.linalg.norm(axis))
+    return WheelCandidate(link.name, joint.name, cyl[0], cyl[1], pos,  # type: ignore[arg-type]
+                          cyl[3], tuple(float(x) for x in spin))  # type: ignore[arg-type]
 
 
 def _path_joints(pair, parent_joint) -> tuple[str, ...]:
@@ -208,14 +211,22 @@ def _sides(pair, R_body: np.ndarray, body: str):
 
 
 def _pair(cands: list[WheelCandidate]) -> tuple[WheelCandidate, WheelCandidate] | None:
+    r"""The drive wheels: two candidates of equal radius on one axle (each spin axis along the
+    line between their centres: a skid-steer's diagonal pair is not one), the lowest, the
+    farthest apart; two not on one axle only where no such pair exists."""
     best, best_key = None, None
     for i, a in enumerate(cands):
         for b in cands[i + 1:]:
             if abs(a.radius - b.radius) > PAIR_RADIUS_TOL * max(a.radius, b.radius):
                 continue
-            gap = float(np.linalg.norm(np.subtract(a.position, b.position)))
-            key = (round(a.position[2] + b.position[2], 6), -round(gap, 9))
-            if gap > 0 and (best_key is None or key < best_key):
+            line = np.subtract(b.position, a.position)
+            gap = float(np.linalg.norm(line))
+            if gap <= 0:
+                continue
+            coaxial = all(np.linalg.norm(np.cross(line / gap, w.axis)) <= np.sin(ANGLE_TOL)
+                          for w in (a, b))
+            key = (not coaxial, round(a.position[2] + b.position[2], 6), -round(gap, 9))
+            if best_key is None or key < best_key:
                 best, best_key = (a, b), key
     return best
 
