@@ -266,6 +266,19 @@ def test_reports_respect_the_umask_and_are_written_whole(tmp_path, umask, mode):
     assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["report.json", "report.md"]
 
 
+def test_a_folder_where_a_report_goes_leaves_the_old_reports_whole(tmp_path):
+    r"""A folder named ``report.json`` where the reports go: one error naming it, and no report
+    replaced (the Markdown and HTML ones were, then the error named a temporary file)."""
+    from wheeled_dyn.report.write import write_reports
+    out = tmp_path / "out"
+    (out / "report.json").mkdir(parents=True)
+    (out / "report.md").write_text("old")
+    _raises_picklable(lambda: write_reports({"report.md": "new", "report.json": "{}"}, out),
+                      InputFileError, "report.json", "directory")
+    assert (out / "report.md").read_text() == "old"
+    assert sorted(p.name for p in out.iterdir()) == ["report.json", "report.md"]
+
+
 def test_no_warning_from_a_shipped_model():
     with warnings.catch_warnings():
         warnings.simplefilter("error", ModelWarning)

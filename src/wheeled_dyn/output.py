@@ -123,11 +123,16 @@ def write_files_atomic(files: Mapping[str, str | bytes], folder: str | Path) -> 
             with os.fdopen(fd, "wb") as fh:
                 fh.write(data if isinstance(data, bytes) else data.encode("utf-8"))
             os.chmod(tmp, mode)
+        for _, final in staged:                   # nothing replaced where one cannot be
+            if final.is_dir():
+                raise IsADirectoryError(21, "Is a directory", str(final))
         for staged_file, final in staged:
             os.replace(staged_file, final)
     except OSError as exc:
         _remove(staged)
+        finals = {str(tmp): final for tmp, final in staged}
         name = exc.filename if isinstance(exc.filename, str) else out
+        name = finals.get(str(name), name)
         raise InputFileError(out, f"cannot write {Path(name).name} ({exc.strerror})") from None
     except BaseException:
         _remove(staged)
