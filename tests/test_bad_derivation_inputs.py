@@ -177,6 +177,17 @@ def test_load_derivation_of_a_non_path(value):
     assert str(pickle.loads(pickle.dumps(info.value))) == str(info.value)
 
 
+def test_comparing_a_loaded_derivation_checks_its_model_names(tmp_path):
+    r"""``compare(load_derivation(path))`` as the command line does: a symbol valued by a name
+    the model lacks is one error naming the file, the line and the item (a bare
+    ``UnknownNameError`` without them, where a path was checked and a loaded file was not)."""
+    from wheeled_dyn.compare.engine import ComparisonEngine
+    path = _write(tmp_path, 'm = { value = "M(rod)" }', 'm = { value = "inf" }')
+    with pytest.raises(WheeledDynError) as info:
+        ComparisonEngine(samples=20, param_sets=1).compare(load_derivation(path))
+    _clear(info.value, path, "symbols.m.value", ":7:", "'inf'")
+
+
 @pytest.mark.parametrize("kwargs, error, name", [
     ({"samples": 0}, ArgumentError, "samples"), ({"param_sets": -5}, ArgumentError, "param_sets"),
     ({"samples": 10 ** 7, "param_sets": 10 ** 4}, ArgumentError, "samples"),

@@ -79,18 +79,19 @@ class ComparisonEngine:
 
     def compare(self, d: Derivation | str | PathLike) -> DerivationResult:
         r"""The comparison of one derivation (memoised per file and content); a path is loaded
-        (:func:`~wheeled_dyn.derivations.load_derivation`) and its names checked against its
-        model first, as the command line does."""
+        (:func:`~wheeled_dyn.derivations.load_derivation`), and its names are checked against
+        its model first, as the command line does (an unknown one is an error naming the file,
+        the line and the item)."""
         if isinstance(d, (str, PathLike)):
             from ...derivations import load_derivation
             derivation = load_derivation(d)
-            check_model_names(derivation)
         elif isinstance(d, Derivation):
             derivation = d
         else:
             raise ArgumentError("ComparisonEngine.compare", "d", d, "a Derivation "
                                 "(wheeled_dyn.derivations.load_derivation) or the path of a "
                                 "derivation file")
+        check_model_names(derivation)
         key = (str(derivation.path),
                derivation.path.stat().st_mtime_ns if derivation.path.exists() else 0,
                model_version(derivation.model))          # and per content of the model's files
