@@ -207,8 +207,8 @@ def build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
         jid = model.getJointId(jname)
         move_joint_to(model, geom, jid, model.frames[model.getFrameId(link, pin.FrameType.BODY)])
         wheels.append(Wheel(link, side, jname, jid, model.joints[jid].idx_v, rl, width))
-    for w in wheels:
-        _along_axle(model, w.joint_id)
+    for wheel in wheels:
+        _along_axle(model, wheel.joint_id)
     body_jid = model.frames[model.getFrameId(body_link)].parentJoint
     inputs = tuple(spec.inputs) if spec.inputs is not None else ("tau_l", "tau_r")
     if len(inputs) != 2:
