@@ -90,6 +90,20 @@ def test_starter_pairs_the_wheels_on_one_axle_of_a_skid_steer(tmp_path):
                                            {"rear_left_wheel", "rear_right_wheel"})
 
 
+@pytest.mark.parametrize("urdf", ["dd_robot.urdf", "dd_swivel.urdf"])
+def test_starter_keeps_a_robot_on_casters_level(tmp_path, urdf):
+    r"""A differential-drive robot on a caster ball (a sphere fixed under its chassis) or on a
+    swivel caster: ``pitch = false``, the casters named (``true`` was written, a pendulum); the
+    wheeled inverted pendulum of the WIP URDF stays ``true`` (the test above)."""
+    from pathlib import Path
+    out = tmp_path / "robot.toml"
+    assert main(["model", str(Path(__file__).parent / "data" / "published" / urdf), "--out",
+                 str(out)]) == 0
+    line = next(x for x in out.read_text().splitlines() if x.startswith("pitch"))
+    assert line.startswith("pitch = false") and "caster" in line, line
+    assert not load_model(str(out)).spec.pitch
+
+
 def test_existing_file_is_kept_without_force(tmp_path, capsys):
     out = tmp_path / "robot.toml"
     out.write_text("mine")

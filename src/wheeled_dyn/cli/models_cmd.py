@@ -85,7 +85,7 @@ def _cmd_list(args: argparse.Namespace) -> int:
 def _cmd_model(args: argparse.Namespace) -> int:
     from ..errors import InputFileError
     from ..output import check_output_file
-    from ..models.starter import write_starter
+    from ..models.starter_file import write_starter
     if args.out is not None:
         out = check_output_file(args.out, ".toml")
         if out.exists() and not args.force:

@@ -20,7 +20,7 @@ def starter_spec(inv: UrdfInventory):
     from pathlib import Path
 
     from .model_file import read_model_file
-    from .starter import starter_text
+    from .starter_file import starter_text
     with tempfile.TemporaryDirectory() as folder:
         path = Path(folder) / "starter.toml"
         path.write_text(starter_text(inv, path), encoding="utf-8")

@@ -54,3 +54,15 @@ def read_checked(path: str | Path, accept: tuple[str, ...] = ()):
 
 
 __all__ = ["STARTER_ACCEPT_HINT", "read_checked"]
+
+
+def caster_links(urdf, wheels: tuple[str, ...], free: tuple[str, ...]) -> tuple[str, ...]:
+    r"""The links that look like casters of a robot whose drive wheels are ``wheels``: a link
+    with a sphere (a caster ball), or one a moving joint of ``free`` turns (a swivel caster,
+    another wheel), sorted; they keep a wheeled body level (its model's ``pitch = false``)."""
+    out = {link.name for link in urdf.robot.links if link.name not in wheels and any(
+        shape.geometry is not None and shape.geometry.sphere is not None
+        for shape in (*link.collisions, *link.visuals))}
+    out |= {j.child for j in urdf.robot.joints if j.name in free}
+    return tuple(sorted(out))
+
