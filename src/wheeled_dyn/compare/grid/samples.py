@@ -69,6 +69,13 @@ URDF_STRUCTURE = SpecialCase(
     "(coordinates and products of inertia that are zero there stay zero)", lambda p: p)
 
 
+#: Generic models: every body's inertia about its centre of mass diagonal in its joint's axes
+#: (no products of inertia: the tiny ones a CAD export writes, or a rounded angle leaves).
+NO_PRODUCTS = SpecialCase(
+    "principal_axes", "every link's products of inertia are zero (its principal axes along its "
+    "joint's axes)", lambda p: p)
+
+
 #: Generic models: each link scaled as a whole (mass by one factor, lengths by another, its radii,
 #: shapes and the origins of the joints it carries with them), so its shape stays the URDF's
 #: (a uniform ball stays uniform with its radius, a rod stays a uniform rod of its length).
@@ -167,7 +174,8 @@ def uniform_links(wm: WheeledModel, special: Sequence[SpecialCase]) -> set[str]:
 def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
                           keep_structure: bool = False,
                           uniform: frozenset[str] | set[str] = frozenset(),
-                          massless: Collection[str] = ()) -> WheeledModel:
+                          massless: Collection[str] = (), principal: bool = False
+                          ) -> WheeledModel:
     r"""Random lengths (the ``uniform`` links scaled as a whole with a random mass factor
     each, and their bodies put together again from their links:
     :mod:`~wheeled_dyn.models.geometry_apply`), and random, physically consistent inertias
@@ -175,7 +183,10 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
     ``keep_structure`` the URDF's inertias are rescaled instead: mass and each centre-of-mass
     coordinate by random factors, the principal moments by random factors keeping the triangle
     inequality, the principal axes unchanged. Each spring's stiffness and rest position are
-    scaled by random factors in [0.5, 2]. The bodies of the ``massless`` links carry none."""
+    scaled by random factors in [0.5, 2]. The bodies of the ``massless`` links carry none;
+    with ``principal`` every body's inertia about its centre is made diagonal in its joint's
+    axes (the diagonal of a valid one is valid: :math:`J_{ii} = \Sigma_{jj} + \Sigma_{kk}` of
+    the second moments' diagonal)."""
     drawn = _with_geometry(wm, rng, uniform)
     model = pin.Model(drawn.model)               # never the model of ``wm`` itself
     composed = {jid for jid, links in bodies_of(wm).items() if uniform & set(links)}
@@ -203,6 +214,10 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
         _alike_wheels(wm, model, rng)
     for jid in _massless_bodies(wm, massless):
         model.inertias[jid] = pin.Inertia.Zero()
+    if principal:
+        for jid in range(1, model.njoints):
+            old = model.inertias[jid]
+            model.inertias[jid] = pin.Inertia(old.mass, old.lever, np.diag(np.diag(old.inertia)))
     model.gravity = pin.Motion(np.array([0.0, 0.0, -rng.uniform(5.0, 15.0)]), np.zeros(3))
     springs = with_stiffness(wm.springs, rng.uniform(0.5, 2.0, len(wm.springs)),
                              rng.uniform(0.5, 2.0, len(wm.springs))) \
@@ -247,8 +262,9 @@ def parameter_sets(model_name: str, k: int, rng: np.random.Generator,
     keep = URDF_STRUCTURE in special
     uniform = uniform_links(base, special)
     massless = {link for case in special for link in case.massless}
+    principal = NO_PRODUCTS in special
     for _ in range(k):
-        wm = _random_link_inertias(base, rng, keep, uniform, massless)
+        wm = _random_link_inertias(base, rng, keep, uniform, massless, principal)
         out.append(ParameterSet(wm, namespace_values(wm, None)))
     return out
 
@@ -281,7 +297,8 @@ UNIFORM_LINK_FAMILIES = 4
 
 def special_cases(model_name: str) -> tuple[SpecialCase, ...]:
     r"""The special families of a model, weakest first: the WIP's
-    (:data:`WIP_SPECIAL_CASES`); for the others ``urdf_structure``, each link with mass
+    (:data:`WIP_SPECIAL_CASES`); for the others ``urdf_structure``, ``principal_axes``
+    (:data:`NO_PRODUCTS`), each link with mass
     uniform alone (:func:`uniform_family`, two to :data:`UNIFORM_LINK_FAMILIES` such links)
     and every link uniform (``urdf_proportions``)."""
     if model_entry(model_name).parameters is WipParameters:
@@ -289,7 +306,7 @@ def special_cases(model_name: str) -> tuple[SpecialCase, ...]:
     links = sorted(uniform_links(load_model(model_name), (URDF_PROPORTIONS,)))
     each = tuple(uniform_family((link,)) for link in links) \
         if 2 <= len(links) <= UNIFORM_LINK_FAMILIES else ()
-    return (URDF_STRUCTURE, *each, URDF_PROPORTIONS)
+    return (URDF_STRUCTURE, NO_PRODUCTS, *each, URDF_PROPORTIONS)
 
 
 def regular_states(cmap, q: np.ndarray, rng: np.random.Generator,
