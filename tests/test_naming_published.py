@@ -272,8 +272,25 @@ def _dd_solved(tmp_path: Path, old: str = "", new: str = "") -> Path:
 
 def test_rows_solved_for_a_diagonal_inertia_are_told_solved(engine, tmp_path):
     r"""Both rows solved (the robot's inertia is diagonal in (v, ω)): each is told "solved for
-    the accelerations", the weights of its form, where it was "times a function of the state
-    and parameters (not identified)"."""
+    the accelerations", the weights of its form, or divided by the sum it prints, where it was
+    "times a function of the state and parameters (not identified)"."""
+    result = engine.compare(load_derivation(_dd_solved(tmp_path)))
+    assert result.equivalent is True
+    frames = [e.frame for e in result.equations]
+    assert frames[0] in ("solved for the accelerations (row of A⁻¹ × the true equations)",
+                         "the true equation divided by 2*I_w/R**2 + m_c + 2*m_w"), frames
+    assert frames[1].startswith("solved for the accelerations") or \
+        frames[1].startswith("the true equation divided by"), frames
+    assert not any("not identified" in f for f in frames), frames
+
+
+def test_a_solved_row_whose_divisor_is_not_found_is_told_solved(engine, tmp_path,
+                                                                 monkeypatch):
+    r"""The same rows where the sums they divide by are not among the fits' bases (a divisor
+    the search cannot name): "solved for the accelerations", not "times a function of the
+    state and parameters (not identified)"."""
+    from wheeled_dyn.compare.judge import fitting
+    monkeypatch.setattr(fitting, "written_divisors", lambda d: [])
     result = engine.compare(load_derivation(_dd_solved(tmp_path)))
     assert result.equivalent is True
     for e in result.equations:
