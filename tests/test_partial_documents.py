@@ -13,27 +13,16 @@ from pathlib import Path
 import pytest
 
 from conftest import SEED
+from test_bad_derivation_inputs import EQUATION, ROD
 from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.compare.records import DiagnosisKind as K, Verdict
 from wheeled_dyn.derivations import load_derivation
 from wheeled_dyn.errors import DerivationError
 
 #: A uniform rod pendulum's gravity torque about its pivot (m g l/2 sin θ), as a document
-#: that derives only it writes it.
-ONLY_Q = '''title = "rod pendulum, its gravity torque only"
-model = "rod_pendulum"
-[coordinates]
-positions = ["theta"]
-configuration = { theta = "theta" }
-[symbols]
-m = { value = "M(rod)" }
-l = { value = "length(rod)" }
-g = "g"
-[assumes]
-uniform = ["rod"]
-[matrices]
-Q = "[m*g*l/2*sin(theta)]"
-'''
+#: that derives only it writes it (the small valid file of the bad-input tests otherwise).
+ONLY_Q = ROD.replace(EQUATION, 'Q = "[m*g*l/2*sin(theta)]"').replace(
+    "Uniform rod pendulum", "rod pendulum, its gravity torque only")
 
 
 def _write(tmp_path: Path, text: str) -> Path:
