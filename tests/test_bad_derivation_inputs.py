@@ -177,6 +177,14 @@ def test_load_derivation_of_a_non_path(value):
     assert str(pickle.loads(pickle.dumps(info.value))) == str(info.value)
 
 
+def test_a_byte_order_mark_is_read_past(tmp_path):
+    r"""A file saved by a Windows editor with a UTF-8 byte-order mark reads as without it (it
+    was "1:1: malformed TOML: Invalid statement")."""
+    path = tmp_path / "bom.toml"
+    path.write_bytes(b"\xef\xbb\xbf" + ROD.encode("utf-8"))
+    assert load_derivation(path).title == "Uniform rod pendulum"
+
+
 def test_comparing_a_loaded_derivation_checks_its_model_names(tmp_path):
     r"""``compare(load_derivation(path))`` as the command line does: a symbol valued by a name
     the model lacks is one error naming the file, the line and the item (a bare

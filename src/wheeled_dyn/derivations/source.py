@@ -90,7 +90,8 @@ MAX_FILE_BYTES = 4 * 1024 * 1024
 
 
 def read_small_text(p: Path) -> str:
-    r"""The UTF-8 text of a regular file of at most :data:`MAX_FILE_BYTES`. A missing file, a
+    r"""The UTF-8 text of a regular file of at most :data:`MAX_FILE_BYTES` (without the
+    byte-order mark a Windows editor may write first). A missing file, a
     folder, a FIFO or a device (reading those could block or never end), a larger file, or
     text that is not UTF-8 raises :class:`InputFileError`."""
     import os
@@ -113,7 +114,7 @@ def read_small_text(p: Path) -> str:
     try:
         with open(p, "rb") as fh:
             raw = fh.read(MAX_FILE_BYTES + 1)
-        return raw[:MAX_FILE_BYTES].decode("utf-8")
+        return raw[:MAX_FILE_BYTES].decode("utf-8-sig")    # a Windows editor's BOM dropped
     except UnicodeDecodeError as exc:
         raise InputFileError(p, f"not UTF-8 text (byte {exc.start})") from None
     except OSError as exc:
