@@ -22,7 +22,7 @@ from types import MappingProxyType
 import numpy as np
 import pinocchio as pin
 
-from ..errors import ArgumentError, UnknownNameError
+from ..errors import ArgumentError, InputFileError, UnknownNameError
 from ..paths import file_stamp
 from .benchmarks import PYTHON_BENCHMARKS
 from .builder import build_wheeled_model
@@ -122,8 +122,10 @@ def model_entry(reference: str | Path) -> ModelEntry:
             str(entry.source), stamp)
     if is_model_path(key):
         return _path_entry(key, file_stamp(key))
-    raise UnknownNameError("model", str(reference), tuple(MODELS),
-                           where="names, or a model file path (name.toml)")
+    if Path(str(reference)).is_dir():
+        raise InputFileError(Path(str(reference)), "is a folder, expected a model file "
+                             "(name.toml) or a shipped model's name")
+    raise UnknownNameError("model", str(reference), (*MODELS, "a model file (name.toml)"))
 
 
 def model_spec(reference: str | Path) -> ModelSpec:
