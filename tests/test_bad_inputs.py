@@ -279,10 +279,12 @@ def test_a_folder_where_a_report_goes_leaves_the_old_reports_whole(tmp_path):
     assert sorted(p.name for p in out.iterdir()) == ["report.json", "report.md"]
 
 
-def test_a_folder_given_as_a_model_is_named_so(tmp_path):
-    r"""A folder where a model is expected: "is a folder, expected a model file" (it was
-    "names, or a model file path (name.toml): unknown model ...")."""
-    _raises_picklable(lambda: wd.load_model(str(tmp_path)), InputFileError, "is a folder",
+def test_a_folder_given_as_a_model_is_named_so(tmp_path, monkeypatch):
+    r"""A folder named where a model is expected (``adir``, as a name): "is a folder, expected
+    a model file" (it was "names, or a model file path (name.toml): unknown model ...")."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "adir").mkdir()
+    _raises_picklable(lambda: wd.load_model("adir"), InputFileError, "is a folder",
                       "model file")
 
 
