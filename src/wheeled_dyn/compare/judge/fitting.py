@@ -206,9 +206,13 @@ def fit_sum(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> 
     coefficients equal to ``target`` at every sample (the quantity a row was divided by when
     it is a sum, :math:`I_g + m a^2`). Every pair is tried at once through the Gram matrix
     (the residual of each 2 × 2 least-squares fit) on at most :data:`SCREEN_SAMPLES` distinct
-    samples, and the few that fit there are checked exactly at every sample. Not searched
-    with more than :data:`SUM_BASES` bases: then among those without a sine or cosine, where
-    they are few enough (a three-link arm's row divided by :math:`I_3 + m_3 l_{c3}^2`)."""
+    samples, and the few that fit there are checked exactly at every sample. The sums the
+    document divides by are left out (they are fitted whole, by :func:`fit_factor`). Not
+    searched with more than :data:`SUM_BASES` bases: then among those without a sine or
+    cosine, where they are few enough (a three-link arm's row divided by
+    :math:`I_3 + m_3 l_{c3}^2`)."""
+    if any(b[0].is_Add for b in bases):          # the sums the document divides by: whole
+        return fit_sum(target, [b for b in bases if not b[0].is_Add])
     if len(bases) > SUM_BASES:
         plain = [b for b in bases if not b[0].has(sp.sin, sp.cos)]
         return fit_sum(target, plain) if 0 < len(plain) < len(bases) else None
