@@ -149,7 +149,10 @@ def carrier_parameters(wm: WheeledModel) -> dict[str, dict[str, sp.Expr]]:
         frame, jid = model.frames[fid], model.frames[fid].parentJoint
         if names[jid] == body.carrier or _drawn_between(model, fid, drawn):
             continue
-        R = exact_rotation(frame.placement.rotation)
+        rotation = np.asarray(frame.placement.rotation, dtype=float)
+        signs = np.rint(rotation)     # a turn by right angles is exact at once (the table of
+        R = sp.Matrix(signs.astype(int)) if np.abs(rotation - signs).max() <= PLACEMENT_TOL \
+            else exact_rotation(rotation)         # special values takes 0.25 s to make)
         p = exact_translation(frame.placement.translation)
         M, *rest = (sp.Symbol(f"{k}_{names[jid]}", real=True) for k in PARAMETER_NAMES)
         s = sp.Matrix(rest[:3]) - M * p
