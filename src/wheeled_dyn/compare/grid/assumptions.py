@@ -115,8 +115,8 @@ def left_out(d: Derivation) -> tuple[str, ...]:
     from sympy.core.function import AppliedUndef
 
     from ...models.geometry_apply import bodies_of
+    from ...models.link_parameters import FUNCTIONS
     from ...models.registry import load_model, model_entry
-    from ...symbolic.parameters import PARAMETER_NAMES
     if model_entry(d.model).parameters is not None or d.coordinates.use:
         return ()
     wm = load_model(d.model)
@@ -124,10 +124,11 @@ def left_out(d: Derivation) -> tuple[str, ...]:
         return ()
     calls = [c for s in d.symbols.values() if s.value is not None
              for c in s.value.atoms(AppliedUndef) if c.args]
-    inertial = {*PARAMETER_NAMES, "CX", "CY", "CZ", "IXX", "IYY", "IZZ", "IXY", "IXZ", "IYZ"}
-    if not any(c.func.__name__ in inertial for c in calls):
+    if not any(c.func.__name__ in FUNCTIONS for c in calls):
         return ()
-    named = {str(c.args[0]) for c in calls} | set(d.coordinates.configuration)
+    joints = {alias: joint for joint, alias in wm.spec.aliases.items()}   # coordinate -> joint
+    named = {str(c.args[0]) for c in calls} | {joints.get(k, k)
+                                               for k in d.coordinates.configuration}
     kept = {w.link for w in wm.wheels} | {w.link for w in wm.rolling_wheels}
     if wm.contact is not None:
         kept.add(wm.contact.spec.link)

@@ -272,8 +272,8 @@ def parameter_sets(model_name: str, k: int, rng: np.random.Generator,
 def family(model_name: str, name: str) -> SpecialCase | None:
     r"""The model's special family called ``name``: one of :func:`special_cases`, or
     ``uniform(link, ...)`` (:func:`uniform_family`) or ``massless(link, ...)``
-    (:func:`massless_family`) for links of a model without a physical record; None for another name (an unknown link is an
-    :class:`~wheeled_dyn.errors.UnknownNameError`)."""
+    (:func:`massless_family`) for links of a model without a physical record; None for
+    another name (an unknown link is an :class:`~wheeled_dyn.errors.UnknownNameError`)."""
     found = next((c for c in special_cases(model_name) if c.name == name), None)
     head = next((h for h in ("uniform(", "massless(") if name.startswith(h)), None)
     if found is not None or head is None or not name.endswith(")"):
