@@ -288,6 +288,16 @@ def test_a_folder_given_as_a_model_is_named_so(tmp_path, monkeypatch):
                       "model file")
 
 
+def test_a_urdf_path_that_is_no_file_is_named_so(tmp_path):
+    r"""A URDF path that is a FIFO (or a folder): "not a URDF file", where it said "no such
+    URDF file"."""
+    from wheeled_dyn.models.urdf_source import read_urdf
+    fifo = tmp_path / "robot.urdf"
+    os.mkfifo(fifo)
+    _raises_picklable(lambda: read_urdf(fifo), InputFileError, "robot.urdf",
+                      "not a URDF file")
+
+
 def test_no_warning_from_a_shipped_model():
     with warnings.catch_warnings():
         warnings.simplefilter("error", ModelWarning)

@@ -182,7 +182,8 @@ def read_urdf(path: str | Path, locked: tuple[str, ...] = (),
     """
     path = Path(path)
     if not path.is_file():
-        raise InputFileError(path, "no such URDF file")
+        raise InputFileError(path, "is a folder, FIFO or device, not a URDF file"
+                             if path.exists() else "no such URDF file")
     try:
         text = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
