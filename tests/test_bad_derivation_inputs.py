@@ -177,6 +177,15 @@ def test_load_derivation_of_a_non_path(value):
     assert str(pickle.loads(pickle.dumps(info.value))) == str(info.value)
 
 
+def test_a_stray_character_is_named_not_the_space_before_it(tmp_path):
+    r"""``m*g ? l`` in an equation: "token '?' is not allowed" (Python's tokenizer reports the
+    space before a character it cannot read too, and the space was named)."""
+    path = _write(tmp_path, "m*g*l/2*sin(theta)", "m*g ? l/2*sin(theta)")
+    with pytest.raises(DerivationError) as info:
+        load_derivation(path)
+    _clear(info.value, path, "token '?' is not allowed")
+
+
 def test_a_byte_order_mark_is_read_past(tmp_path):
     r"""A file saved by a Windows editor with a UTF-8 byte-order mark reads as without it (it
     was "1:1: malformed TOML: Invalid statement")."""

@@ -64,7 +64,8 @@ def scan_names(text: str) -> list[tuple[str, bool]]:
         raise ExpressionError(text, "empty expression")
     try:
         tokens = [t for t in tokenize.generate_tokens(io.StringIO(src).readline)
-                  if t.type not in (tokenize.NEWLINE, tokenize.NL, tokenize.ENDMARKER)]
+                  if t.type not in (tokenize.NEWLINE, tokenize.NL, tokenize.ENDMARKER)
+                  and not (t.type == tokenize.ERRORTOKEN and t.string.isspace())]
     except (tokenize.TokenError, IndentationError, SyntaxError) as exc:
         raise ExpressionError(text, f"cannot tokenize ({exc.args[0]})") from exc
     names: list[tuple[str, bool]] = []
