@@ -99,7 +99,10 @@ def test_starter_keeps_a_robot_on_casters_level(tmp_path, urdf):
     out = tmp_path / "robot.toml"
     assert main(["model", str(Path(__file__).parent / "data" / "published" / urdf), "--out",
                  str(out)]) == 0
-    line = next(x for x in out.read_text().splitlines() if x.startswith("pitch"))
+    text = out.read_text()
+    fixed = [x for x in text.splitlines() if x.startswith("#") and " fixed " in x]
+    assert fixed and not any(x.rstrip().endswith("1 0 0") for x in fixed), fixed  # no axis
+    line = next(x for x in text.splitlines() if x.startswith("pitch"))
     assert line.startswith("pitch = false") and "caster" in line, line
     assert not load_model(str(out)).spec.pitch
 

@@ -161,7 +161,8 @@ def inspect_urdf(path: str | Path, accept_inertia: tuple[str, ...] = ()) -> Urdf
         why["(pairing)"] = f"only one candidate wheel ({ordered[0].link})"
     path_joints = _path_joints(pair, parent_joint)
     joints = tuple((j.name, j.type, j.parent, j.child,
-                    " ".join(f"{x:g}" for x in (j.axis if j.axis is not None else ())))
+                    " ".join(f"{x:g}" for x in (j.axis if j.axis is not None and j.type
+                                                 != "fixed" else ())))   # none of its own
                    for j in robot.joints)
     body, up, notes = root, (0.0, 0.0, 1.0), ()
     if pair is not None:
