@@ -107,6 +107,23 @@ def test_starter_keeps_a_robot_on_casters_level(tmp_path, urdf):
     assert not load_model(str(out)).spec.pitch
 
 
+def test_a_wheel_whose_collision_cylinder_is_turned_wrong_is_read_from_its_visual(tmp_path):
+    r"""The robot of ``dd_robot.urdf`` with each wheel's collision cylinder turned off its axis
+    (its visual one right, as happens in a URDF's collision blocks): the wheels are found,
+    their radius read from the visual cylinder and said so, where it was "no wheel pair"."""
+    from pathlib import Path
+    text = (Path(__file__).parent / "data" / "published" / "dd_robot.urdf").read_text()
+    old = '<collision><geometry><cylinder radius="0.08"'
+    assert text.count(old) == 2
+    urdf = tmp_path / "robot.urdf"
+    urdf.write_text(text.replace(old, '<collision><origin rpy="1.5708 0 0"/><geometry>'
+                                      '<cylinder radius="0.08"'))
+    out = tmp_path / "robot.toml"
+    assert main(["model", str(urdf), "--out", str(out)]) == 0
+    assert "read from left_wheel's visual cylinder" in out.read_text()
+    assert {w.link for w in load_model(str(out)).wheels} == {"left_wheel", "right_wheel"}
+
+
 def test_existing_file_is_kept_without_force(tmp_path, capsys):
     out = tmp_path / "robot.toml"
     out.write_text("mine")

@@ -16,6 +16,7 @@ planar base needs the axle on one rigid body). Every suggestion is marked
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -61,14 +62,18 @@ class UrdfInventory:
     casters: tuple[str, ...] = ()                       # links keeping the body level
 
 
-def _cylinder(link) -> tuple[float, float, np.ndarray, str] | None:
+def _cylinders(link) -> Iterator[tuple[float, float, np.ndarray, str]]:
+    r"""The link's cylinders, collision ones first: (radius, length, axis, kind)."""
     for kind, shapes in (("collision", link.collisions), ("visual", link.visuals)):
         for shape in shapes:
             cyl = shape.geometry.cylinder if shape.geometry is not None else None
             if cyl is not None:
                 origin = shape.origin if shape.origin is not None else np.eye(4)
-                return float(cyl.radius), float(cyl.length), np.asarray(origin)[:3, 2], kind
-    return None
+                yield float(cyl.radius), float(cyl.length), np.asarray(origin)[:3, 2], kind
+
+
+def _cylinder(link) -> tuple[float, float, np.ndarray, str] | None:
+    return next(_cylinders(link), None)
 
 
 def _carriers(robot, parent_joint) -> set[str]:
@@ -103,8 +108,8 @@ def _candidate(urdf, link, cyl, parent_joint, carriers, root: str, why: dict[str
     sine = float(np.linalg.norm(np.cross(cyl_axis, axis / np.linalg.norm(axis))))
     angle = float(np.arcsin(min(1.0, sine)))
     if angle > ANGLE_TOL:
-        why[joint.name] = (f"{link.name}'s cylinder axis is {angle:.3g} rad from the joint "
-                           f"axis (at most {ANGLE_TOL} rad for a wheel)")
+        why.setdefault(joint.name, f"{link.name}'s {cyl[3]} cylinder axis is {angle:.3g} rad "
+                                   f"from the joint axis (at most {ANGLE_TOL} rad for a wheel)")
         return None
     pos = tuple(float(x) for x in urdf.get_transform(link.name, root)[:3, 3])
     spin = urdf.get_transform(joint.child, root)[:3, :3] @ (axis / np.linalg.norm(axis))
@@ -144,7 +149,10 @@ def inspect_urdf(path: str | Path, accept_inertia: tuple[str, ...] = ()) -> Urdf
                       f"({cyl[3]})" if cyl else ""))
         if cyl is None or link.name not in parent_joint:
             continue
-        cand = _candidate(urdf, link, cyl, parent_joint, carriers, root, why)
+        cand = next((c for c in (_candidate(urdf, link, shape, parent_joint, carriers, root,
+                                            why) for shape in _cylinders(link)) if c), None)
+        if cand is not None:            # a visual cylinder about the axis (the collision
+            why.pop(cand.joint, None)   # one turned wrong): the wheel is read from it
         best = candidates.get(cand.joint) if cand is not None else None
         if cand is not None and (best is None or cand.radius > best.radius):
             candidates[cand.joint] = cand
