@@ -173,3 +173,17 @@ def test_a_constraint_row_times_a_vanishing_factor_is_not_the_same(engine, tmp_p
     assert result.constraints_agree is False and result.equivalent is False
     causes = [c.explanation for c in result.causes if c.kind == CauseKind.NOT_EQUIVALENT]
     assert any("vanishes or is unbounded" in c for c in causes), causes
+
+
+def test_a_constraint_stated_twice_is_still_the_models(engine, tmp_path):
+    r"""The robot's G with a fourth row, the sum of its first two (a dependent row, four
+    multipliers): the same constraints. The model's own rows are four of rank three here; a
+    determinant taken between three of each changed sign through the states where those three
+    are dependent, and the rows were said to be "times a factor that vanishes"."""
+    old = "[0, 0, 1, -R/(2*L), R/(2*L)]]"
+    result = _compare(engine, tmp_path, ROBOT, old,
+                      "[0, 0, 1, -R/(2*L), R/(2*L)],\n"
+                      "        [cos(theta) - sin(theta), sin(theta) + cos(theta), 0, -R/2, "
+                      "-R/2]]")
+    assert result.constraints_agree is True
+    assert result.equivalent is True, [c.explanation for c in result.causes]

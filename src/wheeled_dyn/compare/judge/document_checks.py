@@ -258,9 +258,7 @@ def constraint_space(rows: np.ndarray, true_G: np.ndarray, sets: int = 1) -> tup
         out.append(f"its constraint row {r + 1} is no combination of the model's rolling "
                    f"constraints (off by {float(off[:, r].max()):.2g} of its size)")
 
-    def rank(M: np.ndarray) -> np.ndarray:
-        sv = np.linalg.svd(M, compute_uv=False)
-        return (sv > RANK_TOL * np.maximum(sv[:, :1], 1e-300)).sum(axis=1)
+    rank = _rank
     short = rank(T) - rank(D)
     if (short > 0).any():
         k = int(short.max())
@@ -275,11 +273,21 @@ def constraint_space(rows: np.ndarray, true_G: np.ndarray, sets: int = 1) -> tup
     return tuple(out)
 
 
+def _rank(M: np.ndarray) -> np.ndarray:
+    r"""The rank of each sample's rows of ``M`` (S × m × n), to :data:`RANK_TOL`."""
+    sv = np.linalg.svd(M, compute_uv=False)
+    return (sv > RANK_TOL * np.maximum(sv[:, :1], 1e-300)).sum(axis=1)
+
+
 def _vanishing(D: np.ndarray, T: np.ndarray, ok: np.ndarray, sets: int) -> bool:
     r"""Whether :math:`\det P` (:math:`D = PT'`, :math:`T'` the true rows that are not
-    round-off) takes both signs among the finite samples ``ok`` of one parameter set."""
+    round-off) takes both signs among the finite samples ``ok`` of one parameter set. Only
+    where both are as many independent rows at every sample: rows that state a constraint
+    twice (the model's own, four rows of rank three for a robot's two wheels) have no such
+    P, and one drawn from a subset of them changes sign through the poles of that subset."""
     real = np.flatnonzero(np.abs(T).max(axis=(0, 2)) > 0)
-    if len(real) != D.shape[1]:
+    if len(real) != D.shape[1] or (_rank(T[:, real, :]) < len(real)).any() or \
+            (_rank(D) < D.shape[1]).any():
         return False
     P = D @ np.linalg.pinv(T[:, real, :])
     det = np.full(len(ok), np.nan)
