@@ -102,6 +102,10 @@ def test_a_wrong_inertia_is_not_absorbed_into_the_combination(engine, tmp_path):
     assert [e.verdict for e in result.equations] == ["agrees", "agrees", "differs", "agrees",
                                                      "agrees"]
     assert result.constraints_agree is True
+    # named in the document's symbols with the plainest coefficient: its wheels' two moments
+    # are in a fixed ratio (I_m = 9 I_w/16), and 9*I_w/8 was written for 2*I_m
+    a33 = next(r for r in result.records if r.element == "A[3,3]")
+    assert "(2*I_m in the document's symbols)" in " ".join(a33.texts), a33.texts
 
 
 def test_multiplier_terms_allow_any_mixing_of_the_multipliers():

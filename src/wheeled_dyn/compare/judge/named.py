@@ -143,6 +143,30 @@ def _too_much(term: sp.Expr, written: frozenset) -> bool:
     return term.could_extract_minus_sign()
 
 
+def _plainest(found: sp.Expr | None, bases: Sequence[tuple[sp.Expr, np.ndarray]]
+              ) -> sp.Expr | None:
+    r"""``found``, a monomial of the document's names, written with the simplest coefficient
+    where one of its names is a constant multiple of another on every sample (two wheels'
+    moments in a fixed ratio: :math:`2 I_m`, not :math:`9 I_w/8`)."""
+    if found is None:
+        return None
+    values = {e: v for e, v in bases if isinstance(e, sp.Symbol)}
+    best = found
+    for s in sorted(found.free_symbols & set(values), key=sp.default_sort_key):
+        for a, v in values.items():
+            ratio = values[s] / v
+            if a == s or np.ptp(ratio) > RATIO_TOL * np.abs(ratio).max():
+                continue
+            k = sp.Rational(float(np.median(ratio))).limit_denominator(12)
+            if abs(float(k) - float(np.median(ratio))) > RATIO_TOL * abs(float(k)):
+                continue
+            trial = found.xreplace({s: k * a})
+            c = trial.as_coeff_Mul()[0]
+            if sp.Rational(c).q < sp.Rational(best.as_coeff_Mul()[0]).q:
+                best = trial
+    return best
+
+
 def _missing_factor(D: np.ndarray, T: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
                     ) -> Diagnosis | None:
     r"""The truth a monomial :math:`f` in the document's names (not a number: a constant factor
@@ -236,14 +260,15 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
         hit = _point_mass(own, moments, lengths) if r.key == "A" else None
         steiner = _point_mass(own, parallel, lengths) if r.key == "A" and parallel else None
         if steiner is not None and steiner[1] == 1 and (hit is None or hit[1] != 1):
-            _parallel_axis(r, steiner[0], fit_factor(residual, bases))
+            _parallel_axis(r, steiner[0], _plainest(fit_factor(residual, bases), bases))
             continue
         if has_kind(r.diagnoses, K.FACTOR) and (hit is None or hit[1] != 1):
             continue                          # a constant factor says it more plainly
         if hit is not None:
             name, c = hit
             times = "" if c == 1 else f" × {sp.sstr(c)}"
-            term = fit_factor(residual, bases) if np.abs(residual).min() > 0 else None
+            term = _plainest(fit_factor(residual, bases), bases) \
+                if np.abs(residual).min() > 0 else None
             own = f" ({sp.sstr(term)} in the document's symbols)" if term is not None \
                 else ""
             r.diagnoses.insert(0, diagnosis(
@@ -257,7 +282,8 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
         if missing is not None:
             r.diagnoses.insert(0, missing)
             continue
-        found = fit_factor(residual, bases) if np.abs(residual).min() > 0 else None
+        found = _plainest(fit_factor(residual, bases), bases) \
+            if np.abs(residual).min() > 0 else None
         found = found if found is not None else fit_sum(residual, bases)
         if found is None:
             continue
