@@ -191,3 +191,13 @@ def test_a_constraint_stated_twice_is_still_the_models(engine, tmp_path):
                       "-R/2]]")
     assert result.constraints_agree is True
     assert result.equivalent is True, [c.explanation for c in result.causes]
+
+
+def test_constraints_stated_where_the_file_drops_the_rolling_say_so(engine, tmp_path):
+    r"""The disk's file with ``rolling = "none"`` and its G: not the model's constraints, and
+    the cause says it is the file's setting that drops them (it said only "constraints the
+    model does not have", though the body rolls)."""
+    result = _compare(engine, tmp_path, DISK, 'rolling = "multipliers"', 'rolling = "none"')
+    assert result.equivalent is False
+    causes = [c.explanation for c in result.causes if c.kind == CauseKind.NOT_EQUIVALENT]
+    assert any('rolling = "none"' in c for c in causes), causes

@@ -312,6 +312,10 @@ def constraint_problems(d: Derivation, funcs: DocumentFunctions, sides: Sides
     if truth.G is None:
         if doc.G is None or not np.any(np.nan_to_num(doc.G)):
             return None
+        if d.coordinates.rolling == "none":
+            return ("it states constraint rows, but declares rolling = \"none\", which drops "
+                    "the model's rolling constraints: its rows are constraints the model read "
+                    "so does not have (declare rolling = \"multipliers\" to keep them)",)
         return ("it states constraint rows, but its coordinates leave the model no rolling "
                 "constraint (they eliminate them, or there are none): constraints the model "
                 "does not have",)
