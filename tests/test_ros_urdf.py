@@ -189,7 +189,7 @@ def test_no_wheel_pair_is_said_plainly(tmp_path, capsys):
     assert main(["model", str(tmp_path / "r.urdf"), "--out", str(tmp_path / "r.toml")]) == 0
     printed = capsys.readouterr().out
     assert printed.startswith("no wheel pair found")
-    assert "left_wheel_joint: left_wheel's cylinder axis is 1.57 rad from the joint axis" \
+    assert "left_wheel_joint: left_wheel's collision cylinder axis is 1.57 rad from the joint " \
         in printed
     written = (tmp_path / "r.toml").read_text()
     assert "CHECK: a fixed base holds the root link in the air" in written
