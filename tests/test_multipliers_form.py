@@ -141,8 +141,10 @@ def test_only_constraints_stated_wrong_is_named_so(engine, tmp_path):
     assert not any("G:" in c for c in causes), causes
 
 
-@pytest.mark.parametrize("factor", ["r*1000000", "(2 + cos(theta))"])
+@pytest.mark.parametrize("factor", ["r*1000000", "(2 + cos(theta))", "100000000"])
 def test_a_constraint_row_scaled_is_the_same_constraint(engine, tmp_path, factor):
+    r"""A row of G times a factor that does not vanish is the same constraint, its multiplier
+    another name: 1e8 too (its multiplier's terms were 6e-7 of the row off, round-off)."""
     result = _compare(engine, tmp_path, DISK, DISK_G,
                       DISK_G.replace("[1, 0, 0, 0, r*cos(phi)]",
                                      f"[{factor}, 0, 0, 0, {factor}*r*cos(phi)]"))

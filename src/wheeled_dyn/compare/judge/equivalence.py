@@ -40,7 +40,7 @@ These are pure functions of numbers; the engine supplies both sides on the same 
 from __future__ import annotations
 
 import itertools
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -190,6 +190,15 @@ def multiplier_terms(doc_L: np.ndarray, true_L: np.ndarray, W: np.ndarray) -> np
     return out
 
 
+def unit_multipliers(L: np.ndarray) -> np.ndarray:
+    r"""The document's multipliers' coefficients (S × n × m) with each multiplier's column
+    scaled to a largest finite magnitude of 1: :math:`\lambda_k` is an unknown of the
+    equations, so :math:`\lambda_k \to c\lambda_k` is the same document (a constraint row
+    written 1e8 times larger gave its multiplier's terms a round-off of 6e-7 of the row)."""
+    size = np.abs(np.where(np.isfinite(L), L, 0.0)).max(axis=(0, 1))
+    return L / np.where(size > 0, size, 1.0)
+
+
 def decide_row(i: int, doc: Side, truth: Side, W: np.ndarray,
                multipliers: np.ndarray | None = None) -> EquationDecision:
     r"""The verdict on equation ``i`` (module text), :math:`W` known; ``multipliers``: the
@@ -300,6 +309,8 @@ def decide(doc: Side, truth: Side, sets: int, special: tuple[np.ndarray, np.ndar
     None)."""
     n = truth.A.shape[1]
     W = combination_rows(doc.A, truth.A)
+    if doc.L is not None:
+        doc = replace(doc, L=unit_multipliers(doc.L))
     multipliers = None if doc.L is None or truth.L is None else \
         multiplier_terms(doc.L, truth.L, W)
     decisions = [decide_row(i, doc, truth, W, multipliers) for i in range(n)]
