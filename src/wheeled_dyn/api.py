@@ -129,7 +129,7 @@ def compare(model: str | Path, *, samples: int = 1000, param_sets: int = 5, seed
         assert not [r for r in result.records if r.verdict == "differs"]
     """
     from .cache_trust import without_reuse
-    from .compare.grid.inputs import check_model_names, grid_size
+    from .compare.grid.inputs import grid_size
     from .compare.engine import ComparisonEngine
     from .derivations.from_python import derivation_from_sympy
     from .models.registry import model_entry
@@ -145,8 +145,7 @@ def compare(model: str | Path, *, samples: int = 1000, param_sets: int = 5, seed
     _finite_tables(tables, str(tables.get("title", "derivation from Python")))
     model_entry(str(model))                    # an unknown model: its own error, first
     with without_reuse(not reuse):
-        d = derivation_from_sympy(model, **tables)
-        check_model_names(d)
+        d = derivation_from_sympy(model, **tables)     # its names checked by compare
         return ComparisonEngine(samples=samples, param_sets=param_sets, seed=seed).compare(d)
 
 
