@@ -133,16 +133,18 @@ def _poly_coefficients(expr: sp.Expr, velocities: Sequence[sp.Symbol]
     return out
 
 
+def _printed(d: Derivation) -> list:
+    r"""The document's matrices and equations as printed (those it gives)."""
+    return [M for M in (d.A, d.C, d.Q, d.B, *(d.equations or ())) if M is not None]
+
+
 def compound_trig(d: Derivation) -> list[sp.Expr]:
     r"""The sines, cosines and tangents the document writes (its matrices or equations as
     printed) of a combination of its positions that is not one position alone
     (:math:`\cos(q_1 + q_2)` of a two-link arm), sorted: bases of the fits
     (:func:`~..judge.fitting.bases`) and angles of the small-angle readings
     (:meth:`DocumentFunctions.angles`)."""
-    found: set[sp.Expr] = set()
-    for M in (d.A, d.C, d.Q, d.B, *(d.equations or ())):
-        if M is not None:
-            found |= M.atoms(sp.sin, sp.cos, sp.tan)
+    found = set().union(*(M.atoms(sp.sin, sp.cos, sp.tan) for M in _printed(d)))
     positions = set(d.positions)
     return sorted((f for f in found if f.args[0] not in positions and f.args[0].free_symbols
                    and f.args[0].free_symbols <= positions), key=sp.default_sort_key)
@@ -153,11 +155,8 @@ def written_divisors(d: Derivation) -> list[sp.Expr]:
     (:math:`(\ldots)/(m_c + 2 m_w + 2 I_w/R^2)` of a row divided by, or solved with, its
     inertia), sorted: bases of the fits (:func:`~..judge.fitting.bases`), so that a row
     divided by one is named however many terms it has."""
-    found: set[sp.Expr] = set()
-    for M in (d.A, d.C, d.Q, d.B, *(d.equations or ())):
-        if M is not None:
-            found |= {p.base for p in M.atoms(sp.Pow) if p.exp.is_negative
-                      and isinstance(p.base, sp.Add)}
+    found = {p.base for M in _printed(d) for p in M.atoms(sp.Pow)
+             if p.exp.is_negative and isinstance(p.base, sp.Add)}
     moving = {*d.velocities, *d.accelerations, *d.input_symbols}
     return sorted((x for x in found if not x.free_symbols & moving), key=sp.default_sort_key)
 
