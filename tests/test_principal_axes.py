@@ -1,6 +1,7 @@
 r"""Products of inertia a derivation leaves out. URDFs exported from CAD give every link small
-products of inertia (a TurtleBot wheel's ixz of 6e-9 kg m²); a derivation — Dhaouadi & Abu
-Hatab's (v, ω) equations of a differential-drive robot (2013) — takes the axes as principal.
+products of inertia (a probe's TurtleBot-like wheel: ixz of 6e-9 kg m²; here 3e-8); a
+derivation in Dhaouadi & Abu Hatab's (v, ω) form of a differential-drive robot (2013) takes the
+axes as principal.
 The truth carries them (``urdf_structure`` keeps what the URDF has), and the elements they
 change differed with terms in strange rational numbers. The family ``principal_axes`` (every
 link's inertia about its centre diagonal in its joint's axes) now says why: they "agree only

@@ -3,8 +3,9 @@ r"""Right angles as URDFs write them: π/2 rounded to 1.57 (8e-4 rad off) or 1.5
 ``rpy="-1.57 0 0"`` about a z axis, each wheel's inertia turned by ``rpy="1.5708 0 0"`` — is
 the robot of ``data/published/dd_robot.urdf`` (exact angles) as its author meant it. Before,
 its wheels spun about axes 8e-4 rad off the axle (every input element "0.9999997 × the truth")
-and its wheel inertias had products of inertia of 3.7e-6 of their moments (a correct
-derivation "not right as a system", off by 1.7e-7): a planar model's wheels are now turned onto
+and its wheel inertias had products of inertia of 3.7e-6 of their moments (on a probe's robot
+so written, a correct derivation was "not right as a system", off by 1.7e-7): a planar
+model's wheels are now turned onto
 their axle, and an inertia's orientation within :data:`RIGHT_ANGLE_TOL` of a right angle is
 read as one."""
 
