@@ -96,10 +96,19 @@ def test_state_key_given_twice(command, tmp_path, capsys, no_computing):
     assert "phi" in line and "twice" in line
 
 
-@pytest.mark.parametrize("value", ["nan", "inf"])
+@pytest.mark.parametrize("value", ["nan", "inf", "1e999"])
 def test_state_not_finite(value, capsys):
     assert main(["matrices", "wip", "--state", f"phi={value}"]) == 2
     assert "phi" in _one_error_line(capsys)
+
+
+@pytest.mark.parametrize("value", ["1_0", "0x10", "1e1_0"])
+def test_state_not_a_decimal_number(value, capsys):
+    r"""Python's ``float`` reads ``1_0`` as ten: a typo for 1.0 (or 10) taken silently; the
+    value is a decimal number as a URDF writes it, or one error naming it."""
+    assert main(["matrices", "wip", "--state", f"phi={value}"]) == 2
+    line = _one_error_line(capsys)
+    assert "phi" in line and "decimal number" in line, line
 
 
 # -- output places ----------------------------------------------------------------------------

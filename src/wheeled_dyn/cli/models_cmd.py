@@ -14,10 +14,10 @@ if TYPE_CHECKING:       # NumPy, Pinocchio and the registry load in the handlers
 
 def parse_assignments(text: str | None, what: str) -> dict[str, float]:
     r"""``"a=1,b=-0.5"`` → ``{"a": 1.0, "b": -0.5}``; a malformed item, a name given twice or
-    a value that is not a finite number of magnitude at most
+    a value that is not a decimal number (``1_0`` is not ten) of magnitude at most
     :data:`~wheeled_dyn.models.urdf_values.MAX_MODEL_NUMBER` raises :class:`StateError`
     naming it."""
-    from ..models.urdf_values import MAX_MODEL_NUMBER, MAX_MODEL_TEXT
+    from ..models.urdf_values import MAX_MODEL_NUMBER, MAX_MODEL_TEXT, NUMBER
     out: dict[str, float] = {}
     if not text:
         return out
@@ -28,10 +28,9 @@ def parse_assignments(text: str | None, what: str) -> dict[str, float]:
         key = key.strip()
         if key in out:
             raise StateError(key, value, f"one value: {key} is given twice in {what}")
-        try:
-            number = float(value)
-        except ValueError:
-            raise StateError(key, value, "a number") from None
+        if not NUMBER.fullmatch(value.strip()):      # float() reads "1_0" as 10, "nan", "inf"
+            raise StateError(key, value, "a decimal number")
+        number = float(value)
         if number != number or number in (float("inf"), float("-inf")):
             raise StateError(key, value, "a finite number")
         if abs(number) > MAX_MODEL_NUMBER:
