@@ -58,12 +58,14 @@ and free bases in :mod:`.unwheeled_base`, the joint operations shared by both in
 from __future__ import annotations
 
 import xml.etree.ElementTree as ET
+from dataclasses import replace
 
 import numpy as np
 import pinocchio as pin
 
 from ..errors import InputFileError, ModelError, UnknownNameError
 from .model_joints import DIRECTION_TOL, GRAVITY
+from .readings import urdf_readings
 from .planar_base import AXIS_TOL, HORIZONTAL_TOL, RADIUS_TOL, build_planar
 from .unwheeled_base import build_unwheeled
 from .urdf_checks import check_mimic
@@ -139,6 +141,6 @@ def build_wheeled_model(spec: ModelSpec) -> WheeledModel:
     source = read_urdf(spec.urdf, tuple(spec.lock), tuple(spec.accept_inertia))
     _check_names(spec, source)
     urdf_model, urdf_geom = _urdf_models(source, spec)
-    if spec.base == "planar":
-        return build_planar(spec, source, urdf_model, urdf_geom)
-    return build_unwheeled(spec, source, urdf_model, urdf_geom)
+    built = (build_planar if spec.base == "planar" else build_unwheeled)(
+        spec, source, urdf_model, urdf_geom)
+    return replace(built, readings=urdf_readings(source.text, tuple(spec.lock)) + built.readings)

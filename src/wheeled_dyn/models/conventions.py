@@ -53,6 +53,18 @@ def right_angles(rpy: np.ndarray) -> np.ndarray:
     return np.where(np.abs(rpy - nearest) <= RIGHT_ANGLE_TOL, nearest, rpy)
 
 
+def inertial_rotation(rpy: np.ndarray) -> np.ndarray:
+    r"""The rotation of an ``<inertial>``'s axes, :math:`R(\text{rpy})` with the angles read
+    by :func:`right_angles`; where all three are right angles, exactly the signed permutation
+    it is (``rpyToMatrix(π/2, 0, 0)`` has entries of 6e-17, which leave a wheel's tensor
+    products of inertia of 1e-20 and its closed forms terms like
+    :math:`3.5\cdot10^{-16} I_m/R`)."""
+    import pinocchio as pin
+    R = pin.rpy.rpyToMatrix(right_angles(rpy))
+    signs = np.rint(R)
+    return signs if np.abs(R - signs).max() <= 1e-12 else R
+
+
 class Positive(Enum):
     r"""What a positive value (or rate, or input) of a coordinate does."""
 

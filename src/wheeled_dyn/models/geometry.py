@@ -55,7 +55,7 @@ import sympy as sp
 from sympy.core.function import AppliedUndef
 
 from ..errors import InputFileError
-from .conventions import right_angles
+from .conventions import inertial_rotation
 
 
 #: Relative agreement of the entries of a ``[geometry]`` list (and of a number with a length
@@ -237,7 +237,7 @@ def link_inertials(text: str, path: Path | None = None) -> dict[str, tuple[float
         tensor_matrix = np.array([[get("ixx"), get("ixy"), get("ixz")],
                                   [get("ixy"), get("iyy"), get("iyz")],
                                   [get("ixz"), get("iyz"), get("izz")]])
-        R = pin.rpy.rpyToMatrix(right_angles(rpy))
+        R = inertial_rotation(rpy)
         try:
             inertia = pin.Inertia(float(mass.get("value", "0")), xyz, R @ tensor_matrix @ R.T)
         except (RuntimeError, ValueError) as exc:

@@ -27,6 +27,7 @@ from .conventions import ANGLE_TOL, check_sides
 from .geometry_constants import planar_lengths
 from .model_joints import (bind_springs, finish_coordinates, joint_axis, move_joint_to,
                            unit_direction)
+from .readings import TURN_NOTED, wheel_turn
 from .urdf_source import JointInfo, UrdfSource
 from .wheeled_model import ModelSpec, Wheel, WheeledModel
 
@@ -91,14 +92,15 @@ def _wheel_geometry(source: UrdfSource, spec: ModelSpec, model: pin.Model, data:
 
 
 
-def _along_axle(model: pin.Model, jid: int) -> None:
+def _along_axle(model: pin.Model, jid: int) -> float:
     r"""Turn wheel joint ``jid`` (and what it carries) about its origin so that its spin axis
     lies exactly along the axle, the heading frame's :math:`y` at the neutral configuration:
     within :data:`~.conventions.ANGLE_TOL` of it (checked before), as a URDF's rounded
     :math:`\pi/2` leaves it (``rpy="-1.57 0 0"``: 8e-4 rad), the wheel of a planar model is
     meant on the axle. With :math:`a` the axis in the world and :math:`t = \pm y`, the
     rotation :math:`\delta` taking :math:`a` to :math:`t` is applied in the parent's frame:
-    :math:`{}^{p}R_j \leftarrow {}^{o}R_p^T\,\delta\,{}^{o}R_p\,{}^{p}R_j`."""
+    :math:`{}^{p}R_j \leftarrow {}^{o}R_p^T\,\delta\,{}^{o}R_p\,{}^{p}R_j`. Returns the
+    angle of :math:`\delta`."""
     data = model.createData()
     pin.forwardKinematics(model, data, pin.neutral(model))
     axis = data.oMi[jid].rotation @ joint_axis(model.joints[jid])
@@ -106,12 +108,13 @@ def _along_axle(model: pin.Model, jid: int) -> None:
     turn = np.cross(axis, target)
     sine, cosine = float(np.linalg.norm(turn)), float(axis @ target)
     if sine == 0.0:
-        return
+        return 0.0
     delta = pin.exp3(turn / sine * np.arctan2(sine, cosine))
     parent = data.oMi[model.parents[jid]].rotation
     placement = model.jointPlacements[jid]
     model.jointPlacements[jid] = pin.SE3(parent.T @ delta @ parent @ placement.rotation,
                                          placement.translation)
+    return float(np.arctan2(sine, cosine))
 
 
 def _check_on_body(spec: ModelSpec, source: UrdfSource, body: str, wheel: str,
@@ -207,8 +210,7 @@ def build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
         jid = model.getJointId(jname)
         move_joint_to(model, geom, jid, model.frames[model.getFrameId(link, pin.FrameType.BODY)])
         wheels.append(Wheel(link, side, jname, jid, model.joints[jid].idx_v, rl, width))
-    for wheel in wheels:
-        _along_axle(model, wheel.joint_id)
+    turns = [(wheel.joint_name, _along_axle(model, wheel.joint_id)) for wheel in wheels]
     body_jid = model.frames[model.getFrameId(body_link)].parentJoint
     inputs = tuple(spec.inputs) if spec.inputs is not None else ("tau_l", "tau_r")
     if len(inputs) != 2:
@@ -216,5 +218,6 @@ def build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
     lengths = planar_lengths(spec, source, model, rl, half_track)
     return WheeledModel(spec.name, spec, model, geom, tuple(wheels), coordinate_names, inputs,
                         lengths.constant_values(lengths.values()), body_jid,
-                        springs=bind_springs(spec, model, coordinate_names), lengths=lengths)
+                        springs=bind_springs(spec, model, coordinate_names), lengths=lengths,
+                        readings=tuple(wheel_turn(j, a) for j, a in turns if a > TURN_NOTED))
 

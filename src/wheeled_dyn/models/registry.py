@@ -210,7 +210,7 @@ def apply_wip_parameters(wm: WheeledModel, p: WipParameters) -> WheeledModel:
                               for k, c in lengths.constants.items()}))
     return WheeledModel(wm.name, wm.spec, model, wm.visual_model, tuple(wheels),
                         wm.coordinate_names, wm.input_names, {"R": p.R, "L": p.L}, body_jid,
-                        lengths=lengths)
+                        lengths=lengths, readings=wm.readings)
 
 
 def model_parameters(wm: WheeledModel) -> dict[str, float]:

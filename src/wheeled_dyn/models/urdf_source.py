@@ -23,7 +23,7 @@ import numpy as np
 
 from ..disk_cache import cache_root, load, store
 from ..errors import InputFileError, ModelError, UnknownNameError
-from .conventions import right_angles
+from .conventions import inertial_rotation, right_angles
 from .urdf_checks import check_urdf_tree
 from .urdf_values import check_urdf_values
 
@@ -142,12 +142,15 @@ class UrdfSource:
     def pinocchio_text(self) -> str:
         r"""The URDF text with ``continuous`` joints rewritten as unlimited ``revolute`` ones,
         and the ``<inertial>`` orientations within a rounding of right angles made right
-        angles (:func:`~.conventions.right_angles`)."""
+        angles (:func:`~.conventions.right_angles`): where all three are, the tensor is
+        written in the link's axes, turned exactly (:func:`_turned_exactly`)."""
         root = ET.fromstring(self.text)
-        for origin in root.iterfind("link/inertial/origin"):
-            if origin.get("rpy") is not None:
-                rpy = right_angles(np.array([float(x) for x in origin.get("rpy", "").split()]))
-                origin.set("rpy", " ".join(repr(float(x)) for x in rpy))
+        for inertial in root.iterfind("link/inertial"):
+            origin = inertial.find("origin")
+            if origin is not None and origin.get("rpy") is not None:
+                rpy = np.array([float(x) for x in origin.get("rpy", "").split()])
+                origin.set("rpy", " ".join(repr(float(x)) for x in right_angles(rpy)))
+                _turned_exactly(inertial, origin, inertial_rotation(rpy))
         for joint in root.iter("joint"):
             if joint.get("type") == "continuous":
                 joint.set("type", "revolute")
@@ -159,6 +162,27 @@ class UrdfSource:
                 limit.set("effort", limit.get("effort", "1e6"))
                 limit.set("velocity", limit.get("velocity", "1e6"))
         return ET.tostring(root, encoding="unicode")
+
+
+#: The attributes of an ``<inertia>`` as (row, column) of its tensor.
+TENSOR_ENTRIES = {"ixx": (0, 0), "ixy": (0, 1), "ixz": (0, 2), "iyy": (1, 1), "iyz": (1, 2),
+                  "izz": (2, 2)}
+
+
+def _turned_exactly(inertial: ET.Element, origin: ET.Element, R: np.ndarray) -> None:
+    r"""Where ``R`` is a signed permutation (an ``<inertial>`` turned by right angles), its
+    ``<inertia>`` written as :math:`R I R^T` in the link's axes and its ``rpy`` as zeros: the
+    same tensor, exact (a signed permutation only moves and negates its entries)."""
+    tensor = inertial.find("inertia")
+    if tensor is None or not np.array_equal(R, np.rint(R)):
+        return
+    I = np.zeros((3, 3))
+    for key, (r, c) in TENSOR_ENTRIES.items():
+        I[r, c] = I[c, r] = float(tensor.get(key, "0"))
+    turned = R @ I @ R.T
+    for key, (r, c) in TENSOR_ENTRIES.items():
+        tensor.set(key, repr(float(turned[r, c])))
+    origin.set("rpy", "0 0 0")
 
 
 def check_link_names(path: Path, names: tuple[str, ...], where: str) -> None:

@@ -92,7 +92,8 @@ class WheeledModel:
     (velocity indices); ``geometry`` holds the named constants (``R`` wheel radius and ``L``
     half the distance between the wheel centres for a planar model, the spec's ``geometry``
     otherwise); ``contact`` the rolling ball, if any; ``lengths`` the named lengths and
-    constants (:mod:`.geometry`: ``origin_x(joint)``, ``radius(link)`` ...).
+    constants (:mod:`.geometry`: ``origin_x(joint)``, ``radius(link)`` ...); ``readings``
+    what it reads otherwise than its URDF writes (:mod:`.readings`).
     """
 
     name: str
@@ -109,6 +110,8 @@ class WheeledModel:
     rolling_wheels: tuple[BoundWheelContact, ...] = ()
     springs: tuple[BoundSpring, ...] = ()
     lengths: geo.GeometryTable | None = None
+    #: what the model reads otherwise than its URDF writes it (:mod:`.readings`), in words
+    readings: tuple[str, ...] = ()
 
     @property
     def dimensions(self) -> dict[str, float]:

@@ -16,6 +16,7 @@ import numpy as np
 import sympy as sp
 
 from ...derivations.schema import Derivation
+from ...models.registry import load_model
 from ..grid.arrays import Arrays
 from ..grid.grid import Grid
 from .document import DocumentFunctions, document_arrays
@@ -24,7 +25,8 @@ from .truth import input_map, stiffness
 
 @dataclass(frozen=True)
 class Sides:
-    r"""Both sides on ``grid`` (module text); ``notes`` what could not be compared."""
+    r"""Both sides on ``grid`` (module text); ``notes`` what the model reads otherwise than
+    its URDF writes (:mod:`~wheeled_dyn.models.readings`) and what could not be compared."""
 
     grid: Grid
     truth: Arrays
@@ -65,7 +67,7 @@ def both_sides(d: Derivation, funcs: DocumentFunctions, grid: Grid, seed: int,
                                            truth.H_rows)
     if doc.K is not None and truth.K is None:       # a linearised document: its stiffness
         truth.K = stiffness(grid.cmap, grid.sets, grid.q)
-    notes: list[str] = []
+    notes = list(load_model(d.model).readings)      # what the model reads otherwise
     B_true = input_map(d, truth, per_set, grid.q.shape[1], notes)
     if with_gamma and truth.H_rows is not None:
         doc.Gamma = gamma(funcs, grid.flat_q, values, truth.H_rows)

@@ -1,0 +1,103 @@
+r"""What a model reads otherwise than its URDF writes it, said in words: every comparison made
+with the model lists these (a report's notes), so a difference they make is never silent.
+
+- An ``<inertial>`` orientation within :data:`~.conventions.RIGHT_ANGLE_TOL` of right angles
+  is read as them (:func:`~.conventions.right_angles`): ``rpy="1.5708 0 0"`` as
+  :math:`(\pi/2, 0, 0)`.
+- A planar model's wheel whose spin axis is off the axle by a rounding (``rpy="-1.57 0 0"``:
+  8e-4 rad) is turned onto it (:func:`wheel_turns`, from the planar builder).
+- A joint's ``<dynamics damping friction>`` is not part of the equations: the truth is
+  :math:`A\ddot q + C\dot q + Q = \Gamma`, with no joint damping or friction; a derivation
+  that writes :math:`b\dot\theta` has a term the truth does not.
+- A ``<transmission>`` is not applied: the model's inputs are its joints' torques (a
+  mechanical reduction between motor and joint is the document's to state).
+"""
+
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+
+import numpy as np
+
+from .conventions import RIGHT_ANGLE_TOL, right_angles
+
+#: Smallest turn of a wheel's axis (rad) that a model's readings mention: below it the turn
+#: changes no number by more than round-off of the comparisons' tolerances (a URDF's
+#: π/2 written to 13 digits leaves its wheels 5e-12 rad off).
+TURN_NOTED = 1e-9
+
+
+def _angles(values: np.ndarray) -> str:
+    r"""Angles as multiples of :math:`\pi/2` where they are (``π/2, 0, -π``), else numbers."""
+    out = []
+    for v in values:
+        k = int(round(float(v) / (np.pi / 2)))
+        if abs(float(v) - k * np.pi / 2) > 1e-15:
+            out.append(f"{float(v):g}")
+        else:
+            out.append({0: "0", 1: "π/2", -1: "-π/2", 2: "π", -2: "-π"}.get(k, f"{k}π/2"))
+    return ", ".join(out)
+
+
+def inertial_readings(root: ET.Element) -> list[str]:
+    r"""The links whose ``<inertial>`` orientation is read as right angles it is near."""
+    out = []
+    for link in root.iterfind("link"):
+        origin = link.find("inertial/origin")
+        if origin is None or origin.get("rpy") is None:
+            continue
+        written = origin.get("rpy", "")
+        rpy = np.array([float(x) for x in written.split()])
+        read = right_angles(rpy)
+        if np.any(read != rpy):
+            out.append(f"link {link.get('name')}: its <inertial> rpy=\"{written}\" is read as "
+                       f"({_angles(read)}), the right angles within {RIGHT_ANGLE_TOL:g} rad of "
+                       "it (as written, its inertia would have products of inertia of the "
+                       "rounding's order)")
+    return out
+
+
+def _listed(names: list[str]) -> str:
+    return ", ".join(names) if len(names) <= 4 else f"{', '.join(names[:3])} and {len(names) - 3} more"
+
+
+def _damped(joint: ET.Element) -> bool:
+    dynamics = joint.find("dynamics")
+    return dynamics is not None and any(float(dynamics.get(k) or 0) != 0.0
+                                        for k in ("damping", "friction"))
+
+
+def joint_readings(root: ET.Element, locked: tuple[str, ...] = ()) -> list[str]:
+    r"""The moving joints (not fixed, not ``locked``) whose ``<dynamics>`` has damping or
+    friction, and the transmissions of moving joints: one line each."""
+    moving = {j.get("name", ""): j for j in root.iterfind("joint")
+              if j.get("type") != "fixed" and j.get("name") not in locked}
+    damped = [name for name, j in moving.items() if _damped(j)]
+    out = []
+    if damped:
+        out.append(f"joint{'s' if len(damped) > 1 else ''} {_listed(damped)}: the damping and "
+                   "friction of <dynamics> are not part of the equations (the truth has "
+                   "none: a derivation's damping or friction terms are terms it does not have)")
+    driven = [t.get("name", "") for t in root.iterfind("transmission")
+              if any(j.get("name") in moving for j in t.iterfind("joint"))]
+    if driven:
+        out.append(f"transmission{'s' if len(driven) > 1 else ''} {_listed(driven)}: not "
+                   "applied; the model's inputs are its joints' torques (a reduction between "
+                   "motor and joint is the document's to state)")
+    return out
+
+
+def urdf_readings(text: str, locked: tuple[str, ...] = ()) -> tuple[str, ...]:
+    r"""What the model reads otherwise than the URDF ``text`` writes (module text), its
+    ``locked`` joints part of their links' bodies: inertias, then joints and transmissions."""
+    root = ET.fromstring(text)
+    return (*inertial_readings(root), *joint_readings(root, locked))
+
+
+def wheel_turn(joint: str, angle: float) -> str:
+    r"""The reading of a planar model's wheel joint turned by ``angle`` onto the axle."""
+    return (f"joint {joint}: its axis is turned by {angle:.2g} rad onto the axle (a planar "
+            "model's wheels turn about their axle; URDFs round π/2)")
+
+
+__all__ = ["TURN_NOTED", "inertial_readings", "joint_readings", "urdf_readings", "wheel_turn"]

@@ -1,0 +1,55 @@
+r"""What a model reads otherwise than its URDF writes is said in every comparison's notes
+(:mod:`wheeled_dyn.models.readings`): an ``<inertial>`` orientation read as the right angles it
+rounds (``tests/test_right_angles.py`` checks the comparison's notes), a joint's
+``<dynamics>`` damping and friction and a ``<transmission>``, which the truth
+:math:`A\ddot q + C\dot q + Q = \Gamma` does not have (a derivation's damping terms are terms
+it does not have, and a report said nothing of the file's damping). Locked and fixed joints
+are part of their bodies: their damping is no term of anything."""
+
+from __future__ import annotations
+
+from wheeled_dyn.models.readings import urdf_readings
+from wheeled_dyn.models.registry import load_model
+
+URDF = """<robot name="r">
+  <link name="a"><inertial><origin xyz="0 0 0" rpy="0 3.1416 0.3"/><mass value="1"/>
+    <inertia ixx="1" ixy="0" ixz="0" iyy="2" iyz="0" izz="3"/></inertial></link>
+  <link name="b"><inertial><origin xyz="0 0 0" rpy="0 0 0"/><mass value="1"/>
+    <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
+  <link name="c"/><link name="d"/>
+  <joint name="hinge" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>
+    <dynamics damping="0.7"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <joint name="held" type="revolute"><parent link="b"/><child link="c"/><axis xyz="0 0 1"/>
+    <dynamics friction="0.2"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <joint name="glued" type="fixed"><parent link="c"/><child link="d"/>
+    <dynamics damping="5"/></joint>
+  <transmission name="t_hinge"><joint name="hinge"/></transmission>
+  <transmission name="t_held"><joint name="held"/></transmission>
+</robot>"""
+
+
+def test_each_reading_is_named_once():
+    readings = urdf_readings(URDF)
+    assert readings[0].startswith('link a: its <inertial> rpy="0 3.1416 0.3" is read as '
+                                  "(0, π, 0.3)"), readings
+    assert "joints hinge, held: the damping and friction of <dynamics>" in readings[1]
+    assert "transmissions t_hinge, t_held: not applied" in readings[2]
+    assert len(readings) == 3 and not any("glued" in r or "link b" in r for r in readings)
+
+
+def test_a_locked_joint_is_part_of_its_body():
+    readings = urdf_readings(URDF, locked=("held",))
+    assert "joint hinge: the damping" in readings[1] and "transmission t_hinge:" in readings[2]
+    assert not any("held" in r for r in readings), readings
+
+
+def test_a_robot_as_published_says_what_it_leaves_out():
+    r"""PAL's TIAGo (example-robot-data): its arm joints are damped and its motors have
+    transmissions; TIAGo with its arm locked keeps only the wheels' transmissions."""
+    full = load_model("tiago").readings
+    assert full[0].startswith("joints torso_lift_joint, head_1_joint, head_2_joint and 7 "
+                              "more: the damping and friction of <dynamics>"), full
+    base = load_model("tiago_base").readings
+    assert base == ("transmissions wheel_right_trans, wheel_left_trans: not applied; the "
+                    "model's inputs are its joints' torques (a reduction between motor and "
+                    "joint is the document's to state)",), base
