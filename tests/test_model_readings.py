@@ -53,3 +53,22 @@ def test_a_robot_as_published_says_what_it_leaves_out():
     assert base == ("transmissions wheel_right_trans, wheel_left_trans: not applied; the "
                     "model's inputs are its joints' torques (a reduction between motor and "
                     "joint is the document's to state)",), base
+
+
+def test_a_footprint_off_the_ground_is_said(tmp_path):
+    r"""A ROS robot whose ``base_footprint`` (REP 120: on the ground) is 0.1 m below its axle
+    while its wheels' radius is 0.08: the model's R is the radius, and the reading says the
+    footprint is 0.02 m below the ground (the file's numbers do not agree)."""
+    from pathlib import Path
+    data = Path(__file__).parent / "data" / "published"
+    text = (data / "dd_robot.urdf").read_text()
+    assert text.count('<origin xyz="0 0 0.08" rpy="0 0 0"/>') == 1
+    (tmp_path / "dd_robot.urdf").write_text(text.replace('<origin xyz="0 0 0.08" rpy="0 0 0"/>',
+                                                         '<origin xyz="0 0 0.1" rpy="0 0 0"/>'))
+    (tmp_path / "dd_robot.toml").write_text((data / "dd_robot.toml").read_text())
+    readings = load_model(str(tmp_path / "dd_robot.toml")).readings
+    assert readings == ("link base_footprint (a frame only, the root) is 0.02 m below the "
+                        "ground the wheels' radius 0.08 puts under their axle: the model's R "
+                        "is that radius (if the root is meant on the ground, its joints' "
+                        "origins and the wheels' radius do not agree)",), readings
+    assert load_model(str(data / "dd_robot.toml")).readings == ()

@@ -27,7 +27,7 @@ from .conventions import ANGLE_TOL, check_sides
 from .geometry_constants import planar_lengths
 from .model_joints import (bind_springs, finish_coordinates, joint_axis, move_joint_to,
                            unit_direction)
-from .readings import TURN_NOTED, wheel_turn
+from .readings import TURN_NOTED, ground_reading, wheel_turn
 from .urdf_source import JointInfo, UrdfSource
 from .wheeled_model import ModelSpec, Wheel, WheeledModel
 
@@ -219,5 +219,7 @@ def build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
     return WheeledModel(spec.name, spec, model, geom, tuple(wheels), coordinate_names, inputs,
                         lengths.constant_values(lengths.values()), body_jid,
                         springs=bind_springs(spec, model, coordinate_names), lengths=lengths,
-                        readings=tuple(wheel_turn(j, a) for j, a in turns if a > TURN_NOTED))
+                        readings=ground_reading(source.text, source.root_link(),
+                                                rl - float(centre @ up), rl)
+                        + tuple(wheel_turn(j, a) for j, a in turns if a > TURN_NOTED))
 

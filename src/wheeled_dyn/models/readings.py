@@ -9,6 +9,8 @@ with the model lists these (a report's notes), so a difference they make is neve
 - A joint's ``<dynamics damping friction>`` is not part of the equations: the truth is
   :math:`A\ddot q + C\dot q + Q = \Gamma`, with no joint damping or friction; a derivation
   that writes :math:`b\dot\theta` has a term the truth does not.
+- A root link that is a frame only (``base_footprint``) off the ground the wheels' radius
+  puts under a planar model's axle (:func:`ground_reading`).
 - A ``<transmission>`` is not applied: the model's inputs are its joints' torques (a
   mechanical reduction between motor and joint is the document's to state).
 """
@@ -94,10 +96,31 @@ def urdf_readings(text: str, locked: tuple[str, ...] = ()) -> tuple[str, ...]:
     return (*inertial_readings(root), *joint_readings(root, locked))
 
 
+#: Height (relative to the wheels' radius) of a frame-only root link above or below the
+#: ground beyond which the readings say so.
+GROUND_TOL = 1e-3
+
+
+def ground_reading(text: str, root: str, height: float, radius: float) -> tuple[str, ...]:
+    r"""Where the root link is a frame only (no inertia, no geometry: a ROS
+    ``base_footprint``, which REP 120 puts on the ground) and lies ``height`` above the ground
+    the wheels' ``radius`` puts under their axle: that it is not on it (the wheels' radius
+    and the root's height do not agree: R is the radius)."""
+    link = next((el for el in ET.fromstring(text).iterfind("link") if el.get("name") == root),
+                None)
+    if link is None or len(link) or abs(height) <= GROUND_TOL * radius:
+        return ()
+    where = "above" if height > 0 else "below"
+    return (f"link {root} (a frame only, the root) is {abs(height):.3g} m {where} the ground "
+            f"the wheels' radius {radius:g} puts under their axle: the model's R is that "
+            "radius (if the root is meant on the ground, its joints' origins and the wheels' "
+            "radius do not agree)",)
+
+
 def wheel_turn(joint: str, angle: float) -> str:
     r"""The reading of a planar model's wheel joint turned by ``angle`` onto the axle."""
     return (f"joint {joint}: its axis is turned by {angle:.2g} rad onto the axle (a planar "
             "model's wheels turn about their axle; URDFs round π/2)")
 
 
-__all__ = ["TURN_NOTED", "inertial_readings", "joint_readings", "urdf_readings", "wheel_turn"]
+__all__ = ["TURN_NOTED", "ground_reading", "inertial_readings", "joint_readings", "urdf_readings", "wheel_turn"]
