@@ -132,27 +132,37 @@ def term_diagnoses(expr: sp.Expr, evaluate: Callable[[sp.Expr], np.ndarray], D: 
     expanded = sp.Add.make_args(sp.expand(expr))
     if not 1 < len(expanded) <= MAX_TERMS:
         return []
-    terms = list(dict.fromkeys((*expanded, *sp.Add.make_args(expr))))
+    values: dict[sp.Expr, np.ndarray] = {}
+
+    def value(t: sp.Expr) -> np.ndarray:
+        if t not in values:
+            values[t] = np.broadcast_to(np.asarray(evaluate(t), float), D.shape)
+        return values[t]
+    printed = list(dict.fromkeys((*expanded, *sp.Add.make_args(expr))))
+    # (the term's text, made only where it is named; its values)
+    trials: list[tuple[Callable[[], sp.Expr], np.ndarray]] = [
+        (lambda t=t: t, value(t)) for t in printed]
+    sums = {frozenset(sp.Add.make_args(sp.expand(t))) for t in printed}
     for sym in sorted(expr.free_symbols, key=sp.default_sort_key):
-        holding = [t for t in expanded if t.has(sym)]
-        if 1 < len(holding) < len(expanded):
-            terms.append(sp.factor_terms(sp.Add(*holding)))
-    terms = list(dict.fromkeys(terms))
+        holding = tuple(t for t in expanded if t.has(sym))
+        if 1 < len(holding) < len(expanded) and frozenset(holding) not in sums:
+            sums.add(frozenset(holding))           # its values the sum of its terms' values
+            trials.append((lambda h=holding: sp.factor_terms(sp.Add(*h)),
+                           sum((value(t) for t in holding), np.zeros(D.shape))))
     found = []
-    for t in terms:
-        tv = np.broadcast_to(np.asarray(evaluate(t), float), D.shape)
+    for term, tv in trials:
         tt = float(tv @ tv)
         if tt <= (AGREE_TOL * scale) ** 2 * len(tv):
             continue
         if agrees(D - 2 * tv, T, scale):
-            found.append(diagnosis(K.SIGN, f"the term {sp.sstr(t)} has the wrong sign",
-                                   term=sp.sstr(t), factor="-1"))
+            found.append(diagnosis(K.SIGN, f"the term {sp.sstr(term())} has the wrong sign",
+                                   term=sp.sstr(term()), factor="-1"))
             continue
         k = float((T - D) @ tv / tt)                  # T = D + k t, the document's term is
         if abs(1 + k) > 1e-12 and agrees(D + k * tv, T, scale):   # 1/(1+k) × what fits
             c = nice_number(1 / (1 + k))
-            found.append(diagnosis(K.FACTOR, f"the term {sp.sstr(t)} is {c} × what fits",
-                                   term=sp.sstr(t), factor=c))
+            found.append(diagnosis(K.FACTOR, f"the term {sp.sstr(term())} is {c} × what fits",
+                                   term=sp.sstr(term()), factor=c))
     return found
 
 
