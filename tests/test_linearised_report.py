@@ -20,12 +20,12 @@ from wheeled_dyn.compare.records import DiagnosisKind as K, Verdict
 g, l, theta = sp.symbols("g l theta")
 
 
-def _rod(stiffness):
+def _rod(stiffness, **more):
     return wd.compare(
         "rod_pendulum", coordinates={"positions": ["theta"], "configuration": {"theta": "theta"}},
         A=sp.Matrix([[1]]), C=sp.zeros(1, 1), Q=sp.Matrix([stiffness * theta]),
         symbols={"m": "M(rod)", "l": "length(rod)", "g": "g"},
-        assumes={"uniform": ["rod"], "linearised_about": {"theta": 0.0}})
+        assumes={"uniform": ["rod"], "linearised_about": {"theta": 0.0}, **more})
 
 
 def test_the_right_linearisation_agrees_and_shows_the_linear_truth():
@@ -55,3 +55,17 @@ def test_the_stiffness_is_in_the_reports_matrices():
     from wheeled_dyn.report.html import derivation_html
     page = derivation_html(_rod(3 * g / l))
     assert "<b>K</b>" in page and 'class="v-differs"' in page.split("<b>K</b>", 1)[1]
+
+
+@pytest.mark.parametrize("stiffness, verdict", [
+    (3 * g / (2 * l), Verdict.AGREES), (-3 * g / (2 * l), Verdict.DIFFERS),
+    (3 * g / l, Verdict.DIFFERS), (0, Verdict.DIFFERS), (-30 * g / l, Verdict.DIFFERS)])
+def test_a_potential_from_the_equilibrium_still_compares_the_stiffness(stiffness, verdict):
+    r"""``potential = "equilibrium"`` makes the truth's Q zero at the point (springs the model
+    lacks balance gravity there), never its stiffness: with it, the hanging rod's stiffness
+    of the wrong sign (unstable), doubled, dropped or ×−20 "agreed" with no trace (K was not
+    compared at all)."""
+    result = _rod(stiffness, potential="equilibrium")
+    k = next(r for r in result.records if r.element == "K[1,1]")
+    assert k.verdict == verdict, k.texts
+    assert result.equivalent is (verdict == Verdict.AGREES)

@@ -79,11 +79,11 @@ def document_functions(d: Derivation) -> DocumentFunctions:
 def _stiffness(d: Derivation, terms) -> sp.ImmutableMatrix | None:
     r"""A linearised document's stiffness :math:`K = \partial Q/\partial q` (its Q is linear
     in the deviations; at the point the grid's states are drawn at), compared with the
-    truth's; None for other documents, and where the file declares its potential measured
-    from an equilibrium of springs the model lacks (their stiffness is not compared)."""
+    truth's — also where the file declares its potential measured from an equilibrium
+    (that makes Q zero at the point, never K: a declaration that hid K passed a stiffness
+    of either sign); None for other documents."""
     assumed = declared(d)
-    if not assumed.linearised_about or assumed.equilibrium_potential or terms.Q is None \
-            or terms.Q.has(sp.nan):
+    if not assumed.linearised_about or terms.Q is None or terms.Q.has(sp.nan):
         return None
     return sp.ImmutableMatrix(terms.Q.jacobian(sp.Matrix(d.positions)))
 

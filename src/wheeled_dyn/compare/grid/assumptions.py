@@ -16,7 +16,8 @@ and names as "agrees only if ..." only a condition the document did not state.
   (a linearisation about rest has none);
 - ``potential = "equilibrium"``: the potential is measured from the equilibrium at that state
   (springs the model lacks balance gravity there): the truth's Q at the state is subtracted.
-  The stiffness (Q's first-order terms) is not compared;
+  The stiffness (Q's first-order terms) is compared as always: the springs' own constants are
+  the document's to give (``[assume]``, 0 where the model has none);
 - ``text``: other assumptions, in words (reported, not used).
 """
 

@@ -11,8 +11,9 @@ shows the same: every true element at :math:`q^*`, C and h zero, and
     K_{ij} = \frac{\partial Q_i}{\partial q_j}\Big|_{q^*},
 
 so that truth − document names the stiffness a document got wrong. With a potential measured
-from the equilibrium (``potential = "equilibrium"``) :math:`Q(q^*)` is left out and K is not
-shown (it is not compared: springs the model lacks balance gravity there).
+from the equilibrium (``potential = "equilibrium"``) :math:`Q(q^*)` is left out (springs the
+model lacks balance it there); K is compared and shown as always (the springs' own stiffness
+is the document's to give in ``[assume]``: 0 where the model has none).
 """
 
 from __future__ import annotations
@@ -26,7 +27,8 @@ def linearised_truth(truth: Mapping[str, sp.Expr], positions: Sequence[sp.Symbol
                      point: Sequence[tuple[str, float]], equilibrium: bool = False
                      ) -> dict[str, sp.Expr]:
     r"""The true elements (labels as the engine's: ``A[1,2]``, ``h[1]:dx*dpsi``, ``Q[3]``)
-    linearised about ``point`` (module text), with ``K[i,j]`` added unless ``equilibrium``."""
+    linearised about ``point`` (module text), with ``K[i,j]`` added; ``equilibrium``: no
+    :math:`Q(q^*)`."""
     values = dict(point)
     at = {p: sp.nsimplify(values[p.name], rational=True) for p in positions if p.name in values}
     out: dict[str, sp.Expr] = {}
@@ -44,9 +46,8 @@ def linearised_truth(truth: Mapping[str, sp.Expr], positions: Sequence[sp.Symbol
         base = sp.Integer(0) if equilibrium else e.xreplace(at)
         out[label] = base + sp.Add(*(k * (p - at[p]) for k, p in zip(slopes, positions)
                                      if p in at))
-        if not equilibrium:
-            for j, k in enumerate(slopes):
-                out[f"K[{row},{j + 1}]"] = k
+        for j, k in enumerate(slopes):
+            out[f"K[{row},{j + 1}]"] = k
     return out
 
 
