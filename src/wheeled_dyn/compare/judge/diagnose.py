@@ -139,30 +139,32 @@ def term_diagnoses(expr: sp.Expr, evaluate: Callable[[sp.Expr], np.ndarray], D: 
             values[t] = np.broadcast_to(np.asarray(evaluate(t), float), D.shape)
         return values[t]
     printed = list(dict.fromkeys((*expanded, *sp.Add.make_args(expr))))
-    # (the term's text, made only where it is named; its values)
-    trials: list[tuple[Callable[[], sp.Expr], np.ndarray]] = [
-        (lambda t=t: t, value(t)) for t in printed]
+    # (the term, or the terms of a sum factored only where it is named; its values)
+    trials: list[tuple[sp.Expr | tuple[sp.Expr, ...], np.ndarray]] = [
+        (t, value(t)) for t in printed]
     sums = {frozenset(sp.Add.make_args(sp.expand(t))) for t in printed}
     for sym in sorted(expr.free_symbols, key=sp.default_sort_key):
         holding = tuple(t for t in expanded if t.has(sym))
         if 1 < len(holding) < len(expanded) and frozenset(holding) not in sums:
             sums.add(frozenset(holding))           # its values the sum of its terms' values
-            trials.append((lambda h=holding: sp.factor_terms(sp.Add(*h)),
-                           sum((value(t) for t in holding), np.zeros(D.shape))))
+            trials.append((holding, sum((value(t) for t in holding), np.zeros(D.shape))))
+
+    def text(x: sp.Expr | tuple[sp.Expr, ...]) -> str:
+        return sp.sstr(sp.factor_terms(sp.Add(*x)) if isinstance(x, tuple) else x)
     found = []
     for term, tv in trials:
         tt = float(tv @ tv)
         if tt <= (AGREE_TOL * scale) ** 2 * len(tv):
             continue
         if agrees(D - 2 * tv, T, scale):
-            found.append(diagnosis(K.SIGN, f"the term {sp.sstr(term())} has the wrong sign",
-                                   term=sp.sstr(term()), factor="-1"))
+            found.append(diagnosis(K.SIGN, f"the term {text(term)} has the wrong sign",
+                                   term=text(term), factor="-1"))
             continue
         k = float((T - D) @ tv / tt)                  # T = D + k t, the document's term is
         if abs(1 + k) > 1e-12 and agrees(D + k * tv, T, scale):   # 1/(1+k) × what fits
             c = nice_number(1 / (1 + k))
-            found.append(diagnosis(K.FACTOR, f"the term {sp.sstr(term())} is {c} × what fits",
-                                   term=sp.sstr(term()), factor=c))
+            found.append(diagnosis(K.FACTOR, f"the term {text(term)} is {c} × what fits",
+                                   term=text(term), factor=c))
     return found
 
 
