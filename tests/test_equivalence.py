@@ -105,6 +105,48 @@ def test_an_equation_multiplied_by_a_vanishing_factor_is_not_equivalent(engine, 
     assert any(c.kind == "not_equivalent" for c in result.causes), result.causes
 
 
+@pytest.mark.parametrize("factor", ["(cos(theta) - 1/2)**2", "(theta - 1)**2",
+                                    "(sin(theta) - 3/10)**4"])
+def test_an_equation_times_a_factor_touching_zero_is_not_equivalent(engine, tmp_path, factor):
+    r"""A factor that vanishes without changing sign, away from the special positions
+    (:math:`\theta = \pi/3`, 1, asin 0.3): 0 = 0 there, the equation lost. Its determinant
+    has one sign at every sample, and a row scaled to 1 hides it: it "agreed". The engine
+    searches the state where the row is least and finds its zero
+    (:mod:`wheeled_dyn.compare.engine.special`)."""
+    result = _rod(engine, tmp_path, "touching", f"{factor}*(1/3*m*l**2*ddtheta + "
+                  "m*g*l/2*sin(theta)) = 0", linearised=False)
+    assert result.equivalent is False
+    (equation,) = result.equations
+    assert K.SINGULAR in [d.kind for d in equation.diagnoses], equation.texts
+
+
+@pytest.mark.parametrize("factor", ["(21/20 + cos(theta))", "(2 + cos(theta))**2",
+                                    "(theta**2 + 1/100)"])
+def test_a_factor_near_zero_that_does_not_vanish_is_right(engine, tmp_path, factor):
+    r"""The same search on factors that come near zero but never reach it (1/20, 1/100 at
+    their least): the equation is the true one times them, right."""
+    result = _rod(engine, tmp_path, "near", f"{factor}*(1/3*m*l**2*ddtheta + "
+                  "m*g*l/2*sin(theta)) = 0", linearised=False)
+    assert result.equivalent is True, [c.explanation for c in result.causes]
+
+
+def test_a_combination_whose_weights_become_dependent_is_not_equivalent(engine, tmp_path):
+    r"""The arm's second equation replaced by its first plus :math:`(\cos q_2 - \tfrac12)^2`
+    × its second: no row vanishes, but at :math:`q_2 = \pm\pi/3` the two are the same
+    equation (det W touches zero without changing sign)."""
+    import published_forms as P
+    path = P.write(tmp_path, "arm", "equations", None)
+    text = path.read_text()
+    first, second = (line.strip().strip('",') for line in
+                     text.split("equations = [")[1].split("]")[0].strip().splitlines())
+    (l1, r1), (l2, r2) = first.split(" = "), second.split(" = ")
+    f = "(cos(q2) - 1/2)**2"
+    path.write_text(text.replace(second, f"{l1} + {f}*({l2}) = {r1} + {f}*({r2})"))
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False
+    assert any(K.SINGULAR in [d.kind for d in e.diagnoses] for e in result.equations)
+
+
 def test_an_equation_divided_by_a_function_that_does_not_vanish_is_right(engine, tmp_path):
     result = _rod(engine, tmp_path, "over_2_plus_cos", "(1/3*m*l**2*ddtheta + "
                   "m*g*l/2*sin(theta))/(2 + cos(theta)) = 0", linearised=False)

@@ -21,7 +21,6 @@ import sympy as sp
 from ...derivations.schema import Derivation, equation_labels
 from ..causes.frames import frame_causes
 from ..grid.assumptions import Assumptions, declared, undeclared_cases
-from ..grid.grid import special_states
 from ..judge import equivalence, families
 from ..judge.document_checks import asymmetry, constraint_problems, constraint_rows, energy_check
 from ..judge.draft import ElementDraft
@@ -41,9 +40,9 @@ from ..sides.document import DocumentFunctions
 from ..sides.elements import swap_groups
 from ..sides.evaluation import Evaluation
 from ..sides.framed import framed, row_of, row_scale
-from ..sides.truth import special_truth_A
 from .equations import equation_records
 from .printing import corrected, print_drafts
+from .special import special_sides
 
 #: Smaller grid used to test special parameter families: states per set, sets.
 SPECIAL_SAMPLES, SPECIAL_SETS = 40, 2
@@ -132,13 +131,8 @@ def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides
                   float(np.nanmax(np.abs(W[:, i]), initial=0.0)), 1e-300)]
     if not varies:
         return first
-    special = None
-    q, owner = special_states(sides.grid)
-    if len(q):
-        values = {s: np.asarray([sides.per_set[k][s] for k in owner]) for s in funcs.params}
-        at = funcs.evaluate(q, np.zeros_like(q), values)
-        special = (at.need("A"), special_truth_A(sides.grid, q, owner))
-    return equivalence.decide(doc_side, true_side, len(sides.grid.sets), special)
+    return equivalence.decide(doc_side, true_side, len(sides.grid.sets),
+                              special_sides(funcs, sides, doc.need("A"), truth.need("A"), W))
 
 
 def _grids(engine, d: Derivation, funcs: DocumentFunctions, sides: Sides,

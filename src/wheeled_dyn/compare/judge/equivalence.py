@@ -286,9 +286,14 @@ def sign_changes(W: np.ndarray, sets: int) -> tuple[tuple[int, ...], bool] | Non
     return None
 
 
-def vanishing_at(doc_A: np.ndarray, true_A: np.ndarray) -> tuple[int, ...] | None:
-    r"""At special states (the engine's: a position at :math:`0, \pm\pi/2, \pi`), the
-    equations involved where :math:`W` is singular, else None. States where the truth's own
+def vanishing_at(doc_A: np.ndarray, true_A: np.ndarray, typical: np.ndarray | None = None
+                 ) -> tuple[int, ...] | None:
+    r"""At special states (the engine's: a position at :math:`0, \pm\pi/2, \pi`, and the
+    states its search found), the equations involved where :math:`W` is singular, else
+    None: its rows dependent (relative determinant), or a row :math:`w_i` vanishing — below
+    :data:`SINGULAR_TOL` of ``typical`` (per state and row, its usual norm), where given (an
+    equation times :math:`(\cos\theta - \tfrac12)^2` is lost at :math:`\pi/3`; its rows
+    each scaled to 1, the determinant does not see that). States where the truth's own
     :math:`A` is near singular (a singular position of the coordinates) are left out."""
     rd, rt = relative_det(doc_A), relative_det(true_A)
     ok = np.isfinite(rd) & np.isfinite(rt)
@@ -296,14 +301,21 @@ def vanishing_at(doc_A: np.ndarray, true_A: np.ndarray) -> tuple[int, ...] | Non
         return None
     ok &= rt >= SINGULAR_TOL ** 0.5 * float(np.median(rt[ok]))
     hit = np.flatnonzero(ok & (rd <= SINGULAR_TOL * rt))
-    if not len(hit):
+    if len(hit):
+        W = combination_rows(doc_A[hit[:1]], true_A[hit[:1]])
+        return _null_rows(W[0])
+    if typical is None or not ok.any():
         return None
-    W = combination_rows(doc_A[hit[:1]], true_A[hit[:1]])
-    return _null_rows(W[0])
+    W = combination_rows(doc_A[ok], true_A[ok])
+    with np.errstate(all="ignore"):
+        small = np.linalg.norm(W, axis=2) <= SINGULAR_TOL * typical[ok]
+    states = np.flatnonzero(small.any(axis=1))
+    return tuple(int(i) for i in np.flatnonzero(small[states[0]])) if len(states) else None
 
 
-def decide(doc: Side, truth: Side, sets: int, special: tuple[np.ndarray, np.ndarray] | None
-           = None) -> SystemDecision:
+def decide(doc: Side, truth: Side, sets: int,
+           special: tuple[np.ndarray, np.ndarray, np.ndarray | None] | None = None
+           ) -> SystemDecision:
     r"""Every equation's verdict (module text). ``sets``: parameter sets the samples are
     grouped in; ``special``: the document's and the truth's A at the special states (or
     None)."""
@@ -326,7 +338,8 @@ def decide(doc: Side, truth: Side, sets: int, special: tuple[np.ndarray, np.ndar
             if rows is not None else ""
     if rows is None and special is not None:
         rows = vanishing_at(*special)
-        where = "at a special position (a coordinate at 0, ±π/2 or π)" if rows is not None else ""
+        where = ("at a special position (a coordinate at 0, ±π/2 or π) or a state searched "
+                 "where its weights are least") if rows is not None else ""
     if rows is not None:
         wrong = [k for k in rows if decisions[k].verdict == Verdict.DIFFERS]
         rows = tuple(wrong) or rows     # an equation that is no combination explains it

@@ -182,15 +182,18 @@ class DocumentFunctions:
             flat = sp.flatten(arr.tolist())
             self._fns[key] = (arr.shape, flat, numpy_function(self.args, flat, cse=True))
 
-    def evaluate(self, q: np.ndarray, nu: np.ndarray, values: Mapping[sp.Symbol, np.ndarray]
-                 ) -> Arrays:
+    def evaluate(self, q: np.ndarray, nu: np.ndarray, values: Mapping[sp.Symbol, np.ndarray],
+                 keys: tuple[str, ...] | None = None) -> Arrays:
         r"""Arrays over samples: positions ``q`` (S × n), velocities ``nu``, symbol values
-        (arrays of length S). An element that overflows or leaves the reals is inf or NaN
-        there, silently (the comparison calls it undecided)."""
+        (arrays of length S); ``keys``: only those (``("A",)``), else all. An element that
+        overflows or leaves the reals is inf or NaN there, silently (the comparison calls it
+        undecided)."""
         S = len(q)
         argv = [*q.T, *nu.T, *(values[p] for p in self.params)]
         out = Arrays()
         for key, (shape, flat, fn) in self._fns.items():
+            if keys is not None and key not in keys:
+                continue
             arr = np.empty((S, len(flat)))
             with np.errstate(all="ignore"):
                 vals = fn(*argv)

@@ -1,0 +1,108 @@
+r"""The states at which a document's equation may be lost, for the equivalence decision
+(:func:`~..judge.equivalence.decide`): where its equations are combinations of the true ones
+with weights that vary, :math:`W(q) = A_{doc}A^{-1}` may be singular at states the samples
+miss.
+
+- **Special positions**: a position at :math:`0, \pm\pi/2, \pi` (:func:`~..grid.grid.
+  special_states`): an equation times :math:`\sin\theta` is lost at :math:`\theta = 0`.
+- **Searched states**: a factor that touches zero without changing sign
+  (:math:`(\cos\theta - \tfrac12)^2`, :math:`(r - 1)^2`) leaves :math:`\det W` of one sign at
+  every sample. Per parameter set, where the samples' ratio
+  :math:`\rho = \mathrm{rd}(A_{doc}) / \mathrm{rd}(A)` (relative determinants,
+  :func:`~..judge.equivalence.relative_det`) comes below :data:`SCREEN` of its median, the
+  sample with the smallest is the start of a bounded search (positions within their ranges)
+  for the smallest :math:`\log \mathrm{rd}(A_{doc})`; the state found is judged with the
+  special ones (the truth's A computed there: a state where the coordinates are singular
+  is left out). A factor that does not vanish (:math:`2 + \cos\theta`) has :math:`\rho` of
+  one order everywhere and costs nothing.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.optimize import minimize
+
+from ..grid.grid import special_states
+from ..judge import equivalence
+from ..sides.both import Sides
+from ..sides.document import DocumentFunctions
+from ..sides.truth import special_truth_A
+
+#: A parameter set's smallest ratio of relative determinants (document / truth), below this
+#: fraction of its median, is searched for a zero.
+SCREEN = 1e-2
+#: Relative determinant taken as zero inside the logarithm searched (below any decision).
+LOG_FLOOR = 1e-300
+
+
+def _values(sides: Sides, funcs: DocumentFunctions, owner: np.ndarray) -> dict:
+    return {s: np.asarray([sides.per_set[k][s] for k in owner]) for s in funcs.params}
+
+
+def _row_norms(A: np.ndarray) -> np.ndarray:
+    with np.errstate(all="ignore"):
+        return np.linalg.norm(A, axis=2)
+
+
+def _searches(doc_A: np.ndarray, true_A: np.ndarray) -> list[tuple[int, int | None]]:
+    r"""(start sample, row or None) of each search on one parameter set's samples: the
+    sample where the ratio of relative determinants is least (rows that become dependent),
+    and for each row the sample where its norm is least (a row that vanishes), where that
+    is below :data:`SCREEN` of the median."""
+    with np.errstate(all="ignore"):
+        ratio = equivalence.relative_det(doc_A) / equivalence.relative_det(true_A)
+    out: list[tuple[int, int | None]] = []
+    for values, row in ((ratio, None), *((_row_norms(doc_A)[:, i], i)
+                                         for i in range(doc_A.shape[1]))):
+        ok = np.isfinite(values)
+        if not ok.any():
+            continue
+        j = int(np.flatnonzero(ok)[np.argmin(values[ok])])
+        if values[j] < SCREEN * float(np.median(values[ok])):
+            out.append((j, row))
+    return out
+
+
+def searched_states(funcs: DocumentFunctions, sides: Sides, doc_A: np.ndarray,
+                    true_A: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    r"""``(q, set index)`` of the searched states (module text)."""
+    grid = sides.grid
+    K, N, n = grid.q.shape
+    bounds = np.array(grid.ranges, dtype=float)
+    qs, owner = [], []
+    for k in range(K):
+        part = slice(k * N, (k + 1) * N)
+        values = _values(sides, funcs, np.array([k]))
+        for j, row in _searches(doc_A[part], true_A[part]):
+
+            def size(x: np.ndarray, row: int | None = row) -> float:
+                A = funcs.evaluate(x[None], np.zeros((1, n)), values, ("A",)).need("A")
+                v = equivalence.relative_det(A)[0] if row is None else _row_norms(A)[0, row]
+                return float(np.log(v + LOG_FLOOR)) if np.isfinite(v) else 0.0
+            found = minimize(size, grid.q[k, j], method="L-BFGS-B", bounds=bounds)
+            qs.append(np.clip(found.x, bounds[:, 0], bounds[:, 1]))
+            owner.append(k)
+    if not qs:
+        return np.empty((0, n)), np.empty(0, dtype=int)
+    return np.array(qs), np.array(owner)
+
+
+def special_sides(funcs: DocumentFunctions, sides: Sides, doc_A: np.ndarray,
+                  true_A: np.ndarray, W: np.ndarray
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+    r"""The document's and the truth's A at the special and searched states (module text),
+    and there the typical norm of each row of :math:`W` (its median over the state's
+    parameter set, from the samples' ``W``); None where there are none."""
+    q, owner = special_states(sides.grid)
+    found_q, found_owner = searched_states(funcs, sides, doc_A, true_A)
+    q, owner = np.concatenate([q, found_q]), np.concatenate([owner, found_owner]).astype(int)
+    if not len(q):
+        return None
+    at = funcs.evaluate(q, np.zeros_like(q), _values(sides, funcs, owner), ("A",))
+    K = len(sides.grid.sets)
+    typical = np.array([np.nanmedian(_row_norms(part), axis=0)
+                        for part in np.array_split(W, K)])
+    return at.need("A"), special_truth_A(sides.grid, q, owner), typical[owner]
+
+
+__all__ = ["SCREEN", "searched_states", "special_sides"]
