@@ -7,14 +7,16 @@ miss.
   special_states`): an equation times :math:`\sin\theta` is lost at :math:`\theta = 0`.
 - **Searched states**: a factor that touches zero without changing sign
   (:math:`(\cos\theta - \tfrac12)^2`, :math:`(r - 1)^2`) leaves :math:`\det W` of one sign at
-  every sample. Per parameter set, where the samples' ratio
-  :math:`\rho = \mathrm{rd}(A_{doc}) / \mathrm{rd}(A)` (relative determinants,
-  :func:`~..judge.equivalence.relative_det`) comes below :data:`SCREEN` of its median, the
-  sample with the smallest is the start of a bounded search (positions within their ranges)
-  for the smallest :math:`\log \mathrm{rd}(A_{doc})`; the state found is judged with the
-  special ones (the truth's A computed there: a state where the coordinates are singular
-  is left out). A factor that does not vanish (:math:`2 + \cos\theta`) has :math:`\rho` of
-  one order everywhere and costs nothing.
+  every sample. Per parameter set, where a row's norm of :math:`A_{doc}` (a row that vanishes
+  with :math:`w_i = A_{doc,i}A^{-1}`) or the ratio
+  :math:`\rho = \mathrm{rd}(A_{doc}) / \mathrm{rd}(A)` of relative determinants
+  (:func:`~..judge.equivalence.relative_det`: rows that become dependent) comes below
+  :data:`SCREEN` of its median over the samples, the sample with the smallest is the start
+  of a bounded search (positions within their ranges) for the smallest logarithm of it, on
+  the document's side alone; the state found is judged with the special ones
+  (:func:`~..judge.equivalence.vanishing_at`: the truth's A computed there, a state where
+  the coordinates are singular left out). A factor that does not vanish
+  (:math:`2 + \cos\theta`) stays within one order of its median and costs nothing.
 """
 
 from __future__ import annotations
@@ -42,6 +44,13 @@ def _values(sides: Sides, funcs: DocumentFunctions, owner: np.ndarray) -> dict:
 def _row_norms(A: np.ndarray) -> np.ndarray:
     with np.errstate(all="ignore"):
         return np.linalg.norm(A, axis=2)
+
+
+def _median_rows(W: np.ndarray) -> np.ndarray:
+    r"""Each row's median norm over the samples where :math:`W` is finite (NaN where none)."""
+    norms = _row_norms(W)
+    finite = np.isfinite(norms).all(axis=1)
+    return np.median(norms[finite], axis=0) if finite.any() else np.full(W.shape[1], np.nan)
 
 
 def _searches(doc_A: np.ndarray, true_A: np.ndarray) -> list[tuple[int, int | None]]:
@@ -99,9 +108,7 @@ def special_sides(funcs: DocumentFunctions, sides: Sides, doc_A: np.ndarray,
     if not len(q):
         return None
     at = funcs.evaluate(q, np.zeros_like(q), _values(sides, funcs, owner), ("A",))
-    K = len(sides.grid.sets)
-    typical = np.array([np.nanmedian(_row_norms(part), axis=0)
-                        for part in np.array_split(W, K)])
+    typical = np.array([_median_rows(part) for part in np.array_split(W, len(sides.grid.sets))])
     return at.need("A"), special_truth_A(sides.grid, q, owner), typical[owner]
 
 
