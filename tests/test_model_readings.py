@@ -72,3 +72,15 @@ def test_a_footprint_off_the_ground_is_said(tmp_path):
                         "is that radius (if the root is meant on the ground, its joints' "
                         "origins and the wheels' radius do not agree)",), readings
     assert load_model(str(data / "dd_robot.toml")).readings == ()
+
+
+def test_matrices_prints_the_readings(capsys):
+    r"""``wheeled-dyn matrices`` says them too, as notes (and ``--json`` as ``notes``)."""
+    import json
+
+    from wheeled_dyn.cli.main import main
+    assert main(["matrices", "tiago_base"]) == 0
+    out = capsys.readouterr().out
+    assert "note: transmissions wheel_right_trans, wheel_left_trans: not applied" in out
+    assert main(["matrices", "tiago_base", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["notes"] == list(load_model("tiago_base").readings)

@@ -124,11 +124,13 @@ def _cmd_matrices(args: argparse.Namespace) -> int:
                          **dict(zip(cs.velocities, nu.tolist()))}, **terms.as_dict()}
         out["coordinates"] = list(cs.velocities)
         out["coordinate_set"] = cs.name
+        out["notes"] = list(wm.readings)
         print(json.dumps(out, indent=2))
         return 0
     vel = cs.velocities
     from ..models.conventions import convention_table
     print("\n".join(convention_table(wm).lines()))
+    print("".join(f"note: {r}\n" for r in wm.readings), end="")
     print(f"model {wm.name}, coordinates {cs.name}: {cs.description}")
     print("state: " + ", ".join(f"{k}={v:g}" for k, v in zip((*cs.positions, *vel), (*q, *nu))))
     print(format_matrix("A", terms.A, vel, vel))
