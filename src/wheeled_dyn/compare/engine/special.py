@@ -22,7 +22,6 @@ miss.
 from __future__ import annotations
 
 import numpy as np
-from scipy.optimize import minimize
 
 from ..grid.grid import special_states
 from ..judge import equivalence
@@ -75,6 +74,7 @@ def _searches(doc_A: np.ndarray, true_A: np.ndarray) -> list[tuple[int, int | No
 def searched_states(funcs: DocumentFunctions, sides: Sides, doc_A: np.ndarray,
                     true_A: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     r"""``(q, set index)`` of the searched states (module text)."""
+    from scipy.optimize import minimize     # 0.5 s to import: only where a search is made
     grid = sides.grid
     K, N, n = grid.q.shape
     bounds = np.array(grid.ranges, dtype=float)
