@@ -96,3 +96,16 @@ def test_modules_are_short() -> None:
     long = {str(p.relative_to(PACKAGE)): n for p in PACKAGE.rglob("*.py")
             if (n := len(p.read_text().splitlines())) > MAX_LINES}
     assert not long, f"modules over {MAX_LINES} lines: {long}"
+
+
+def test_the_engine_leaves_slow_imports_to_where_they_are_used() -> None:
+    r"""Importing the comparison engine (what every ``compare`` starts with) does not import
+    what only some comparisons use: SciPy's optimizers (0.5 s here, for the search of a
+    vanishing factor), yourdfpy (URDFs read before come from the cache)."""
+    import subprocess
+    import sys
+    code = ("import sys, wheeled_dyn.compare.engine; "
+            "print(sorted(m for m in ('scipy.optimize', 'yourdfpy') if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.strip()
+    assert out == "[]", out
