@@ -81,11 +81,13 @@ def equation_records(d: Derivation, decision, drafts: Sequence[ElementDraft],
             diags = [diagnosis(K.UNDECIDED, f"{', '.join(lost)} lost in the extracted text: "
                                "the equation is not decided")]
         singular = first_of(diags, K.SINGULAR, K.DECLARED) is not None  # no family mends
-        spread = not any(r.verdict in (Verdict.DIFFERS, Verdict.AGREES_IF) and r.key != "C"
-                         for r in row)              # no element differs: no family is named
+        # a family is named where an element needs one and none differs without one (an
+        # element that differs with a sign is no family's: its equation differs too)
+        text = _family_condition(row)
+        differing = any(r.verdict == Verdict.DIFFERS and r.key != "C" for r in row)
         if verdict == Verdict.DIFFERS and not singular and on_families is not None \
-                and on_families.equations[i].verdict == Verdict.AGREES and not spread:
-            text = _family_condition(row) or "the model's special parameter families hold"
+                and on_families.equations[i].verdict == Verdict.AGREES and text \
+                and not differing:
             verdict = Verdict.AGREES_IF
             diags = [Diagnosis(K.CONDITION, f"agrees only if {text}", text, condition=text)]
         diags += _reconcile(verdict, row, e.max_error)

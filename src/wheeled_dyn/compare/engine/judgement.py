@@ -42,6 +42,7 @@ from ..sides.evaluation import Evaluation
 from ..sides.framed import framed, row_of, row_scale
 from .equations import equation_records
 from .printing import corrected, print_drafts
+from ..judge.consistency import consistent_cases, contradiction_causes
 from .special import special_sides
 
 #: Smaller grid used to test special parameter families: states per set, sets.
@@ -210,7 +211,7 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     sides = both_sides(d, funcs, grid, engine.seed, with_gamma=True)
     stage("equivalence")
     decision = decide(d, funcs, sides)
-    cases = undeclared_cases(d, assumed)
+    cases = consistent_cases(d, funcs, undeclared_cases(d, assumed), assumed, engine.seed)
     grids = _grids(engine, d, funcs, sides, cases, assumed)
     stage("frames")
     rules, frames, declared_wrong = choose_frames(d, funcs, grids, decision)
@@ -250,8 +251,9 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     equations = equation_records(d, decision, drafts, texts, label, grids, funcs, rules, solved)
     fixes = print_drafts(d, drafts, sides.grid.cs, texts, assumed, funcs.exprs)
     equations = corrected(d, equations, fixes)
-    return _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed,
-                      declared_wrong, fixes.truth is not None)
+    j = _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed,
+                   declared_wrong, fixes.truth is not None)
+    return replace(j, causes=(*contradiction_causes(d, funcs, assumed, engine.seed), *j.causes))
 
 
 def _geometric(d: Derivation) -> set[sp.Symbol]:

@@ -33,6 +33,7 @@ from ..grid.assumptions import declared
 from ..grid.samples import special_cases
 from ..judge.diagnose import (agrees, max_error, swap_diagnoses, trig_swap_diagnoses,
                               value_diagnoses)
+from ..judge.consistency import vanishing
 from ..judge.units import DimensionChecker, format_dim
 from ..records import Diagnosis, DiagnosisKind as K, ElementRecord, Verdict, diagnosis
 from ..sides.elements import swap_groups
@@ -104,8 +105,14 @@ def _levelled(g: StepGroup, step: Step, D: np.ndarray, T: np.ndarray
 
 def _special(d: Derivation, step: Step, seed: int) -> dict[int, str]:
     r"""For the components that differ, the smallest combination of the model's special
-    parameter families (beyond the step's ``given``) under which they agree."""
-    cases = [c for c in special_cases(d.model) if c.name not in step.given]
+    parameter families (beyond the step's ``given``) under which they agree; none that makes
+    a symbol the step writes vanish (:mod:`..judge.consistency`: a potential energy with the
+    wrong sign of its :math:`MX_1` term is not "right if :math:`MX_1 = 0`")."""
+    given = [c for c in special_cases(d.model) if c.name in step.given]
+    written = set().union(*(sp.sympify(e).free_symbols for e in step.components)) & {
+        spec.symbol for spec in d.symbols.values() if not spec.is_input}
+    cases = [c for c in special_cases(d.model) if c.name not in step.given
+             and not vanishing(d, written, given, c, seed)]
     memo: dict[tuple[str, ...], set[int]] = {}
 
     def agreeing(names: tuple[str, ...]) -> set[int]:

@@ -1,0 +1,109 @@
+r"""Which of the model's special parameter families a document can assume: none that makes a
+symbol it writes vanish.
+
+A family (:class:`~..grid.samples.SpecialCase`: products of inertia zero, the centre of mass
+on the axle, no armature ...) sets parameters to zero. A document that writes a term in
+:math:`MX_1` does not take :math:`MX_1 = 0`: under the family the term vanishes whatever its
+sign or factor, so the family explains nothing about it.
+
+- **Undeclared families** that make a written symbol vanish are not tried as explanations
+  (:func:`consistent_cases`): a sign error in a term in :math:`MX_1` was "agrees only if the
+  centre of mass is on the axle", where the document keeps :math:`MX_1` everywhere.
+- **Declared families** that do are the file contradicting itself
+  (:func:`contradicted_families`): its terms in those symbols are never compared (they vanish
+  in every parameter set drawn), which a cause says first; the verdicts under the
+  declaration stand.
+
+A symbol vanishes under a family where its value is at most :data:`ZERO` of its largest on
+parameter sets drawn without the family, in every set drawn with it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import sympy as sp
+
+from ...derivations.schema import Derivation
+from ..grid.assumptions import Assumptions
+from ..grid.samples import SpecialCase, parameter_sets
+from ..records import Cause, CauseKind
+from ..sides.document import DocumentFunctions, document_symbol_values
+
+#: A symbol's value at most this fraction of its largest without the family is zero.
+ZERO = 1e-12
+#: Parameter sets drawn with and without a family to see what it makes vanish.
+SETS = 2
+
+
+def written_symbols(funcs: DocumentFunctions) -> set[sp.Symbol]:
+    r"""The document's symbols (not inputs) its matrices or equations write."""
+    found: set[sp.Basic] = set()
+    for expr in funcs.exprs.values():
+        if expr is not None:
+            found |= expr.free_symbols
+    return found & set(funcs.params)
+
+
+def _values(d: Derivation, special: Sequence[SpecialCase], seed: int
+            ) -> list[dict[sp.Symbol, float]]:
+    rng = np.random.default_rng([seed, 11, len(special)])
+    return [document_symbol_values(d, ps, rng)
+            for ps in parameter_sets(d.model, SETS, rng, tuple(special))]
+
+
+def vanishing(d: Derivation, written: set[sp.Symbol], without: Sequence[SpecialCase],
+              case: SpecialCase, seed: int) -> list[sp.Symbol]:
+    r"""The ``written`` symbols that ``case`` makes vanish, beside the families ``without``
+    (module text), in the file's order."""
+    if not written:
+        return []
+    free, held = _values(d, without, seed), _values(d, (*without, case), seed)
+    out = []
+    for s in (spec.symbol for spec in d.symbols.values() if spec.symbol in written):
+        size = max(abs(v[s]) for v in free)
+        if size > 0 and all(abs(v[s]) <= ZERO * size for v in held):
+            out.append(s)
+    return out
+
+
+def consistent_cases(d: Derivation, funcs: DocumentFunctions, cases: Sequence[SpecialCase],
+                     assumed: Assumptions, seed: int) -> tuple[SpecialCase, ...]:
+    r"""The undeclared ``cases`` that make no symbol the document writes vanish."""
+    written = written_symbols(funcs)
+    return tuple(c for c in cases
+                 if not vanishing(d, written, assumed.families, c, seed))
+
+
+def contradicted_families(d: Derivation, funcs: DocumentFunctions, assumed: Assumptions,
+                          seed: int) -> list[tuple[str, list[sp.Symbol]]]:
+    r"""The declared families that make a symbol the document writes vanish, with those
+    symbols."""
+    written = written_symbols(funcs)
+    out = []
+    for case in assumed.families:
+        others = [c for c in assumed.families if c is not case]
+        gone = vanishing(d, written, others, case, seed)
+        if gone:
+            out.append((case.name, gone))
+    return out
+
+
+def contradiction_causes(d: Derivation, funcs: DocumentFunctions, assumed: Assumptions,
+                         seed: int) -> tuple[Cause, ...]:
+    r"""A ``file_error`` cause per declared family that makes a written symbol vanish."""
+    out = []
+    for name, gone in contradicted_families(d, funcs, assumed, seed):
+        them = ", ".join(map(str, gone))
+        out.append(Cause(CauseKind.FILE_ERROR, (), (
+            f"the file declares {name}, under which {them} "
+            f"{'is' if len(gone) == 1 else 'are'} 0, but the document writes "
+            f"{'it' if len(gone) == 1 else 'them'}: its terms in {them} vanish in every "
+            "parameter set and are not compared (declare the family only where the "
+            "document's equations assume it)")))
+    return tuple(out)
+
+
+__all__ = ["ZERO", "consistent_cases", "contradicted_families", "contradiction_causes",
+           "vanishing", "written_symbols"]

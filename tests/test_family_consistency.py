@@ -1,0 +1,126 @@
+r"""A special parameter family never explains, nor silently hides, a term the document writes.
+
+The WIP's families (``no_products``, ``com_on_axis``, ``no_armature`` ...) set parameters to
+zero. A document that writes :math:`MX_1\cos\varphi` in C does not take :math:`MX_1 = 0`:
+
+- undeclared, a family that zeroes a symbol the document writes is no explanation: a term in
+  :math:`MX_1` with the wrong sign was "agrees only if the centre of mass is on the axle"
+  (element and equation), and a term in the armature 3/2 × what fits made its equation
+  "agree only if the model's special parameter families hold", naming none;
+- declared, it makes the document's own terms vanish in every parameter set: they are never
+  compared, and a ``file_error`` cause says so first (the verdicts under the declaration
+  stand: declarations bind);
+- no shipped derivation declares a family that zeroes a symbol it writes.
+
+The document is ``data/wip_true_seed001.toml`` (the WIP's true reduced equations, derived by
+hand for general parameters, ``test_compare_planted.py``), with one planted error.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from conftest import SEED
+from wheeled_dyn.compare.engine import ComparisonEngine
+from wheeled_dyn.compare.judge.consistency import contradicted_families
+from wheeled_dyn.compare.engine.judgement import document_functions
+from wheeled_dyn.compare.grid.assumptions import declared
+from wheeled_dyn.compare.records import CauseKind, DiagnosisKind as K, Verdict
+from wheeled_dyn.derivations import builtin_derivations, load_derivation
+
+TRUE_FILE = Path(__file__).parent / "data" / "wip_true_seed001.toml"
+SAMPLES, PARAM_SETS = 200, 3
+C12 = "dpsi*(MY1*sin(phi) - MX1*cos(phi))"
+A11 = "m_S + 2*m_C + 2*Iw3/R**2 + 2*I_a/R**2"
+
+
+@pytest.fixture(scope="module")
+def engine() -> ComparisonEngine:
+    return ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED)
+
+
+def _file(tmp_path: Path, old: str, new: str, families: str = "") -> Path:
+    text = TRUE_FILE.read_text()
+    assert text.count(old) == 1, old
+    text = text.replace(old, new)
+    if families:
+        text = text.replace("\n[matrices]", f"\n[assumes]\nfamilies = {families}\n\n[matrices]")
+    path = tmp_path / "planted.toml"
+    path.write_text(text)
+    return path
+
+
+@pytest.mark.parametrize("old, new, element, kind, term", [
+    (C12, C12.replace("- MX1", "+ MX1"), "C[1,2]", K.SIGN, "MX1*dpsi*cos(phi)"),
+    (A11, A11.replace("2*I_a", "3*I_a"), "A[1,1]", K.FACTOR, "3*I_a/R**2")])
+def test_a_family_that_zeroes_a_written_symbol_explains_nothing(engine, tmp_path, old, new,
+                                                                 element, kind, term):
+    result = engine.compare(load_derivation(_file(tmp_path, old, new)))
+    record = next(r for r in result.records if r.element == element)
+    assert record.verdict == Verdict.DIFFERS, record.texts
+    assert any(d.kind == kind and d.term == term for d in record.diagnoses), record.texts
+    assert not any(r.verdict == Verdict.AGREES_IF for r in result.records), \
+        [(r.element, r.texts) for r in result.records if r.verdict == Verdict.AGREES_IF]
+    row = int(element[2]) - 1
+    assert result.equations[row].verdict == Verdict.DIFFERS, result.equations[row].diagnoses
+    assert result.equivalent is False
+
+
+@pytest.mark.parametrize("family, gone", [('["com_on_axis"]', "MX1, MZ1"),
+                                          ('["no_armature"]', "I_a")])
+def test_a_declared_family_that_zeroes_a_written_symbol_is_said_first(engine, tmp_path,
+                                                                      family, gone):
+    r"""The planted sign in C[1,2]'s MX1 term under a declared com_on_axis (and the true file
+    under no_armature): the verdicts stand as declared, and the first cause says which
+    written symbols the declaration makes vanish, unchecked."""
+    path = _file(tmp_path, C12, C12.replace("- MX1", "+ MX1") if "com" in family else C12,
+                 family)
+    result = engine.compare(load_derivation(path))
+    first = result.causes[0]
+    assert first.kind == CauseKind.FILE_ERROR, result.causes
+    assert f"under which {gone} " in first.explanation and "not compared" in \
+        first.explanation, first.explanation
+
+
+def test_no_shipped_derivation_declares_a_family_against_its_own_symbols():
+    wrong = {}
+    for group in ("seed001", "seed000", "seed002", "literature"):
+        for path in builtin_derivations(group):
+            d = load_derivation(path)
+            if not d.n:
+                continue
+            found = contradicted_families(d, document_functions(d), declared(d), SEED)
+            if found:
+                wrong[path.name] = [(name, [str(s) for s in gone]) for name, gone in found]
+    assert not wrong, wrong
+
+
+STEPS = """title = "potential energy"
+model = "wip"
+[coordinates]
+use = "seed001"
+[symbols]
+g = { value = "g", units = "m/s**2" }
+MX1 = { value = "MX(body)", units = "kg*m" }
+MY1 = { value = "MY(body)", units = "kg*m" }
+d = { value = "d", units = "m" }
+m_S = { value = "m_S", units = "kg" }
+[[step]]
+equation = "(U)"
+kind = "potential energy"
+value = "VALUE"
+"""
+
+
+@pytest.mark.parametrize("value, verdict", [
+    ("g*(MX1*sin(phi) + MY1*cos(phi))", Verdict.AGREES),
+    ("g*(-MX1*sin(phi) + MY1*cos(phi))", Verdict.DIFFERS),       # was "agrees only if" MX1 = 0
+    ("g*m_S*d*cos(phi)", Verdict.AGREES_IF)])                      # d names no MX1: it may be
+def test_a_step_is_held_to_the_symbols_it_writes(tmp_path, value, verdict):
+    from wheeled_dyn.compare.steps.records import compare_steps
+    path = tmp_path / "steps.toml"
+    path.write_text(STEPS.replace("VALUE", value))
+    (record,) = compare_steps(load_derivation(path), SEED)
+    assert record.verdict == verdict, record.texts
