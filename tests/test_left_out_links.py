@@ -22,7 +22,7 @@ import pytest
 from conftest import SEED
 from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.compare.grid.assumptions import left_out
-from wheeled_dyn.compare.records import Verdict
+from wheeled_dyn.compare.records import CauseKind, Verdict
 from wheeled_dyn.derivations import load_derivation
 from wheeled_dyn.errors import DerivationError
 
@@ -100,3 +100,24 @@ def test_a_wrong_declaration_is_one_clear_error(tmp_path, name, expected):
     with pytest.raises(DerivationError) as info:
         ComparisonEngine(samples=20, param_sets=1, seed=SEED).compare(d)
     assert DOC in str(info.value) and expected in str(info.value)
+
+
+@pytest.mark.parametrize("unknown", [False, True])
+def test_one_input_read_with_the_other_sign(engine, tmp_path, unknown):
+    r"""The file maps the left torque as ``-tau_L`` where the document's is the model's: two
+    elements (its column of B) differ and nothing else. The reading tau_L → −tau_L makes every
+    element agree: a cause (the verdicts as declared), and the reading itself where the file
+    says its convention is unknown. A gain of two elements was below the three a reading
+    needed, so neither was found."""
+    edits = [DECLARED, ('tau_l = "tau_L"', 'tau_l = "-tau_L"')]
+    if unknown:
+        edits.append(('title = "', 'convention = "unknown"\ntitle = "'))
+    result = engine.compare(_doc(tmp_path, *edits))
+    first = result.causes[0]
+    assert first.kind == CauseKind.CONVENTION, result.causes
+    if unknown:
+        assert result.equivalent is True and "tau_L → −tau_L" in first.explanation
+    else:
+        assert result.equivalent is False and "tau_l = tau_L" in first.explanation
+        assert {r.element for r in result.records if r.verdict == Verdict.DIFFERS} == \
+            {"B[1,2]", "B[2,2]"}

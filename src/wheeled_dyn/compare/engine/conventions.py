@@ -30,7 +30,9 @@ def search_evaluation(j) -> SearchEvaluation:
 def _search(j) -> tuple | None:
     r"""The best reading of the judged derivation ``j``'s file, or None."""
     search = search_evaluation(j)
-    return signs.best_reading(j.funcs.d, search.doc_at, search.score, search.score_readings)
+    d = j.funcs.d
+    return signs.best_reading(d, search.doc_at, search.score, search.score_readings,
+                              search.elements(search.doc_at((1,) * d.n)))
 
 
 def _right(result: DerivationResult) -> int:

@@ -81,6 +81,17 @@ class SearchEvaluation(Evaluation):
             count += _agreeing(doc.H * _product_weights(n), _needed(truth_H), scales, upper)
         return count
 
+    def elements(self, doc: Arrays) -> int:
+        r"""How many elements :meth:`score` counts at most (each that agrees counts one)."""
+        n = self.q.shape[1]
+        count = sum(int(np.prod(getattr(doc, k).shape[1:])) for k in ("A", "C", "Q")
+                    if getattr(doc, k) is not None)
+        if self.B_true is not None and doc.B is not None:
+            count += int(np.prod(doc.B.shape[1:]))
+        if doc.H is not None:
+            count += doc.H.shape[1] * n * (n + 1) // 2
+        return count
+
     def score_readings(self, base: Arrays, s: Sequence[int],
                        readings: Sequence[tuple[Sequence[int], Sequence[int]]]) -> list[int]:
         r""":meth:`score` of ``flip_arrays(base, s, t, order)`` for each ``(t, order)`` of
