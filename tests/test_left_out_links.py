@@ -94,6 +94,10 @@ def test_a_planted_error_stays_an_error(engine, tmp_path, declared):
 @pytest.mark.parametrize("name, expected", [
     ("massless(no_such_link)", "no_such_link"),
     ("massless(base_footprint)", "base_link"),       # it shares its body with base_link
+    # a link whose mass a symbol names (m_w = M(left_wheel)): was "unknown model parameter
+    # 'M(left_wheel)'", with neither the file nor the declaration named
+    ("massless(left_wheel)", "symbols.m_w: M(left_wheel) is the mass or inertia of link "
+                             "left_wheel, which assumes.families declares without mass"),
 ])
 def test_a_wrong_declaration_is_one_clear_error(tmp_path, name, expected):
     d = _doc(tmp_path, ('families = ["urdf_structure"]', f'families = ["{name}"]'))

@@ -69,9 +69,28 @@ def declared(d: Derivation) -> Assumptions:
     links = tuple(str(x) for x in uniform) if isinstance(uniform, (list, tuple)) else ()
     if links:             # the family uniform(link, ...) of a model without a physical record
         families.append(named_family(d, f"uniform({', '.join(links)})", "assumes.uniform"))
+    _massless_named(d, families)
     point = tuple((k, float(v)) for k, v in dict(raw.get("linearised_about", {})).items())
     return Assumptions(tuple(families), point, raw.get("potential") == "equilibrium",
                        tuple(raw.get("text", ())))
+
+
+def _massless_named(d: Derivation, families: list[SpecialCase]) -> None:
+    r"""A symbol whose value names the mass or inertia of a link a declared ``massless``
+    family takes off is a :class:`~wheeled_dyn.errors.DerivationError` naming both (it was an
+    unknown parameter, the file and the declaration unnamed)."""
+    from sympy.core.function import AppliedUndef
+
+    from ...models.link_parameters import FUNCTIONS
+    gone = {link: c.name for c in families for link in c.massless}
+    for name, spec in d.symbols.items():
+        for call in () if spec.value is None else spec.value.atoms(AppliedUndef):
+            link = str(call.args[0]) if call.args else ""
+            if call.func.__name__ in FUNCTIONS and link in gone:
+                raise DerivationError(d.path, f"symbols.{name}", (
+                    f"{call} is the mass or inertia of link {link}, which assumes.families "
+                    f"declares without mass ({gone[link]}): drop the link from the family, "
+                    "or the symbol"))
 
 
 def named_family(d: Derivation, name: str, where: str) -> SpecialCase:
