@@ -203,3 +203,15 @@ def test_constraints_stated_where_the_file_drops_the_rolling_say_so(engine, tmp_
     assert result.equivalent is False
     causes = [c.explanation for c in result.causes if c.kind == CauseKind.NOT_EQUIVALENT]
     assert any('rolling = "none"' in c for c in causes), causes
+
+
+def test_two_wrong_equations_leave_the_right_ones_right(engine, tmp_path):
+    r"""The robot's two wheel equations each with a wrong inertia (2 I_w and 3 I_w): those
+    two differ, the other three are right. Its G has four rows of rank three (two per wheel);
+    its four columns were counted as multipliers, so two equations of five were never left
+    out of the multipliers' fit and all five were "no combination of the true equations"."""
+    result = _compare(engine, tmp_path, ROBOT, "[0, 0, 0, I_w, 0],\n        [0, 0, 0, 0, I_w]]",
+                      "[0, 0, 0, 2*I_w, 0],\n        [0, 0, 0, 0, 3*I_w]]")
+    assert [e.verdict for e in result.equations] == ["agrees", "agrees", "agrees", "differs",
+                                                     "differs"]
+    assert result.equivalent is False

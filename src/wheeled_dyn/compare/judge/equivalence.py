@@ -158,7 +158,10 @@ def multiplier_terms(doc_L: np.ndarray, true_L: np.ndarray, W: np.ndarray) -> np
     if not ok.any():
         return out
     mixed, D = W[ok] @ true_L[ok], doc_L[ok]
-    n, m = D.shape[1], true_L.shape[2]
+    # as many equations left as independent multipliers (a robot's two wheels: four rows of
+    # G of rank three; its four columns counted, two wrong equations of five were never left
+    # out, and the three right ones were said to be no combination)
+    n, m = D.shape[1], int(np.linalg.matrix_rank(true_L[ok][:10]).max())
 
     def fit(left_out: tuple[int, ...]) -> tuple[float, np.ndarray]:
         rows = [i for i in range(n) if i not in left_out]
