@@ -74,26 +74,25 @@ def _searches(doc_A: np.ndarray, true_A: np.ndarray) -> list[tuple[int, int | No
 def searched_states(funcs: DocumentFunctions, sides: Sides, doc_A: np.ndarray,
                     true_A: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     r"""``(q, set index)`` of the searched states (module text)."""
-    from scipy.optimize import minimize     # 0.5 s to import: only where a search is made
     grid = sides.grid
     K, N, n = grid.q.shape
-    bounds = np.array(grid.ranges, dtype=float)
-    qs, owner = [], []
-    for k in range(K):
-        part = slice(k * N, (k + 1) * N)
-        values = _values(sides, funcs, np.array([k]))
-        for j, row in _searches(doc_A[part], true_A[part]):
-
-            def size(x: np.ndarray, row: int | None = row) -> float:
-                A = funcs.evaluate(x[None], np.zeros((1, n)), values, ("A",)).need("A")
-                v = equivalence.relative_det(A)[0] if row is None else _row_norms(A)[0, row]
-                return float(np.log(v + LOG_FLOOR)) if np.isfinite(v) else 0.0
-            found = minimize(size, grid.q[k, j], method="L-BFGS-B", bounds=bounds)
-            qs.append(np.clip(found.x, bounds[:, 0], bounds[:, 1]))
-            owner.append(k)
-    if not qs:
+    starts = [(k, j, row) for k in range(K)
+              for j, row in _searches(doc_A[k * N:(k + 1) * N], true_A[k * N:(k + 1) * N])]
+    if not starts:
         return np.empty((0, n)), np.empty(0, dtype=int)
-    return np.array(qs), np.array(owner)
+    from scipy.optimize import minimize     # 0.5 s to import: only where a search is made
+    bounds = np.array(grid.ranges, dtype=float)
+    qs = []
+    for k, j, row in starts:
+        values = _values(sides, funcs, np.array([k]))
+
+        def size(x: np.ndarray, row: int | None = row, values: dict = values) -> float:
+            A = funcs.evaluate(x[None], np.zeros((1, n)), values, ("A",)).need("A")
+            v = equivalence.relative_det(A)[0] if row is None else _row_norms(A)[0, row]
+            return float(np.log(v + LOG_FLOOR)) if np.isfinite(v) else 0.0
+        found = minimize(size, grid.q[k, j], method="L-BFGS-B", bounds=bounds)
+        qs.append(np.clip(found.x, bounds[:, 0], bounds[:, 1]))
+    return np.array(qs), np.array([k for k, _, _ in starts])
 
 
 def special_sides(funcs: DocumentFunctions, sides: Sides, doc_A: np.ndarray,

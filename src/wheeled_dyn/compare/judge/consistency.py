@@ -46,20 +46,28 @@ def written_symbols(funcs: DocumentFunctions) -> set[sp.Symbol]:
     return found & set(funcs.params)
 
 
+#: Parameter sets drawn per (model, its version, families, seed): shared by the documents
+#: of one model (each family's sets drawn once per process).
+_DRAWN: dict[tuple, list] = {}
+
+
 def _values(d: Derivation, special: Sequence[SpecialCase], seed: int
             ) -> list[dict[sp.Symbol, float]]:
-    rng = np.random.default_rng([seed, 11, len(special)])
-    return [document_symbol_values(d, ps, rng)
-            for ps in parameter_sets(d.model, SETS, rng, tuple(special))]
+    from ...models.registry import model_version
+    key = (d.model, model_version(d.model), tuple(c.name for c in special), seed)
+    if key not in _DRAWN:
+        rng = np.random.default_rng([seed, 11, len(special)])
+        _DRAWN[key] = parameter_sets(d.model, SETS, rng, tuple(special))
+    rng = np.random.default_rng(seed)
+    return [document_symbol_values(d, ps, rng) for ps in _DRAWN[key]]
 
 
-def vanishing(d: Derivation, written: set[sp.Symbol], without: Sequence[SpecialCase],
-              case: SpecialCase, seed: int) -> list[sp.Symbol]:
-    r"""The ``written`` symbols that ``case`` makes vanish, beside the families ``without``
-    (module text), in the file's order."""
-    if not written:
+def _gone(d: Derivation, written: set[sp.Symbol], free: list[dict], held: list[dict]
+          ) -> list[sp.Symbol]:
+    r"""The ``written`` symbols nonzero in some set of ``free`` and zero in every one of
+    ``held`` (module text), in the file's order."""
+    if not free or not held:
         return []
-    free, held = _values(d, without, seed), _values(d, (*without, case), seed)
     out = []
     for s in (spec.symbol for spec in d.symbols.values() if spec.symbol in written):
         size = max(abs(v[s]) for v in free)
@@ -68,12 +76,24 @@ def vanishing(d: Derivation, written: set[sp.Symbol], without: Sequence[SpecialC
     return out
 
 
+def vanishing(d: Derivation, written: set[sp.Symbol], without: Sequence[SpecialCase],
+              case: SpecialCase, seed: int) -> list[sp.Symbol]:
+    r"""The ``written`` symbols that ``case`` makes vanish, beside the families ``without``
+    (module text), in the file's order."""
+    if not written:
+        return []
+    return _gone(d, written, _values(d, without, seed), _values(d, (*without, case), seed))
+
+
 def consistent_cases(d: Derivation, funcs: DocumentFunctions, cases: Sequence[SpecialCase],
                      assumed: Assumptions, seed: int) -> tuple[SpecialCase, ...]:
     r"""The undeclared ``cases`` that make no symbol the document writes vanish."""
     written = written_symbols(funcs)
-    return tuple(c for c in cases
-                 if not vanishing(d, written, assumed.families, c, seed))
+    if not written or not cases:
+        return tuple(cases)
+    free = _values(d, assumed.families, seed)
+    return tuple(c for c in cases if not _gone(
+        d, written, free, _values(d, (*assumed.families, c), seed)))
 
 
 def contradicted_families(d: Derivation, funcs: DocumentFunctions, assumed: Assumptions,
