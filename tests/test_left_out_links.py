@@ -89,6 +89,10 @@ def test_a_planted_error_stays_an_error(engine, tmp_path, declared):
     assert result.equivalent is False
     if declared:
         assert "2*I_w/R**2" in " ".join(a11.texts)
+        # the truth under the declared family: the caster's mass terms are no part of it
+        # (they were printed in the truth and in truth − document)
+        assert a11.residual == "2*I_w/R**2", a11.residual
+        assert "caster" not in (a11.truth or "") and "caster" not in result.equations[0].corrected
 
 
 @pytest.mark.parametrize("name, expected", [

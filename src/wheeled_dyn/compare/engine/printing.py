@@ -46,8 +46,9 @@ def print_drafts(d: Derivation, drafts: Sequence[ElementDraft], cs, texts: Seque
     uniform = frozenset(uniform_links(load_model(d.model), assumed.families))
     linearised = None if not assumed.linearised_about else (assumed.linearised_about,
                                                             assumed.equilibrium_potential)
+    massless = frozenset(link for c in assumed.families for link in c.massless)
     return Corrections(closed_form.annotate(d, list(drafts), cs, frames, families, uniform,
-                                            linearised), frames)
+                                            linearised, massless), frames)
 
 
 @dataclass(frozen=True)

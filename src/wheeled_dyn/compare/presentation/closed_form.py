@@ -195,6 +195,22 @@ def uniform_substitution(d: Derivation, links: frozenset[str]) -> dict[sp.Symbol
     return out
 
 
+def massless_substitution(d: Derivation, links: frozenset[str]) -> dict[sp.Symbol, sp.Expr]:
+    r"""The ``links`` a declared ``massless(link, ...)`` family takes off (each the only link
+    with mass of its rigid body, :func:`~wheeled_dyn.compare.grid.samples.massless_family`):
+    every inertial parameter of its body zero in the closed forms (a caster the document
+    leaves out printed its mass terms in the truth and in truth − document)."""
+    from ...models.registry import load_model
+    from ...symbolic.parameter_modes import standard_names
+    from ...symbolic.parameters import PARAMETER_NAMES
+    if not links or model_entry(d.model).parameters is not None:
+        return {}
+    wm = load_model(d.model)
+    names = standard_names(wm)
+    return {sp.Symbol(f"{key}_{names[wm.joint_id_of_link(link)]}", real=True): sp.Integer(0)
+            for link in sorted(links) for key in PARAMETER_NAMES}
+
+
 def _row_label(label: str, row: int) -> str:
     r"""``A[2,3]`` → ``A[row+1,3]``, ``h[2]:dx*dpsi`` → ``h[row+1]:dx*dpsi``."""
     head, _, rest = label.partition("[")
@@ -206,8 +222,8 @@ def _row_label(label: str, row: int) -> str:
 
 def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, ...] | sp.Expr],
              families: tuple[str, ...] = (), uniform: frozenset[str] = frozenset(),
-             linearised: tuple[tuple[tuple[str, float], ...], bool] | None = None
-             ) -> dict[str, sp.Expr] | None:
+             linearised: tuple[tuple[tuple[str, float], ...], bool] | None = None,
+             massless: frozenset[str] = frozenset()) -> dict[str, sp.Expr] | None:
     r"""Fill ``truth`` (every element, in its row's frame: the truth it is compared with) and
     ``residual`` (truth − document, expanded, for the elements that do not agree) of the
     ``drafts`` where the symbolic engine provides closed forms; without them the drafts keep
@@ -216,7 +232,8 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
     one) or the weights :math:`f_i` of a combination of the true rows; rows absent from it get
     no residual. The truth and the document are both read under the parameter ``families`` the
     document assumes (:func:`family_substitution`), a model without a physical record with its
-    ``uniform`` links scaled as a whole (:func:`uniform_substitution`); in the document's own
+    ``uniform`` links scaled as a whole (:func:`uniform_substitution`) and its ``massless``
+    ones without mass (:func:`massless_substitution`); in the document's own
     symbols where its declarations determine the parameters (:func:`.in_document.in_document`:
     then the truth so written is returned), else in the model's. ``linearised``: (the
     point, whether the potential is measured from the equilibrium) of a document that
@@ -231,7 +248,8 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
         return None
     physical = model_entry(d.model).parameters is WipParameters
     to_model = model_expression(d, standard=not physical)
-    assumed = family_substitution(families) if physical else uniform_substitution(d, uniform)
+    assumed = family_substitution(families) if physical else {
+        **uniform_substitution(d, uniform), **massless_substitution(d, massless)}
     ours = in_document(d, truth, to_model, assumed, families, standard=not physical) \
         if lengths_are_symbols(d.model) else None        # else true at the URDF's lengths only
     if ours is not None:                 # the document's side in the same symbols
