@@ -326,3 +326,18 @@ def test_python_dash_m_runs_the_command(module):
                          timeout=120)
     assert bad.returncode == 2 and "invalid choice: 'nope'" in bad.stderr
     assert "Traceback" not in bad.stderr
+
+
+def test_a_model_path_that_does_not_exist_is_said_so(tmp_path, capsys, monkeypatch):
+    r"""``compare robots/dd.toml doc.toml`` from another folder: the path is taken from the
+    working folder, where it does not exist; the error said only that the file describes
+    another model."""
+    from pathlib import Path
+    data = Path(__file__).parent / "data" / "published"
+    for name in ("dd_robot.toml", "dd_robot.urdf", "dd_multipliers.toml"):
+        (tmp_path / name).write_text((data / name).read_text())
+    monkeypatch.chdir(tmp_path.parent)
+    assert main(["compare", "robots/dd_robot.toml", str(tmp_path / "dd_multipliers.toml"),
+                 "--out", str(tmp_path / "out")]) == 2
+    line = _one_error_line(capsys)
+    assert "robots/dd_robot.toml does not exist" in line and str(tmp_path.parent) in line, line

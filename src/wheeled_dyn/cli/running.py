@@ -73,8 +73,11 @@ def run_comparison(files: Sequence[Path], samples: int, param_sets: int, seed: i
     for item in [*derivations, *(load_linear_document(p) for p in linear)]:
         model_entry(item.model)
         if model is not None and model_key(item.model) != model_key(model):
+            missing = model.endswith((".toml", ".urdf")) and not Path(model).exists()
             raise DerivationError(item.path, "model", f"the file describes model "
-                                  f"{item.model!r}, not {model!r}")
+                                  f"{item.model!r}, not {model!r}" + (
+                                      f" ({model} does not exist: a model file's path is "
+                                      f"taken from {Path.cwd()})" if missing else ""))
         if item.path not in linear:
             check_model_names(item)
     engine = engine or ComparisonEngine(samples=samples, param_sets=param_sets, seed=seed)
