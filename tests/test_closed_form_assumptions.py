@@ -40,16 +40,18 @@ def test_family_substitution_is_the_family(case):
 
 
 def test_eq25_residual_is_the_tables_missing_term():
-    r"""Seed 001's table: C[1,2] lacks :math:`m_S d\sin\phi\,\dot\psi`, which the file's own
-    symbols write :math:`MY_1\sin\phi\,\dot\psi` (its declaration ``MY1 = MY(body)``); the
-    truth is in the file's symbols, under its families (no d_x, no I_a)."""
+    r"""Seed 001's eq. (25): C[1,2] is 0 where the truth has
+    :math:`(MY_1\sin\phi - MX_1\cos\phi)\,\dot\psi` in the file's own symbols (its
+    declarations ``MY1 = MY(body)``, ``MX1 = MX(body)``; the table's
+    :math:`m_S d\sin\phi\,\dot\psi` where the centre of mass is above the axle, which the
+    file no longer declares: eq. (25) writes MX1); under its family (no I_a)."""
     engine = ComparisonEngine(samples=200, param_sets=2, seed=SEED)
     result = engine.compare(load_derivation(SHIPPED / "seed001" / "eq25_lagrange.toml"))
     assert result.truth_in_document
     records = {r.element: r for r in result.records}
-    MY1, phi, dpsi = sp.symbols("MY1 phi dpsi", real=True)
-    names = {"MY1": MY1, "phi": phi, "dpsi": dpsi}
+    MX1, MY1, phi, dpsi = sp.symbols("MX1 MY1 phi dpsi", real=True)
+    names = {"MX1": MX1, "MY1": MY1, "phi": phi, "dpsi": dpsi}
     residual = sp.sympify(records["C[1,2]"].residual, locals=names)
-    assert sp.simplify(residual - MY1 * sp.sin(phi) * dpsi) == 0
+    assert sp.simplify(residual - (MY1 * sp.sin(phi) - MX1 * sp.cos(phi)) * dpsi) == 0
     assert "d_x" not in records["C[1,2]"].truth and "I_a" not in records["A[1,1]"].truth
     assert "m_S" not in records["A[1,1]"].truth            # the model's symbols are gone
