@@ -10,7 +10,9 @@ zero. A document that writes :math:`MX_1\cos\varphi` in C does not take :math:`M
 - declared, it makes the document's own terms vanish in every parameter set: they are never
   compared, and a ``file_error`` cause says so first (the verdicts under the declaration
   stand: declarations bind);
-- no shipped derivation declares a family that zeroes a symbol it writes.
+- no shipped derivation declares a family that zeroes a symbol it writes;
+- the parameters drawn are no family either: an equation times a factor of them that
+  vanishes with the model's own numbers is lost for the robot of the file.
 
 The document is ``data/wip_true_seed001.toml`` (the WIP's true reduced equations, derived by
 hand for general parameters, ``test_compare_planted.py``), with one planted error.
@@ -124,3 +126,33 @@ def test_a_step_is_held_to_the_symbols_it_writes(tmp_path, value, verdict):
     path.write_text(STEPS.replace("VALUE", value))
     (record,) = compare_steps(load_derivation(path), SEED)
     assert record.verdict == verdict, record.texts
+
+
+@pytest.mark.parametrize("factor, equivalent", [("(m_S - 12*m_C)", False),     # 60 = 12 × 5
+                                                ("(m_S - 11*m_C)**2", True)])
+def test_an_equation_lost_for_the_robot_of_the_file_is_not_equivalent(engine, tmp_path,
+                                                                       factor, equivalent):
+    r"""The WIP's second equation times a factor of its parameters: the parameter sets are
+    drawn, where it never vanishes, but with the model's own numbers (m_S = 60 kg,
+    m_C = 5 kg) :math:`m_S - 12 m_C = 0`: the equation is lost for the very robot of the file
+    (it agreed). One that vanishes for other robots only is not seen
+    (:math:`m_S = 11 m_C`)."""
+    import tomllib
+
+    from test_compare_planted import _dumps
+    from wheeled_dyn.models.wip_parameters import WipParameters
+    p = WipParameters()
+    assert (p.m_S, p.m_C) == (60.0, 5.0)
+    data = tomllib.loads(TRUE_FILE.read_text())
+    for key in ("A", "C", "B", "Q"):
+        M = data["matrices"][key]
+        if isinstance(M[1], list):
+            M[1] = [f"{factor}*({e})" for e in M[1]]
+        else:
+            M[1] = f"{factor}*({M[1]})"
+    path = tmp_path / "scaled.toml"
+    path.write_text(_dumps(data))
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is equivalent, [c.explanation for c in result.causes]
+    if not equivalent:
+        assert any(d.kind == K.SINGULAR for d in result.equations[1].diagnoses)

@@ -17,13 +17,16 @@ miss.
   (:func:`~..judge.equivalence.vanishing_at`: the truth's A computed there, a state where
   the coordinates are singular left out). A factor that does not vanish
   (:math:`2 + \cos\theta`) stays within one order of its median and costs nothing.
+- **The model's own numbers** (:func:`own_numbers`): the parameter sets are drawn, so a
+  factor of the parameters (:math:`M - 5m`) that vanishes for the robot of the file would
+  pass; the states of the first set are judged with its URDF's numbers too.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..grid.grid import special_states
+from ..grid.grid import SPECIAL_STATES_PER_SET, special_states
 from ..judge import equivalence
 from ..sides.both import Sides
 from ..sides.document import DocumentFunctions
@@ -95,20 +98,50 @@ def searched_states(funcs: DocumentFunctions, sides: Sides, doc_A: np.ndarray,
     return np.array(qs), np.array([k for k, _, _ in starts])
 
 
+def own_numbers(funcs: DocumentFunctions, sides: Sides) -> tuple[np.ndarray, np.ndarray]:
+    r"""The document's and the truth's A with the model's own numbers (its URDF's, or its
+    parameter record's), at the first parameter set's first
+    :data:`~..grid.grid.SPECIAL_STATES_PER_SET` states: an equation times a factor of the
+    parameters that vanishes there (:math:`M - 5m` of a cart-pole of 2 kg and 0.4 kg) is lost
+    for the very robot of the file, though not for the parameter sets drawn."""
+    from ...models.registry import load_model, model_entry
+    from ..grid.samples import ParameterSet, namespace_values
+    from ..sides.document import document_symbol_values
+    from ..sides.truth import truth_for
+    d, grid = funcs.d, sides.grid
+    record = model_entry(d.model).parameters
+    physical = None if record is None else record()
+    wm = load_model(d.model, physical)
+    own = ParameterSet(wm, namespace_values(wm, physical), physical)
+    q = grid.q[0, :SPECIAL_STATES_PER_SET]
+    values = document_symbol_values(d, own, np.random.default_rng(0))
+    at = funcs.evaluate(q, np.zeros_like(q), {s: np.full(len(q), values[s])
+                                               for s in funcs.params}, ("A",))
+    truth = truth_for(grid.cmap, [own], q[None], np.zeros((1, *q.shape)))
+    grid.cmap.bind(grid.sets[-1].model)          # as the grid's truth left it
+    return at.need("A"), truth.need("A")
+
+
 def special_sides(funcs: DocumentFunctions, sides: Sides, doc_A: np.ndarray,
                   true_A: np.ndarray, W: np.ndarray
                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
-    r"""The document's and the truth's A at the special and searched states (module text),
-    and there the typical norm of each row of :math:`W` (its median over the state's
-    parameter set, from the samples' ``W``); None where there are none."""
+    r"""The document's and the truth's A with the model's own numbers and at the special and
+    searched states (module text), and there the typical norm of each row of :math:`W` (its
+    median over the state's parameter set, from the samples' ``W``; over all sets for the
+    model's own numbers)."""
     q, owner = special_states(sides.grid)
     found_q, found_owner = searched_states(funcs, sides, doc_A, true_A)
     q, owner = np.concatenate([q, found_q]), np.concatenate([owner, found_owner]).astype(int)
-    if not len(q):
-        return None
-    at = funcs.evaluate(q, np.zeros_like(q), _values(sides, funcs, owner), ("A",))
     typical = np.array([_median_rows(part) for part in np.array_split(W, len(sides.grid.sets))])
-    return at.need("A"), special_truth_A(sides.grid, q, owner), typical[owner]
+    own_doc, own_true = own_numbers(funcs, sides)
+    docs, truths = [own_doc], [own_true]
+    usual = [np.broadcast_to(_median_rows(W), own_doc.shape[:2])]
+    if len(q):
+        at = funcs.evaluate(q, np.zeros_like(q), _values(sides, funcs, owner), ("A",))
+        docs.append(at.need("A"))
+        truths.append(special_truth_A(sides.grid, q, owner))
+        usual.append(typical[owner])
+    return np.concatenate(docs), np.concatenate(truths), np.concatenate(usual)
 
 
 __all__ = ["SCREEN", "searched_states", "special_sides"]

@@ -341,8 +341,9 @@ def decide(doc: Side, truth: Side, sets: int,
             if rows is not None else ""
     if rows is None and special is not None:
         rows = vanishing_at(*special)
-        where = ("at a special position (a coordinate at 0, ±π/2 or π) or a state searched "
-                 "where its weights are least") if rows is not None else ""
+        where = ("with the model's own numbers, at a special position (a coordinate at 0, "
+                 "±π/2 or π) or at a state searched where its weights are least"
+                 ) if rows is not None else ""
     if rows is not None:
         wrong = [k for k in rows if decisions[k].verdict == Verdict.DIFFERS]
         rows = tuple(wrong) or rows     # an equation that is no combination explains it
