@@ -55,12 +55,14 @@ POLE_ERRORS = ("point_mass", "sign", "dropped", "trig")
 def arm(error: str | None = None) -> tuple[sp.Matrix, sp.Matrix, sp.Matrix]:
     r"""(D, c, φ) of the arm, with the planted ``error``: the sign of :math:`h\dot q_2^2`, the
     factor 2 of :math:`2h\dot q_1\dot q_2` lost, :math:`I_1` dropped from :math:`d_{11}`,
-    :math:`l_{c1}` written for :math:`l_1` in :math:`m_2l_1^2`."""
+    :math:`l_{c1}` written for :math:`l_1` in :math:`m_2l_1^2`; ``point_mass2``: :math:`I_2`
+    dropped from every element (link 2 taken as a point mass)."""
     l1_sq = lc1 ** 2 if error == "swap" else l1 ** 2
-    d11 = m1 * lc1 ** 2 + m2 * (l1_sq + lc2 ** 2 + 2 * l1 * lc2 * sp.cos(q2)) + I2
+    own = 0 if error == "point_mass2" else I2          # link 2 a point mass: I2 everywhere
+    d11 = m1 * lc1 ** 2 + m2 * (l1_sq + lc2 ** 2 + 2 * l1 * lc2 * sp.cos(q2)) + own
     d11 += 0 if error == "dropped" else I1
-    d12 = m2 * (lc2 ** 2 + l1 * lc2 * sp.cos(q2)) + I2
-    d22 = m2 * lc2 ** 2 + I2
+    d12 = m2 * (lc2 ** 2 + l1 * lc2 * sp.cos(q2)) + own
+    d22 = m2 * lc2 ** 2 + own
     h = -m2 * l1 * lc2 * sp.sin(q2)
     c1 = (1 if error == "factor" else 2) * h * dq1 * dq2 + (-1 if error == "sign" else 1) * h \
         * dq2 ** 2

@@ -159,6 +159,20 @@ def test_a_point_mass_for_the_pole_is_named_as_such(engine, tmp_path):
     assert any(c.kind == "point_mass" and record.element in c.elements for c in result.causes)
 
 
+@pytest.mark.parametrize("form", ["equations", "matrices", "kane"])
+def test_a_point_mass_link_in_every_inertia_is_named_in_every_form(engine, tmp_path, form):
+    r"""Link 2 a point mass: I2 lacking from all four elements of A, so no two elements of a
+    row share a ratio with the truth. In Kane's form (both rows negated) the rows were read
+    as 0.81 × the true one (an element of A's own ratio) and as the true one: the right
+    velocity, gravity and input terms "differed" by 1.234 or by their sign, and the
+    inertias were "right if link 2 is uniform". The terms' common ratio, −1, is the row's."""
+    result = engine.compare(load_derivation(P.write(tmp_path, "arm", form, "point_mass2")))
+    wrong = {r.element for r in result.records if r.verdict != "agrees"}
+    assert wrong == {"A[1,1]", "A[1,2]", "A[2,1]", "A[2,2]"}, [
+        (r.element, r.texts) for r in result.records if r.verdict != "agrees"]
+    assert all(r.kinds[0] == K.POINT_MASS for r in result.records if r.element in wrong)
+
+
 def test_a_row_with_the_reaction_eliminated_names_an_error_of_its_own_terms(engine, tmp_path):
     r"""The cart's equation with the pole's reaction eliminated, eq1 − (3 cos θ/(4l)) eq2 (the
     weights are simple expressions of the document's names: the form's own combination, as

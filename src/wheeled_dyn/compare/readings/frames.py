@@ -86,10 +86,10 @@ class Frame:
 
 
 def _ratio_groups(D: np.ndarray, T: np.ndarray, first: int
-                  ) -> list[tuple[np.ndarray, int, int]]:
+                  ) -> list[tuple[np.ndarray, int, int, tuple[int, ...]]]:
     r"""Per-sample ratios :math:`D_j/T_j` of the columns of ``D`` and ``T`` (S × k) that are
     finite and nonzero, grouped by equality: (ratio, votes, votes of the first ``first``
-    columns — the inertia's), most votes first."""
+    columns — the inertia's —, the columns), most votes first."""
     with np.errstate(all="ignore"):
         size = max(float(np.nanmax(np.abs(T), initial=0.0)), float(np.nanmax(np.abs(D),
                                                                               initial=0.0)))
@@ -105,10 +105,23 @@ def _ratio_groups(D: np.ndarray, T: np.ndarray, first: int
                 if np.abs(r - g[0]).max() <= RATIO_TOL * np.abs(g[0]).max():
                     g[1] += 1
                     g[2] += int(j < first)
+                    g[3] += (j,)
                     break
             else:
-                groups.append([r, 1, int(j < first)])
-    return sorted(((g[0], g[1], g[2]) for g in groups), key=lambda g: -g[1])
+                groups.append([r, 1, int(j < first), (j,)])
+    return sorted(((g[0], g[1], g[2], g[3]) for g in groups), key=lambda g: -g[1])
+
+
+def _terms_ratio(groups: list, n: int, with_n: bool) -> tuple[np.ndarray, int] | None:
+    r"""Where no two elements of A share a ratio (each wrong its own way: a point mass in
+    Kane's form, every inertia of the row lacking I2), the constant ratio the velocity and
+    gravity terms share (with the inputs' where they share it): the row's. Else None."""
+    if not with_n or any(g[2] >= 2 for g in groups):
+        return None
+    top = next((g for g in groups if n in g[3] and not g[2]), None)
+    if top is None or np.ptp(top[0]) > CONSTANT_SPREAD * np.abs(top[0]).max():
+        return None
+    return top[0], top[1]
 
 
 def _columns(a: Arrays, B: np.ndarray | None, row: int, with_n: bool) -> np.ndarray:
@@ -139,11 +152,13 @@ def paired(i: int, k: int, doc: Arrays, truth: Arrays, B_doc: np.ndarray | None,
     D = _columns(doc, B_doc if both else None, i, with_n)
     T = _columns(_matching(truth, doc), B_true if both else None, k, with_n)
     n = doc.A.shape[2]
-    for ratio, votes, inertia in _ratio_groups(D, T, n):
+    groups = _ratio_groups(D, T, n)
+    terms = _terms_ratio(groups, n, with_n)      # (one wrong element of A's ratio, 0.81,
+    for ratio, votes, inertia, _ in groups:      # made the right terms "differ by 1.234")
         constant = np.ptp(ratio) <= CONSTANT_SPREAD * np.abs(ratio).max()
         if inertia and (constant or votes >= 2 or (simple is not None and simple(ratio))):
-            return ratio, votes
-    return None
+            return terms if terms is not None and votes == 1 else (ratio, votes)
+    return terms
 
 
 def _matching(truth: Arrays, doc: Arrays) -> Arrays:
