@@ -30,9 +30,9 @@ URDF = """<robot name="r">
 
 def test_each_reading_is_named_once():
     readings = urdf_readings(URDF)
-    assert readings[0].startswith('link a: its <inertial> rpy="0 3.1416 0.3" is read as '
+    assert readings[0].startswith('link a: its inertial origin rpy="0 3.1416 0.3" is read as '
                                   "(0, π, 0.3)"), readings
-    assert "joints hinge, held: the damping and friction of <dynamics>" in readings[1]
+    assert "joints hinge, held: the damping and friction of their dynamics element" in readings[1]
     assert "transmissions t_hinge, t_held: not applied" in readings[2]
     assert len(readings) == 3 and not any("glued" in r or "link b" in r for r in readings)
 
@@ -48,7 +48,7 @@ def test_a_robot_as_published_says_what_it_leaves_out():
     transmissions; TIAGo with its arm locked keeps only the wheels' transmissions."""
     full = load_model("tiago").readings
     assert full[0].startswith("joints torso_lift_joint, head_1_joint, head_2_joint and 7 "
-                              "more: the damping and friction of <dynamics>"), full
+                              "more: the damping and friction of their dynamics element"), full
     base = load_model("tiago_base").readings
     assert base == ("transmissions wheel_right_trans, wheel_left_trans: not applied; the "
                     "model's inputs are its joints' torques (a reduction between motor and "

@@ -74,7 +74,7 @@ def test_a_correct_derivation_of_the_rounded_robot_is_right(tmp_path):
     # what the model read otherwise than the URDF writes is said, never silent
     notes = " ".join(result.notes)
     for link in ("left_wheel", "right_wheel"):
-        assert f'link {link}: its <inertial> rpy="1.5708 0 0" is read as (π/2, 0, 0)' in notes, \
+        assert f'link {link}: its inertial origin rpy="1.5708 0 0" is read as (π/2, 0, 0)' in notes, \
             result.notes
     assert notes.count("its axis is turned by 0.0008 rad onto the axle") == 2, result.notes
     # the wheels' tensors turned by exact right angles: the truth's closed forms have no

@@ -52,7 +52,7 @@ def inertial_readings(root: ET.Element) -> list[str]:
         rpy = np.array([float(x) for x in written.split()])
         read = right_angles(rpy)
         if np.any(read != rpy):
-            out.append(f"link {link.get('name')}: its <inertial> rpy=\"{written}\" is read as "
+            out.append(f"link {link.get('name')}: its inertial origin rpy=\"{written}\" is read as "
                        f"({_angles(read)}), the right angles within {RIGHT_ANGLE_TOL:g} rad of "
                        "it (as written, its inertia would have products of inertia of the "
                        "rounding's order)")
@@ -77,9 +77,11 @@ def joint_readings(root: ET.Element, locked: tuple[str, ...] = ()) -> list[str]:
     damped = [name for name, j in moving.items() if _damped(j)]
     out = []
     if damped:
+        their = "their" if len(damped) > 1 else "its"
         out.append(f"joint{'s' if len(damped) > 1 else ''} {_listed(damped)}: the damping and "
-                   "friction of <dynamics> are not part of the equations (the truth has "
-                   "none: a derivation's damping or friction terms are terms it does not have)")
+                   f"friction of {their} dynamics element are not part of the equations (the "
+                   "truth has none: a derivation's damping or friction terms are terms it "
+                   "does not have)")
     driven = [t.get("name", "") for t in root.iterfind("transmission")
               if any(j.get("name") in moving for j in t.iterfind("joint"))]
     if driven:
