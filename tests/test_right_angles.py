@@ -72,11 +72,15 @@ def test_a_correct_derivation_of_the_rounded_robot_is_right(tmp_path):
         load_derivation(tmp_path / "doc.toml"))
     assert result.equivalent is True, [c.explanation for c in result.causes]
     # what the model read otherwise than the URDF writes is said, never silent
-    notes = " ".join(result.notes)
+    notes = " ".join(result.model_readings)
     for link in ("left_wheel", "right_wheel"):
         assert f'link {link}: its inertial origin rpy="1.5708 0 0" is read as (π/2, 0, 0)' in notes, \
-            result.notes
-    assert notes.count("its axis is turned by 0.0008 rad onto the axle") == 2, result.notes
+            result.model_readings
+    assert notes.count("its axis is turned by 0.0008 rad onto the axle") == 2, result.model_readings
+    assert not set(result.model_readings) & set(result.notes)
+    from wheeled_dyn.report.html import derivation_html
+    page = derivation_html(result)       # shown under the assumptions, not folded away
+    assert page.index("The model reads its URDF so:") < page.index("Matrices: document")
     # the wheels' tensors turned by exact right angles: the truth's closed forms have no
     # remainder of rpyToMatrix's 6e-17 (A[1,2] printed -77715611723761*I_m/(2.25e29*R))
     for element in ("A[1,2]", "A[2,1]"):

@@ -197,6 +197,14 @@ def _grid_text(result: DerivationResult) -> str:
     return f"{result.samples} states × {result.parameter_sets} random parameter sets"
 
 
+def _readings(result: DerivationResult) -> str:
+    r"""What the model reads otherwise than its URDF writes, a list under the assumptions."""
+    if not result.model_readings:
+        return ""
+    return ('<div class="assumes"><b>The model reads its URDF so:</b><ul>'
+            + "".join(f"<li>{esc(r)}</li>" for r in result.model_readings) + "</ul></div>")
+
+
 def derivation_html(result: DerivationResult, names: Notation | None = None) -> str:
     r"""One derivation's section."""
     names = names or derivation_notation(result.path)
@@ -217,6 +225,7 @@ def derivation_html(result: DerivationResult, names: Notation | None = None) -> 
     return (f'<section id="{S.anchor(result)}"><h2>{esc(S.equations(result))} — {esc(result.title)}</h2>'
             f"{_causes(result, names)}"
             f'<p class="assumes"><b>Assumes:</b> {esc(S.assumes_line(result, dict(names.assumed)))}</p>'
+            f"{_readings(result)}"
             f"{_conventions(result)}"
             f'<p class="meta note"><code>{esc(result.path.name)}</code> — '
             f"{esc(' '.join(str(src.get(k, '')).strip() for k in ('document', 'section') if src.get(k)))}; model "

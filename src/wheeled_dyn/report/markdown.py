@@ -49,7 +49,7 @@ def summary_lines(result: DerivationResult) -> list[str]:
     factors = S.row_factor_line(result)
     if factors:
         lines.append(factors)
-    return lines + check_lines(result)
+    return lines + [f"model: {r}" for r in result.model_readings] + check_lines(result)
 
 
 def _counts(result: DerivationResult) -> str:
@@ -97,6 +97,14 @@ def _row(result: DerivationResult, r: ElementRecord, names) -> str:
             f"{_math(difference_latex(r.residual, names, r.residual_latex))} |")
 
 
+def _readings(result: DerivationResult) -> list[str]:
+    r"""What the model reads otherwise than its URDF writes, a list under the assumptions."""
+    if not result.model_readings:
+        return []
+    return ["**The model reads its URDF so:**", ""] + [
+        f"- {r}" for r in result.model_readings] + [""]
+
+
 def derivation_markdown(result: DerivationResult) -> str:
     r"""One derivation's section."""
     names = derivation_notation(result.path)
@@ -122,6 +130,7 @@ def derivation_markdown(result: DerivationResult) -> str:
     if not causes:
         lines += ["**Causes:** none, every element agrees.", ""]
     lines += [f"**Assumes:** {S.assumes_line(result, dict(names.assumed))}", ""]
+    lines += _readings(result)
     if S.equations_line(result):
         lines += [f"**Equations:** {S.equations_line(result)}.", ""]
     if S.conventions_line(result):

@@ -318,7 +318,8 @@ def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed
         reconstructed=dict(d.reconstructed), samples=grid.q.shape[1],
         parameter_sets=len(grid.sets), notes=tuple(notes), assumes=assumed.describe(),
         latex_input=dict(d.latex_input), row_functions=functions, row_combination=combination,
-        equations=tuple(equations), truth_in_document=in_document)
+        equations=tuple(equations), truth_in_document=in_document,
+        model_readings=sides.readings)
     causes = frame_causes(d, texts, rules, result.equations, declared_wrong, result.records)
     wrong = constraint_problems(d, funcs, sides)
     if wrong:

@@ -211,6 +211,8 @@ class DerivationResult:
     #: constraint rows span the true ones: none wrong, none missing); None where neither side
     #: keeps them
     constraints_agree: bool | None = None
+    #: what the model reads otherwise than its URDF writes (:mod:`wheeled_dyn.models.readings`)
+    model_readings: tuple[str, ...] = field(default=())
 
     @property
     def equivalent(self) -> bool | None:
@@ -270,6 +272,7 @@ class DerivationResult:
                 "asymmetric": list(self.asymmetric), "constraints": list(self.constraints),
                 "reconstructed": dict(self.reconstructed), "samples": self.samples,
                 "parameter_sets": self.parameter_sets, "notes": list(self.notes),
+                "model_readings": list(self.model_readings),
                 "latex_input": {k: {"latex": a, "read_as": b}
                                 for k, (a, b) in self.latex_input.items()},
                 "records": [r.as_dict() for r in self.records]}

@@ -25,8 +25,9 @@ from .truth import input_map, stiffness
 
 @dataclass(frozen=True)
 class Sides:
-    r"""Both sides on ``grid`` (module text); ``notes`` what the model reads otherwise than
-    its URDF writes (:mod:`~wheeled_dyn.models.readings`) and what could not be compared."""
+    r"""Both sides on ``grid`` (module text); ``notes`` what could not be compared,
+    ``readings`` what the model reads otherwise than its URDF writes
+    (:mod:`~wheeled_dyn.models.readings`)."""
 
     grid: Grid
     truth: Arrays
@@ -36,6 +37,7 @@ class Sides:
     values: Mapping[sp.Symbol, np.ndarray]
     argv: tuple[np.ndarray, ...]
     notes: tuple[str, ...]
+    readings: tuple[str, ...] = ()
 
     @property
     def size(self) -> int:
@@ -67,12 +69,13 @@ def both_sides(d: Derivation, funcs: DocumentFunctions, grid: Grid, seed: int,
                                            truth.H_rows)
     if doc.K is not None and truth.K is None:       # a linearised document: its stiffness
         truth.K = stiffness(grid.cmap, grid.sets, grid.q)
-    notes = list(load_model(d.model).readings)      # what the model reads otherwise
+    notes: list[str] = []
     B_true = input_map(d, truth, per_set, grid.q.shape[1], notes)
     if with_gamma and truth.H_rows is not None:
         doc.Gamma = gamma(funcs, grid.flat_q, values, truth.H_rows)
     argv = (*grid.flat_q.T, *grid.flat_nu.T, *(values[p] for p in funcs.params))
-    return Sides(grid, truth, doc, B_true, tuple(per_set), values, argv, tuple(notes))
+    return Sides(grid, truth, doc, B_true, tuple(per_set), values, argv, tuple(notes),
+                 load_model(d.model).readings)
 
 
 __all__ = ["Sides", "both_sides", "gamma"]
