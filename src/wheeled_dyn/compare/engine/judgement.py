@@ -22,6 +22,7 @@ from ...derivations.schema import Derivation, equation_labels
 from ..causes.frames import frame_causes
 from ..grid.assumptions import Assumptions, declared, undeclared_cases
 from ..judge import equivalence, families
+from ..judge.consistency import consistent_cases, contradiction_causes
 from ..judge.document_checks import asymmetry, constraint_problems, constraint_rows, energy_check
 from ..judge.draft import ElementDraft
 from ..judge.element import Trials, judge
@@ -42,7 +43,6 @@ from ..sides.evaluation import Evaluation
 from ..sides.framed import framed, row_of, row_scale
 from .equations import equation_records
 from .printing import corrected, print_drafts
-from ..judge.consistency import consistent_cases, contradiction_causes
 from .special import special_sides
 
 #: Smaller grid used to test special parameter families: states per set, sets.
