@@ -260,3 +260,16 @@ def test_constraints_stated_where_the_model_has_none_are_not_left_aside(engine, 
     assert all(e.verdict == "agrees" for e in result.equations)
     assert any(c.kind == "not_equivalent" and "does not have" in c.explanation
                for c in result.causes), result.causes
+
+
+@pytest.mark.parametrize("equation, wrong", [
+    ("1/3*m*l**2*ddtheta + m*g*l*sin(theta) = 0", "Q[1]"),        # gravity twice what fits
+    ("2/3*m*l**2*ddtheta + m*g*l/2*sin(theta) = 0", "A[1,1]"),    # the inertia twice
+    ("-(1/3*m*l**2 + m*l**2)*ddtheta - m*g*l/2*sin(theta) = 0", "A[1,1]")])   # Kane's, wrong A
+def test_a_row_blames_the_term_that_is_off(engine, tmp_path, equation, wrong):
+    r"""A row with one inertia: one vote against one, the inertia's ratio is the row's and
+    the gravity term twice what fits is named (not the inertia "1/2 × the truth"); in Kane's
+    form (the row negated) with a wrong inertia, the gravity term's −1 is the row's."""
+    result = _rod(engine, tmp_path, "blame", equation, linearised=False)
+    differing = {r.element for r in result.records if r.verdict != "agrees"}
+    assert differing == {wrong}, [(r.element, r.texts) for r in result.records]

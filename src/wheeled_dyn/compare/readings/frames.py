@@ -121,7 +121,18 @@ def _terms_ratio(groups: list, n: int, with_n: bool) -> tuple[np.ndarray, int] |
     top = next((g for g in groups if n in g[3] and not g[2]), None)
     if top is None or np.ptp(top[0]) > CONSTANT_SPREAD * np.abs(top[0]).max():
         return None
+    # one vote against one (one inertia, its terms): the row is taken as the true one or
+    # its negative (Kane's) rather than as another multiple, else the inertia's ratio stands
+    # (a gravity term twice what fits is named, not the inertia "1/2 × the truth")
+    inertias = [g for g in groups if g[2]]
+    if top[1] < 2 and len(inertias) < 2 and (not _unit(top[0]) or any(
+            _unit(g[0]) for g in inertias)):
+        return None
     return top[0], top[1]
+
+
+def _unit(ratio: np.ndarray) -> bool:
+    return bool(np.abs(np.abs(ratio) - 1.0).max() <= RATIO_TOL)
 
 
 def _columns(a: Arrays, B: np.ndarray | None, row: int, with_n: bool) -> np.ndarray:
