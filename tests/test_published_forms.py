@@ -197,3 +197,20 @@ def test_a_row_with_the_reaction_eliminated_names_an_error_of_its_own_terms(engi
                if r.verdict != "agrees"}
     assert set(flagged) == {"Q[1]"}, set(flagged)
     assert set(flagged["Q[1]"].kinds) & {K.FACTOR, K.EXTRA, K.MISSING}, flagged["Q[1]"].texts
+
+
+@pytest.mark.parametrize("units", [True, False])
+def test_a_mass_written_for_another_is_named_with_or_without_units(engine, tmp_path, units):
+    r"""The cart's mass M written for the pole's m in the pole's gravity term. A file that
+    declares no units still says which symbols are masses (``M = "M(cart)"``,
+    ``m = "M(pole)"``): it was "the document lacks a factor m/M" without units."""
+    import re
+    path = P.write(tmp_path, "pole", "equations", None)
+    text = path.read_text().replace("- g*l*m*sin(theta)", "- M*g*l*sin(theta)")
+    if not units:
+        text = re.sub(r', units = "[^"]*"', "", text)
+    path.write_text(text)
+    result = engine.compare(load_derivation(path))
+    (record,) = [r for r in result.records if r.verdict == "differs"]
+    assert record.element == "Q[2]" and record.kinds[0] == K.SWAP, record.texts
+    assert record.texts[0] == "swap: M where m fits", record.texts

@@ -94,12 +94,34 @@ def _h_values(funcs: DocumentFunctions, H_doc: np.ndarray, H_true: np.ndarray, n
                        element_expr(funcs.exprs, "h", (i, j, k), funcs.d.velocities))
 
 
+#: The kinds of a link's parameters a symbol without units may be one of (its value one call:
+#: ``m = "M(pole)"``): symbols of one kind may have been written for each other.
+PARAMETER_KINDS = {"M": "mass", **{k: "first moment" for k in ("MX", "MY", "MZ")},
+                   **{k: "moment of inertia" for k in ("XX", "XY", "XZ", "YY", "YZ", "ZZ", "IXX",
+                                                       "IXY", "IXZ", "IYY", "IYZ", "IZZ")},
+                   **{k: "length" for k in ("CX", "CY", "CZ", "length", "radius", "width",
+                                            "origin_x", "origin_y", "origin_z")}}
+
+
+def _kind(spec) -> str | None:
+    r"""A symbol's group for swaps: its units, else the kind of the one link parameter its
+    value calls (``M(cart)`` and ``M(pole)`` both masses: M written where m fits)."""
+    if spec.units:
+        return spec.units.replace(" ", "")
+    from sympy.core.function import AppliedUndef
+    value = spec.value
+    if isinstance(value, AppliedUndef) and len(value.args) == 1:
+        return PARAMETER_KINDS.get(value.func.__name__)
+    return None
+
+
 def swap_groups(d: Derivation) -> list[list[sp.Symbol]]:
-    by_units: dict[str, list[sp.Symbol]] = {}
+    by_kind: dict[str, list[sp.Symbol]] = {}
     for spec in d.symbols.values():
-        if not spec.is_input and spec.units:
-            by_units.setdefault(spec.units.replace(" ", ""), []).append(spec.symbol)
-    return [list(d.velocities), list(d.positions), *[g for g in by_units.values() if len(g) > 1]]
+        kind = None if spec.is_input else _kind(spec)
+        if kind is not None:
+            by_kind.setdefault(kind, []).append(spec.symbol)
+    return [list(d.velocities), list(d.positions), *[g for g in by_kind.values() if len(g) > 1]]
 
 
 __all__ = ["element_expr", "element_label", "element_values", "expanded", "latex_names",
