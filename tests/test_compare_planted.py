@@ -144,6 +144,11 @@ PLANTED = [
      {"Q[3]": ("differs", "sign:")}, True, ()),
     ("sign C32", {("C", 2, 1): "dpsi*((XX1 - YY1)*sin(2*phi)/2 + XY1*cos(2*phi))"},
      {"C[3,2]": ("differs", "sign:"), "h[3]:dpsi*dpsi": ("differs", "sign:")}, False, ()),
+    # one term of a velocity product's coefficient with the wrong sign: named in h too (h's
+    # products had no term diagnoses: it was a factor "if" some family held, or nothing)
+    ("sign of one term C32", {("C", 2, 1): "-dpsi*((XX1 - YY1)*sin(2*phi)/2 - XY1*cos(2*phi))"},
+     {"C[3,2]": ("differs", "sign: the term"), "h[3]:dpsi*dpsi": ("differs", "sign: the term")},
+     False, ()),
     ("factor 2 A33", {("A", 2, 2): "2*(ZZ1 + 2*I_a)"},
      {"A[3,3]": ("differs", "factor: the document is 2 × the truth")}, True, ()),
     ("factor 1/2 C22", {("C", 1, 1): "dphi*((XX1 - YY1)*sin(2*phi)/2 + XY1*cos(2*phi))/2"},

@@ -332,3 +332,30 @@ def test_a_row_divided_by_a_long_sum_it_prints_is_identified(engine, tmp_path, e
     else:
         assert set(flagged) == {"h[1]:dq2*dq2"}, set(flagged)
         assert flagged["h[1]:dq2*dq2"].diagnoses[0].kind == K.SIGN
+
+
+FURUTA_TERM = "- 2*Jzz*dal*dth*sin(al)*cos(al)"
+
+
+@pytest.mark.parametrize("planted", [False, True])
+def test_a_term_of_a_velocity_products_coefficient_is_named(engine, tmp_path, planted):
+    r"""A Furuta pendulum (``data/published/furuta_equations.toml``, Cazzolato & Prime's form
+    with the pendulum's principal moments): the coefficient of :math:`\dot\theta\dot\alpha`
+    is :math:`2(J_{yy} - J_{zz} + m_2l_{c2}^2)\sin\alpha\cos\alpha`. With the sign of its
+    :math:`J_{zz}` term flipped it was "1.02 × the truth if the pendulum is uniform": the
+    products of h had no term diagnoses."""
+    from wheeled_dyn.derivations import load_derivation
+    for name in ("furuta.toml", "furuta.urdf"):
+        (tmp_path / name).write_text((DATA / name).read_text())
+    text = (DATA / "furuta_equations.toml").read_text()
+    assert text.count(FURUTA_TERM) == 1
+    if planted:
+        text = text.replace(FURUTA_TERM, FURUTA_TERM.replace("- ", "+ ", 1))
+    (tmp_path / "doc.toml").write_text(text)
+    result = engine.compare(load_derivation(tmp_path / "doc.toml"))
+    assert result.equivalent is (not planted), [c.explanation for c in result.causes]
+    if planted:
+        (record,) = [r for r in result.records if r.verdict != "agrees"]
+        assert record.element == "h[1]:dth*dal", record.element
+        assert record.texts[0] == "sign: the term 2*Jzz*sin(al)*cos(al) has the wrong sign", \
+            record.texts

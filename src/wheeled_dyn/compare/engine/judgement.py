@@ -152,7 +152,7 @@ def _row_drafts(d: Derivation, funcs: DocumentFunctions, sides: Sides, frames: l
                 dims: DimensionChecker, label: str) -> tuple[list[ElementDraft], dict]:
     r"""Every element judged in its row's frame; per row the document's and the framed
     truth's :math:`\Gamma` (for C by its products)."""
-    trials = Trials(funcs, sides.argv, sides.size)
+    trials = Trials(funcs, sides.argv, sides.size, sides.truth.H_rows)
     groups = swap_groups(d)
     lost = set(d.missing)
     drafts: list[ElementDraft] = []

@@ -28,7 +28,7 @@ from ..sides.document import DocumentFunctions
 from .diagnose import agrees, value_diagnoses
 from .draft import ElementDraft
 from .swaps import product_swaps, symbol_swaps
-from .terms import element_term_diagnoses, trig_diagnoses
+from .terms import element_term_diagnoses, product_diagnoses
 
 #: Samples a trial reading of a differing element (one symbol read as another) is first
 #: evaluated on, spread over the parameter sets: only one that agrees there is evaluated on
@@ -38,10 +38,12 @@ SCREEN_SAMPLES = 64
 
 class Trials:
     r"""The document's elements evaluated with changes, on the engine's samples: ``argv`` the
-    arguments of the document's functions (positions, velocities, symbols per sample)."""
+    arguments of the document's functions (positions, velocities, symbols per sample);
+    ``h_rows`` the samples h's velocity products are compared on."""
 
-    def __init__(self, funcs: DocumentFunctions, argv: Sequence[np.ndarray], size: int) -> None:
-        self.funcs, self.argv, self.size = funcs, list(argv), size
+    def __init__(self, funcs: DocumentFunctions, argv: Sequence[np.ndarray], size: int,
+                 h_rows: np.ndarray | None = None) -> None:
+        self.funcs, self.argv, self.size, self.h_rows = funcs, list(argv), size, h_rows
         self.position = {a: k for k, a in enumerate(funcs.args)}
         self.screen = np.linspace(0, size - 1, min(SCREEN_SAMPLES, size)).astype(int)
         self.screened = self.at(self.screen)
@@ -109,8 +111,8 @@ def judge(d: ElementDraft, problems: Sequence[str], trials: Trials,
         return
     if d.key == "h":
         if not d.diagnoses:
-            d.diagnoses += trig_diagnoses(expr, trials.funcs, trials.argv, None, d.D, d.T,
-                                          d.scale, check=True)
+            argv = trials.argv if trials.h_rows is None else trials.at(trials.h_rows)
+            d.diagnoses += product_diagnoses(expr, trials.funcs, argv, d.D, d.T, d.scale)
         return
     if not has_kind(d.diagnoses, K.SIGN, K.EXTRA, K.MISSING):
         d.diagnoses[:0] = element_term_diagnoses(

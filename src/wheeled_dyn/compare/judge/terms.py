@@ -68,4 +68,22 @@ def element_term_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequen
     return found
 
 
-__all__ = ["element_term_diagnoses", "trig_diagnoses"]
+def product_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.ndarray],
+                      D: np.ndarray, T: np.ndarray, scale: float) -> list[Diagnosis]:
+    r"""A velocity product's coefficient in h that differs: one of its terms with the wrong
+    sign or factor (:func:`.diagnose.term_diagnoses`: a term :math:`2J_{zz}\sin\alpha\cos\alpha`
+    with the wrong sign was "1.02 × the truth if the pendulum is uniform"), else a sin for a
+    cos or a small angle; only where ``expr`` evaluated on ``argv`` gives ``D`` (a product's
+    coefficient is sampled on its own grid)."""
+    if len(np.shape(argv[0])) != 1 or np.shape(argv[0])[0] != len(D):
+        return []
+
+    def evaluate(e: sp.Expr) -> np.ndarray:
+        return np.broadcast_to(np.asarray(funcs.compiled(e)(*argv), float), D.shape)
+    if not agrees(evaluate(expr), D, scale):
+        return []
+    return term_diagnoses(expr, evaluate, D, T, scale) or trig_diagnoses(
+        expr, funcs, argv, None, D, T, scale)
+
+
+__all__ = ["element_term_diagnoses", "product_diagnoses", "trig_diagnoses"]
