@@ -1,11 +1,13 @@
-r"""What a model reads otherwise than its URDF writes it, said in words: every comparison made
-with the model lists these (a report's notes), so a difference they make is never silent.
+r"""What a model reads otherwise than its URDF writes it, said in words
+(``WheeledModel.readings``): every comparison made with the model lists these (a result's
+``model_readings``, under the assumptions in the reports), so a difference they make is never
+silent.
 
 - An ``<inertial>`` orientation within :data:`~.conventions.RIGHT_ANGLE_TOL` of right angles
   is read as them (:func:`~.conventions.right_angles`): ``rpy="1.5708 0 0"`` as
   :math:`(\pi/2, 0, 0)`.
 - A planar model's wheel whose spin axis is off the axle by a rounding (``rpy="-1.57 0 0"``:
-  8e-4 rad) is turned onto it (:func:`wheel_turns`, from the planar builder).
+  8e-4 rad) is turned onto it (:func:`wheel_turn`, from the planar builder).
 - A joint's ``<dynamics damping friction>`` is not part of the equations: the truth is
   :math:`A\ddot q + C\dot q + Q = \Gamma`, with no joint damping or friction; a derivation
   that writes :math:`b\dot\theta` has a term the truth does not.
