@@ -32,8 +32,8 @@ from ..sides.both import Sides
 from ..sides.document import DocumentFunctions
 from ..sides.truth import special_truth_A
 
-#: A parameter set's smallest ratio of relative determinants (document / truth), below this
-#: fraction of its median, is searched for a zero.
+#: A parameter set's smallest row norm of the document's A, or ratio of relative determinants
+#: (document / truth), below this fraction of its median over the set, is searched for a zero.
 SCREEN = 1e-2
 #: Relative determinant taken as zero inside the logarithm searched (below any decision).
 LOG_FLOOR = 1e-300
