@@ -258,11 +258,10 @@ def constraint_space(rows: np.ndarray, true_G: np.ndarray, sets: int = 1) -> tup
         out.append(f"its constraint row {r + 1} is no combination of the model's rolling "
                    f"constraints (off by {float(off[:, r].max()):.2g} of its size)")
 
-    rank = _rank
-    short = rank(T) - rank(D)
+    short = _rank(T) - _rank(D)
     if (short > 0).any():
         k = int(short.max())
-        have, want = int(rank(D).min()), int(rank(T).max())
+        have, want = int(_rank(D).min()), int(_rank(T).max())
         out.append(f"it states {have} independent constraint row{'s' if have != 1 else ''} "
                    f"where the model has {want}: {k} rolling constraint"
                    f"{'s' if k > 1 else ''} missing")
