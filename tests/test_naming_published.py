@@ -339,8 +339,9 @@ FURUTA_TERM = "- 2*Jzz*dal*dth*sin(al)*cos(al)"
 
 @pytest.mark.parametrize("planted", [False, True])
 def test_a_term_of_a_velocity_products_coefficient_is_named(engine, tmp_path, planted):
-    r"""A Furuta pendulum (``data/published/furuta_equations.toml``, Cazzolato & Prime's form
-    with the pendulum's principal moments): the coefficient of :math:`\dot\theta\dot\alpha`
+    r"""A Furuta pendulum (``data/published/furuta_equations.toml``, written for the test with
+    the pendulum's principal moments apart; it agrees with the truth): the coefficient of
+    :math:`\dot\theta\dot\alpha`
     is :math:`2(J_{yy} - J_{zz} + m_2l_{c2}^2)\sin\alpha\cos\alpha`. With the sign of its
     :math:`J_{zz}` term flipped it was "1.02 × the truth if the pendulum is uniform": the
     products of h had no term diagnoses."""
