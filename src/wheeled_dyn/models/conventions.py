@@ -53,6 +53,20 @@ def right_angles(rpy: np.ndarray) -> np.ndarray:
     return np.where(np.abs(rpy - nearest) <= RIGHT_ANGLE_TOL, nearest, rpy)
 
 
+#: The attributes of an ``<inertia>`` as (row, column) of its tensor.
+TENSOR_ENTRIES = {"ixx": (0, 0), "ixy": (0, 1), "ixz": (0, 2), "iyy": (1, 1), "iyz": (1, 2),
+                  "izz": (2, 2)}
+
+
+def inertia_tensor(element) -> np.ndarray:
+    r"""The symmetric tensor an ``<inertia>`` element writes (zeros where it or an entry is
+    missing)."""
+    I = np.zeros((3, 3))
+    for key, (r, c) in TENSOR_ENTRIES.items():
+        I[r, c] = I[c, r] = 0.0 if element is None else float(element.get(key, "0"))
+    return I
+
+
 def inertial_rotation(rpy: np.ndarray) -> np.ndarray:
     r"""The rotation of an ``<inertial>``'s axes, :math:`R(\text{rpy})` with the angles read
     by :func:`right_angles`; where all three are right angles, exactly the signed permutation

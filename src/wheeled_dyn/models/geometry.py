@@ -55,7 +55,7 @@ import sympy as sp
 from sympy.core.function import AppliedUndef
 
 from ..errors import InputFileError
-from .conventions import inertial_rotation
+from .conventions import inertia_tensor, inertial_rotation
 
 
 #: Relative agreement of the entries of a ``[geometry]`` list (and of a number with a length
@@ -232,11 +232,7 @@ def link_inertials(text: str, path: Path | None = None) -> dict[str, tuple[float
                                            else "0 0 0").split()])
         rpy = np.array([float(x) for x in (origin.get("rpy", "0 0 0") if origin is not None
                                            else "0 0 0").split()])
-        tensor = inertial.find("inertia")
-        get = (lambda k: float(tensor.get(k, "0"))) if tensor is not None else (lambda k: 0.0)
-        tensor_matrix = np.array([[get("ixx"), get("ixy"), get("ixz")],
-                                  [get("ixy"), get("iyy"), get("iyz")],
-                                  [get("ixz"), get("iyz"), get("izz")]])
+        tensor_matrix = inertia_tensor(inertial.find("inertia"))
         R = inertial_rotation(rpy)
         try:
             inertia = pin.Inertia(float(mass.get("value", "0")), xyz, R @ tensor_matrix @ R.T)

@@ -23,7 +23,7 @@ import numpy as np
 
 from ..disk_cache import cache_root, load, store
 from ..errors import InputFileError, ModelError, UnknownNameError
-from .conventions import inertial_rotation, right_angles
+from .conventions import TENSOR_ENTRIES, inertia_tensor, inertial_rotation, right_angles
 from .urdf_checks import check_urdf_tree
 from .urdf_values import check_urdf_values
 
@@ -164,11 +164,6 @@ class UrdfSource:
         return ET.tostring(root, encoding="unicode")
 
 
-#: The attributes of an ``<inertia>`` as (row, column) of its tensor.
-TENSOR_ENTRIES = {"ixx": (0, 0), "ixy": (0, 1), "ixz": (0, 2), "iyy": (1, 1), "iyz": (1, 2),
-                  "izz": (2, 2)}
-
-
 def _turned_exactly(inertial: ET.Element, origin: ET.Element, R: np.ndarray) -> None:
     r"""Where ``R`` is a signed permutation (an ``<inertial>`` turned by right angles), its
     ``<inertia>`` written as :math:`R I R^T` in the link's axes and its ``rpy`` as zeros: the
@@ -176,10 +171,7 @@ def _turned_exactly(inertial: ET.Element, origin: ET.Element, R: np.ndarray) -> 
     tensor = inertial.find("inertia")
     if tensor is None or not np.array_equal(R, np.rint(R)):
         return
-    I = np.zeros((3, 3))
-    for key, (r, c) in TENSOR_ENTRIES.items():
-        I[r, c] = I[c, r] = float(tensor.get(key, "0"))
-    turned = R @ I @ R.T
+    turned = R @ inertia_tensor(tensor) @ R.T
     for key, (r, c) in TENSOR_ENTRIES.items():
         tensor.set(key, repr(float(turned[r, c])))
     origin.set("rpy", "0 0 0")
