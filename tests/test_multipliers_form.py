@@ -28,8 +28,8 @@ import pytest
 
 from conftest import SEED
 from wheeled_dyn.compare.engine import ComparisonEngine
-from wheeled_dyn.compare.judge.equivalence import multiplier_terms
-from wheeled_dyn.compare.records import CauseKind
+from wheeled_dyn.compare.judge.equivalence import Side, decide, multiplier_terms
+from wheeled_dyn.compare.records import CauseKind, Verdict
 from wheeled_dyn.derivations import load_derivation
 
 DATA = Path(__file__).parent / "data" / "published"
@@ -125,6 +125,27 @@ def test_multiplier_terms_allow_any_mixing_of_the_multipliers():
     rest = [0, 1, 3, 4]
     assert np.allclose(fitted[:, rest], doc_L[:, rest])
     assert not np.allclose(fitted[:, 2], doc_L[:, 2])
+
+
+def test_a_multiplier_coefficient_is_measured_at_its_own_size():
+    r"""A row whose inertia is 1e9 times its multipliers' coefficients (a document in other
+    units): one coefficient wrong by a tenth of the largest differs (measured against the
+    row's inertia it was 1e-10 of it, below the tolerance, and agreed); a row with no
+    multiplier term whose true terms are round-off agrees. Identities on arrays: the truth is
+    a random positive definite A with n and G, the document W times it."""
+    rng = np.random.default_rng(SEED)
+    S, n, m = 40, 5, 2
+    true_A = np.einsum("sij,skj->sik", *(2 * [rng.normal(size=(S, n, n))])) + n * np.eye(n)
+    true = Side(true_A, rng.normal(size=(S, n)), None, rng.normal(size=(S, n, m)))
+    W = np.broadcast_to(np.diag([1e9, 1.0, 1.0, 1.0, 1.0]), (S, n, n)).copy()
+    doc_L = W @ true.L
+    doc_L[:, 1, :] = 0.0                          # row 2 has no multiplier term ...
+    true.L[:, 1, :] = 1e-17 * rng.normal(size=(S, m))      # ... the truth's is round-off
+    doc = Side(W @ true.A, np.einsum("sij,sj->si", W, true.n), None, doc_L)
+    assert [e.verdict for e in decide(doc, true, 1).equations] == [Verdict.AGREES] * n
+    doc.L[:, 0, 0] += 0.1 * np.abs(doc.L).max()
+    verdicts = [e.verdict for e in decide(doc, true, 1).equations]
+    assert verdicts == [Verdict.DIFFERS] + [Verdict.AGREES] * (n - 1), verdicts
 
 
 def test_only_constraints_stated_wrong_is_named_so(engine, tmp_path):

@@ -202,6 +202,19 @@ def unit_multipliers(L: np.ndarray) -> np.ndarray:
     return L / np.where(size > 0, size, 1.0)
 
 
+def _multiplier_floor(doc_L: np.ndarray, mixed: np.ndarray) -> np.ndarray:
+    r"""The least scale of a row's multiplier terms at each sample: :data:`FLOOR` of the
+    largest finite coefficient of either side over every row and sample. The multipliers'
+    coefficients are measured at their own size (a multiplier is an unknown, scaled at will:
+    :func:`unit_multipliers`), not at the row's inertia's, which in other units could hide a
+    wrong coefficient; the floor keeps the round-off of a row with no multiplier term from
+    deciding."""
+    with np.errstate(all="ignore"):
+        size = max(float(np.abs(np.where(np.isfinite(x), x, 0.0)).max(initial=0.0))
+                   for x in (doc_L, mixed))
+    return np.full(len(doc_L), FLOOR * size)
+
+
 def decide_row(i: int, doc: Side, truth: Side, W: np.ndarray,
                multipliers: np.ndarray | None = None) -> EquationDecision:
     r"""The verdict on equation ``i`` (module text), :math:`W` known; ``multipliers``: the
@@ -215,7 +228,8 @@ def decide_row(i: int, doc: Side, truth: Side, W: np.ndarray,
             continue
         D2 = D[:, i:i + 1] if D.ndim == 2 else D[:, i, :]
         T3 = T[:, :, None] if T.ndim == 2 else T
-        rel, finite, _ = _part(D2, T3, w, inertia)
+        least = inertia if D is not doc.L else _multiplier_floor(D, T)
+        rel, finite, _ = _part(D2, T3, w, least)
         residuals.append(rel)
         masks.append(finite)
     finite = np.logical_and.reduce(masks) if masks else np.isfinite(w).all(axis=1)
