@@ -273,3 +273,27 @@ def test_a_row_blames_the_term_that_is_off(engine, tmp_path, equation, wrong):
     result = _rod(engine, tmp_path, "blame", equation, linearised=False)
     differing = {r.element for r in result.records if r.verdict != "agrees"}
     assert differing == {wrong}, [(r.element, r.texts) for r in result.records]
+
+
+@pytest.mark.parametrize("factor, named", [("(M - m)**2", "M - m"), ("(M - 3*m)", "M - 3*m"),
+                                           ("(M + m)", None), ("(M + 3*m)*l**2", None),
+                                           ("(M + m*cos(theta)**2)", None)])
+def test_an_equation_times_a_factor_of_the_masses_that_may_vanish_is_not_equivalent(
+        engine, tmp_path, factor, named):
+    r"""The cart-pole's pole equation (``published_forms``: Florian 2007) times a factor of
+    its parameters: :math:`(M - m)^2` never changes sign and is not zero for the drawn
+    parameter sets, but a cart as heavy as its pole is a cart-pole too — there the equation
+    is lost (it agreed); it is named in the document's symbols. A factor that cannot vanish
+    for positive masses, alone or with a length or the state, leaves it right."""
+    import published_forms as P
+    cart, pole = P.pole_forms(None)["equations"]
+    path = tmp_path / "factor.toml"
+    path.write_text(P.POLE_HEAD.format(
+        form="times a factor", error="", model=P.DATA / "cart_pole.toml",
+        eqs=f'  "{cart}",\n  "({factor})*({pole.removesuffix(" = 0")}) = 0"'))
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is (named is None), [c.explanation for c in result.causes]
+    singular = [d for d in result.equations[1].diagnoses if d.kind == K.SINGULAR]
+    assert (named is None) is (not singular)
+    if named is not None and "**2" in factor:       # a square: only the factor's robots
+        assert f"the factor {named}," in singular[0].text, singular[0].text

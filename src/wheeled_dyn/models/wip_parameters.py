@@ -25,7 +25,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass, fields
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -58,6 +58,15 @@ class WipParameters:
     d_x: float = 0.0
     d_z: float = 0.0
     I_a: float = 0.0
+
+    #: The masses and inertias of the record by what scales them with its density (the body,
+    #: the two wheels alike, the motors' armature), and the links of each: a robot of another
+    #: density is another robot of this model (its lengths and gravity kept).
+    DENSITY_OF: ClassVar[Mapping[str, str]] = {
+        **dict.fromkeys(("m_S", "I1", "I2", "I3", "Ixy", "Ixz", "Iyz"), "body"),
+        **dict.fromkeys(("m_C", "Iw2", "Iw3"), "wheels"), "I_a": "armature"}
+    LINK_GROUPS: ClassVar[Mapping[str, str]] = {"body": "body", "wheel_left": "wheels",
+                                                "wheel_right": "wheels"}
 
     def __post_init__(self) -> None:
         for f in fields(self):

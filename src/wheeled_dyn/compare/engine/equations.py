@@ -69,7 +69,7 @@ def equation_records(d: Derivation, decision, drafts: Sequence[ElementDraft],
         return []
     on_families = None
     if len(grids) > 1 and any(e.verdict == Verdict.DIFFERS for e in decision.equations):
-        from .judgement import decide
+        from .deciding import decide
         on_families = decide(d, funcs, grids[1])
     out = []
     for i, e in enumerate(decision.equations):

@@ -12,7 +12,6 @@ checks (energy, symmetry, constraint rows); the printed forms for the reports.
 
 from __future__ import annotations
 
-import copy
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -21,7 +20,7 @@ import sympy as sp
 from ...derivations.schema import Derivation, equation_labels
 from ..causes.frames import frame_causes
 from ..grid.assumptions import Assumptions, declared, undeclared_cases
-from ..judge import equivalence, families
+from ..judge import families
 from ..judge.consistency import consistent_cases, contradiction_causes
 from ..judge.document_checks import asymmetry, constraint_problems, constraint_rows, energy_check
 from ..judge.draft import ElementDraft
@@ -43,7 +42,7 @@ from ..sides.evaluation import Evaluation
 from ..sides.framed import framed, row_of, row_scale
 from .equations import equation_records
 from .printing import corrected, print_drafts
-from .special import special_sides
+from .deciding import decide
 
 #: Smaller grid used to test special parameter families: states per set, sets.
 SPECIAL_SAMPLES, SPECIAL_SETS = 40, 2
@@ -86,54 +85,6 @@ def _stiffness(d: Derivation, terms) -> sp.ImmutableMatrix | None:
     if not assumed.linearised_about or terms.Q is None or terms.Q.has(sp.nan):
         return None
     return sp.ImmutableMatrix(terms.Q.jacobian(sp.Matrix(d.positions)))
-
-
-def _n(a, B, multipliers: bool = False) -> equivalence.Side | None:
-    r"""An :class:`~..judge.equivalence.Side` of arrays ``a`` (n = h + Q where given; a
-    linearised document's stiffness K compared with its inputs' columns; with
-    ``multipliers``, the coefficients :math:`G^T` of the multipliers)."""
-    if a.A is None:
-        return None
-    parts = [x for x in (a.h, a.Q) if x is not None]
-    n = None if not parts else sum(parts[1:], parts[0])
-    L = np.swapaxes(a.G, 1, 2) if multipliers and a.G is not None else None
-    return equivalence.Side(a.A, n, _with_stiffness(a.K, B), L)
-
-
-def _with_stiffness(K: np.ndarray | None, B: np.ndarray | None) -> np.ndarray | None:
-    if K is None:
-        return B
-    return K if B is None else np.concatenate([K, B], axis=2)
-
-
-def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides
-           ) -> equivalence.SystemDecision | None:
-    r"""The equations' verdicts on the main grid (None where the document gives no A)."""
-    doc, truth = sides.doc, sides.truth
-    both_n = doc.h is not None or doc.Q is not None
-    kept = truth.G is not None          # the coordinates keep the rolling constraints
-    if kept and doc.G is None:          # a document stating none: no multiplier terms
-        doc = copy.copy(doc)
-        doc.G = np.zeros_like(truth.G)
-    doc_side = _n(doc, doc.B if sides.B_true is not None else None, kept)
-    if doc_side is None or truth.A is None:
-        return None
-    parts = [truth.need(k) for k, y in (("h", doc.h), ("Q", doc.Q)) if y is not None]
-    true_n = sum(parts[1:], parts[0]) if both_n else None
-    true_side = equivalence.Side(truth.A, true_n, _with_stiffness(
-        truth.K if doc.K is not None else None, sides.B_true),
-        np.swapaxes(truth.G, 1, 2) if kept and truth.G is not None else None)
-    first = equivalence.decide(doc_side, true_side, len(sides.grid.sets))
-    # the special positions matter where an equation is otherwise a combination of the true
-    # ones with weights that vary (a factor that may vanish there: sin θ)
-    W = first.W
-    varies = [i for i, e in enumerate(first.equations) if e.verdict == Verdict.AGREES and
-              np.nanmax(np.ptp(np.nan_to_num(W[:, i]), axis=0), initial=0.0) > 1e-9 * max(
-                  float(np.nanmax(np.abs(W[:, i]), initial=0.0)), 1e-300)]
-    if not varies:
-        return first
-    return equivalence.decide(doc_side, true_side, len(sides.grid.sets),
-                              special_sides(funcs, sides, doc.need("A"), truth.need("A"), W))
 
 
 def _grids(engine, d: Derivation, funcs: DocumentFunctions, sides: Sides,
@@ -210,7 +161,7 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     stage("document")
     sides = both_sides(d, funcs, grid, engine.seed, with_gamma=True)
     stage("equivalence")
-    decision = decide(d, funcs, sides)
+    decision = decide(d, funcs, sides, engine.seed)
     cases = consistent_cases(d, funcs, undeclared_cases(d, assumed), assumed, engine.seed)
     grids = _grids(engine, d, funcs, sides, cases, assumed)
     stage("frames")

@@ -368,16 +368,24 @@ def decide(doc: Side, truth: Side, sets: int,
                 "vanishes: where it does, the equation is not defined)") if pole else (
             f"{which} not independent {where}: W = A_doc A⁻¹ is singular there (an "
             "equation lost, repeated, or multiplied by a factor that vanishes)")
-        for k in rows:
-            e = decisions[k]
-            extra = diagnosis(DiagnosisKind.SINGULAR, text, prefix="not equivalent",
-                              rows=tuple(rows))
-            decisions[k] = EquationDecision(Verdict.DIFFERS, (*e.diagnoses, extra),
-                                            e.max_error, e.w)
+        return mark_lost(SystemDecision(tuple(decisions), W), rows, text)
     return SystemDecision(tuple(decisions), W)
 
 
+def mark_lost(decision: SystemDecision, rows: tuple[int, ...], text: str) -> SystemDecision:
+    r"""``decision`` with the equations ``rows`` not equivalent, for the reason ``text`` (W
+    singular or unbounded somewhere)."""
+    decisions = list(decision.equations)
+    for k in rows:
+        e = decisions[k]
+        extra = diagnosis(DiagnosisKind.SINGULAR, text, prefix="not equivalent",
+                          rows=tuple(rows))
+        decisions[k] = EquationDecision(Verdict.DIFFERS, (*e.diagnoses, extra), e.max_error,
+                                        e.w)
+    return SystemDecision(tuple(decisions), decision.W)
+
+
 __all__ = ["EquationDecision", "FLOOR", "NULL_SHARE", "SINGULAR_TOL", "Side", "SystemDecision",
-           "combination_rows", "decide", "decide_row", "multiplier_terms", "relative_det",
+           "combination_rows", "decide", "decide_row", "mark_lost", "multiplier_terms", "relative_det",
            "sign_changes",
            "singular_everywhere", "vanishing_at"]

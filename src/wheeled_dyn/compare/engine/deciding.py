@@ -1,0 +1,86 @@
+r"""The equivalence decision of a document's equations on the main grid
+(:func:`~..judge.equivalence.decide`): its sides as arrays (:math:`n = h + Q`, a linearised
+document's stiffness beside its inputs, the multipliers' coefficients of a form that keeps the
+rolling constraints) and, where an equation's weights :math:`W = A_{doc}A^{-1}` vary, the
+states (:mod:`.special`) and the robots (:mod:`.parameter_factors`) at which a factor of them
+may vanish.
+"""
+
+from __future__ import annotations
+
+import copy
+
+import numpy as np
+import sympy as sp
+
+from ...derivations.schema import Derivation
+from ..judge import equivalence
+from ..records import DiagnosisKind, Verdict, has_kind
+from ..sides.both import Sides
+from ..sides.document import DocumentFunctions
+from .parameter_factors import vanishing_factors
+from .special import special_sides
+
+
+def _n(a, B, multipliers: bool = False) -> equivalence.Side | None:
+    r"""An :class:`~..judge.equivalence.Side` of arrays ``a`` (n = h + Q where given; a
+    linearised document's stiffness K compared with its inputs' columns; with
+    ``multipliers``, the coefficients :math:`G^T` of the multipliers)."""
+    if a.A is None:
+        return None
+    parts = [x for x in (a.h, a.Q) if x is not None]
+    n = None if not parts else sum(parts[1:], parts[0])
+    L = np.swapaxes(a.G, 1, 2) if multipliers and a.G is not None else None
+    return equivalence.Side(a.A, n, _with_stiffness(a.K, B), L)
+
+
+def _with_stiffness(K: np.ndarray | None, B: np.ndarray | None) -> np.ndarray | None:
+    if K is None:
+        return B
+    return K if B is None else np.concatenate([K, B], axis=2)
+
+
+def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides, seed: int = 2026
+           ) -> equivalence.SystemDecision | None:
+    r"""The equations' verdicts on the main grid (None where the document gives no A); where
+    an equation's weights vary, with the special states and the robots at which a factor of
+    them may vanish (:mod:`.special`, :mod:`.parameter_factors`; ``seed``: their draws)."""
+    doc, truth = sides.doc, sides.truth
+    both_n = doc.h is not None or doc.Q is not None
+    kept = truth.G is not None          # the coordinates keep the rolling constraints
+    if kept and doc.G is None:          # a document stating none: no multiplier terms
+        doc = copy.copy(doc)
+        doc.G = np.zeros_like(truth.G)
+    doc_side = _n(doc, doc.B if sides.B_true is not None else None, kept)
+    if doc_side is None or truth.A is None:
+        return None
+    parts = [truth.need(k) for k, y in (("h", doc.h), ("Q", doc.Q)) if y is not None]
+    true_n = sum(parts[1:], parts[0]) if both_n else None
+    true_side = equivalence.Side(truth.A, true_n, _with_stiffness(
+        truth.K if doc.K is not None else None, sides.B_true),
+        np.swapaxes(truth.G, 1, 2) if kept and truth.G is not None else None)
+    first = equivalence.decide(doc_side, true_side, len(sides.grid.sets))
+    # the special positions matter where an equation is otherwise a combination of the true
+    # ones with weights that vary (a factor that may vanish there: sin θ)
+    W = first.W
+    varies = [i for i, e in enumerate(first.equations) if e.verdict == Verdict.AGREES and
+              np.nanmax(np.ptp(np.nan_to_num(W[:, i]), axis=0), initial=0.0) > 1e-9 * max(
+                  float(np.nanmax(np.abs(W[:, i]), initial=0.0)), 1e-300)]
+    if not varies:
+        return first
+    second = equivalence.decide(doc_side, true_side, len(sides.grid.sets),
+                                special_sides(funcs, sides, doc.need("A"), truth.need("A"), W))
+    if any(has_kind(e.diagnoses, DiagnosisKind.SINGULAR) for e in second.equations):
+        return second
+    agreeing = [i for i in varies if second.equations[i].verdict == Verdict.AGREES]
+    for i, factor in vanishing_factors(funcs, sides, agreeing, seed).items():
+        second = equivalence.mark_lost(second, (i,), (
+            f"equation {i + 1} is not independent for every robot of the model: its inertia "
+            f"terms share the factor {sp.sstr(factor)}, which vanishes for masses and "
+            "inertias the robot may have (its links' densities changed, its lengths kept), "
+            "where W = A_doc A⁻¹ is singular (an equation multiplied by a factor that "
+            "vanishes)"))
+    return second
+
+
+__all__ = ["decide"]
