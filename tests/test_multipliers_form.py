@@ -28,7 +28,8 @@ import pytest
 
 from conftest import SEED
 from wheeled_dyn.compare.engine import ComparisonEngine
-from wheeled_dyn.compare.judge.equivalence import Side, decide, multiplier_terms
+from wheeled_dyn.compare.judge.equivalence import Side, decide
+from wheeled_dyn.compare.judge.multipliers import multiplier_terms
 from wheeled_dyn.compare.records import CauseKind, Verdict
 from wheeled_dyn.derivations import load_derivation
 

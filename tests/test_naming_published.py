@@ -200,6 +200,28 @@ def test_a_term_written_too_much_is_named_so(engine, tmp_path):
     assert extra and "has -lc2**2*m1 too much" in extra[0].text, flagged["A[1,1]"].texts
 
 
+@pytest.mark.parametrize("form, old, new, element, lacks", [
+    ("kane", "- ddx*(M + m)", "- ddx*m", "A[1,1]", "lacks -M"),
+    ("equations", "+ ddx*(M + m)", "+ ddx*m", "A[1,1]", "lacks M")])
+def test_a_term_dropped_is_named_missing_whatever_its_sign(engine, tmp_path, form, old, new,
+                                                          element, lacks):
+    r"""The cart-pole with a term dropped, in Kane's form (every term negated: the cart's
+    mass in the cart's −(M + m)ẍ) and as its equations: the document lacks the term, in the
+    sign the row is read in — the term the truth has, not "−m too much" (a negative term
+    dropped was told as its negative written too much whenever no written term was like
+    it, or every one was of its sign)."""
+    path = P.write(tmp_path, "pole", form, None)
+    text = path.read_text()
+    assert text.count(old) == 1, (old, text)
+    path.write_text(text.replace(old, new))
+    flagged = {r.element: r for r in engine.compare(load_derivation(path)).records
+               if r.verdict != "agrees"}
+    assert element in flagged, set(flagged)
+    named = [d for d in flagged[element].diagnoses if d.kind in (K.MISSING, K.EXTRA)]
+    assert named and named[0].kind == K.MISSING and lacks in named[0].text, \
+        flagged[element].texts
+
+
 def test_quasi_velocity_equations_are_labelled_by_their_velocity(engine):
     r"""Seed 000's Euler equations of a free body in its body rates p, q, r (quasi-velocities):
     equation 4 is p's, not the yaw angle's."""

@@ -18,18 +18,19 @@ from ..judge import equivalence
 from ..records import DiagnosisKind, Verdict, has_kind
 from ..sides.both import Sides
 from ..sides.document import DocumentFunctions
-from .parameter_factors import vanishing_factors
+from .parameter_factors import robot_sign_changes, vanishing_factors
 from .special import special_sides
 
 
 def _n(a, B, multipliers: bool = False) -> equivalence.Side | None:
-    r"""An :class:`~..judge.equivalence.Side` of arrays ``a`` (n = h + Q where given; a
+    r"""An :class:`~..judge.equivalence.Side` of arrays ``a`` (n: h and Q where given, as two
+    columns each compared at its own size; a
     linearised document's stiffness K compared with its inputs' columns; with
     ``multipliers``, the coefficients :math:`G^T` of the multipliers)."""
     if a.A is None:
         return None
     parts = [x for x in (a.h, a.Q) if x is not None]
-    n = None if not parts else sum(parts[1:], parts[0])
+    n = None if not parts else np.stack(parts, axis=2)
     L = np.swapaxes(a.G, 1, 2) if multipliers and a.G is not None else None
     return equivalence.Side(a.A, n, _with_stiffness(a.K, B), L)
 
@@ -55,7 +56,7 @@ def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides, seed: int = 20
     if doc_side is None or truth.A is None:
         return None
     parts = [truth.need(k) for k, y in (("h", doc.h), ("Q", doc.Q)) if y is not None]
-    true_n = sum(parts[1:], parts[0]) if both_n else None
+    true_n = np.stack(parts, axis=2) if both_n else None
     true_side = equivalence.Side(truth.A, true_n, _with_stiffness(
         truth.K if doc.K is not None else None, sides.B_true),
         np.swapaxes(truth.G, 1, 2) if kept and truth.G is not None else None)
@@ -80,7 +81,22 @@ def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides, seed: int = 20
             "inertias the robot may have (its links' densities changed, its lengths kept), "
             "where W = A_doc A⁻¹ is singular (an equation multiplied by a factor that "
             "vanishes)"))
-    return second
+    if any(has_kind(e.diagnoses, DiagnosisKind.SINGULAR) for e in second.equations):
+        return second
+    changes = robot_sign_changes(funcs, sides, seed)
+    if changes is None:
+        return second
+    rows, pole = changes
+    wrong = tuple(k for k in rows if second.equations[k].verdict == Verdict.DIFFERS) or rows
+    names = ", ".join(str(k + 1) for k in wrong)
+    which = f"equations {names} are" if len(wrong) > 1 else f"equation {names} is"
+    return equivalence.mark_lost(second, wrong, (
+        f"{which} not {'defined' if pole else 'independent'} for every robot of the model: "
+        "det A_doc changes sign between robots whose links' densities differ (lengths "
+        "kept), where the truth's A stays positive definite, so W = A_doc A⁻¹ is "
+        f"{'unbounded' if pole else 'singular'} for one between them (an equation "
+        f"{'divided' if pole else 'multiplied'} by a factor of the masses that vanishes, "
+        "alone or in a combination of the equations)"))
 
 
 __all__ = ["decide"]

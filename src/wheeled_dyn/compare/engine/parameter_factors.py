@@ -8,15 +8,17 @@ document's own :math:`A` is read symbolically — the greatest common divisor of
 elements' numerators, factored — and each factor that depends on the parameters alone and is
 not a single symbol is tried at robots the model may be without being another: each link's
 density scaled by its own factor :math:`a_L \in [10^{-2}, 10^{2}]` (its mass, first moments
-and inertias times :math:`a_L`; its lengths, the gravity and the wheels' geometry kept). The
+and inertias times :math:`a_L`; its lengths, the gravity and the wheels' geometry kept), each
+joint spring's stiffness scaled so and its rest position moved (the truth's A has neither). The
 truth's :math:`A = \sum_L a_L J_L^T M_L J_L` stays positive definite for every positive
 :math:`a`, so where a factor takes both signs among the draws it vanishes between two of them
 (the segment between two draws stays positive) with the truth regular: there the row of
 :math:`A_{doc}` is zero and :math:`W` singular — the equation is not equivalent.
 
-Only symbols whose value is such a link parameter, a length of a link, or one of the
-geometric names :data:`KEPT_NAMES` are scaled or kept; a factor in any other symbol (a
-parameter record's own masses, a free symbol) is not tried.
+Only symbols whose value is such a link parameter, a length of a link, another name of a
+model without a parameter record (its gravity, lengths and springs), or a name of a
+parameter record that says what scales it (the WIP's ``DENSITY_OF``, its lengths kept) are
+scaled or kept; a factor in any other symbol (a free symbol) is not tried.
 """
 
 from __future__ import annotations
@@ -31,6 +33,8 @@ from sympy.core.function import AppliedUndef
 
 from ...compiled import numpy_function
 from ...derivations.schema import Derivation
+from ..judge import equivalence
+from ..grid.samples import ParameterSet
 from ..sides.both import Sides
 from ..sides.document import DocumentFunctions, model_value
 
@@ -42,8 +46,9 @@ LENGTHS = frozenset({"CX", "CY", "CZ", "length", "radius", "width", "origin_x", 
                      "origin_z"})
 #: Names of a model's namespace a density leaves: the gravity and the wheels' geometry.
 KEPT_NAMES = frozenset({"g", "R", "L"})
-#: Robots tried per parameter set, and the range of each link's density factor.
-DRAWS, DENSITY_RANGE = 64, (1e-2, 1e2)
+#: Robots tried per parameter set, the range of each link's density factor (and each
+#: spring's stiffness factor), and of the shift of a spring's rest position (rad or m).
+DRAWS, DENSITY_RANGE, REST_SHIFT = 64, (1e-2, 1e2), 1.0
 
 
 def _record(d: Derivation) -> tuple[Mapping[str, str], Mapping[str, str], set[str]]:
@@ -61,9 +66,13 @@ def _record(d: Derivation) -> tuple[Mapping[str, str], Mapping[str, str], set[st
 
 def _scalable(d: Derivation, params: tuple[sp.Symbol, ...]) -> set[sp.Symbol]:
     r"""The document's parameters whose values are link parameters, lengths, kept names or
-    a parameter record's own masses and inertias."""
+    a parameter record's own masses and inertias. A model without a parameter record keeps
+    every other name of its namespace (its gravity, its geometry's lengths, its springs):
+    none of them changes with a link's density."""
     density_of, _, kept = _record(d)
-    named = KEPT_NAMES | set(density_of) | kept
+    from ...models.registry import model_entry
+    named = None if model_entry(d.model).parameters is None else \
+        KEPT_NAMES | set(density_of) | kept
     out = set()
     for spec in d.symbols.values():
         value = spec.value
@@ -72,7 +81,7 @@ def _scalable(d: Derivation, params: tuple[sp.Symbol, ...]) -> set[sp.Symbol]:
         calls = value.atoms(AppliedUndef)
         plain = value.free_symbols - {a for c in calls for a in c.free_symbols}
         if all(c.func.__name__ in DENSITY | LENGTHS for c in calls) and \
-                all(s.name in named for s in plain):
+                (named is None or all(s.name in named for s in plain)):
             out.add(spec.symbol)
     return out
 
@@ -93,29 +102,36 @@ def _factors(row: list[sp.Expr], allowed: set[sp.Symbol]) -> list[sp.Expr]:
             and not b.is_number]
 
 
-def _scaled_values(d: Derivation, values: dict[str, float], symbols: list[sp.Symbol],
+def _scaled_values(d: Derivation, ps: ParameterSet, symbols: list[sp.Symbol],
                    rng: np.random.Generator) -> dict[sp.Symbol, np.ndarray]:
-    r"""Each of ``symbols`` at :data:`DRAWS` robots: the namespace ``values`` with each link's
-    density scaled (the first draw: as drawn)."""
+    r"""Each of ``symbols`` at :data:`DRAWS` robots: the namespace values of ``ps`` with each
+    link's density scaled, each joint spring's stiffness scaled and its rest position moved
+    (none of which the truth's A depends on; the first draw: as drawn)."""
     density_of, link_groups, _ = _record(d)
+    names_of = [s.spec.parameter_names for s in ps.model.springs]
+    springs = {k: f"spring {k}" for k, _ in names_of}
+    rests = [rest for _, rest in names_of]
 
     def group(key: str) -> str | None:
         if "(" not in key:
-            return density_of.get(key)
+            return density_of.get(key, springs.get(key))
         link = key[key.index("(") + 1:-1]
         return link_groups.get(link, link) if key[:key.index("(")] in DENSITY else None
 
+    values = ps.values
     groups = {k: group(k) for k in values}
     names = sorted({g for g in groups.values() if g is not None})
     low, high = np.log(DENSITY_RANGE[0]), np.log(DENSITY_RANGE[1])
     factors = np.exp(rng.uniform(low, high, (DRAWS, len(names))))
-    factors[0] = 1.0
+    shifts = rng.uniform(-REST_SHIFT, REST_SHIFT, (DRAWS, len(rests)))
+    factors[0], shifts[0] = 1.0, 0.0
     specs = {s.symbol: s for s in d.symbols.values()}
     out: dict[sp.Symbol, np.ndarray] = {s: np.empty(DRAWS) for s in symbols}
     for j in range(DRAWS):
         scale = dict(zip(names, factors[j]))
         now = {k: v if groups[k] is None else v * scale[str(groups[k])]
                for k, v in values.items()}
+        now.update({k: values[k] + x for k, x in zip(rests, shifts[j]) if k in values})
         for s in symbols:
             value = specs[s].value
             assert value is not None
@@ -148,7 +164,7 @@ def vanishing_factors(funcs: DocumentFunctions, sides: Sides, rows: list[int],
     rng = np.random.default_rng([seed, 29])
     needed = sorted({s for fs in candidates.values() for f in fs for s in f.free_symbols},
                     key=sp.default_sort_key)
-    draws = [_scaled_values(d, ps.values, needed, rng) for ps in sides.grid.sets]
+    draws = [_scaled_values(d, ps, needed, rng) for ps in sides.grid.sets]
     out: dict[int, sp.Expr] = {}
     for i, found in candidates.items():
         for f in found:
@@ -160,4 +176,41 @@ def vanishing_factors(funcs: DocumentFunctions, sides: Sides, rows: list[int],
     return out
 
 
-__all__ = ["DENSITY", "DRAWS", "KEPT_NAMES", "LENGTHS", "vanishing_factors"]
+#: States of each parameter set at which :func:`robot_sign_changes` tries the robots.
+STATES = 8
+
+
+def robot_sign_changes(funcs: DocumentFunctions, sides: Sides, seed: int
+                       ) -> tuple[tuple[int, ...], bool] | None:
+    r"""Where :math:`\det A_{doc}` takes both signs among the robots of other densities at one
+    state (module text: :math:`\det A` does not, so :math:`\det W` vanishes or has a pole
+    between them — an equation times, or divided by, a factor of the masses that vanishes,
+    alone or in a combination of the equations): the equations involved and whether it is a
+    pole (:func:`~..judge.equivalence.sign_changes`, on :math:`A_{doc}`, whose left null
+    vector is :math:`W`'s), else None. Not tried where the document's A has a symbol that
+    cannot be scaled (module text)."""
+    A = funcs.exprs["A"]
+    if A is None:
+        return None
+    d = funcs.d
+    used = sp.Matrix(A).free_symbols & set(funcs.params)
+    free = {s.symbol for s in d.symbols.values() if s.value is None and not s.is_input}
+    scaled = sorted(used & _scalable(d, funcs.params), key=sp.default_sort_key)
+    if not scaled or not used <= set(scaled) | free:
+        return None
+    rng = np.random.default_rng([seed, 31])
+    n = len(d.positions)
+    for k, ps in enumerate(sides.grid.sets):
+        q = np.repeat(sides.grid.q[k, :STATES], DRAWS, axis=0)
+        draws = _scaled_values(d, ps, scaled, rng)
+        values = {s: np.tile(draws[s], STATES) if s in draws else
+                  np.full(len(q), sides.per_set[k][s]) for s in funcs.params}
+        doc_A = funcs.evaluate(q, np.zeros((len(q), n)), values, ("A",)).need("A")
+        found = equivalence.sign_changes(doc_A, len(q) // DRAWS)
+        if found is not None:
+            return found
+    return None
+
+
+__all__ = ["DENSITY", "DRAWS", "KEPT_NAMES", "LENGTHS", "STATES", "robot_sign_changes",
+           "vanishing_factors"]

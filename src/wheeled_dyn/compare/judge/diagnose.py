@@ -22,6 +22,9 @@ from ..records import Diagnosis, DiagnosisKind as K, diagnosis
 
 #: Relative tolerance of agreement (the numbers are exact to ~1e-13 relative).
 AGREE_TOL = 1e-7
+#: A sample's residual scale in the equivalence decision is at least this fraction of the
+#: largest over the samples (of the row's column, or of the multipliers' fit).
+FLOOR = 1e-6
 
 
 def agrees(D: np.ndarray, T: np.ndarray, scale: float) -> bool:

@@ -27,10 +27,12 @@ found singular
   continuous in the positions, so it vanishes between them), or it vanishes at one of the
   special positions the engine adds (each position at :math:`0, \pm\pi/2, \pi`).
 
-Tolerances are relative, per sample: a residual counts when it exceeds :data:`~.diagnose.
-AGREE_TOL` of the largest quantity the row sums at that sample (the document's terms, the sums
-:math:`\sum_l |w_{il}|\,|n_l|`, the row's inertia), floored at :data:`FLOOR` of the row's
-largest over all samples. Values that are not finite never decide and never enter a scale: an
+Tolerances are relative, per sample and per column — the velocity terms h, the gravity and
+spring terms Q, each input's coefficients, the multipliers' — each at its own size: a residual
+counts when it exceeds :data:`~.diagnose.AGREE_TOL` of the largest quantity the row's column
+sums at that sample (the document's terms, the sums :math:`\sum_l |w_{il}|\,|n_l|`), floored
+at :data:`FLOOR` of the column's largest over every row and sample (a scale that mixed them
+let the gravity of a robot 1e99 m long be doubled: 1e-98 of its inertia). Values that are not finite never decide and never enter a scale: an
 equation that differs at a finite sample differs; one that agrees wherever it is finite but is
 not finite somewhere is undecided.
 
@@ -39,16 +41,14 @@ These are pure functions of numbers; the engine supplies both sides on the same 
 
 from __future__ import annotations
 
-import itertools
 from dataclasses import dataclass, replace
 
 import numpy as np
 
 from ..records import Diagnosis, DiagnosisKind, Verdict, diagnosis
-from .diagnose import AGREE_TOL
+from .diagnose import AGREE_TOL, FLOOR
+from .multipliers import multiplier_terms, unit_multipliers
 
-#: A sample's residual scale is at least this fraction of the row's largest over all samples.
-FLOOR = 1e-6
 #: :math:`|\det A_{doc}|` relative to its rows' sizes, below this fraction of the truth's:
 #: W singular at that sample.
 SINGULAR_TOL = 1e-9
@@ -120,17 +120,22 @@ def combination_rows(doc_A: np.ndarray, true_A: np.ndarray) -> np.ndarray:
     return W
 
 
-def _part(doc: np.ndarray, true: np.ndarray, w: np.ndarray, inertia: np.ndarray
+def _part(doc: np.ndarray, true: np.ndarray, w: np.ndarray, least: np.ndarray
           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     r"""For one row: (relative residual per sample, finite mask, scale per sample) of
-    ``doc`` (S × k) against :math:`w\,` ``true`` (S × n × k)."""
+    ``doc`` (S × k) against :math:`w\,` ``true`` (S × n × k), the scale at least ``least``
+    and at least :data:`FLOOR` of :math:`\lVert w\rVert_1 \max_l |\text{true}_l|` (the
+    round-off of :math:`w` itself, computed as :math:`A_{doc}A^{-1}`: a row with no term in
+    the column, times a large factor, carries it times the other rows' terms)."""
     with np.errstate(all="ignore"):
         predicted = np.einsum("sl,slk->sk", w, true)
         sums = np.einsum("sl,slk->sk", np.abs(w), np.abs(true))
+        least = np.maximum(least, FLOOR * np.abs(w).sum(axis=1)
+                           * np.abs(true).max(axis=(1, 2), initial=0.0))
         finite = (np.isfinite(doc).all(axis=1) & np.isfinite(predicted).all(axis=1)
-                  & np.isfinite(sums).all(axis=1) & np.isfinite(inertia))
+                  & np.isfinite(sums).all(axis=1) & np.isfinite(least))
         scale = np.maximum(np.maximum(np.abs(doc).max(axis=1, initial=0.0),
-                                      sums.max(axis=1, initial=0.0)), inertia)
+                                      sums.max(axis=1, initial=0.0)), least)
         scale = np.where(finite, scale, 0.0)
         floor = FLOOR * float(scale.max(initial=0.0))
         error = np.abs(doc - predicted).max(axis=1, initial=0.0)
@@ -138,81 +143,28 @@ def _part(doc: np.ndarray, true: np.ndarray, w: np.ndarray, inertia: np.ndarray
     return relative, finite, scale
 
 
-def multiplier_terms(doc_L: np.ndarray, true_L: np.ndarray, W: np.ndarray) -> np.ndarray:
-    r"""The true multipliers' coefficients recombined for the document (S × n × m_doc):
-    :math:`G^T M` with :math:`M` the least-squares solution of :math:`W G^T M = G_{doc}^T`
-    per sample. The multipliers are unknowns of the equations, so a document may name any
-    invertible combination of the true ones (:math:`\lambda = M\lambda_{doc}`); its equation
-    :math:`i` is then a combination of the true ones only if its coefficients of
-    :math:`\lambda_{doc}` are row :math:`i` of :math:`W G^T M`. :math:`M` is fitted on every
-    equation; where they do not all fit, on all but one, else all but two (as many as
-    multipliers left at least): of the subsets that fit, the one whose mixing is nearest the
-    one the document's constraint rows give (:math:`G_{doc} = PG`, :math:`M = P^T`) — a wrong
-    equation does not make the right ones differ, nor a right one take the blame. NaN where
-    a side is not finite."""
-    if doc_L.shape == true_L.shape and not np.any(doc_L):
-        return true_L.copy()        # no multipliers at all: none to mix, the terms must vanish
-    out = np.full(doc_L.shape, np.nan)
-    ok = (np.isfinite(W).all(axis=(1, 2)) & np.isfinite(true_L).all(axis=(1, 2))
-          & np.isfinite(doc_L).all(axis=(1, 2)))
-    if not ok.any():
-        return out
-    mixed, D = W[ok] @ true_L[ok], doc_L[ok]
-    # as many equations left as independent multipliers (a robot's two wheels: four rows of
-    # G of rank three; its four columns counted, two wrong equations of five were never left
-    # out, and the three right ones were said to be no combination)
-    n, m = D.shape[1], int(np.linalg.matrix_rank(true_L[ok][:10]).max())
-
-    def fit(left_out: tuple[int, ...]) -> tuple[float, np.ndarray]:
-        rows = [i for i in range(n) if i not in left_out]
-        M = np.linalg.pinv(mixed[:, rows]) @ D[:, rows]
-        fitted = mixed[:, rows] @ M
-        scale = np.maximum(np.abs(D[:, rows]).max(axis=2), np.abs(fitted).max(axis=2))
-        floor = FLOOR * float(scale.max(initial=0.0))
-        off = np.abs(D[:, rows] - fitted).max(axis=2) / np.maximum(np.maximum(scale, floor),
-                                                                    1e-300)
-        return float(off.max(initial=0.0)), M
-
-    # the mixing the document's own constraint rows give (G_doc = P G: M = Pᵀ): among the
-    # subsets that fit, the one closest to it (leaving out either of two equations may fit)
-    reference = np.linalg.pinv(true_L[ok]) @ D
-
-    def distance(M: np.ndarray) -> float:
-        return float(np.nanmean(np.abs(M - reference)))
-
-    best = fit(())
-    for size in (1, 2):
-        if best[0] <= AGREE_TOL or n - size < m:
-            break
-        fits = [f for f in (fit(c) for c in itertools.combinations(range(n), size))
-                if f[0] <= AGREE_TOL]
-        if fits:
-            best = min(fits, key=lambda f: distance(f[1]))
-    M = best[1]
-    out[ok] = true_L[ok] @ M
-    return out
-
-
-def unit_multipliers(L: np.ndarray) -> np.ndarray:
-    r"""The document's multipliers' coefficients (S × n × m) with each multiplier's column
-    scaled to a largest finite magnitude of 1: :math:`\lambda_k` is an unknown of the
-    equations, so :math:`\lambda_k \to c\lambda_k` is the same document (a constraint row
-    written 1e8 times larger gave its multiplier's terms a round-off of 6e-7 of the row)."""
-    size = np.abs(np.where(np.isfinite(L), L, 0.0)).max(axis=(0, 1))
-    return L / np.where(size > 0, size, 1.0)
-
-
-def _multiplier_floor(doc_L: np.ndarray, mixed: np.ndarray) -> np.ndarray:
-    r"""The least scale of a row's multiplier terms at each sample: :data:`FLOOR` of the
-    largest finite coefficient of either side over every row and sample. The multipliers'
-    coefficients are measured at their own size (a multiplier is an unknown, scaled at will:
-    :func:`unit_multipliers`), not at the row's inertia's, which in other units could hide a
-    wrong coefficient; the floor keeps the round-off of a row with no multiplier term from
-    deciding."""
+def _column_floor(doc: np.ndarray, true: np.ndarray) -> np.ndarray:
+    r"""The least scale of one column of a part at each sample: :data:`FLOOR` of the largest
+    finite value of either side over every row and sample. Each column — the velocity terms
+    h, the gravity and spring terms Q, each input's coefficients, the multipliers' — is
+    measured at its own size, not at the row's inertia's or another column's: with lengths
+    of 1e99 m, or in other units, the gravity terms are 1e-98 of the inertia at a unit
+    acceleration and of the velocity terms at a unit velocity, and one doubled agreed; the
+    floor keeps the round-off of a row without such terms from deciding."""
     with np.errstate(all="ignore"):
         size = max(float(np.abs(np.where(np.isfinite(x), x, 0.0)).max(initial=0.0))
-                   for x in (doc_L, mixed))
-    return np.full(len(doc_L), FLOOR * size)
+                   for x in (doc, true))
+    return np.full(len(doc), FLOOR * size)
+
+
+def _columns(D: np.ndarray, T: np.ndarray, i: int
+             ) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+    r"""Row ``i`` of a part of the document (S × n or S × n × k) and the truth's part, column by
+    column, with each column's floor (:func:`_column_floor`)."""
+    D3 = D[:, :, None] if D.ndim == 2 else D
+    T3 = T[:, :, None] if T.ndim == 2 else T
+    return [(D3[:, i, k:k + 1], T3[:, :, k:k + 1], _column_floor(D3[..., k], T3[..., k]))
+            for k in range(D3.shape[2])]
 
 
 def decide_row(i: int, doc: Side, truth: Side, W: np.ndarray,
@@ -221,17 +173,14 @@ def decide_row(i: int, doc: Side, truth: Side, W: np.ndarray,
     true multipliers' coefficients recombined for the document (:func:`multiplier_terms`),
     where both sides keep the constraints."""
     w = W[:, i, :]
-    inertia = np.abs(doc.A[:, i, :]).max(axis=1)
     residuals, masks = [], []
     for D, T in ((doc.n, truth.n), (doc.B, truth.B), (doc.L, multipliers)):
         if D is None or T is None:
             continue
-        D2 = D[:, i:i + 1] if D.ndim == 2 else D[:, i, :]
-        T3 = T[:, :, None] if T.ndim == 2 else T
-        least = inertia if D is not doc.L else _multiplier_floor(D, T)
-        rel, finite, _ = _part(D2, T3, w, least)
-        residuals.append(rel)
-        masks.append(finite)
+        for D2, T3, least in _columns(D, T, i):
+            rel, finite, _ = _part(D2, T3, w, least)
+            residuals.append(rel)
+            masks.append(finite)
     finite = np.logical_and.reduce(masks) if masks else np.isfinite(w).all(axis=1)
     finite &= np.isfinite(w).all(axis=1)
     worst = max((float(r[finite].max(initial=0.0)) for r in residuals), default=0.0)
@@ -269,11 +218,17 @@ def singular_everywhere(doc_A: np.ndarray, true_A: np.ndarray, W: np.ndarray
     return _null_rows(W[k])
 
 
-def sign_changes(W: np.ndarray, sets: int) -> tuple[tuple[int, ...], bool] | None:
-    r"""Where :math:`\det W` takes both signs among the samples of one parameter set: the
-    equations involved and whether it passes through a pole rather than a zero, else None.
-    ``sets``: the number of parameter sets, the samples being grouped by set (K × N in
-    order). Between random samples a zero and a pole look alike by sign; they differ by
+def sign_changes(W: np.ndarray, sets: int, across: bool = False
+                 ) -> tuple[tuple[int, ...], bool] | None:
+    r"""Where :math:`\det W` takes both signs among the samples of one parameter set (with
+    ``across``, among all samples): the equations involved and whether it passes through a
+    pole rather than a zero, else None. ``sets``: the number of parameter sets, the samples
+    being grouped by set (K × N in order). Across sets it is the same test: the truth's
+    :math:`\det A` never changes sign (A is positive definite), so :math:`\det W` has the
+    sign of :math:`\det A_{doc}`, and the robots between two parameter sets (masses,
+    inertias and lengths in between, as physical as theirs) are robots of the model too:
+    a factor :math:`m_1 - 2m_2` that is negative for one set and positive for another
+    vanishes for one of them. Between random samples a zero and a pole look alike by sign; they differ by
     magnitude: the samples nearest a zero make :math:`|\det W|` small against its median, those
     nearest a pole large. At a zero the equations are those the null vector of :math:`W^T`
     involves; at a pole (an equation divided by a factor that vanishes) those whose weights
@@ -281,7 +236,8 @@ def sign_changes(W: np.ndarray, sets: int) -> tuple[tuple[int, ...], bool] | Non
     det = np.full(len(W), np.nan)
     finite = np.isfinite(W).all(axis=(1, 2))
     det[finite] = np.linalg.det(W[finite])
-    for group in np.array_split(np.arange(len(W)), sets):
+    groups = [np.arange(len(W))] if across else np.array_split(np.arange(len(W)), sets)
+    for group in groups:
         d = det[group]
         d = d[np.isfinite(d)]
         if not (len(d) and (d > 0).any() and (d < 0).any()):
@@ -349,10 +305,14 @@ def decide(doc: Side, truth: Side, sets: int,
     pole = False
     if rows is None:
         changes = sign_changes(W, sets)
+        where = "somewhere: det W changes sign between states of one parameter set"
+        if changes is None and sets > 1:
+            changes = sign_changes(W, sets, across=True)
+            where = ("for some robot of the model: det W changes sign between parameter "
+                     "sets, and the robots between them are robots of the model too")
         if changes is not None:
             rows, pole = changes
-        where = "somewhere: det W changes sign between states of one parameter set" \
-            if rows is not None else ""
+        where = where if rows is not None else ""
     if rows is None and special is not None:
         rows = vanishing_at(*special)
         where = ("with the model's own numbers, at a special position (a coordinate at 0, "

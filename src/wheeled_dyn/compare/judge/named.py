@@ -133,13 +133,27 @@ def _parallel_axis(r: ElementDraft, name: str, term: sp.Expr | None) -> None:
         fits=name))
 
 
-def _too_much(term: sp.Expr, written: frozenset) -> bool:
+def _too_much(term: sp.Expr, written: frozenset, positions: Sequence[sp.Symbol] = ()
+              ) -> bool:
     r"""Whether a term of truth − document is one the document has too much: its negative is
-    a term the document writes (``written``: its expanded terms); else, by its sign."""
+    a term the document writes (``written``: its expanded terms). Else by the terms it
+    writes of the same kind (the same function of the ``positions``): none — it lacks the
+    term, which the truth has (a gravity term dropped from an equation of springs was "too
+    much" by its minus sign); all of the term's sign — it lacks one more of them (a Kane
+    row, all its terms negated, lacking one); all of the other sign — it has too much
+    (:math:`m` written for :math:`m_c + 2m_w`: :math:`2m_w` too much). Of both signs: by
+    the term's own."""
     if -term in written:
         return True
     if term in written:
         return False
+    kind = term.as_independent(*positions, as_Add=False)[1]
+    signs = {w.could_extract_minus_sign() for w in written
+             if w.as_independent(*positions, as_Add=False)[1] == kind}
+    if not signs:
+        return False
+    if len(signs) == 1:
+        return signs.pop() != term.could_extract_minus_sign()
     return term.could_extract_minus_sign()
 
 
@@ -209,13 +223,14 @@ def _written_term(found: sp.Expr, expr: sp.Expr) -> Diagnosis | None:
     return None
 
 
-def _lacks(expr: sp.Expr, written: frozenset = frozenset()) -> str:
+def _lacks(expr: sp.Expr, written: frozenset = frozenset(),
+           positions: Sequence[sp.Symbol] = ()) -> str:
     r"""``"lacks a and b"`` / ``"has c too much"`` for the terms of truth − document (a term
     the document writes with the wrong sign or too much is one it has too much: ``m`` for
     ``m_c`` makes −2 d m_w; lacking +2 d m_w is the same sum, told backwards)."""
     terms = sp.Add.make_args(sp.expand(expr))
-    lacks = [t for t in terms if not _too_much(t, written)]
-    extra = [-t for t in terms if _too_much(t, written)]
+    lacks = [t for t in terms if not _too_much(t, written, positions)]
+    extra = [-t for t in terms if _too_much(t, written, positions)]
     parts = []
     if lacks:
         parts.append("lacks " + " and ".join(sp.sstr(t) for t in lacks))
@@ -294,9 +309,9 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
         parts = sp.Add.make_args(sp.expand(found))
         written = frozenset(sp.Add.make_args(sp.expand(r.expr))) if r.expr is not None \
             and sp.count_ops(r.expr) <= 200 else frozenset()
-        extra = all(_too_much(t, written) for t in parts)   # only terms too many
+        extra = all(_too_much(t, written, positions) for t in parts)   # only terms too many
         r.diagnoses.append(diagnosis(K.EXTRA if extra else K.MISSING,
-                                     f"{_lacks(found, written)} (truth − document = "
+                                     f"{_lacks(found, written, positions)} (truth − document = "
                                      f"{sp.sstr(found)})",
                                      prefix="terms", terms=tuple(sp.sstr(t) for t in parts)))
 

@@ -1,0 +1,81 @@
+r"""The multipliers' terms of a form that keeps the rolling constraints,
+:math:`A\ddot q + n = Bu + G^T\lambda` (:func:`~.equivalence.decide`): the true multipliers'
+coefficients recombined for the document, whose multipliers may be any invertible mixing of
+the true ones, and the document's own scaled to a largest coefficient of 1 (a multiplier is
+an unknown: :math:`\lambda_k \to c\lambda_k` is the same document).
+"""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+
+from .diagnose import AGREE_TOL, FLOOR
+
+
+def multiplier_terms(doc_L: np.ndarray, true_L: np.ndarray, W: np.ndarray) -> np.ndarray:
+    r"""The true multipliers' coefficients recombined for the document (S × n × m_doc):
+    :math:`G^T M` with :math:`M` the least-squares solution of :math:`W G^T M = G_{doc}^T`
+    per sample. The multipliers are unknowns of the equations, so a document may name any
+    invertible combination of the true ones (:math:`\lambda = M\lambda_{doc}`); its equation
+    :math:`i` is then a combination of the true ones only if its coefficients of
+    :math:`\lambda_{doc}` are row :math:`i` of :math:`W G^T M`. :math:`M` is fitted on every
+    equation; where they do not all fit, on all but one, else all but two (as many as
+    multipliers left at least): of the subsets that fit, the one whose mixing is nearest the
+    one the document's constraint rows give (:math:`G_{doc} = PG`, :math:`M = P^T`) — a wrong
+    equation does not make the right ones differ, nor a right one take the blame. NaN where
+    a side is not finite."""
+    if doc_L.shape == true_L.shape and not np.any(doc_L):
+        return true_L.copy()        # no multipliers at all: none to mix, the terms must vanish
+    out = np.full(doc_L.shape, np.nan)
+    ok = (np.isfinite(W).all(axis=(1, 2)) & np.isfinite(true_L).all(axis=(1, 2))
+          & np.isfinite(doc_L).all(axis=(1, 2)))
+    if not ok.any():
+        return out
+    mixed, D = W[ok] @ true_L[ok], doc_L[ok]
+    # as many equations left as independent multipliers (a robot's two wheels: four rows of
+    # G of rank three; its four columns counted, two wrong equations of five were never left
+    # out, and the three right ones were said to be no combination)
+    n, m = D.shape[1], int(np.linalg.matrix_rank(true_L[ok][:10]).max())
+
+    def fit(left_out: tuple[int, ...]) -> tuple[float, np.ndarray]:
+        rows = [i for i in range(n) if i not in left_out]
+        M = np.linalg.pinv(mixed[:, rows]) @ D[:, rows]
+        fitted = mixed[:, rows] @ M
+        scale = np.maximum(np.abs(D[:, rows]).max(axis=2), np.abs(fitted).max(axis=2))
+        floor = FLOOR * float(scale.max(initial=0.0))
+        off = np.abs(D[:, rows] - fitted).max(axis=2) / np.maximum(np.maximum(scale, floor),
+                                                                    1e-300)
+        return float(off.max(initial=0.0)), M
+
+    # the mixing the document's own constraint rows give (G_doc = P G: M = Pᵀ): among the
+    # subsets that fit, the one closest to it (leaving out either of two equations may fit)
+    reference = np.linalg.pinv(true_L[ok]) @ D
+
+    def distance(M: np.ndarray) -> float:
+        return float(np.nanmean(np.abs(M - reference)))
+
+    best = fit(())
+    for size in (1, 2):
+        if best[0] <= AGREE_TOL or n - size < m:
+            break
+        fits = [f for f in (fit(c) for c in itertools.combinations(range(n), size))
+                if f[0] <= AGREE_TOL]
+        if fits:
+            best = min(fits, key=lambda f: distance(f[1]))
+    M = best[1]
+    out[ok] = true_L[ok] @ M
+    return out
+
+
+def unit_multipliers(L: np.ndarray) -> np.ndarray:
+    r"""The document's multipliers' coefficients (S × n × m) with each multiplier's column
+    scaled to a largest finite magnitude of 1: :math:`\lambda_k` is an unknown of the
+    equations, so :math:`\lambda_k \to c\lambda_k` is the same document (a constraint row
+    written 1e8 times larger gave its multiplier's terms a round-off of 6e-7 of the row)."""
+    size = np.abs(np.where(np.isfinite(L), L, 0.0)).max(axis=(0, 1))
+    return L / np.where(size > 0, size, 1.0)
+
+
+__all__ = ["multiplier_terms", "unit_multipliers"]
