@@ -23,14 +23,13 @@ from .special import special_sides
 
 
 def _n(a, B, multipliers: bool = False) -> equivalence.Side | None:
-    r"""An :class:`~..judge.equivalence.Side` of arrays ``a`` (n: h and Q where given, as two
-    columns each compared at its own size; a
+    r"""An :class:`~..judge.equivalence.Side` of arrays ``a`` (n = h + Q where given; a
     linearised document's stiffness K compared with its inputs' columns; with
     ``multipliers``, the coefficients :math:`G^T` of the multipliers)."""
     if a.A is None:
         return None
     parts = [x for x in (a.h, a.Q) if x is not None]
-    n = None if not parts else np.stack(parts, axis=2)
+    n = None if not parts else sum(parts[1:], parts[0])
     L = np.swapaxes(a.G, 1, 2) if multipliers and a.G is not None else None
     return equivalence.Side(a.A, n, _with_stiffness(a.K, B), L)
 
@@ -56,7 +55,7 @@ def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides, seed: int = 20
     if doc_side is None or truth.A is None:
         return None
     parts = [truth.need(k) for k, y in (("h", doc.h), ("Q", doc.Q)) if y is not None]
-    true_n = np.stack(parts, axis=2) if both_n else None
+    true_n = sum(parts[1:], parts[0]) if both_n else None
     true_side = equivalence.Side(truth.A, true_n, _with_stiffness(
         truth.K if doc.K is not None else None, sides.B_true),
         np.swapaxes(truth.G, 1, 2) if kept and truth.G is not None else None)

@@ -27,12 +27,11 @@ found singular
   continuous in the positions, so it vanishes between them), or it vanishes at one of the
   special positions the engine adds (each position at :math:`0, \pm\pi/2, \pi`).
 
-Tolerances are relative, per sample and per column — the velocity terms h, the gravity and
-spring terms Q, each input's coefficients, the multipliers' — each at its own size: a residual
-counts when it exceeds :data:`~.diagnose.AGREE_TOL` of the largest quantity the row's column
-sums at that sample (the document's terms, the sums :math:`\sum_l |w_{il}|\,|n_l|`), floored
-at :data:`FLOOR` of the column's largest over every row and sample (a scale that mixed them
-let the gravity of a robot 1e99 m long be doubled: 1e-98 of its inertia). Values that are not finite never decide and never enter a scale: an
+Tolerances are relative, per sample: a residual counts when it exceeds :data:`~.diagnose.
+AGREE_TOL` of the largest quantity the row sums at that sample (the document's terms, the sums
+:math:`\sum_l |w_{il}|\,|n_l|`, the row's inertia; the multipliers' terms at their own size),
+floored at :data:`FLOOR` of the row's largest over all samples. Values that are not finite
+never decide and never enter a scale: an
 equation that differs at a finite sample differs; one that agrees wherever it is finite but is
 not finite somewhere is undecided.
 
@@ -124,14 +123,10 @@ def _part(doc: np.ndarray, true: np.ndarray, w: np.ndarray, least: np.ndarray
           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     r"""For one row: (relative residual per sample, finite mask, scale per sample) of
     ``doc`` (S × k) against :math:`w\,` ``true`` (S × n × k), the scale at least ``least``
-    and at least :data:`FLOOR` of :math:`\lVert w\rVert_1 \max_l |\text{true}_l|` (the
-    round-off of :math:`w` itself, computed as :math:`A_{doc}A^{-1}`: a row with no term in
-    the column, times a large factor, carries it times the other rows' terms)."""
+    (the row's inertia; for the multipliers' terms, their own floor)."""
     with np.errstate(all="ignore"):
         predicted = np.einsum("sl,slk->sk", w, true)
         sums = np.einsum("sl,slk->sk", np.abs(w), np.abs(true))
-        least = np.maximum(least, FLOOR * np.abs(w).sum(axis=1)
-                           * np.abs(true).max(axis=(1, 2), initial=0.0))
         finite = (np.isfinite(doc).all(axis=1) & np.isfinite(predicted).all(axis=1)
                   & np.isfinite(sums).all(axis=1) & np.isfinite(least))
         scale = np.maximum(np.maximum(np.abs(doc).max(axis=1, initial=0.0),
@@ -143,28 +138,17 @@ def _part(doc: np.ndarray, true: np.ndarray, w: np.ndarray, least: np.ndarray
     return relative, finite, scale
 
 
-def _column_floor(doc: np.ndarray, true: np.ndarray) -> np.ndarray:
-    r"""The least scale of one column of a part at each sample: :data:`FLOOR` of the largest
-    finite value of either side over every row and sample. Each column — the velocity terms
-    h, the gravity and spring terms Q, each input's coefficients, the multipliers' — is
-    measured at its own size, not at the row's inertia's or another column's: with lengths
-    of 1e99 m, or in other units, the gravity terms are 1e-98 of the inertia at a unit
-    acceleration and of the velocity terms at a unit velocity, and one doubled agreed; the
-    floor keeps the round-off of a row without such terms from deciding."""
+def _multiplier_floor(doc_L: np.ndarray, mixed: np.ndarray) -> np.ndarray:
+    r"""The least scale of a row's multiplier terms at each sample: :data:`FLOOR` of the
+    largest finite coefficient of either side over every row and sample. The multipliers'
+    coefficients are measured at their own size (a multiplier is an unknown, scaled at will:
+    :func:`unit_multipliers`), not at the row's inertia's, which in other units could hide a
+    wrong coefficient; the floor keeps the round-off of a row with no multiplier term from
+    deciding."""
     with np.errstate(all="ignore"):
         size = max(float(np.abs(np.where(np.isfinite(x), x, 0.0)).max(initial=0.0))
-                   for x in (doc, true))
-    return np.full(len(doc), FLOOR * size)
-
-
-def _columns(D: np.ndarray, T: np.ndarray, i: int
-             ) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
-    r"""Row ``i`` of a part of the document (S × n or S × n × k) and the truth's part, column by
-    column, with each column's floor (:func:`_column_floor`)."""
-    D3 = D[:, :, None] if D.ndim == 2 else D
-    T3 = T[:, :, None] if T.ndim == 2 else T
-    return [(D3[:, i, k:k + 1], T3[:, :, k:k + 1], _column_floor(D3[..., k], T3[..., k]))
-            for k in range(D3.shape[2])]
+                   for x in (doc_L, mixed))
+    return np.full(len(doc_L), FLOOR * size)
 
 
 def decide_row(i: int, doc: Side, truth: Side, W: np.ndarray,
@@ -173,14 +157,17 @@ def decide_row(i: int, doc: Side, truth: Side, W: np.ndarray,
     true multipliers' coefficients recombined for the document (:func:`multiplier_terms`),
     where both sides keep the constraints."""
     w = W[:, i, :]
+    inertia = np.abs(doc.A[:, i, :]).max(axis=1)
     residuals, masks = [], []
     for D, T in ((doc.n, truth.n), (doc.B, truth.B), (doc.L, multipliers)):
         if D is None or T is None:
             continue
-        for D2, T3, least in _columns(D, T, i):
-            rel, finite, _ = _part(D2, T3, w, least)
-            residuals.append(rel)
-            masks.append(finite)
+        D2 = D[:, i:i + 1] if D.ndim == 2 else D[:, i, :]
+        T3 = T[:, :, None] if T.ndim == 2 else T
+        least = inertia if D is not doc.L else _multiplier_floor(D, T)
+        rel, finite, _ = _part(D2, T3, w, least)
+        residuals.append(rel)
+        masks.append(finite)
     finite = np.logical_and.reduce(masks) if masks else np.isfinite(w).all(axis=1)
     finite &= np.isfinite(w).all(axis=1)
     worst = max((float(r[finite].max(initial=0.0)) for r in residuals), default=0.0)
