@@ -203,6 +203,31 @@ def test_a_constraint_row_times_a_vanishing_factor_is_not_the_same(engine, tmp_p
     assert any("vanishes or is unbounded" in c for c in causes), causes
 
 
+@pytest.mark.parametrize("name, old, new, lost", [
+    (DISK, "[1, 0, 0, 0, r*cos(phi)]", "[(sin(phi) - 3/10)**2, 0, 0, 0, "
+     "(sin(phi) - 3/10)**2*r*cos(phi)]", True),
+    (DISK, "[1, 0, 0, 0, r*cos(phi)]", "[cos(phi)**2, 0, 0, 0, cos(phi)**2*r*cos(phi)]", True),
+    (ROBOT, "[0, 0, 1, -R/(2*L), R/(2*L)]]", "[0, 0, cos(theta), -R*cos(theta)/(2*L), "
+     "R*cos(theta)/(2*L)]]", True),
+    (ROBOT, "[0, 0, 1, -R/(2*L), R/(2*L)]]", "[0, 0, m_c - 2*m_w, -R*(m_c - 2*m_w)/(2*L), "
+     "R*(m_c - 2*m_w)/(2*L)]]", True),
+    (ROBOT, "[0, 0, 1, -R/(2*L), R/(2*L)]]", "[0, 0, 2 + cos(theta), -R*(2 + cos(theta))/(2*L), "
+     "R*(2 + cos(theta))/(2*L)]]", False)])
+def test_a_constraint_row_times_a_factor_that_touches_zero_is_lost(engine, tmp_path, name, old,
+                                                                   new, lost):
+    r"""A stated constraint row times a factor that vanishes without changing sign
+    ((sin φ − 0.3)², cos² φ), or whose sign change the samples cannot see for a robot whose
+    four true rows have rank three (cos θ), or of the parameters (m_c − 2m_w, zero for a
+    robot of other densities): the constraint is lost there (all agreed); 2 + cos θ never
+    vanishes."""
+    result = _compare(engine, tmp_path, name, old, new)
+    assert result.constraints_agree is (not lost), [c.explanation for c in result.causes]
+    assert result.equivalent is (not lost)
+    if lost:
+        assert any("is written times" in c.explanation for c in result.causes
+                   if c.kind == CauseKind.NOT_EQUIVALENT), result.causes
+
+
 def test_a_constraint_stated_twice_is_still_the_models(engine, tmp_path):
     r"""The robot's G with a fourth row, the sum of its first two (a dependent row, four
     multipliers): the same constraints. The model's own rows are four of rank three here; a

@@ -42,6 +42,7 @@ from ..sides.evaluation import Evaluation
 from ..sides.framed import framed, row_of, row_scale
 from .equations import equation_records
 from .printing import corrected, print_drafts
+from .constraint_factors import lost_constraints
 from .deciding import decide
 
 #: Smaller grid used to test special parameter families: states per set, sets.
@@ -203,7 +204,7 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     fixes = print_drafts(d, drafts, sides.grid.cs, texts, assumed, funcs.exprs)
     equations = corrected(d, equations, fixes)
     j = _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed,
-                   declared_wrong, fixes.truth is not None)
+                   declared_wrong, fixes.truth is not None, engine.seed)
     return replace(j, causes=(*contradiction_causes(d, funcs, assumed, engine.seed), *j.causes))
 
 
@@ -233,7 +234,7 @@ def _id_values(d: Derivation, funcs: DocumentFunctions, id_sides: Sides,
 
 
 def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed,
-               declared_wrong, in_document: bool) -> Judgement:
+               declared_wrong, in_document: bool, seed: int = 2026) -> Judgement:
     grid = sides.grid
     scales = np.array([r.scale for r in [next((x for x in drafts if x.row == i), None)
                                           for i in range(d.n)] if r is not None] or [1.0])
@@ -273,6 +274,8 @@ def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed
         model_readings=sides.readings)
     causes = frame_causes(d, texts, rules, result.equations, declared_wrong, result.records)
     wrong = constraint_problems(d, funcs, sides)
+    if wrong is not None and sides.truth.G is not None and not wrong:
+        wrong = lost_constraints(funcs, sides, seed)
     if wrong:
         causes.append(Cause(CauseKind.NOT_EQUIVALENT, (), "the document's constraints are "
                             "not the model's rolling constraints: " + "; ".join(wrong)))

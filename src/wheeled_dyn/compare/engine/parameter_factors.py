@@ -64,7 +64,7 @@ def _record(d: Derivation) -> tuple[Mapping[str, str], Mapping[str, str], set[st
     return density_of, getattr(record, "LINK_GROUPS", {}), kept
 
 
-def _scalable(d: Derivation, params: tuple[sp.Symbol, ...]) -> set[sp.Symbol]:
+def scalable(d: Derivation, params: tuple[sp.Symbol, ...]) -> set[sp.Symbol]:
     r"""The document's parameters whose values are link parameters, lengths, kept names or
     a parameter record's own masses and inertias. A model without a parameter record keeps
     every other name of its namespace (its gravity, its geometry's lengths, its springs):
@@ -86,9 +86,11 @@ def _scalable(d: Derivation, params: tuple[sp.Symbol, ...]) -> set[sp.Symbol]:
     return out
 
 
-def _factors(row: list[sp.Expr], allowed: set[sp.Symbol]) -> list[sp.Expr]:
+def row_factors(row: list[sp.Expr], allowed: set[sp.Symbol],
+                bare: frozenset[sp.Symbol] = frozenset()) -> list[sp.Expr]:
     r"""The factors of the common divisor of ``row``'s numerators that depend on ``allowed``
-    symbols alone and are sums (a single symbol of a mass never vanishes)."""
+    symbols alone and are sums or a symbol of ``bare`` (a position; a single symbol of a
+    mass never vanishes)."""
     try:
         numerators = [sp.fraction(sp.together(e))[0] for e in row if e != 0]
         if not numerators:
@@ -98,11 +100,11 @@ def _factors(row: list[sp.Expr], allowed: set[sp.Symbol]) -> list[sp.Expr]:
     except (sp.PolynomialError, sp.CoercionFailed, NotImplementedError):
         return []
     return [-b if b.could_extract_minus_sign() else b for b, _ in found
-            if b.free_symbols and b.free_symbols <= allowed and not b.is_Symbol
-            and not b.is_number]
+            if b.free_symbols and b.free_symbols <= allowed and not b.is_number
+            and (not b.is_Symbol or b in bare)]
 
 
-def _scaled_values(d: Derivation, ps: ParameterSet, symbols: list[sp.Symbol],
+def scaled_values(d: Derivation, ps: ParameterSet, symbols: list[sp.Symbol],
                    rng: np.random.Generator) -> dict[sp.Symbol, np.ndarray]:
     r"""Each of ``symbols`` at :data:`DRAWS` robots: the namespace values of ``ps`` with each
     link's density scaled, each joint spring's stiffness scaled and its rest position moved
@@ -139,7 +141,7 @@ def _scaled_values(d: Derivation, ps: ParameterSet, symbols: list[sp.Symbol],
     return out
 
 
-def _changes_sign(fn, args: list[sp.Symbol], values: dict[sp.Symbol, np.ndarray]) -> bool:
+def changes_sign(fn, args: list[sp.Symbol], values: dict[sp.Symbol, np.ndarray]) -> bool:
     r"""Whether ``fn`` of ``args`` takes both signs (or zero) among one parameter set's
     robots: its lengths are the same for all of them, so the truth stays regular between."""
     with np.errstate(all="ignore"):
@@ -157,20 +159,20 @@ def vanishing_factors(funcs: DocumentFunctions, sides: Sides, rows: list[int],
     if A is None or not rows:
         return {}
     d = funcs.d
-    allowed = _scalable(d, funcs.params)
-    candidates = {i: _factors(list(sp.Matrix(A).row(i)), allowed) for i in rows}
+    allowed = scalable(d, funcs.params)
+    candidates = {i: row_factors(list(sp.Matrix(A).row(i)), allowed) for i in rows}
     if not any(candidates.values()):
         return {}
     rng = np.random.default_rng([seed, 29])
     needed = sorted({s for fs in candidates.values() for f in fs for s in f.free_symbols},
                     key=sp.default_sort_key)
-    draws = [_scaled_values(d, ps, needed, rng) for ps in sides.grid.sets]
+    draws = [scaled_values(d, ps, needed, rng) for ps in sides.grid.sets]
     out: dict[int, sp.Expr] = {}
     for i, found in candidates.items():
         for f in found:
             args = sorted(f.free_symbols, key=sp.default_sort_key)
             fn = numpy_function(args, f)
-            if any(_changes_sign(fn, args, v) for v in draws):
+            if any(changes_sign(fn, args, v) for v in draws):
                 out[i] = f
                 break
     return out
@@ -195,14 +197,14 @@ def robot_sign_changes(funcs: DocumentFunctions, sides: Sides, seed: int
     d = funcs.d
     used = sp.Matrix(A).free_symbols & set(funcs.params)
     free = {s.symbol for s in d.symbols.values() if s.value is None and not s.is_input}
-    scaled = sorted(used & _scalable(d, funcs.params), key=sp.default_sort_key)
+    scaled = sorted(used & scalable(d, funcs.params), key=sp.default_sort_key)
     if not scaled or not used <= set(scaled) | free:
         return None
     rng = np.random.default_rng([seed, 31])
     n = len(d.positions)
     for k, ps in enumerate(sides.grid.sets):
         q = np.repeat(sides.grid.q[k, :STATES], DRAWS, axis=0)
-        draws = _scaled_values(d, ps, scaled, rng)
+        draws = scaled_values(d, ps, scaled, rng)
         values = {s: np.tile(draws[s], STATES) if s in draws else
                   np.full(len(q), sides.per_set[k][s]) for s in funcs.params}
         doc_A = funcs.evaluate(q, np.zeros((len(q), n)), values, ("A",)).need("A")
@@ -212,5 +214,6 @@ def robot_sign_changes(funcs: DocumentFunctions, sides: Sides, seed: int
     return None
 
 
-__all__ = ["DENSITY", "DRAWS", "KEPT_NAMES", "LENGTHS", "STATES", "robot_sign_changes",
+__all__ = ["DENSITY", "DRAWS", "KEPT_NAMES", "LENGTHS", "STATES", "changes_sign",
+           "robot_sign_changes", "row_factors", "scalable", "scaled_values",
            "vanishing_factors"]

@@ -1,0 +1,101 @@
+r"""A constraint row the document states times a factor that vanishes: the rolling
+constraint is lost where it does (the document lets the wheel slide there), though its rows
+span the model's wherever the samples fall.
+
+:func:`~..judge.document_checks.constraint_space` compares the document's rows
+:math:`G_{doc}` with the model's at the samples, and sees a factor only where
+:math:`\det P` (:math:`G_{doc} = PG`) changes sign within a parameter set — not a factor
+that touches zero without changing sign (:math:`(\sin\varphi - 0.3)^2`, :math:`\cos^2\varphi`),
+nor one of the parameters (:math:`m_c - 2m_w`), nor any where the model's rows are more
+than its independent ones (a robot's two wheels: four rows of rank three). Here each stated
+row's common factor is read symbolically (:func:`~.parameter_factors.row_factors`: the
+greatest common divisor of its entries' numerators) and each factor in the positions and
+parameters alone is tried:
+
+- in the positions: at the samples and at the special positions (each position at
+  :math:`0, \pm\pi/2, \pi`), where it takes both signs within a parameter set or is zero;
+  its base is tried, so a square's sign change shows;
+- in the parameters alone: at the robots of other densities and springs
+  (:func:`~.parameter_factors.scaled_values`), as an equation's factor is.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import sympy as sp
+
+from ...compiled import numpy_function
+from ..grid.grid import special_states
+from ..sides.both import Sides
+from ..sides.document import DocumentFunctions
+from .parameter_factors import changes_sign, row_factors, scalable, scaled_values
+
+#: A factor at most this fraction of its median magnitude over the samples is zero there.
+ZERO = 1e-12
+
+
+def _values_at(funcs: DocumentFunctions, sides: Sides, factor: sp.Expr
+               ) -> list[np.ndarray]:
+    r"""``factor`` per parameter set, at its samples and special states."""
+    grid = sides.grid
+    fn = funcs.compiled(factor)
+    K, N, n = grid.q.shape
+    with np.errstate(all="ignore"):
+        at = np.broadcast_to(np.asarray(fn(*sides.argv), float), (K * N,)).reshape(K, N)
+    q, owner = special_states(grid)
+    out = [at[k] for k in range(K)]
+    if len(q):
+        values = [np.array([sides.per_set[k][p] for k in owner]) for p in funcs.params]
+        with np.errstate(all="ignore"):
+            special = np.broadcast_to(np.asarray(fn(*q.T, *np.zeros_like(q).T, *values),
+                                                 float), (len(q),))
+        out = [np.concatenate([out[k], special[owner == k]]) for k in range(K)]
+    return out
+
+
+def _vanishes_in_state(values: list[np.ndarray]) -> bool:
+    r"""Whether a factor takes both signs within a parameter set, or is zero somewhere."""
+    for v in values:
+        v = v[np.isfinite(v)]
+        if not v.size:
+            continue
+        typical = float(np.median(np.abs(v)))
+        if (v.min() < 0 < v.max()) or np.abs(v).min() <= ZERO * typical:
+            return True
+    return False
+
+
+def _vanishes(funcs: DocumentFunctions, sides: Sides, factor: sp.Expr,
+              rng: np.random.Generator) -> bool:
+    if factor.free_symbols & set(funcs.d.positions):
+        return _vanishes_in_state(_values_at(funcs, sides, factor))
+    args = sorted(factor.free_symbols, key=sp.default_sort_key)
+    fn = numpy_function(args, factor)
+    return any(changes_sign(fn, args, scaled_values(funcs.d, ps, args, rng))
+               for ps in sides.grid.sets)
+
+
+def lost_constraints(funcs: DocumentFunctions, sides: Sides, seed: int) -> tuple[str, ...]:
+    r"""For each constraint row the document states (its ``G``, its ``[constraints]``) times a
+    factor that vanishes (module text), what is wrong, named by where the file states it."""
+    d = funcs.d
+    stated = [("G", sp.Matrix(d.G))] if d.G is not None else []
+    M = d.constraint_matrix()
+    if M is not None:
+        stated.append(("[constraints]", sp.Matrix(M)))
+    positions = frozenset(d.positions)
+    allowed = scalable(d, funcs.params) | set(positions)
+    rng = np.random.default_rng([seed, 37])
+    out = []
+    for where, G in stated:
+        for r in range(G.rows):
+            for f in row_factors(list(G.row(r)), allowed, positions):
+                if _vanishes(funcs, sides, f, rng):
+                    out.append(f"{where}: its constraint row {r + 1} is written times "
+                               f"{sp.sstr(f)}, which vanishes for some state or robot of "
+                               "the model: the constraint is lost there")
+                    break
+    return tuple(out)
+
+
+__all__ = ["ZERO", "lost_constraints"]
