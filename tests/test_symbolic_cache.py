@@ -79,3 +79,33 @@ def test_refresh_rewrites(root):
     cached_symbolic_model(model, refresh=True)
     assert path.stat().st_mtime_ns >= before
     assert len(list((root / "symbolic").glob("*"))) == 1  # no temporary files left
+
+
+def test_the_closed_forms_follow_which_joint_each_input_drives(root, tmp_path):
+    r"""The two-link arm's model file with its inputs' joints swapped (``actuated = ["elbow",
+    "shoulder"]``): its closed forms are derived again, not read back — the corrected
+    equations of a document ended ``= tau1`` where the truth reads ``= tau2`` (the key held
+    the inputs' names, not their joints). The same as with no cache at all."""
+    from pathlib import Path
+
+    import wheeled_dyn as wd
+    from wheeled_dyn.models.registry import load_model
+    from wheeled_dyn.symbolic import true_expressions
+    data = Path(__file__).parent / "data" / "two_link_arm"
+    for name in ("two_link_arm.toml", "two_link_arm.urdf"):
+        (tmp_path / name).write_text((data / name).read_text())
+    model = tmp_path / "two_link_arm.toml"
+
+    def B_of_first_row() -> str:
+        cs = wd.builtin_coordinate_set(load_model(str(model)))
+        truth = true_expressions(str(model), cs)
+        assert truth is not None
+        return str({k: v for k, v in truth.items() if k.startswith("B")})
+
+    first = B_of_first_row()
+    text = model.read_text()
+    assert 'actuated = ["shoulder", "elbow"]' in text
+    model.write_text(text.replace('actuated = ["shoulder", "elbow"]',
+                                  'actuated = ["elbow", "shoulder"]'))
+    swapped = B_of_first_row()
+    assert swapped != first, (first, swapped)

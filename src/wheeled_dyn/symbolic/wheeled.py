@@ -154,13 +154,16 @@ STANDARD_MAX_DOF = 4
 def _true_key(model: str, cs: CoordinateSet, wm: WheeledModel) -> str:
     r"""The key of ``model``'s closed forms in ``cs``: the code, the numeric model, and its
     lengths — which are drawn, which kept, how they are grouped (``wm.lengths`` and the code
-    that names them as symbols, :mod:`~wheeled_dyn.models.geometry`): a model file whose
-    ``[draw] fixed`` or ``[geometry]`` changed gets closed forms of its own."""
+    that names them as symbols, :mod:`~wheeled_dyn.models.geometry`), which joint each input
+    drives and the whole model file's record: a model file whose ``[draw] fixed``,
+    ``[geometry]`` or ``[joints] actuated`` changed gets closed forms of its own (its inputs
+    swapped between two joints, the corrected equations read the old ones back)."""
     from ..models import geometry, geometry_constants
     h = hashlib.sha256()
     for part in ("true_expressions", model, sp.__version__, _code_digest(),
                  model_fingerprint(wm.model, coordinate_names=wm.coordinate_names),
                  repr(wm.geometry), repr(wm.lengths), repr(wm.input_names), repr(wm.springs),
+                 repr(wm.input_matrix().tolist()), repr(wm.spec),
                  coordinate_set_key(cs), Path(geometry.__file__).read_text(),
                  Path(geometry_constants.__file__).read_text()):
         h.update(str(part).encode())
