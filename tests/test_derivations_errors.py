@@ -268,3 +268,19 @@ def test_an_unknown_uniform_link_is_named(tmp_path):
     path = _write(tmp_path, text.replace('uniform = ["rod"]', 'uniform = ["nope"]'))
     with pytest.raises(DerivationError, match=r"assumes.uniform.*'nope'.*rod"):
         declared(load_derivation(path))
+
+
+@pytest.mark.parametrize("name, read", [("ℓ", "l"), ("ﬁ", "fi"), ("ϑ", "θ")])
+def test_a_name_python_reads_otherwise_is_one_error(tmp_path, name, read):
+    r"""A symbol written ℓ (as physics texts print a length), ϑ, or the ligature ﬁ: Python
+    reads each as another name in compiled code (NFKC), and the comparison ended in a
+    ``NameError`` or ``SyntaxError`` traceback. One error names the file, the line and both
+    spellings; it survives pickling, as every error of the project does."""
+    import pickle
+    text = GOOD.replace('d = { value = "d"', f'"{name}" = {{ value = "d"')
+    path = _write(tmp_path, text)
+    with pytest.raises(DerivationError) as info:
+        load_derivation(path)
+    message = str(info.value)
+    assert f"{name!r} is read as {read!r}" in message and f":{_line_of(text, name)}:" in message
+    assert str(pickle.loads(pickle.dumps(info.value))) == message

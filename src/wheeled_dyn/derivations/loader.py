@@ -12,6 +12,7 @@ a document input or a free symbol), ``[assume]`` (terms the model lacks) and
 from __future__ import annotations
 
 import math
+import unicodedata
 from collections.abc import Collection, Mapping
 from pathlib import Path
 from typing import Any
@@ -79,6 +80,10 @@ class _Loader:
             raise self.fail(item, exc.reason, line) from exc
         if len(scanned) != 1 or scanned[0][0] != name:
             raise self.fail(item, f"{name!r} is not a valid name", line)
+        kept = unicodedata.normalize("NFKC", name)
+        if kept != name:             # Python reads ℓ as l, ϑ as θ, ﬁ as fi in compiled code
+            raise self.fail(item, f"{name!r} is read as {kept!r} by Python (Unicode NFKC): "
+                            f"name it {kept!r} or otherwise", line)
         if name in RESERVED_NAMES:
             raise self.fail(item, f"{name!r} is a standard function or constant", line)
         if name in self.kinds:
