@@ -131,6 +131,11 @@ INERTIAL_CASES = {
     "zero_mass": (_mass(BASE, "wheel_left", "0"), "wheel_left", ("'0'", "mass")),
     "nan_mass": (_mass(BASE, "wheel_right", "nan"), "wheel_right", ("'nan'", "mass")),
     "text_mass": (_mass(BASE, "body", "heavy"), "body", ("'heavy'", "mass")),
+    # Python's float() reads these, urdfdom does not: it dropped the whole <inertial>
+    "underscore_mass": (_mass(BASE, "body", "6_0"), "body", ("'6_0'", "mass")),
+    "full_width_mass": (_mass(BASE, "body", "６０"), "body", ("'６０'", "mass")),
+    "underscore_inertia": (_in_link(BASE, "wheel_left", r'izz="[^"]*"', 'izz="0_2"'),
+                           "wheel_left", ("izz", "'0_2'", "not a finite number")),
     "triangle": (_inertia(BASE, "body", np.diag([1.0, 1.0, 5.0])), "body",
                  ("triangle inequality", "accept_inertia")),
     "not_psd": (_inertia(BASE, "body", np.diag([6.25, -1.7, 5.45])), "body",

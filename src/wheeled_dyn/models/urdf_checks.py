@@ -38,7 +38,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InertiaError, InputFileError, LimitError, ModelError
-from .urdf_values import MAX_MODEL_NUMBER, MAX_MODEL_TEXT, line_of as _line_of
+from .urdf_values import MAX_MODEL_NUMBER, MAX_MODEL_TEXT, NUMBER, line_of as _line_of
 
 #: Relative tolerance (of the largest principal moment) for PSD and triangle checks.
 INERTIA_TOL = 1e-9
@@ -60,10 +60,15 @@ INERTIA_KEYS = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 
 
 def _float(value: str | None) -> float:
-    try:
-        return float(value) if value is not None else 0.0
-    except ValueError:
+    r"""A URDF number as urdfdom reads it: a decimal number (:data:`~.urdf_values.NUMBER`),
+    else NaN (the error then names it). Python's ``float`` also reads ``1_0`` and full-width
+    digits, which urdfdom refuses, dropping the whole ``<inertial>``: the link lost its mass
+    without a word."""
+    if value is None:
+        return 0.0
+    if not NUMBER.fullmatch(value.strip()):
         return math.nan
+    return float(value)
 
 
 def _check_inertial(path: Path, text: str, link: ET.Element, accept: tuple[str, ...]) -> float:

@@ -43,8 +43,9 @@ JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "plan
 AXIS_TYPES = ("revolute", "continuous", "prismatic", "planar")
 #: Joint types that need a ``<limit>`` (the URDF format; urdfdom refuses them without one).
 LIMITED_TYPES = ("revolute", "prismatic")
-#: A decimal number as urdfdom reads it (no ``nan``, ``inf``, ``1_000`` or hexadecimal).
-NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
+#: A decimal number as urdfdom reads it (no ``nan``, ``inf``, ``1_000``, hexadecimal or digits
+#: other than ASCII: Python reads ``１０`` as 10).
+NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?", re.ASCII)
 #: The numbers of a joint's elements: (element, attribute) -> how many numbers.
 JOINT_NUMBERS: dict[tuple[str, str], int] = {
     ("origin", "xyz"): 3, ("origin", "rpy"): 3, ("axis", "xyz"): 3,
