@@ -73,6 +73,9 @@ def test_greek_letters_and_derivatives(latex, expected):
     (r"\cos(2\psi)", "cos(2*psi)"), (r"\sin 2\phi", "sin(2*phi)"),
     (r"\cos\theta a", "cos(theta)*a"), (r"\sin(\phi)^2", "sin(phi)**2"),
     (r"\sqrt{R^2 + d^2}", "sqrt(R**2 + d**2)"), (r"\sqrt[3]{a}", "a**(1/3)"),
+    # the radicand whole: a**3**(1/3) is a**(3**(1/3)) (a correct document differed)
+    (r"\sqrt[3]{a^3}", "(a**3)**(1/3)"), (r"\sqrt[2]{a^2}", "sqrt(a**2)"),
+    (r"\sqrt[3]{a^2 b}", "(a**2*b)**(1/3)"),
     (r"\exp\phi", "exp(phi)"),
     (r"\cos\left(\psi - \phi\right)", "cos(psi - phi)"),
 ])

@@ -193,7 +193,8 @@ class Reader:
                                 else args[-1:])
         if len(args) == 2:
             root = wrap(self.expression(args[0].nodelist))
-            return Value(f"({wrap(inner)}**(1/{root}))")
+            # the base whole: m**3**(1/3) is m**(3**(1/3))
+            return Value(f"(({inner})**(1/{root}))")
         return Value(f"sqrt({inner})")
 
     def _derivative(self, rate: Rate) -> str:
