@@ -319,3 +319,32 @@ def test_a_combination_lost_for_some_robot_of_the_model_is_not_equivalent(engine
     assert result.equivalent is equivalent, [c.explanation for c in result.causes]
     singular = any(d.kind == K.SINGULAR for e in result.equations for d in e.diagnoses)
     assert singular is not equivalent
+
+
+@pytest.mark.parametrize("C, still", [("1", "1"), ("theta + m*l**2*dtheta", "theta")])
+def test_a_c_element_without_a_velocity_is_no_factorisation(engine, tmp_path, C, still):
+    r"""The rod pendulum's C written as 1 (or with a term free of θ̇): C q̇ has a term linear
+    in θ̇, which the products of h do not see. Its element was "only the factorisation of C
+    differs; C q̇ agrees" though C q̇ = θ̇ ≠ 0; it differs, the term named."""
+    path = tmp_path / "c.toml"
+    path.write_text(f'''title = "rod, C without a velocity"
+model = "rod_pendulum"
+[coordinates]
+positions = ["theta"]
+configuration = {{ theta = "theta" }}
+[symbols]
+m = "M(rod)"
+l = "length(rod)"
+g = "g"
+[assumes]
+uniform = ["rod"]
+[matrices]
+A = "[[m*l**2/3]]"
+C = "[[{C}]]"
+Q = "[m*g*l/2*sin(theta)]"
+''')
+    result = engine.compare(load_derivation(path))
+    (c,) = [r for r in result.records if r.element == "C[1,1]"]
+    assert c.verdict == "differs", c.texts
+    assert any(d.kind == K.EXTRA and d.terms == (still,) for d in c.diagnoses), c.texts
+    assert result.equivalent is False

@@ -175,7 +175,7 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     from ..judge.swaps import h_swaps
     h_swaps(drafts)
     families.search(cases, drafts, _agreeing(engine, d, funcs, rules, assumed))
-    factorization(drafts, gammas)
+    factorization(drafts, gammas, d.velocities)
     combined = any(r.kind == FrameKind.COMBINATION for r in rules)
     unnamed = any(r.verdict != Verdict.AGREES and r.key != "C" and not has_kind(r.diagnoses, *NAMED)
                   for r in drafts)

@@ -22,8 +22,9 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 import numpy as np
+import sympy as sp
 
-from ..records import Diagnosis, DiagnosisKind as K, Verdict, first_of
+from ..records import Diagnosis, DiagnosisKind as K, Verdict, diagnosis, first_of
 from .diagnose import agrees
 from .draft import ElementDraft
 
@@ -42,14 +43,31 @@ def _innocent(i: int, j: int, k: int, doc: np.ndarray, true: np.ndarray, scale: 
     return agrees(partner, target, scale) and not agrees(mine, target, scale)
 
 
+def _still(expr: sp.Expr | None, velocities: Sequence[sp.Symbol]) -> sp.Expr:
+    r"""The part of a C element ``expr`` without a velocity (0 for none, or no expression)."""
+    if expr is None or not velocities:
+        return sp.Integer(0)
+    return sp.expand(expr).as_independent(*velocities, as_Add=True)[0]
+
+
 def factorization(drafts: Sequence[ElementDraft], gammas: dict[int, tuple[np.ndarray,
-                  np.ndarray]]) -> None:
+                  np.ndarray]], velocities: Sequence[sp.Symbol] = ()) -> None:
     r"""Judge the differing C drafts by their products (module text), in place. ``gammas``:
     per row, the document's and the framed truth's :math:`\Gamma_{i,\cdot\cdot}` (absent
-    where unknown: then only the first rule applies)."""
+    where unknown: then only the first rule applies). A C element with a term free of the
+    ``velocities`` (``C = [[1]]``) makes :math:`C\dot q` linear in them, which the products
+    do not see: it differs, and says so."""
     by_key = {(r.key, r.index): r for r in drafts}
     for r in drafts:
         if r.key != "C" or r.verdict != Verdict.DIFFERS or first_of(r.diagnoses, K.DIMENSION):
+            continue
+        still = _still(r.expr, velocities)
+        if still != 0:
+            text = sp.sstr(still)
+            r.diagnoses.insert(0, diagnosis(
+                K.EXTRA, f"the term {text} has no velocity: C q̇ has a term linear in the "
+                "velocities, which the truth's h has not (its terms are products of two)",
+                prefix="extra", terms=(text,)))
             continue
         i, j = r.index
         n = max((x.index[1] for x in drafts if x.key == "C" and x.index[0] == i), default=-1) + 1
