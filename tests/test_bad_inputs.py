@@ -181,6 +181,9 @@ def _raises_picklable(call, kind: type = WheeledDynError, *words: str) -> Wheele
     (lambda: wd.matrices(7), ArgumentError, ["matrices(model=7)"]),
     (lambda: wd.matrices("wip", phi="abc"), StateError, ["phi", "'abc'"]),
     (lambda: wd.matrices("wip", phi=float("nan")), StateError, ["phi", "nan"]),
+    (lambda: wd.matrices("wip", phi=10**400), StateError, ["phi", "finite real"]),  # Overflow
+    (lambda: wd.compare("rod_pendulum", symbols={sp.Symbol("m"): "M(rod)"}), ArgumentError,
+     ["symbols", "strings"]),                                                  # TypeError
     (lambda: wd.matrices("wip", "nope"), UnknownNameError, ["coordinate set 'nope'"]),
     (lambda: wd.compare("wip", samples=0), ArgumentError, ["samples=0", "1 to 100,000"]),
     (lambda: wd.compare("wip", samples=float("nan")), ArgumentError, ["samples=nan"]),

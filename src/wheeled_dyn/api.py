@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 import numbers
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -63,8 +63,13 @@ def finite_terms(cmap: CoordinateMap, q: Any, nu: Any) -> Terms:
 
 
 def _real(value: object) -> bool:
-    return (not isinstance(value, bool) and isinstance(value, numbers.Real)
-            and math.isfinite(float(value)) and abs(float(value)) <= MAX_MODEL_NUMBER)
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        return False
+    try:
+        number = float(value)
+    except OverflowError:                     # an int of 400 digits
+        return False
+    return math.isfinite(number) and abs(number) <= MAX_MODEL_NUMBER
 
 
 #: The tables :func:`compare` takes (as a derivation file has them).
@@ -142,6 +147,13 @@ def compare(model: str | Path, *, samples: int = 1000, param_sets: int = 5, seed
     if unknown:
         raise ArgumentError("compare", unknown[0], tables[unknown[0]],
                             "one of the tables " + ", ".join(TABLES))
+    names = tables.get("symbols")
+    if names is not None and (not isinstance(names, Mapping) or
+                              not all(isinstance(k, str) for k in names)):
+        bad = names if not isinstance(names, Mapping) else \
+            next(k for k in names if not isinstance(k, str))
+        raise ArgumentError("compare", "symbols", bad, "a mapping of the document's names "
+                            "(strings, as a derivation file writes them) to their values")
     _finite_tables(tables, str(tables.get("title", "derivation from Python")))
     model_entry(str(model))                    # an unknown model: its own error, first
     with without_reuse(not reuse):

@@ -47,8 +47,12 @@ def _instance(kind: Callable[[], type], what: str) -> Callable[[str, str, Any, d
 
 
 def _finite(value: Any) -> bool:
-    return (not isinstance(value, bool) and isinstance(value, numbers.Real)
-            and math.isfinite(float(value)))
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        return False
+    try:
+        return math.isfinite(float(value))
+    except OverflowError:                     # an int of 400 digits
+        return False
 
 
 def _number(fn: str, name: str, value: Any, bound: dict) -> None:
