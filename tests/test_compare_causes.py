@@ -202,6 +202,32 @@ def test_a_file_declaring_its_convention_unknown_gets_the_reading(engine, tmp_pa
         result.causes[0].explanation
 
 
+@pytest.mark.parametrize("declared, agrees", [('"unknown"', True), (None, False)])
+def test_an_unknown_convention_reads_one_inputs_sign_seen_in_one_element(engine, tmp_path,
+                                                                          declared, agrees):
+    r"""The two-link arm (``data/two_link_arm``) with its first torque declared
+    ``tau_1 = "-tau1"`` while its equations write +τ₁: under τ₁ → −τ₁ every element agrees,
+    though the sign shows in B[1,1] alone. A file that declares its convention unknown is
+    read so (it differed: a reading needed two elements more); one that declares none
+    keeps its declaration, and B[1,1] differs."""
+    data = Path(__file__).parent / "data" / "two_link_arm"
+    for name in ("two_link_arm.toml", "two_link_arm.urdf"):
+        (tmp_path / name).write_text((data / name).read_text())
+    text = (data / "arm_lagrange.toml").read_text()
+    assert 'tau_1 = "tau1"' in text
+    text = text.replace('tau_1 = "tau1"', 'tau_1 = "-tau1"')
+    path = tmp_path / "arm.toml"
+    path.write_text((f"convention = {declared}\n" if declared else "") + text)
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is agrees, [c.explanation for c in result.causes]
+    if agrees:
+        assert result.causes[0].kind == "convention"
+        assert "tau1 → −tau1" in result.causes[0].explanation
+    else:
+        (b,) = [r for r in result.records if r.element == "B[1,1]"]
+        assert b.verdict == "differs"
+
+
 # -- method errors ------------------------------------------------------------------------------
 
 def test_quasi_coordinate_christoffel(engine, tmp_path):

@@ -27,12 +27,13 @@ def search_evaluation(j) -> SearchEvaluation:
                             row_factor=ev.row_factor, kind=ev.kind)
 
 
-def _search(j) -> tuple | None:
-    r"""The best reading of the judged derivation ``j``'s file, or None."""
+def _search(j, complete_gain: int = signs.MIN_GAIN_ORDER) -> tuple | None:
+    r"""The best reading of the judged derivation ``j``'s file, or None (``complete_gain``:
+    :func:`~..readings.signs.best_reading`'s)."""
     search = search_evaluation(j)
     d = j.funcs.d
     return signs.best_reading(d, search.doc_at, search.score, search.score_readings,
-                              search.elements(search.doc_at((1,) * d.n)))
+                              search.elements(search.doc_at((1,) * d.n)), complete_gain)
 
 
 def _right(result: DerivationResult) -> int:
@@ -45,7 +46,9 @@ def unknown_convention(engine, d: Derivation) -> tuple[Derivation, Cause] | None
     if d.convention != "unknown":
         return None
     j = engine.judge(d)
-    best = None if j.result.equivalent else _search(j)
+    # the file asks for its convention: a reading under which every element agrees is it,
+    # though one input's sign shows in one element only (the arm's τ₁ in B[1,1] alone)
+    best = None if j.result.equivalent else _search(j, complete_gain=1)
     if best is None:
         return None
     reading = best[0]

@@ -98,11 +98,13 @@ def flip_arrays(doc: Arrays, s: Sequence[int], t: Sequence[int],
 def best_reading(d: Derivation, evaluate: Callable[[Sequence[int]], Arrays],
                  score: Callable[[Arrays], int],
                  score_readings: Callable[[Arrays, Sequence[int], list], list[int]] | None = None,
-                 total: int | None = None) -> tuple[Reading, int, int] | None:
+                 total: int | None = None, complete_gain: int = MIN_GAIN_ORDER
+                 ) -> tuple[Reading, int, int] | None:
     r"""``((s, t, order), declared score, best score)`` when a reading beats the declared one
     by at least :data:`MIN_GAIN` agreeing elements — or by :data:`MIN_GAIN_ORDER` where every
     one of the ``total`` elements agrees under it (one input's sign in a robot's two rows:
-    two elements, and nothing else left to explain) — else None. ``evaluate(s)`` gives the
+    two elements, and nothing else left to explain; ``complete_gain`` for a file that declares
+    its convention unknown, where one input's sign shows in one element) — else None. ``evaluate(s)`` gives the
     document's arrays at the flipped states, ``score(arrays)`` the number of agreeing
     elements; ``score_readings(arrays, s, [(t, order), ...])``, where given, the scores of
     several readings of the inputs at once (the same numbers)."""
@@ -122,7 +124,8 @@ def best_reading(d: Derivation, evaluate: Callable[[Sequence[int]], Arrays],
                 best = (reading, value)
     complete = total is not None and best[1] == total
     if best[0] is None or best[1] < declared + (
-            MIN_GAIN_ORDER if is_permutation_only(best[0]) or complete else MIN_GAIN):
+            complete_gain if complete else
+            MIN_GAIN_ORDER if is_permutation_only(best[0]) else MIN_GAIN):
         return None
     return best[0], declared, best[1]
 
