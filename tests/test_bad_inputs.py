@@ -316,3 +316,42 @@ def test_a_coordinate_table_without_positions_is_named(tmp_path):
     with pytest.raises(DerivationError) as err:
         load_derivation(path)
     assert "coordinates.positions" in str(err.value) and "at least one position" in str(err.value)
+
+
+FLOATING_ROOT = """<?xml version="1.0"?>
+<robot name="r">
+  <link name="base_footprint"/>
+  <joint name="base_footprint_joint" type="floating">
+    <parent link="base_footprint"/><child link="base_link"/><origin xyz="0 0 0.1"/>
+  </joint>
+  <link name="base_link">
+    <inertial><origin xyz="0 0 0.2"/><mass value="10"/>
+      <inertia ixx="0.2" ixy="0" ixz="0" iyy="0.3" iyz="0" izz="0.4"/></inertial>
+  </link>
+""" + "".join(f"""  <joint name="{side}_wheel_joint" type="continuous">
+    <parent link="base_link"/><child link="{side}_wheel"/>
+    <origin xyz="0 {y} 0"/><axis xyz="0 1 0"/>
+  </joint>
+  <link name="{side}_wheel">
+    <collision><origin rpy="1.5708 0 0"/><geometry><cylinder radius="0.1" length="0.04"/>
+    </geometry></collision>
+    <inertial><mass value="1"/>
+      <inertia ixx="0.0026" ixy="0" ixz="0" iyy="0.005" iyz="0" izz="0.0026"/></inertial>
+  </link>
+""" for side, y in (("left", 0.2), ("right", -0.2))) + "</robot>\n"
+
+
+def test_a_floating_root_joint_the_starter_locks_says_why_it_does_not_build(tmp_path):
+    r"""A ROS URDF whose root joint is ``floating`` (written for the test): the starter model
+    locks the joints between the root and the axle, and a joint of seven coordinates cannot
+    be locked at one value — the message said "locked value 0.0: expected a finite number",
+    a value the user never wrote. It names the joint and what to do."""
+    from wheeled_dyn.models.starter import inspect_urdf
+    from wheeled_dyn.models.starter_summary import summary
+    path = tmp_path / "floating.urdf"
+    path.write_text(FLOATING_ROOT)
+    lines, builds = summary(inspect_urdf(path, ()))
+    assert not builds
+    (why,) = [line for line in lines if "does not build" in line]
+    assert "base_footprint_joint" in why and "7 coordinates" in why and "fixed" in why, why
+    assert "locked value 0.0" not in why

@@ -104,9 +104,14 @@ def _urdf_models(source: UrdfSource, spec: ModelSpec) -> tuple[pin.Model, pin.Ge
             jid = model.getJointId(name)
             ids.append(jid)
             value = float(spec.locked.get(name, 0.0))
-            if model.joints[jid].nq != 1 or not np.isfinite(value):
+            if model.joints[jid].nq != 1:          # a URDF's floating or planar joint
+                raise ModelError(spec.name, name, f"a joint of {model.joints[jid].nq} "
+                                 "coordinates (floating or planar) cannot be locked at one "
+                                 "value: make it fixed in the URDF (the model's base gives "
+                                 "the body its motion)")
+            if not np.isfinite(value):
                 raise ModelError(spec.name, name, f"locked value {value!r}: expected a finite "
-                                                  "number for a joint with one coordinate")
+                                                  "number")
             q_ref[model.joints[jid].idx_q] = value
         model, geom = pin.buildReducedModel(model, geom, ids, q_ref)
     return model, geom
