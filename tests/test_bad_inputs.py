@@ -282,6 +282,22 @@ def test_a_folder_where_a_report_goes_leaves_the_old_reports_whole(tmp_path):
     assert sorted(p.name for p in out.iterdir()) == ["report.json", "report.md"]
 
 
+def test_a_full_disk_leaves_no_report_folder_behind(tmp_path, monkeypatch):
+    r"""Reports into a new folder ``out/deep`` on a full disk (every write fails with
+    ENOSPC): one error naming the file, and neither the folders made for them nor a
+    temporary file left (the empty folder stayed)."""
+    import errno
+    from wheeled_dyn.report.write import write_reports
+
+    def full(fd, *args, **kwargs):
+        raise OSError(errno.ENOSPC, "No space left on device")
+    monkeypatch.setattr(os, "fdopen", full)
+    _raises_picklable(lambda: write_reports({"report.md": "# r", "report.json": "{}"},
+                                            tmp_path / "out" / "deep"),
+                      InputFileError, "report.md", "No space left")
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_a_folder_given_as_a_model_is_named_so(tmp_path, monkeypatch):
     r"""A folder named where a model is expected (``adir``, as a name): "is a folder, expected
     a model file" (it was "names, or a model file path (name.toml): unknown model ...")."""

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import os
 import tempfile
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 from .errors import InputFileError
@@ -108,11 +108,14 @@ def current_umask() -> int:
 def write_files_atomic(files: Mapping[str, str | bytes], folder: str | Path) -> list[Path]:
     r"""Write ``files`` (name → text or bytes) into ``folder`` (created if needed), all or
     none: every file is staged under a temporary name first, and the renames happen only when
-    all are written. Returns the final paths."""
+    all are written; on a failure the folders made for them are removed too (a full disk left
+    an empty report folder). Returns the final paths."""
     out = Path(folder)
+    made = [p for p in (out, *out.parents) if not p.exists()]       # the deepest first
     try:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
+        _remove([], made)
         raise InputFileError(out, f"cannot create the folder: {exc.strerror}") from None
     staged: list[tuple[Path, Path]] = []
     mode = FILE_MODE & ~current_umask()      # as open() would create it
@@ -129,13 +132,15 @@ def write_files_atomic(files: Mapping[str, str | bytes], folder: str | Path) -> 
         for staged_file, final in staged:
             os.replace(staged_file, final)
     except OSError as exc:
-        _remove(staged)
+        _remove(staged, made)
         finals = {str(tmp): final for tmp, final in staged}
-        name = exc.filename if isinstance(exc.filename, str) else out
+        # a write that fails names no file (a full disk): the one being written
+        name = exc.filename if isinstance(exc.filename, str) else \
+            staged[-1][1] if staged else out
         name = finals.get(str(name), name)
         raise InputFileError(out, f"cannot write {Path(name).name} ({exc.strerror})") from None
     except BaseException:
-        _remove(staged)
+        _remove(staged, made)
         raise
     return [final for _, final in staged]
 
@@ -146,9 +151,16 @@ def write_atomic(path: str | Path, data: str | bytes) -> Path:
     return write_files_atomic({p.name: data}, p.parent)[0]
 
 
-def _remove(staged: list[tuple[Path, Path]]) -> None:
+def _remove(staged: list[tuple[Path, Path]], made: Sequence[Path] = ()) -> None:
+    r"""The ``staged`` temporary files, and the folders ``made`` for them (the deepest first;
+    each only where left empty)."""
     for tmp, _ in staged:
         try:
             tmp.unlink(missing_ok=True)
+        except OSError:
+            pass
+    for folder in made:
+        try:
+            folder.rmdir()
         except OSError:
             pass
