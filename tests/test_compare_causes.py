@@ -532,17 +532,19 @@ def test_an_equation_no_element_of_which_differs_is_not_agrees_only_if(tmp_path,
     (tmp_path / "dd_robot.toml").write_text((data / "dd_robot.toml").read_text())
     (tmp_path / "doc.toml").write_text((data / "dd_swivel_vw.toml").read_text().replace(
         'model = "dd_swivel.toml"', 'model = "dd_robot.toml"'))
+    from wheeled_dyn.compare.engine import deciding
     calls = []
-    decide = judgement.decide
+    decide = deciding.decide
 
-    def on_families_agree(d, funcs, sides):
-        found = decide(d, funcs, sides)
+    def on_families_agree(d, funcs, sides, seed=SEED):
+        found = decide(d, funcs, sides, seed)
         calls.append(sides)
         if len(calls) == 1 or found is None:
             return found
         return replace(found, equations=tuple(replace(e, verdict=Verdict.AGREES)
                                               for e in found.equations))
-    monkeypatch.setattr(judgement, "decide", on_families_agree)
+    monkeypatch.setattr(judgement, "decide", on_families_agree)     # the main grid's
+    monkeypatch.setattr(deciding, "decide", on_families_agree)      # the families' grid's
     from wheeled_dyn.compare.judge import rows             # elements at their rows' scale:
     monkeypatch.setattr(rows, "ELEMENT_FLOOR", 1.0)         # none of them differs here
     result = ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(
