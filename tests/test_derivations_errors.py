@@ -284,3 +284,16 @@ def test_a_name_python_reads_otherwise_is_one_error(tmp_path, name, read):
     message = str(info.value)
     assert f"{name!r} is read as {read!r}" in message and f":{_line_of(text, name)}:" in message
     assert str(pickle.loads(pickle.dumps(info.value))) == message
+
+
+def test_a_file_of_too_many_symbols_is_one_error(tmp_path):
+    r"""A file declaring more symbols than :data:`~wheeled_dyn.derivations.limits.MAX_SYMBOLS`
+    (each value is parsed and checked: 20 000 took three minutes) is refused at once, naming
+    the table and the limit."""
+    from wheeled_dyn.derivations.limits import MAX_SYMBOLS
+    extra = "".join(f'x{k} = {{ value = "d", units = "m" }}\n' for k in range(MAX_SYMBOLS))
+    text = GOOD.replace('g = { value = "g", units = "m/s**2" }\n',
+                        'g = { value = "g", units = "m/s**2" }\n' + extra)
+    with pytest.raises(DerivationError, match=f"at most {MAX_SYMBOLS}") as info:
+        load_derivation(_write(tmp_path, text))
+    assert "symbols" in str(info.value)

@@ -40,6 +40,10 @@ MAX_FUNCTION_ARGUMENT = 1e15
 #: comparison expands every element (its time grows faster than the number of terms: 210 terms
 #: take 9 s), and ``(a + b + c + d + e)**16`` has 4845 terms. Shipped elements have at most 8.
 MAX_EXPANDED_TERMS = 100
+#: Most symbols a derivation declares (each one's value is parsed and checked against the
+#: model: about 9 ms; a file of 20 000 unused symbols took three minutes). Shipped files
+#: declare at most about 30.
+MAX_SYMBOLS = 1000
 #: The arithmetic of constant parts other than powers (a division by zero is left to SymPy).
 _ARITHMETIC: dict[type[ast.operator], Callable[[float, float], float]] = {
     ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul,

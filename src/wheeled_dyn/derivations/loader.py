@@ -26,6 +26,7 @@ from .expressions import (RESERVED_NAMES, ExpressionError, UndeclaredNameError,
                           real_symbol, scan_names)
 from .latex import (LATEX_KEYS, LatexNames, LatexSource, is_printed_name, latex_to_sympy,
                     unwrap_latex)
+from .limits import MAX_SYMBOLS
 from .schema import SymbolSpec
 from .source import SourceText
 
@@ -187,7 +188,11 @@ class _Loader:
     # -- sections -------------------------------------------------------------------------
     def symbols(self) -> dict[str, SymbolSpec]:
         specs: dict[str, SymbolSpec] = {}
-        for name, entry in self.table("symbols").items():
+        table = self.table("symbols")
+        if len(table) > MAX_SYMBOLS:
+            raise self.fail("symbols", f"{len(table)} symbols declared; at most {MAX_SYMBOLS}",
+                            self.line("symbols"))
+        for name, entry in table.items():
             item, line = f"symbols.{name}", self.line("symbols", name)
             if isinstance(entry, str):
                 entry = {"value": entry}
