@@ -127,18 +127,34 @@ def scaled_values(d: Derivation, ps: ParameterSet, symbols: list[sp.Symbol],
     factors = np.exp(rng.uniform(low, high, (DRAWS, len(names))))
     shifts = rng.uniform(-REST_SHIFT, REST_SHIFT, (DRAWS, len(rests)))
     factors[0], shifts[0] = 1.0, 0.0
+    column = dict(zip(names, factors.T))
+    now = {k: v if groups[k] is None else v * column[str(groups[k])]
+           for k, v in values.items()}
+    now.update({k: values[k] + x for k, x in zip(rests, shifts.T) if k in values})
     specs = {s.symbol: s for s in d.symbols.values()}
-    out: dict[sp.Symbol, np.ndarray] = {s: np.empty(DRAWS) for s in symbols}
-    for j in range(DRAWS):
-        scale = dict(zip(names, factors[j]))
-        now = {k: v if groups[k] is None else v * scale[str(groups[k])]
-               for k, v in values.items()}
-        now.update({k: values[k] + x for k, x in zip(rests, shifts[j]) if k in values})
-        for s in symbols:
-            value = specs[s].value
-            assert value is not None
-            out[s][j] = model_value(value, now)
+    out = {}
+    for s in symbols:
+        value = specs[s].value
+        assert value is not None
+        out[s] = _at(value, now)
     return out
+
+
+def _at(value: sp.Expr, namespace: Mapping[str, np.ndarray | float]) -> np.ndarray:
+    r"""A model-namespace expression (``XX(link)`` calls, physical names) at arrays of the
+    namespace's values (:data:`DRAWS` each), compiled once (the names checked first by
+    :func:`~..sides.document.model_value` at the first draw)."""
+    first = {k: float(np.atleast_1d(v)[0]) for k, v in namespace.items()}
+    model_value(value, first)
+    calls = sorted(value.atoms(AppliedUndef), key=sp.default_sort_key)
+    places = [sp.Dummy() for _ in calls]
+    plain = sorted(value.free_symbols - {a for c in calls for a in c.free_symbols},
+                   key=sp.default_sort_key)
+    fn = numpy_function([*places, *plain], value.xreplace(dict(zip(calls, places))))
+    argv = [namespace[f"{c.func.__name__}({c.args[0]})"] for c in calls] + \
+        [namespace[s.name] for s in plain]
+    with np.errstate(all="ignore"):
+        return np.broadcast_to(np.asarray(fn(*argv), float), (DRAWS,)).copy()
 
 
 def changes_sign(fn, args: list[sp.Symbol], values: dict[sp.Symbol, np.ndarray]) -> bool:
