@@ -186,6 +186,25 @@ def test_units_name_the_term_whose_dimension_differs_from_the_rows(engine, tmp_p
     assert units and "I2*L1 is" in units[0], records["A[2,2]"].texts
 
 
+def test_units_name_the_odd_term_where_the_positions_have_none(engine, tmp_path):
+    r"""A double pendulum on a cart (``data/published/cart_double_pendulum*``, written for the
+    tests) whose file gives its positions no units, with the length a1 dropped from the
+    gravity term a1 g m1 sin θ1: Q[2] has one term in N beside one in N·m. The row's
+    dimension is what its input T (N·m) says — the term in N is named; the tie of Q[2]'s two
+    terms named its right neighbour L1 g m2 sin θ1, and B[2,2] was "dimensionless, expected
+    m⁻¹" (an element whose own terms disagree no longer votes for its row's dimension)."""
+    for name in ("cart_double_pendulum.toml", "cart_double_pendulum.urdf"):
+        (tmp_path / name).write_text((DATA / name).read_text())
+    text = (DATA / "cart_double_pendulum_equations.toml").read_text()
+    assert text.count("+ a1*g*m1*sin(th1) = T") == 1
+    path = tmp_path / "doc.toml"
+    path.write_text(text.replace("+ a1*g*m1*sin(th1) = T", "+ g*m1*sin(th1) = T"))
+    records = {r.element: r for r in engine.compare(load_derivation(path)).records}
+    units = [d.text for d in records["Q[2]"].diagnoses if d.kind == K.DIMENSION]
+    assert units and "term g*m1*sin(th1) is kg·m·s^-2" in units[0], records["Q[2]"].texts
+    assert not any(d.kind == K.DIMENSION for d in records["B[2,2]"].diagnoses)
+
+
 def test_a_term_written_too_much_is_named_so(engine, tmp_path):
     r"""The arm's d11 with a term −lc2² m1 written in it that the truth lacks: the document
     has it too much (truth − document = +lc2² m1 is the same sum, told backwards)."""

@@ -103,11 +103,12 @@ class DimensionChecker:
     def implied(self, key: str, index: tuple[int, ...], expr: sp.Expr) -> Dim | None:
         r"""The row dimension an element implies (its own dimension read back through the
         element's place: an inertia element times :math:`[q_j]/\mathrm{s}^2` ...), or None
-        when unknown or the element is 0."""
+        when unknown, the element is 0 or its own terms disagree."""
         if sp.sympify(expr) == 0:
             return None
-        got = self.dim(expr, [])
-        if got is None:
+        problems: list[str] = []
+        got = self.dim(expr, problems)
+        if got is None or problems:           # its own terms disagree: no vote
             return None
         if key in ("Q", "h"):
             return got
@@ -123,8 +124,11 @@ class DimensionChecker:
     def row_dimension(self, i: int, elements: list[tuple[str, tuple[int, ...], sp.Expr]]
                       ) -> None:
         r"""Set row ``i``'s dimension to the one most of its ``elements`` (key, index,
-        expression) imply, the unscaled one on a tie (a declared scale is kept)."""
-        if self.declared or self.row_dims[i] is None:
+        expression) imply, the unscaled one on a tie (a declared scale is kept). Where the
+        positions have no units, the velocity, gravity and input terms vote alone (a torque
+        row whose inputs are in N·m: its gravity element's term in N is the odd one, not its
+        neighbour in N·m)."""
+        if self.declared:
             return
         votes: dict[Dim, int] = {}
         for key, index, expr in elements:
