@@ -205,6 +205,31 @@ def test_units_name_the_odd_term_where_the_positions_have_none(engine, tmp_path)
     assert not any(d.kind == K.DIMENSION for d in records["B[2,2]"].diagnoses)
 
 
+@pytest.mark.parametrize("old, new, named", [
+    ("+ a1*dth1**2*m1*sin(th1)", "- a1*dth1**2*m1*sin(th1)",
+     "h[1]:dth1*dth1 truth − document = -2*a1*m1*sin(th1)"),
+    ("T - a1*g*m1*sin(th1)", "T - 2*a1*g*m1*sin(th1)",
+     "Q[2] truth − document = -a1*g*m1*sin(th1)")])
+def test_a_solved_form_names_the_term_of_the_equations_it_solved(engine, tmp_path, old, new,
+                                                                named):
+    r"""The double pendulum on a cart solved for its accelerations by Cramer's rule
+    (``data/published/cart_double_pendulum_solved.toml``, written for the tests) with one
+    term of the equations it solved wrong — a velocity term's sign, a gravity term doubled:
+    every solved row differs and none was named (its two inputs cannot give back its
+    inertia matrix). Read back before solving (its rows times A A_doc⁻¹, its inputs'
+    coefficients then the truth's), the term is named in its symbols."""
+    for name in ("cart_double_pendulum.toml", "cart_double_pendulum.urdf"):
+        (tmp_path / name).write_text((DATA / name).read_text())
+    text = (DATA / "cart_double_pendulum_solved.toml").read_text()
+    assert text.count(old) == 1, old
+    path = tmp_path / "doc.toml"
+    path.write_text(text.replace(old, new))
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False
+    said = " ".join(t for e in result.equations for t in e.texts)
+    assert "read back before it was solved" in said and named in said, said
+
+
 def test_a_term_written_too_much_is_named_so(engine, tmp_path):
     r"""The arm's d11 with a term −lc2² m1 written in it that the truth lacks: the document
     has it too much (truth − document = +lc2² m1 is the same sum, told backwards)."""

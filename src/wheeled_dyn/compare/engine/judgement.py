@@ -30,7 +30,7 @@ from ..judge.fitting import bases
 from ..judge.named import NAMED, name_terms, own_moments
 from ..judge.rows import drafts_of_row, row_values
 from ..judge.units import DimensionChecker
-from ..judge.unsolved import inertia_diagnoses
+from ..judge.unsolved import inertia_diagnoses, unsolved_terms
 from ..readings.describe import describe
 from ..readings.frames import Frame, FrameKind, evaluate_rule
 from .frames import bind_declared, choose_frames, declared_weights, id_frames, row_factors
@@ -199,7 +199,8 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     if decision is not None and not decision.equivalent and combined and id_sides is not None \
             and id_sides.doc.A is not None:
         solved = inertia_diagnoses(id_sides.doc.A, id_sides.doc.B, id_sides.truth.need("A"),
-                                   id_sides.B_true, found)
+                                   id_sides.B_true, found) or \
+            unsolved_terms(id_sides.doc, id_sides.truth, id_sides.B_true, d.velocities, found)
     equations = equation_records(d, decision, drafts, texts, label, grids, funcs, rules, solved)
     fixes = print_drafts(d, drafts, sides.grid.cs, texts, assumed, funcs.exprs)
     equations = corrected(d, equations, fixes)

@@ -85,4 +85,73 @@ def inertia_diagnoses(doc_A: np.ndarray, doc_B: np.ndarray | None, true_A: np.nd
                      + "; ".join(parts), "; ".join(parts), terms=tuple(terms))
 
 
-__all__ = ["implied_inertia", "inertia_diagnoses", "solved_rows"]
+#: Most differing entries of the equations read back before solving for them to be named
+#: (one term wrong in the source equations changes one or two; an inertia matrix the document
+#: inverted wrong changes every one, and the true one does not undo it).
+MAX_UNSOLVED = 3
+
+
+def _name(residual: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> str:
+    found = None if np.abs(residual).min() <= 0 else fit_factor(residual, bases)
+    found = found if found is not None else fit_sum(residual, bases)
+    return f"truth − document = {sp.sstr(found)}" if found is not None else "differs"
+
+
+def _undo(true_A: np.ndarray, doc_A: np.ndarray) -> np.ndarray | None:
+    r""":math:`A A_{doc}^{-1}` per sample (the document's rows back to the true equations'
+    frame), or None where the document's A is singular somewhere."""
+    try:
+        return true_A @ np.linalg.inv(doc_A)
+    except np.linalg.LinAlgError:
+        return None
+
+
+def unsolved_terms(doc, truth, true_B: np.ndarray | None, velocities: Sequence[sp.Symbol],
+                   bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> Diagnosis | None:
+    r"""A document solved for its accelerations (or its rows combined), read back before it
+    was: its rows times :math:`AA_{doc}^{-1}` (``doc``, ``truth``: arrays on the same
+    samples, A, Q, B and the products' tensor H on ``H_rows``). Where that undoes it — its
+    inputs' coefficients are then the truth's — the few terms of the velocity products,
+    gravity terms and inputs of the equations it solved that differ are named in its
+    symbols (a sign in one h term changed all three solved rows, and none was named); where
+    its inputs' coefficients differ too or more than :data:`MAX_UNSOLVED` entries do, the
+    inertia it inverted is not the truth's and nothing is said here."""
+    if doc.A is None or truth.A is None or not np.isfinite(doc.A).all():
+        return None
+    T = _undo(truth.A, doc.A)
+    if T is None:
+        return None
+    n = doc.A.shape[1]
+    parts: list[str] = []
+    if doc.B is not None and true_B is not None:
+        B = np.einsum("ski,sij->skj", T, doc.B)
+        if np.abs(true_B - B).max() > AGREE_TOL * max(float(np.abs(true_B).max()), 1e-300):
+            return None
+    if doc.Q is not None and truth.Q is not None:
+        Q = np.einsum("ski,si->sk", T, doc.Q)
+        scale = float(np.abs(truth.Q).max())
+        parts += [f"Q[{k + 1}] {_name(truth.Q[:, k] - Q[:, k], bases)}" for k in range(n)
+                  if np.abs(truth.Q[:, k] - Q[:, k]).max() > AGREE_TOL * scale]
+    rows = truth.H_rows
+    if doc.H is not None and truth.H is not None and rows is not None:
+        H = np.einsum("ski,sijl->skjl", T[rows], doc.H)
+        scale = float(np.abs(truth.H).max())
+        at = [(e, v[rows]) for e, v in bases]
+        for k in range(n):
+            for j in range(n):
+                for m in range(j, n):
+                    off = (truth.H[:, k, j, m] - H[:, k, j, m]) * (1 if j == m else 2)
+                    if np.abs(off).max() > AGREE_TOL * scale:
+                        product = f"{velocities[j]}*{velocities[m]}"
+                        parts.append(f"h[{k + 1}]:{product} {_name(off, at)}")
+    if not parts or len(parts) > MAX_UNSOLVED:
+        return None
+    text = "; ".join(parts)
+    return Diagnosis(K.MISSING, "read back before it was solved (its rows times A A_doc⁻¹: "
+                     f"its inputs' coefficients are then the truth's), the equations differ: "
+                     f"{text}", text, terms=tuple(p.split("= ", 1)[1] for p in parts
+                                                 if "= " in p))
+
+
+__all__ = ["MAX_UNSOLVED", "implied_inertia", "inertia_diagnoses", "solved_rows",
+           "unsolved_terms"]
