@@ -603,3 +603,14 @@ def test_random_latex_raises_only_expression_errors():
                 read()
             except ExpressionError:
                 pass
+
+
+@pytest.mark.parametrize("latex", [r"\sin^{-1}\phi", r"\cos^{-1}(\psi)", r"\tan^{-1}\phi"])
+def test_a_function_to_the_minus_one_is_ambiguous(latex):
+    r"""``\sin^{-1}\theta`` is the arcsine in many texts and 1/sin θ in others: it was read
+    as 1/sin θ without a word. One error says both readings and how to write either."""
+    with pytest.raises(LatexError, match="ambiguous") as caught:
+        latex_to_sympy(latex, NAMES)
+    assert r"\arc" in caught.value.reason and "^{-1}" in caught.value.reason
+    assert latex_to_sympy(r"(\sin\phi)^{-1}", NAMES) == "(sin(phi))**(-1)" or \
+        sympy.simplify(read(r"(\sin\phi)^{-1}") - 1 / sympy.sin(S["phi"])) == 0

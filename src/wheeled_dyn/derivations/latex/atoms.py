@@ -132,6 +132,10 @@ class Parser:
         if isinstance(token, Value):
             return power(token.text, token.sup)
         if isinstance(token, Func):
+            if token.sup is not None and token.sup.replace(" ", "") in ("-1", "(-1)"):
+                raise self.fail(f"\\{token.name}^{{-1}} is ambiguous (the inverse function, or "
+                                f"1/\\{token.name}): write \\arc{token.name} or "
+                                f"(\\{token.name} x)^{{-1}}")
             arg, sup = self.argument(token)
             return power(power(f"{token.name}({arg})", token.sup), sup)
         if isinstance(token, Op) and token.op == "(":
