@@ -111,6 +111,15 @@ def test_state_not_a_decimal_number(value, capsys):
     assert "phi" in line and "decimal number" in line, line
 
 
+@pytest.mark.parametrize("value", ["inf", "1_0"])
+def test_a_parameter_that_is_no_number_is_named_a_parameter(value, capsys):
+    r"""``--param m_S=inf``: one error naming the parameter as a parameter (it said "state
+    entry m_S")."""
+    assert main(["matrices", "wip", "--param", f"m_S={value}"]) == 2
+    line = _one_error_line(capsys)
+    assert "parameter m_S" in line and "state entry" not in line, line
+
+
 # -- output places ----------------------------------------------------------------------------
 def test_out_that_is_a_file(tmp_path, capsys, no_computing):
     target = tmp_path / "taken"

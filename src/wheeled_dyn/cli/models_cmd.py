@@ -18,23 +18,25 @@ def parse_assignments(text: str | None, what: str) -> dict[str, float]:
     :data:`~wheeled_dyn.models.urdf_values.MAX_MODEL_NUMBER` raises :class:`StateError`
     naming it."""
     from ..models.urdf_values import MAX_MODEL_NUMBER, MAX_MODEL_TEXT, NUMBER
+    # a --param entry is a parameter, not a state entry (its message said "state entry m_S")
+    error = ParameterError if what == "--param" else StateError
     out: dict[str, float] = {}
     if not text:
         return out
     for item in text.split(","):
         key, sep, value = item.partition("=")
         if not sep or not key.strip():
-            raise StateError(what, item, "name=value")
+            raise error(what, item, "name=value")
         key = key.strip()
         if key in out:
-            raise StateError(key, value, f"one value: {key} is given twice in {what}")
+            raise error(key, value, f"one value: {key} is given twice in {what}")
         if not NUMBER.fullmatch(value.strip()):      # float() reads "1_0" as 10, "nan", "inf"
-            raise StateError(key, value, "a decimal number")
+            raise error(key, value, "a decimal number")
         number = float(value)
         if number != number or number in (float("inf"), float("-inf")):
-            raise StateError(key, value, "a finite number")
+            raise error(key, value, "a finite number")
         if abs(number) > MAX_MODEL_NUMBER:
-            raise StateError(key, value, f"a number of magnitude at most {MAX_MODEL_TEXT}")
+            raise error(key, value, f"a number of magnitude at most {MAX_MODEL_TEXT}")
         out[key] = number
     return out
 
