@@ -348,3 +348,29 @@ Q = "[m*g*l/2*sin(theta)]"
     assert c.verdict == "differs", c.texts
     assert any(d.kind == K.EXTRA and d.terms == (still,) for d in c.diagnoses), c.texts
     assert result.equivalent is False
+
+
+@pytest.mark.parametrize("factor, equivalent", [("(Jyy - Jzz)", False), ("(Jxx - lc2**2*m2)", False),
+                                                ("(Jyy + Jzz)", True)])
+def test_an_equation_times_a_factor_of_one_links_inertias_is_not_equivalent(engine, tmp_path,
+                                                                            factor, equivalent):
+    r"""The Furuta pendulum (``data/published/furuta*``, written for the tests) with its
+    pendulum's equation times a factor of that one link's inertias: Jyy − Jzz vanishes for a
+    pendulum symmetric about its rod, Jxx − lc2² m2 for one whose radius of gyration about
+    its centre is its centre's distance from the joint — robots of the model (rods or a mass
+    added at its centre), where the equation is lost; neither vanishes for a change of its
+    density alone, and both agreed. Jyy + Jzz cannot vanish."""
+    from pathlib import Path
+    data = Path(__file__).parent / "data" / "published"
+    for name in ("furuta.toml", "furuta.urdf"):
+        (tmp_path / name).write_text((data / name).read_text())
+    text = (data / "furuta_equations.toml").read_text()
+    second = text.split("equations = [\n")[1].splitlines()[1].strip().strip('",')
+    lhs = second.removesuffix(" = 0")
+    assert lhs != second
+    path = tmp_path / "doc.toml"
+    path.write_text(text.replace(second, f"{factor}*({lhs}) = 0"))
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is equivalent, [c.explanation for c in result.causes]
+    singular = any(d.kind == K.SINGULAR for d in result.equations[1].diagnoses)
+    assert singular is not equivalent

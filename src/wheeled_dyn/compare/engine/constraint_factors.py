@@ -16,7 +16,7 @@ parameters alone is tried:
   :math:`0, \pm\pi/2, \pi`), where it takes both signs within a parameter set or is zero;
   its base is tried, so a square's sign change shows;
 - in the parameters alone: at the robots of other densities and springs
-  (:func:`~.parameter_factors.scaled_values`), as an equation's factor is.
+  (:mod:`.other_robots`), as an equation's factor is.
 """
 
 from __future__ import annotations
@@ -28,7 +28,8 @@ from ...compiled import numpy_function
 from ..grid.grid import special_states
 from ..sides.both import Sides
 from ..sides.document import DocumentFunctions
-from .parameter_factors import changes_sign, row_factors, scalable, scaled_values
+from .other_robots import scalable, scaled_values
+from .parameter_factors import changes_sign, row_factors
 
 #: A factor at most this fraction of its median magnitude over the samples is zero there.
 ZERO = 1e-12
