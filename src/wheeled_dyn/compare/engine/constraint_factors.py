@@ -15,7 +15,7 @@ parameters alone is tried:
 - in the positions: at the samples and at the special positions (each position at
   :math:`0, \pm\pi/2, \pi`), where it takes both signs within a parameter set or is zero;
   its base is tried, so a square's sign change shows;
-- in the parameters alone: at the robots of other densities and springs
+- in the parameters alone: at the other robots of the model
   (:mod:`.other_robots`), as an equation's factor is.
 """
 

@@ -77,7 +77,8 @@ def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides, seed: int = 20
         second = equivalence.mark_lost(second, (i,), (
             f"equation {i + 1} is not independent for every robot of the model: its inertia "
             f"terms share the factor {sp.sstr(factor)}, which vanishes for masses and "
-            "inertias the robot may have (its links' densities changed, its lengths kept), "
+            "inertias the robot may have (its links' masses and inertias changed, its "
+            "lengths kept), "
             "where W = A_doc A⁻¹ is singular (an equation multiplied by a factor that "
             "vanishes)"))
     if any(has_kind(e.diagnoses, DiagnosisKind.SINGULAR) for e in second.equations):
@@ -91,8 +92,8 @@ def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides, seed: int = 20
     which = f"equations {names} are" if len(wrong) > 1 else f"equation {names} is"
     return equivalence.mark_lost(second, wrong, (
         f"{which} not {'defined' if pole else 'independent'} for every robot of the model: "
-        "det A_doc changes sign between robots whose links' densities differ (lengths "
-        "kept), where the truth's A stays positive definite, so W = A_doc A⁻¹ is "
+        "det A_doc changes sign between robots whose links' masses and inertias differ "
+        "(lengths kept), where the truth's A stays positive definite, so W = A_doc A⁻¹ is "
         f"{'unbounded' if pole else 'singular'} for one between them (an equation "
         f"{'divided' if pole else 'multiplied'} by a factor of the masses that vanishes, "
         "alone or in a combination of the equations)"))

@@ -90,7 +90,7 @@ STATES = 8
 
 def robot_sign_changes(funcs: DocumentFunctions, sides: Sides, seed: int
                        ) -> tuple[tuple[int, ...], bool] | None:
-    r"""Where :math:`\det A_{doc}` takes both signs among the robots of other densities at one
+    r"""Where :math:`\det A_{doc}` takes both signs among the other robots of the model at one
     state (module text: :math:`\det A` does not, so :math:`\det W` vanishes or has a pole
     between them — an equation times, or divided by, a factor of the masses that vanishes,
     alone or in a combination of the equations): the equations involved and whether it is a
