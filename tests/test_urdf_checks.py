@@ -288,3 +288,20 @@ def test_nan_is_not_a_mass(tmp_path):
     with pytest.raises(ModelError) as err:
         read_urdf(path)
     assert err.value.item == "body"
+
+
+@pytest.mark.parametrize("mutation, named", [
+    (lambda t: t.replace("<robot ", '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" ', 1)
+     .replace("</robot>", '  <xacro:include filename="$(find wip)/wheel.xacro"/>\n</robot>'),
+     "<xacro:include>"),
+    (lambda t: re.sub(r'<mass value="[^"]*"/>', '<mass value="${body_mass}"/>', t, count=1),
+     '"${body_mass}"')])
+def test_a_xacro_source_is_named_so(tmp_path, mutation, named):
+    r"""A xacro source given where a URDF goes (ROS users keep robot.urdf.xacro): its macros
+    were left out and a robot of one link was built without a word (``${...}`` in a number
+    was refused, without saying why). One error says it is xacro and how to expand it."""
+    path = _write(tmp_path, "xacro", mutation(BASE))
+    with pytest.raises(InputFileError) as err:
+        read_urdf(path)
+    message = str(err.value)
+    assert "xacro source" in message and named in message and "expand it" in message, message

@@ -186,6 +186,26 @@ def check_link_names(path: Path, names: tuple[str, ...], where: str) -> None:
             raise UnknownNameError("link", name, links, where=f"{path}: {where}")
 
 
+def _not_xacro(path: Path, text: str, root: ET.Element) -> None:
+    r"""An :class:`InputFileError` for a xacro source given as a URDF (a ``<xacro:...>``
+    element, or ``${...}`` or ``$(...)`` in an attribute): read as it stands, its macros were
+    left out and a robot of one link was built without a word."""
+    macro = next((el for el in root.iter() if isinstance(el.tag, str) and el.tag.startswith(
+        "{http://www.ros.org/wiki/xacro}")), None)
+    if macro is not None:
+        what, fragment = f"<xacro:{macro.tag.split('}')[1]}>", "<xacro:"
+    else:
+        found = next((v for el in root.iter() for v in el.attrib.values()
+                      if "${" in v or "$(" in v), None)
+        if found is None:
+            return
+        what, fragment = f'"{found}"', found
+    at = text.find(fragment)
+    raise InputFileError(path, f"a xacro source ({what}), not a URDF: expand it first "
+                               "(xacro robot.urdf.xacro > robot.urdf)",
+                         line=None if at < 0 else text.count("\n", 0, at) + 1)
+
+
 def read_urdf(path: str | Path, locked: tuple[str, ...] = (),
               accept_inertia: tuple[str, ...] = ()) -> UrdfSource:
     r"""Read and check a URDF file.
@@ -212,6 +232,7 @@ def read_urdf(path: str | Path, locked: tuple[str, ...] = (),
                              line=line, column=column + 1) from None
     if root.tag != "robot":
         raise InputFileError(path, f"root element is <{root.tag}>, expected <robot>", line=1)
+    _not_xacro(path, text, root)
     check_urdf_tree(path, text, root, tuple(locked), tuple(accept_inertia))
     check_urdf_values(path, text, root)
     source = UrdfSource(path=path, text=text, outline=_outline(path, text))
