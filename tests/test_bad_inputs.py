@@ -371,3 +371,18 @@ def test_a_floating_root_joint_the_starter_locks_says_why_it_does_not_build(tmp_
     (why,) = [line for line in lines if "does not build" in line]
     assert "base_footprint_joint" in why and "7 coordinates" in why and "fixed" in why, why
     assert "locked value 0.0" not in why
+
+
+def test_a_model_without_a_moving_joint_says_so(tmp_path):
+    r"""A model whose URDF has one link, nothing moving (written for the test): asked for its
+    matrices, one error says it has no moving joint — it said "coordinate set 'full',
+    positions: expected a non-empty list of names", a set the user never wrote."""
+    from wheeled_dyn.errors import ModelError
+    (tmp_path / "one.urdf").write_text(
+        '<?xml version="1.0"?>\n<robot name="one"><link name="base_link"><inertial>'
+        '<mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>'
+        '</inertial></link></robot>\n')
+    (tmp_path / "one.toml").write_text('name = "one"\n[urdf]\npath = "one.urdf"\n[base]\n'
+                                       'type = "fixed"\nbody = "base_link"\n')
+    _raises_picklable(lambda: wd.matrices(str(tmp_path / "one.toml")), ModelError,
+                      "no moving joint")

@@ -176,6 +176,10 @@ def default_coordinate_set(wm: WheeledModel) -> str:
 
 def builtin_coordinate_set(wm: WheeledModel, name: str | None = None) -> CoordinateSet:
     r"""A built-in set of the model by name (default: the model's default set)."""
+    if wm.nv == 0:              # every joint fixed or locked: no coordinate to take
+        from ..errors import ModelError
+        raise ModelError(wm.name, "joints", "the model has no moving joint (every joint is "
+                         "fixed or locked): it has no coordinates, no equations of motion")
     name = name or default_coordinate_set(wm)
     specs = builtin_specs(wm)
     if name not in specs:
