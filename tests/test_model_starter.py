@@ -147,3 +147,30 @@ def test_bad_urdf_is_one_error(tmp_path, capsys, content, expected):
     err = capsys.readouterr().err
     assert len(err.strip().splitlines()) == 1 and str(urdf) in err and expected in err
     assert not (tmp_path / "r.toml").exists()
+
+
+def test_an_arm_on_a_balancing_robot_is_no_caster(tmp_path):
+    r"""The ROS balancer (``data/ros_balancer``) with a two-joint arm on top of its body
+    (written for the test): the arm's links were read as casters, and the starter wrote
+    ``pitch = false`` — a balancing robot carrying an arm kept level. A link above the drive
+    wheels' tops is no caster: ``pitch = true``, the arm's joints still named as moving."""
+    from pathlib import Path
+    text = (Path(__file__).parent / "data" / "ros_balancer" / "ros_balancer.urdf").read_text()
+    arm = "".join(f'''  <joint name="{name}_joint" type="revolute">
+    <parent link="{parent}"/><child link="{name}"/><origin xyz="0 0 {z}"/><axis xyz="0 1 0"/>
+    <limit lower="-2" upper="2" effort="10" velocity="2"/>
+  </joint>
+  <link name="{name}">
+    <inertial><origin xyz="0 0 0.1"/><mass value="0.5"/>
+      <inertia ixx="0.002" ixy="0" ixz="0" iyy="0.002" iyz="0" izz="0.0002"/></inertial>
+    <visual><geometry><cylinder radius="0.02" length="0.2"/></geometry></visual>
+  </link>
+''' for name, parent, z in (("upper_arm", "base_link", 0.4), ("forearm", "upper_arm", 0.2)))
+    urdf = tmp_path / "armed.urdf"
+    urdf.write_text(text.replace("</robot>", arm + "</robot>"))
+    out = tmp_path / "robot.toml"
+    assert main(["model", str(urdf), "--out", str(out)]) == 0
+    text = out.read_text()
+    line = next(x for x in text.splitlines() if x.startswith("pitch"))
+    assert line.startswith("pitch = true"), line
+    assert "upper_arm_joint, forearm_joint move freely" in text

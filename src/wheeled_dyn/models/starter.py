@@ -177,7 +177,8 @@ def inspect_urdf(path: str | Path, accept_inertia: tuple[str, ...] = ()) -> Urdf
         body = _body(pair, parent_joint, path_joints, root)
         pair, up, notes = _sides(pair, urdf.get_transform(body, root)[:3, :3], body)
     free = free_joints(joints, pair, path_joints)
-    casters = caster_links(urdf, tuple(w.link for w in pair), free) if pair else ()
+    casters = caster_links(urdf, pair, free, urdf.get_transform(body, root)[:3, :3]
+                           @ np.asarray(up), root) if pair else ()
     return UrdfInventory(Path(path), robot.name, root, tuple(links), joints, tuple(ordered),
                          pair, path_joints, accept,
                          tuple(sorted(why.items())) if pair is None else (), body, up, notes,

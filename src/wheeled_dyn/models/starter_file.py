@@ -110,7 +110,7 @@ def _free_joint_lines(inv: UrdfInventory) -> list[str]:
         return []
     names = ", ".join(_q(j) for j in free)
     return ["[joints]",
-            f"# CHECK: {', '.join(free)} move freely (a caster?): the model does not roll",
+            f"# CHECK: {', '.join(free)} move freely (a caster, an arm?): the model does not roll",
             "# them. A derivation that leaves them out holds them at 0, its truth carrying "
             "their links' mass",
             "# ('agrees only if ... carry no mass'). To make them part of the body, lock them:",

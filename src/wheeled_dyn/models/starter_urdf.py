@@ -7,6 +7,8 @@ from __future__ import annotations
 import io
 from pathlib import Path
 
+import numpy as np
+
 from ..errors import InertiaError, InputFileError, ModelError
 from .urdf_checks import ACCEPT_HINT
 from .urdf_source import check_link_names, read_urdf
@@ -56,13 +58,23 @@ def read_checked(path: str | Path, accept: tuple[str, ...] = ()):
 __all__ = ["STARTER_ACCEPT_HINT", "read_checked"]
 
 
-def caster_links(urdf, wheels: tuple[str, ...], free: tuple[str, ...]) -> tuple[str, ...]:
-    r"""The links that look like casters of a robot whose drive wheels are ``wheels``: a link
-    with a sphere (a caster ball), or one a moving joint of ``free`` turns (a swivel caster,
-    another wheel), sorted; they keep a wheeled body level (its model's ``pitch = false``)."""
+def caster_links(urdf, pair, free: tuple[str, ...], up: np.ndarray, root: str
+                 ) -> tuple[str, ...]:
+    r"""The links that look like casters of a robot whose drive wheels are ``pair`` (wheel
+    candidates): a link with a sphere (a caster ball), or one a moving joint of ``free`` turns
+    (a swivel caster, another wheel), whose origin lies no higher than the drive wheels' tops
+    (``up``: the up direction in the ``root`` frame, zero configuration) — an arm's links
+    above the body were taken for casters, and a balancing robot carrying one was read as
+    kept level; sorted. They keep a wheeled body level (its model's ``pitch = false``)."""
+    wheels = {w.link for w in pair}
+    top = max(float(np.dot(w.position, up)) + w.radius for w in pair)
+
+    def low(link: str) -> bool:
+        return float(np.dot(urdf.get_transform(link, root)[:3, 3], up)) <= top
+
     out = {link.name for link in urdf.robot.links if link.name not in wheels and any(
         shape.geometry is not None and shape.geometry.sphere is not None
         for shape in (*link.collisions, *link.visuals))}
     out |= {j.child for j in urdf.robot.joints if j.name in free}
-    return tuple(sorted(out))
+    return tuple(sorted(link for link in out if low(link)))
 
