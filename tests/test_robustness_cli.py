@@ -350,3 +350,13 @@ def test_a_model_path_that_does_not_exist_is_said_so(tmp_path, capsys, monkeypat
                  "--out", str(tmp_path / "out")]) == 2
     line = _one_error_line(capsys)
     assert "robots/dd_robot.toml does not exist" in line and str(tmp_path.parent) in line, line
+
+
+def test_matrices_of_numbers_too_far_apart_say_their_entries_may_be_round_off(capsys):
+    r"""``--param d=1e10`` (a body 1e10 m tall): A's small entries are round-off
+    (A[dx,dpsi] = -21316 where 0 is exact), printed without a word; a note says so. The
+    shipped numbers print none."""
+    assert main(["matrices", "wip", "--param", "d=1e10", "--state", "phi=0.3"]) == 0
+    assert "condition number" in capsys.readouterr().out
+    assert main(["matrices", "wip", "--state", "phi=0.3"]) == 0
+    assert "condition number" not in capsys.readouterr().out

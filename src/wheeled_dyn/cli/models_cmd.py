@@ -111,6 +111,24 @@ def _cmd_model(args: argparse.Namespace) -> int:
     return 0
 
 
+#: A's condition number above which :func:`_precision` notes that its smallest entries are
+#: round-off (double precision keeps about 16 digits).
+ILL_CONDITIONED = 1e10
+
+
+def _precision(A) -> list[str]:
+    r"""A note where A is so ill-conditioned that its smallest entries are round-off: numbers
+    of very different sizes (``--param d=1e10`` printed A[dx,dpsi] = -21316 where 0 is
+    exact, without a word) or a state where the coordinates are singular."""
+    import numpy as np
+    cond = float(np.linalg.cond(A))
+    if cond <= ILL_CONDITIONED:
+        return []
+    return [f"A's condition number is {cond:.2g} (double precision keeps about 16 digits): "
+            "its smallest entries may be round-off (numbers of very different sizes, or a "
+            "state where the coordinates are singular)"]
+
+
 def _cmd_matrices(args: argparse.Namespace) -> int:
     from ..constraints import CoordinateMap
     from ..coordinates import builtin_coordinate_set
@@ -120,19 +138,20 @@ def _cmd_matrices(args: argparse.Namespace) -> int:
     q, nu = cmap.state_from(parse_assignments(args.state, "--state"))
     from ..api import finite_terms
     terms = finite_terms(cmap, q, nu)
+    notes = [*wm.readings, *_precision(terms.A)]
     if args.json:
         out = {"model": wm.name, "coordinates": cs.name,
                "state": {**dict(zip(cs.positions, q.tolist())),
                          **dict(zip(cs.velocities, nu.tolist()))}, **terms.as_dict()}
         out["coordinates"] = list(cs.velocities)
         out["coordinate_set"] = cs.name
-        out["notes"] = list(wm.readings)
+        out["notes"] = notes
         print(json.dumps(out, indent=2))
         return 0
     vel = cs.velocities
     from ..models.conventions import convention_table
     print("\n".join(convention_table(wm).lines()))
-    print("".join(f"note: {r}\n" for r in wm.readings), end="")
+    print("".join(f"note: {r}\n" for r in notes), end="")
     print(f"model {wm.name}, coordinates {cs.name}: {cs.description}")
     print("state: " + ", ".join(f"{k}={v:g}" for k, v in zip((*cs.positions, *vel), (*q, *nu))))
     print(format_matrix("A", terms.A, vel, vel))
