@@ -360,3 +360,22 @@ def test_matrices_of_numbers_too_far_apart_say_their_entries_may_be_round_off(ca
     assert "condition number" in capsys.readouterr().out
     assert main(["matrices", "wip", "--state", "phi=0.3"]) == 0
     assert "condition number" not in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("old, new, said", [
+    ('model = "rod_pendulum"', 'model = "nosuch"', ":2: model: unknown model 'nosuch'"),
+    ('configuration = { theta = "theta" }', 'configuration = { nosuch = "theta" }',
+     ":5: coordinates.configuration.nosuch: unknown model coordinate 'nosuch'; valid: theta")])
+def test_a_derivations_unknown_model_names_its_file_and_line(tmp_path, capsys, old, new, said):
+    r"""A derivation naming a model, or a model coordinate, that does not exist: the error
+    names the file, the line and the key (the model's named neither file nor line; the
+    coordinate's glued the path to "configuration", with no line)."""
+    text = ('title = "rod"\nmodel = "rod_pendulum"\n[coordinates]\npositions = ["theta"]\n'
+            'configuration = { theta = "theta" }\n[symbols]\nm = "M(rod)"\nl = "length(rod)"\n'
+            'g = "g"\n[matrices]\nA = "[[m*l**2/3]]"\nQ = "[m*g*l/2*sin(theta)]"\n')
+    assert old in text
+    path = tmp_path / "doc.toml"
+    path.write_text(text.replace(old, new))
+    assert main(["compare", "rod_pendulum", str(path), "--out", str(tmp_path / "out")]) == 2
+    line = _one_error_line(capsys)
+    assert f"doc.toml{said}" in line, line

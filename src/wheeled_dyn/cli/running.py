@@ -56,6 +56,23 @@ def stage_display(bar) -> Callable[[str, str], None]:
     return show
 
 
+def _known_model(d) -> None:
+    r"""``d``'s model is one the registry knows; else one error naming the derivation file and
+    the line of its ``model =`` (it named neither)."""
+    from ..errors import UnknownNameError
+    from ..models.registry import model_entry
+    try:
+        model_entry(d.model)
+    except UnknownNameError as exc:
+        try:
+            lines = Path(d.path).read_text(encoding="utf-8").splitlines()
+        except OSError:
+            lines = []
+        line = next((i for i, x in enumerate(lines, 1) if x.lstrip().startswith("model")),
+                    None)
+        raise DerivationError(d.path, "model", str(exc), line) from None
+
+
 def run_comparison(files: Sequence[Path], samples: int, param_sets: int, seed: int = 2026,
                    model: str | None = None, engine: ComparisonEngine | None = None
                    ) -> list[DerivationResult]:
@@ -63,7 +80,7 @@ def run_comparison(files: Sequence[Path], samples: int, param_sets: int, seed: i
     before any comparison starts."""
     from ..derivations.linear_document import load_linear_document
     from ..derivations import load_derivations
-    from ..models.registry import model_entry, model_key
+    from ..models.registry import model_key
     from ..compare.engine import ComparisonEngine
     from ..compare.other_documents.linear import compare_linear, is_linear_document
     from ..compare.runtime.result_cache import note_parsed
@@ -71,7 +88,7 @@ def run_comparison(files: Sequence[Path], samples: int, param_sets: int, seed: i
     note_parsed(p for p in files if Path(p) not in linear)
     derivations = load_derivations([p for p in files if Path(p) not in linear])
     for item in [*derivations, *(load_linear_document(p) for p in linear)]:
-        model_entry(item.model)
+        _known_model(item)
         if model is not None and model_key(item.model) != model_key(model):
             missing = model.endswith((".toml", ".urdf")) and not Path(model).exists()
             raise DerivationError(item.path, "model", f"the file describes model "
@@ -174,14 +191,13 @@ def compare_report(files: Sequence[Path], samples: int, param_sets: int,
     import os
 
     from ..derivations import load_derivations
-    from ..models.registry import model_entry
     from ..report.symbols import remember_notation
     from ..compare.runtime.result_cache import note_parsed
     from ..compare.runtime.workers import Workers, can_fork
     note_parsed(files)
     derivations = load_derivations(files)
     for d in derivations:
-        model_entry(d.model)
+        _known_model(d)
         check_model_names(d)
         remember_notation(d)             # the workers and the parent render without re-reading
     paths = [d.path for d in derivations]

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 import sympy as sp
@@ -26,7 +27,7 @@ from ...constraints.reduction import CoordinateMap
 from ...coordinates import CoordinateSet
 from ...coordinates import builtin_coordinate_set, parse_coordinate_set
 from ...derivations.schema import Derivation
-from ...errors import DerivationError
+from ...errors import DerivationError, UnknownNameError
 from ...models.registry import model_version
 from .arrays import Arrays
 from .assumptions import Assumptions, apply_to_truth, position_ranges
@@ -86,8 +87,24 @@ def derivation_coordinate_set(d: Derivation, ps: ParameterSet) -> CoordinateSet:
     if spec.velocity_map:
         raw["velocity_map"] = {k: str(sp.sympify(v).xreplace(to_model))
                                for k, v in spec.velocity_map.items()}
-    return parse_coordinate_set(raw, "inline", wm.coordinate_names, tuple(wm.named_lengths()),
-                                where=str(d.path))
+    try:
+        return parse_coordinate_set(raw, "inline", wm.coordinate_names,
+                                    tuple(wm.named_lengths()), where=str(d.path))
+    except UnknownNameError as exc:          # the file, its line and key; not the path glued
+        if exc.kind != "model coordinate":   # to "configuration" with no line
+            raise
+        raise DerivationError(d.path, f"coordinates.configuration.{exc.name}",
+                              f"unknown model coordinate {exc.name!r}; valid: "
+                              + ", ".join(exc.valid or ()), _line(d.path, exc.name)) from None
+
+
+def _line(path, key: str) -> int | None:
+    r"""The first line of the file ``path`` that names ``key`` (None where unreadable)."""
+    try:
+        lines = Path(path).read_text(encoding="utf-8").splitlines()
+    except OSError:
+        return None
+    return next((i for i, x in enumerate(lines, 1) if key in x), None)
 
 
 def _identifiers(expr: sp.Expr) -> sp.Expr:
