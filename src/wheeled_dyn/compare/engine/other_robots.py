@@ -35,16 +35,16 @@ import sympy as sp
 from sympy.core.function import AppliedUndef
 
 from ...compiled import numpy_function
+from ...derivations.namespace import GEOMETRY_NAMES, KHALIL_NAMES, PHYSICAL_NAMES
 from ...derivations.schema import Derivation
 from ..grid.samples import ParameterSet
 from ..sides.document import model_value
 
-#: A link's parameters that scale with its density.
-DENSITY = frozenset({"M", "MX", "MY", "MZ", "XX", "XY", "XZ", "YY", "YZ", "ZZ",
-                     "IXX", "IXY", "IXZ", "IYY", "IYZ", "IZZ"})
-#: A link's parameters its density leaves (its lengths).
-LENGTHS = frozenset({"CX", "CY", "CZ", "length", "radius", "width", "origin_x", "origin_y",
-                     "origin_z"})
+#: A link's parameters that scale with its density: its mass, first moments and inertias
+#: (Khalil's about its origin, and those about its centre).
+DENSITY = frozenset({*KHALIL_NAMES, *PHYSICAL_NAMES[3:]})
+#: A link's parameters its density leaves: its centre and the model's lengths.
+LENGTHS = frozenset({*PHYSICAL_NAMES[:3], *GEOMETRY_NAMES})
 #: Names of a model's namespace a density leaves: the gravity and the wheels' geometry.
 KEPT_NAMES = frozenset({"g", "R", "L"})
 #: Robots tried per parameter set, the range of each link's density factor (and each

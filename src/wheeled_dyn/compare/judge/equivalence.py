@@ -152,7 +152,8 @@ def _multiplier_floor(doc_L: np.ndarray, mixed: np.ndarray) -> np.ndarray:
 
 
 def decide_row(i: int, doc: Side, truth: Side, W: np.ndarray,
-               multipliers: np.ndarray | None = None) -> EquationDecision:
+               multipliers: np.ndarray | None = None,
+               multiplier_floor: np.ndarray | None = None) -> EquationDecision:
     r"""The verdict on equation ``i`` (module text), :math:`W` known; ``multipliers``: the
     true multipliers' coefficients recombined for the document (:func:`multiplier_terms`),
     where both sides keep the constraints."""
@@ -164,7 +165,8 @@ def decide_row(i: int, doc: Side, truth: Side, W: np.ndarray,
             continue
         D2 = D[:, i:i + 1] if D.ndim == 2 else D[:, i, :]
         T3 = T[:, :, None] if T.ndim == 2 else T
-        least = inertia if D is not doc.L else _multiplier_floor(D, T)
+        least = inertia if D is not doc.L else multiplier_floor if \
+            multiplier_floor is not None else _multiplier_floor(D, T)
         rel, finite, _ = _part(D2, T3, w, least)
         residuals.append(rel)
         masks.append(finite)
@@ -215,9 +217,9 @@ def sign_changes(W: np.ndarray, sets: int, across: bool = False
     sign of :math:`\det A_{doc}`, and the robots between two parameter sets (masses,
     inertias and lengths in between, as physical as theirs) are robots of the model too:
     a factor :math:`m_1 - 2m_2` that is negative for one set and positive for another
-    vanishes for one of them. Between random samples a zero and a pole look alike by sign; they differ by
-    magnitude: the samples nearest a zero make :math:`|\det W|` small against its median, those
-    nearest a pole large. At a zero the equations are those the null vector of :math:`W^T`
+    vanishes for one of them. Between random samples a zero and a pole look alike by sign;
+    they differ by magnitude: the samples nearest a zero make :math:`|\det W|` small against
+    its median, those nearest a pole large. At a zero the equations are those the null vector of :math:`W^T`
     involves; at a pole (an equation divided by a factor that vanishes) those whose weights
     :math:`w_i` grow there against their median."""
     det = np.full(len(W), np.nan)
@@ -285,7 +287,9 @@ def decide(doc: Side, truth: Side, sets: int,
         doc = replace(doc, L=unit_multipliers(doc.L))
     multipliers = None if doc.L is None or truth.L is None else \
         multiplier_terms(doc.L, truth.L, W)
-    decisions = [decide_row(i, doc, truth, W, multipliers) for i in range(n)]
+    floor = None if multipliers is None or doc.L is None else \
+        _multiplier_floor(doc.L, multipliers)            # every row's, made once
+    decisions = [decide_row(i, doc, truth, W, multipliers, floor) for i in range(n)]
     lost = singular_everywhere(doc.A, truth.A, W)
     where = "at every sample" if lost is not None else ""
     rows = lost
@@ -333,6 +337,5 @@ def mark_lost(decision: SystemDecision, rows: tuple[int, ...], text: str) -> Sys
 
 
 __all__ = ["EquationDecision", "FLOOR", "NULL_SHARE", "SINGULAR_TOL", "Side", "SystemDecision",
-           "combination_rows", "decide", "decide_row", "mark_lost", "multiplier_terms", "relative_det",
-           "sign_changes",
-           "singular_everywhere", "vanishing_at"]
+           "combination_rows", "decide", "decide_row", "mark_lost", "multiplier_terms",
+           "relative_det", "sign_changes", "singular_everywhere", "vanishing_at"]

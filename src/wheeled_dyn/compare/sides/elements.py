@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 import sympy as sp
 
+from ...derivations.namespace import GEOMETRY_NAMES, KHALIL_NAMES, PHYSICAL_NAMES
 from ...derivations.schema import Derivation
 from ..grid.arrays import Arrays
 from ..sides.document import DocumentFunctions, expanded
@@ -97,10 +98,8 @@ def _h_values(funcs: DocumentFunctions, H_doc: np.ndarray, H_true: np.ndarray, n
 #: The kinds of a link's parameters a symbol without units may be one of (its value one call:
 #: ``m = "M(pole)"``): symbols of one kind may have been written for each other.
 PARAMETER_KINDS = {"M": "mass", **{k: "first moment" for k in ("MX", "MY", "MZ")},
-                   **{k: "moment of inertia" for k in ("XX", "XY", "XZ", "YY", "YZ", "ZZ", "IXX",
-                                                       "IXY", "IXZ", "IYY", "IYZ", "IZZ")},
-                   **{k: "length" for k in ("CX", "CY", "CZ", "length", "radius", "width",
-                                            "origin_x", "origin_y", "origin_z")}}
+                   **{k: "moment of inertia" for k in (*KHALIL_NAMES[4:], *PHYSICAL_NAMES[3:])},
+                   **{k: "length" for k in (*PHYSICAL_NAMES[:3], *GEOMETRY_NAMES)}}
 
 
 def _kind(spec) -> str | None:
