@@ -27,6 +27,16 @@ from .diagnose import AGREE_TOL
 from .fitting import fit_factor, fit_sum
 
 
+def _fit(residual: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> sp.Expr | None:
+    r"""Truth − document as a monomial, or a sum of two, in the document's names, or None."""
+    found = None if np.abs(residual).min() <= 0 else fit_factor(residual, bases)
+    return found if found is not None else fit_sum(residual, bases)
+
+
+def _said(found: sp.Expr | None) -> str:
+    return f"truth − document = {sp.sstr(found)}" if found is not None else "differs"
+
+
 def solved_rows(doc_A: np.ndarray) -> dict[int, tuple[int, float]]:
     r"""The rows of the document's A with one constant nonzero entry: row → (the acceleration
     it is solved for, that entry)."""
@@ -72,10 +82,8 @@ def inertia_diagnoses(doc_A: np.ndarray, doc_B: np.ndarray | None, true_A: np.nd
             residual = true_A[:, i, j] - M[:, i, j]
             if np.abs(residual).max() <= AGREE_TOL * scale:
                 continue
-            found = None if np.abs(residual).min() <= 0 else fit_factor(residual, bases)
-            found = found if found is not None else fit_sum(residual, bases)
-            what = f"truth − document = {sp.sstr(found)}" if found is not None else "differs"
-            parts.append(f"A[{i + 1},{j + 1}] {what}")
+            found = _fit(residual, bases)
+            parts.append(f"A[{i + 1},{j + 1}] {_said(found)}")
             if found is not None:
                 terms.append(sp.sstr(found))
     if not parts:
@@ -91,10 +99,6 @@ def inertia_diagnoses(doc_A: np.ndarray, doc_B: np.ndarray | None, true_A: np.nd
 MAX_UNSOLVED = 3
 
 
-def _name(residual: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> str:
-    found = None if np.abs(residual).min() <= 0 else fit_factor(residual, bases)
-    found = found if found is not None else fit_sum(residual, bases)
-    return f"truth − document = {sp.sstr(found)}" if found is not None else "differs"
 
 
 def _undo(true_A: np.ndarray, doc_A: np.ndarray) -> np.ndarray | None:
@@ -122,7 +126,7 @@ def unsolved_terms(doc, truth, true_B: np.ndarray | None, velocities: Sequence[s
     if T is None:
         return None
     n = doc.A.shape[1]
-    parts: list[str] = []
+    parts: list[tuple[str, sp.Expr | None]] = []           # (where, truth − document)
     if doc.B is not None and true_B is not None:
         B = np.einsum("ski,sij->skj", T, doc.B)
         if np.abs(true_B - B).max() > AGREE_TOL * max(float(np.abs(true_B).max()), 1e-300):
@@ -130,7 +134,7 @@ def unsolved_terms(doc, truth, true_B: np.ndarray | None, velocities: Sequence[s
     if doc.Q is not None and truth.Q is not None:
         Q = np.einsum("ski,si->sk", T, doc.Q)
         scale = float(np.abs(truth.Q).max())
-        parts += [f"Q[{k + 1}] {_name(truth.Q[:, k] - Q[:, k], bases)}" for k in range(n)
+        parts += [(f"Q[{k + 1}]", _fit(truth.Q[:, k] - Q[:, k], bases)) for k in range(n)
                   if np.abs(truth.Q[:, k] - Q[:, k]).max() > AGREE_TOL * scale]
     rows = truth.H_rows
     if doc.H is not None and truth.H is not None and rows is not None:
@@ -143,14 +147,14 @@ def unsolved_terms(doc, truth, true_B: np.ndarray | None, velocities: Sequence[s
                     off = (truth.H[:, k, j, m] - H[:, k, j, m]) * (1 if j == m else 2)
                     if np.abs(off).max() > AGREE_TOL * scale:
                         product = f"{velocities[j]}*{velocities[m]}"
-                        parts.append(f"h[{k + 1}]:{product} {_name(off, at)}")
+                        parts.append((f"h[{k + 1}]:{product}", _fit(off, at)))
     if not parts or len(parts) > MAX_UNSOLVED:
         return None
-    text = "; ".join(parts)
+    text = "; ".join(f"{where} {_said(found)}" for where, found in parts)
     return Diagnosis(K.MISSING, "read back before it was solved (its rows times A A_doc⁻¹: "
                      f"its inputs' coefficients are then the truth's), the equations differ: "
-                     f"{text}", text, terms=tuple(p.split("= ", 1)[1] for p in parts
-                                                 if "= " in p))
+                     f"{text}", text, terms=tuple(sp.sstr(found) for _, found in parts
+                                                 if found is not None))
 
 
 __all__ = ["MAX_UNSOLVED", "implied_inertia", "inertia_diagnoses", "solved_rows",
