@@ -64,13 +64,9 @@ def _known_model(d) -> None:
     try:
         model_entry(d.model)
     except UnknownNameError as exc:
-        try:
-            lines = Path(d.path).read_text(encoding="utf-8").splitlines()
-        except OSError:
-            lines = []
-        line = next((i for i, x in enumerate(lines, 1) if x.lstrip().startswith("model")),
-                    None)
-        raise DerivationError(d.path, "model", str(exc), line) from None
+        from ..derivations.source import key_line
+        raise DerivationError(d.path, "model", str(exc), key_line(d.path, None, "model")
+                              ) from None
 
 
 def run_comparison(files: Sequence[Path], samples: int, param_sets: int, seed: int = 2026,

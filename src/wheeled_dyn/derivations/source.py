@@ -15,7 +15,7 @@ from functools import cached_property
 from pathlib import Path
 from typing import Any
 
-from ..errors import InputFileError
+from ..errors import InputFileError, WheeledDynError
 
 _TOML_POSITION = re.compile(r"\(at line (\d+), column (\d+)\)")
 #: A table header starts in column 0 (as written in every shipped file and the documentation):
@@ -119,6 +119,15 @@ def read_small_text(p: Path) -> str:
         raise InputFileError(p, f"not UTF-8 text (byte {exc.start})") from None
     except OSError as exc:
         raise InputFileError(p, f"cannot read the file ({exc.strerror})") from None
+
+
+def key_line(path: str | Path, table: str | None, key: str) -> int | None:
+    r"""The line of ``key`` in ``[table]`` of the file ``path`` (:meth:`SourceText.line_of`),
+    or None where the file cannot be read: for an error found after the file was parsed."""
+    try:
+        return SourceText(Path(path), read_small_text(Path(path))).line_of(table, key)
+    except (OSError, WheeledDynError):
+        return None
 
 
 def read_toml(path: str | Path) -> tuple[dict[str, Any], SourceText]:

@@ -18,7 +18,6 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 import sympy as sp
@@ -27,6 +26,7 @@ from ...constraints.reduction import CoordinateMap
 from ...coordinates import CoordinateSet
 from ...coordinates import builtin_coordinate_set, parse_coordinate_set
 from ...derivations.schema import Derivation
+from ...derivations.source import key_line
 from ...errors import DerivationError, UnknownNameError
 from ...models.registry import model_version
 from .arrays import Arrays
@@ -95,16 +95,8 @@ def derivation_coordinate_set(d: Derivation, ps: ParameterSet) -> CoordinateSet:
             raise
         raise DerivationError(d.path, f"coordinates.configuration.{exc.name}",
                               f"unknown model coordinate {exc.name!r}; valid: "
-                              + ", ".join(exc.valid or ()), _line(d.path, exc.name)) from None
-
-
-def _line(path, key: str) -> int | None:
-    r"""The first line of the file ``path`` that names ``key`` (None where unreadable)."""
-    try:
-        lines = Path(path).read_text(encoding="utf-8").splitlines()
-    except OSError:
-        return None
-    return next((i for i, x in enumerate(lines, 1) if key in x), None)
+                              + ", ".join(exc.valid or ()),
+                              key_line(d.path, "coordinates", "configuration")) from None
 
 
 def _identifiers(expr: sp.Expr) -> sp.Expr:

@@ -214,14 +214,16 @@ def sign_changes(W: np.ndarray, sets: int, across: bool = False
     pole rather than a zero, else None. ``sets``: the number of parameter sets, the samples
     being grouped by set (K × N in order). Across sets it is the same test: the truth's
     :math:`\det A` never changes sign (A is positive definite), so :math:`\det W` has the
-    sign of :math:`\det A_{doc}`, and the robots between two parameter sets (masses,
-    inertias and lengths in between, as physical as theirs) are robots of the model too:
-    a factor :math:`m_1 - 2m_2` that is negative for one set and positive for another
-    vanishes for one of them. Between random samples a zero and a pole look alike by sign;
-    they differ by magnitude: the samples nearest a zero make :math:`|\det W|` small against
-    its median, those nearest a pole large. At a zero the equations are those the null vector of :math:`W^T`
-    involves; at a pole (an equation divided by a factor that vanishes) those whose weights
-    :math:`w_i` grow there against their median."""
+    sign of :math:`\det A_{doc}`; the parameter sets are drawn in ranges of masses, inertias
+    and lengths that hold every robot between two of them, taken for robots of the model too
+    (where a length between made the coordinates singular, the truth would be singular there:
+    not seen in the shipped models or the tests), so a factor :math:`m_1 - 2m_2` negative for
+    one set and positive for another vanishes for one of them. Between random samples a zero
+    and a pole look alike by sign; they differ by magnitude: the samples nearest a zero make
+    :math:`|\det W|` small against its median, those nearest a pole large. At a zero the
+    equations are those the null vector of :math:`W^T` involves; at a pole (an equation
+    divided by a factor that vanishes) those whose weights :math:`w_i` grow there against
+    their median."""
     det = np.full(len(W), np.nan)
     finite = np.isfinite(W).all(axis=(1, 2))
     det[finite] = np.linalg.det(W[finite])

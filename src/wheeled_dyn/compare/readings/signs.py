@@ -104,10 +104,10 @@ def best_reading(d: Derivation, evaluate: Callable[[Sequence[int]], Arrays],
     by at least :data:`MIN_GAIN` agreeing elements — or by :data:`MIN_GAIN_ORDER` where every
     one of the ``total`` elements agrees under it (one input's sign in a robot's two rows:
     two elements, and nothing else left to explain; ``complete_gain`` for a file that declares
-    its convention unknown, where one input's sign shows in one element) — else None. ``evaluate(s)`` gives the
-    document's arrays at the flipped states, ``score(arrays)`` the number of agreeing
-    elements; ``score_readings(arrays, s, [(t, order), ...])``, where given, the scores of
-    several readings of the inputs at once (the same numbers)."""
+    its convention unknown, where one input's sign shows in one element) — else None.
+    ``evaluate(s)`` gives the document's arrays at the flipped states, ``score(arrays)`` the
+    number of agreeing elements; ``score_readings(arrays, s, [(t, order), ...])``, where
+    given, the scores of several readings of the inputs at once (the same numbers)."""
     options = readings(d)
     if not options:
         return None
