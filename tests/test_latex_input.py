@@ -11,8 +11,9 @@ import sympy
 
 from wheeled_dyn.derivations import DerivationNameError, load_derivation
 from wheeled_dyn.derivations.expressions import UndeclaredNameError, real_symbol
-from wheeled_dyn.derivations.latex import (LatexError, LatexNames, latex_to_sympy,
-                                           parse_latex_expression, split_latex_matrix)
+from wheeled_dyn.derivations.latex import (LatexError, LatexNames, is_printed_name,
+                                           latex_to_sympy, parse_latex_expression,
+                                           split_latex_matrix)
 from wheeled_dyn.errors import DerivationError
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -354,6 +355,19 @@ def test_ambiguous_run_shows_both_readings():
     with pytest.raises(LatexError, match="phi or as varphi"):
         latex_to_sympy(r"\varphi", LatexNames(("phi", "varphi")))
     assert pickle.loads(pickle.dumps(caught.value)).readings == caught.value.readings
+
+
+def test_script_ell_is_a_length_l():
+    r"""``\ell``, a length's script l as papers print it, is ``ell`` where the file declares it,
+    else ``l`` (as ``\varphi`` is ``phi``), and may be a declared symbol's printed form."""
+    names = ("m", "l", "l1", "g", "theta", "dtheta", "ddtheta")
+    got = latex_to_sympy(r"m \ell^2 \ddot{\theta} + \ell_1 m g",
+                         LatexNames(names, {"theta": "dtheta"}, {"theta": "ddtheta"}))
+    assert sympy.sympify(got) == sympy.sympify("m*l**2*ddtheta + l1*m*g")
+    assert latex_to_sympy(r"\ell", LatexNames(("ell",))) == "ell"
+    with pytest.raises(LatexError, match="l or as ell|ell or as l"):
+        latex_to_sympy(r"\ell", LatexNames(("l", "ell")))
+    assert is_printed_name(r"\ell") and is_printed_name(r"\ell_{c1}")
 
 
 def test_unknown_names():

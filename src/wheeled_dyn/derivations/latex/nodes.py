@@ -37,9 +37,10 @@ GREEK: frozenset[str] = frozenset(
     "alpha beta gamma delta epsilon zeta eta theta iota kappa lambda mu nu xi omicron rho sigma "
     "tau upsilon phi chi psi omega Gamma Delta Theta Lambda Xi Pi Sigma Upsilon Phi Psi Omega"
     .split())
-#: Variant letters: read as the plain letter when only that one is declared.
+#: Variant letters: read as the plain letter when only that one is declared (``\ell`` a
+#: length's script l).
 VARIANTS: Mapping[str, str] = {"varphi": "phi", "vartheta": "theta", "varepsilon": "epsilon",
-                               "varrho": "rho", "varsigma": "sigma"}
+                               "varrho": "rho", "varsigma": "sigma", "ell": "l"}
 #: Fonts: a name in any of them is the name (``\mathbb{M}``, ``\mathbf{MZ_1}``).
 FONTS: frozenset[str] = frozenset({"mathbf", "mathrm", "mathit", "mathsf", "mathtt", "mathbb",
                                    "mathcal", "mathfrak", "mathscr", "boldsymbol", "bm"})
