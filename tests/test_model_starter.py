@@ -174,3 +174,28 @@ def test_an_arm_on_a_balancing_robot_is_no_caster(tmp_path):
     line = next(x for x in text.splitlines() if x.startswith("pitch"))
     assert line.startswith("pitch = true"), line
     assert "upper_arm_joint, forearm_joint move freely" in text
+
+
+def test_a_urdf_in_millimetres_gets_a_check_note(tmp_path):
+    r"""The robot of ``dd_robot.urdf`` with its lengths written in millimetres (a CAD export):
+    the starter says to check the units, beside the radius and track it read (a radius of
+    80 m passed without a word); the robot in metres gets no such note."""
+    import re
+    from pathlib import Path
+
+    from wheeled_dyn.models.starter import inspect_urdf
+    source = Path(__file__).parent / "data" / "published" / "dd_robot.urdf"
+    text = source.read_text()
+
+    def mm(match: re.Match) -> str:
+        values = " ".join(f"{1000 * float(v):g}" for v in match.group(2).split())
+        return f'{match.group(1)}="{values}"'
+    urdf = tmp_path / "robot_mm.urdf"
+    urdf.write_text(re.sub(r'\b(xyz|radius|length|size)="([^"]*)"', mm, text))
+    notes = inspect_urdf(urdf).notes
+    assert any(n.startswith("CHECK units: a wheel radius of 80 m and a track of 360 m")
+               for n in notes), notes
+    assert not any("units" in n for n in inspect_urdf(source).notes)
+    out = tmp_path / "robot.toml"
+    assert main(["model", str(urdf), "--out", str(out)]) == 0
+    assert "# CHECK units" in out.read_text()

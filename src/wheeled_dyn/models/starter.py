@@ -27,6 +27,10 @@ from .starter_urdf import caster_links, read_checked
 
 #: Largest relative difference of two wheel radii to pair them.
 PAIR_RADIUS_TOL = 1e-6
+#: A wheel radius (m) above which the starter notes that the URDF may not be in metres (the
+#: largest wheels on robots and vehicles are about a metre across; a file exported from CAD in
+#: millimetres gives radii of tens of metres).
+PLAUSIBLE_RADIUS = 2.0
 
 
 @dataclass(frozen=True)
@@ -176,6 +180,7 @@ def inspect_urdf(path: str | Path, accept_inertia: tuple[str, ...] = ()) -> Urdf
     if pair is not None:
         body = _body(pair, parent_joint, path_joints, root)
         pair, up, notes = _sides(pair, urdf.get_transform(body, root)[:3, :3], body)
+        notes += _units_note(pair)
     free = free_joints(joints, pair, path_joints)
     casters = caster_links(urdf, pair, free, urdf.get_transform(body, root)[:3, :3]
                            @ np.asarray(up), root) if pair else ()
@@ -183,6 +188,19 @@ def inspect_urdf(path: str | Path, accept_inertia: tuple[str, ...] = ()) -> Urdf
                          pair, path_joints, accept,
                          tuple(sorted(why.items())) if pair is None else (), body, up, notes,
                          casters)
+
+
+def _units_note(pair: tuple[WheelCandidate, WheelCandidate]) -> tuple[str, ...]:
+    r"""A CHECK note where the wheels are larger than :data:`PLAUSIBLE_RADIUS`: URDF lengths
+    are metres (REP 103), and a file in millimetres is 1000 times too large (its masses and
+    inertias are read as written)."""
+    left, right = pair
+    if left.radius <= PLAUSIBLE_RADIUS:
+        return ()
+    track = float(np.linalg.norm(np.subtract(left.position, right.position)))
+    return (f"CHECK units: a wheel radius of {left.radius:g} m and a track of {track:g} m; "
+            "URDF lengths are metres (REP 103): a file exported in millimetres is 1000 times "
+            "too large",)
 
 
 def _body(pair, parent_joint, path_joints, root: str) -> str:
