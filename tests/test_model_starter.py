@@ -199,3 +199,31 @@ def test_a_urdf_in_millimetres_gets_a_check_note(tmp_path):
     out = tmp_path / "robot.toml"
     assert main(["model", str(urdf), "--out", str(out)]) == 0
     assert "# CHECK units" in out.read_text()
+
+
+@pytest.mark.parametrize("old, new, expected", [
+    # the left wheel 5 cm ahead: parallel spin axes, centres offset (it said "wheel spin axis
+    # is not along the axle")
+    ('<origin xyz="0 0.18 0"', '<origin xyz="0.05 0.18 0"', "the wheels are not on one axle: "
+     "their spin axes are parallel, but the line between their centres is 0.138 rad off them "
+     "(the centres 0.05 m apart"),
+    # the left wheel turned a fifth of a radian about the vertical
+    ('<origin xyz="0 0.18 0" rpy="-1.5707963267948966 0 0"',
+     '<origin xyz="0 0.18 0" rpy="-1.5707963267948966 0 0.2"',
+     "wheel spin axis is not along the axle (the line between the wheel centres): 0.2 rad off"),
+])
+def test_wheels_off_one_axle_are_named_as_they_are(tmp_path, old, new, expected):
+    r"""Drive wheels a planar model cannot roll: the error says whether they are offset (one
+    ahead of the other) or turned."""
+    from pathlib import Path
+
+    from wheeled_dyn.errors import ModelError
+    text = (Path(__file__).parent / "data" / "published" / "dd_robot.urdf").read_text()
+    assert text.count(old) == 1
+    urdf = tmp_path / "robot.urdf"
+    urdf.write_text(text.replace(old, new))
+    out = tmp_path / "robot.toml"
+    assert main(["model", str(urdf), "--out", str(out)]) == 0
+    with pytest.raises(ModelError) as caught:
+        load_model(str(out))
+    assert expected in str(caught.value), str(caught.value)

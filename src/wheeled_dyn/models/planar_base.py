@@ -138,6 +138,21 @@ def _check_on_body(spec: ModelSpec, source: UrdfSource, body: str, wheel: str,
 
 
 
+def _off_axle(axis: np.ndarray, other: np.ndarray, axle: np.ndarray, track: float) -> str:
+    r"""Why a wheel's spin ``axis`` is not along the unit ``axle`` (the line between the
+    wheel centres, ``track`` apart): with the other wheel's axis parallel to it, the centres
+    are offset across it (one wheel ahead of or above the other), else the wheel is turned."""
+    off = float(np.arcsin(min(1.0, float(np.linalg.norm(np.cross(axis, axle))))))
+    if np.linalg.norm(np.cross(axis, other)) <= np.sin(ANGLE_TOL):
+        across = track * float(np.linalg.norm(np.cross(axis, axle)))
+        return (f"the wheels are not on one axle: their spin axes are parallel, but the line "
+                f"between their centres is {off:.3g} rad off them (the centres {across:.3g} m "
+                "apart across the spin axis: one wheel ahead of or above the other); a planar "
+                "model needs coaxial drive wheels")
+    return (f"wheel spin axis is not along the axle (the line between the wheel centres): "
+            f"{off:.3g} rad off, more than {ANGLE_TOL} rad")
+
+
 def build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
                  urdf_geom: pin.GeometryModel) -> WheeledModel:
     r"""The planar (wheeled) model of ``spec`` on the URDF's model and visual geometry
@@ -169,8 +184,8 @@ def build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
     up = body_rot @ unit_direction(spec, "up", spec.up, body_link)
     for link, axis in ((spec.wheels[0], al), (spec.wheels[1], ar)):
         if np.linalg.norm(np.cross(axis, axle)) > np.sin(ANGLE_TOL):
-            raise ModelError(spec.name, link, "wheel spin axis is not along the axle (more "
-                                              f"than {ANGLE_TOL} rad off)")
+            raise ModelError(spec.name, link, _off_axle(axis, ar if axis is al else al,
+                                                        axle, 2 * half_track))
     if abs(float(up @ axle)) > np.sin(HORIZONTAL_TOL):
         raise ModelError(spec.name, body_link, "the axle is not horizontal for the declared "
                                                f"up direction {spec.up} (more than "
