@@ -329,6 +329,23 @@ def test_an_entry_over_the_size_bound_is_a_miss(cache, monkeypatch):
     assert load(entry, str) is None
 
 
+def test_an_entry_that_is_a_folder_is_named_when_it_cannot_be_replaced(cache):
+    r"""A folder in an entry's place: its result is not kept, and the warning names the entry
+    (it said the cache folder could not be written, a folder that is fine: the next entry
+    beside it is written)."""
+    entry = cache / "results" / "x.pickle"
+    assert store(entry, "remembered")
+    entry.unlink()
+    entry.mkdir()
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        assert not store(entry, "remembered")
+    said = [str(w.message) for w in caught]
+    assert len(said) == 1 and f"the cache entry {entry} is a folder, not a file" in said[0], said
+    assert store(cache / "results" / "y.pickle", "next") and \
+        load(cache / "results" / "y.pickle", str) == "next"
+
+
 @pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="needs FIFOs (POSIX)")
 def test_an_entry_that_is_a_fifo_or_a_folder_is_a_miss_at_once(cache):
     r"""An entry replaced by a FIFO (whose opening waited for a writer: the run hung) or by

@@ -82,8 +82,12 @@ def store(path: Path, obj: object) -> bool:
         os.replace(tmp, path)
         tmp = None
     except OSError as exc:
-        warn_once(f"write {root}", f"the cache folder {path.parent} cannot be written "
-                  f"({exc.strerror or exc}); results are not kept (only slower)")
+        if tmp is not None and path.is_dir():        # the folder is fine: one entry is not
+            warn_once(f"entry {path}", f"the cache entry {path} is a folder, not a file: "
+                      "that result is not kept (only slower); remove it")
+        else:
+            warn_once(f"write {root}", f"the cache folder {path.parent} cannot be written "
+                      f"({exc.strerror or exc}); results are not kept (only slower)")
         return False
     finally:
         if tmp is not None:
