@@ -230,6 +230,47 @@ def test_a_solved_form_names_the_term_of_the_equations_it_solved(engine, tmp_pat
     assert "read back before it was solved" in said and named in said, said
 
 
+
+@pytest.mark.parametrize("files, old, new, named", [
+    # a symbol written for another in a product of the equations it solved
+    (("cart_double_pendulum",), "- L1*g*m2*sin(th1) + T", "- a1*g*m2*sin(th1) + T",
+     "Q[2] truth − document = g*m2*(L1 - a1)*sin(th1)"),
+    (("double_pendulum", "double_pendulum_solved"), "(m1*a1 + m2*L1)*g*sin(th1)",
+     "(m1*a1 + m2*a1)*g*sin(th1)", "Q[1] truth − document = g*m2*(L1 - a1)*sin(th1)"),
+    # ... in the inertia it inverted, with as many inputs as coordinates
+    (("double_pendulum", "double_pendulum_solved"), 'a12 = "m2*L1*a2*cos(th1 - th2)"',
+     'a12 = "m2*a1*a2*cos(th1 - th2)"',
+     "A[1,2] truth − document = a2*m2*(L1 - a1)*cos(th1 - th2)"),
+    # ... and with fewer inputs (two) than coordinates (three): a symbol for another, an
+    # inertia dropped, a sign (it was "no single-term diagnosis" on every solved element)
+    (("cart_double_pendulum",), 'M22 = "I1 + L1**2*m2 + a1**2*m1"',
+     'M22 = "I1 + a1**2*m2 + a1**2*m1"', "A[2,2] truth − document = L1**2*m2 - a1**2*m2"),
+    (("cart_double_pendulum",), 'M22 = "I1 + L1**2*m2 + a1**2*m1"',
+     'M22 = "L1**2*m2 + a1**2*m1"', "A[2,2] truth − document = I1"),
+    (("cart_double_pendulum",), 'M12 = "(L1*m2 + a1*m1)*cos(th1)"',
+     'M12 = "(L1*m2 - a1*m1)*cos(th1)"', "A[1,2] truth − document = 2*a1*m1*cos(th1)"),
+])
+def test_a_solved_form_names_a_symbol_for_another_and_its_inverted_inertia(
+        engine, tmp_path, files, old, new, named):
+    r"""Equations solved for the accelerations (simulation code; ``data/published``, written
+    for the tests) with one planted error: a symbol written for another in a product (a1, the
+    centre's distance, for L1, the link's length) of the equations solved or of the inertia
+    inverted, an inertia dropped, a sign. Each is named in the document's symbols, read back
+    before solving: the source equations' terms (a monomial times the difference of the two
+    symbols), or the inertia inverted — from the inputs' coefficients where the inputs are as
+    many as the coordinates, else from the inputs', gravity and velocity terms' together."""
+    model, form = files[0], (files[1] if len(files) > 1 else files[0] + "_solved")
+    for name in (model + ".toml", model + ".urdf"):
+        (tmp_path / name).write_text((DATA / name).read_text())
+    text = (DATA / (form + ".toml")).read_text()
+    assert text.count(old) == 1, old
+    path = tmp_path / "doc.toml"
+    path.write_text(text.replace(old, new))
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False
+    said = " ".join(t for e in result.equations for t in e.texts)
+    assert named in said, said
+
 def test_a_term_written_too_much_is_named_so(engine, tmp_path):
     r"""The arm's d11 with a term −lc2² m1 written in it that the truth lacks: the document
     has it too much (truth − document = +lc2² m1 is the same sum, told backwards)."""

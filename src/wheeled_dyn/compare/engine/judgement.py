@@ -198,8 +198,7 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
                    own_moments([ps.values for ps in id_sides.grid.sets], ID_STATES, True))
     if decision is not None and not decision.equivalent and combined and id_sides is not None \
             and id_sides.doc.A is not None:
-        solved = inertia_diagnoses(id_sides.doc.A, id_sides.doc.B, id_sides.truth.need("A"),
-                                   id_sides.B_true, found) or \
+        solved = inertia_diagnoses(id_sides.doc, id_sides.truth, id_sides.B_true, found) or \
             unsolved_terms(id_sides.doc, id_sides.truth, id_sides.B_true, d.velocities, found)
     equations = equation_records(d, decision, drafts, texts, label, grids, funcs, rules, solved)
     fixes = print_drafts(d, drafts, sides.grid.cs, texts, assumed, funcs.exprs)

@@ -250,4 +250,35 @@ def fit_sum(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> 
     return None
 
 
-__all__ = ["MAX_DENOMINATOR", "RATIO_TOL", "SUM_DEGREE", "bases", "fit_factor", "fit_sum"]
+def fit_swap(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
+             ) -> sp.Expr | None:
+    r"""A monomial :math:`M` in ``bases`` times the difference of two of its symbols,
+    :math:`M\,(x - y)`, equal to ``target`` at every sample: truth − document where the
+    document writes :math:`y` for :math:`x` in one product (:math:`g m_2 (L_1 - a_1)\sin
+    \theta_1`: the centre's distance for the link's length). Each pair is screened by least
+    squares on :math:`\log|\text{target}/(x - y)|` (integer exponents of the bases), and what
+    fits there is checked exactly (:data:`RATIO_TOL`) at every sample."""
+    if not bases or not np.isfinite(target).all() or np.abs(target).min() <= 0:
+        return None
+    symbols = [(e, np.broadcast_to(np.asarray(v, float), target.shape)) for e, v in bases
+               if isinstance(e, sp.Symbol)]
+    X = np.column_stack([np.log(np.abs(v)) for _, v in bases] + [np.ones(len(target))])
+    for (x, vx), (y, vy) in itertools.combinations(symbols, 2):
+        gap = vx - vy
+        if np.abs(gap).min() <= 1e-12 * np.abs(vx).max():
+            continue                  # equal somewhere: no ratio (and no swap to tell)
+        ratio = target / gap
+        e = np.linalg.lstsq(X, np.log(np.abs(ratio)), rcond=None)[0][:-1]
+        rounded = np.rint(e).astype(int)
+        if np.abs(e - rounded).max() >= 1e-6 or np.abs(rounded).max() > max(EXPONENTS):
+            continue
+        found = _try(ratio, bases, rounded)
+        if found is not None:             # the monomial's sign on it: g*m2*(L1 - a1)*sin(th1)
+            if found.could_extract_minus_sign():
+                found, (x, y) = -found, (y, x)
+            return sp.Mul(found, x - y, evaluate=False) if found.is_Number else found * (x - y)
+    return None
+
+
+__all__ = ["MAX_DENOMINATOR", "RATIO_TOL", "SUM_DEGREE", "bases", "fit_factor", "fit_sum",
+           "fit_swap"]

@@ -11,8 +11,12 @@ inputs enter as the truth's, with the inertia matrix
 .. math:: M_{doc} = B\,B_{doc}^{-1}A_{doc}
 
 and compared with the truth's A element by element; a differing element is named in the
-document's symbols (:mod:`.fitting`: "A[1,1] lacks I1"). This only explains: the equations'
-verdicts are decided by their equivalence.
+document's symbols (:mod:`.fitting`: "A[1,1] lacks I1"). With fewer inputs than coordinates,
+the weights :math:`W` are fitted to the inputs', gravity and velocity terms' coefficients
+together, :math:`W[B\;Q\;H] = [B_{doc}\;Q_{doc}\;H_{doc}]` (more columns than coordinates:
+where a term of those is wrong no W fits them all, and the inertia is not blamed), and
+:math:`M_{doc} = W^{-1}A_{doc}`. This only explains: the equations' verdicts are decided by
+their equivalence.
 """
 
 from __future__ import annotations
@@ -24,13 +28,15 @@ import sympy as sp
 
 from ..records import Diagnosis, DiagnosisKind as K
 from .diagnose import AGREE_TOL
-from .fitting import fit_factor, fit_sum
+from .fitting import fit_factor, fit_sum, fit_swap
 
 
 def _fit(residual: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> sp.Expr | None:
-    r"""Truth − document as a monomial, or a sum of two, in the document's names, or None."""
+    r"""Truth − document as a monomial, or a sum of two, or a monomial times the difference of
+    two names (one written for the other in a product), in the document's names, or None."""
     found = None if np.abs(residual).min() <= 0 else fit_factor(residual, bases)
-    return found if found is not None else fit_sum(residual, bases)
+    found = found if found is not None else fit_sum(residual, bases)
+    return found if found is not None else fit_swap(residual, bases)
 
 
 def _said(found: sp.Expr | None) -> str:
@@ -62,19 +68,70 @@ def implied_inertia(doc_B: np.ndarray, true_B: np.ndarray) -> np.ndarray | None:
     return true_B @ np.linalg.inv(doc_B)
 
 
-def inertia_diagnoses(doc_A: np.ndarray, doc_B: np.ndarray | None, true_A: np.ndarray,
-                      true_B: np.ndarray | None,
+def _columns(arrays, B: np.ndarray | None, rows: np.ndarray) -> np.ndarray | None:
+    r"""The coefficients of the inputs, the gravity terms and each velocity product
+    (:math:`H_{jl} + H_{lj}`) of every equation on the samples ``rows``: samples × n × columns;
+    None where one of them is not given."""
+    if B is None or arrays.Q is None or arrays.H is None:
+        return None
+    H = arrays.H
+    n = H.shape[1]
+    products = [H[:, :, j, j] if j == m else H[:, :, j, m] + H[:, :, m, j]
+                for j in range(n) for m in range(j, n)]
+    return np.concatenate([B[rows], arrays.Q[rows][:, :, None],
+                           np.stack(products, axis=2)], axis=2)
+
+
+def source_weights(doc, truth, true_B: np.ndarray | None) -> tuple[np.ndarray, np.ndarray] | None:
+    r"""(W, samples): the weights :math:`W` with which the document's equations are
+    :math:`W` times equations whose inputs, gravity and velocity terms are the truth's
+    (:math:`W[B\;Q\;H] = [B_{doc}\;Q_{doc}\;H_{doc}]` per sample, by least squares), on the
+    samples where H is known; None where they do not determine W (rank below n) or no W
+    fits every column (a term of those is wrong itself: then it is not the inertia)."""
+    rows = truth.H_rows if truth.H_rows is not None else np.arange(len(truth.need("A")))
+    if doc.H is None or doc.H.shape[0] != len(rows):
+        return None
+    C_true, C_doc = _columns(truth, true_B, rows), _columns(doc, doc.B, np.arange(len(rows)))
+    if C_true is None or C_doc is None or C_true.shape != C_doc.shape:
+        return None
+    if not (np.isfinite(C_true).all() and np.isfinite(C_doc).all()):
+        return None
+    sv = np.linalg.svd(C_true, compute_uv=False)           # samples × min(n, columns)
+    n = C_true.shape[1]
+    if sv.shape[1] < n or (sv[:, n - 1] <= 1e-9 * sv[:, 0]).any():
+        return None                    # the columns do not determine W
+    W = np.swapaxes(np.linalg.pinv(np.swapaxes(C_true, 1, 2)) @ np.swapaxes(C_doc, 1, 2), 1, 2)
+    scale = max(float(np.abs(C_doc).max()), 1e-300)
+    if np.abs(W @ C_true - C_doc).max() > AGREE_TOL * scale:
+        return None
+    return W, rows
+
+
+def inertia_diagnoses(doc, truth, true_B: np.ndarray | None,
                       bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> Diagnosis | None:
     r"""The elements of the document's own inertia matrix (read back from its inputs,
-    module text) that differ from the truth's, named; None when all agree or it cannot be
-    read back."""
+    module text; where its inputs are fewer than its coordinates, from its inputs, gravity
+    and velocity terms, :func:`source_weights`) that differ from the truth's, named; None
+    when all agree or it cannot be read back."""
+    doc_A, true_A = doc.A, truth.need("A")
     n = doc_A.shape[1]
-    if doc_B is None or true_B is None or not np.isfinite(doc_A).all():
+    if doc.B is None or true_B is None or not np.isfinite(doc_A).all():
         return None
-    M = implied_inertia(doc_B, true_B)
-    if M is None:
+    M = implied_inertia(doc.B, true_B)
+    how = "its inputs' coefficients, M = B B_doc⁻¹ A_doc"
+    if M is not None:
+        M = M @ doc_A
+    elif (found := source_weights(doc, truth, true_B)) is not None:
+        W, rows = found
+        try:
+            M = np.linalg.inv(W) @ doc_A[rows]
+        except np.linalg.LinAlgError:
+            return None
+        true_A, bases = true_A[rows], [(e, v[rows]) for e, v in bases]
+        how = ("its inputs', gravity and velocity terms' coefficients: W [B Q H] = "
+               "[B_doc Q_doc H_doc], M = W⁻¹ A_doc")
+    else:
         return None
-    M = M @ doc_A
     scale = float(np.abs(true_A).max())
     parts, terms = [], []
     for i in range(n):
@@ -82,15 +139,15 @@ def inertia_diagnoses(doc_A: np.ndarray, doc_B: np.ndarray | None, true_A: np.nd
             residual = true_A[:, i, j] - M[:, i, j]
             if np.abs(residual).max() <= AGREE_TOL * scale:
                 continue
-            found = _fit(residual, bases)
-            parts.append(f"A[{i + 1},{j + 1}] {_said(found)}")
-            if found is not None:
-                terms.append(sp.sstr(found))
+            fit = _fit(residual, bases)
+            parts.append(f"A[{i + 1},{j + 1}] {_said(fit)}")
+            if fit is not None:
+                terms.append(sp.sstr(fit))
     if not parts:
         return None
-    return Diagnosis(K.MISSING, "the inertia matrix the document inverted (read back from its "
-                     "inputs' coefficients, M = B B_doc⁻¹ A_doc) differs from the truth's: "
-                     + "; ".join(parts), "; ".join(parts), terms=tuple(terms))
+    return Diagnosis(K.MISSING, f"the inertia matrix the document inverted (read back from "
+                     f"{how}) differs from the truth's: " + "; ".join(parts), "; ".join(parts),
+                     terms=tuple(terms))
 
 
 #: Most differing entries of the equations read back before solving for them to be named
