@@ -82,12 +82,24 @@ def _columns(arrays, B: np.ndarray | None, rows: np.ndarray) -> np.ndarray | Non
                            np.stack(products, axis=2)], axis=2)
 
 
+def _spans(C: np.ndarray) -> bool:
+    r"""Whether the columns of ``C`` (samples × n × columns) span :math:`\mathbb{R}^n` at every
+    sample."""
+    n = C.shape[1]
+    if C.shape[2] < n:
+        return False
+    sv = np.linalg.svd(C, compute_uv=False)
+    return bool((sv[:, n - 1] > 1e-9 * sv[:, 0]).all())
+
+
 def source_weights(doc, truth, true_B: np.ndarray | None) -> tuple[np.ndarray, np.ndarray] | None:
     r"""(W, samples): the weights :math:`W` with which the document's equations are
     :math:`W` times equations whose inputs, gravity and velocity terms are the truth's
     (:math:`W[B\;Q\;H] = [B_{doc}\;Q_{doc}\;H_{doc}]` per sample, by least squares), on the
-    samples where H is known; None where they do not determine W (rank below n) or no W
-    fits every column (a term of those is wrong itself: then it is not the inertia)."""
+    samples where H is known; None where they do not determine W with every column left
+    out in turn (the cart-pole's gravity term alone carries its pole's row: a sin written
+    for a cos there was read as a wrong inertia) or no W fits every column (a term of those
+    is wrong itself: then it is not the inertia)."""
     rows = truth.H_rows if truth.H_rows is not None else np.arange(len(truth.need("A")))
     if doc.H is None or doc.H.shape[0] != len(rows):
         return None
@@ -96,10 +108,8 @@ def source_weights(doc, truth, true_B: np.ndarray | None) -> tuple[np.ndarray, n
         return None
     if not (np.isfinite(C_true).all() and np.isfinite(C_doc).all()):
         return None
-    sv = np.linalg.svd(C_true, compute_uv=False)           # samples × min(n, columns)
-    n = C_true.shape[1]
-    if sv.shape[1] < n or (sv[:, n - 1] <= 1e-9 * sv[:, 0]).any():
-        return None                    # the columns do not determine W
+    if not all(_spans(np.delete(C_true, k, axis=2)) for k in range(C_true.shape[2])):
+        return None                    # a column W rests on alone: an error in it is not seen
     W = np.swapaxes(np.linalg.pinv(np.swapaxes(C_true, 1, 2)) @ np.swapaxes(C_doc, 1, 2), 1, 2)
     scale = max(float(np.abs(C_doc).max()), 1e-300)
     if np.abs(W @ C_true - C_doc).max() > AGREE_TOL * scale:
