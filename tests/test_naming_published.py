@@ -271,6 +271,18 @@ def test_a_solved_form_names_a_symbol_for_another_and_its_inverted_inertia(
     said = " ".join(t for e in result.equations for t in e.texts)
     assert named in said, said
 
+
+def test_a_solved_cart_pole_with_a_cos_for_a_sin_names_it_not_its_inertia(engine, tmp_path):
+    r"""The cart-pole solved as Barto et al.'s simulation computes it, with cos written for sin
+    in its gravity term: one input for two coordinates, and the gravity term alone carries
+    the pole's row of the weights, so its inertia cannot be read back (it was, and a wrong
+    inertia was named); the equations read back before solving name the term instead."""
+    result = engine.compare(load_derivation(P.write(tmp_path, "pole", "solved", "trig")))
+    assert result.equivalent is False
+    said = " ".join(t for e in result.equations for t in e.texts)
+    assert "the inertia matrix the document inverted" not in said, said
+    assert "Q[2] truth − document = g*l*m*(-sin(theta) + cos(theta))" in said, said
+
 def test_a_term_written_too_much_is_named_so(engine, tmp_path):
     r"""The arm's d11 with a term −lc2² m1 written in it that the truth lacks: the document
     has it too much (truth − document = +lc2² m1 is the same sum, told backwards)."""
