@@ -228,6 +228,22 @@ def test_a_constraint_row_times_a_factor_that_touches_zero_is_lost(engine, tmp_p
                    if c.kind == CauseKind.NOT_EQUIVALENT), result.causes
 
 
+
+def test_constraint_rows_mixed_with_weights_singular_at_a_state_lose_a_constraint(engine,
+                                                                                  tmp_path):
+    r"""The robot's second row replaced by cos θ·row 1 + sin θ·row 2 (no common factor in
+    any row; the weights' determinant sin θ changes sign, but the model's four rows of rank
+    three have no determinant to compare with): at θ = 0 it is row 1, and the rolling
+    constraint is lost there (it agreed)."""
+    old = "[cos(theta), sin(theta), 0, -R/2, -R/2]"
+    result = _compare(engine, tmp_path, ROBOT, old,
+                      "[-sin(theta)*cos(theta) + sin(theta)*cos(theta), cos(theta)**2 + "
+                      "sin(theta)**2, 0, -R/2*sin(theta), -R/2*sin(theta)]")
+    assert result.constraints_agree is False and result.equivalent is False
+    causes = [c.explanation for c in result.causes if c.kind == CauseKind.NOT_EQUIVALENT]
+    assert any("fewer independent constraints than the model's at" in c and "theta = 0" in c
+               for c in causes), causes
+
 def test_a_constraint_stated_twice_is_still_the_models(engine, tmp_path):
     r"""The robot's G with a fourth row, the sum of its first two (a dependent row, four
     multipliers): the same constraints. The model's own rows are four of rank three here; a

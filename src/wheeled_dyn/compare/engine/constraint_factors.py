@@ -17,6 +17,11 @@ parameters alone is tried:
   its base is tried, so a square's sign change shows;
 - in the parameters alone: at the other robots of the model
   (:mod:`.other_robots`), as an equation's factor is.
+
+Rows with no such factor may still be the model's mixed with weights that are singular
+somewhere (:math:`\cos\theta\,g_1 + \sin\theta\,g_2` in place of :math:`g_2`: it is
+:math:`g_1` at :math:`\theta = 0`); at the special states their rank is compared with the
+model's rows' there.
 """
 
 from __future__ import annotations
@@ -29,6 +34,7 @@ from ..grid.grid import special_states
 from ..sides.both import Sides
 from ..sides.document import DocumentFunctions
 from .other_robots import scalable, scaled_values
+from ..judge.document_checks import row_rank, unit_rows
 from .parameter_factors import changes_sign, row_factors
 
 #: A factor at most this fraction of its median magnitude over the samples is zero there.
@@ -76,9 +82,45 @@ def _vanishes(funcs: DocumentFunctions, sides: Sides, factor: sp.Expr,
                for ps in sides.grid.sets)
 
 
+def _fewer_at_special_states(funcs: DocumentFunctions, sides: Sides, G: sp.Matrix
+                             ) -> str | None:
+    r"""The first special state (each position at :math:`0, \pm\pi/2, \pi`) where the rows
+    ``G`` state fewer independent constraints than the model's rows there (rows the model's
+    mixed with weights that are singular there: :math:`\cos\theta\,g_1 + \sin\theta\,g_2`
+    for :math:`g_2` is :math:`g_1` at :math:`\theta = 0`), said; None where there is none."""
+    from ..sides.truth import truth_for
+    grid = sides.grid
+    q, owner = special_states(grid)
+    if not len(q):
+        return None
+    values = [np.array([sides.per_set[k][p] for k in owner]) for p in funcs.params]
+    rows = np.empty((len(q), G.rows, G.cols))
+    with np.errstate(all="ignore"):
+        for r in range(G.rows):
+            for c in range(G.cols):
+                rows[:, r, c] = np.broadcast_to(np.asarray(funcs.compiled(G[r, c])(
+                    *q.T, *np.zeros_like(q).T, *values), float), (len(q),))
+    true = np.full((len(q),) + sides.truth.need("G").shape[1:], np.nan)
+    for k, ps in enumerate(grid.sets):
+        at = np.flatnonzero(owner == k)
+        if len(at):
+            true[at] = truth_for(grid.cmap, [ps], q[at][None], np.zeros((1, len(at),
+                                                                         q.shape[1]))).G
+    ok = np.isfinite(rows).all(axis=(1, 2)) & np.isfinite(true).all(axis=(1, 2))
+    short = np.flatnonzero(ok)[row_rank(unit_rows(rows[ok])) < row_rank(unit_rows(true[ok]))]
+    if not len(short):
+        return None
+    state = ", ".join(f"{p} = {v:.4g}" for p, v in zip(funcs.d.positions, q[short[0]]))
+    return (f"its constraint rows state fewer independent constraints than the model's at "
+            f"{state}: a constraint is lost there (rows mixed with weights that are "
+            "singular there)")
+
+
 def lost_constraints(funcs: DocumentFunctions, sides: Sides, seed: int) -> tuple[str, ...]:
     r"""For each constraint row the document states (its ``G``, its ``[constraints]``) times a
-    factor that vanishes (module text), what is wrong, named by where the file states it."""
+    factor that vanishes (module text), and for its rows together where they state fewer
+    constraints than the model's at a special state, what is wrong, named by where the file
+    states it."""
     d = funcs.d
     stated = [("G", sp.Matrix(d.G))] if d.G is not None else []
     M = d.constraint_matrix()
@@ -96,7 +138,9 @@ def lost_constraints(funcs: DocumentFunctions, sides: Sides, seed: int) -> tuple
                                f"{sp.sstr(f)}, which vanishes for some state or robot of "
                                "the model: the constraint is lost there")
                     break
-    return tuple(out)
+    return tuple(out) if out else tuple(
+        f"{where}: {said}" for where, G in stated
+        if (said := _fewer_at_special_states(funcs, sides, G)) is not None)
 
 
 __all__ = ["ZERO", "lost_constraints"]

@@ -218,7 +218,7 @@ def _row_offsets(rows: np.ndarray, true_G: np.ndarray) -> tuple[np.ndarray, np.n
     constraint rows is from the true rows' span, relative to its size (each row scaled to 1
     first: a row's scale says nothing)."""
     ok = np.isfinite(rows).all(axis=(1, 2)) & np.isfinite(true_G).all(axis=(1, 2))
-    D, T = _unit_rows(rows[ok]), _unit_rows(true_G[ok])
+    D, T = unit_rows(rows[ok]), unit_rows(true_G[ok])
     proj = np.linalg.pinv(T) @ T                     # projector on the true row space
     off = np.abs(D @ proj - D).max(axis=2) / np.maximum(np.abs(D).max(axis=2), 1e-300)
     return ok, off
@@ -233,7 +233,7 @@ RANK_TOL, ROUND_OFF = 1e-8, 1e-12
 ROW_TOL = 1e-6
 
 
-def _unit_rows(G: np.ndarray) -> np.ndarray:
+def unit_rows(G: np.ndarray) -> np.ndarray:
     r"""Each constraint row divided by its largest entry (per sample); a row of round-off
     beside the others (below :data:`ROUND_OFF` of the largest on its sample) is 0."""
     size = np.abs(G).max(axis=2, keepdims=True)
@@ -252,16 +252,16 @@ def constraint_space(rows: np.ndarray, true_G: np.ndarray, sets: int = 1) -> tup
     ok, off = _row_offsets(rows, true_G)
     if not ok.any():
         return ()
-    D, T = _unit_rows(rows[ok]), _unit_rows(true_G[ok])
+    D, T = unit_rows(rows[ok]), unit_rows(true_G[ok])
     out = []
     for r in np.flatnonzero(off.max(axis=0) > ROW_TOL):
         out.append(f"its constraint row {r + 1} is no combination of the model's rolling "
                    f"constraints (off by {float(off[:, r].max()):.2g} of its size)")
 
-    short = _rank(T) - _rank(D)
+    short = row_rank(T) - row_rank(D)
     if (short > 0).any():
         k = int(short.max())
-        have, want = int(_rank(D).min()), int(_rank(T).max())
+        have, want = int(row_rank(D).min()), int(row_rank(T).max())
         out.append(f"it states {have} independent constraint row{'s' if have != 1 else ''} "
                    f"where the model has {want}: {k} rolling constraint"
                    f"{'s' if k > 1 else ''} missing")
@@ -272,21 +272,32 @@ def constraint_space(rows: np.ndarray, true_G: np.ndarray, sets: int = 1) -> tup
     return tuple(out)
 
 
-def _rank(M: np.ndarray) -> np.ndarray:
+def row_rank(M: np.ndarray) -> np.ndarray:
     r"""The rank of each sample's rows of ``M`` (S × m × n), to :data:`RANK_TOL`."""
     sv = np.linalg.svd(M, compute_uv=False)
     return (sv > RANK_TOL * np.maximum(sv[:, :1], 1e-300)).sum(axis=1)
 
 
+def _distinct(T: np.ndarray, rows: np.ndarray) -> np.ndarray:
+    r"""``rows`` of the unit rows ``T`` without those that are another's, or its negative, at
+    every sample (a robot's two wheels on one axle state the same sideways constraint)."""
+    keep: list[int] = []
+    for r in rows:
+        if not any(min(np.abs(T[:, r] - T[:, k]).max(), np.abs(T[:, r] + T[:, k]).max())
+                   <= ROW_TOL for k in keep):
+            keep.append(int(r))
+    return np.array(keep, dtype=int)
+
+
 def _vanishing(D: np.ndarray, T: np.ndarray, ok: np.ndarray, sets: int) -> bool:
     r"""Whether :math:`\det P` (:math:`D = PT'`, :math:`T'` the true rows that are not
-    round-off) takes both signs among the finite samples ``ok`` of one parameter set. Only
-    where both are as many independent rows at every sample: rows that state a constraint
-    twice (the model's own, four rows of rank three for a robot's two wheels) have no such
-    P, and one drawn from a subset of them changes sign through the poles of that subset."""
-    real = np.flatnonzero(np.abs(T).max(axis=(0, 2)) > 0)
-    if len(real) != D.shape[1] or (_rank(T[:, real, :]) < len(real)).any() or \
-            (_rank(D) < D.shape[1]).any():
+    round-off, each stated once: :func:`_distinct`) takes both signs among the finite
+    samples ``ok`` of one parameter set. Only where both are as many independent rows at
+    every sample: rows that still state a constraint twice have no such P, and one drawn from
+    a subset of them changes sign through the poles of that subset."""
+    real = _distinct(T, np.flatnonzero(np.abs(T).max(axis=(0, 2)) > 0))
+    if len(real) != D.shape[1] or (row_rank(T[:, real, :]) < len(real)).any() or \
+            (row_rank(D) < D.shape[1]).any():
         return False
     P = D @ np.linalg.pinv(T[:, real, :])
     det = np.full(len(ok), np.nan)
@@ -335,6 +346,7 @@ def constraint_problems(d: Derivation, funcs: DocumentFunctions, sides: Sides
                  for text in constraint_space(rows, truth.G, sets))
 
 
-__all__ = ["FACTOR_LIMIT", "RANK_TOL", "ROUND_OFF", "ROW_TOL", "RATE_POINT_SEED", "RATE_RANK_TOL", "asymmetry",
-           "constraint_problems", "constraint_rows", "constraint_space", "energy_check",
-           "independent_rows", "position_rates", "solve_rates"]
+__all__ = ["FACTOR_LIMIT", "RANK_TOL", "ROUND_OFF", "ROW_TOL", "RATE_POINT_SEED", "RATE_RANK_TOL",
+           "asymmetry", "constraint_problems", "constraint_rows", "constraint_space",
+           "energy_check", "independent_rows", "position_rates", "row_rank", "solve_rates",
+           "unit_rows"]
