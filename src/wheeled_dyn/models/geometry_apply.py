@@ -73,8 +73,8 @@ class _Classes:
         self.parent[self.find(a)] = self.find(b)
 
 
-def _factor(rng: np.random.Generator) -> float:
-    return float(math.exp(rng.uniform(-math.log(FACTOR), math.log(FACTOR))))
+def _factor(rng: np.random.Generator, spread: float = FACTOR) -> float:
+    return float(math.exp(rng.uniform(-math.log(spread), math.log(spread))))
 
 
 def _groups(table: GeometryTable, uniform: set[str]) -> tuple[dict[str, list[str]], _Classes]:
@@ -110,9 +110,10 @@ def bodies_of(wm: WheeledModel) -> dict[int, list[str]]:
 
 
 def draw_geometry(wm: WheeledModel, rng: np.random.Generator,
-                  uniform: Collection[str] = ()) -> GeometryDraw:
-    r"""Random lengths for ``wm`` (module docstring); ``uniform``: the links scaled as a whole
-    (with a random mass factor each; the two drive wheels of a planar model share theirs)."""
+                  uniform: Collection[str] = (), spread: float = FACTOR) -> GeometryDraw:
+    r"""Random lengths for ``wm`` (module docstring, each factor in :math:`[1/s, s]` for the
+    ``spread`` s); ``uniform``: the links scaled as a whole (with a random mass factor each;
+    the two drive wheels of a planar model share theirs)."""
     table = wm.lengths
     if table is None:
         return GeometryDraw(MappingProxyType({}), MappingProxyType({}))
@@ -123,7 +124,7 @@ def draw_geometry(wm: WheeledModel, rng: np.random.Generator,
     def factor(key: object) -> float:
         root = classes.find(key)
         if root not in factors:
-            factors[root] = _factor(rng)
+            factors[root] = _factor(rng, spread)
         return factors[root]
 
     values: dict[str, float] = {}

@@ -67,6 +67,9 @@ class WipParameters:
         **dict.fromkeys(("m_C", "Iw2", "Iw3"), "wheels"), "I_a": "armature"}
     LINK_GROUPS: ClassVar[Mapping[str, str]] = {"body": "body", "wheel_left": "wheels",
                                                 "wheel_right": "wheels"}
+    #: The record's lengths (each drawn by its own factor where parameter sets draw lengths
+    #: more widely than its own ranges).
+    LENGTHS: ClassVar[tuple[str, ...]] = ("R", "L", "d", "d_x", "d_z")
 
     def __post_init__(self) -> None:
         for f in fields(self):

@@ -33,6 +33,7 @@ from ...compiled import numpy_function
 from ..grid.grid import special_states
 from ..sides.both import Sides
 from ..sides.document import DocumentFunctions
+from .length_robots import vanishes_for_other_lengths
 from .other_robots import scalable, scaled_values
 from ..judge.document_checks import row_rank, unit_rows
 from .parameter_factors import changes_sign, row_factors
@@ -73,13 +74,13 @@ def _vanishes_in_state(values: list[np.ndarray]) -> bool:
 
 
 def _vanishes(funcs: DocumentFunctions, sides: Sides, factor: sp.Expr,
-              rng: np.random.Generator) -> bool:
+              rng: np.random.Generator, seed: int) -> bool:
     if factor.free_symbols & set(funcs.d.positions):
         return _vanishes_in_state(_values_at(funcs, sides, factor))
     args = sorted(factor.free_symbols, key=sp.default_sort_key)
     fn = numpy_function(args, factor)
     return any(changes_sign(fn, args, scaled_values(funcs.d, ps, args, rng))
-               for ps in sides.grid.sets)
+               for ps in sides.grid.sets) or vanishes_for_other_lengths(funcs.d, factor, seed)
 
 
 def _fewer_at_special_states(funcs: DocumentFunctions, sides: Sides, G: sp.Matrix
@@ -132,11 +133,13 @@ def lost_constraints(funcs: DocumentFunctions, sides: Sides, seed: int) -> tuple
     out = []
     for where, G in stated:
         for r in range(G.rows):
-            for f in row_factors(list(G.row(r)), allowed, positions):
-                if _vanishes(funcs, sides, f, rng):
-                    out.append(f"{where}: its constraint row {r + 1} is written times "
-                               f"{sp.sstr(f)}, which vanishes for some state or robot of "
-                               "the model: the constraint is lost there")
+            for f, divided in [(f, divided) for divided in (False, True) for f in
+                               row_factors(list(G.row(r)), allowed, positions, divided)]:
+                if _vanishes(funcs, sides, f, rng, seed):
+                    out.append(f"{where}: its constraint row {r + 1} is written "
+                               f"{'divided by' if divided else 'times'} {sp.sstr(f)}, which "
+                               "vanishes for some state or robot of the model: the "
+                               f"constraint is {'undefined' if divided else 'lost'} there")
                     break
     return tuple(out) if out else tuple(
         f"{where}: {said}" for where, G in stated

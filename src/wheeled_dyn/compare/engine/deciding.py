@@ -73,14 +73,17 @@ def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides, seed: int = 20
     if any(has_kind(e.diagnoses, DiagnosisKind.SINGULAR) for e in second.equations):
         return second
     agreeing = [i for i in varies if second.equations[i].verdict == Verdict.AGREES]
-    for i, factor in vanishing_factors(funcs, sides, agreeing, seed).items():
+    for i, v in vanishing_factors(funcs, sides, agreeing, seed).items():
+        robots = ("lengths the robot may have (each of its lengths between a tenth and ten "
+                  "times the model's)" if v.lengths else "masses and inertias the robot may "
+                  "have (its links' masses and inertias changed, its lengths kept)")
         second = equivalence.mark_lost(second, (i,), (
-            f"equation {i + 1} is not independent for every robot of the model: its inertia "
-            f"terms share the factor {sp.sstr(factor)}, which vanishes for masses and "
-            "inertias the robot may have (its links' masses and inertias changed, its "
-            "lengths kept), "
-            "where W = A_doc A⁻¹ is singular (an equation multiplied by a factor that "
-            "vanishes)"))
+            f"equation {i + 1} is not {'defined' if v.divided else 'independent'} for every "
+            f"robot of the model: its inertia terms "
+            f"{'are divided by' if v.divided else 'share the factor'} {sp.sstr(v.factor)}, "
+            f"which vanishes for {robots}, where W = A_doc A⁻¹ is "
+            f"{'unbounded' if v.divided else 'singular'} (an equation "
+            f"{'divided' if v.divided else 'multiplied'} by a factor that vanishes)"))
     if any(has_kind(e.diagnoses, DiagnosisKind.SINGULAR) for e in second.equations):
         return second
     changes = robot_sign_changes(funcs, sides, seed)

@@ -19,6 +19,7 @@ any other symbol (a free symbol) is not.
 from __future__ import annotations
 
 import functools
+from dataclasses import dataclass
 
 import numpy as np
 import sympy as sp
@@ -27,15 +28,29 @@ from ...compiled import numpy_function
 from ..judge import equivalence
 from ..sides.both import Sides
 from ..sides.document import DocumentFunctions
+from .length_robots import vanishes_for_other_lengths
 from .other_robots import DRAWS, scalable, scaled_values
 
+@dataclass(frozen=True)
+class Vanishing:
+    r"""A factor of a row that vanishes for a robot of the model: the row is ``divided`` by it
+    (else multiplied), and it does so for other ``lengths`` (else other masses and
+    inertias)."""
+
+    factor: sp.Expr
+    divided: bool
+    lengths: bool
+
+
 def row_factors(row: list[sp.Expr], allowed: set[sp.Symbol],
-                bare: frozenset[sp.Symbol] = frozenset()) -> list[sp.Expr]:
-    r"""The factors of the common divisor of ``row``'s numerators that depend on ``allowed``
-    symbols alone and are sums or a symbol of ``bare`` (a position; a single symbol of a
-    mass never vanishes)."""
+                bare: frozenset[sp.Symbol] = frozenset(), divided: bool = False
+                ) -> list[sp.Expr]:
+    r"""The factors of the common divisor of ``row``'s numerators (with ``divided``: of its
+    denominators, what the row is divided by) that depend on ``allowed`` symbols alone and
+    are sums or a symbol of ``bare`` (a position; a single symbol of a mass never
+    vanishes)."""
     try:
-        numerators = [sp.fraction(sp.together(e))[0] for e in row if e != 0]
+        numerators = [sp.fraction(sp.together(e))[int(divided)] for e in row if e != 0]
         if not numerators:
             return []
         common = functools.reduce(sp.gcd, numerators)
@@ -57,30 +72,36 @@ def changes_sign(fn, args: list[sp.Symbol], values: dict[sp.Symbol, np.ndarray])
 
 
 def vanishing_factors(funcs: DocumentFunctions, sides: Sides, rows: list[int],
-                      seed: int) -> dict[int, sp.Expr]:
+                      seed: int) -> dict[int, Vanishing]:
     r"""For each of ``rows``, a factor of the parameters common to its elements of the
-    document's :math:`A` that vanishes for a robot of the model (module text), where one
-    does."""
+    document's :math:`A`, or to their denominators, that vanishes for a robot of the model
+    (module text; of other lengths: :mod:`.length_robots`), where one does."""
     A = funcs.exprs["A"]
     if A is None or not rows:
         return {}
     d = funcs.d
     allowed = scalable(d, funcs.params)
-    candidates = {i: row_factors(list(sp.Matrix(A).row(i)), allowed) for i in rows}
+    candidates = {i: [(f, divided) for divided in (False, True)
+                      for f in row_factors(list(sp.Matrix(A).row(i)), allowed,
+                                           divided=divided)] for i in rows}
     if not any(candidates.values()):
         return {}
     rng = np.random.default_rng([seed, 29])
-    needed = sorted({s for fs in candidates.values() for f in fs for s in f.free_symbols},
+    needed = sorted({s for fs in candidates.values() for f, _ in fs for s in f.free_symbols},
                     key=sp.default_sort_key)
     draws = [scaled_values(d, ps, needed, rng) for ps in sides.grid.sets]
-    out: dict[int, sp.Expr] = {}
+    out: dict[int, Vanishing] = {}
     for i, found in candidates.items():
-        for f in found:
+        for f, divided in found:
             args = sorted(f.free_symbols, key=sp.default_sort_key)
             fn = numpy_function(args, f)
             if any(changes_sign(fn, args, v) for v in draws):
-                out[i] = f
-                break
+                out[i] = Vanishing(f, divided, False)
+            elif vanishes_for_other_lengths(d, f, seed):
+                out[i] = Vanishing(f, divided, True)
+            else:
+                continue
+            break
     return out
 
 
@@ -120,4 +141,5 @@ def robot_sign_changes(funcs: DocumentFunctions, sides: Sides, seed: int
     return None
 
 
-__all__ = ["STATES", "changes_sign", "robot_sign_changes", "row_factors", "vanishing_factors"]
+__all__ = ["STATES", "Vanishing", "changes_sign", "robot_sign_changes", "row_factors",
+           "vanishing_factors"]

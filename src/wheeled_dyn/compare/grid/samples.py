@@ -29,7 +29,7 @@ import pinocchio as pin
 
 from ...errors import ParameterError
 from ...models.builder import WheeledModel
-from ...models.geometry_apply import apply_geometry, bodies_of, draw_geometry
+from ...models.geometry_apply import FACTOR, apply_geometry, bodies_of, draw_geometry
 from ...models.registry import load_model, model_entry, model_parameters
 from ...models.springs import with_stiffness
 from ...models.wip_parameters import WipParameters, random_wip_parameters
@@ -143,13 +143,13 @@ def namespace_values(wm: WheeledModel, physical: WipParameters | None) -> dict[s
 GEOMETRY_REDRAWS = 50
 
 
-def _with_geometry(wm: WheeledModel, rng: np.random.Generator, uniform: Collection[str]
-                   ) -> WheeledModel:
+def _with_geometry(wm: WheeledModel, rng: np.random.Generator, uniform: Collection[str],
+                   spread: float = FACTOR) -> WheeledModel:
     r"""``wm`` with random lengths (:func:`~wheeled_dyn.models.geometry_apply.draw_geometry`),
     drawn again where a contact would be invalid."""
     for _ in range(GEOMETRY_REDRAWS):
         try:
-            return apply_geometry(wm, draw_geometry(wm, rng, uniform))
+            return apply_geometry(wm, draw_geometry(wm, rng, uniform, spread))
         except ParameterError:
             continue
     return wm
@@ -174,8 +174,8 @@ def uniform_links(wm: WheeledModel, special: Sequence[SpecialCase]) -> set[str]:
 def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
                           keep_structure: bool = False,
                           uniform: frozenset[str] | set[str] = frozenset(),
-                          massless: Collection[str] = (), principal: bool = False
-                          ) -> WheeledModel:
+                          massless: Collection[str] = (), principal: bool = False,
+                          spread: float = FACTOR) -> WheeledModel:
     r"""Random lengths (the ``uniform`` links scaled as a whole with a random mass factor
     each, and their bodies put together again from their links:
     :mod:`~wheeled_dyn.models.geometry_apply`), and random, physically consistent inertias
@@ -186,8 +186,9 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
     scaled by random factors in [0.5, 2]. The bodies of the ``massless`` links carry none;
     with ``principal`` every body's inertia about its centre is made diagonal in its joint's
     axes (the diagonal of a valid one is valid: :math:`J_{ii} = \Sigma_{jj} + \Sigma_{kk}` of
-    the second moments' diagonal)."""
-    drawn = _with_geometry(wm, rng, uniform)
+    the second moments' diagonal). ``spread``: each length's factor is drawn in
+    :math:`[1/s, s]` (and with ``keep_structure`` each centre-of-mass coordinate's too)."""
+    drawn = _with_geometry(wm, rng, uniform, spread)
     model = pin.Model(drawn.model)               # never the model of ``wm`` itself
     composed = {jid for jid, links in bodies_of(wm).items() if uniform & set(links)}
     for jid in range(1, model.njoints):
@@ -200,8 +201,9 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
             second = np.maximum(second, 0.0) * rng.uniform(0.5, 2.0, 3)
             moments = np.array([second[1] + second[2], second[0] + second[2],
                                 second[0] + second[1]])
-            model.inertias[jid] = pin.Inertia(old.mass * rng.uniform(0.5, 2.0),
-                                              old.lever * rng.uniform(0.5, 2.0, 3),
+            lever = old.lever * (rng.uniform(0.5, 2.0, 3) if spread == FACTOR else
+                                 np.exp(rng.uniform(-np.log(spread), np.log(spread), 3)))
+            model.inertias[jid] = pin.Inertia(old.mass * rng.uniform(0.5, 2.0), lever,
                                               axes @ np.diag(moments) @ axes.T)
         elif model.inertias[jid].mass > 0:
             base = model.inertias[jid].toDynamicParameters()
@@ -243,13 +245,19 @@ def _alike_wheels(wm: WheeledModel, model: pin.Model, rng: np.random.Generator) 
 
 
 def parameter_sets(model_name: str, k: int, rng: np.random.Generator,
-                   special: tuple[SpecialCase, ...] = ()) -> list[ParameterSet]:
-    r"""``k`` random parameter sets of the model, restricted by the ``special`` cases."""
+                   special: tuple[SpecialCase, ...] = (), spread: float = FACTOR
+                   ) -> list[ParameterSet]:
+    r"""``k`` random parameter sets of the model, restricted by the ``special`` cases; each
+    length's factor in :math:`[1/s, s]` for the ``spread`` s (the WIP's record: its own
+    ranges, and with a wider spread its lengths each times such a factor)."""
     entry = model_entry(model_name)
     out: list[ParameterSet] = []
     if entry.parameters is WipParameters:
         while len(out) < k:
             p = random_wip_parameters(rng)
+            if spread != FACTOR:
+                p = replace(p, **{name: getattr(p, name) * float(np.exp(rng.uniform(
+                    -np.log(spread), np.log(spread)))) for name in WipParameters.LENGTHS})
             try:
                 for case in special:
                     p = case.apply(p)
@@ -264,7 +272,7 @@ def parameter_sets(model_name: str, k: int, rng: np.random.Generator,
     massless = {link for case in special for link in case.massless}
     principal = NO_PRODUCTS in special
     for _ in range(k):
-        wm = _random_link_inertias(base, rng, keep, uniform, massless, principal)
+        wm = _random_link_inertias(base, rng, keep, uniform, massless, principal, spread)
         out.append(ParameterSet(wm, namespace_values(wm, None)))
     return out
 

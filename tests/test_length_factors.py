@@ -1,0 +1,76 @@
+r"""An equation or a constraint row multiplied or divided by a factor of the lengths that
+vanishes for a robot of the model, though not for the parameter sets drawn (each length
+within a factor 1.6 of the model's): the two-link arm of :mod:`published_forms` (Spong,
+Hutchinson & Vidyasagar, section 7.4) with its first equation times or over
+:math:`l_1 - 10\,l_{c1}` (zero for a link ten times as long as its centre is far), and the
+differential-drive robot of ``data/published/dd_multipliers.toml`` with a constraint row
+times :math:`L - R` (a wheel as large as half the track). Each is lost or undefined there;
+the same rows times a factor that never vanishes for positive lengths agree.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+import published_forms as P
+from conftest import SEED
+from wheeled_dyn.compare.engine import ComparisonEngine
+from wheeled_dyn.compare.records import CauseKind
+from wheeled_dyn.derivations import load_derivation
+
+DATA = Path(__file__).parent / "data" / "published"
+#: Engine grid.
+SAMPLES, PARAM_SETS = 200, 3
+#: The arm's first equation as the equations form prints it: its left and right sides.
+ARM_EQ1_END = " = tau1\","
+
+
+@pytest.fixture(scope="module")
+def engine():
+    return ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED)
+
+
+def _causes(result) -> list[str]:
+    return [c.explanation for c in result.causes if c.kind == CauseKind.NOT_EQUIVALENT]
+
+
+@pytest.mark.parametrize("how, factor, lost", [
+    ("times", "(l1 - 10*lc1)", "not independent"),
+    ("times", "(l1 - 10*lc1)**2", "not independent"),
+    ("over", "(l1 - 10*lc1)", "not defined"),
+    ("times", "(l1 + 10*lc1)", None),
+    ("over", "(l1**2 + lc1**2)", None)])
+def test_an_equation_times_a_factor_of_lengths(engine, tmp_path, how, factor, lost):
+    path = P.write(tmp_path, "arm", "equations", None)
+    text = path.read_text()
+    start = text.index('  "ddq1*(I1')
+    end = text.index(ARM_EQ1_END, start)
+    lhs = text[start + 3:end]
+    op = "*" if how == "times" else "/"
+    path.write_text(text[:start + 3] + f"({lhs}){op}{factor} = tau1{op}{factor}"
+                    + text[end + len(" = tau1"):])
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is (lost is None), _causes(result)
+    if lost is not None:
+        said = [c for c in _causes(result) if "equation 1 is " + lost in c]
+        assert said and "for lengths the robot may have" in said[0], _causes(result)
+
+
+@pytest.mark.parametrize("factor, lost", [("(L - R)", True), ("(L + R)", False)])
+def test_a_constraint_row_times_a_factor_of_lengths(engine, tmp_path, factor, lost):
+    row = "[0, 0, 1, -R/(2*L), R/(2*L)]]"
+    text = (DATA / "dd_multipliers.toml").read_text()
+    assert text.count(row) == 1
+    for own in ("dd_robot.toml", "dd_robot.urdf"):
+        (tmp_path / own).write_text((DATA / own).read_text())
+    path = tmp_path / "dd.toml"
+    path.write_text(text.replace(row, f"[0, 0, {factor}, -R*{factor}/(2*L), "
+                                      f"R*{factor}/(2*L)]]"))
+    result = engine.compare(load_derivation(path))
+    assert result.constraints_agree is (not lost), _causes(result)
+    assert result.equivalent is (not lost)
+    if lost:
+        assert any("its constraint row 3 is written times L - R" in c
+                   for c in _causes(result)), _causes(result)
