@@ -10,7 +10,9 @@ not a single symbol is tried at other robots of the model (:mod:`.other_robots`:
 links' masses and inertias changed, its lengths kept, its springs changed). The truth's A
 stays positive definite at every one of them and between two, so where a factor takes both
 signs among them it vanishes between two with the truth regular: there the row of
-:math:`A_{doc}` is zero and :math:`W` singular — the equation is not equivalent.
+:math:`A_{doc}` is zero and :math:`W` singular — the equation is not equivalent. The common
+factor of the row's denominators is tried alike (a row divided by it: :math:`W` unbounded
+there), and each factor also at robots of other lengths (:mod:`.length_robots`).
 
 Only symbols :func:`~.other_robots.scalable` says follow the model are tried; a factor in
 any other symbol (a free symbol) is not.
