@@ -18,7 +18,7 @@ from ..judge import equivalence
 from ..records import DiagnosisKind, Verdict, has_kind
 from ..sides.both import Sides
 from ..sides.document import DocumentFunctions
-from .parameter_factors import robot_sign_changes, vanishing_factors
+from .parameter_factors import Vanishing, robot_sign_changes, vanishing_factors
 from .special import special_sides
 
 
@@ -38,6 +38,19 @@ def _with_stiffness(K: np.ndarray | None, B: np.ndarray | None) -> np.ndarray | 
     if K is None:
         return B
     return K if B is None else np.concatenate([K, B], axis=2)
+
+
+def _lost(i: int, v: Vanishing) -> str:
+    r"""Why equation ``i`` is lost (or undefined) where its factor ``v`` vanishes."""
+    robots = ("lengths the robot may have (each of its lengths between a tenth and ten "
+              "times the model's)" if v.lengths else "masses and inertias the robot may "
+              "have (its links' masses and inertias changed, its lengths kept)")
+    return (f"equation {i + 1} is not {'defined' if v.divided else 'independent'} for every "
+            f"robot of the model: its inertia terms "
+            f"{'are divided by' if v.divided else 'share the factor'} {sp.sstr(v.factor)}, "
+            f"which vanishes for {robots}, where W = A_doc A⁻¹ is "
+            f"{'unbounded' if v.divided else 'singular'} (an equation "
+            f"{'divided' if v.divided else 'multiplied'} by a factor that vanishes)")
 
 
 def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides, seed: int = 2026
@@ -60,6 +73,16 @@ def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides, seed: int = 20
         truth.K if doc.K is not None else None, sides.B_true),
         np.swapaxes(truth.G, 1, 2) if kept and truth.G is not None else None)
     first = equivalence.decide(doc_side, true_side, len(sides.grid.sets))
+    if any(has_kind(e.diagnoses, DiagnosisKind.SINGULAR) for e in first.equations):
+        # W singular or unbounded somewhere: a row's own factor, where one vanishes, says
+        # which equation and how (det W alone tells a zero from a pole by magnitude only)
+        found = vanishing_factors(funcs, sides, list(range(d.n)), seed)
+        if found:
+            alone = equivalence.decide(doc_side, true_side, len(sides.grid.sets),
+                                       search=False)
+            for i, v in found.items():
+                alone = equivalence.mark_lost(alone, (i,), _lost(i, v))
+            return alone
     # the special positions matter where an equation is otherwise a combination of the true
     # ones with weights that vary (a factor that may vanish there: sin θ)
     W = first.W
@@ -74,16 +97,7 @@ def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides, seed: int = 20
         return second
     agreeing = [i for i in varies if second.equations[i].verdict == Verdict.AGREES]
     for i, v in vanishing_factors(funcs, sides, agreeing, seed).items():
-        robots = ("lengths the robot may have (each of its lengths between a tenth and ten "
-                  "times the model's)" if v.lengths else "masses and inertias the robot may "
-                  "have (its links' masses and inertias changed, its lengths kept)")
-        second = equivalence.mark_lost(second, (i,), (
-            f"equation {i + 1} is not {'defined' if v.divided else 'independent'} for every "
-            f"robot of the model: its inertia terms "
-            f"{'are divided by' if v.divided else 'share the factor'} {sp.sstr(v.factor)}, "
-            f"which vanishes for {robots}, where W = A_doc A⁻¹ is "
-            f"{'unbounded' if v.divided else 'singular'} (an equation "
-            f"{'divided' if v.divided else 'multiplied'} by a factor that vanishes)"))
+        second = equivalence.mark_lost(second, (i,), _lost(i, v))
     if any(has_kind(e.diagnoses, DiagnosisKind.SINGULAR) for e in second.equations):
         return second
     changes = robot_sign_changes(funcs, sides, seed)
