@@ -36,17 +36,9 @@ def _causes(result) -> list[str]:
     return [c.explanation for c in result.causes if c.kind == CauseKind.NOT_EQUIVALENT]
 
 
-@pytest.mark.parametrize("how, factor, lost", [
-    ("times", "(l1 - 10*lc1)", "not independent"),
-    # zero at the model's own lengths: det W changes sign between the parameter sets drawn,
-    # and only equation 1 is named, as multiplied (both were, as divided)
-    ("times", "(l1 - 2*lc1)", "not independent"),
-    ("times", "(l1 - 10*lc1)**2", "not independent"),
-    ("over", "(l1 - 10*lc1)", "not defined"),
-    ("times", "(l1 + 10*lc1)", None),
-    ("over", "(l1**2 + lc1**2)", None)])
-def test_an_equation_times_a_factor_of_lengths(engine, tmp_path, how, factor, lost):
-    path = P.write(tmp_path, "arm", "equations", None)
+def _arm_equation_1(folder: Path, how: str, factor: str) -> Path:
+    r"""The arm's equations with the first times or over ``factor`` (both sides)."""
+    path = P.write(folder, "arm", "equations", None)
     text = path.read_text()
     start = text.index('  "ddq1*(I1')
     end = text.index(ARM_EQ1_END, start)
@@ -54,12 +46,35 @@ def test_an_equation_times_a_factor_of_lengths(engine, tmp_path, how, factor, lo
     op = "*" if how == "times" else "/"
     path.write_text(text[:start + 3] + f"({lhs}){op}{factor} = tau1{op}{factor}"
                     + text[end + len(" = tau1"):])
-    result = engine.compare(load_derivation(path))
+    return path
+
+
+@pytest.mark.parametrize("how, factor, lost", [
+    ("times", "(l1 - 10*lc1)", "not independent"),
+    ("times", "(l1 - 10*lc1)**2", "not independent"),
+    ("over", "(l1 - 10*lc1)", "not defined"),
+    ("times", "(l1 + 10*lc1)", None),
+    ("over", "(l1**2 + lc1**2)", None)])
+def test_an_equation_times_a_factor_of_lengths(engine, tmp_path, how, factor, lost):
+    result = engine.compare(load_derivation(_arm_equation_1(tmp_path, how, factor)))
     assert result.equivalent is (lost is None), _causes(result)
     if lost is not None:
         said = [c for c in _causes(result) if "equation 1 is " + lost in c]
         assert said and "for lengths the robot may have" in said[0], _causes(result)
         assert not any("equation 2" in c or "equations 1, 2" in c for c in _causes(result))
+
+
+def test_where_det_w_changes_sign_between_sets_the_row_with_the_factor_is_named(tmp_path):
+    r"""lc1 − lc2 changes sign between three of the parameter sets drawn (seed 20260101):
+    det W does too, and only equation 1, multiplied by it, is named — as multiplied (both
+    equations were named, as divided by a factor: det W alone tells a zero from a pole by
+    its magnitude only)."""
+    engine = ComparisonEngine(samples=SAMPLES, param_sets=3, seed=20260101)
+    result = engine.compare(load_derivation(_arm_equation_1(tmp_path, "times", "(lc1 - lc2)")))
+    assert result.equivalent is False
+    assert any(c.startswith("equation 1 is not independent") and "share the factor lc1 - lc2"
+               in c for c in _causes(result)), _causes(result)
+    assert not any("equations 1, 2" in c or "equation 2" in c for c in _causes(result))
 
 
 @pytest.mark.parametrize("factor, lost", [("(L - R)", True), ("(L + R)", False)])
