@@ -250,6 +250,21 @@ def test_simulate_prints_what_the_plot_shows(tmp_path, capsys):
     assert (tmp_path / "kim_eq1_3_simulation.png").read_bytes()[:4] == b"\x89PNG"
 
 
+
+def test_the_default_start_keeps_a_position_in_the_range_the_file_draws_it(tmp_path):
+    r"""The rolling disk of ``data/published`` draws its lean in [0.3, 2.84] (flat on the
+    ground at 0): its simulation starts there, at the range's middle; it started at 0, where
+    the document's equations are singular ("not simulated ... lying flat")."""
+    from pathlib import Path
+
+    from wheeled_dyn.cli.simulate_cmd import default_start
+    from wheeled_dyn.derivations import load_derivation
+    d = load_derivation(Path(__file__).parent / "data" / "published" /
+                        "rolling_disk_multipliers.toml")
+    start = default_start(d)
+    assert start["theta"] == pytest.approx(0.5 * (0.3 + 2.84))
+    assert start["psi"] == 0.2 and "x" not in start      # the others as before
+
 # -- worker processes and Ctrl-C --------------------------------------------------------------
 def _run(script: str, *args: str) -> subprocess.CompletedProcess:
     return subprocess.run([sys.executable, "-c", textwrap.dedent(script), *args],

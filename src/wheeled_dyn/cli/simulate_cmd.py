@@ -3,6 +3,7 @@ r"""CLI: ``wheeled-dyn simulate FILE...``: the true and the documented model sid
 from __future__ import annotations
 
 import argparse
+import math
 
 from ..errors import LimitError
 from .models_cmd import parse_assignments
@@ -17,7 +18,6 @@ MAX_RATE = 100.0
 
 def check_duration(duration: float, option: str = "--duration") -> None:
     r"""Raise :class:`~wheeled_dyn.errors.LimitError` unless ``0 < duration <= MAX_DURATION``."""
-    import math
     if not (math.isfinite(duration) and 0.0 < duration <= MAX_DURATION):
         raise LimitError(option, duration, f"seconds, more than 0 and at most {MAX_DURATION:g}",
                          "computing time grows with the simulated time")
@@ -35,8 +35,15 @@ def check_rates(start: dict[str, float], velocities) -> None:
 
 def default_start(d) -> dict[str, float]:
     r"""A start that exercises every term: the last position (the pitch, in seed 001's
-    coordinates) tilted by 0.2, every velocity 0.5 except the second (the heading rate) 1.5."""
+    coordinates) tilted by 0.2, every velocity 0.5 except the second (the heading rate) 1.5;
+    a position the file draws in a ``[coordinates] ranges`` that leaves this out (a coin's
+    lean away from lying flat) at its range's middle."""
     start = {str(d.positions[-1]): 0.2}
+    ranges = dict(d.coordinates.raw.get("ranges", {}))
+    for p in map(str, d.positions):
+        low, high = ranges.get(p, (-math.inf, math.inf))
+        if not low <= start.get(p, 0.0) <= high:
+            start[p] = 0.5 * (low + high)
     for i, v in enumerate(d.velocities):
         start[str(v)] = 1.5 if i == 1 else 0.5
     return start
