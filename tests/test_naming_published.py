@@ -283,6 +283,31 @@ def test_a_solved_cart_pole_with_a_cos_for_a_sin_names_it_not_its_inertia(engine
     assert "the inertia matrix the document inverted" not in said, said
     assert "Q[2] truth − document = g*l*m*(-sin(theta) + cos(theta))" in said, said
 
+
+@pytest.mark.parametrize("old, new, term", [
+    # the gravity term left out of the division by d22
+    (" + g*lc2*m2*cos(q1 + q2))/(I2 + lc2**2*m2) =", ")/(I2 + lc2**2*m2) + g*lc2*m2*cos(q1 + q2) =",
+     "g*lc2*m2*cos(q1 + q2)"),
+    # I2 of the coupling inertia d21 left out of it (one term of A[2,1])
+    ("(ddq1*(I2 + m2*(l1*lc2*cos(q2) + lc2**2))", "ddq1*I2 + (ddq1*(m2*(l1*lc2*cos(q2) + "
+     "lc2**2))", "I2")])
+def test_a_term_left_out_of_a_rows_division_is_named(engine, tmp_path, old, new, term):
+    r"""The arm's second equation divided by its diagonal inertia d22 (a textbook's step),
+    with one term not divided — an element's only term, or one of its terms: that term is
+    named, not "no single-term diagnosis" (the row is the true equation times a factor that
+    varies from sample to sample, so no constant factor names it)."""
+    path = P.write(tmp_path, "arm", "divided", None)
+    text = path.read_text()
+    assert text.count(old) == 1, old
+    path.write_text(text.replace(old, new))
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False
+    flagged = [r for r in result.records if r.verdict == "differs"]
+    assert len(flagged) == 1, [(r.element, r.texts) for r in flagged]
+    said = [d for d in flagged[0].diagnoses if d.kind == K.FACTOR]
+    assert said and said[0].term == term and "is not divided as the rest of its row" in \
+        said[0].text, flagged[0].texts
+
 def test_a_term_written_too_much_is_named_so(engine, tmp_path):
     r"""The arm's d11 with a term −lc2² m1 written in it that the truth lacks: the document
     has it too much (truth − document = +lc2² m1 is the same sum, told backwards)."""

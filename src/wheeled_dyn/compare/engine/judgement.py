@@ -32,7 +32,7 @@ from ..judge.rows import drafts_of_row, row_values
 from ..judge.units import DimensionChecker
 from ..judge.unsolved import inertia_diagnoses, unsolved_terms
 from ..readings.describe import describe
-from ..readings.frames import Frame, FrameKind, evaluate_rule
+from ..readings.frames import Frame, FrameKind, FrameRule, evaluate_rule
 from .frames import bind_declared, choose_frames, declared_weights, id_frames, row_factors
 from ..records import Cause, CauseKind, DerivationResult, Verdict, has_kind
 from ..sides.both import Sides, both_sides
@@ -101,17 +101,20 @@ def _grids(engine, d: Derivation, funcs: DocumentFunctions, sides: Sides,
 
 
 def _row_drafts(d: Derivation, funcs: DocumentFunctions, sides: Sides, frames: list[Frame],
-                dims: DimensionChecker, label: str) -> tuple[list[ElementDraft], dict]:
-    r"""Every element judged in its row's frame; per row the document's and the framed
-    truth's :math:`\Gamma` (for C by its products)."""
+                rules: list[FrameRule], dims: DimensionChecker, label: str
+                ) -> tuple[list[ElementDraft], dict]:
+    r"""Every element judged in its row's frame (``rules``: how each was found); per row the
+    document's and the framed truth's :math:`\Gamma` (for C by its products)."""
     trials = Trials(funcs, sides.argv, sides.size, sides.truth.H_rows)
     groups = swap_groups(d)
     lost = set(d.missing)
     drafts: list[ElementDraft] = []
     gammas = {}
-    for i, frame in enumerate(frames):
+    for i, (frame, rule) in enumerate(zip(frames, rules)):
         doc_row, true_row = row_of(sides.doc, i), framed(frame.weights, sides.truth,
                                                           sides.B_true)
+        factor = None if rule.kind == FrameKind.COMBINATION else \
+            frame.weights[:, i if rule.partner < 0 else rule.partner]
         scale = row_scale(doc_row, true_row)
         row = drafts_of_row(doc_row, true_row, i, funcs.exprs, d.velocities, scale, lost,
                             label)
@@ -120,7 +123,7 @@ def _row_drafts(d: Derivation, funcs: DocumentFunctions, sides: Sides, frames: l
         for r in row:
             problems = dims.check(r.key, r.index, r.expr) if r.key != "h" and \
                 r.expr is not None else []
-            judge(r, problems, trials, groups)
+            judge(r, problems, trials, groups, factor)
         drafts += row
         if doc_row.Gamma is not None and true_row.Gamma is not None:
             gammas[i] = (doc_row.Gamma[:, 0], true_row.Gamma[:, 0])
@@ -171,7 +174,7 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
         decision = bind_declared(d, decision, declared_wrong)
     stage("judging")
     label = equation_labels(str(d.source.get("equations", "")))
-    drafts, gammas = _row_drafts(d, funcs, sides, frames, DimensionChecker(d), label)
+    drafts, gammas = _row_drafts(d, funcs, sides, frames, rules, DimensionChecker(d), label)
     from ..judge.swaps import h_swaps
     h_swaps(drafts)
     families.search(cases, drafts, _agreeing(engine, d, funcs, rules, assumed))

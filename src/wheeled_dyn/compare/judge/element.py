@@ -28,7 +28,7 @@ from ..sides.document import DocumentFunctions
 from .diagnose import agrees, value_diagnoses
 from .draft import ElementDraft
 from .swaps import product_swaps, symbol_swaps
-from .terms import element_term_diagnoses, product_diagnoses
+from .terms import element_term_diagnoses, product_diagnoses, undivided_term_diagnoses
 
 #: Samples a trial reading of a differing element (one symbol read as another) is first
 #: evaluated on, spread over the parameter sets: only one that agrees there is evaluated on
@@ -89,9 +89,10 @@ def _undecided(d: ElementDraft, finite: np.ndarray) -> bool:
 
 
 def judge(d: ElementDraft, problems: Sequence[str], trials: Trials,
-          groups: Sequence[Sequence[sp.Symbol]]) -> None:
+          groups: Sequence[Sequence[sp.Symbol]], row_factor: np.ndarray | None = None) -> None:
     r"""Fill the draft's verdict and diagnoses (module text); ``problems`` are its units'
-    (:mod:`.units`), ``groups`` the symbols one may have been written for another."""
+    (:mod:`.units`), ``groups`` the symbols one may have been written for another,
+    ``row_factor`` the factor its row is of the true equation per sample, where it is."""
     d.diagnoses += [diagnosis(K.DIMENSION, p) for p in problems]
     finite = np.isfinite(d.D) & np.isfinite(d.T)
     if _undecided(d, finite):
@@ -118,6 +119,10 @@ def judge(d: ElementDraft, problems: Sequence[str], trials: Trials,
         d.diagnoses[:0] = element_term_diagnoses(
             expr, trials.funcs, trials.argv, None, d.D, d.T, d.scale,
             has_kind(d.diagnoses, K.FACTOR))
+    if row_factor is not None and not has_kind(d.diagnoses, K.SIGN, K.FACTOR, K.EXTRA,
+                                                K.MISSING):
+        d.diagnoses[:0] = undivided_term_diagnoses(expr, trials.evaluate, d.D, d.T, d.scale,
+                                                   row_factor)
     if not has_kind(d.diagnoses, K.SIGN, K.FACTOR, K.EXTRA):
         d.diagnoses += symbol_swaps(d, trials, groups)
     if not has_kind(d.diagnoses, K.SIGN, K.FACTOR, K.EXTRA, K.SWAP, K.POWER):

@@ -5,13 +5,14 @@ wrong power, one additive term with the wrong sign or factor, a sin written for 
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 import numpy as np
 import sympy as sp
 
-from ..records import Diagnosis
-from .diagnose import agrees, power_diagnoses, term_diagnoses, trig_swap_diagnoses
+from ..records import Diagnosis, DiagnosisKind as K, diagnosis
+from .diagnose import (MAX_TERMS, agrees, power_diagnoses, term_diagnoses,
+                       trig_swap_diagnoses)
 from .small_angle import small_angle_diagnoses
 from ..sides.document import DocumentFunctions
 
@@ -86,4 +87,31 @@ def product_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np
         expr, funcs, argv, None, D, T, scale)
 
 
-__all__ = ["element_term_diagnoses", "product_diagnoses", "trig_diagnoses"]
+def undivided_term_diagnoses(expr: sp.Expr, evaluate: Callable[[sp.Expr], np.ndarray],
+                             D: np.ndarray, T: np.ndarray, scale: float,
+                             factor: np.ndarray) -> list[Diagnosis]:
+    r"""One additive term :math:`t` of an element (or the element, one term) of a row that is
+    the true equation times a ``factor`` :math:`f` varying from sample to sample (a row
+    divided by its inertia) left out of it: :math:`D + (f - 1)\,t = T` (the document divided
+    the rest of the row and not this term), or given it twice, :math:`D + (1/f - 1)\,t = T`."""
+    if np.ptp(factor) <= 1e-9 * float(np.abs(factor).max(initial=0.0)) or \
+            not np.all(np.isfinite(factor)) or not np.all(factor != 0):
+        return []
+    expanded = sp.Add.make_args(sp.expand(expr))
+    if len(expanded) > MAX_TERMS:
+        return []
+    for t in dict.fromkeys((*expanded, *sp.Add.make_args(expr))):
+        tv = np.broadcast_to(np.asarray(evaluate(t), float), D.shape)
+        if agrees(D + (factor - 1) * tv, T, scale):
+            return [diagnosis(K.FACTOR, f"the term {sp.sstr(t)} is not divided as the rest of "
+                              "its row is (the row is the true equation times a factor; this "
+                              "term is the true one's without it)", term=sp.sstr(t))]
+        if agrees(D + (1 / factor - 1) * tv, T, scale):
+            return [diagnosis(K.FACTOR, f"the term {sp.sstr(t)} is divided twice (the row is "
+                              "the true equation times a factor; this term is the true one's "
+                              "times it twice)", term=sp.sstr(t))]
+    return []
+
+
+__all__ = ["element_term_diagnoses", "product_diagnoses", "trig_diagnoses",
+           "undivided_term_diagnoses"]
