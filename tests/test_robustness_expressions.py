@@ -93,6 +93,15 @@ def test_errors_name_file_line_and_item(element, reason, tmp_path):
     assert reason in str(err.value)
 
 
+def test_an_equation_of_some_hundred_terms_is_read(tmp_path):
+    r"""A three-coordinate robot's row replaced by a combination of its equations, with a full
+    body inertia, has 186 terms once multiplied out (refused at 100): one of 182 is read; the
+    limit refuses what would take minutes, not what a derivation writes."""
+    element = "((m_c+m_s+sin(phi)+cos(phi)+d+R)**4 + (m_c+m_s+d+R+sin(psi)+cos(psi))**3)*ddx"
+    assert 150 < expanded_terms(sp.sympify(element)) <= MAX_EXPANDED_TERMS
+    path, _ = _mutated(tmp_path, "3*(m_c + m_s)*ddx", element)
+    assert load_derivation(path).equations is not None
+
 def test_definitions_are_counted_after_substitution(tmp_path):
     r"""A definition cannot smuggle a large expression past the limit."""
     text = KIM.read_text().replace(
