@@ -308,6 +308,32 @@ def test_a_term_left_out_of_a_rows_division_is_named(engine, tmp_path, old, new,
     assert said and said[0].term == term and "is not divided as the rest of its row" in \
         said[0].text, flagged[0].texts
 
+
+def test_a_symbol_for_another_in_the_models_proportions_is_a_swap_not_a_factor(engine,
+                                                                              tmp_path):
+    r"""The differential-drive robot of ``data/published/dd_multipliers.toml`` with its wheels
+    declared in their URDF's proportions and I_w (about the axle) written for I_m (about a
+    diameter) in the yaw inertia: the ratio of the two is one number for every wheel the
+    family allows, so the term is "that number × what fits" too; the symbol written for the
+    other is said first, and is the cause (it read "the term 2*I_w is 16/9 × what fits")."""
+    from wheeled_dyn.compare.records import CauseKind
+    text = (DATA / "dd_multipliers.toml").read_text()
+    old = 'I = "I_c + m_c*d**2 + 2*m_w*L**2 + 2*I_m"'
+    assert text.count(old) == 1 and text.count('families = ["urdf_structure"]') == 1
+    text = text.replace(old, old.replace("2*I_m", "2*I_w")).replace(
+        'families = ["urdf_structure"]', 'families = ["urdf_proportions"]')
+    for own in ("dd_robot.toml", "dd_robot.urdf"):
+        (tmp_path / own).write_text((DATA / own).read_text())
+    path = tmp_path / "dd.toml"
+    path.write_text(text)
+    result = engine.compare(load_derivation(path))
+    flagged = [r for r in result.records if r.verdict == "differs"]
+    assert [r.element for r in flagged] == ["A[3,3]"], [(r.element, r.texts) for r in flagged]
+    first = flagged[0].diagnoses[0]
+    assert first.kind == K.SWAP and (first.written, first.fits) == ("I_w", "I_m"), \
+        flagged[0].texts
+    assert any(c.kind == CauseKind.SWAP and "A[3,3]" in c.elements for c in result.causes)
+
 def test_a_term_written_too_much_is_named_so(engine, tmp_path):
     r"""The arm's d11 with a term −lc2² m1 written in it that the truth lacks: the document
     has it too much (truth − document = +lc2² m1 is the same sum, told backwards)."""

@@ -119,6 +119,19 @@ TERM_KINDS = (
 )
 
 
+def _term_kinds(diagnoses: Sequence) -> tuple:
+    r""":data:`TERM_KINDS`, with a symbol written for another before a term's factor where the
+    element says the swap first (a factor that is the ratio of two of the model's parameters:
+    :func:`~..judge.element.judge`)."""
+    kinds = [x.kind for x in diagnoses]
+    if K.SWAP in kinds and K.FACTOR in kinds and kinds.index(K.SWAP) < kinds.index(K.FACTOR):
+        swap = next(t for t in TERM_KINDS if t[0] == K.SWAP)
+        rest = [t for t in TERM_KINDS if t[0] != K.SWAP]
+        at = next(i for i, t in enumerate(rest) if t[0] == K.FACTOR)
+        return (*rest[:at], swap, *rest[at:])
+    return TERM_KINDS
+
+
 def _one_swap(r, hit) -> str:
     r"""The two halves of a swapped velocity product in h — ``h[3]:dpsi*dpsi`` "written as
     dphi*dphi in the document" and ``h[3]:dphi*dphi`` "the document's dphi*dphi term is the
@@ -145,7 +158,7 @@ def term_causes(records: Sequence, explained: set[str],
             text = "holds only if " + (cond.condition if cond is not None else "")
             groups.setdefault((CauseKind.ASSUMPTION, text), []).append(r.element)
             continue
-        for dkind, kind, sentence in TERM_KINDS:
+        for dkind, kind, sentence in _term_kinds(r.diagnoses):
             hit = first_of(r.diagnoses, dkind)
             if hit is not None:
                 detail = hit.detail or sentence

@@ -127,6 +127,23 @@ def judge(d: ElementDraft, problems: Sequence[str], trials: Trials,
         d.diagnoses += symbol_swaps(d, trials, groups)
     if not has_kind(d.diagnoses, K.SIGN, K.FACTOR, K.EXTRA, K.SWAP, K.POWER):
         d.diagnoses += product_swaps(expr, trials, groups, d.T, d.scale)
+    elif _odd_factor(d.diagnoses) and not has_kind(d.diagnoses, K.SWAP):
+        # a term "15/8 × what fits" where the model's proportions make one symbol 15/8 of
+        # another: the symbol written for the other says it plainly, and comes first
+        d.diagnoses[:0] = product_swaps(expr, trials, groups, d.T, d.scale)
+
+
+def _odd_factor(diagnoses: Sequence[Diagnosis]) -> bool:
+    r"""Whether a term's factor is the only thing said and is no plain number (an integer
+    or its inverse, up to 4, or −1): a ratio of two of the model's parameters, maybe."""
+    factors = [x.factor for x in diagnoses if x.kind == K.FACTOR and x.term]
+    if not factors or has_kind(diagnoses, K.SIGN, K.EXTRA, K.MISSING):
+        return False
+    try:
+        c = abs(sp.Rational(str(factors[0])))
+    except (TypeError, ValueError, sp.SympifyError):
+        return False
+    return not any(c == k or c == sp.Rational(1, k) for k in (1, 2, 3, 4))
 
 
 def specific(diagnoses: Sequence[Diagnosis]) -> bool:
