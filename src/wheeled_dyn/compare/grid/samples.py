@@ -201,10 +201,10 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
             second = np.maximum(second, 0.0) * rng.uniform(0.5, 2.0, 3)
             moments = np.array([second[1] + second[2], second[0] + second[2],
                                 second[0] + second[1]])
+            mass = old.mass * rng.uniform(0.5, 2.0)       # drawn before the centre, as ever
             lever = old.lever * (rng.uniform(0.5, 2.0, 3) if spread == FACTOR else
                                  np.exp(rng.uniform(-np.log(spread), np.log(spread), 3)))
-            model.inertias[jid] = pin.Inertia(old.mass * rng.uniform(0.5, 2.0), lever,
-                                              axes @ np.diag(moments) @ axes.T)
+            model.inertias[jid] = pin.Inertia(mass, lever, axes @ np.diag(moments) @ axes.T)
         elif model.inertias[jid].mass > 0:
             base = model.inertias[jid].toDynamicParameters()
             scale = np.log(max(base[0], 1e-3))
