@@ -226,6 +226,11 @@ def test_a_constraint_row_times_a_factor_that_touches_zero_is_lost(engine, tmp_p
     if lost:
         assert any("is written times" in c.explanation for c in result.causes
                    if c.kind == CauseKind.NOT_EQUIVALENT), result.causes
+        # the row's own line says so too (it read "a rolling constraint of the model")
+        if name == ROBOT:
+            assert result.constraints[2].startswith("G row 3: a rolling constraint of the "
+                                                    "model times "), result.constraints
+            assert result.constraints[2].endswith(": lost there"), result.constraints
 
 
 

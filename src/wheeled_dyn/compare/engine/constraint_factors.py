@@ -26,6 +26,8 @@ model's rows' there.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 import sympy as sp
 
@@ -117,7 +119,22 @@ def _fewer_at_special_states(funcs: DocumentFunctions, sides: Sides, G: sp.Matri
             "singular there)")
 
 
-def lost_constraints(funcs: DocumentFunctions, sides: Sides, seed: int) -> tuple[str, ...]:
+@dataclass(frozen=True)
+class Lost:
+    r"""A constraint the document's rows lose: ``where`` the file states them (``G``,
+    ``[constraints]``), the ``row`` (0-based) whose factor vanishes (None: the rows
+    together), what is wrong (``text``) and the row's own line in the report (``row_text``)."""
+
+    where: str
+    row: int | None
+    text: str
+    row_text: str = ""
+
+    def __str__(self) -> str:
+        return f"{self.where}: {self.text}"
+
+
+def lost_constraints(funcs: DocumentFunctions, sides: Sides, seed: int) -> tuple[Lost, ...]:
     r"""For each constraint row the document states (its ``G``, its ``[constraints]``) times a
     factor that vanishes (module text), and for its rows together where they state fewer
     constraints than the model's at a special state, what is wrong, named by where the file
@@ -136,14 +153,17 @@ def lost_constraints(funcs: DocumentFunctions, sides: Sides, seed: int) -> tuple
             for f, divided in [(f, divided) for divided in (False, True) for f in
                                row_factors(list(G.row(r)), allowed, positions, divided)]:
                 if _vanishes(funcs, sides, f, rng, seed):
-                    out.append(f"{where}: its constraint row {r + 1} is written "
-                               f"{'divided by' if divided else 'times'} {sp.sstr(f)}, which "
-                               "vanishes for some state or robot of the model: the "
-                               f"constraint is {'undefined' if divided else 'lost'} there")
+                    how = f"{'divided by' if divided else 'times'} {sp.sstr(f)}"
+                    lost = "undefined" if divided else "lost"
+                    out.append(Lost(where, r, f"its constraint row {r + 1} is written {how}, "
+                                    "which vanishes for some state or robot of the model: the "
+                                    f"constraint is {lost} there",
+                                    f"a rolling constraint of the model {how}, which "
+                                    f"vanishes for some state or robot: {lost} there"))
                     break
     return tuple(out) if out else tuple(
-        f"{where}: {said}" for where, G in stated
+        Lost(where, None, said) for where, G in stated
         if (said := _fewer_at_special_states(funcs, sides, G)) is not None)
 
 
-__all__ = ["ZERO", "lost_constraints"]
+__all__ = ["ZERO", "Lost", "lost_constraints"]

@@ -278,7 +278,13 @@ def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed
     causes = frame_causes(d, texts, rules, result.equations, declared_wrong, result.records)
     wrong = constraint_problems(d, funcs, sides)
     if wrong is not None and sides.truth.G is not None and not wrong:
-        wrong = lost_constraints(funcs, sides, seed)
+        lost = lost_constraints(funcs, sides, seed)
+        wrong = tuple(map(str, lost))
+        rows = list(result.constraints)          # a G row lost says so on its own line too
+        for x in lost:
+            if x.where == "G" and x.row is not None and x.row < len(rows):
+                rows[x.row] = f"G row {x.row + 1}: {x.row_text}"
+        result = replace(result, constraints=tuple(rows))
     if wrong:
         causes.append(Cause(CauseKind.NOT_EQUIVALENT, (), "the document's constraints are "
                             "not the model's rolling constraints: " + "; ".join(wrong)))
