@@ -73,9 +73,11 @@ def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides, seed: int = 20
         truth.K if doc.K is not None else None, sides.B_true),
         np.swapaxes(truth.G, 1, 2) if kept and truth.G is not None else None)
     first = equivalence.decide(doc_side, true_side, len(sides.grid.sets))
-    if any(has_kind(e.diagnoses, DiagnosisKind.SINGULAR) for e in first.equations):
-        # W singular or unbounded somewhere: a row's own factor, where one vanishes, says
-        # which equation and how (det W alone tells a zero from a pole by magnitude only)
+    if any(has_kind(e.diagnoses, DiagnosisKind.SINGULAR) for e in first.equations) and \
+            equivalence.singular_everywhere(doc_side.A, true_side.A, first.W) is None:
+        # W singular or unbounded somewhere (not everywhere: an equation repeated or lost is
+        # said as it is): a row's own factor, where one vanishes, says which equation and
+        # how (det W alone tells a zero from a pole by magnitude only)
         found = vanishing_factors(funcs, sides, list(range(d.n)), seed)
         if found:
             alone = equivalence.decide(doc_side, true_side, len(sides.grid.sets),

@@ -103,7 +103,7 @@ def source_weights(doc, truth, true_B: np.ndarray | None) -> tuple[np.ndarray, n
     rows = truth.H_rows if truth.H_rows is not None else np.arange(len(truth.need("A")))
     if doc.H is None or doc.H.shape[0] != len(rows):
         return None
-    C_true, C_doc = _columns(truth, true_B, rows), _columns(doc, doc.B, np.arange(len(rows)))
+    C_true, C_doc = _columns(truth, true_B, rows), _columns(doc, doc.B, rows)
     if C_true is None or C_doc is None or C_true.shape != C_doc.shape:
         return None
     if not (np.isfinite(C_true).all() and np.isfinite(C_doc).all()):
