@@ -31,7 +31,28 @@ _NAME = re.compile(r"[^A-Za-z0-9_-]+")
 
 
 def _text(e: Any) -> str:
-    return e if isinstance(e, str) else sp.sstr(sp.sympify(e))
+    return e if isinstance(e, str) else sp.sstr(_without_time(sp.sympify(e)))
+
+
+def _without_time(e: Any) -> Any:
+    r"""``e`` with the functions of time of :mod:`sympy.physics.mechanics`
+    (``dynamicsymbols``) read as a derivation's names: :math:`\theta(t)` as ``theta``, its
+    first and second derivatives as ``dtheta`` and ``ddtheta`` (the names a file gives a
+    position's velocity and acceleration), a generalized speed :math:`u(t)` as ``u`` and its
+    derivative as ``du``."""
+    if not isinstance(e, sp.Basic):
+        return e
+    from sympy.core.function import AppliedUndef
+    timed = {f for f in e.atoms(AppliedUndef) if len(f.args) == 1 and f.args[0].is_Symbol}
+    if not timed:
+        return e
+    names = {}
+    for d in e.atoms(sp.Derivative):
+        f, (t, k) = d.expr, d.variable_count[0]
+        if f in timed and len(d.variable_count) == 1 and t == f.args[0] and k in (1, 2):
+            names[d] = sp.Symbol("d" * int(k) + f.func.__name__, real=True)
+    e = e.xreplace(names)
+    return e.xreplace({f: sp.Symbol(f.func.__name__, real=True) for f in timed})
 
 
 def _matrix(M: Any, column: bool = False) -> list:
