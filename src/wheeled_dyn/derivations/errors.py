@@ -32,6 +32,13 @@ class DerivationNameError(UnknownNameError):
         self.line = line
         where = f"{self.path}:{line}" if line is not None else str(self.path)
         super().__init__(kind, name, valid, where=f"{where}: {item}")
+        from .namespace import GEOMETRY_NAMES
+        call = next((f"{g}({name[len(g) + 1:]})" for g in sorted(GEOMETRY_NAMES, key=len,
+                                                                  reverse=True)
+                     if kind == "symbol" and name.startswith(g + "_")), None)
+        if call is not None:               # a model length as a coordinate map writes it
+            self.args = (self.args[0] + f"; for the model length {call}, declare a symbol "
+                         f"in [symbols] (x = {{ value = \"{call}\" }}) and write it here",)
 
 
 class ExpressionError(ValueError):

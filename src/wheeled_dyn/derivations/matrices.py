@@ -195,8 +195,42 @@ class MatrixReader:
             out["G"] = self.grid("G", table["G"], None, n)
         if "equations" in table:
             self.equations = self._equations(table["equations"])
+        for key in ("A", "C", "Q", "G"):
+            self._without_inputs(key, out.get(key))
+        self._without_rates(out.get("Q"))
         self.shapes = {key: M.shape for key, M in out.items()}
         return out
+
+    def _without_rates(self, Q: sympy.ImmutableMatrix | None) -> None:
+        r"""A velocity or an acceleration inside Q is an error naming the element: Q is the
+        part of the equations free of them (velocity terms go in C, as C q̇; a document that
+        keeps them together writes its equations)."""
+        if Q is None:
+            return
+        names = {*self.ld.coordinates.get("velocities", ()),
+                 *self.ld.coordinates.get("accelerations", ())}
+        for i, e in enumerate(Q):
+            found = sorted((s for s in e.free_symbols if s.name in names), key=str)
+            if found:
+                raise self.ld.fail(f"Q[{i + 1}]", f"the velocity or acceleration {found[0]} "
+                                   "in Q: Q holds the terms free of them; velocity terms go in "
+                                   "C (as C q̇), or write the equations",
+                                   self.ld.line("matrices", "Q"))
+
+    def _without_inputs(self, key: str, M: sympy.ImmutableMatrix | None) -> None:
+        r"""A document input (a torque) inside A, C, Q or G is an error naming the element:
+        the inputs enter through B (or an equation's right side)."""
+        if M is None or not self.inputs:
+            return
+        for idx, e in enumerate(M):
+            found = sorted(e.free_symbols & set(self.inputs), key=str)
+            if found:
+                i, j = divmod(idx, M.cols)
+                where = f"{key}[{i + 1}]" if M.cols == 1 and key == "Q" else \
+                    f"{key}[{i + 1},{j + 1}]"
+                raise self.ld.fail(where, f"the input {found[0]} in {key}: inputs enter "
+                                   "through B (or an equation's right side), A C Q G hold "
+                                   "none", self.ld.line("matrices", key))
 
     def _input_matrix(self, gamma: sympy.ImmutableMatrix) -> sympy.ImmutableMatrix:
         B = gamma.jacobian(sympy.Matrix(self.inputs))

@@ -49,6 +49,9 @@ def energy_check(funcs: DocumentFunctions, doc: Arrays, row_factor, q, nu, value
     Adot = sum((A.diff(p) * rates[p] for p in d.positions if rates[p] is not None),
                sp.zeros(d.n, d.n))
     power = (v.T * h)[0] - (v.T * Adot * v)[0] / 2
+    if not power.free_symbols <= set(funcs.args):
+        return None       # the rates hold a model length the map names (length_pole): its
+        #                   value is each parameter set's, not a document's symbol
     fn = numpy_function(funcs.args, power)
     fh = numpy_function(funcs.args, (v.T * h)[0])
     argv = [*q.T, *nu.T, *(values[p] for p in funcs.params)]
