@@ -249,6 +249,48 @@ def test_constraint_rows_mixed_with_weights_singular_at_a_state_lose_a_constrain
     assert any("fewer independent constraints than the model's at" in c and "theta = 0" in c
                for c in causes), causes
 
+#: The robot's three rows as its file prints them: sideways, rolling forward, yaw.
+LATERAL, FORWARD, YAW = ("[-sin(theta), cos(theta), 0, 0, 0]",
+                         "[cos(theta), sin(theta), 0, -R/2, -R/2]",
+                         "[0, 0, 1, -R/(2*L), R/(2*L)]")
+
+
+def _robot_rows(engine, tmp_path, *rows: str):
+    old = f"[{LATERAL},\n        {FORWARD},\n        {YAW}]"
+    text = (DATA / ROBOT).read_text()
+    assert text.count(old) == 1
+    return _compare(engine, tmp_path, ROBOT, old, "[" + ",\n        ".join(rows) + "]")
+
+
+def test_rows_whose_factors_vanish_apart_still_state_the_constraints(engine, tmp_path):
+    r"""The forward-rolling row written twice, times cos θ and times sin θ, beside the others:
+    each row's factor vanishes somewhere, but never both, so the four rows state the three
+    constraints everywhere (it was said lost where cos θ = 0)."""
+    def times(f: str, row: str) -> str:
+        return "[" + ", ".join(f"{f}*({x.strip()})" for x in row[1:-1].split(",")) + "]"
+    result = _robot_rows(engine, tmp_path, times("cos(theta)", FORWARD),
+                         times("sin(theta)", FORWARD), LATERAL, YAW)
+    assert result.constraints_agree is True, [c.explanation for c in result.causes]
+    assert result.equivalent is True
+
+
+@pytest.mark.parametrize("weight", ["(cos(theta) - 1/3)", "(cos(theta) - 1/3)**2"])
+def test_rows_mixed_with_weights_singular_away_from_special_positions_lose_one(
+        engine, tmp_path, weight):
+    r"""The yaw row replaced by the forward row plus a weight times the yaw row: where
+    cos θ = 1/3 (no special position) it is the forward row again, and the yaw constraint is
+    lost there, whether the weights' determinant changes sign or only touches zero (both
+    agreed: no row has a factor, and the model's four rows of rank three have no determinant
+    to compare with). The rows' least independence is searched for."""
+    def plus(a: str, w: str, b: str) -> str:
+        return "[" + ", ".join(f"({x.strip()}) + {w}*({y.strip()})" for x, y in
+                               zip(a[1:-1].split(","), b[1:-1].split(","))) + "]"
+    result = _robot_rows(engine, tmp_path, LATERAL, FORWARD, plus(FORWARD, weight, YAW))
+    assert result.constraints_agree is False and result.equivalent is False
+    said = [c.explanation for c in result.causes if c.kind == CauseKind.NOT_EQUIVALENT]
+    assert any("fewer independent constraints than the model's at" in c and
+               ("theta = 1.231" in c or "theta = -1.231" in c) for c in said), said
+
 def test_a_constraint_stated_twice_is_still_the_models(engine, tmp_path):
     r"""The robot's G with a fourth row, the sum of its first two (a dependent row, four
     multipliers): the same constraints. The model's own rows are four of rank three here; a

@@ -37,7 +37,7 @@ from ..sides.both import Sides
 from ..sides.document import DocumentFunctions
 from .length_robots import vanishes_for_other_lengths
 from .other_robots import scalable, scaled_values
-from ..judge.document_checks import row_rank, unit_rows
+from .constraint_states import StatedRows, factor_zeros, least_independent
 from .parameter_factors import changes_sign, row_factors
 
 #: A factor at most this fraction of its median magnitude over the samples is zero there.
@@ -85,40 +85,6 @@ def _vanishes(funcs: DocumentFunctions, sides: Sides, factor: sp.Expr,
                for ps in sides.grid.sets) or vanishes_for_other_lengths(funcs.d, factor, seed)
 
 
-def _fewer_at_special_states(funcs: DocumentFunctions, sides: Sides, G: sp.Matrix
-                             ) -> str | None:
-    r"""The first special state (each position at :math:`0, \pm\pi/2, \pi`) where the rows
-    ``G`` state fewer independent constraints than the model's rows there (rows the model's
-    mixed with weights that are singular there: :math:`\cos\theta\,g_1 + \sin\theta\,g_2`
-    for :math:`g_2` is :math:`g_1` at :math:`\theta = 0`), said; None where there is none."""
-    from ..sides.truth import truth_for
-    grid = sides.grid
-    q, owner = special_states(grid)
-    if not len(q):
-        return None
-    values = [np.array([sides.per_set[k][p] for k in owner]) for p in funcs.params]
-    rows = np.empty((len(q), G.rows, G.cols))
-    with np.errstate(all="ignore"):
-        for r in range(G.rows):
-            for c in range(G.cols):
-                rows[:, r, c] = np.broadcast_to(np.asarray(funcs.compiled(G[r, c])(
-                    *q.T, *np.zeros_like(q).T, *values), float), (len(q),))
-    true = np.full((len(q),) + sides.truth.need("G").shape[1:], np.nan)
-    for k, ps in enumerate(grid.sets):
-        at = np.flatnonzero(owner == k)
-        if len(at):
-            true[at] = truth_for(grid.cmap, [ps], q[at][None], np.zeros((1, len(at),
-                                                                         q.shape[1]))).G
-    ok = np.isfinite(rows).all(axis=(1, 2)) & np.isfinite(true).all(axis=(1, 2))
-    short = np.flatnonzero(ok)[row_rank(unit_rows(rows[ok])) < row_rank(unit_rows(true[ok]))]
-    if not len(short):
-        return None
-    state = ", ".join(f"{p} = {v:.4g}" for p, v in zip(funcs.d.positions, q[short[0]]))
-    return (f"its constraint rows state fewer independent constraints than the model's at "
-            f"{state}: a constraint is lost there (rows mixed with weights that are "
-            "singular there)")
-
-
 @dataclass(frozen=True)
 class Lost:
     r"""A constraint the document's rows lose: ``where`` the file states them (``G``,
@@ -135,10 +101,12 @@ class Lost:
 
 
 def lost_constraints(funcs: DocumentFunctions, sides: Sides, seed: int) -> tuple[Lost, ...]:
-    r"""For each constraint row the document states (its ``G``, its ``[constraints]``) times a
-    factor that vanishes (module text), and for its rows together where they state fewer
-    constraints than the model's at a special state, what is wrong, named by where the file
-    states it."""
+    r"""For the constraint rows the document states (its ``G``, its ``[constraints]``), what
+    is wrong, named by where the file states them: a row times (or over) a factor of the
+    parameters that vanishes for another robot of the model; a row times a factor of the
+    positions that vanishes where the rows then state fewer constraints than the model's
+    (:mod:`.constraint_states`); the rows together stating fewer at a special state or where
+    they are least independent."""
     d = funcs.d
     stated = [("G", sp.Matrix(d.G))] if d.G is not None else []
     M = d.constraint_matrix()
@@ -147,23 +115,55 @@ def lost_constraints(funcs: DocumentFunctions, sides: Sides, seed: int) -> tuple
     positions = frozenset(d.positions)
     allowed = scalable(d, funcs.params) | set(positions)
     rng = np.random.default_rng([seed, 37])
-    out = []
+    out: list[Lost] = []
     for where, G in stated:
-        for r in range(G.rows):
-            for f, divided in [(f, divided) for divided in (False, True) for f in
-                               row_factors(list(G.row(r)), allowed, positions, divided)]:
-                if _vanishes(funcs, sides, f, rng, seed):
-                    how = f"{'divided by' if divided else 'times'} {sp.sstr(f)}"
-                    lost = "undefined" if divided else "lost"
-                    out.append(Lost(where, r, f"its constraint row {r + 1} is written {how}, "
-                                    "which vanishes for some state or robot of the model: the "
-                                    f"constraint is {lost} there",
-                                    f"a rolling constraint of the model {how}, which "
-                                    f"vanishes for some state or robot: {lost} there"))
-                    break
-    return tuple(out) if out else tuple(
-        Lost(where, None, said) for where, G in stated
-        if (said := _fewer_at_special_states(funcs, sides, G)) is not None)
+        rows = StatedRows(funcs, sides, G)
+        lost = next(filter(None, (_lost_row(funcs, sides, rows, where, r, f, e, divided,
+                                            rng, seed)
+                                  for r in range(G.rows) for divided in (False, True)
+                                  for f, e in row_factors(list(G.row(r)), allowed, positions,
+                                                          divided))), None)
+        if lost is None:
+            q, owner = least_independent(rows)
+            bad = rows.fewer(q, owner)
+            if bad is not None:
+                lost = Lost(where, None, "its constraint rows state fewer independent "
+                            f"constraints than the model's at {_state(d, q[bad])}: a "
+                            "constraint is lost there (rows mixed with weights that are "
+                            "singular there)")
+        if lost is not None:
+            out.append(lost)
+    return tuple(out)
+
+
+def _state(d, q: np.ndarray) -> str:
+    return ", ".join(f"{p} = {v:.4g}" for p, v in zip(d.positions, q))
+
+
+def _lost_row(funcs: DocumentFunctions, sides: Sides, rows: StatedRows, where: str, r: int,
+              f: sp.Expr, e: int, divided: bool, rng: np.random.Generator, seed: int
+              ) -> Lost | None:
+    r"""Row ``r`` written times (``divided``: over) ``f`` to the power ``e``: lost where
+    ``f`` vanishes — for a factor of the positions, only where the rows then state fewer
+    constraints than the model's (another row may state it there: cos θ·g and sin θ·g)."""
+    how = f"{'divided by' if divided else 'times'} {sp.sstr(f ** e)}"
+    state = "undefined" if divided else "lost"
+    if f.free_symbols & set(funcs.d.positions):
+        if divided:
+            found = _vanishes_in_state(_values_at(funcs, sides, f))
+            at = ""
+        else:
+            q, owner = factor_zeros(funcs, sides, f)
+            bad = rows.fewer(q, owner)
+            found, at = bad is not None, "" if bad is None else f" (at {_state(funcs.d, q[bad])})"
+    else:
+        found, at = _vanishes(funcs, sides, f, rng, seed), ""
+    if not found:
+        return None
+    return Lost(where, r, f"its constraint row {r + 1} is written {how}, which vanishes for "
+                f"some state or robot of the model{at}: the constraint is {state} there",
+                f"a rolling constraint of the model {how}, which vanishes for some state or "
+                f"robot: {state} there")
 
 
 __all__ = ["ZERO", "Lost", "lost_constraints"]

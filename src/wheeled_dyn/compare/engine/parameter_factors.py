@@ -46,11 +46,12 @@ class Vanishing:
 
 def row_factors(row: list[sp.Expr], allowed: set[sp.Symbol],
                 bare: frozenset[sp.Symbol] = frozenset(), divided: bool = False
-                ) -> list[sp.Expr]:
+                ) -> list[tuple[sp.Expr, int]]:
     r"""The factors of the common divisor of ``row``'s numerators (with ``divided``: of its
     denominators, what the row is divided by) that depend on ``allowed`` symbols alone and
     are sums or a symbol of ``bare`` (a position; a single symbol of a mass never
-    vanishes)."""
+    vanishes): (base, power), the base the one that changes sign ((cos θ − 1/3)² has the
+    base 3 cos θ − 1)."""
     try:
         numerators = [sp.fraction(sp.together(e))[int(divided)] for e in row if e != 0]
         if not numerators:
@@ -59,7 +60,7 @@ def row_factors(row: list[sp.Expr], allowed: set[sp.Symbol],
         _, found = sp.factor_list(common)
     except (sp.PolynomialError, sp.CoercionFailed, NotImplementedError):
         return []
-    return [-b if b.could_extract_minus_sign() else b for b, _ in found
+    return [(-b if b.could_extract_minus_sign() else b, int(e)) for b, e in found
             if b.free_symbols and b.free_symbols <= allowed and not b.is_number
             and (not b.is_Symbol or b in bare)]
 
@@ -83,24 +84,24 @@ def vanishing_factors(funcs: DocumentFunctions, sides: Sides, rows: list[int],
         return {}
     d = funcs.d
     allowed = scalable(d, funcs.params)
-    candidates = {i: [(f, divided) for divided in (False, True)
-                      for f in row_factors(list(sp.Matrix(A).row(i)), allowed,
-                                           divided=divided)] for i in rows}
+    candidates = {i: [(f, e, divided) for divided in (False, True)
+                      for f, e in row_factors(list(sp.Matrix(A).row(i)), allowed,
+                                              divided=divided)] for i in rows}
     if not any(candidates.values()):
         return {}
     rng = np.random.default_rng([seed, 29])
-    needed = sorted({s for fs in candidates.values() for f, _ in fs for s in f.free_symbols},
-                    key=sp.default_sort_key)
+    needed = sorted({s for fs in candidates.values() for f, _, _ in fs
+                     for s in f.free_symbols}, key=sp.default_sort_key)
     draws = [scaled_values(d, ps, needed, rng) for ps in sides.grid.sets]
     out: dict[int, Vanishing] = {}
     for i, found in candidates.items():
-        for f, divided in found:
+        for f, e, divided in found:
             args = sorted(f.free_symbols, key=sp.default_sort_key)
             fn = numpy_function(args, f)
             if any(changes_sign(fn, args, v) for v in draws):
-                out[i] = Vanishing(f, divided, False)
+                out[i] = Vanishing(f ** e, divided, False)
             elif vanishes_for_other_lengths(d, f, seed):
-                out[i] = Vanishing(f, divided, True)
+                out[i] = Vanishing(f ** e, divided, True)
             else:
                 continue
             break
