@@ -97,6 +97,26 @@ def test_fit_factor_finds_a_monomial_and_refuses_a_sum():
     assert fit_factor(vm + vr, bases) is None
 
 
+
+def test_fit_factor_and_fit_swap_see_through_collinear_bases():
+    r"""With sin 2θ among the bases beside sin θ and cos θ (a document writes both), least
+    squares on the logarithms splits an exponent among them and no integer one was found:
+    −R a m cos θ (a centripetal term dropped) and g m (a − h) sin θ (a centre's coordinate
+    written for the other) were left unnamed."""
+    from wheeled_dyn.compare.judge.fitting import fit_swap
+    rng = np.random.default_rng(SEED)
+    names = ("R", "a", "h", "m", "g")
+    symbols = [sp.Symbol(n, real=True) for n in names]
+    values = [rng.uniform(0.5, 2, 60) for _ in names]
+    th, vt = sp.Symbol("th", real=True), rng.uniform(-3, 3, 60)
+    bases = [*zip(symbols, values), (sp.cos(th), np.cos(vt)), (sp.sin(th), np.sin(vt)),
+             (sp.sin(2 * th), np.sin(2 * vt))]
+    R, a, h, m, g = symbols
+    vR, va, vh, vm, vg = values
+    assert fit_factor(-vR * va * vm * np.cos(vt), bases) == -R * a * m * sp.cos(th)
+    assert fit_swap(vg * vm * (va - vh) * np.sin(vt), bases) == g * m * (a - h) * sp.sin(th)
+    assert fit_swap(vg * vm * (va - vh) * np.sin(vt) + 0.1, bases) is None
+
 #: Relative energy drift of the document's own simulation over 1 s, and its largest distance
 #: from the true positions (both integrated to the simulations' default tolerances).
 DOCUMENT_DRIFT_TOL, TRAJECTORY_TOL = 1e-7, 1e-6

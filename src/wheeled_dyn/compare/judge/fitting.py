@@ -140,18 +140,44 @@ def _search(ratio: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
     return out
 
 
+def _independent(bases: Sequence[tuple[sp.Expr, np.ndarray]], n: int
+                 ) -> list[tuple[sp.Expr, np.ndarray]]:
+    r"""The bases whose logarithms are independent of those before them and of a constant
+    (:math:`\log|\sin 2\alpha| = \log 2 + \log|\sin\alpha| + \log|\cos\alpha|`: with
+    both, least squares splits an exponent between them and no integer one is found)."""
+    kept: list[tuple[sp.Expr, np.ndarray]] = []
+    X = np.ones((n, 1))
+    for b, v in bases:
+        trial = np.column_stack([X, np.log(np.abs(np.broadcast_to(v, (n,))))])
+        if np.linalg.matrix_rank(trial) == trial.shape[1]:
+            kept.append((b, v))
+            X = trial
+    return kept
+
+
+def _monomial(ratio: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
+              ) -> sp.Expr | None:
+    r"""A monomial in ``bases`` equal to ``ratio``, by least squares on the logarithms
+    (integer exponents), checked exactly."""
+    if not bases:
+        return None
+    X = np.column_stack([np.log(np.abs(v)) for _, v in bases] + [np.ones(len(ratio))])
+    e = np.linalg.lstsq(X, np.log(np.abs(ratio)), rcond=None)[0][:-1]
+    rounded = np.rint(e).astype(int)
+    if np.abs(e - rounded).max() < 1e-6 and np.abs(rounded).max() <= max(EXPONENTS):
+        return _try(ratio, bases, rounded)
+    return None
+
+
 def fit_factor(ratio: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> sp.Expr | None:
-    r"""A monomial in ``bases`` equal to ``ratio`` at every sample (module docstring)."""
+    r"""A monomial in ``bases`` equal to ``ratio`` at every sample (module docstring): by least
+    squares on all the bases' logarithms, a constant, the search, and last by least squares
+    on the bases independent of the others (:func:`_independent`)."""
     if not np.isfinite(ratio).all() or np.abs(ratio).min() <= 0:
         return None
-    if bases:
-        X = np.column_stack([np.log(np.abs(v)) for _, v in bases] + [np.ones(len(ratio))])
-        e = np.linalg.lstsq(X, np.log(np.abs(ratio)), rcond=None)[0][:-1]
-        rounded = np.rint(e).astype(int)
-        if np.abs(e - rounded).max() < 1e-6 and np.abs(rounded).max() <= max(EXPONENTS):
-            found = _try(ratio, bases, rounded)
-            if found is not None:
-                return found
+    found = _monomial(ratio, bases)
+    if found is not None:
+        return found
     found = _constant(ratio, np.ones_like(ratio))
     if found is not None:
         return found
@@ -159,7 +185,8 @@ def fit_factor(ratio: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -
         found = _try(ratio, [bases[g] for g in group], powers)
         if found is not None:
             return found
-    return None
+    independent = _independent(bases, len(ratio))
+    return _monomial(ratio, independent) if len(independent) < len(bases) else None
 
 
 @functools.lru_cache(maxsize=8)
@@ -261,7 +288,8 @@ def fit_swap(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
     the bases), and what fits there is checked exactly (:data:`RATIO_TOL`) at every sample."""
     if not bases or not np.isfinite(target).all() or np.abs(target).min() <= 0:
         return None
-    full = [(e, np.broadcast_to(np.asarray(v, float), target.shape)) for e, v in bases]
+    full = _independent([(e, np.broadcast_to(np.asarray(v, float), target.shape))
+                         for e, v in bases], len(target))
     X = np.column_stack([np.log(np.abs(v)) for _, v in full] + [np.ones(len(target))])
     pairs = [(x, y, vx, vy) for (x, vx), (y, vy) in itertools.combinations(full, 2)]
     pairs += [(x ** 2, y ** 2, vx ** 2, vy ** 2) for x, y, vx, vy in pairs
