@@ -62,9 +62,8 @@ def test_an_input_or_a_velocity_in_q_is_one_error(tmp_path, Q, B, C, said):
     assert said in str(caught.value) and caught.value.line is not None, str(caught.value)
 
 
-def test_a_quasi_velocity_through_a_model_length_is_compared(tmp_path):
-    r"""Kane's form with u2 = length_pole·θ̇ (the pole's length, 2l for the uniform pole, as
-    the model's identifier): right (it ended in a traceback)."""
+def _kane_text() -> str:
+    r"""The cart-pole in Kane's form with u2 = length_pole·θ̇ (the pole's length, 2l)."""
     text = P.POLE_HEAD.format(form="kane", error="", model=P.DATA / "cart_pole.toml", eqs=(
         '  "(M + m)*du1 + m*cos(theta)*du2/2 - m*u2**2*sin(theta)/(4*l) = F",\n'
         '  "m*cos(theta)*du1/2 + m*du2/3 - m*g*sin(theta)/2 = 0",'))
@@ -76,11 +75,30 @@ def test_a_quasi_velocity_through_a_model_length_is_compared(tmp_path):
                         'configuration = { x = "x", theta = "theta" }\n'
                         'velocity_map = { u1 = "dx", u2 = "length_pole*dtheta" }')
     assert 'velocity_map = { u1 = "dx", u2 = "length_pole*dtheta" }' in text
+    return text
+
+
+def test_a_quasi_velocity_through_a_model_length_is_compared(tmp_path):
+    r"""Kane's form with u2 = length_pole·θ̇ (the pole's length, 2l for the uniform pole, as
+    the model's identifier): right (it ended in a traceback)."""
     path = tmp_path / "kane.toml"
-    path.write_text(text)
+    path.write_text(_kane_text())
     result = ComparisonEngine(samples=100, param_sets=2).compare(load_derivation(path))
     assert result.equivalent is True
     assert result.energy is None             # no value for length_pole: not decided
+
+
+def test_a_symbol_of_no_length_in_a_velocity_map_is_named(tmp_path):
+    r"""u2 = 2 l θ̇ with l the pole's centre (CZ(pole), a mass distribution's, not one of the
+    model's lengths): the error names l and its value (it named 'CZ_pole', a name the file
+    never wrote)."""
+    text = tmp_path / "kane.toml"
+    text.write_text(_kane_text().replace('u2 = "length_pole*dtheta"', 'u2 = "2*l*dtheta"'))
+    with pytest.raises(DerivationError) as caught:
+        ComparisonEngine(samples=100, param_sets=2).compare(load_derivation(text))
+    said = str(caught.value)
+    assert "coordinates.velocity_map.u2: the symbol l is CZ(pole), which a coordinate map " \
+        "cannot use" in said and "CZ_pole" not in said, said
 
 
 def test_a_model_length_in_a_configuration_map_says_how_to_name_it(tmp_path):

@@ -91,12 +91,32 @@ def derivation_coordinate_set(d: Derivation, ps: ParameterSet) -> CoordinateSet:
         return parse_coordinate_set(raw, "inline", wm.coordinate_names,
                                     tuple(wm.named_lengths()), where=str(d.path))
     except UnknownNameError as exc:          # the file, its line and key; not the path glued
-        if exc.kind != "model coordinate":   # to "configuration" with no line
-            raise
-        raise DerivationError(d.path, f"coordinates.configuration.{exc.name}",
-                              f"unknown model coordinate {exc.name!r}; valid: "
-                              + ", ".join(exc.valid or ()),
-                              key_line(d.path, "coordinates", "configuration")) from None
+        if exc.kind == "model coordinate":   # to "configuration" with no line
+            raise DerivationError(d.path, f"coordinates.configuration.{exc.name}",
+                                  f"unknown model coordinate {exc.name!r}; valid: "
+                                  + ", ".join(exc.valid or ()),
+                                  key_line(d.path, "coordinates", "configuration")) from None
+        raise _not_a_length(d, raw, to_model, exc) from None
+
+
+def _not_a_length(d: Derivation, raw: dict, to_model: dict, exc: UnknownNameError
+                  ) -> Exception:
+    r"""A name of an inline map the model does not have, where it is a document symbol's
+    value (``l`` for ``CZ(pole)``: a centre of mass, not one of the model's lengths): an
+    error naming the symbol and the map's key; else ``exc``."""
+    written = [s for s, v in to_model.items() if exc.name in {str(x) for x in v.free_symbols}]
+    if not written:
+        return exc
+    for table in ("configuration", "velocity_map"):
+        for key, text in raw.get(table, {}).items():
+            if exc.name in {str(x) for x in sp.sympify(text).free_symbols}:
+                return DerivationError(
+                    d.path, f"coordinates.{table}.{key}", f"the symbol {written[0]} is "
+                    f"{d.symbols[str(written[0])].value}, which a coordinate map cannot use: "
+                    "it may use the positions and the model's lengths (" +
+                    ", ".join(exc.valid or ()) + "), or symbols whose values they are",
+                    key_line(d.path, "coordinates", table))
+    return exc
 
 
 def _identifiers(expr: sp.Expr) -> sp.Expr:
