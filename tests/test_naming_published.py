@@ -218,16 +218,23 @@ def test_a_solved_form_names_the_term_of_the_equations_it_solved(engine, tmp_pat
     every solved row differs and none was named (its two inputs cannot give back its
     inertia matrix). Read back before solving (its rows times A A_doc⁻¹, its inputs'
     coefficients then the truth's), the term is named in its symbols."""
-    for name in ("cart_double_pendulum.toml", "cart_double_pendulum.urdf"):
+    said = _solved_with(engine, tmp_path, "cart_double_pendulum",
+                        "cart_double_pendulum_solved", old, new)
+    assert "read back before it was solved" in said and named in said, said
+
+
+def _solved_with(engine, tmp_path, model: str, form: str, old: str, new: str) -> str:
+    r"""What the equations of ``data/published/<form>.toml`` (model ``<model>``) with ``old``
+    planted as ``new`` say; they must not be equivalent."""
+    for name in (model + ".toml", model + ".urdf"):
         (tmp_path / name).write_text((DATA / name).read_text())
-    text = (DATA / "cart_double_pendulum_solved.toml").read_text()
+    text = (DATA / (form + ".toml")).read_text()
     assert text.count(old) == 1, old
     path = tmp_path / "doc.toml"
     path.write_text(text.replace(old, new))
     result = engine.compare(load_derivation(path))
     assert result.equivalent is False
-    said = " ".join(t for e in result.equations for t in e.texts)
-    assert "read back before it was solved" in said and named in said, said
+    return " ".join(t for e in result.equations for t in e.texts)
 
 
 
@@ -260,15 +267,7 @@ def test_a_solved_form_names_a_symbol_for_another_and_its_inverted_inertia(
     symbols), or the inertia inverted — from the inputs' coefficients where the inputs are as
     many as the coordinates, else from the inputs', gravity and velocity terms' together."""
     model, form = files[0], (files[1] if len(files) > 1 else files[0] + "_solved")
-    for name in (model + ".toml", model + ".urdf"):
-        (tmp_path / name).write_text((DATA / name).read_text())
-    text = (DATA / (form + ".toml")).read_text()
-    assert text.count(old) == 1, old
-    path = tmp_path / "doc.toml"
-    path.write_text(text.replace(old, new))
-    result = engine.compare(load_derivation(path))
-    assert result.equivalent is False
-    said = " ".join(t for e in result.equations for t in e.texts)
+    said = _solved_with(engine, tmp_path, model, form, old, new)
     assert named in said, said
 
 
