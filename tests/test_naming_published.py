@@ -333,6 +333,24 @@ def test_a_symbol_for_another_in_the_models_proportions_is_a_swap_not_a_factor(e
         flagged[0].texts
     assert any(c.kind == CauseKind.SWAP and "A[3,3]" in c.elements for c in result.causes)
 
+
+def test_a_symbol_to_another_power_in_one_term_is_named(engine, tmp_path):
+    r"""The arm's d11 with l1 where l1² fits in m2 l1² only (l1 stays right in the other terms
+    of the element, so no element-wide power fits): named in the term (it was "truth −
+    document" only)."""
+    path = P.write(tmp_path, "arm", "matrices", None)
+    text = path.read_text()
+    old = '"I1 + I2 + lc1**2*m1 + m2*(l1**2 + 2*l1*lc2*cos(q2) + lc2**2)"'
+    assert text.count(old) == 1
+    path.write_text(text.replace(old, old.replace("m2*(l1**2 +", "m2*(l1 +")))
+    flagged = [r for r in engine.compare(load_derivation(path)).records
+               if r.verdict == "differs"]
+    assert [r.element for r in flagged] == ["A[1,1]"], [(r.element, r.texts) for r in flagged]
+    power = [d for d in flagged[0].diagnoses if d.kind == K.POWER]
+    assert power and (power[0].written, power[0].fits, power[0].term) == ("l1", "l1**2",
+                                                                          "l1*m2"), \
+        flagged[0].texts
+
 def test_a_term_written_too_much_is_named_so(engine, tmp_path):
     r"""The arm's d11 with a term −lc2² m1 written in it that the truth lacks: the document
     has it too much (truth − document = +lc2² m1 is the same sum, told backwards)."""
