@@ -51,6 +51,32 @@ def test_a_value_is_computed_once_and_read_back_by_a_new_memo(tmp_path, monkeypa
     assert len(calls) == 2
 
 
+def test_a_memo_file_keeps_its_newest_entries_within_its_bytes(tmp_path, monkeypatch):
+    r"""Entries of 100 kB each, far more than :data:`MEMO_BYTES` holds: the file stays within
+    it (every command reads it whole: one of 33 MB took a quarter of a second at every
+    start), and keeps the newest — an old entry used again counts as new."""
+    from wheeled_dyn import disk_cache
+    monkeypatch.setenv(CACHE_ENV, str(tmp_path / "cache"))
+    memo, code = _memo(tmp_path)
+    big = 100_000
+    count = 2 * disk_cache.MEMO_BYTES // big
+    for i in range(count):
+        memo.get(("entry", i), lambda i=i: str(i) * (big // len(str(i))))
+    memo.save()
+    size = memo.path().stat().st_size
+    assert size <= disk_cache.MEMO_BYTES + 2 ** 16, size
+    again = DiskMemo("test", "t", lambda: [code])
+    kept = again.entries()
+    assert 0 < len(kept) < count
+    made = []
+    assert again.get(("entry", count - 1), lambda: made.append(1) or "x") != "x"  # newest kept
+    oldest = next(i for i in range(count) if again.get(("entry", i), lambda: None) is not None)
+    again.get(("new", 0), lambda: "n" * big)     # a new entry, and the oldest kept used again
+    again.save()
+    third = DiskMemo("test", "t", lambda: [code])
+    assert third.get(("entry", oldest), lambda: made.append(2) or "gone") != "gone"
+    assert not made
+
 def test_values_of_other_code_are_not_served_and_their_file_goes(tmp_path, monkeypatch):
     monkeypatch.setenv(CACHE_ENV, str(tmp_path / "cache"))
     memo, code = _memo(tmp_path)

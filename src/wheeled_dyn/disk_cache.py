@@ -133,8 +133,9 @@ class DiskMemo:
     version and the bytes of the ``code`` files that compute the values (:meth:`path`).
 
     :meth:`save` writes the entries made in this process, merged with what the file holds
-    then, keeping the newest :data:`MEMO_LIMIT` (the commands save when they write their
-    reports, and every process at its exit). Best effort: two processes writing at once
+    then, keeping the newest (those this process used counted new) within :data:`MEMO_LIMIT`
+    entries and :data:`MEMO_BYTES` (the commands save when they write their reports, and
+    every process at its exit). Best effort: two processes writing at once
     keep the last one's merge (the other's new entries are computed again next time), and a
     file that cannot be read or written is only slower.
     """
@@ -144,6 +145,7 @@ class DiskMemo:
         self._entries: dict | None = None     # read from the file, and made here
         self._first_path: Path | None = None  # the file they were read from
         self._made: dict = {}                 # made in this process, to be saved
+        self._used: set = set()               # read from the file and used here
         self._unkept: dict = {}               # made here with reuse off: never saved
         if not _MEMOS:                        # a program using the API saves on exit
             atexit.register(save_memos)
@@ -186,11 +188,13 @@ class DiskMemo:
             found[digest] = compute()
             if found is not self._unkept:
                 self._made[digest] = found[digest]
+        elif found is not self._unkept:
+            self._used.add(digest)
         return found[digest]
 
     def forget(self) -> None:
         r"""Drop what is in memory (the next use reads the file again)."""
-        self._entries, self._made, self._unkept = None, {}, {}
+        self._entries, self._made, self._unkept, self._used = None, {}, {}, set()
         self._first_path = None
 
     def save(self) -> None:
@@ -203,9 +207,12 @@ class DiskMemo:
             return
         if path != self._first_path:          # the code changed while this process ran: its
             return                            # entries are not the new code's
-        entries = {**(load(path, dict) or {}), **(self._entries or {}), **self._made}
-        if store(path, dict(list(entries.items())[-MEMO_LIMIT:])):
-            self._made = {}
+        entries = {**(load(path, dict) or {}), **(self._entries or {})}
+        used = {k: entries[k] for k in self._used if k in entries}      # used here: newer
+        entries = {**{k: v for k, v in entries.items() if k not in used}, **used,
+                   **self._made}
+        if store(path, _newest(entries)):
+            self._made, self._used = {}, set()
             for old in path.parent.glob(f"{self.name}-*.pickle"):
                 if old != path:               # made by other code: never read again
                     try:
@@ -280,8 +287,20 @@ def key_bytes(key: object) -> bytes:
     return pickle.dumps(canonical(key), protocol=4)
 
 
-#: Entries a :class:`DiskMemo` file keeps (the newest).
-MEMO_LIMIT = 20000
+#: Entries a :class:`DiskMemo` file keeps (the newest, those used last counted new), and
+#: the most bytes it holds (every command reads the whole file: 20 000 compiled functions'
+#: sources were 33 MB, a quarter of a second read at every start).
+MEMO_LIMIT, MEMO_BYTES = 20000, 4 * 2 ** 20
+
+
+def _newest(entries: dict) -> dict:
+    r"""The last :data:`MEMO_LIMIT` of ``entries`` (in insertion order), fewer (the oldest
+    half dropped at a time) until they pickle to at most :data:`MEMO_BYTES`."""
+    items = list(entries.items())[-MEMO_LIMIT:]
+    while len(items) > 1 and len(pickle.dumps(dict(items), protocol=pickle.HIGHEST_PROTOCOL)) \
+            > MEMO_BYTES:
+        items = items[len(items) // 2:]
+    return dict(items)
 _MEMOS: list[DiskMemo] = []
 
 

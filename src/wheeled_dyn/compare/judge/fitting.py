@@ -31,6 +31,9 @@ from ..sides.document import compound_trig, written_divisors
 
 #: Relative agreement of a fit with every sample.
 RATIO_TOL = 1e-8
+#: A base's logarithm whose part independent of those before it is below this fraction of
+#: its norm is dependent on them (:func:`_independent`).
+INDEPENDENT_TOL = 1e-8
 #: Most bases in one product of the search.
 MAX_FACTORS = 2
 #: Exponents tried for each base.
@@ -145,14 +148,27 @@ def _independent(bases: Sequence[tuple[sp.Expr, np.ndarray]], n: int
     r"""The bases whose logarithms are independent of those before them and of a constant
     (:math:`\log|\sin 2\alpha| = \log 2 + \log|\sin\alpha| + \log|\cos\alpha|`: with
     both, least squares splits an exponent between them and no integer one is found)."""
+    if _LAST[0] is bases and _LAST[1] == n:      # the same bases, fitted again and again
+        return _LAST[2]
     kept: list[tuple[sp.Expr, np.ndarray]] = []
-    X = np.ones((n, 1))
+    Q = np.empty((n, len(bases) + 1))             # orthonormal: the constant, then the kept
+    Q[:, 0], k = 1.0 / np.sqrt(n), 1              # (Gram-Schmidt, twice for round-off)
     for b, v in bases:
-        trial = np.column_stack([X, np.log(np.abs(np.broadcast_to(v, (n,))))])
-        if np.linalg.matrix_rank(trial) == trial.shape[1]:
+        x = np.log(np.abs(np.broadcast_to(np.asarray(v, float), (n,))))
+        if not np.isfinite(x).all():
+            continue
+        r = x - Q[:, :k] @ (Q[:, :k].T @ x)
+        r -= Q[:, :k] @ (Q[:, :k].T @ r)
+        norm = float(np.linalg.norm(r))
+        if norm > INDEPENDENT_TOL * max(float(np.linalg.norm(x)), 1e-300):
             kept.append((b, v))
-            X = trial
+            Q[:, k], k = r / norm, k + 1
+    _LAST[:] = [bases, n, kept]
     return kept
+
+
+#: The last bases :func:`_independent` was given, their number of samples, and its answer.
+_LAST: list = [None, 0, []]
 
 
 def _monomial(ratio: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
