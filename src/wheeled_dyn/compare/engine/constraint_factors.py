@@ -12,16 +12,18 @@ row's common factor is read symbolically (:func:`~.parameter_factors.row_factors
 greatest common divisor of its entries' numerators) and each factor in the positions and
 parameters alone is tried:
 
-- in the positions: at the samples and at the special positions (each position at
-  :math:`0, \pm\pi/2, \pi`), where it takes both signs within a parameter set or is zero;
-  its base is tried, so a square's sign change shows;
-- in the parameters alone: at the other robots of the model
-  (:mod:`.other_robots`), as an equation's factor is.
+- in the positions: the row is lost only where the stated rows then state fewer than the
+  model's (:math:`\cos\theta\,g` beside :math:`\sin\theta\,g` loses nothing), at the
+  factor's zeros (:func:`~.constraint_states.factor_zeros`; its base is tried, so a square's
+  zeros show); a row divided by it is undefined where it takes both signs or is zero;
+- in the parameters alone: at the other robots of the model (:mod:`.other_robots`,
+  :mod:`.length_robots`), as an equation's factor is.
 
-Rows with no such factor may still be the model's mixed with weights that are singular
-somewhere (:math:`\cos\theta\,g_1 + \sin\theta\,g_2` in place of :math:`g_2`: it is
-:math:`g_1` at :math:`\theta = 0`); at the special states their rank is compared with the
-model's rows' there.
+Rows with no such factor may still be
+the model's mixed with weights that are singular somewhere (:math:`\cos\theta\,g_1 +
+\sin\theta\,g_2` in place of :math:`g_2` is :math:`g_1` at :math:`\theta = 0`): their rank is
+compared with the model's at the special states and where they are least independent
+(:func:`~.constraint_states.least_independent`).
 """
 
 from __future__ import annotations
@@ -35,9 +37,9 @@ from ...compiled import numpy_function
 from ..grid.grid import special_states
 from ..sides.both import Sides
 from ..sides.document import DocumentFunctions
+from .constraint_states import StatedRows, factor_zeros, least_independent
 from .length_robots import vanishes_for_other_lengths
 from .other_robots import scalable, scaled_values
-from .constraint_states import StatedRows, factor_zeros, least_independent
 from .parameter_factors import changes_sign, row_factors
 
 #: A factor at most this fraction of its median magnitude over the samples is zero there.
@@ -77,8 +79,8 @@ def _vanishes_in_state(values: list[np.ndarray]) -> bool:
 
 def _vanishes(funcs: DocumentFunctions, sides: Sides, factor: sp.Expr,
               rng: np.random.Generator, seed: int) -> bool:
-    if factor.free_symbols & set(funcs.d.positions):
-        return _vanishes_in_state(_values_at(funcs, sides, factor))
+    r"""Whether a factor of the parameters alone vanishes for another robot of the model (of
+    other masses and inertias, or other lengths)."""
     args = sorted(factor.free_symbols, key=sp.default_sort_key)
     fn = numpy_function(args, factor)
     return any(changes_sign(fn, args, scaled_values(funcs.d, ps, args, rng))
