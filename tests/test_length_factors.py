@@ -93,3 +93,29 @@ def test_a_constraint_row_times_a_factor_of_lengths(engine, tmp_path, factor, lo
     if lost:
         assert any("its constraint row 3 is written times L - R" in c
                    for c in _causes(result)), _causes(result)
+
+
+def test_a_row_times_a_centre_of_mass_coordinate_names_its_equation(tmp_path):
+    r"""The differential drive of ``data/published/dd_offset_wheels.toml`` (its body's centre
+    of mass at (a, b) off the axle; written for the tests) with its second equation times a:
+    a centre on the axle (a = 0) is a robot too, between two drawn sets where a takes both
+    signs, and det W changes sign there. Only equation 2 is named, as multiplied by a (both
+    were named, as divided by a factor)."""
+    for name in ("dd_offset.toml", "dd_offset.urdf"):
+        (tmp_path / name).write_text((DATA / name).read_text())
+    text = (DATA / "dd_offset_wheels.toml").read_text()
+    start = text.index("equations = [")
+    rows = text[start:].split("\n")
+    lhs, rhs = rows[2].strip().strip('",').split(" = ")
+    assert rhs == "tau_L", rhs
+    right, path = tmp_path / "right.toml", tmp_path / "doc.toml"
+    right.write_text(text)
+    path.write_text(text.replace(rows[2], f'  "({lhs})*a = tau_L*a",'))
+    engine = ComparisonEngine(samples=SAMPLES, param_sets=5, seed=SEED)
+    assert engine.compare(load_derivation(right)).equivalent is True
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False
+    said = _causes(result)
+    assert any(c.startswith("equation 2 is not independent") and "share the factor a," in c
+               for c in said), said
+    assert not any("equations 1, 2" in c for c in said), said

@@ -18,7 +18,7 @@ from ..judge import equivalence
 from ..records import DiagnosisKind, Verdict, has_kind
 from ..sides.both import Sides
 from ..sides.document import DocumentFunctions
-from .parameter_factors import Vanishing, robot_sign_changes, vanishing_factors
+from .parameter_factors import Robots, Vanishing, robot_sign_changes, vanishing_factors
 from .special import special_sides
 
 
@@ -42,9 +42,11 @@ def _with_stiffness(K: np.ndarray | None, B: np.ndarray | None) -> np.ndarray | 
 
 def _lost(i: int, v: Vanishing) -> str:
     r"""Why equation ``i`` is lost (or undefined) where its factor ``v`` vanishes."""
-    robots = ("lengths the robot may have (each of its lengths between a tenth and ten "
-              "times the model's)" if v.lengths else "masses and inertias the robot may "
-              "have (its links' masses and inertias changed, its lengths kept)")
+    robots = {Robots.LENGTHS: "lengths the robot may have (each of its lengths between a "
+              "tenth and ten times the model's)", Robots.MASSES: "masses and inertias the "
+              "robot may have (its links' masses and inertias changed, its lengths kept)",
+              Robots.DRAWN: "a robot between two of the parameter sets drawn (it takes both "
+              "signs among them)"}[v.robots]
     return (f"equation {i + 1} is not {'defined' if v.divided else 'independent'} for every "
             f"robot of the model: its inertia terms "
             f"{'are divided by' if v.divided else 'share the factor'} {sp.sstr(v.factor)}, "
@@ -78,7 +80,7 @@ def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides, seed: int = 20
         # W singular or unbounded somewhere (not everywhere: an equation repeated or lost is
         # said as it is): a row's own factor, where one vanishes, says which equation and
         # how (det W alone tells a zero from a pole by magnitude only)
-        found = vanishing_factors(funcs, sides, list(range(d.n)), seed)
+        found = vanishing_factors(funcs, sides, list(range(d.n)), seed, drawn=True)
         if found:
             alone = equivalence.decide(doc_side, true_side, len(sides.grid.sets),
                                        search=False)

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass
+from enum import Enum
 
 import numpy as np
 import sympy as sp
@@ -33,15 +34,25 @@ from ..sides.document import DocumentFunctions
 from .length_robots import vanishes_for_other_lengths
 from .other_robots import DRAWS, scalable, scaled_values
 
+class Robots(Enum):
+    r"""The robots of the model a factor vanishes for: of other masses and inertias
+    (:mod:`.other_robots`), of other lengths (:mod:`.length_robots`), or between two of the
+    parameter sets drawn (a single symbol, a centre-of-mass coordinate, that takes both signs
+    among them)."""
+
+    MASSES = "masses"
+    LENGTHS = "lengths"
+    DRAWN = "drawn"
+
+
 @dataclass(frozen=True)
 class Vanishing:
     r"""A factor of a row that vanishes for a robot of the model: the row is ``divided`` by it
-    (else multiplied), and it does so for other ``lengths`` (else other masses and
-    inertias)."""
+    (else multiplied), and which ``robots``."""
 
     factor: sp.Expr
     divided: bool
-    lengths: bool
+    robots: Robots
 
 
 def row_factors(row: list[sp.Expr], allowed: set[sp.Symbol],
@@ -75,17 +86,21 @@ def changes_sign(fn, args: list[sp.Symbol], values: dict[sp.Symbol, np.ndarray])
 
 
 def vanishing_factors(funcs: DocumentFunctions, sides: Sides, rows: list[int],
-                      seed: int) -> dict[int, Vanishing]:
+                      seed: int, drawn: bool = False) -> dict[int, Vanishing]:
     r"""For each of ``rows``, a factor of the parameters common to its elements of the
     document's :math:`A`, or to their denominators, that vanishes for a robot of the model
-    (module text; of other lengths: :mod:`.length_robots`), where one does."""
+    (module text; of other lengths: :mod:`.length_robots`), where one does. With ``drawn``
+    (where :math:`\det W` changes sign between the drawn sets: the decision is made, this
+    names the equation), a single symbol is a factor too where its value takes both signs
+    among the drawn sets (a row times a centre-of-mass coordinate)."""
     A = funcs.exprs["A"]
     if A is None or not rows:
         return {}
     d = funcs.d
     allowed = scalable(d, funcs.params)
+    single = frozenset(allowed) if drawn else frozenset()
     candidates = {i: [(f, e, divided) for divided in (False, True)
-                      for f, e in row_factors(list(sp.Matrix(A).row(i)), allowed,
+                      for f, e in row_factors(list(sp.Matrix(A).row(i)), allowed, single,
                                               divided=divided)] for i in rows}
     if not any(candidates.values()):
         return {}
@@ -98,14 +113,23 @@ def vanishing_factors(funcs: DocumentFunctions, sides: Sides, rows: list[int],
         for f, e, divided in found:
             args = sorted(f.free_symbols, key=sp.default_sort_key)
             fn = numpy_function(args, f)
-            if any(changes_sign(fn, args, v) for v in draws):
-                out[i] = Vanishing(f ** e, divided, False)
+            if f.is_Symbol:
+                if not _changes_sign_between_sets(f, sides):
+                    continue
+                out[i] = Vanishing(f ** e, divided, Robots.DRAWN)
+            elif any(changes_sign(fn, args, v) for v in draws):
+                out[i] = Vanishing(f ** e, divided, Robots.MASSES)
             elif vanishes_for_other_lengths(d, f, seed):
-                out[i] = Vanishing(f ** e, divided, True)
+                out[i] = Vanishing(f ** e, divided, Robots.LENGTHS)
             else:
                 continue
             break
     return out
+
+
+def _changes_sign_between_sets(s: sp.Symbol, sides: Sides) -> bool:
+    values = np.array([float(ps[s]) for ps in sides.per_set if s in ps])
+    return bool(values.size) and values.min() < 0.0 < values.max()
 
 
 #: States of each parameter set at which :func:`robot_sign_changes` tries the robots.
@@ -144,5 +168,5 @@ def robot_sign_changes(funcs: DocumentFunctions, sides: Sides, seed: int
     return None
 
 
-__all__ = ["STATES", "Vanishing", "changes_sign", "robot_sign_changes", "row_factors",
+__all__ = ["STATES", "Robots", "Vanishing", "changes_sign", "robot_sign_changes", "row_factors",
            "vanishing_factors"]
