@@ -265,13 +265,21 @@ def _robot_rows(engine, tmp_path, *rows: str):
 def test_rows_whose_factors_vanish_apart_still_state_the_constraints(engine, tmp_path):
     r"""The forward-rolling row written twice, times cos θ and times sin θ, beside the others:
     each row's factor vanishes somewhere, but never both, so the four rows state the three
-    constraints everywhere (it was said lost where cos θ = 0)."""
+    constraints everywhere (it was said lost where cos θ = 0); with factors that vanish
+    together, the constraint is lost where they do."""
     def times(f: str, row: str) -> str:
         return "[" + ", ".join(f"{f}*({x.strip()})" for x in row[1:-1].split(",")) + "]"
     result = _robot_rows(engine, tmp_path, times("cos(theta)", FORWARD),
                          times("sin(theta)", FORWARD), LATERAL, YAW)
     assert result.constraints_agree is True, [c.explanation for c in result.causes]
     assert result.equivalent is True
+    # ... but times cos θ and times sin φ_R, both zero at θ = π/2, φ_R = 0: lost there (it
+    # agreed once each factor's zeros were found covered by the other row)
+    result = _robot_rows(engine, tmp_path, times("cos(theta)", FORWARD),
+                         times("sin(phi_R)", FORWARD), LATERAL, YAW)
+    said = [c.explanation for c in result.causes if c.kind == CauseKind.NOT_EQUIVALENT]
+    assert result.constraints_agree is False and result.equivalent is False, said
+    assert any("fewer independent constraints than the model's at" in c for c in said), said
 
 
 @pytest.mark.parametrize("weight", ["(cos(theta) - 1/3)", "(cos(theta) - 1/3)**2"])

@@ -23,7 +23,7 @@ Rows with no such factor may still be
 the model's mixed with weights that are singular somewhere (:math:`\cos\theta\,g_1 +
 \sin\theta\,g_2` in place of :math:`g_2` is :math:`g_1` at :math:`\theta = 0`): their rank is
 compared with the model's at the special states and where they are least independent
-(:func:`~.constraint_states.least_independent`).
+(:func:`~.constraint_states.weakest`).
 """
 
 from __future__ import annotations
@@ -37,7 +37,7 @@ from ...compiled import numpy_function
 from ..grid.grid import special_states
 from ..sides.both import Sides
 from ..sides.document import DocumentFunctions
-from .constraint_states import StatedRows, factor_zeros, least_independent
+from .constraint_states import StatedRows, factor_zeros, weakest
 from .length_robots import vanishes_for_other_lengths
 from .other_robots import scalable, scaled_values
 from .parameter_factors import changes_sign, row_factors
@@ -126,13 +126,15 @@ def lost_constraints(funcs: DocumentFunctions, sides: Sides, seed: int) -> tuple
                                   for f, e in row_factors(list(G.row(r)), allowed, positions,
                                                           divided))), None)
         if lost is None:
-            q, owner = least_independent(rows)
+            q, owner = special_states(sides.grid)
             bad = rows.fewer(q, owner)
-            if bad is not None:
+            found = (q[bad:bad + 1], owner[bad:bad + 1]) if bad is not None else weakest(rows)
+            if found is not None:
                 lost = Lost(where, None, "its constraint rows state fewer independent "
-                            f"constraints than the model's at {_state(d, q[bad])}: a "
+                            f"constraints than the model's at {_state(d, found[0][0])}: a "
                             "constraint is lost there (rows mixed with weights that are "
-                            "singular there)")
+                            "singular there, or stating it with factors that vanish "
+                            "together)")
         if lost is not None:
             out.append(lost)
     return tuple(out)

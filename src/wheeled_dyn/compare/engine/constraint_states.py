@@ -12,10 +12,12 @@ largest entry of 1, :func:`~..judge.document_checks.row_rank`). The states tried
   :math:`\cos\theta` is zero at :math:`\theta = \pi/2`; whether the constraint is lost there
   depends on the other rows: :math:`\cos\theta\,g` and :math:`\sin\theta\,g` together state
   :math:`g` everywhere);
-- the least independence of the stated rows (:func:`least_independent`: the ratio of the
-  r-th to the largest singular value, r the model's number of constraints), searched from
-  the sample where it is least when that is below :data:`SCREEN` of its median: rows mixed
-  with weights singular where :math:`\cos\theta = 1/3`, or touching singular there.
+- the least independence of the stated rows (:func:`weakest`: the ratio of the r-th to the
+  largest singular value of the rows each scaled by its median norm, r the model's number of
+  constraints), searched from the sample where it is least when that is below
+  :data:`WEAK_SCREEN` of its median: rows mixed with weights singular where
+  :math:`\cos\theta = 1/3`, or touching singular there; two rows stating one constraint
+  with factors that vanish together (:math:`\cos\theta\,g` and :math:`\sin\varphi\,g`).
 
 Each search is a bounded one (L-BFGS-B, the positions within their ranges) on a logarithm,
 per parameter set, from the sample where the quantity is least.
@@ -31,14 +33,19 @@ from ..judge.document_checks import row_rank, unit_rows
 from ..sides.both import Sides
 from ..sides.document import DocumentFunctions
 
-#: A quantity at most this fraction of its median over a set's samples is searched for zero.
-SCREEN = 1e-2
+#: A quantity at most this fraction of its median over a set's samples is searched for zero
+#: (a factor's; the stated rows' independence, which two factors shrink together only near
+#: where both vanish: a looser screen).
+SCREEN, WEAK_SCREEN = 1e-2, 0.25
 #: A factor at most this fraction of its median magnitude is zero at a state.
 ZERO = 1e-12
 #: Inside the logarithms searched, the floor (below any decision).
 LOG_FLOOR = 1e-300
 #: Halvings of the segment a factor's zero is sought on (to the double's precision).
 BISECTIONS = 60
+#: The stated rows' independence at a searched state below this fraction of the model's rows'
+#: there: a constraint lost (a search ends near, not at, the state; the decision is a ratio).
+LOST = 1e-6
 
 
 def parameters(funcs: DocumentFunctions, sides: Sides, owner: np.ndarray) -> list[np.ndarray]:
@@ -140,39 +147,51 @@ def factor_zeros(funcs: DocumentFunctions, sides: Sides, factor: sp.Expr
         (np.empty((0, n)), np.empty(0, dtype=int))
 
 
-def least_independent(rows: StatedRows) -> tuple[np.ndarray, np.ndarray]:
-    r"""``(q, set index)``: the special states, and per set the state a search finds where
-    the stated rows are least independent (module text), where the samples come near."""
+def _independence(D: np.ndarray, scale: np.ndarray, r: int) -> np.ndarray:
+    r"""Per sample, the r-th singular value of the rows ``D`` each divided by its constant
+    ``scale``, against the largest (rows that shrink count: cos θ·g and sin φ·g together
+    state g nowhere where both vanish; rows each scaled to 1 per sample would not show it)."""
+    with np.errstate(all="ignore"):
+        sv = np.linalg.svd(D / scale[None, :, None], compute_uv=False)
+    if sv.shape[1] < r:
+        return np.zeros(len(D))
+    return sv[:, r - 1] / np.maximum(sv[:, 0], LOG_FLOOR)
+
+
+def weakest(rows: StatedRows) -> tuple[np.ndarray, np.ndarray] | None:
+    r"""``(q, set index)`` of a state where the stated rows state fewer constraints than the
+    model's, found per set by a bounded search for the least independence of the stated rows
+    (:func:`_independence`, each row scaled by its median norm over the set) from the sample
+    where it is least, where that is below :data:`WEAK_SCREEN` of its median: lost where it is
+    below :data:`LOST` of the model's rows' independence there (scaled alike); else None."""
     sides = rows.sides
     grid = sides.grid
     K, N, n = grid.q.shape
-    r = int(row_rank(unit_rows(sides.truth.need("G")[:N])).max())
-    qs, owners = [special_states(grid)[0]], [special_states(grid)[1]]
-
-    def independence(D: np.ndarray) -> np.ndarray:
-        with np.errstate(all="ignore"):
-            sv = np.linalg.svd(unit_rows(D), compute_uv=False)
-        if sv.shape[1] < r:
-            return np.zeros(len(D))
-        return sv[:, r - 1] / np.maximum(sv[:, 0], LOG_FLOOR)
     for k in range(K):
         owner = np.full(N, k)
-        D = rows.stated(grid.q[k], owner)
-        ok = np.isfinite(D).all(axis=(1, 2))
+        D, T = rows.stated(grid.q[k], owner), sides.truth.need("G")[k * N:(k + 1) * N]
+        ok = np.isfinite(D).all(axis=(1, 2)) & np.isfinite(T).all(axis=(1, 2))
         if not ok.any():
             continue
-        m = independence(np.where(ok[:, None, None], D, 0.0))
+        r = int(row_rank(unit_rows(T[ok])).max())
+        d_scale = np.maximum(np.median(np.linalg.norm(D[ok], axis=2), axis=0), LOG_FLOOR)
+        t_scale = np.maximum(np.median(np.linalg.norm(T[ok], axis=2), axis=0), LOG_FLOOR)
+        m = _independence(np.where(ok[:, None, None], D, 0.0), d_scale, r)
         j = int(np.flatnonzero(ok)[np.argmin(m[ok])])
-        if m[j] >= SCREEN * float(np.median(m[ok])):
+        if m[j] >= WEAK_SCREEN * float(np.median(m[ok])):
             continue
 
         def size(x: np.ndarray, k: int = k) -> float:
-            v = independence(rows.stated(x[None], np.array([k])))[0]
+            v = _independence(rows.stated(x[None], np.array([k])), d_scale, r)[0]
             return float(np.log(v + LOG_FLOOR)) if np.isfinite(v) else 0.0
-        qs.append(_search(sides, size, grid.q[k, j])[None])
-        owners.append(np.array([k]))
-    return np.concatenate(qs), np.concatenate(owners).astype(int)
+        x = _search(sides, size, grid.q[k, j])[None]
+        at = np.array([k])
+        stated = _independence(rows.stated(x, at), d_scale, r)[0]
+        model = _independence(rows.model(x, at), t_scale, r)[0]
+        if np.isfinite(stated) and np.isfinite(model) and stated <= LOST * model:
+            return x, at
+    return None
 
 
-__all__ = ["BISECTIONS", "LOG_FLOOR", "SCREEN", "ZERO", "StatedRows", "factor_zeros", "least_independent",
-           "parameters"]
+__all__ = ["BISECTIONS", "LOG_FLOOR", "LOST", "SCREEN", "WEAK_SCREEN", "ZERO", "StatedRows",
+           "factor_zeros", "parameters", "weakest"]
