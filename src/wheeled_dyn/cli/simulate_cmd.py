@@ -38,10 +38,10 @@ def default_start(d) -> dict[str, float]:
     coordinates) tilted by 0.2, every velocity 0.5 except the second (the heading rate) 1.5;
     a position the file draws in a ``[coordinates] ranges`` that leaves this out (a coin's
     lean away from lying flat) at its range's middle."""
+    from ..compare.grid.assumptions import Assumptions, position_ranges
     start = {str(d.positions[-1]): 0.2}
-    ranges = dict(d.coordinates.raw.get("ranges", {}))
-    for p in map(str, d.positions):
-        low, high = ranges.get(p, (-math.inf, math.inf))
+    names = [str(p) for p in d.positions]
+    for p, (low, high) in zip(names, position_ranges(d, names, Assumptions())):
         if not low <= start.get(p, 0.0) <= high:
             start[p] = 0.5 * (low + high)
     for i, v in enumerate(d.velocities):
