@@ -60,9 +60,10 @@ def row_factors(row: list[sp.Expr], allowed: set[sp.Symbol],
                 ) -> list[tuple[sp.Expr, int]]:
     r"""The factors of the common divisor of ``row``'s numerators (with ``divided``: of its
     denominators, what the row is divided by) that depend on ``allowed`` symbols alone and
-    are sums or a symbol of ``bare`` (a position; a single symbol of a mass never
-    vanishes): (base, power), the base the one that changes sign ((cos θ − 1/3)² has the
-    base 3 cos θ − 1)."""
+    are sums or a symbol of ``bare`` (a position, or with :func:`vanishing_factors`'
+    ``drawn`` a parameter whose sign the drawn sets may change; a mass never vanishes):
+    (base, power), the base the one that changes sign ((cos θ − 1/3)² has the base
+    3 cos θ − 1)."""
     try:
         numerators = [sp.fraction(sp.together(e))[int(divided)] for e in row if e != 0]
         if not numerators:
