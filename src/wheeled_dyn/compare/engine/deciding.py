@@ -55,6 +55,23 @@ def _lost(i: int, v: Vanishing) -> str:
             f"{'divided' if v.divided else 'multiplied'} by a factor that vanishes)")
 
 
+def _without(side: equivalence.Side, funcs: DocumentFunctions, sides: Sides,
+             found: dict[int, Vanishing]) -> equivalence.Side:
+    r"""``side`` with each row of ``found`` divided by its factor (multiplied, where the row
+    is divided by it), at every sample."""
+    scale = np.ones((len(side.A), side.A.shape[1]))
+    for i, v in found.items():
+        with np.errstate(all="ignore"):
+            f = np.broadcast_to(np.asarray(funcs.compiled(v.factor)(*sides.argv), float),
+                                (len(side.A),))
+        scale[:, i] = f if v.divided else 1.0 / f
+
+    def rows(M: np.ndarray | None) -> np.ndarray | None:
+        return None if M is None else M * scale.reshape(scale.shape + (1,) * (M.ndim - 2))
+    return equivalence.Side(side.A * scale[:, :, None], rows(side.n), rows(side.B),
+                            rows(side.L))
+
+
 def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides, seed: int = 2026
            ) -> equivalence.SystemDecision | None:
     r"""The equations' verdicts on the main grid (None where the document gives no A); where
@@ -82,11 +99,13 @@ def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides, seed: int = 20
         # how (det W alone tells a zero from a pole by magnitude only)
         found = vanishing_factors(funcs, sides, list(range(d.n)), seed, drawn=True)
         if found:
-            alone = equivalence.decide(doc_side, true_side, len(sides.grid.sets),
-                                       search=False)
+            # decided again with those factors divided out (another row lost elsewhere, a
+            # row times sin θ beside one times L - R, is still said), their rows marked
+            rest = equivalence.decide(_without(doc_side, funcs, sides, found), true_side,
+                                      len(sides.grid.sets))
             for i, v in found.items():
-                alone = equivalence.mark_lost(alone, (i,), _lost(i, v))
-            return alone
+                rest = equivalence.mark_lost(rest, (i,), _lost(i, v))
+            return rest
     # the special positions matter where an equation is otherwise a combination of the true
     # ones with weights that vary (a factor that may vanish there: sin θ)
     W = first.W

@@ -278,12 +278,11 @@ def vanishing_at(doc_A: np.ndarray, true_A: np.ndarray, typical: np.ndarray | No
 
 
 def decide(doc: Side, truth: Side, sets: int,
-           special: tuple[np.ndarray, np.ndarray, np.ndarray | None] | None = None,
-           search: bool = True) -> SystemDecision:
+           special: tuple[np.ndarray, np.ndarray, np.ndarray | None] | None = None
+           ) -> SystemDecision:
     r"""Every equation's verdict (module text). ``sets``: parameter sets the samples are
     grouped in; ``special``: the document's and the truth's A at the special states (or
-    None). Without ``search``, each equation's alone: where W is singular is not looked
-    for (the caller knows)."""
+    None)."""
     n = truth.A.shape[1]
     W = combination_rows(doc.A, truth.A)
     if doc.L is not None:
@@ -293,8 +292,6 @@ def decide(doc: Side, truth: Side, sets: int,
     floor = None if multipliers is None or doc.L is None else \
         _multiplier_floor(doc.L, multipliers)            # every row's, made once
     decisions = [decide_row(i, doc, truth, W, multipliers, floor) for i in range(n)]
-    if not search:
-        return SystemDecision(tuple(decisions), W)
     lost = singular_everywhere(doc.A, truth.A, W)
     where = "at every sample" if lost is not None else ""
     rows = lost
