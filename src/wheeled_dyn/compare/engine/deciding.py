@@ -99,23 +99,36 @@ def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides, seed: int = 20
         # how (det W alone tells a zero from a pole by magnitude only)
         found = vanishing_factors(funcs, sides, list(range(d.n)), seed, drawn=True)
         if found:
-            # decided again with those factors divided out (another row lost elsewhere, a
-            # row times sin θ beside one times L - R, is still said), their rows marked
-            rest = equivalence.decide(_without(doc_side, funcs, sides, found), true_side,
-                                      len(sides.grid.sets))
+            # decided on with those factors divided out (another row lost elsewhere, a row
+            # times sin θ beside one times L - R, is still said), their rows marked at the end
+            doc_side = _without(doc_side, funcs, sides, found)
+            first = equivalence.decide(doc_side, true_side, len(sides.grid.sets))
+            decision = _further(funcs, sides, doc_side, true_side, first, seed,
+                                frozenset(found))
             for i, v in found.items():
-                rest = equivalence.mark_lost(rest, (i,), _lost(i, v))
-            return rest
+                decision = equivalence.mark_lost(decision, (i,), _lost(i, v))
+            return decision
+    return _further(funcs, sides, doc_side, true_side, first, seed)
+
+
+def _further(funcs: DocumentFunctions, sides: Sides, doc_side: equivalence.Side,
+             true_side: equivalence.Side, first: equivalence.SystemDecision, seed: int,
+             named: frozenset[int] = frozenset()) -> equivalence.SystemDecision:
+    r"""``first`` with where an equation whose weights vary is lost: at the special states,
+    for a factor of its row, for another robot of the model; the rows ``named`` (their
+    factor found and divided out) are left to the caller."""
     # the special positions matter where an equation is otherwise a combination of the true
     # ones with weights that vary (a factor that may vanish there: sin θ)
     W = first.W
     varies = [i for i, e in enumerate(first.equations) if e.verdict == Verdict.AGREES and
+              i not in named and
               np.nanmax(np.ptp(np.nan_to_num(W[:, i]), axis=0), initial=0.0) > 1e-9 * max(
                   float(np.nanmax(np.abs(W[:, i]), initial=0.0)), 1e-300)]
     if not varies:
         return first
     second = equivalence.decide(doc_side, true_side, len(sides.grid.sets),
-                                special_sides(funcs, sides, doc.need("A"), truth.need("A"), W))
+                                special_sides(funcs, sides, sides.doc.need("A"),
+                                              sides.truth.need("A"), W))
     if any(has_kind(e.diagnoses, DiagnosisKind.SINGULAR) for e in second.equations):
         return second
     agreeing = [i for i in varies if second.equations[i].verdict == Verdict.AGREES]
@@ -124,7 +137,7 @@ def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides, seed: int = 20
     if any(has_kind(e.diagnoses, DiagnosisKind.SINGULAR) for e in second.equations):
         return second
     changes = robot_sign_changes(funcs, sides, seed)
-    if changes is None:
+    if changes is None or not set(changes[0]) - named:
         return second
     rows, pole = changes
     wrong = tuple(k for k in rows if second.equations[k].verdict == Verdict.DIFFERS) or rows
