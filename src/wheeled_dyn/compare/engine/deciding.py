@@ -129,8 +129,8 @@ def _further(funcs: DocumentFunctions, sides: Sides, doc_side: equivalence.Side,
     second = equivalence.decide(doc_side, true_side, len(sides.grid.sets),
                                 special_sides(funcs, sides, sides.doc.need("A"),
                                               sides.truth.need("A"), W))
-    if any(has_kind(e.diagnoses, DiagnosisKind.SINGULAR) for e in second.equations):
-        return second
+    # every row that still agrees is tried for its own factor, also where another is lost at
+    # a special state (a row times a length factor beside one times (cos θ - 1/2)²)
     agreeing = [i for i in varies if second.equations[i].verdict == Verdict.AGREES]
     for i, v in vanishing_factors(funcs, sides, agreeing, seed).items():
         second = equivalence.mark_lost(second, (i,), _lost(i, v))
