@@ -22,6 +22,7 @@ from __future__ import annotations
 import functools
 import itertools
 from collections.abc import Mapping, Sequence
+from typing import NamedTuple
 
 import numpy as np
 import sympy as sp
@@ -217,11 +218,52 @@ def _pairs(n: int) -> tuple[np.ndarray, np.ndarray]:
 def _products(bases: Sequence[np.ndarray], degree: int
               ) -> tuple[list[tuple[int, ...]], np.ndarray]:
     r"""Every product of at most ``degree`` of the bases' values (repetitions allowed): the
-    bases' indices of each, and their values (samples × products)."""
+    bases' indices of each, and their values (samples × products), multiplied left to right
+    as the indices go."""
     groups = [g for k in range(1, degree + 1)
               for g in itertools.combinations_with_replacement(range(len(bases)), k)]
-    values = np.column_stack([np.prod([bases[i] for i in g], axis=0) for g in groups])
+    V = np.column_stack(bases)
+    values = np.empty((V.shape[0], len(groups)))
+    start = 0
+    for k in range(1, degree + 1):
+        index = np.array([g for g in groups if len(g) == k]).reshape(-1, k)
+        block = V[:, index[:, 0]]
+        for m in range(1, k):
+            block = block * V[:, index[:, m]]
+        values[:, start:start + len(index)] = block
+        start += len(index)
     return groups, values
+
+
+class _Screen(NamedTuple):
+    r"""What :func:`fit_sum` screens with, for one list of bases on one set of samples: the
+    bases' values (kept, so that they are the same arrays while this is kept), the samples,
+    the products' indices, their unit columns and Gram matrix."""
+
+    values: tuple[np.ndarray, ...]
+    rows: np.ndarray
+    groups: list[tuple[int, ...]]
+    Xn: np.ndarray
+    G: np.ndarray
+
+
+def _screen(full: Sequence[np.ndarray], rows: np.ndarray) -> _Screen:
+    r"""The :class:`_Screen` of the bases' values ``full`` at the samples ``rows``; the last
+    one made is made again only for other arrays or samples (a derivation's rows are fitted
+    with the same bases, and the Gram matrix of their products is most of a fit's work)."""
+    last = _SCREEN[0]
+    if last is not None and len(last.values) == len(full) and np.array_equal(
+            last.rows, rows) and all(a is b for a, b in zip(last.values, full)):
+        return last
+    groups, X = _products([v[rows] for v in full], SUM_DEGREE)
+    norms = np.linalg.norm(X, axis=0)
+    Xn = X / np.where(norms > 0, norms, 1.0)           # unit columns: a well-scaled Gram
+    _SCREEN[0] = made = _Screen(tuple(full), rows, groups, Xn, Xn.T @ Xn)
+    return made
+
+
+#: The last :class:`_Screen` made.
+_SCREEN: list[_Screen | None] = [None]
 
 
 def _exact_sum(columns: Sequence[np.ndarray], y: np.ndarray, terms: Sequence[sp.Expr]
@@ -261,20 +303,21 @@ def fit_sum(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> 
         return fit_sum(target, plain) if 0 < len(plain) < len(bases) else None
     if not bases or not np.isfinite(target).all():
         return None
-    full = [np.broadcast_to(np.asarray(v, float), np.shape(target)) for _, v in bases]
+    full = [v if isinstance(v, np.ndarray) and v.dtype == float and v.shape == np.shape(
+        target) else np.broadcast_to(np.asarray(v, float), np.shape(target)) for _, v in bases]
     step = max(1, len(target) // SCREEN_SAMPLES)
-    screen = np.unique(np.column_stack([*(v[::step] for v in full), target[::step]]), axis=0)
-    groups, X = _products(list(screen[:, :-1].T), SUM_DEGREE)
-    y = screen[:, -1]
+    rows = np.arange(0, len(target), step)
+    rows = rows[np.unique(np.column_stack([*(v[rows] for v in full), target[rows]]), axis=0,
+                          return_index=True)[1]]
+    screen = _screen(full, rows)
+    groups, Xn, G, y = screen.groups, screen.Xn, screen.G, target[rows]
 
     def fit(ks: Sequence[int]) -> sp.Expr | None:
         columns = [np.prod([full[i] for i in groups[k]], axis=0) for k in ks]
         terms = [sp.Mul(*(bases[i][0] for i in groups[k])) for k in ks]
         return _exact_sum(columns, target, terms)
 
-    norms = np.linalg.norm(X, axis=0)
-    Xn = X / np.where(norms > 0, norms, 1.0)           # unit columns: a well-scaled Gram
-    G, c, yy = Xn.T @ Xn, Xn.T @ y, float(y @ y)
+    c, yy = Xn.T @ y, float(y @ y)
     floor = SCREEN_TOL * yy
     for k in np.flatnonzero(yy - c ** 2 <= floor)[:MAX_CANDIDATES]:
         found = fit((int(k),))
