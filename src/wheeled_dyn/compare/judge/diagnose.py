@@ -219,6 +219,18 @@ def _argument_trials(expr: sp.Expr) -> list[tuple[sp.Expr, sp.Expr]]:
     return out
 
 
+def _swap(written: sp.Expr, fits: sp.Expr, both: bool) -> Diagnosis:
+    r"""The diagnosis of :func:`trig_swap_diagnoses` for ``written`` where ``fits`` fits,
+    or, ``both``, the sine and cosine of one argument exchanged (made only for a reading
+    that agrees: printing every trial's was much of the search's time)."""
+    if both:
+        return diagnosis(K.SWAP, f"{sp.sstr(written)} and {sp.sstr(fits)} exchanged (sin "
+                         "written for cos and cos for sin)", written=sp.sstr(written),
+                         fits=sp.sstr(fits))
+    return diagnosis(K.SWAP, f"{sp.sstr(written)} where {sp.sstr(fits)} fits",
+                     written=sp.sstr(written), fits=sp.sstr(fits))
+
+
 def trig_swap_diagnoses(expr: sp.Expr, evaluate_many: Callable[[list], list[np.ndarray]],
                         T: np.ndarray, scale: float) -> list[Diagnosis]:
     r"""A sin written for a cos (or the reverse): everywhere it occurs, both exchanged for one
@@ -229,19 +241,15 @@ def trig_swap_diagnoses(expr: sp.Expr, evaluate_many: Callable[[list], list[np.n
     if not atoms and not expr.has(sp.tan):
         return []
     args = sorted({f.args[0] for f in atoms}, key=sp.default_sort_key)
-    whole = [(diagnosis(K.SWAP, f"{sp.sstr(f)} where {sp.sstr(_TRIG_SWAP[f.func](*f.args))} "
-                        "fits", written=sp.sstr(f), fits=sp.sstr(_TRIG_SWAP[f.func](*f.args))),
+    # (what is written, what fits, whether both of one argument are exchanged; the trial)
+    whole = [((f, _TRIG_SWAP[f.func](*f.args), False),
               expr.xreplace({f: _TRIG_SWAP[f.func](*f.args)})) for f in atoms]
-    whole += [(diagnosis(K.SWAP, f"{sp.sstr(sp.sin(a))} and {sp.sstr(sp.cos(a))} exchanged "
-                         "(sin written for cos and cos for sin)", written=sp.sstr(sp.sin(a)),
-                         fits=sp.sstr(sp.cos(a))),
+    whole += [((sp.sin(a), sp.cos(a), True),
                expr.xreplace({sp.sin(a): sp.cos(a), sp.cos(a): sp.sin(a)}))
               for a in args if expr.has(sp.sin(a)) and expr.has(sp.cos(a))]
-    whole += [(diagnosis(K.SWAP, f"{sp.sstr(f)} where {sp.sstr(o)} fits", written=sp.sstr(f),
-                         fits=sp.sstr(o)), expr.xreplace({f: o}))
-              for f, o in _argument_trials(expr)]
+    whole += [((f, o, False), expr.xreplace({f: o})) for f, o in _argument_trials(expr)]
     values = evaluate_many([e for _, e in whole])
-    found = [text for (text, _), v in zip(whole, values) if agrees(v, T, scale)]
+    found = [_swap(*what) for (what, _), v in zip(whole, values) if agrees(v, T, scale)]
     singles = [x for x in found if x.detail.endswith("fits")]
     if found:
         return singles or found

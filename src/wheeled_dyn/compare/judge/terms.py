@@ -17,6 +17,12 @@ from .small_angle import small_angle_diagnoses
 from ..sides.document import DocumentFunctions
 
 
+#: Samples the readings of :func:`trig_diagnoses` are first tried on (spread over the
+#: parameter sets): a reading that agrees at every sample agrees there, so where none does,
+#: none is tried on every sample (most elements that differ have none).
+TRIG_SCREEN = 128
+
+
 def trig_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.ndarray],
                     factor: float | None, D: np.ndarray, T: np.ndarray, scale: float,
                     check: bool = False) -> list[Diagnosis]:
@@ -24,18 +30,34 @@ def trig_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.nd
     small-angle approximation (:func:`.small_angle.small_angle_diagnoses`), the document's
     values divided by its row ``factor``. ``check``: only when ``expr`` evaluated on ``argv``
     gives the element's own values ``D`` (a velocity product's coefficient is sampled on its
-    own grid)."""
-    c = 1.0 if factor is None else factor
+    own grid). Tried on :data:`TRIG_SCREEN` samples first, on every sample only where a
+    reading agrees there."""
+    size = len(D)
 
-    def evaluate_many(exprs: list) -> list[np.ndarray]:
-        return [np.broadcast_to(np.asarray(v, float), np.shape(argv[0])) / c
-                for v in funcs.compiled(tuple(exprs))(*argv)]
-    if len(np.shape(argv[0])) != 1 or np.shape(argv[0])[0] != len(D):
+    def reader(rows: np.ndarray | None) -> Callable[[list], list[np.ndarray]]:
+        at = argv if rows is None else [x[rows] if np.ndim(x) and len(x) == size else x
+                                         for x in argv]
+        c = 1.0 if factor is None else factor if rows is None or not np.ndim(factor) \
+            else np.asarray(factor)[rows]
+        shape = np.shape(at[0])
+
+        def evaluate_many(exprs: list) -> list[np.ndarray]:
+            return [np.broadcast_to(np.asarray(v, float), shape) / c
+                    for v in funcs.compiled(tuple(exprs))(*at)]
+        return evaluate_many
+
+    def readings(rows: np.ndarray | None) -> list[Diagnosis]:
+        few, target = reader(rows), T if rows is None else T[rows]
+        return trig_swap_diagnoses(expr, few, target, scale) or small_angle_diagnoses(
+            expr, funcs.angles(), few, target, scale)
+    if len(np.shape(argv[0])) != 1 or np.shape(argv[0])[0] != size:
         return []
-    if check and not agrees(evaluate_many([expr])[0], D, scale):
+    if check and not agrees(reader(None)([expr])[0], D, scale):
         return []
-    return trig_swap_diagnoses(expr, evaluate_many, T, scale) or small_angle_diagnoses(
-        expr, funcs.angles(), evaluate_many, T, scale)
+    screen = np.linspace(0, size - 1, min(size, TRIG_SCREEN)).astype(int)
+    if len(screen) < size and not readings(screen):
+        return []
+    return readings(None)
 
 
 def element_term_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.ndarray],
