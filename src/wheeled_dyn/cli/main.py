@@ -22,7 +22,7 @@ import os
 import signal
 import sys
 import warnings
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, MutableMapping, Sequence
 from types import FrameType
 from typing import TYPE_CHECKING, Any, TypeAlias
 
@@ -47,6 +47,12 @@ COMMAND_MODULES: tuple[str, ...] = (
 #: the default, the garbage collector took 0.08 s of ``compare`` of eq. (25) (0.03 s with
 #: this), and its pass over the whole heap at exit another 0.15 s (none: see :func:`entry`).
 GC_FULL_THRESHOLD = 10_000
+
+#: The thread pools of the linear algebra libraries, one thread each in the command's
+#: processes unless the environment says otherwise: ``report`` forks as many workers as the
+#: machine has cores, and their small matrices gained nothing from more threads, which
+#: only competed with the other worker (set before NumPy is first imported).
+THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
 
 #: Seconds between two looks, after a Ctrl-C held back during an import, at whether the
 #: import has finished (the interrupt is then raised).
@@ -169,14 +175,16 @@ def _run(argv: Sequence[str] | None) -> int:
 
 
 def entry() -> None:
-    r"""The ``wheeled-dyn`` command: :func:`main`'s exit code. The garbage collector goes
-    over the whole heap every :data:`GC_FULL_THRESHOLD` collections of the middle generation,
-    and not once more at exit (everything is frozen first: the shutdown frees it without
-    looking for cycles). After Ctrl-C the process ends at once with 130 (its files are
+    r"""The ``wheeled-dyn`` command: :func:`main`'s exit code. The linear algebra libraries
+    get one thread each (:data:`THREAD_VARIABLES`) where the environment sets none. The
+    garbage collector goes over the whole heap every :data:`GC_FULL_THRESHOLD` collections of
+    the middle generation, and not once more at exit (everything is frozen first: the
+    shutdown frees it without looking for cycles). After Ctrl-C the process ends at once with 130 (its files are
     already cleaned up): the interpreter's own shutdown could otherwise meet the interrupt
     again and end by the signal instead. Any other exit skips the interpreter's shutdown
     (:func:`_exit_now`)."""
     gc.set_threshold(*gc.get_threshold()[:2], GC_FULL_THRESHOLD)
+    one_thread_each(os.environ)
     code = main()
     if code == 130:
         sys.stdout.flush()
@@ -184,6 +192,13 @@ def entry() -> None:
         os._exit(130)
     gc.freeze()
     _exit_now(code)
+
+
+def one_thread_each(environ: MutableMapping[str, str]) -> None:
+    r"""Each of :data:`THREAD_VARIABLES` that ``environ`` does not set, set to one thread
+    (a value the user set is kept)."""
+    for name in THREAD_VARIABLES:
+        environ.setdefault(name, "1")
 
 
 def _exit_now(code: int) -> None:
