@@ -18,6 +18,7 @@ from ..judge import equivalence
 from ..records import DiagnosisKind, Verdict, has_kind
 from ..sides.both import Sides
 from ..sides.document import DocumentFunctions
+from .frames import declared_weights
 from .parameter_factors import Robots, Vanishing, robot_sign_changes, vanishing_factors
 from .special import special_sides
 
@@ -91,6 +92,9 @@ def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides, seed: int = 20
     true_side = equivalence.Side(truth.A, true_n, _with_stiffness(
         truth.K if doc.K is not None else None, sides.B_true),
         np.swapaxes(truth.G, 1, 2) if kept and truth.G is not None else None)
+    if not equivalence.weights_told(doc_side, true_side):
+        return equivalence.decide(doc_side, true_side, len(sides.grid.sets),
+                                  given=_given(d, funcs, sides))
     first = equivalence.decide(doc_side, true_side, len(sides.grid.sets))
     if any(has_kind(e.diagnoses, DiagnosisKind.SINGULAR) for e in first.equations) and \
             equivalence.singular_everywhere(doc_side.A, true_side.A, first.W) is None:
@@ -109,6 +113,15 @@ def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides, seed: int = 20
                 decision = equivalence.mark_lost(decision, (i,), _lost(i, v))
             return decision
     return _further(funcs, sides, doc_side, true_side, first, seed)
+
+
+def _given(d: Derivation, funcs: DocumentFunctions, sides: Sides) -> np.ndarray:
+    r""":math:`W` where the document's terms do not tell it (A alone): the identity, each row
+    times the scale the file declares for it (declarations bind)."""
+    W = np.zeros((sides.size, d.n, d.n))
+    for i in range(d.n):
+        W[:, i, i] = 1.0 if d.row_scale is None else declared_weights(d, sides, i, funcs)
+    return W
 
 
 def _further(funcs: DocumentFunctions, sides: Sides, doc_side: equivalence.Side,

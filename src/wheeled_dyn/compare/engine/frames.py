@@ -51,6 +51,13 @@ def choose_frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], d
         right = decision is not None and decision.equations[i].verdict == Verdict.AGREES
         has_declared = d.row_scale is not None
         declared_scale = declared_weights(d, main, i, funcs) if has_declared else None
+        if decision is not None and not decision.told:
+            # A alone does not tell how a row combines the true ones: as printed, or as
+            # declared (the decision read it so)
+            rule = FrameRule(FrameKind.DECLARED if has_declared else FrameKind.IDENTITY)
+            rules.append(rule)
+            frames.append(_always(i, rule, main, declared_scale))
+            continue
         rules_i = candidate_rules(i, on, False, simple)
         totals: dict[FrameRule, int] = {}
         rule = choose(i, rules_i, on, has_declared and not right, right, totals)

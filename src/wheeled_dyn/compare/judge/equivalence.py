@@ -88,6 +88,9 @@ class SystemDecision:
 
     equations: tuple[EquationDecision, ...]
     W: np.ndarray
+    #: whether W was told by the document's terms beyond A (:func:`weights_told`); where it
+    #: was not, W was given (the identity, or the declared row scales) and A compared with it
+    told: bool = True
 
     @property
     def equivalent(self) -> bool:
@@ -151,16 +154,35 @@ def _multiplier_floor(doc_L: np.ndarray, mixed: np.ndarray) -> np.ndarray:
     return np.full(len(doc_L), FLOOR * size)
 
 
+def weights_told(doc: Side, truth: Side) -> bool:
+    r"""Whether the document's terms beyond A tell its weights :math:`W`: it states a part
+    (n, B, the multipliers' coefficients) that is not zero in the truth. Where it states none
+    (A alone), or only parts the truth has none of, every :math:`A_{doc}` is
+    :math:`W A` for some :math:`W`, and nothing would be checked: its A is then compared as
+    the mass matrix, as printed or scaled as declared."""
+    size = float(np.abs(np.where(np.isfinite(truth.A), truth.A, 0.0)).max(initial=0.0))
+    for D, T in ((doc.n, truth.n), (doc.B, truth.B), (doc.L, truth.L)):
+        if D is None or T is None:
+            continue
+        with np.errstate(all="ignore"):
+            if not np.isfinite(T).all() or np.abs(T).max(initial=0.0) > AGREE_TOL * size:
+                return True
+    return False
+
+
 def decide_row(i: int, doc: Side, truth: Side, W: np.ndarray,
                multipliers: np.ndarray | None = None,
-               multiplier_floor: np.ndarray | None = None) -> EquationDecision:
+               multiplier_floor: np.ndarray | None = None,
+               with_A: bool = False) -> EquationDecision:
     r"""The verdict on equation ``i`` (module text), :math:`W` known; ``multipliers``: the
     true multipliers' coefficients recombined for the document (:func:`multiplier_terms`),
-    where both sides keep the constraints."""
+    where both sides keep the constraints; ``with_A``: :math:`W` was given, not found from
+    :math:`A_{doc}`, and the inertia row is compared too."""
     w = W[:, i, :]
     inertia = np.abs(doc.A[:, i, :]).max(axis=1)
     residuals, masks = [], []
-    for D, T in ((doc.n, truth.n), (doc.B, truth.B), (doc.L, multipliers)):
+    parts = ((doc.n, truth.n), (doc.B, truth.B), (doc.L, multipliers))
+    for D, T in ((doc.A, truth.A), *parts) if with_A else parts:
         if D is None or T is None:
             continue
         D2 = D[:, i:i + 1] if D.ndim == 2 else D[:, i, :]
@@ -174,6 +196,13 @@ def decide_row(i: int, doc: Side, truth: Side, W: np.ndarray,
     finite &= np.isfinite(w).all(axis=1)
     worst = max((float(r[finite].max(initial=0.0)) for r in residuals), default=0.0)
     total = len(finite)
+    if worst > AGREE_TOL and with_A:
+        return EquationDecision(Verdict.DIFFERS, (diagnosis(
+            DiagnosisKind.NOT_EQUIVALENT, f"equation {i + 1} is not the true one (the "
+            "document states no velocity, gravity, input or multiplier terms that tell how "
+            "its equations combine the true ones, so its A is compared as the mass matrix: "
+            f"off by {worst:.2g} of the row's size at the worst of {total} samples)",
+            prefix="differs", rows=(i,)),), worst, w)
     if worst > AGREE_TOL:
         return EquationDecision(Verdict.DIFFERS, (diagnosis(
             DiagnosisKind.NOT_EQUIVALENT, f"equation {i + 1} is no combination of the true "
@@ -278,12 +307,16 @@ def vanishing_at(doc_A: np.ndarray, true_A: np.ndarray, typical: np.ndarray | No
 
 
 def decide(doc: Side, truth: Side, sets: int,
-           special: tuple[np.ndarray, np.ndarray, np.ndarray | None] | None = None
-           ) -> SystemDecision:
+           special: tuple[np.ndarray, np.ndarray, np.ndarray | None] | None = None,
+           given: np.ndarray | None = None) -> SystemDecision:
     r"""Every equation's verdict (module text). ``sets``: parameter sets the samples are
     grouped in; ``special``: the document's and the truth's A at the special states (or
-    None)."""
+    None); ``given``: :math:`W` where the document's terms do not tell it
+    (:func:`weights_told`), each row then compared with its inertia terms."""
     n = truth.A.shape[1]
+    if given is not None:
+        return SystemDecision(tuple(decide_row(i, doc, truth, given, with_A=True)
+                                    for i in range(n)), given, told=False)
     W = combination_rows(doc.A, truth.A)
     if doc.L is not None:
         doc = replace(doc, L=unit_multipliers(doc.L))
@@ -335,9 +368,10 @@ def mark_lost(decision: SystemDecision, rows: tuple[int, ...], text: str) -> Sys
                           rows=tuple(rows))
         decisions[k] = EquationDecision(Verdict.DIFFERS, (*e.diagnoses, extra), e.max_error,
                                         e.w)
-    return SystemDecision(tuple(decisions), decision.W)
+    return replace(decision, equations=tuple(decisions))
 
 
 __all__ = ["EquationDecision", "FLOOR", "NULL_SHARE", "SINGULAR_TOL", "Side", "SystemDecision",
            "combination_rows", "decide", "decide_row", "mark_lost", "multiplier_terms",
-           "relative_det", "sign_changes", "singular_everywhere", "vanishing_at"]
+           "relative_det", "sign_changes", "singular_everywhere", "vanishing_at",
+           "weights_told"]

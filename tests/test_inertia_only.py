@@ -1,0 +1,96 @@
+"""A document that states its inertia matrix A alone is read as the mass matrix.
+
+The equivalence decision finds each equation's weights :math:`w_i = A_{doc,i}A^{-1}` from A
+and checks them on the document's other terms (velocity, gravity, input, multiplier terms).
+With A alone there is nothing to check them on: every A is :math:`WA` for some W, and a
+diagonal A for a two-link arm "agreed" (found by a probe with Spong's acrobot). Such a
+document's A is now compared as printed (each row scaled as the file declares), and the
+frames it is explained in are the identity. The arm is Spong, Hutchinson and Vidyasagar's
+planar elbow manipulator (``published_forms.py``); its correct A agrees, A with a planted
+error (link 1's own inertia dropped: a point mass; the matrix diagonal; a row doubled)
+differs and names what it can; a row doubled and declared so agrees.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import published_forms as P
+from conftest import SEED
+from wheeled_dyn.compare.engine import ComparisonEngine
+from wheeled_dyn.compare.judge.equivalence import Side, weights_told
+from wheeled_dyn.compare.records import DiagnosisKind as K, Verdict
+from wheeled_dyn.derivations import load_derivation
+
+#: Engine grid.
+SAMPLES, PARAM_SETS = 200, 3
+
+
+@pytest.fixture(scope="module")
+def engine():
+    return ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED)
+
+
+def _inertia_only(folder, error: str | None = None, A: list | None = None,
+                  scale: list[str] | None = None):
+    r"""The arm's matrices form with only its A kept (``A`` replacing it where given) and,
+    with ``scale``, a ``[rows]`` declaration."""
+    path = P.write(folder, "arm", "matrices", error)
+    text = path.read_text()
+    head = text[:text.index("A = ")]
+    matrix = A if A is not None else P.arm_forms(error)["matrices"]["A"]
+    text = head + f"A = {matrix!r}\n".replace("'", '"')
+    if scale is not None:
+        text += f"[rows]\nscale = {scale!r}\n".replace("'", '"')
+    path.write_text(text)
+    return load_derivation(path)
+
+
+def _verdicts(result) -> dict[str, Verdict]:
+    return {r.element: r.verdict for r in result.records}
+
+
+def test_the_right_inertia_alone_agrees(engine, tmp_path):
+    result = engine.compare(_inertia_only(tmp_path))
+    assert set(_verdicts(result).values()) == {Verdict.AGREES}
+    assert result.equivalent
+
+
+def test_an_inertia_with_link_1_a_point_mass_differs_and_is_named(engine, tmp_path):
+    result = engine.compare(_inertia_only(tmp_path, "dropped"))
+    verdicts = _verdicts(result)
+    assert verdicts["A[1,1]"] == Verdict.DIFFERS
+    assert {k for k, v in verdicts.items() if v != Verdict.AGREES} == {"A[1,1]"}
+    assert not result.equivalent
+    record = next(r for r in result.records if r.element == "A[1,1]")
+    assert any(x.kind == K.POINT_MASS for x in record.diagnoses)
+
+
+def test_a_diagonal_inertia_differs(engine, tmp_path):
+    A = [["m1*lc1**2 + I1", "0"], ["0", "m2*lc2**2 + I2"]]
+    result = engine.compare(_inertia_only(tmp_path, A=A))
+    verdicts = _verdicts(result)
+    assert all(verdicts[e] == Verdict.DIFFERS for e in ("A[1,1]", "A[1,2]", "A[2,1]"))
+    assert not result.equivalent
+
+
+def test_a_row_doubled_differs_unless_it_is_declared(engine, tmp_path):
+    A = P.arm_forms(None)["matrices"]["A"]
+    doubled = [A[0], [f"2*({x})" for x in A[1]]]
+    result = engine.compare(_inertia_only(tmp_path, A=doubled))
+    assert not result.equivalent
+    assert _verdicts(result)["A[2,2]"] == Verdict.DIFFERS
+    declared = engine.compare(_inertia_only(tmp_path, A=doubled, scale=["1", "2"]))
+    assert declared.equivalent
+    assert set(_verdicts(declared).values()) == {Verdict.AGREES}
+
+
+def test_terms_the_truth_has_none_of_do_not_tell_the_weights():
+    rng = np.random.default_rng(SEED)
+    A = rng.normal(size=(50, 2, 2))
+    A = A @ np.swapaxes(A, 1, 2) + 2 * np.eye(2)
+    zero = np.zeros((50, 2))
+    assert not weights_told(Side(A, None, None), Side(A, None, None))
+    assert not weights_told(Side(A, zero, None), Side(A, zero, None))
+    assert weights_told(Side(A, zero, None), Side(A, rng.normal(size=(50, 2)), None))
