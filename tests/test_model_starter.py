@@ -227,3 +227,25 @@ def test_wheels_off_one_axle_are_named_as_they_are(tmp_path, old, new, expected)
     with pytest.raises(ModelError) as caught:
         load_model(str(out))
     assert expected in str(caught.value), str(caught.value)
+
+
+@pytest.mark.parametrize("kind", ["floating", "planar"])
+def test_a_joint_of_several_coordinates_is_named_by_its_urdf_type(tmp_path, capsys, kind):
+    r"""A caster on a ``floating`` or ``planar`` joint (a probe's ROS robot): the starter's
+    reason named Pinocchio's joint class only (JointModelFreeFlyer), not what the URDF says."""
+    from pathlib import Path
+    text = (Path(__file__).parent / "data" / "ros_balancer" / "ros_balancer.urdf").read_text()
+    caster = f'''  <joint name="caster_joint" type="{kind}">
+    <parent link="base_link"/><child link="caster"/><origin xyz="0.1 0 -0.05"/>
+  </joint>
+  <link name="caster">
+    <inertial><mass value="0.05"/>
+      <inertia ixx="1e-5" ixy="0" ixz="0" iyy="1e-5" iyz="0" izz="1e-5"/></inertial>
+  </link>
+'''
+    urdf = tmp_path / "caster.urdf"
+    urdf.write_text(text.replace("</robot>", caster + "</robot>"))
+    main(["model", str(urdf), "--out", str(tmp_path / "robot.toml")])
+    said = capsys.readouterr()
+    assert f"URDF joint type '{kind}'" in said.out + said.err
+    assert "caster_joint" in said.out + said.err

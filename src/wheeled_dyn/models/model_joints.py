@@ -83,6 +83,12 @@ def move_joint_to(model: pin.Model, geom: pin.GeometryModel, jid: int, frame: pi
 
 
 
+#: Pinocchio's joint models of more than one coordinate, by the URDF joint type they come
+#: from.
+URDF_TYPES = {"JointModelFreeFlyer": "floating", "JointModelPlanar": "planar",
+              "JointModelSpherical": "spherical", "JointModelSphericalZYX": "spherical"}
+
+
 def finish_coordinates(spec: ModelSpec, model: pin.Model, base_names: Sequence[str]
                        ) -> tuple[str, ...]:
     r"""Name the model, set gravity, check every joint has one coordinate; the coordinate
@@ -93,10 +99,15 @@ def finish_coordinates(spec: ModelSpec, model: pin.Model, base_names: Sequence[s
     for jid in range(len(base_names) + 1, model.njoints):
         names.append(spec.aliases.get(model.names[jid], model.names[jid]))
     for jid in range(1, model.njoints):
-        if model.joints[jid].nq != 1 or model.joints[jid].nv != 1:
+        joint = model.joints[jid]
+        if joint.nq != 1 or joint.nv != 1:
+            kind = joint.shortname()
+            urdf = URDF_TYPES.get(kind)
+            said = f"URDF joint type {urdf!r} (Pinocchio's {kind})" if urdf else \
+                f"joint type {kind}"
             raise ModelError(spec.name, model.names[jid],
-                             f"joint type {model.joints[jid].shortname()} has more than one "
-                             "coordinate; lock it or replace it")
+                             f"{said} has {joint.nv} velocities: a model's joints have one "
+                             "each (revolute, continuous, prismatic); lock it or replace it")
     if len(set(names)) != len(names):
         raise ModelError(spec.name, None, f"coordinate names repeat: {names}")
     return tuple(names)
