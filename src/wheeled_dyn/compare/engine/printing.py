@@ -47,8 +47,9 @@ def print_drafts(d: Derivation, drafts: Sequence[ElementDraft], cs, texts: Seque
     linearised = None if not assumed.linearised_about else (assumed.linearised_about,
                                                             assumed.equilibrium_potential)
     massless = frozenset(link for c in assumed.families for link in c.massless)
+    solved = frozenset(i for i, t in enumerate(texts) if t.solved and i not in frames)
     return Corrections(closed_form.annotate(d, list(drafts), cs, frames, families, uniform,
-                                            linearised, massless), frames)
+                                            linearised, massless, solved), frames)
 
 
 @dataclass(frozen=True)

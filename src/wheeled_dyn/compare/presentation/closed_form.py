@@ -223,7 +223,8 @@ def _row_label(label: str, row: int) -> str:
 def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, ...] | sp.Expr],
              families: tuple[str, ...] = (), uniform: frozenset[str] = frozenset(),
              linearised: tuple[tuple[tuple[str, float], ...], bool] | None = None,
-             massless: frozenset[str] = frozenset()) -> dict[str, sp.Expr] | None:
+             massless: frozenset[str] = frozenset(), solved: frozenset[int] = frozenset()
+             ) -> dict[str, sp.Expr] | None:
     r"""Fill ``truth`` (every element, in its row's frame: the truth it is compared with) and
     ``residual`` (truth − document, expanded, for the elements that do not agree) of the
     ``drafts`` where the symbolic engine provides closed forms; without them the drafts keep
@@ -238,7 +239,10 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
     then the truth so written is returned), else in the model's. ``linearised``: (the
     point, whether the potential is measured from the equilibrium) of a document that
     declares ``linearised_about``: the truth linearised there
-    (:func:`.linearised.linearised_truth`), as it is judged."""
+    (:func:`.linearised.linearised_truth`), as it is judged. ``solved``: rows solved for
+    the accelerations whose weights were not fitted: their frame is row :math:`i` of the
+    true :math:`A^{-1}` (:func:`solved_weights`), where it is small enough to write, else
+    they are shown no truth (it would be that of the equations before solving)."""
     try:
         from ...symbolic import lengths_are_symbols, true_expressions
     except ImportError:
@@ -268,12 +272,16 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
         truth = linearised_truth(truth, d.positions, *linearised)
     dots = {v: rf"\dot{{{sp.latex(q)}}}" for q, v in zip(d.positions, d.velocities)}
     by_name = {str(v): text for v, text in dots.items()}
+    inverse = solved_weights(truth, d.n) if solved else None
     for r in drafts:
         expr = truth.get(r.element)
         if expr is None or r.key == "B":
             continue
-        frame = frames.get(r.row)
-        in_frame = None if frame is None else _in_frame(r.element, expr, frame, truth, to_model)
+        if r.row in solved and inverse is None:
+            continue                     # compared in a frame that has no closed form here
+        in_frame = sp.cancel(_combined(r.element, inverse[r.row], truth)) \
+            if r.row in solved and inverse is not None else _in_frame(
+                r.element, expr, frames.get(r.row), truth, to_model)
         shown = expr if in_frame is None else in_frame     # the truth the row is compared with
         names = {sym: by_name[sym.name] for sym in shown.free_symbols if sym.name in by_name}
         r.truth, r.truth_latex = printed(shown, names)
@@ -282,7 +290,7 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
         doc = to_model(r.expr)
         if doc is None:
             continue
-        text = residual_text(in_frame, doc, physical)
+        text = residual_text(in_frame, doc, physical, r.row in solved)
         if text is None:
             continue
         r.residual = text
@@ -292,11 +300,44 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
     return None if ours is None else truth
 
 
-def _in_frame(element: str, expr: sp.Expr, frame: tuple[sp.Expr, ...] | sp.Expr,
+#: Most operations of the true A whose inverse is written as a solved row's frame, and of a
+#: solved row's truth − document put over one denominator (a longer one is not shown: it is
+#: not read, and the polynomial arithmetic took a minute for a two-link arm's solved form).
+SOLVED_LIMIT, SOLVED_RESIDUAL_LIMIT = 200, 250
+
+
+def solved_weights(truth: dict[str, sp.Expr], n: int) -> list[tuple[sp.Expr, ...]] | None:
+    r"""The rows of :math:`A^{-1}` of the true A in ``truth`` (its adjugate over its
+    determinant), or None where an element has no closed form, n is above 3, or A has more
+    than :data:`SOLVED_LIMIT` operations."""
+    labels = [[f"A[{i + 1},{j + 1}]" for j in range(n)] for i in range(n)]
+    if n > 3 or any(x not in truth for row in labels for x in row):
+        return None
+    A = sp.Matrix([[truth[x] for x in row] for row in labels])
+    if sp.count_ops(A) > SOLVED_LIMIT:
+        return None
+    det = sp.cancel(A.det())
+    if det == 0:
+        return None
+    adj = A.adjugate()
+    return [tuple(adj[i, j] / det for j in range(n)) for i in range(n)]
+
+
+def _combined(element: str, weights: tuple[sp.Expr, ...], truth: dict[str, sp.Expr]) -> sp.Expr:
+    r"""The combination of the true rows' ``element`` with ``weights`` (in the truth's
+    symbols); an element a row lacks counts 0."""
+    return sp.Add(*(w * truth.get(_row_label(element, k), sp.Integer(0))
+                    for k, w in enumerate(weights) if w != 0))
+
+
+def _in_frame(element: str, expr: sp.Expr, frame: tuple[sp.Expr, ...] | sp.Expr | None,
               truth: dict[str, sp.Expr], to_model: Callable[[sp.Expr | None], sp.Expr | None]
               ) -> sp.Expr | None:
     r"""The true ``element`` (``expr``) in its row's ``frame``: the factor times it, or the
-    combination of the true rows' same elements; None where one of them has no closed form."""
+    combination of the true rows' same elements; None where the row has no frame here or one
+    of them has no closed form."""
+    if frame is None:
+        return None
     if not isinstance(frame, tuple):
         factor = to_model(frame)
         return None if factor is None else expr if factor == 1 else expr * factor
@@ -316,16 +357,24 @@ def _in_frame(element: str, expr: sp.Expr, frame: tuple[sp.Expr, ...] | sp.Expr,
 RESIDUALS = DiskMemo("compare", "residual", lambda: [Path(__file__)])
 
 
-def residual_text(truth: sp.Expr, doc: sp.Expr, physical: bool) -> str | None:
+def residual_text(truth: sp.Expr, doc: sp.Expr, physical: bool, solved: bool = False
+                  ) -> str | None:
     r"""The text of truth − document, expanded with trigonometric identities when it has at
-    most :data:`TRIG_EXPAND_LIMIT` operations; None where it is not shown (a model without a
+    most :data:`TRIG_EXPAND_LIMIT` operations (``solved``: a solved row's, a quotient, put
+    over one denominator and factored first); None where it is not shown (a model without a
     physical record: longer than :data:`STANDARD_RESIDUAL_LIMIT`, or with roots of Khalil's
     parameters). Remembered: :data:`RESIDUALS`."""
-    return RESIDUALS.get((truth, doc, physical), lambda: _residual_text(truth, doc, physical))
+    return RESIDUALS.get((truth, doc, physical, solved),
+                         lambda: _residual_text(truth, doc, physical, solved))
 
 
-def _residual_text(truth: sp.Expr, doc: sp.Expr, physical: bool) -> str | None:
+def _residual_text(truth: sp.Expr, doc: sp.Expr, physical: bool, solved: bool = False
+                   ) -> str | None:
     residual = truth - doc
+    if solved:                                # a quotient: over one denominator, if short
+        if sp.count_ops(residual) > SOLVED_RESIDUAL_LIMIT:
+            return None
+        residual = sp.factor(sp.cancel(residual))
     if sp.count_ops(residual) <= TRIG_EXPAND_LIMIT:
         residual = sp.expand(sp.expand_trig(residual))
     if not physical and (sp.count_ops(residual) > STANDARD_RESIDUAL_LIMIT or any(
