@@ -94,3 +94,31 @@ def test_terms_the_truth_has_none_of_do_not_tell_the_weights():
     assert not weights_told(Side(A, None, None), Side(A, None, None))
     assert not weights_told(Side(A, zero, None), Side(A, zero, None))
     assert weights_told(Side(A, zero, None), Side(A, rng.normal(size=(50, 2)), None))
+
+
+def _one_joint(folder, A: str, Q: str | None = None):
+    r"""The arm with only its shoulder in the document's map (the elbow held at 0)."""
+    text = P.ARM_HEAD.format(form="shoulder only", error="", model=P.DATA / "two_link_arm.toml",
+                             eqs="")
+    text = text.replace('positions = ["q1", "q2"]', 'positions = ["q1"]')
+    text = text.replace('configuration = { q1 = "q1", q2 = "q2" }', 'configuration = { q1 = "q1" }')
+    text = text.replace('units = { q1 = "rad", q2 = "rad" }', 'units = { q1 = "rad" }')
+    text = text.replace('tau2 = "tau2"\n', "").replace(
+        'tau2 = { input = true, units = "N*m" }\n', "")
+    text = text[:text.index("equations = [")] + f'A = [["{A}"]]\n' + (
+        f'Q = ["{Q}"]\nB = [["1"]]\n' if Q else "")
+    path = folder / "shoulder.toml"
+    path.write_text(text)
+    return load_derivation(path)
+
+
+def test_a_joint_left_out_of_the_map_is_held_and_said(engine, tmp_path):
+    r"""The probe's one-coordinate file for a two-joint arm: the elbow is held at 0 and the
+    report says so; the arm's own d11 and φ1 at q2 = 0 agree, a unit inertia alone differs."""
+    D, _, phi = P.arm()
+    locked = engine.compare(_one_joint(tmp_path, P._s(D[0, 0].subs(P.q2, 0)),
+                                       P._s(phi[0].subs(P.q2, 0))))
+    assert locked.equivalent
+    assert any("q2 is not in the document's configuration map: held at 0" in n
+               for n in locked.notes)
+    assert not engine.compare(_one_joint(tmp_path, "1")).equivalent

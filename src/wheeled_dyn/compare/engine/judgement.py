@@ -151,6 +151,20 @@ def _agreeing(engine, d, funcs, rules, assumed):
     return on
 
 
+def _held(cs) -> list[str]:
+    r"""A note for the model coordinates a document's holonomic map leaves out: they are held
+    at 0 (its equations are the model's with those joints locked there)."""
+    if cs.kind != "holonomic":
+        return []
+    held = [name for name, e in cs.configuration.items() if e == 0]
+    if not held:
+        return []
+    return [f"model coordinate{'s' if len(held) > 1 else ''} {', '.join(held)} "
+            f"{'are' if len(held) > 1 else 'is'} not in the document's configuration map: "
+            "held at 0 (the equations compared are the model's with "
+            f"{'those joints' if len(held) > 1 else 'that joint'} locked there)"]
+
+
 def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement:
     r"""``d`` judged as declared (module text); ``announce``: the stages are told to the
     engine's ``on_stage``."""
@@ -262,7 +276,7 @@ def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed
     if combination:                      # the combination carries the rows' factors too
         functions = constants = (None,) * d.n
     notes = list(sides.notes) + [f"{e} was lost in the extracted text: not compared"
-                                 for e in d.missing]
+                                 for e in d.missing] + _held(grid.cs)
     result = DerivationResult(
         path=d.path, title=d.title, model=d.model, source=dict(d.source),
         coordinates=grid.cs.name, velocities=tuple(str(v) for v in d.velocities),
