@@ -19,7 +19,7 @@ import sympy as sp
 import published_forms as P
 from conftest import SEED
 from wheeled_dyn.compare.engine import ComparisonEngine
-from wheeled_dyn.compare.records import Verdict
+from wheeled_dyn.compare.records import DiagnosisKind as K, Verdict
 from wheeled_dyn.derivations import load_derivation
 
 #: Engine grid; random points of the symbols; relative agreement of two expressions there.
@@ -82,3 +82,34 @@ def test_a_term_dropped_from_one_solved_row_gets_its_truth_minus_document(engine
     residual = differing["Q[1]"].residual
     assert residual
     assert _equal(_symbols(residual), D[1, 1] * phi[0] / det)
+
+
+def _barto(folder, sign: int):
+    r"""The cart-pole as Barto, Sutton and Anderson's simulation computes it (IEEE Trans. SMC
+    13, 1983; Florian 2007, eqs. (21)–(22) without friction), :math:`\ddot\theta` first —
+    the order of that code, not of the positions (x, θ) — and :math:`\ddot x` from it;
+    ``sign`` −1 flips the sign of :math:`\cos\theta\,T` in :math:`\ddot\theta` (a probe's
+    planted error)."""
+    T = "(F + m*l*dtheta**2*sin(theta))/(M + m)"
+    rows = [f"ddtheta = (g*sin(theta) - ({sign})*cos(theta)*{T})"
+            "/(l*(4/3 - m*cos(theta)**2/(M + m)))",
+            "ddx = (F + m*l*(dtheta**2*sin(theta) - ddtheta*cos(theta)))/(M + m)"]
+    path = folder / f"barto_{sign}.toml"
+    path.write_text(P.POLE_HEAD.format(form="Barto's simulation", error="",
+                                       model=P.DATA / "cart_pole.toml",
+                                       eqs=",\n".join(f'  "{e}"' for e in rows)))
+    return load_derivation(path)
+
+
+def test_a_row_solved_for_another_coordinate_is_read_as_solved(engine, tmp_path):
+    r"""θ̈ printed first, for positions (x, θ): its row is :math:`e_2`, a row of
+    :math:`A^{-1}` all the same. It was explained as the cart's equation divided by
+    :math:`m l \cos\theta` (which vanishes), with four unrelated diagnoses for one sign; read
+    as solved, the sign is named where it is."""
+    right = engine.compare(_barto(tmp_path, 1))
+    assert all(r.verdict == Verdict.AGREES for r in right.records)
+    assert "solved for the accelerations" in right.equations[0].frame
+    wrong = engine.compare(_barto(tmp_path, -1))
+    differing = [r for r in wrong.records if r.verdict == Verdict.DIFFERS]
+    assert {r.element for r in differing} == {"B[1,1]", "h[1]:dtheta*dtheta"}
+    assert all(any(x.kind == K.SIGN for x in r.diagnoses) for r in differing)

@@ -9,7 +9,7 @@ document written with XX1, MY1 ... reads, after the parameter map, in m_S, d, I1
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from pathlib import Path
 
 import sympy as sp
@@ -223,7 +223,8 @@ def _row_label(label: str, row: int) -> str:
 def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, ...] | sp.Expr],
              families: tuple[str, ...] = (), uniform: frozenset[str] = frozenset(),
              linearised: tuple[tuple[tuple[str, float], ...], bool] | None = None,
-             massless: frozenset[str] = frozenset(), solved: frozenset[int] = frozenset()
+             massless: frozenset[str] = frozenset(),
+             solved: Mapping[int, tuple[int, sp.Expr]] | None = None
              ) -> dict[str, sp.Expr] | None:
     r"""Fill ``truth`` (every element, in its row's frame: the truth it is compared with) and
     ``residual`` (truth − document, expanded, for the elements that do not agree) of the
@@ -239,10 +240,11 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
     then the truth so written is returned), else in the model's. ``linearised``: (the
     point, whether the potential is measured from the equilibrium) of a document that
     declares ``linearised_about``: the truth linearised there
-    (:func:`.linearised.linearised_truth`), as it is judged. ``solved``: rows solved for
-    the accelerations whose weights were not fitted: their frame is row :math:`i` of the
-    true :math:`A^{-1}` (:func:`solved_weights`), where it is small enough to write, else
-    they are shown no truth (it would be that of the equations before solving)."""
+    (:func:`.linearised.linearised_truth`), as it is judged. ``solved``: rows solved for an
+    acceleration whose weights were not fitted, row ``i`` as ``(k, c)`` (:math:`A_{doc,i} =
+    c\,e_k`): their frame is :math:`c` × row :math:`k` of the true :math:`A^{-1}`
+    (:func:`solved_weights`), where it is small enough to write, else they are shown no truth
+    (it would be that of the equations before solving)."""
     try:
         from ...symbolic import lengths_are_symbols, true_expressions
     except ImportError:
@@ -272,6 +274,7 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
         truth = linearised_truth(truth, d.positions, *linearised)
     dots = {v: rf"\dot{{{sp.latex(q)}}}" for q, v in zip(d.positions, d.velocities)}
     by_name = {str(v): text for v, text in dots.items()}
+    solved = solved or {}
     inverse = solved_weights(truth, d.n) if solved else None
     for r in drafts:
         expr = truth.get(r.element)
@@ -279,7 +282,8 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
             continue
         if r.row in solved and inverse is None:
             continue                     # compared in a frame that has no closed form here
-        in_frame = sp.cancel(_combined(r.element, inverse[r.row], truth)) \
+        in_frame = sp.cancel(solved[r.row][1] * _combined(
+            r.element, inverse[solved[r.row][0]], truth)) \
             if r.row in solved and inverse is not None else _in_frame(
                 r.element, expr, frames.get(r.row), truth, to_model)
         shown = expr if in_frame is None else in_frame     # the truth the row is compared with
@@ -375,7 +379,7 @@ def _residual_text(truth: sp.Expr, doc: sp.Expr, physical: bool, solved: bool = 
         if sp.count_ops(residual) > SOLVED_RESIDUAL_LIMIT:
             return None
         residual = sp.factor(sp.cancel(residual))
-    if sp.count_ops(residual) <= TRIG_EXPAND_LIMIT:
+    elif sp.count_ops(residual) <= TRIG_EXPAND_LIMIT:
         residual = sp.expand(sp.expand_trig(residual))
     if not physical and (sp.count_ops(residual) > STANDARD_RESIDUAL_LIMIT or any(
             not p.exp.is_Integer for p in residual.atoms(sp.Pow))):

@@ -55,14 +55,14 @@ def freedom(rule: FrameRule, n: int, solved: bool = False) -> int:
 
 
 def solved_row(doc: Arrays, i: int) -> bool:
-    r"""Whether the document's row ``i`` is solved for its acceleration: its inertia row is
-    the unit row :math:`e_i` at every sample (False for a document that gives no A)."""
+    r"""Whether the document's row ``i`` is solved for an acceleration: its inertia row is a
+    unit row :math:`e_k` at every sample, its own or another's (:math:`\ddot\theta = \dots`
+    printed first for positions (x, θ), as simulation code orders them; False for a document
+    that gives no A)."""
     if doc.A is None:
         return False
     A = doc.A[:, i, :]
-    unit = np.zeros(A.shape[1])
-    unit[i] = 1.0
-    return bool(np.all(A == unit))
+    return any(bool(np.all(A == unit)) for unit in np.eye(A.shape[1]))
 
 
 def elements_of(doc_row: Arrays) -> int:
