@@ -91,9 +91,14 @@ def test_terms_the_truth_has_none_of_do_not_tell_the_weights():
     A = rng.normal(size=(50, 2, 2))
     A = A @ np.swapaxes(A, 1, 2) + 2 * np.eye(2)
     zero = np.zeros((50, 2))
-    assert not weights_told(Side(A, None, None), Side(A, None, None))
-    assert not weights_told(Side(A, zero, None), Side(A, zero, None))
-    assert weights_told(Side(A, zero, None), Side(A, rng.normal(size=(50, 2)), None))
+    assert weights_told(Side(A, None, None), Side(A, None, None)) == (False, False)
+    assert weights_told(Side(A, zero, None), Side(A, zero, None)) == (False, False)
+    assert weights_told(Side(A, zero, None), Side(A, rng.normal(size=(50, 2)), None)) == \
+        (True, True)
+    lost = zero.copy()
+    lost[:, 1] = np.nan                       # the second equation's term lost: not stated
+    assert weights_told(Side(A, lost, None), Side(A, rng.normal(size=(50, 2)), None)) == \
+        (True, False)
 
 
 def _one_joint(folder, A: str, Q: str | None = None):
@@ -119,6 +124,37 @@ def test_a_joint_left_out_of_the_map_is_held_and_said(engine, tmp_path):
     locked = engine.compare(_one_joint(tmp_path, P._s(D[0, 0].subs(P.q2, 0)),
                                        P._s(phi[0].subs(P.q2, 0))))
     assert locked.equivalent
-    assert any("q2 is not in the document's configuration map: held at 0" in n
+    assert any("q2 is held at 0 by the document's configuration map" in n
                for n in locked.notes)
     assert not engine.compare(_one_joint(tmp_path, "1")).equivalent
+
+
+@pytest.mark.parametrize("scale", ["sin(q2)", "m1 - m2", "(cos(q1) - 1/2)**2"])
+def test_a_declared_scale_that_vanishes_is_not_equivalent(engine, tmp_path, scale):
+    r"""A alone, row 1 times a factor that vanishes (at q2 = 0; for a robot with m1 = m2;
+    at q1 = π/3), the factor declared (a probe): it agreed, the singular checks being skipped
+    for an A read as the mass matrix. The equation is lost where the factor vanishes."""
+    A = P.arm_forms(None)["matrices"]["A"]
+    scaled = [[f"({scale})*({x})" for x in A[0]], A[1]]
+    result = engine.compare(_inertia_only(tmp_path, A=scaled, scale=[scale, "1"]))
+    assert not result.equivalent
+    assert result.equations[0].verdict == Verdict.DIFFERS
+    assert any(x.kind == K.SINGULAR for x in result.equations[0].diagnoses)
+
+
+def test_an_equation_whose_other_terms_are_lost_is_read_as_printed(engine, tmp_path):
+    r"""A and Q given, Q's second element lost in the extracted text: equation 2 states
+    nothing beyond A, so its weights are not told and its A row is compared as printed
+    (doubled, it differs; as printed, its elements agree); equation 1's are told by Q."""
+    D, _, phi = P.arm()
+    Q = [P._s(phi[0]), "?"]
+    A = P.arm_forms(None)["matrices"]["A"]
+    for row2, verdict in ((A[1], Verdict.AGREES), ([f"2*({x})" for x in A[1]],
+                                                   Verdict.DIFFERS)):
+        d = _inertia_only(tmp_path, A=[A[0], row2])
+        text = d.path.read_text() + f"Q = {Q!r}\n".replace("'", '"')
+        d.path.write_text(text)
+        result = engine.compare(load_derivation(d.path))
+        verdicts = _verdicts(result)
+        assert verdicts["A[2,1]"] == verdicts["A[2,2]"] == verdict
+        assert verdicts["A[1,1]"] == verdicts["Q[1]"] == Verdict.AGREES

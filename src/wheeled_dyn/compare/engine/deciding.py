@@ -57,9 +57,9 @@ def _lost(i: int, v: Vanishing) -> str:
 
 
 def _without(side: equivalence.Side, funcs: DocumentFunctions, sides: Sides,
-             found: dict[int, Vanishing]) -> equivalence.Side:
+             found: dict[int, Vanishing]) -> tuple[equivalence.Side, np.ndarray]:
     r"""``side`` with each row of ``found`` divided by its factor (multiplied, where the row
-    is divided by it), at every sample."""
+    is divided by it), at every sample; and what each row was multiplied by (S × n)."""
     scale = np.ones((len(side.A), side.A.shape[1]))
     for i, v in found.items():
         with np.errstate(all="ignore"):
@@ -70,7 +70,7 @@ def _without(side: equivalence.Side, funcs: DocumentFunctions, sides: Sides,
     def rows(M: np.ndarray | None) -> np.ndarray | None:
         return None if M is None else M * scale.reshape(scale.shape + (1,) * (M.ndim - 2))
     return equivalence.Side(side.A * scale[:, :, None], rows(side.n), rows(side.B),
-                            rows(side.L))
+                            rows(side.L)), scale
 
 
 def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides, seed: int = 2026
@@ -92,10 +92,11 @@ def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides, seed: int = 20
     true_side = equivalence.Side(truth.A, true_n, _with_stiffness(
         truth.K if doc.K is not None else None, sides.B_true),
         np.swapaxes(truth.G, 1, 2) if kept and truth.G is not None else None)
-    if not equivalence.weights_told(doc_side, true_side):
-        return equivalence.decide(doc_side, true_side, len(sides.grid.sets),
-                                  given=_given(d, funcs, sides))
-    first = equivalence.decide(doc_side, true_side, len(sides.grid.sets))
+    # an equation whose terms beyond A do not tell its weights: its A read as the mass
+    # matrix's row, as printed or scaled as declared (the singular checks below as for any)
+    given = None if all(equivalence.weights_told(doc_side, true_side)) else \
+        _given(d, funcs, sides)
+    first = equivalence.decide(doc_side, true_side, len(sides.grid.sets), given=given)
     if any(has_kind(e.diagnoses, DiagnosisKind.SINGULAR) for e in first.equations) and \
             equivalence.singular_everywhere(doc_side.A, true_side.A, first.W) is None:
         # W singular or unbounded somewhere (not everywhere: an equation repeated or lost is
@@ -105,14 +106,15 @@ def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides, seed: int = 20
         if found:
             # decided on with those factors divided out (another row lost elsewhere, a row
             # times sin θ beside one times L - R, is still said), their rows marked at the end
-            doc_side = _without(doc_side, funcs, sides, found)
-            first = equivalence.decide(doc_side, true_side, len(sides.grid.sets))
+            doc_side, scale = _without(doc_side, funcs, sides, found)
+            given = None if given is None else given * scale[:, :, None]
+            first = equivalence.decide(doc_side, true_side, len(sides.grid.sets), given=given)
             decision = _further(funcs, sides, doc_side, true_side, first, seed,
-                                frozenset(found))
+                                frozenset(found), given)
             for i, v in found.items():
                 decision = equivalence.mark_lost(decision, (i,), _lost(i, v))
             return decision
-    return _further(funcs, sides, doc_side, true_side, first, seed)
+    return _further(funcs, sides, doc_side, true_side, first, seed, given=given)
 
 
 def _given(d: Derivation, funcs: DocumentFunctions, sides: Sides) -> np.ndarray:
@@ -126,10 +128,12 @@ def _given(d: Derivation, funcs: DocumentFunctions, sides: Sides) -> np.ndarray:
 
 def _further(funcs: DocumentFunctions, sides: Sides, doc_side: equivalence.Side,
              true_side: equivalence.Side, first: equivalence.SystemDecision, seed: int,
-             named: frozenset[int] = frozenset()) -> equivalence.SystemDecision:
+             named: frozenset[int] = frozenset(), given: np.ndarray | None = None
+             ) -> equivalence.SystemDecision:
     r"""``first`` with where an equation whose weights vary is lost: at the special states,
     for a factor of its row, for another robot of the model; the rows ``named`` (their
-    factor found and divided out) are left to the caller."""
+    factor found and divided out) are left to the caller; ``given`` as
+    :func:`~..judge.equivalence.decide`'s."""
     # the special positions matter where an equation is otherwise a combination of the true
     # ones with weights that vary (a factor that may vanish there: sin θ)
     W = first.W
@@ -141,7 +145,7 @@ def _further(funcs: DocumentFunctions, sides: Sides, doc_side: equivalence.Side,
         return first
     second = equivalence.decide(doc_side, true_side, len(sides.grid.sets),
                                 special_sides(funcs, sides, sides.doc.need("A"),
-                                              sides.truth.need("A"), W))
+                                              sides.truth.need("A"), W), given)
     # every row that still agrees is tried for its own factor, also where another is lost at
     # a special state (a row times a length factor beside one times (cos θ - 1/2)²)
     agreeing = [i for i in varies if second.equations[i].verdict == Verdict.AGREES]

@@ -51,7 +51,7 @@ def choose_frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], d
         right = decision is not None and decision.equations[i].verdict == Verdict.AGREES
         has_declared = d.row_scale is not None
         declared_scale = declared_weights(d, main, i, funcs) if has_declared else None
-        if decision is not None and not decision.told:
+        if decision is not None and not decision.told_row(i):
             # A alone does not tell how a row combines the true ones: as printed, or as
             # declared (the decision read it so)
             rule = FrameRule(FrameKind.DECLARED if has_declared else FrameKind.IDENTITY)

@@ -152,17 +152,17 @@ def _agreeing(engine, d, funcs, rules, assumed):
 
 
 def _held(cs) -> list[str]:
-    r"""A note for the model coordinates a document's holonomic map leaves out: they are held
-    at 0 (its equations are the model's with those joints locked there)."""
+    r"""A note for each model coordinate a document's holonomic map holds fixed (left out of
+    it, held at 0, or mapped to a constant): the equations compared are the model's with
+    that joint locked there."""
     if cs.kind != "holonomic":
         return []
-    held = [name for name, e in cs.configuration.items() if e == 0]
-    if not held:
-        return []
-    return [f"model coordinate{'s' if len(held) > 1 else ''} {', '.join(held)} "
-            f"{'are' if len(held) > 1 else 'is'} not in the document's configuration map: "
-            "held at 0 (the equations compared are the model's with "
-            f"{'those joints' if len(held) > 1 else 'that joint'} locked there)"]
+    positions = {str(p) for p in cs.positions}
+    return [f"model coordinate {name} is held at {sp.sstr(e)} by the document's "
+            "configuration map (none of its positions moves it): the equations compared are "
+            "the model's with that joint locked there"
+            for name, e in cs.configuration.items()
+            if not {str(x) for x in e.free_symbols} & positions]
 
 
 def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement:

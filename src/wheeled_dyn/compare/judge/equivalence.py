@@ -88,9 +88,13 @@ class SystemDecision:
 
     equations: tuple[EquationDecision, ...]
     W: np.ndarray
-    #: whether W was told by the document's terms beyond A (:func:`weights_told`); where it
-    #: was not, W was given (the identity, or the declared row scales) and A compared with it
-    told: bool = True
+    #: per equation, whether its weights were told by the document's terms beyond A
+    #: (:func:`weights_told`); where they were not, they were given (its own row, or times
+    #: its declared scale) and its A compared with them; empty: every equation's were told
+    told: tuple[bool, ...] = ()
+
+    def told_row(self, i: int) -> bool:
+        return not self.told or self.told[i]
 
     @property
     def equivalent(self) -> bool:
@@ -154,20 +158,24 @@ def _multiplier_floor(doc_L: np.ndarray, mixed: np.ndarray) -> np.ndarray:
     return np.full(len(doc_L), FLOOR * size)
 
 
-def weights_told(doc: Side, truth: Side) -> bool:
-    r"""Whether the document's terms beyond A tell its weights :math:`W`: it states a part
-    (n, B, the multipliers' coefficients) that is not zero in the truth. Where it states none
-    (A alone), or only parts the truth has none of, every :math:`A_{doc}` is
-    :math:`W A` for some :math:`W`, and nothing would be checked: its A is then compared as
-    the mass matrix, as printed or scaled as declared."""
+def weights_told(doc: Side, truth: Side) -> tuple[bool, ...]:
+    r"""Per equation, whether the document's terms beyond A tell its weights :math:`w_i`:
+    it states (finite somewhere) its element of a part (n, B, the multipliers'
+    coefficients) that is not zero in the truth, so :math:`w_i` is checked on it. An
+    equation stating none (A alone, its other terms lost or only terms the truth has none
+    of) is :math:`w_i A` for some :math:`w_i` whatever it is, and nothing would be checked:
+    its A is then compared as the mass matrix's row, as printed or scaled as declared."""
+    n = truth.A.shape[1]
     size = float(np.abs(np.where(np.isfinite(truth.A), truth.A, 0.0)).max(initial=0.0))
+    told = np.zeros(n, dtype=bool)
     for D, T in ((doc.n, truth.n), (doc.B, truth.B), (doc.L, truth.L)):
         if D is None or T is None:
             continue
         with np.errstate(all="ignore"):
-            if not np.isfinite(T).all() or np.abs(T).max(initial=0.0) > AGREE_TOL * size:
-                return True
-    return False
+            if np.isfinite(T).all() and np.abs(T).max(initial=0.0) <= AGREE_TOL * size:
+                continue                      # the truth has none of it: nothing to check
+        told |= np.isfinite(D.reshape(len(D), n, -1)).any(axis=(0, 2))
+    return tuple(bool(x) for x in told)
 
 
 def decide_row(i: int, doc: Side, truth: Side, W: np.ndarray,
@@ -311,20 +319,24 @@ def decide(doc: Side, truth: Side, sets: int,
            given: np.ndarray | None = None) -> SystemDecision:
     r"""Every equation's verdict (module text). ``sets``: parameter sets the samples are
     grouped in; ``special``: the document's and the truth's A at the special states (or
-    None); ``given``: :math:`W` where the document's terms do not tell it
-    (:func:`weights_told`), each row then compared with its inertia terms."""
+    None); ``given``: the rows of :math:`W` for the equations whose terms do not tell
+    theirs (:func:`weights_told`), each then compared with its inertia terms too (None: every
+    equation's weights found from A, as for a document of matrices or equations)."""
     n = truth.A.shape[1]
-    if given is not None:
-        return SystemDecision(tuple(decide_row(i, doc, truth, given, with_A=True)
-                                    for i in range(n)), given, told=False)
     W = combination_rows(doc.A, truth.A)
+    told = weights_told(doc, truth) if given is not None else (True,) * n
+    for i in range(n):
+        if given is not None and not told[i]:
+            W[:, i, :] = given[:, i, :]           # given: the equation's own row, or scaled
     if doc.L is not None:
         doc = replace(doc, L=unit_multipliers(doc.L))
     multipliers = None if doc.L is None or truth.L is None else \
         multiplier_terms(doc.L, truth.L, W)
     floor = None if multipliers is None or doc.L is None else \
         _multiplier_floor(doc.L, multipliers)            # every row's, made once
-    decisions = [decide_row(i, doc, truth, W, multipliers, floor) for i in range(n)]
+    decisions = [decide_row(i, doc, truth, W, multipliers, floor, with_A=not told[i])
+                 for i in range(n)]
+    told = () if all(told) else told
     lost = singular_everywhere(doc.A, truth.A, W)
     where = "at every sample" if lost is not None else ""
     rows = lost
@@ -354,8 +366,8 @@ def decide(doc: Side, truth: Side, sets: int,
                 "vanishes: where it does, the equation is not defined)") if pole else (
             f"{which} not independent {where}: W = A_doc A⁻¹ is singular there (an "
             "equation lost, repeated, or multiplied by a factor that vanishes)")
-        return mark_lost(SystemDecision(tuple(decisions), W), rows, text)
-    return SystemDecision(tuple(decisions), W)
+        return mark_lost(SystemDecision(tuple(decisions), W, told), rows, text)
+    return SystemDecision(tuple(decisions), W, told)
 
 
 def mark_lost(decision: SystemDecision, rows: tuple[int, ...], text: str) -> SystemDecision:
