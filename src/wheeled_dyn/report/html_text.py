@@ -36,9 +36,19 @@ def _converter_file() -> Path:
     return Path(spec.origin).with_name("converter.py")
 
 
+#: Longest LaTeX typeset as MathML (characters): a form solved for the accelerations and never
+#: simplified can print pages per element, whose conversion took seconds each and which
+#: nobody reads typeset; it is shown as its first characters, said to go on.
+MATHML_LIMIT = 20_000
+
+
 @functools.lru_cache(maxsize=8192)
 def mathml(latex: str) -> str:
-    r"""The MathML of ``latex`` (:data:`MATHML`); code for LaTeX latex2mathml cannot read."""
+    r"""The MathML of ``latex`` (:data:`MATHML`); code for LaTeX latex2mathml cannot read, or
+    longer than :data:`MATHML_LIMIT`."""
+    if len(latex) > MATHML_LIMIT:
+        return (f"<code>{html.escape(latex[:MATHML_LIMIT // 10])} … (an expression of "
+                f"{len(latex)} characters of LaTeX: not typeset)</code>")
     return MATHML.get(latex, lambda: _converted(latex)) if latex else ""
 
 

@@ -30,6 +30,13 @@ from .draft import ElementDraft
 from .swaps import product_swaps, symbol_swaps
 from .terms import element_term_diagnoses, product_diagnoses, undivided_term_diagnoses
 
+#: Most operations of an element whose expression is read with changes (a power, a term, a
+#: sine for a cosine, a symbol inside one product): each trial is compiled, and a form solved
+#: for the accelerations and never simplified, tens of thousands of operations per element,
+#: took half a minute; the shipped documents' longest has 135. Longer ones are tried only
+#: for one symbol read as another everywhere (the arguments permuted, nothing compiled).
+TRIAL_OPS = 2000
+
 #: Samples a trial reading of a differing element (one symbol read as another) is first
 #: evaluated on, spread over the parameter sets: only one that agrees there is evaluated on
 #: every sample (it must agree at all of them), so the verdicts are those of the full grid.
@@ -109,6 +116,10 @@ def judge(d: ElementDraft, problems: Sequence[str], trials: Trials,
     d.diagnoses += value_diagnoses(d.D, d.T, d.scale)
     expr = d.expr
     if expr is None:
+        return
+    if sp.count_ops(expr) > TRIAL_OPS:       # only the symbols read as others: no compiling
+        if d.key != "h" and not has_kind(d.diagnoses, K.SIGN, K.FACTOR, K.EXTRA):
+            d.diagnoses += symbol_swaps(d, trials, groups)
         return
     if d.key == "h":
         if not d.diagnoses:
