@@ -20,6 +20,9 @@ the two commands with everything remembered (``WHEELED_DYN_REUSE=1``, after one 
 fills the cache: nothing changed since), as a check made again runs (issue 25: the signed
 cache must not make them slower).
 
+The linear algebra libraries get one thread per process, as the command gives them
+(:func:`wheeled_dyn.cli.main.one_thread_each`), for the figures measured in this process too.
+
 Run: ``.venv/bin/python benchmarks/bench_report.py``
 """
 
@@ -32,7 +35,11 @@ import tempfile
 import time
 from pathlib import Path
 
-import numpy as np
+from wheeled_dyn.cli.main import one_thread_each
+
+one_thread_each(os.environ)      # as the command runs: one BLAS thread per process (before NumPy)
+
+import numpy as np  # noqa: E402
 
 from wheeled_dyn import CoordinateMap, builtin_coordinate_set, load_model
 from wheeled_dyn.cli.compare_cmd import (DEFAULT_PARAM_SETS, DEFAULT_SAMPLES, compare_report,
