@@ -179,9 +179,9 @@ def entry() -> None:
     get one thread each (:data:`THREAD_VARIABLES`) where the environment sets none. The
     garbage collector goes over the whole heap every :data:`GC_FULL_THRESHOLD` collections of
     the middle generation, and not once more at exit (everything is frozen first: the
-    shutdown frees it without looking for cycles). After Ctrl-C the process ends at once with 130 (its files are
-    already cleaned up): the interpreter's own shutdown could otherwise meet the interrupt
-    again and end by the signal instead. Any other exit skips the interpreter's shutdown
+    shutdown frees it without looking for cycles). After Ctrl-C the process ends at once
+    with 130 (its files are already cleaned up): the interpreter's own shutdown could
+    otherwise meet the interrupt again and end by the signal instead. Any other exit skips the interpreter's shutdown
     (:func:`_exit_now`)."""
     gc.set_threshold(*gc.get_threshold()[:2], GC_FULL_THRESHOLD)
     one_thread_each(os.environ)

@@ -118,8 +118,8 @@ def decide(d: Derivation, funcs: DocumentFunctions, sides: Sides, seed: int = 20
 
 
 def _given(d: Derivation, funcs: DocumentFunctions, sides: Sides) -> np.ndarray:
-    r""":math:`W` where the document's terms do not tell it (A alone): the identity, each row
-    times the scale the file declares for it (declarations bind)."""
+    r"""The rows of :math:`W` for the equations whose terms do not tell theirs (A alone):
+    each its own unit row, times the scale the file declares for it (declarations bind)."""
     W = np.zeros((sides.size, d.n, d.n))
     for i in range(d.n):
         W[:, i, i] = 1.0 if d.row_scale is None else declared_weights(d, sides, i, funcs)

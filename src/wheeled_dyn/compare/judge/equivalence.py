@@ -206,10 +206,11 @@ def decide_row(i: int, doc: Side, truth: Side, W: np.ndarray,
     total = len(finite)
     if worst > AGREE_TOL and with_A:
         return EquationDecision(Verdict.DIFFERS, (diagnosis(
-            DiagnosisKind.NOT_EQUIVALENT, f"equation {i + 1} is not the true one (the "
-            "document states no velocity, gravity, input or multiplier terms that tell how "
-            "its equations combine the true ones, so its A is compared as the mass matrix: "
-            f"off by {worst:.2g} of the row's size at the worst of {total} samples)",
+            DiagnosisKind.NOT_EQUIVALENT, f"equation {i + 1} is not the true one (it states "
+            "no velocity, gravity, input or multiplier terms that tell how it combines the "
+            "true ones, so its A is compared as the mass matrix's row, as printed or scaled "
+            f"as declared: off by {worst:.2g} of the row's size at the worst of {total} "
+            "samples)",
             prefix="differs", rows=(i,)),), worst, w)
     if worst > AGREE_TOL:
         return EquationDecision(Verdict.DIFFERS, (diagnosis(

@@ -306,7 +306,8 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
 
 #: Most operations of the true A whose inverse is written as a solved row's frame, and of a
 #: solved row's truth − document put over one denominator (a longer one is not shown: it is
-#: not read, and the polynomial arithmetic took a minute for a two-link arm's solved form).
+#: not read, and the polynomial arithmetic took 49 s an element of a two-link arm's solved
+#: form).
 SOLVED_LIMIT, SOLVED_RESIDUAL_LIMIT = 200, 250
 
 
