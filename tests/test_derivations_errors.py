@@ -297,3 +297,25 @@ def test_a_file_of_too_many_symbols_is_one_error(tmp_path):
     with pytest.raises(DerivationError, match=f"at most {MAX_SYMBOLS}") as info:
         load_derivation(_write(tmp_path, text))
     assert "symbols" in str(info.value)
+
+
+@pytest.mark.parametrize("value, kind, valid, other", [
+    ("CX(link9)", "link", "link1", "q2"), ("origin_x(knee)", "joint", "q2", "link2")])
+def test_an_unknown_link_or_joint_lists_names_of_its_kind(tmp_path, value, kind, valid, other):
+    r"""A probe's file for a two-link arm: ``CX(link9)`` listed the joints beside the links as
+    valid, ``origin_x(knee)`` the links beside the joints."""
+    from pathlib import Path
+
+    from wheeled_dyn.compare.grid.inputs import check_model_names
+    model = Path(__file__).parent / "data" / "published" / "two_link_arm.toml"
+    text = (GOOD.replace('model = "wip"', f'model = "{model}"')
+            .replace('use = "seed001"', 'positions = ["q1", "q2"]\n'
+                     'configuration = { q1 = "q1", q2 = "q2" }')
+            .replace('value = "d"', f'value = "{value}"')
+            .replace('value = "m_S"', 'value = "M(link1)"'))
+    text = text[:text.index("[matrices]")] + '[matrices]\nA = "[[m, 0], [0, m]]"\n'
+    d = load_derivation(_write(tmp_path, text))
+    with pytest.raises(DerivationNameError) as err:
+        check_model_names(d)
+    assert err.value.kind == kind
+    assert valid in err.value.valid and other not in err.value.valid

@@ -54,6 +54,11 @@ def check_model_names(d) -> None:
             raise DerivationNameError(d.path, f"inputs.{key}", "model input", key,
                                       wm.input_names, src.line_of("inputs", key))
     links = sorted({k[k.index("(") + 1:-1] for k in values if "(" in k})
+    named: dict[str, set[str]] = {}      # the links, and the joints the geometry names
+    for k in values:
+        if "(" in k:
+            named.setdefault(GEOMETRY_NAMES.get(k[:k.index("(")], "link"), set()).add(
+                k[k.index("(") + 1:-1])
     for name, spec in d.symbols.items():
         if spec.value is None:
             continue
@@ -74,7 +79,8 @@ def check_model_names(d) -> None:
                         links, line)
             if link not in links:
                 kind = GEOMETRY_NAMES.get(call.func.__name__, "link")   # origin_x(joint)
-                raise DerivationNameError(d.path, item, kind, link, links, line)
+                raise DerivationNameError(d.path, item, kind, link,
+                                          sorted(named.get(kind, links)), line)
             if key not in values:
                 raise DerivationNameError(d.path, item, "model parameter", key,
                                           [k for k in values if k.endswith(f"({link})")], line)
