@@ -47,21 +47,10 @@ def print_drafts(d: Derivation, drafts: Sequence[ElementDraft], cs, texts: Seque
     linearised = None if not assumed.linearised_about else (assumed.linearised_about,
                                                             assumed.equilibrium_potential)
     massless = frozenset(link for c in assumed.families for link in c.massless)
-    solved = {i: k for i, t in enumerate(texts) if t.solved and i not in frames
-              and (k := _solved_for(as_printed["A"], i)) is not None}
+    solved = {i: (t.solved[0], sp.nsimplify(t.solved[1], rational=True))
+              for i, t in enumerate(texts) if t.solved is not None and i not in frames}
     return Corrections(closed_form.annotate(d, list(drafts), cs, frames, families, uniform,
                                             linearised, massless, solved), frames)
-
-
-def _solved_for(A: sp.Matrix | None, i: int) -> tuple[int, sp.Expr] | None:
-    r"""``(k, c)`` where the document's row ``i`` of A is :math:`c\,e_k` (a row solved for
-    acceleration k, c a number), else None."""
-    if A is None:
-        return None
-    entries = [(k, A[i, k]) for k in range(A.shape[1]) if A[i, k] != 0]
-    if len(entries) != 1 or not entries[0][1].is_number:
-        return None
-    return entries[0]
 
 
 @dataclass(frozen=True)

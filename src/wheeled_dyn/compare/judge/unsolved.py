@@ -43,17 +43,15 @@ def _said(found: sp.Expr | None) -> str:
     return f"truth − document = {sp.sstr(found)}" if found is not None else "differs"
 
 
-def solved_rows(doc_A: np.ndarray) -> dict[int, tuple[int, float]]:
-    r"""The rows of the document's A with one constant nonzero entry: row → (the acceleration
-    it is solved for, that entry)."""
-    out = {}
-    for i in range(doc_A.shape[1]):
-        row = doc_A[:, i, :]
-        size = np.abs(row).max(axis=0)
-        nonzero = np.flatnonzero(size > 1e-12 * max(float(size.max(initial=0.0)), 1e-300))
-        if len(nonzero) == 1 and np.ptp(row[:, nonzero[0]]) <= 1e-12 * size[nonzero[0]]:
-            out[i] = (int(nonzero[0]), float(row[0, nonzero[0]]))
-    return out
+def solved_for(row: np.ndarray) -> tuple[int, float] | None:
+    r"""Where one row of a document's A (S × n) has one constant nonzero entry,
+    :math:`c\,e_k` at every sample (the row solved for acceleration k, its own or another's):
+    ``(k, c)``; else None."""
+    size = np.abs(row).max(axis=0)
+    nonzero = np.flatnonzero(size > 1e-12 * max(float(size.max(initial=0.0)), 1e-300))
+    if len(nonzero) == 1 and np.ptp(row[:, nonzero[0]]) <= 1e-12 * size[nonzero[0]]:
+        return int(nonzero[0]), float(row[0, nonzero[0]])
+    return None
 
 
 def implied_inertia(doc_B: np.ndarray, true_B: np.ndarray) -> np.ndarray | None:
@@ -224,5 +222,5 @@ def unsolved_terms(doc, truth, true_B: np.ndarray | None, velocities: Sequence[s
                                                  if found is not None))
 
 
-__all__ = ["MAX_UNSOLVED", "implied_inertia", "inertia_diagnoses", "solved_rows",
+__all__ = ["MAX_UNSOLVED", "implied_inertia", "inertia_diagnoses", "solved_for",
            "unsolved_terms"]

@@ -18,6 +18,7 @@ import sympy as sp
 
 from ..judge.diagnose import nice_number
 from ..judge.fitting import fit_factor, fit_sum
+from ..judge.unsolved import solved_for
 from .frames import Frame, FrameKind
 
 #: Relative size below which a weight counts as zero.
@@ -28,13 +29,13 @@ ZERO_WEIGHT = 1e-9
 class FrameText:
     r"""A frame described: ``text`` (empty for the true equation itself), ``weights`` the
     symbolic row :math:`f_i` when fitted (else None), ``factor`` the symbolic factor of a
-    ``CONSTANT``/``FUNCTION`` frame (else None), ``solved`` for a row solved for the
-    accelerations."""
+    ``CONSTANT``/``FUNCTION`` frame (else None), ``solved`` ``(k, c)`` for a row solved for
+    acceleration k, :math:`A_{doc,i} = c\,e_k` (:func:`~..judge.unsolved.solved_for`)."""
 
     text: str
     weights: tuple[sp.Expr, ...] | None = None
     factor: sp.Expr | None = None
-    solved: bool = False
+    solved: tuple[int, float] | None = None
 
 
 def _entry(values: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> sp.Expr | None:
@@ -102,7 +103,7 @@ def describe(i: int, frame: Frame, id_weights: np.ndarray | None,
         if c is not None:
             return FrameText(f"the true equation {_quotient(c)}", single(c), factor=c)
     entries = [_entry(id_weights[:, j], bases) for j in range(id_weights.shape[1])]
-    solved = doc_A is not None and _unit_row(doc_A)
+    solved = None if doc_A is None else solved_for(doc_A)
     if any(e is None for e in entries):
         text = ("solved for the accelerations (row of A⁻¹ × the true equations)" if solved
                 else "a combination of the true equations (its weights found at each state, "
@@ -114,13 +115,6 @@ def describe(i: int, frame: Frame, id_weights: np.ndarray | None,
     if solved:
         text = "solved for the accelerations, " + text
     return FrameText(text, tuple(entries), solved=solved)
-
-
-def _unit_row(row: np.ndarray) -> bool:
-    r"""A row of A with one constant nonzero entry (a row solved for an acceleration)."""
-    size = np.abs(row).max(axis=0)
-    nonzero = np.flatnonzero(size > ZERO_WEIGHT * max(float(size.max(initial=0.0)), 1e-300))
-    return len(nonzero) == 1 and np.ptp(row[:, nonzero[0]]) <= 1e-12 * size[nonzero[0]]
 
 
 __all__ = ["FrameText", "ZERO_WEIGHT", "describe"]

@@ -11,6 +11,7 @@ import numpy as np
 
 from ..grid.arrays import Arrays
 from ..judge.diagnose import AGREE_TOL
+from ..judge.unsolved import solved_for
 from ..sides.framed import framed, row_of, row_scale
 from .frames import FrameKind, FrameRule, evaluate_rule
 
@@ -55,14 +56,12 @@ def freedom(rule: FrameRule, n: int, solved: bool = False) -> int:
 
 
 def solved_row(doc: Arrays, i: int) -> bool:
-    r"""Whether the document's row ``i`` is solved for an acceleration: its inertia row is a
-    unit row :math:`e_k` at every sample, its own or another's (:math:`\ddot\theta = \dots`
+    r"""Whether the document's row ``i`` is solved for an acceleration: its inertia row is
+    :math:`c\,e_k` at every sample, c constant, k its own row or another's
+    (:func:`~..judge.unsolved.solved_for` (:math:`\ddot\theta = \dots`
     printed first for positions (x, θ), as simulation code orders them; False for a document
     that gives no A)."""
-    if doc.A is None:
-        return False
-    A = doc.A[:, i, :]
-    return any(bool(np.all(A == unit)) for unit in np.eye(A.shape[1]))
+    return doc.A is not None and solved_for(doc.A[:, i, :]) is not None
 
 
 def elements_of(doc_row: Arrays) -> int:
