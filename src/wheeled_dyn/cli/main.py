@@ -50,8 +50,8 @@ GC_FULL_THRESHOLD = 10_000
 
 #: The thread pools of the linear algebra libraries, one thread each in the command's
 #: processes unless the environment says otherwise: ``report`` forks as many workers as the
-#: machine has cores, and their small matrices gained nothing from more threads, which
-#: only competed with the other worker (set before NumPy is first imported).
+#: machine has cores, and each worker's own pool of threads competed with the other workers
+#: for them (set before NumPy is first imported).
 THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
 
 #: Seconds between two looks, after a Ctrl-C held back during an import, at whether the
