@@ -179,38 +179,73 @@ def _matching(truth: Arrays, doc: Arrays) -> Arrays:
                   Q=truth.Q if doc.Q is not None else None)
 
 
-def _solve_rows(M: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+def _solve_rows(M: np.ndarray, regular: np.ndarray, rhs: np.ndarray) -> np.ndarray:
     r""":math:`w` with :math:`w M = rhs` per sample (M: S × n × n, rhs: S × n); NaN where M
-    is singular or not finite."""
+    is not ``regular`` (:func:`_matrix`) or ``rhs`` is not finite."""
     out = np.full(rhs.shape, np.nan)
-    ok = np.isfinite(M).all(axis=(1, 2)) & np.isfinite(rhs).all(axis=1)
-    ok[ok] = relative_det(M[ok]) > SINGULAR_TOL
+    ok = regular & np.isfinite(rhs).all(axis=1)
     if ok.any():
         out[ok] = np.linalg.solve(np.swapaxes(M[ok], 1, 2), rhs[ok][:, :, None])[..., 0]
     return out
 
 
+#: The matrices :func:`combination_weights` solves with, by truth and replaced column, with
+#: where they are regular: every row of a document is solved with the same ones (the
+#: determinants were most of the frames' time), at most :data:`MATRICES_KEPT`.
+_MATRICES: dict[tuple, tuple[tuple, np.ndarray, np.ndarray]] = {}
+MATRICES_KEPT = 32
+
+
+def _matrix(truth: Arrays, B_true: np.ndarray | None, variant: tuple[int, int] | None
+            ) -> tuple[np.ndarray, np.ndarray]:
+    r"""The true :math:`A`, or :math:`A` with column :math:`j` replaced by :math:`h + Q`
+    (:math:`c < 0`) or by input column :math:`c` of ``B_true`` (``variant`` = (j, c)), and
+    where it is regular: finite, :func:`~..judge.equivalence.relative_det` above
+    :data:`~..judge.equivalence.SINGULAR_TOL`. Kept while the arrays it is made of are the
+    same objects (held here, so that their identities are not reused)."""
+    parts = (truth.A,) if variant is None else (truth.A, truth.h, truth.Q) \
+        if variant[1] < 0 else (truth.A, B_true)
+    key = (*map(id, parts), variant)
+    found = _MATRICES.get(key)
+    if found is not None and all(a is b for a, b in zip(found[0], parts)):
+        return found[1], found[2]
+    A_true = truth.need("A")
+    if variant is None:
+        M = A_true
+    else:
+        j, c = variant
+        M = A_true.copy()
+        if c < 0:
+            M[:, :, j] = truth.need("h") + (truth.Q if truth.Q is not None else 0.0)
+        else:
+            assert B_true is not None          # combination_weights checked it
+            M[:, :, j] = B_true[:, :, c]
+    regular = np.isfinite(M).all(axis=(1, 2))
+    regular[regular] = relative_det(M[regular]) > SINGULAR_TOL
+    if len(_MATRICES) >= MATRICES_KEPT:
+        _MATRICES.clear()
+    _MATRICES[key] = (parts, M, regular)
+    return M, regular
+
+
 def combination_weights(i: int, rule: FrameRule, doc: Arrays, truth: Arrays,
                         B_doc: np.ndarray | None, B_true: np.ndarray | None) -> np.ndarray:
     r"""The weights of a ``COMBINATION`` rule (see :class:`FrameRule`)."""
-    A_doc, A_true = doc.need("A"), truth.need("A")
+    A_doc = doc.need("A")
     if rule.variant is None:
-        return _solve_rows(A_true, A_doc[:, i, :])
+        return _solve_rows(*_matrix(truth, B_true, None), A_doc[:, i, :])
     j, c = rule.variant
     if c < 0:
         if doc.h is None or truth.h is None:
             return np.full(A_doc[:, i, :].shape, np.nan)
-        extra_t = truth.h + (truth.Q if truth.Q is not None else 0.0)
         extra_d = doc.h[:, i] + (doc.Q[:, i] if doc.Q is not None else 0.0)
     else:
         if B_doc is None or B_true is None:
             return np.full(A_doc[:, i, :].shape, np.nan)
-        extra_t, extra_d = B_true[:, :, c], B_doc[:, i, c]
-    M = A_true.copy()
-    M[:, :, j] = extra_t
+        extra_d = B_doc[:, i, c]
     rhs = A_doc[:, i, :].copy()
     rhs[:, j] = extra_d
-    return _solve_rows(M, rhs)
+    return _solve_rows(*_matrix(truth, B_true, rule.variant), rhs)
 
 
 def evaluate_rule(i: int, rule: FrameRule, doc: Arrays, truth: Arrays,
