@@ -80,6 +80,7 @@ def run_comparison(files: Sequence[Path], samples: int, param_sets: int, seed: i
     from ..compare.engine import ComparisonEngine
     from ..compare.other_documents.linear import compare_linear, is_linear_document
     from ..compare.runtime.result_cache import note_parsed
+    from ..report.symbols import remember_notation
     linear = [Path(p) for p in files if is_linear_document(p)]
     note_parsed(p for p in files if Path(p) not in linear)
     derivations = load_derivations([p for p in files if Path(p) not in linear])
@@ -93,6 +94,8 @@ def run_comparison(files: Sequence[Path], samples: int, param_sets: int, seed: i
                                       f"taken from {Path.cwd()})" if missing else ""))
         if item.path not in linear:
             check_model_names(item)
+    for d in derivations:
+        remember_notation(d)          # the report renders them without reading them again
     engine = engine or ComparisonEngine(samples=samples, param_sets=param_sets, seed=seed)
     by_path = {}
     with progress(len(files), "comparing") as bar:

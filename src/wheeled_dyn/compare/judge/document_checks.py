@@ -39,14 +39,17 @@ def energy_check(funcs: DocumentFunctions, doc: Arrays, row_factor, q, nu, value
     A, h = funcs.exprs["A"], funcs.exprs["h"]
     if A is None or h is None or A.has(sp.nan) or h.has(sp.nan):
         return None
-    scale = sp.diag(*[1 if c is None else 1 / sp.nsimplify(c) for c in row_factor])
-    A = scale * sp.Matrix(A)
-    h = scale * sp.Matrix(h)
+    A, h = sp.Matrix(A), sp.Matrix(h)
+    for i, c in enumerate(row_factor):   # each row divided by its factor (diag(1/c) A)
+        if c is not None:
+            s = 1 / sp.nsimplify(c)
+            A[i, :], h[i, :] = s * A[i, :], s * h[i, :]
     v = sp.Matrix(d.velocities)
     rates = position_rates(d)
-    if any(rates[p] is None for p in d.positions if A.diff(p) != sp.zeros(d.n, d.n)):
+    dA = {p: A.diff(p) for p in d.positions}
+    if any(rates[p] is None for p in d.positions if dA[p] != sp.zeros(d.n, d.n)):
         return None                       # A depends on a position whose rate is not known
-    Adot = sum((A.diff(p) * rates[p] for p in d.positions if rates[p] is not None),
+    Adot = sum((dA[p] * rates[p] for p in d.positions if rates[p] is not None),
                sp.zeros(d.n, d.n))
     power = (v.T * h)[0] - (v.T * Adot * v)[0] / 2
     if not power.free_symbols <= set(funcs.args):
