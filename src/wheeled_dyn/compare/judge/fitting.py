@@ -125,23 +125,49 @@ def _search(ratio: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
             ) -> list[tuple[tuple[int, ...], tuple[int, ...]]]:
     r"""The products of at most :data:`MAX_FACTORS` bases with exponents of
     :data:`EXPONENTS` whose logarithm differs from :math:`\log|\text{ratio}|` by a constant
-    (all at once on the logarithms): (bases, exponents) to be checked exactly."""
+    (all at once on the logarithms): (bases, exponents) to be checked exactly. Each product is
+    first tried on :data:`SEARCH_SCREEN` of the samples (a spread over some samples is at
+    most the spread over all), on all of them only where it passes there."""
     if not bases:
         return []
-    L = np.column_stack([np.log(np.abs(v)) for _, v in bases])
+    L = _logarithms(bases, len(ratio))
     y = np.log(np.abs(ratio))
+    rows = np.unique(np.linspace(0, len(y) - 1, min(len(y), SEARCH_SCREEN)).astype(int))
     out: list[tuple[tuple[int, ...], tuple[int, ...]]] = []
     for p in EXPONENTS:
         spread = np.ptp(y[:, None] - p * L, axis=0)
         out += [((int(a),), (p,)) for a in np.flatnonzero(spread <= RATIO_TOL)]
     if MAX_FACTORS >= 2 and L.shape[1] > 1:
-        a, b = np.triu_indices(L.shape[1], 1)
-        for p in EXPONENTS:
-            for q in EXPONENTS:
-                spread = np.ptp(y[:, None] - p * L[:, a] - q * L[:, b], axis=0)
+        a, b = _pairs(L.shape[1])
+        e = np.array(EXPONENTS, dtype=float)[:, None, None, None]
+        ys, La, Lb = y[rows][:, None], L[rows][:, a], L[rows][:, b]
+        passed = np.ptp(ys - e * La - e[None, :, 0] * Lb, axis=2) <= RATIO_TOL
+        for i, j in zip(*np.nonzero(passed.any(axis=2))):     # (p, q) in EXPONENTS' order
+            p, q = EXPONENTS[i], EXPONENTS[j]
+            near = np.flatnonzero(passed[i, j])
+            if near.size:
+                spread = np.ptp(y[:, None] - p * L[:, a[near]] - q * L[:, b[near]], axis=0)
                 out += [((int(a[k]), int(b[k])), (p, q))
-                        for k in np.flatnonzero(spread <= RATIO_TOL)]
+                        for k in near[spread <= RATIO_TOL]]
     return out
+
+
+#: Samples a product of two bases is screened on in :func:`_search` (spread over them).
+SEARCH_SCREEN = 4
+
+
+def _logarithms(bases: Sequence[tuple[sp.Expr, np.ndarray]], n: int) -> np.ndarray:
+    r"""The logarithms of the bases' magnitudes (samples × bases), made once for the same
+    list of bases (a document's frames fit many ratios on one list)."""
+    if _LOGS[0] is bases and _LOGS[1] == n:
+        return _LOGS[2]
+    L = np.column_stack([np.log(np.abs(v)) for _, v in bases])
+    _LOGS[:] = [bases, n, L]
+    return L
+
+
+#: The last bases :func:`_logarithms` was given, their number of samples, and its answer.
+_LOGS: list = [None, 0, None]
 
 
 def _independent(bases: Sequence[tuple[sp.Expr, np.ndarray]], n: int
