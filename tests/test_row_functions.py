@@ -103,7 +103,7 @@ def test_fit_factor_and_fit_swap_see_through_collinear_bases():
     squares on the logarithms splits an exponent among them and no integer one was found:
     −R a m cos θ (a centripetal term dropped) and g m (a − h) sin θ (a centre's coordinate
     written for the other) were left unnamed."""
-    from wheeled_dyn.compare.judge.fitting import fit_swap
+    from wheeled_dyn.compare.judge.swap_fit import fit_swap
     rng = np.random.default_rng(SEED)
     names = ("R", "a", "h", "m", "g")
     symbols = [sp.Symbol(n, real=True) for n in names]

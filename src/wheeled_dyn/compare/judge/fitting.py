@@ -292,6 +292,19 @@ def _screen(full: Sequence[np.ndarray], rows: np.ndarray) -> _Screen:
 _SCREEN: list[_Screen | None] = [None]
 
 
+def _pair_gram(screen: _Screen) -> tuple[np.ndarray, ...]:
+    r"""The index pairs of the screen's products, their Gram entries and :math:`1 - g^2`,
+    made once per screen (the last one is kept)."""
+    if _PAIR_GRAM[0] is not screen:
+        i, j = _pairs(len(screen.groups))
+        g = screen.G[i, j]
+        _PAIR_GRAM[:] = [screen, (i, j, g, 1.0 - g * g)]
+    return _PAIR_GRAM[1]
+
+
+_PAIR_GRAM: list = [None, ()]
+
+
 def _exact_sum(columns: Sequence[np.ndarray], y: np.ndarray, terms: Sequence[sp.Expr]
                ) -> sp.Expr | None:
     r"""The sum of ``terms`` (their values: ``columns``) with simple rational coefficients
@@ -336,7 +349,7 @@ def fit_sum(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> 
     rows = rows[np.unique(np.column_stack([*(v[rows] for v in full), target[rows]]), axis=0,
                           return_index=True)[1]]
     screen = _screen(full, rows)
-    groups, Xn, G, y = screen.groups, screen.Xn, screen.G, target[rows]
+    groups, Xn, y = screen.groups, screen.Xn, target[rows]
 
     def fit(ks: Sequence[int]) -> sp.Expr | None:
         columns = [np.prod([full[i] for i in groups[k]], axis=0) for k in ks]
@@ -349,9 +362,8 @@ def fit_sum(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> 
         found = fit((int(k),))
         if found is not None:
             return found
-    i, j = _pairs(len(groups))
-    g, ci, cj = G[i, j], c[i], c[j]
-    det = 1.0 - g * g
+    i, j, g, det = _pair_gram(screen)
+    ci, cj = c[i], c[j]
     with np.errstate(all="ignore"):                    # |y|² less its projection on (i, j)
         residual = yy - (ci * ci + cj * cj - 2.0 * g * ci * cj) / det
     fits = np.flatnonzero((residual <= floor) & (det > SCREEN_TOL))
@@ -362,39 +374,4 @@ def fit_sum(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> 
     return None
 
 
-def fit_swap(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
-             ) -> sp.Expr | None:
-    r"""A monomial :math:`M` in ``bases`` times the difference of two of them,
-    :math:`M\,(x - y)`, or of two symbols' squares, :math:`M\,(x^2 - y^2)`, equal to
-    ``target`` at every sample: truth − document where the document writes :math:`y` for
-    :math:`x` in one product (:math:`g m_2 (L_1 - a_1)\sin\theta_1`: the centre's distance for
-    the link's length; :math:`g l m(\sin\theta - \cos\theta)`: a cos for a sin). Each pair
-    is screened by least squares on :math:`\log|\text{target}/(x - y)|` (integer exponents of
-    the bases), and what fits there is checked exactly (:data:`RATIO_TOL`) at every sample."""
-    if not bases or not np.isfinite(target).all() or np.abs(target).min() <= 0:
-        return None
-    full = _independent([(e, np.broadcast_to(np.asarray(v, float), target.shape))
-                         for e, v in bases], len(target))
-    X = np.column_stack([np.log(np.abs(v)) for _, v in full] + [np.ones(len(target))])
-    pairs = [(x, y, vx, vy) for (x, vx), (y, vy) in itertools.combinations(full, 2)]
-    pairs += [(x ** 2, y ** 2, vx ** 2, vy ** 2) for x, y, vx, vy in pairs
-              if isinstance(x, sp.Symbol) and isinstance(y, sp.Symbol)]
-    for x, y, vx, vy in pairs:
-        gap = vx - vy
-        if np.abs(gap).min() <= 1e-12 * np.abs(vx).max():
-            continue                  # equal somewhere: no ratio (and no swap to tell)
-        ratio = target / gap
-        e = np.linalg.lstsq(X, np.log(np.abs(ratio)), rcond=None)[0][:-1]
-        rounded = np.rint(e).astype(int)
-        if np.abs(e - rounded).max() >= 1e-6 or np.abs(rounded).max() > max(EXPONENTS):
-            continue
-        found = _try(ratio, full, rounded)
-        if found is not None:             # the monomial's sign on it: g*m2*(L1 - a1)*sin(th1)
-            if found.could_extract_minus_sign():
-                found, (x, y) = -found, (y, x)
-            return sp.Mul(found, x - y, evaluate=False) if found.is_Number else found * (x - y)
-    return None
-
-
-__all__ = ["MAX_DENOMINATOR", "RATIO_TOL", "SUM_DEGREE", "bases", "fit_factor", "fit_sum",
-           "fit_swap"]
+__all__ = ["MAX_DENOMINATOR", "RATIO_TOL", "SUM_DEGREE", "bases", "fit_factor", "fit_sum"]

@@ -28,7 +28,8 @@ import sympy as sp
 
 from ..records import Diagnosis, DiagnosisKind as K
 from .diagnose import AGREE_TOL
-from .fitting import fit_factor, fit_sum, fit_swap
+from .fitting import fit_factor, fit_sum
+from .swap_fit import fit_swap
 
 
 def _fit(residual: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> sp.Expr | None:

@@ -1,0 +1,50 @@
+r"""A symbol written for another inside one product, fitted from truth − document at the
+samples: :math:`M\,(x - y)` (:func:`fit_swap`), with :math:`M` a monomial in the bases of
+:mod:`.fitting`."""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Sequence
+
+import numpy as np
+import sympy as sp
+
+from .fitting import EXPONENTS, _independent, _try
+
+
+def fit_swap(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
+             ) -> sp.Expr | None:
+    r"""A monomial :math:`M` in ``bases`` times the difference of two of them,
+    :math:`M\,(x - y)`, or of two symbols' squares, :math:`M\,(x^2 - y^2)`, equal to
+    ``target`` at every sample: truth − document where the document writes :math:`y` for
+    :math:`x` in one product (:math:`g m_2 (L_1 - a_1)\sin\theta_1`: the centre's distance for
+    the link's length; :math:`g l m(\sin\theta - \cos\theta)`: a cos for a sin). Each pair
+    is screened by least squares on :math:`\log|\text{target}/(x - y)|` (integer exponents of
+    the bases), and what fits there is checked exactly (:data:`RATIO_TOL`) at every sample."""
+    if not bases or not np.isfinite(target).all() or np.abs(target).min() <= 0:
+        return None
+    full = _independent([(e, np.broadcast_to(np.asarray(v, float), target.shape))
+                         for e, v in bases], len(target))
+    X = np.column_stack([np.log(np.abs(v)) for _, v in full] + [np.ones(len(target))])
+    pairs = [(x, y, vx, vy) for (x, vx), (y, vy) in itertools.combinations(full, 2)]
+    pairs += [(x ** 2, y ** 2, vx ** 2, vy ** 2) for x, y, vx, vy in pairs
+              if isinstance(x, sp.Symbol) and isinstance(y, sp.Symbol)]
+    for x, y, vx, vy in pairs:
+        gap = vx - vy
+        if np.abs(gap).min() <= 1e-12 * np.abs(vx).max():
+            continue                  # equal somewhere: no ratio (and no swap to tell)
+        ratio = target / gap
+        e = np.linalg.lstsq(X, np.log(np.abs(ratio)), rcond=None)[0][:-1]
+        rounded = np.rint(e).astype(int)
+        if np.abs(e - rounded).max() >= 1e-6 or np.abs(rounded).max() > max(EXPONENTS):
+            continue
+        found = _try(ratio, full, rounded)
+        if found is not None:             # the monomial's sign on it: g*m2*(L1 - a1)*sin(th1)
+            if found.could_extract_minus_sign():
+                found, (x, y) = -found, (y, x)
+            return sp.Mul(found, x - y, evaluate=False) if found.is_Number else found * (x - y)
+    return None
+
+
+__all__ = ["fit_swap"]
