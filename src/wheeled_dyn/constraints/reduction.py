@@ -250,7 +250,23 @@ class CoordinateMap:
         with np.errstate(all="ignore"):
             if finite.any():
                 out[finite] = np.linalg.cond(M[finite])
+        out[self.off_ground(q_doc)] = np.inf
         return np.where(np.isfinite(out), out, np.inf)
+
+    def off_ground(self, q_doc: np.ndarray) -> np.ndarray:
+        r"""Whether the map puts a tilting wheel off the ground or flat at each of N
+        document positions (:func:`~.wheel_contact.off_ground`; all False for a model
+        without tilting wheels)."""
+        q_doc = np.atleast_2d(np.asarray(q_doc, dtype=float))
+        if not self.wm.rolling_wheels:
+            return np.zeros(len(q_doc), dtype=bool)
+        from .wheel_contact import off_ground
+        with np.errstate(all="ignore"):
+            q = np.asarray(self._config_batch(len(q_doc), *q_doc.T, *self._p),
+                           dtype=float)[:, :, 0]
+        bad = ~np.isfinite(q).all(axis=1)
+        bad[~bad] = off_ground(self.wm, q[~bad], self._data)
+        return bad
 
     def terms(self, q_doc: np.ndarray, nu: np.ndarray) -> Terms:
         r"""The terms at a document state (positions ``q_doc``, velocities ``nu``)."""

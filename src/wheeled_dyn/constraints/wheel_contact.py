@@ -193,6 +193,36 @@ def wheel_heights(wm: WheeledModel, q: np.ndarray, data: pin.Data | None = None)
     return np.array([wheel_point(wm, k, data).point[2] for k in range(len(wm.rolling_wheels))])
 
 
+#: Largest |g| over the wheel's radius (rim and tyre) of a configuration on the ground.
+GROUND_TOL = 1e-6
+
+
+def off_ground(wm: WheeledModel, q: np.ndarray, data: pin.Data) -> np.ndarray:
+    r"""Per configuration (rows of ``q``, N × nq), whether a tilting wheel is off the ground
+    plane or lies flat: :math:`|g(q)| > ` :data:`GROUND_TOL` :math:`(R + r)`, or
+    :math:`s <` :data:`FLAT_TOL` (no lowest rim point). A coordinate map that writes the
+    centre's height as :math:`R\cos\varphi` sinks a disk leaning beyond a right angle (its
+    rim's lowest point is then :math:`R|\cos\varphi|` below the centre): no motion of the
+    model is there."""
+    wheels = wm.rolling_wheels
+    out = np.zeros(len(q), dtype=bool)
+    if not wheels:
+        return out
+    rot, org = np.empty((len(q), len(wheels), 3, 3)), np.empty((len(q), len(wheels), 3))
+    for i, qi in enumerate(q):
+        pin.framesForwardKinematics(wm.model, data, qi)
+        for j, wc in enumerate(wheels):
+            H = data.oMf[wc.frame_id].homogeneous
+            rot[i, j], org[i, j] = H[:3, :3], H[:3, 3]
+    for j, wc in enumerate(wheels):
+        a = rot[:, j] @ wc.axis
+        c_z = org[:, j, 2] + rot[:, j, 2] @ wc.centre
+        s = np.sqrt(np.maximum(1.0 - a[:, 2] ** 2, 0.0))
+        g = c_z - wc.radius * s - wc.tyre_radius
+        out |= (s < FLAT_TOL) | ~(np.abs(g) <= GROUND_TOL * (wc.radius + wc.tyre_radius))
+    return out
+
+
 def wheel_contact_velocities(wm: WheeledModel, q: np.ndarray, v: np.ndarray) -> np.ndarray:
     r"""Velocity (world axes) of each wheel's material point at its contact, from the frame
     velocity of the wheel link (independently of :func:`wheel_jacobian`)."""

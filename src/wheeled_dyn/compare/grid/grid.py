@@ -196,6 +196,7 @@ def check_finite_map(d: Derivation, cmap: CoordinateMap, q: np.ndarray) -> None:
             bad |= ~np.all(np.isfinite(S), axis=2)
     rows, cols = np.nonzero(bad)
     if not rows.size:
+        _check_on_ground(d, cmap, q)
         return
     name = cmap.wm.coordinate_names[cols[0]]
     state = ", ".join(f"{p} = {v:.4g}" for p, v in zip(cmap.cs.positions, q[rows[0]]))
@@ -204,6 +205,28 @@ def check_finite_map(d: Derivation, cmap: CoordinateMap, q: np.ndarray) -> None:
                           f"derivative is not finite at {state} (a square root, logarithm or "
                           "inverse sine outside its domain?); say where the comparison draws "
                           "the positions: [coordinates] ranges = { position = [low, high] }")
+
+
+def _check_on_ground(d: Derivation, cmap: CoordinateMap, q: np.ndarray) -> None:
+    r"""Raise :class:`DerivationError` if the map puts a tilting wheel off the ground or flat
+    at one of the states ``q`` that :func:`.samples.regular_states` could not draw again
+    (:meth:`~wheeled_dyn.constraints.CoordinateMap.off_ground`)."""
+    off = np.flatnonzero(cmap.off_ground(q))
+    if not off.size:
+        return
+    state = ", ".join(f"{p} = {v:.4g}" for p, v in zip(cmap.cs.positions, q[off[0]]))
+    wheels = ", ".join(wc.link for wc in cmap.wm.rolling_wheels)
+    item = "coordinates.use" if d.coordinates.use else "coordinates.configuration"
+    if off.size == len(q):
+        raise DerivationError(d.path, item, f"the map puts the wheel ({wheels}) off the "
+                              f"ground or lying flat at every drawn state ({state}, ...): "
+                              "the height it gives the wheel's centre is not its rim's lowest "
+                              "point above the ground (R*|cos(lean)| for a disk of radius R)")
+    raise DerivationError(d.path, item, f"the map puts the wheel ({wheels}) off the ground "
+                          f"or lying flat at {state} and at {off.size - 1} more of the drawn "
+                          "states (a centre height of R*cos(lean) sinks a disk leaning beyond "
+                          "a right angle); say where the comparison draws the positions: "
+                          "[coordinates] ranges = { position = [low, high] }")
 
 
 def special_states(grid: Grid) -> tuple[np.ndarray, np.ndarray]:

@@ -16,6 +16,7 @@ import sympy as sp
 
 from ...constraints.reduction import CoordinateMap
 from ...derivations.schema import Derivation
+from ...errors import StateError
 from ..grid.arrays import Arrays
 from ..grid.grid import Grid
 
@@ -119,14 +120,24 @@ def stiffness(cmap: CoordinateMap, sets, q: np.ndarray) -> np.ndarray:
 
 
 def special_truth_A(grid: Grid, q: np.ndarray, owner: np.ndarray) -> np.ndarray:
-    r"""The truth's A at states ``q`` of the parameter sets ``owner`` (S × n × n)."""
+    r"""The truth's A at states ``q`` of the parameter sets ``owner`` (S × n × n); NaN at a
+    state where the model has none (a rolling disk lying flat at a lean of ±π/2, one of the
+    special positions: its contact point is not defined there)."""
     n = grid.q.shape[2]
     out = np.full((len(q), n, n), np.nan)
     for k, ps in enumerate(grid.sets):
         rows = np.flatnonzero(owner == k)
-        if len(rows):
-            out[rows] = truth_for(grid.cmap, [ps], q[rows][None],
-                                  np.zeros((1, len(rows), n))).A
+        try:
+            if len(rows):
+                out[rows] = truth_for(grid.cmap, [ps], q[rows][None],
+                                      np.zeros((1, len(rows), n))).A
+        except StateError:                # one state at a time: those that have a truth
+            for r in rows:
+                try:
+                    out[r] = truth_for(grid.cmap, [ps], q[r:r + 1][None],
+                                       np.zeros((1, 1, n))).need("A")[0]
+                except StateError:
+                    pass
     return out
 
 
