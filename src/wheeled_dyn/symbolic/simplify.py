@@ -60,9 +60,21 @@ def canonical_trig(expr: sp.Expr, chop: float = DEFAULT_CHOP) -> sp.Expr:
     try:
         ring, (p,) = TrigRing.from_exprs([expr])
     except NotPolynomial:
-        return sp.trigsimp(expr)
+        return _trigsimp(expr)
     gens = ring.symbols()
     return sp.Add(*[cf * _monomial(gens, m) for m, cf in _chop(ring.terms(p), chop)])
+
+
+#: Operations of the largest expression :func:`_trigsimp` simplifies: a spherical pendulum's
+#: terms under a map of atan2 and asin (2000 operations and more) kept ``trigsimp`` busy for
+#: more than 11 minutes.
+TRIGSIMP_OPS = 200
+
+
+def _trigsimp(expr: sp.Expr) -> sp.Expr:
+    r"""``sympy.trigsimp(expr)`` where ``expr`` has at most :data:`TRIGSIMP_OPS` operations,
+    else ``expr`` as it is (the forms are for reading: a longer one is not read either)."""
+    return sp.trigsimp(expr) if sp.count_ops(expr) <= TRIGSIMP_OPS else expr
 
 
 def _has_trig_products(expr: sp.Expr) -> bool:
@@ -142,7 +154,7 @@ def simplify_expr(expr: sp.Expr, parameters: Iterable[sp.Symbol] | None = None,
     except NotPolynomial:
         # trigsimp factors: with the floats of a rounded URDF angle (cos(1.57)) in a quotient
         # it ran for minutes; such an expression is left as it is
-        return expr if expr.has(sp.Float) else sp.trigsimp(expr)
+        return expr if expr.has(sp.Float) else _trigsimp(expr)
     return collect_terms(ring, p, parameters, chop=chop, trig=trig)
 
 

@@ -187,6 +187,21 @@ def lengths_are_symbols(model: str) -> bool:
     return _tree(wm, "standard") and axle_symbols(wm)
 
 
+def trig_polynomial_map(cs: CoordinateSet) -> bool:
+    r"""Whether the configuration map of ``cs`` is a polynomial in its positions' sines and
+    cosines (and in other symbols): the closed forms are derived for such maps only. A
+    spherical pendulum's (θ, φ) through ``atan2`` and ``asin`` gave terms ``trigsimp`` did
+    not finish in 11 minutes, and whose velocity products took half a minute more; its
+    numbers are compared all the same."""
+    from .trigpoly import NotPolynomial, TrigRing
+    exprs = [sp.sympify(e) for e in cs.configuration.values()]
+    try:
+        TrigRing.from_exprs(exprs)
+    except NotPolynomial:
+        return False
+    return True
+
+
 def true_expressions(model: str, cs: CoordinateSet, refresh: bool = False
                      ) -> dict[str, sp.Expr] | None:
     r"""The true elements of model ``model`` (a registry name) in the coordinate set ``cs``,
@@ -213,6 +228,9 @@ def true_expressions(model: str, cs: CoordinateSet, refresh: bool = False
     if not refresh and (found := load(path, dict)) is not None:
         _MEMORY[key] = found
         return found
+    if not trig_polynomial_map(cs):
+        _MEMORY[key] = None
+        return None
     try:            # free bodies and contacts: minutes in one piece, seconds as a tree
         red = expanded_tree(wm, cs) if tree else wheeled_symbolic(wm, cs, mode)
     except ModelError:                        # a model the standard mode does not fit

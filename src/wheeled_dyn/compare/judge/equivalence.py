@@ -296,12 +296,18 @@ def vanishing_at(doc_A: np.ndarray, true_A: np.ndarray, typical: np.ndarray | No
     :data:`SINGULAR_TOL` of ``typical`` (per state and row, its usual norm), where given (an
     equation times :math:`(\cos\theta - \tfrac12)^2` is lost at :math:`\pi/3`; its rows
     each scaled to 1, the determinant does not see that). States where the truth's own
-    :math:`A` is near singular (a singular position of the coordinates) are left out."""
+    :math:`A` is near singular (a singular position of the coordinates: its rows dependent,
+    or one vanishing, as a gimbal's first row :math:`J\cos^2 b` at :math:`b = \pi/2`, where
+    the true equation is lost too) are left out."""
     rd, rt = relative_det(doc_A), relative_det(true_A)
-    ok = np.isfinite(rd) & np.isfinite(rt)
+    with np.errstate(all="ignore"):
+        rows = np.linalg.norm(true_A, axis=2)
+    ok = np.isfinite(rd) & np.isfinite(rt) & np.isfinite(rows).all(axis=1)
     if not ok.any():
         return None
     ok &= rt >= SINGULAR_TOL ** 0.5 * float(np.median(rt[ok]))
+    ok &= (rows >= SINGULAR_TOL ** 0.5 * np.median(rows[ok], axis=0)).all(axis=1) \
+        if ok.any() else ok
     hit = np.flatnonzero(ok & (rd <= SINGULAR_TOL * rt))
     if len(hit):
         W = combination_rows(doc_A[hit[:1]], true_A[hit[:1]])
