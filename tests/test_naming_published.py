@@ -547,3 +547,25 @@ def test_a_term_of_a_velocity_products_coefficient_is_named(engine, tmp_path, pl
         assert record.element == "h[1]:dth*dal", record.element
         assert record.texts[0] == "sign: the term 2*Jzz*sin(al)*cos(al) has the wrong sign", \
             record.texts
+
+
+def test_inputs_left_undivided_are_the_odd_dimension_not_the_inertia(engine, tmp_path):
+    r"""The WIP's heading equation divided by its inertia (``data/published/
+    wip_heading_divided.toml``, written for the tests) with its inputs left undivided: the row
+    is dimensionally inconsistent, and its velocity terms vote with its inertia terms for the
+    row's dimension (an acceleration), so the two input terms are the odd ones. The inertia
+    elements, right in the row's frame, were flagged "dimension: has dimensionless, expected
+    kg; numerically equal here only because the inconsistent term vanishes" (two inertia
+    votes against two input votes, the velocity terms not counted)."""
+    source = DATA / "wip_heading_divided.toml"
+    assert engine.compare(load_derivation(source)).equivalent is True
+    old = "= ((-1/R)*T_l + (-1/R)*T_r)/(M_b + 2*m_w + 2*J/R**2)"
+    path = tmp_path / source.name
+    text = source.read_text()
+    assert text.count(old) == 1
+    path.write_text(text.replace(old, "= (-1/R)*T_l + (-1/R)*T_r"))
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False
+    flagged = {r.element: r for r in result.records if r.verdict != "agrees"}
+    assert set(flagged) == {"B[1,1]", "B[1,2]"}, {k: r.texts for k, r in flagged.items()}
+    assert all(any(d.kind == K.DIMENSION for d in r.diagnoses) for r in flagged.values())

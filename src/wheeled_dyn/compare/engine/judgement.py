@@ -118,8 +118,8 @@ def _row_drafts(d: Derivation, funcs: DocumentFunctions, sides: Sides, frames: l
         scale = row_scale(doc_row, true_row)
         row = drafts_of_row(doc_row, true_row, i, funcs.exprs, d.velocities, scale, lost,
                             label)
-        dims.row_dimension(i, [(r.key, r.index, r.expr) for r in row if r.key != "h"
-                               and r.expr is not None])
+        dims.row_dimension(i, [(r.key, r.index, r.expr) for r in row
+                               if r.expr is not None])
         for r in row:
             problems = dims.check(r.key, r.index, r.expr) if r.key != "h" and \
                 r.expr is not None else []

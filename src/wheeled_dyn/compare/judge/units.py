@@ -11,9 +11,12 @@ declares one). Then
 .. math::
 
     [A_{ij}] = [F_i]\,\mathrm{s}^2/[q_j],\quad [C_{ij}] = [F_i]\,\mathrm{s}/[q_j],\quad
-    [Q_i] = [h_i] = [F_i],\quad [B_{ij}] = [F_i]/[u_j],
+    [Q_i] = [h_i] = [F_i],\quad [B_{ij}] = [F_i]/[u_j],\quad
+    [h_{i,jk}] = [F_i]\,\mathrm{s}^2/([q_j][q_k])
 
-and every additive term of an element must have its element's dimension; the argument of a
+(:math:`h_{i,jk}` the coefficient of :math:`\nu_j\nu_k` in :math:`h_i`, a velocity term
+voting as the others do), and every additive term of an element must have its element's
+dimension; the argument of a
 function (sin, cos, ...) must be dimensionless, except for functions homogeneous in their
 arguments (``atan2(y, x)``, ``Abs``, ``Max``, ``Min``, ``sign``), whose arguments must share one
 dimension. Dimensions are exponent vectors over
@@ -110,6 +113,10 @@ class DimensionChecker:
         got = self.dim(expr, problems)
         if got is None or problems:           # its own terms disagree: no vote
             return None
+        if key == "h" and len(index) == 3:           # the coefficient of ν_j ν_k in h_i
+            qj, qk = self.q_dims[index[1]], self.q_dims[index[2]]
+            return None if qj is None or qk is None else _add(_add(_add(got, qj), qk),
+                                                               (0, 0, -2))
         if key in ("Q", "h"):
             return got
         j = index[1]
