@@ -280,6 +280,8 @@ def test_without_ranges_the_disk_is_drawn_on_the_ground(tmp_path):
     result = _compare(_copy(tmp_path, ("ranges = { theta = [-1.3, 1.3] }\n", "")))
     _assert_all_agree(result)
     assert not result.asymmetric        # A nearly singular near flat on both sides: not said
+    assert any("drawn again: the coordinate map puts the wheel off the ground" in note
+               for note in result.notes), result.notes
 
 
 def test_a_centre_height_off_the_ground_is_one_error_naming_the_map(tmp_path):

@@ -276,7 +276,7 @@ def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed
     if combination:                      # the combination carries the rows' factors too
         functions = constants = (None,) * d.n
     notes = list(sides.notes) + [f"{e} was lost in the extracted text: not compared"
-                                 for e in d.missing] + _held(grid.cs)
+                                 for e in d.missing] + _held(grid.cs) + _off_ground(grid)
     result = DerivationResult(
         path=d.path, title=d.title, model=d.model, source=dict(d.source),
         coordinates=grid.cs.name, velocities=tuple(str(v) for v in d.velocities),
@@ -305,6 +305,18 @@ def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed
     result = replace(result, constraints_agree=None if wrong is None else not wrong)
     return Judgement(result, ev, tuple(causes), sides, funcs)
 
+
+
+def _off_ground(grid) -> list[str]:
+    r"""A note where the map put a tilting wheel off the ground at states first drawn (they
+    were drawn again: the model has no motion there)."""
+    if not grid.off_ground:
+        return []
+    return [f"{grid.off_ground} of the {grid.q.shape[0] * grid.q.shape[1]} states first "
+            "drawn were drawn again: the coordinate map puts the wheel off the ground or "
+            "flat there (its centre's height is the rim's lowest point above the ground only "
+            "within a part of the positions' range; [coordinates] ranges says where the "
+            "document's coordinates hold)"]
 
 
 def _diagonal(d: Derivation, texts, rules) -> list[sp.Expr] | None:

@@ -52,6 +52,8 @@ class Grid:
     cs: CoordinateSet
     cmap: CoordinateMap
     ranges: tuple[tuple[float, float], ...]
+    #: states first drawn where the map put a tilting wheel off the ground, drawn again
+    off_ground: int = 0
 
     @property
     def flat_q(self) -> np.ndarray:
@@ -171,6 +173,7 @@ class Grids:
         n = len(cs.positions)
         ranges = position_ranges(d, cs.positions, assumed)
         q, nu = random_states(n, k * n_states, rng, ranges)
+        off = int(cmap.off_ground(q).sum())
         q = regular_states(cmap, q, rng, ranges)
         check_finite_map(d, cmap, q)
         q, nu = q.reshape(k, n_states, n), nu.reshape(k, n_states, n)
@@ -178,7 +181,8 @@ class Grids:
             on_truth()
         truth = self.truth(cmap, sets, q, nu)
         apply_to_truth(truth, assumed)
-        return Grid(truth, tuple(sets), q, nu, cs, cmap, tuple((lo, hi) for lo, hi in ranges))
+        return Grid(truth, tuple(sets), q, nu, cs, cmap, tuple((lo, hi) for lo, hi in ranges),
+                    off)
 
 
 def check_finite_map(d: Derivation, cmap: CoordinateMap, q: np.ndarray) -> None:
