@@ -292,3 +292,35 @@ def test_a_centre_height_off_the_ground_is_one_error_naming_the_map(tmp_path):
     text = str(err.value)
     assert path.name in text and "coordinates.configuration" in text, text
     assert "off the ground" in text and "every drawn state" in text, text
+
+
+POINT_MASS = [
+    ('"(I*cos(theta)**2 + (J + m*r**2)*sin(theta)**2)*ddpsi - (J + m*r**2)*sin(theta)*ddphi + '
+     '2*(J + m*r**2 - I)*sin(theta)*cos(theta)*dpsi*dtheta - J*cos(theta)*dtheta*dphi = 0"',
+     '"m*r**2*sin(theta)**2*ddpsi - m*r**2*sin(theta)*ddphi + 2*m*r**2*sin(theta)*cos(theta)'
+     '*dpsi*dtheta = 0"'),
+    ('"(I + m*r**2)*ddtheta + (J + m*r**2)*cos(theta)*dpsi*dphi - (J + m*r**2 - I)*sin(theta)'
+     '*cos(theta)*dpsi**2 - m*g*r*sin(theta) = 0"',
+     '"m*r**2*ddtheta + m*r**2*cos(theta)*dpsi*dphi - m*r**2*sin(theta)*cos(theta)*dpsi**2 - '
+     'm*g*r*sin(theta) = 0"'),
+    ('"(J + m*r**2)*(ddphi - sin(theta)*ddpsi) - (J + 2*m*r**2)*cos(theta)*dpsi*dtheta = 0"',
+     '"m*r**2*(ddphi - sin(theta)*ddpsi) - 2*m*r**2*cos(theta)*dpsi*dtheta = 0"')]
+
+
+def test_a_point_mass_disk_is_explained_as_printed_not_as_another_row(tmp_path):
+    r"""The disk taken as a point mass (I = J = 0 in its three equations): the heading row's
+    inertia is then sin(theta) × the spin row's, the equations dependent. The heading row was
+    explained as "the true equation of phi times" a function of the lean, beside the spin
+    row read as that same true equation, and the document's own checks were skipped; now no
+    two rows are read as multiples of one true equation, the heading row is compared as
+    printed, and A is said not positive definite — but not asymmetric, as it is not as printed
+    (the rows a constant frame divides are read back as printed for that)."""
+    result = _compare(_copy(tmp_path, *POINT_MASS))
+    assert result.equivalent is False
+    kinds = [c.kind for c in result.causes]
+    frames = [e.frame for e in result.equations]
+    assert not any("true equation of" in f for f in frames), frames
+    assert any("not positive definite" in a for a in result.asymmetric), result.asymmetric
+    assert not any("≠" in a for a in result.asymmetric), result.asymmetric
+    assert "convention" not in kinds or all(
+        "true equation of" not in c.explanation for c in result.causes), result.causes

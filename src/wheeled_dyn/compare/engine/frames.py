@@ -78,7 +78,26 @@ def choose_frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], d
             frame = _always(i, rule, main, declared_scale)
         rules.append(rule)
         frames.append(frame)
+    for i in _shared_partners(rules):
+        rules[i] = FrameRule(FrameKind.IDENTITY)
+        frames[i] = _always(i, rules[i], main)
     return rules, frames, wrong
+
+
+def _shared_partners(rules: Sequence[FrameRule]) -> list[int]:
+    r"""The rows paired with another row's true equation (a constant or function frame)
+    where another row is paired with it too: two equations of the document cannot both be
+    multiples of one true equation in a system that is right, and a point-mass disk's
+    heading row, its inertia row sin φ × its spin row, was "the true equation of theta
+    times 2 sin(φ)/3" beside its spin row read as that true equation. They are explained
+    as printed (the rows paired with their own equation keep their frames)."""
+    def partner(i: int, rule: FrameRule) -> int | None:
+        if rule.kind in (FrameKind.IDENTITY, FrameKind.DECLARED):
+            return i
+        return rule.partner if rule.kind in (FrameKind.CONSTANT, FrameKind.FUNCTION) else None
+    partners = [partner(i, r) for i, r in enumerate(rules)]
+    return [i for i, k in enumerate(partners) if k is not None and k != i
+            and sum(p == k for p in partners) > 1]
 
 
 def _solved(i: int, rule: FrameRule, frame: Frame, main: Sides) -> tuple[FrameRule, Frame]:

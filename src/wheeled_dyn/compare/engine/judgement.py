@@ -282,7 +282,7 @@ def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed
         coordinates=grid.cs.name, velocities=tuple(str(v) for v in d.velocities),
         form=d.form, records=tuple(r.freeze() for r in drafts), row_factors=constants,
         energy=energy, asymmetric=() if own is None or own.A is None else asymmetry(
-            own, _sizes(own.A), d.n, sides.truth.A),
+            own, _sizes(own.A), d.n, sides.truth.A, sides.doc.A),
         constraints=constraint_rows(sides.doc, sides.truth, scales),
         reconstructed=dict(d.reconstructed), samples=grid.q.shape[1],
         parameter_sets=len(grid.sets), notes=tuple(notes), assumes=assumed.describe(),

@@ -174,29 +174,39 @@ def independent_rows(Mn: np.ndarray, rank: int) -> list[int]:
     return chosen
 
 
-def asymmetry(doc: Arrays, scales, n: int, truth_A: np.ndarray | None = None
-              ) -> tuple[str, ...]:
+def asymmetry(doc: Arrays, scales, n: int, truth_A: np.ndarray | None = None,
+              printed_A: np.ndarray | None = None) -> tuple[str, ...]:
     r"""Pairs A[i,j] ≠ A[j,i], and whether A is positive definite (elements lost in the
     extracted text, NaN, are left out; A with a lost element is not tested for definiteness):
     not where its smallest eigenvalue is negative, or is zero (to :data:`AGREE_TOL` of its
     largest entry) where the truth's ``truth_A`` is not (a rolling disk's A near lying flat
-    is nearly singular on both sides: its heading and spin turn about one axis there)."""
+    is nearly singular on both sides: its heading and spin turn about one axis there).
+    ``doc``: the document's rows each divided by the factor its frame found; where the
+    ``printed_A`` is given, only what holds of it as printed too (a point-mass disk's spin
+    row, 2/3 of the true one, read as the true row times 2/3: divided by it, its A was
+    "asymmetric", as printed it is not)."""
     if doc.A is None:
         return ()
     out = []
     lost = ~np.isfinite(doc.A).all(axis=0)
+    both = [doc.A] if printed_A is None or printed_A.shape != doc.A.shape else \
+        [doc.A, printed_A]
     for i in range(n):
         for j in range(i + 1, n):
             if lost[i, j] or lost[j, i]:
                 continue
-            if not agrees(doc.A[:, i, j], doc.A[:, j, i], max(scales[i], scales[j])):
+            if not any(agrees(A[:, i, j], A[:, j, i], max(scales[i], scales[j]))
+                       for A in both):
                 out.append(f"A[{i + 1},{j + 1}] ≠ A[{j + 1},{i + 1}]")
     if lost.any():
         return tuple(out)
     lowest = _lowest(doc.A)
-    bad = (lowest < -AGREE_TOL) | (lowest <= AGREE_TOL)
-    if truth_A is not None and truth_A.shape == doc.A.shape:
-        bad &= (lowest < -AGREE_TOL) | ~(_lowest(truth_A) <= AGREE_TOL)
+    bad = np.ones(len(lowest), dtype=bool)
+    for A in both:
+        low = _lowest(A)
+        bad &= (low < -AGREE_TOL) | (low <= AGREE_TOL)
+        if truth_A is not None and truth_A.shape == A.shape:
+            bad &= (low < -AGREE_TOL) | ~(_lowest(truth_A) <= AGREE_TOL)
     if bad.any():
         out.append(f"A is not positive definite at {int(bad.sum())} of {len(lowest)} samples "
                    f"(smallest eigenvalue {lowest[bad].min():.2g} × its largest entry)")
