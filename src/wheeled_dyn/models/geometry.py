@@ -128,6 +128,9 @@ class GeometryTable:
     dimensions: Mapping[str, Dimension]
     constants: Mapping[str, Constant]
     inertials: Mapping[str, tuple[float, ...]] = field(default_factory=dict)
+    #: link → (its inertials read as the uniform body's, the reading in words), for the links
+    #: whose printed moments are a uniform body's to their digits (:mod:`.uniform_reading`)
+    uniform: Mapping[str, tuple[tuple[float, ...], str]] = field(default_factory=dict)
 
     def values(self) -> dict[str, float]:
         r"""Every name → its value (dimensions, then constants)."""
@@ -319,6 +322,7 @@ def symbols(geometry: GeometryTable, exact=None) -> dict[str, sp.Expr]:
 
 
 def table(dims: Mapping[str, Dimension], consts: Mapping[str, Constant],
-          inertials: Mapping[str, tuple[float, ...]]) -> GeometryTable:
+          inertials: Mapping[str, tuple[float, ...]],
+          uniform: Mapping[str, tuple[tuple[float, ...], str]] | None = None) -> GeometryTable:
     return GeometryTable(MappingProxyType(dict(dims)), MappingProxyType(dict(consts)),
-                         MappingProxyType(dict(inertials)))
+                         MappingProxyType(dict(inertials)), MappingProxyType(dict(uniform or {})))

@@ -211,7 +211,8 @@ def apply_geometry(wm: WheeledModel, draw: GeometryDraw) -> WheeledModel:
         rolling.append(replace(w, spec=spec, centre=w.centre * size))
     dims = {k: replace(d, value=new[k]) for k, d in table.dimensions.items()}
     consts = {k: replace(c, value=geometry[k]) for k, c in table.constants.items()}
-    lengths = GeometryTable(MappingProxyType(dims), MappingProxyType(consts), table.inertials)
+    lengths = GeometryTable(MappingProxyType(dims), MappingProxyType(consts), table.inertials,
+                            table.uniform)
     return replace(wm, model=model, wheels=wheels, contact=contact,
                    rolling_wheels=tuple(rolling), geometry=geometry, lengths=lengths)
 
@@ -224,7 +225,10 @@ def _compose(model: pin.Model, body: int, links: list[str], table: GeometryTable
     for link in links:
         if link not in table.inertials or table.inertials[link][0] <= 0:
             continue                  # no mass (a ROS base_footprint): nothing to add
-        own = pin.Inertia.FromDynamicParameters(np.asarray(table.inertials[link]))
+        # a link drawn uniform: the uniform body's, where the URDF prints that (rounded)
+        read = table.uniform[link][0] if link in factors and link in table.uniform else \
+            table.inertials[link]
+        own = pin.Inertia.FromDynamicParameters(np.asarray(read))
         size, mass = factors.get(link, (1.0, 1.0))
         own = pin.Inertia(own.mass * mass, own.lever * size, own.inertia * mass * size**2)
         frame = model.frames[model.getFrameId(link, pin.FrameType.BODY)]

@@ -276,7 +276,8 @@ def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed
     if combination:                      # the combination carries the rows' factors too
         functions = constants = (None,) * d.n
     notes = list(sides.notes) + [f"{e} was lost in the extracted text: not compared"
-                                 for e in d.missing] + _held(grid.cs) + _off_ground(grid)
+                                 for e in d.missing] + _held(grid.cs) + _off_ground(grid) \
+        + _uniform_read(grid, assumed)
     result = DerivationResult(
         path=d.path, title=d.title, model=d.model, source=dict(d.source),
         coordinates=grid.cs.name, velocities=tuple(str(v) for v in d.velocities),
@@ -305,6 +306,18 @@ def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed
     result = replace(result, constraints_agree=None if wrong is None else not wrong)
     return Judgement(result, ev, tuple(causes), sides, funcs)
 
+
+
+def _uniform_read(grid, assumed: Assumptions) -> list[str]:
+    r"""The readings of the links the document declares uniform whose URDF inertia is the
+    uniform body's to its printed digits (:mod:`~wheeled_dyn.models.uniform_reading`)."""
+    from ..grid.samples import uniform_links
+    wm = grid.sets[0].model
+    table = wm.lengths
+    if table is None or not table.uniform or not assumed.families:
+        return []
+    return [table.uniform[link][1] for link in sorted(uniform_links(wm, assumed.families))
+            if link in table.uniform]
 
 
 def _off_ground(grid) -> list[str]:

@@ -1,0 +1,106 @@
+r"""A link a document declares uniform, its inertia read as the uniform body's where the URDF
+prints the body's value to as many digits as it prints.
+
+URDFs print inertias rounded: a slender rod of 0.2 kg and 0.8 m written
+``ixx="0.0106667"`` for :math:`mL^2/12 = 0.010666\overline{6}`. A document that declares the
+rod uniform writes :math:`mL^2/12` (or :math:`\tfrac43 m l^2` about its end) exactly, and the
+truth drawn in the URDF's proportions differed from it by the rounding, 3·10⁻⁶ of the
+moment: beyond the comparison's tolerance of 10⁻⁷, "the document is 1.000001 × the truth".
+
+So each principal moment of a link's ``<inertia>`` (the tensor diagonal, its products of
+inertia printed zero) is compared with the moments of the uniform bodies its first cylinder
+or sphere gives (radius :math:`r`, length :math:`L`, mass :math:`m` as printed):
+
+.. math::
+
+    \tfrac12 mr^2,\quad \tfrac1{12}m(3r^2 + L^2),\quad \tfrac1{12}mL^2\ \text{(slender)},
+    \quad \tfrac25 mr^2\ \text{(ball)},
+
+and where one lies within half a unit of the last digit printed, and the printed value is not
+already it, the link's moment is read as that body's (:func:`uniform_inertials`). The reading
+is made only for the links a document declares uniform (``[assumes] uniform``, the families
+``uniform(link)`` and ``urdf_proportions``): their inertia is the uniform body's by
+declaration, and the URDF agrees with it to its printed digits. The report says so (a note).
+"""
+
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+from collections.abc import Mapping
+from decimal import Decimal, InvalidOperation
+
+import numpy as np
+
+#: The diagonal entries of an ``<inertia>`` element and their off-diagonal ones.
+DIAGONAL, PRODUCTS = ("ixx", "iyy", "izz"), ("ixy", "ixz", "iyz")
+
+
+#: Largest half unit of the last printed digit, relative to the value, of a moment read as a
+#: uniform body's (four significant digits and more: "1e-05" tells nothing).
+DIGITS = 5e-4
+
+
+def half_unit(text: str) -> float | None:
+    r"""Half a unit of the last digit ``text`` prints (``"0.0106667"`` → 5e-8, ``"1e-5"`` →
+    5e-6); None where it is no decimal number."""
+    try:
+        exponent = Decimal(text.strip()).as_tuple().exponent
+    except InvalidOperation:
+        return None
+    return 0.5 * 10.0 ** exponent if isinstance(exponent, int) else None
+
+
+def _candidates(mass: float, radius: float | None, length: float | None
+                ) -> list[tuple[float, str]]:
+    out: list[tuple[float, str]] = []
+    if radius is not None:
+        out += [(mass * radius ** 2 / 2, "m r²/2"), (2 * mass * radius ** 2 / 5, "2 m r²/5")]
+    if radius is not None and length is not None:
+        out.append((mass * (3 * radius ** 2 + length ** 2) / 12, "m (3 r² + L²)/12"))
+    if length is not None:
+        out.append((mass * length ** 2 / 12, "m L²/12"))
+    return out
+
+
+def uniform_inertials(text: str, shapes: Mapping[str, tuple[float | None, float | None]],
+                      inertials: Mapping[str, tuple[float, ...]]
+                      ) -> dict[str, tuple[tuple[float, ...], str]]:
+    r"""Per link whose printed moments a uniform body's match (module text): its dynamic
+    parameters (:math:`m, mc, I_O`, as ``inertials`` holds them) with those moments the
+    body's, and the reading in words. ``shapes``: link → (radius, length) of its first
+    sphere or cylinder."""
+    import pinocchio as pin
+    out: dict[str, tuple[tuple[float, ...], str]] = {}
+    for link in ET.fromstring(text).iter("link"):
+        name = link.get("name", "")
+        element = link.find("inertial/inertia")
+        radius, length = shapes.get(name, (None, None))
+        if name not in inertials or element is None or (radius is None and length is None):
+            continue
+        origin = link.find("inertial/origin")
+        rpy = "0 0 0" if origin is None else origin.get("rpy", "0 0 0")
+        if any(float(x) != 0.0 for x in rpy.split()) or any(
+                float(element.get(k, "0")) != 0.0 for k in PRODUCTS):
+            continue                       # its principal axes are not the tensor's axes
+        own = pin.Inertia.FromDynamicParameters(np.asarray(inertials[name]))
+        moments, said = np.diag(own.inertia).copy(), []
+        for axis, key in enumerate(DIAGONAL):
+            printed, unit = element.get(key, "0"), half_unit(element.get(key, "0"))
+            value = float(printed)
+            if unit is None or not unit <= DIGITS * abs(value):
+                continue                   # too few digits to tell one body from another
+            near = sorted((abs(v - value), v, f) for v, f in _candidates(own.mass, radius,
+                                                                          length))
+            if near and 0.0 < near[0][0] <= unit:     # the nearest, and not printed exactly
+                moments[axis] = near[0][1]
+                said.append(f"{key} {printed} as {near[0][2]} = {near[0][1]:.10g}")
+        if said:
+            read = pin.Inertia(own.mass, own.lever, np.diag(moments))
+            out[name] = (tuple(float(x) for x in read.toDynamicParameters()),
+                         f"link {name}, declared uniform: its URDF inertia read as the uniform "
+                         f"body's, which it is to the digits the URDF prints ("
+                         + "; ".join(said) + ")")
+    return out
+
+
+__all__ = ["half_unit", "uniform_inertials"]

@@ -1,0 +1,104 @@
+r"""A link declared uniform whose URDF prints its inertia rounded
+(:mod:`wheeled_dyn.models.uniform_reading`): the uniform body's moment where the printed one is
+it to its digits, and only then. The cart-pole of ``data/published`` (a uniform pole, every
+form of R. V. Florian's equations, ``published_forms.py``) with its pole made 0.2 kg and
+0.8 m long and its moments printed to six digits, ``iyy="0.0106667"`` for
+:math:`mL^2/12 = 0.010666\overline6`, as a ROS URDF prints them: every form agrees where it
+was "the document is 1.000001 × the truth", and a planted point mass still differs."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import published_forms as P
+from conftest import SEED
+from wheeled_dyn.compare.engine import ComparisonEngine
+from wheeled_dyn.derivations import load_derivation
+from wheeled_dyn.models.uniform_reading import half_unit, uniform_inertials
+
+DATA = Path(__file__).parent / "data" / "published"
+SAMPLES, PARAM_SETS = 200, 3
+
+ROD = """<robot name="r"><link name="rod"><inertial><origin xyz="0 0 0.4"/>
+<mass value="0.2"/><inertia ixx="{ixx}" ixy="{ixy}" ixz="0" iyy="{iyy}" iyz="0" izz="{izz}"/>
+</inertial></link></robot>"""
+
+
+def _read(ixx: str, iyy: str, izz: str, ixy: str = "0") -> dict:
+    text = ROD.format(ixx=ixx, iyy=iyy, izz=izz, ixy=ixy)
+    import pinocchio as pin
+    inertia = pin.Inertia(0.2, np.array([0.0, 0.0, 0.4]),
+                          np.array([[float(ixx), float(ixy), 0], [float(ixy), float(iyy), 0],
+                                    [0, 0, float(izz)]]))
+    inertials = {"rod": tuple(inertia.toDynamicParameters())}
+    return uniform_inertials(text, {"rod": (0.01, 0.8)}, inertials)
+
+
+def test_half_a_unit_of_the_last_digit() -> None:
+    assert half_unit("0.0106667") == pytest.approx(5e-8)
+    assert half_unit("1e-5") == pytest.approx(5e-6)
+    assert half_unit("0.025") == pytest.approx(5e-4)
+    assert half_unit("abc") is None
+
+
+def test_a_rounded_slender_rod_is_read_as_one() -> None:
+    read = _read("0.0106667", "0.0106667", "0.00001")
+    assert set(read) == {"rod"}
+    import pinocchio as pin
+    own = pin.Inertia.FromDynamicParameters(np.asarray(read["rod"][0]))
+    exact = 0.2 * 0.8 ** 2 / 12
+    assert own.inertia[0, 0] == pytest.approx(exact, rel=1e-15)
+    assert own.inertia[1, 1] == pytest.approx(exact, rel=1e-15)
+    assert own.inertia[2, 2] == pytest.approx(1e-5, rel=1e-15)      # printed to one digit
+    assert own.mass == pytest.approx(0.2) and own.lever == pytest.approx([0, 0, 0.4])
+    assert "ixx 0.0106667 as m L²/12" in read["rod"][1] and "izz" not in read["rod"][1]
+
+
+@pytest.mark.parametrize("ixx, ixy", [
+    ("0.01066666666666667", "0"),       # printed as the body's: nothing to read
+    ("0.01080", "0"),                   # 1e-4 from the rod and the cylinder: neither
+    ("0.0106667", "0.001"),             # products of inertia: not its principal moments
+], ids=["exact", "another-body", "products"])
+def test_no_reading(ixx: str, ixy: str) -> None:
+    assert _read(ixx, ixx, "0.00001", ixy) == {}
+
+
+def _rounded_cart_pole(tmp_path: Path) -> Path:
+    urdf = (DATA / "cart_pole.urdf").read_text()
+    for old, new in (('<origin xyz="0 0 0.5" rpy="0 0 0"/>\n      <mass value="0.3"/>',
+                      '<origin xyz="0 0 0.4" rpy="0 0 0"/>\n      <mass value="0.2"/>'),
+                     ('ixx="0.025" ixy="0" ixz="0" iyy="0.025"',
+                      'ixx="0.0106667" ixy="0" ixz="0" iyy="0.0106667"'),
+                     ('<visual><origin xyz="0 0 0.5"/><geometry><cylinder radius="0.01" '
+                      'length="1.0"/>', '<visual><origin xyz="0 0 0.4"/><geometry><cylinder '
+                      'radius="0.01" length="0.8"/>')):
+        assert urdf.count(old) == 1, old
+        urdf = urdf.replace(old, new)
+    (tmp_path / "cart_pole.urdf").write_text(urdf)
+    model = tmp_path / "cart_pole.toml"
+    model.write_text((DATA / "cart_pole.toml").read_text())
+    return model
+
+
+@pytest.mark.parametrize("form", ["equations", "solved", "divided"])
+def test_every_form_agrees_on_the_rounded_pole(tmp_path: Path, form: str) -> None:
+    model = _rounded_cart_pole(tmp_path)
+    path = P.write(tmp_path, "pole", form, None)
+    path.write_text(path.read_text().replace(str(DATA / "cart_pole.toml"), str(model)))
+    result = ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED).compare(
+        load_derivation(path))
+    assert result.equivalent is True, [t for e in result.equations for t in e.texts]
+    assert any("link pole, declared uniform: its URDF inertia read as the uniform body's"
+               in n for n in result.notes), result.notes
+
+
+def test_a_point_mass_pole_still_differs_on_the_rounded_pole(tmp_path: Path) -> None:
+    model = _rounded_cart_pole(tmp_path)
+    path = P.write(tmp_path, "pole", "equations", "point_mass")
+    path.write_text(path.read_text().replace(str(DATA / "cart_pole.toml"), str(model)))
+    result = ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED).compare(
+        load_derivation(path))
+    assert result.equivalent is False
