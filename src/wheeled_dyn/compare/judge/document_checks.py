@@ -200,13 +200,13 @@ def asymmetry(doc: Arrays, scales, n: int, truth_A: np.ndarray | None = None,
                 out.append(f"A[{i + 1},{j + 1}] ≠ A[{j + 1},{i + 1}]")
     if lost.any():
         return tuple(out)
-    lowest = _lowest(doc.A)
+    lows = [_lowest(A) for A in both]
+    lowest = lows[0]
+    singular = _lowest(truth_A) <= AGREE_TOL if truth_A is not None and \
+        truth_A.shape == doc.A.shape else np.zeros(len(lowest), dtype=bool)
     bad = np.ones(len(lowest), dtype=bool)
-    for A in both:
-        low = _lowest(A)
-        bad &= (low < -AGREE_TOL) | (low <= AGREE_TOL)
-        if truth_A is not None and truth_A.shape == A.shape:
-            bad &= (low < -AGREE_TOL) | ~(_lowest(truth_A) <= AGREE_TOL)
+    for low in lows:                      # negative, or zero where the truth's is not
+        bad &= (low < -AGREE_TOL) | ((low <= AGREE_TOL) & ~singular)
     if bad.any():
         out.append(f"A is not positive definite at {int(bad.sum())} of {len(lowest)} samples "
                    f"(smallest eigenvalue {lowest[bad].min():.2g} × its largest entry)")
@@ -214,10 +214,15 @@ def asymmetry(doc: Arrays, scales, n: int, truth_A: np.ndarray | None = None,
 
 
 def _lowest(A: np.ndarray) -> np.ndarray:
-    r"""The smallest eigenvalue of :math:`(A + A^T)/2` per sample over its largest entry."""
+    r"""The smallest eigenvalue of :math:`(A + A^T)/2` per sample over its largest entry (NaN
+    where A is not finite)."""
     sym = 0.5 * (A + np.swapaxes(A, 1, 2))
+    out = np.full(len(A), np.nan)
+    finite = np.isfinite(sym).all(axis=(1, 2))
     with np.errstate(all="ignore"):
-        return np.linalg.eigvalsh(sym)[:, 0] / np.maximum(np.abs(sym).max(axis=(1, 2)), 1e-300)
+        out[finite] = np.linalg.eigvalsh(sym[finite])[:, 0] / np.maximum(
+            np.abs(sym[finite]).max(axis=(1, 2)), 1e-300)
+    return out
 
 
 def constraint_rows(doc: Arrays, truth: Arrays, scales) -> tuple[str, ...]:
