@@ -271,17 +271,28 @@ def test_steps_are_read_under_the_files_assumptions(tmp_path):
     _assert_all_agree(_compare(path))
 
 
-def test_without_ranges_the_disk_is_drawn_on_the_ground(tmp_path):
-    r"""The file without its lean ``ranges``: the positions are drawn over the default range,
-    where its centre height r cos(theta) sinks the disk leaning beyond a right angle (no motion
-    of the model is there) and lays it flat at ±π/2, a special position of the decision.
-    Those states are drawn again; every element still agrees (it was the error "q (coin) =
-    0.0: expected a configuration where the wheel is not lying flat", naming no file)."""
-    result = _compare(_copy(tmp_path, ("ranges = { theta = [-1.3, 1.3] }\n", "")))
+def test_a_lean_range_past_flat_is_drawn_on_the_ground(tmp_path):
+    r"""The file's lean range widened past ±π/2 (to ±1.6): there its centre height
+    r cos(theta) sinks the disk (no motion of the model is there), and the special position
+    ±π/2 lays it flat. Those states are drawn again, the notes say how many, and every
+    element still agrees (the flat disk at ±π/2 stopped the run with "q (coin) = 0.0:
+    expected a configuration where the wheel is not lying flat", naming no file)."""
+    result = _compare(_copy(tmp_path, ("ranges = { theta = [-1.3, 1.3] }",
+                                       "ranges = { theta = [-1.6, 1.6] }")))
     _assert_all_agree(result)
     assert not result.asymmetric        # A nearly singular near flat on both sides: not said
     assert any("drawn again: the coordinate map puts the wheel off the ground" in note
                for note in result.notes), result.notes
+
+
+def test_without_ranges_the_disk_off_the_ground_is_one_error_asking_for_them(tmp_path):
+    from wheeled_dyn.errors import DerivationError
+    path = _copy(tmp_path, ("ranges = { theta = [-1.3, 1.3] }\n", ""))
+    with pytest.raises(DerivationError) as err:
+        _compare(path)
+    text = str(err.value)
+    assert path.name in text and "coordinates.configuration" in text, text
+    assert "off the ground" in text and "ranges" in text, text
 
 
 def test_a_centre_height_off_the_ground_is_one_error_naming_the_map(tmp_path):

@@ -343,9 +343,10 @@ def random_states(n_positions: int, n: int, rng: np.random.Generator,
 #: Largest condition number of the coordinate map at a sampled state: near a singularity of
 #: the document's coordinates the reduced terms carry errors of order cond³ × rounding.
 MAX_CONDITION = 100.0
-#: Times a singular sample is drawn again (a disk's map that sinks it beyond a lean of ±π/2
-#: is singular on half the range: 2.5 % of the samples were left after five).
-REDRAWS = 50
+#: Times a singular sample is drawn again (a map singular on much of the range, undefined
+#: there or sinking a disk beyond a lean of ±π/2, keeps some: the file is asked for its
+#: ranges, :func:`~.grid.check_finite_map`).
+REDRAWS = 5
 
 __all__ = ["MAX_CONDITION", "ParameterSet", "SpecialCase", "WIP_SPECIAL_CASES",
            "namespace_values", "parameter_sets", "random_states", "regular_states",
