@@ -69,17 +69,41 @@ def test_a_planted_error_differs(tmp_path: Path, source: Path, old: str, new: st
     assert {r.element for r in result.records if r.verdict == "differs"} == {element}
 
 
-def test_an_equation_times_cos_b_is_still_lost(tmp_path: Path) -> None:
-    r"""The second equation multiplied by cos b: lost at b = ±π/2, where the true second
-    row does not vanish (only the first does, and only states where the truth's own row
-    vanishes are left out)."""
-    path = _copy(tmp_path, GIMBAL, (
-        '"(I + m*lc**2)*ddb + (I + m*lc**2)*cos(b)*sin(b)*da**2 + m*g*lc*cos(a)*sin(b) = 0"',
-        '"cos(b)*((I + m*lc**2)*ddb + (I + m*lc**2)*cos(b)*sin(b)*da**2 + '
-        'm*g*lc*cos(a)*sin(b)) = 0"'))
+E1 = ('"(I + m*lc**2)*cos(b)**2*dda - 2*(I + m*lc**2)*cos(b)*sin(b)*da*db + '
+      'm*g*lc*sin(a)*cos(b) = 0"')
+E2 = '"(I + m*lc**2)*ddb + (I + m*lc**2)*cos(b)*sin(b)*da**2 + m*g*lc*cos(a)*sin(b) = 0"'
+
+
+def _times(equation: str, factor: str) -> str:
+    lhs = equation[1:-len(' = 0"')]
+    return f'"{factor}*({lhs}) = 0"'
+
+
+@pytest.mark.parametrize("rows, lost", [
+    ((E1, _times(E2, "cos(b)")), 1),
+    ((E1, _times(E2, "cos(b)**2")), 1),
+    ((E1[:-len(' = 0"')] + ' + cos(b)**2*(' + E2[1:-len(' = 0"')] + ') = 0"',
+      _times(E2, "cos(b)**2")), 1),
+    ((_times(E1, "cos(b)**2"), _times(E2, "cos(b)**2")), 1),
+], ids=["E2-cos", "E2-cos2", "E1+cos2E2-cos2E2", "both-cos2"])
+def test_an_equation_lost_where_the_truth_keeps_it(tmp_path: Path, rows: tuple[str, str],
+                                                   lost: int) -> None:
+    r"""The second equation times cos b or cos²b (alone, or also in a combination with the
+    first): lost at b = ±π/2, where the true second row does not vanish (only the first does).
+    Those states were left out whole once the truth's own vanishing row was: cos²b, which
+    keeps its sign, was then "right as a system"."""
+    path = _copy(tmp_path, GIMBAL, (E1, rows[0]), (E2, rows[1]))
     result = _compare(path)
     assert result.equivalent is False
-    assert result.equations[1].verdict == "differs" and result.equations[0].verdict == "agrees"
+    assert result.equations[lost].verdict == "differs", \
+        [t for e in result.equations for t in e.texts]
+
+
+def test_the_first_equation_times_cos2_b_is_not_lost(tmp_path: Path) -> None:
+    r"""The first equation times cos²b: lost at b = ±π/2 only where the true first equation
+    is lost too (its every term holds cos b): right as a system."""
+    result = _compare(_copy(tmp_path, GIMBAL, (E1, _times(E1, "cos(b)**2"))))
+    assert result.equivalent is True, [t for e in result.equations for t in e.texts]
 
 
 def test_no_closed_forms_through_inverse_sines() -> None:

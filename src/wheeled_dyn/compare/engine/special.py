@@ -14,7 +14,7 @@ miss.
   :data:`SCREEN` of its median over the samples, the sample with the smallest is the start
   of a bounded search (positions within their ranges) for the smallest logarithm of it, on
   the document's side alone; the state found is judged with the special ones
-  (:func:`~..judge.equivalence.vanishing_at`: the truth's A computed there, a state where
+  (:func:`~..judge.lost_at.vanishing_at`: the truth's A computed there, a state where
   the coordinates are singular left out). A factor that does not vanish
   (:math:`2 + \cos\theta`) stays within one order of its median and costs nothing.
 - **The model's own numbers** (:func:`own_numbers`): the parameter sets are drawn, so a

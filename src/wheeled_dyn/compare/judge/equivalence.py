@@ -288,39 +288,6 @@ def sign_changes(W: np.ndarray, sets: int, across: bool = False
     return None
 
 
-def vanishing_at(doc_A: np.ndarray, true_A: np.ndarray, typical: np.ndarray | None = None
-                 ) -> tuple[int, ...] | None:
-    r"""At special states (the engine's: a position at :math:`0, \pm\pi/2, \pi`, and the
-    states its search found), the equations involved where :math:`W` is singular, else
-    None: its rows dependent (relative determinant), or a row :math:`w_i` vanishing — below
-    :data:`SINGULAR_TOL` of ``typical`` (per state and row, its usual norm), where given (an
-    equation times :math:`(\cos\theta - \tfrac12)^2` is lost at :math:`\pi/3`; its rows
-    each scaled to 1, the determinant does not see that). States where the truth's own
-    :math:`A` is near singular (a singular position of the coordinates: its rows dependent,
-    or one vanishing, as a gimbal's first row :math:`J\cos^2 b` at :math:`b = \pi/2`, where
-    the true equation is lost too) are left out."""
-    rd, rt = relative_det(doc_A), relative_det(true_A)
-    with np.errstate(all="ignore"):
-        rows = np.linalg.norm(true_A, axis=2)
-    ok = np.isfinite(rd) & np.isfinite(rt) & np.isfinite(rows).all(axis=1)
-    if not ok.any():
-        return None
-    ok &= rt >= SINGULAR_TOL ** 0.5 * float(np.median(rt[ok]))
-    ok &= (rows >= SINGULAR_TOL ** 0.5 * np.median(rows[ok], axis=0)).all(axis=1) \
-        if ok.any() else ok
-    hit = np.flatnonzero(ok & (rd <= SINGULAR_TOL * rt))
-    if len(hit):
-        W = combination_rows(doc_A[hit[:1]], true_A[hit[:1]])
-        return _null_rows(W[0])
-    if typical is None or not ok.any():
-        return None
-    W = combination_rows(doc_A[ok], true_A[ok])
-    with np.errstate(all="ignore"):
-        small = np.linalg.norm(W, axis=2) <= SINGULAR_TOL * typical[ok]
-    states = np.flatnonzero(small.any(axis=1))
-    return tuple(int(i) for i in np.flatnonzero(small[states[0]])) if len(states) else None
-
-
 def decide(doc: Side, truth: Side, sets: int,
            special: tuple[np.ndarray, np.ndarray, np.ndarray | None] | None = None,
            given: np.ndarray | None = None) -> SystemDecision:
@@ -359,6 +326,7 @@ def decide(doc: Side, truth: Side, sets: int,
             rows, pole = changes
         where = where if rows is not None else ""
     if rows is None and special is not None:
+        from .lost_at import vanishing_at        # it reads this module's measures
         rows = vanishing_at(*special)
         where = ("with the model's own numbers, at a special position (a coordinate at 0, "
                  "±π/2 or π) or at a state searched where its weights are least"
@@ -392,5 +360,4 @@ def mark_lost(decision: SystemDecision, rows: tuple[int, ...], text: str) -> Sys
 
 __all__ = ["EquationDecision", "FLOOR", "NULL_SHARE", "SINGULAR_TOL", "Side", "SystemDecision",
            "combination_rows", "decide", "decide_row", "mark_lost", "multiplier_terms",
-           "relative_det", "sign_changes", "singular_everywhere", "vanishing_at",
-           "weights_told"]
+           "relative_det", "sign_changes", "singular_everywhere", "weights_told"]
