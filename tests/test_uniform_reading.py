@@ -102,3 +102,10 @@ def test_a_point_mass_pole_still_differs_on_the_rounded_pole(tmp_path: Path) -> 
     result = ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED).compare(
         load_derivation(path))
     assert result.equivalent is False
+
+
+def test_two_bodies_within_the_digits_are_no_reading() -> None:
+    r"""0.01067 is the 0.8 m rod's m L²/12 (0.0106667) and its 1 cm cylinder's
+    m (3r² + L²)/12 (0.0106717) both, to four digits: neither is read (the nearest was, and
+    a document writing the cylinder's formula agreed where the URDF meant the rod)."""
+    assert _read("0.01067", "0.01067", "0.00001") == {}

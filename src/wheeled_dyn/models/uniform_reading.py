@@ -16,8 +16,9 @@ or sphere gives (radius :math:`r`, length :math:`L`, mass :math:`m` as printed):
     \tfrac12 mr^2,\quad \tfrac1{12}m(3r^2 + L^2),\quad \tfrac1{12}mL^2\ \text{(slender)},
     \quad \tfrac25 mr^2\ \text{(ball)},
 
-and where one lies within half a unit of the last digit printed, and the printed value is not
-already it, the link's moment is read as that body's (:func:`uniform_inertials`). The reading
+and where exactly one lies within half a unit of the last digit printed, and the printed
+value is not already it, the link's moment is read as that body's (:func:`uniform_inertials`;
+where two do, as a slender rod's and a cylinder's may to four digits, it is not read). The reading
 is made only for the links a document declares uniform (``[assumes] uniform``, the families
 ``uniform(link)`` and ``urdf_proportions``): their inertia is the uniform body's by
 declaration, and the URDF agrees with it to its printed digits. The report says so (a note).
@@ -89,11 +90,13 @@ def uniform_inertials(text: str, shapes: Mapping[str, tuple[float | None, float 
             value = float(printed)
             if unit is None or not unit <= DIGITS * abs(value):
                 continue                   # too few digits to tell one body from another
-            near = sorted((abs(v - value), v, f) for v, f in _candidates(own.mass, radius,
-                                                                          length))
-            if near and 0.0 < near[0][0] <= unit:     # the nearest, and not printed exactly
-                moments[axis] = near[0][1]
-                said.append(f"{key} {printed} as {near[0][2]} = {near[0][1]:.10g}")
+            near = [(v, f) for v, f in _candidates(own.mass, radius, length)
+                    if abs(v - value) <= unit]
+            # one body's only (0.01067 is a 0.8 m rod's m L²/12 and its cylinder's both, to
+            # four digits: no reading), and not printed exactly
+            if len(near) == 1 and near[0][0] != value:
+                moments[axis] = near[0][0]
+                said.append(f"{key} {printed} as {near[0][1]} = {near[0][0]:.10g}")
         if said:
             read = pin.Inertia(own.mass, own.lever, np.diag(moments))
             out[name] = (tuple(float(x) for x in read.toDynamicParameters()),
