@@ -109,3 +109,57 @@ def test_two_bodies_within_the_digits_are_no_reading() -> None:
     m (3r² + L²)/12 (0.0106717) both, to four digits: neither is read (the nearest was, and
     a document writing the cylinder's formula agreed where the URDF meant the rod)."""
     assert _read("0.01067", "0.01067", "0.00001") == {}
+
+
+def _pole_with_bob(tmp_path: Path) -> Path:
+    r"""The rounded cart-pole with a disk (0.5 kg, r 0.4 m, 0.2 m thick, its transverse
+    moment printed rounded, 0.0216667) fixed at the pole's tip: one rigid body, two links."""
+    model = _rounded_cart_pole(tmp_path)
+    urdf = (tmp_path / "cart_pole.urdf").read_text()
+    bob = """  <link name="bob">
+    <inertial><origin xyz="0 0 0" rpy="0 0 0"/><mass value="0.5"/>
+      <inertia ixx="0.0216667" ixy="0" ixz="0" iyy="0.0216667" iyz="0" izz="0.04"/></inertial>
+    <visual><geometry><cylinder radius="0.4" length="0.2"/></geometry></visual>
+  </link>
+  <joint name="tip" type="fixed"><parent link="pole"/><child link="bob"/>
+    <origin xyz="0 0 0.8" rpy="0 0 0"/></joint>
+</robot>"""
+    (tmp_path / "cart_pole.urdf").write_text(urdf.replace("</robot>", bob))
+    return model
+
+
+def test_only_the_links_declared_uniform_are_read(tmp_path: Path) -> None:
+    r"""A link fixed to a declared-uniform one is put together again with it when the body is
+    drawn, and keeps its inertia as printed: the reading is the declaration's, link by link
+    (it was applied to every link of the body)."""
+    from types import MappingProxyType
+
+    from wheeled_dyn.models.geometry_apply import GeometryDraw, apply_geometry
+    from wheeled_dyn.models.registry import load_model
+    wm = load_model(str(_pole_with_bob(tmp_path)))
+    body = wm.joint_id_of_link("pole")
+
+    def inertia(uniform: frozenset[str]) -> np.ndarray:
+        draw = GeometryDraw(MappingProxyType({}), MappingProxyType(
+            {"pole": (1.0, 1.0), "bob": (1.0, 1.0)}), uniform)
+        return apply_geometry(wm, draw).model.inertias[body].inertia
+    none, pole, both = (inertia(frozenset(u)) for u in ((), ("pole",), ("pole", "bob")))
+    rod = 0.2 * 0.8 ** 2 / 12 - 0.0106667
+    disk = 0.5 * (3 * 0.4 ** 2 + 0.2 ** 2) / 12 - 0.0216667
+    assert np.allclose(pole - none, np.diag([rod, rod, 0.0]), rtol=0, atol=1e-15)
+    assert np.allclose(both - pole, np.diag([disk, disk, 0.0]), rtol=0, atol=1e-15)
+
+
+def test_a_link_fixed_to_another_names_the_bodies_with_parameters(tmp_path: Path) -> None:
+    r"""``M(bob)`` for the disk fixed to the pole: one error naming the body it belongs to and,
+    as valid names, the bodies that have a mass of their own (the list held every name the
+    model's lengths use, the refused one among them)."""
+    from wheeled_dyn.derivations.errors import DerivationNameError
+    model = _pole_with_bob(tmp_path)
+    path = P.write(tmp_path, "pole", "equations", None)
+    text = path.read_text().replace(str(DATA / "cart_pole.toml"), str(model))
+    path.write_text(text.replace('[symbols]\n', '[symbols]\nmb = { value = "M(bob)", units = "kg" }\n'))
+    with pytest.raises(DerivationNameError) as err:
+        ComparisonEngine(samples=20, param_sets=1, seed=SEED).compare(load_derivation(path))
+    text = str(err.value)
+    assert "fixed to the rigid body named pole" in text and "valid: cart, pole" in text, text

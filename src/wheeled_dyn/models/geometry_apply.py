@@ -54,6 +54,9 @@ class GeometryDraw:
 
     values: Mapping[str, float]
     links: Mapping[str, tuple[float, float]]
+    #: the links drawn uniform (their URDF inertia read as the uniform body's where it is
+    #: that to its printed digits: :mod:`.uniform_reading`)
+    uniform: frozenset[str] = frozenset()
 
 
 class _Classes:
@@ -147,7 +150,7 @@ def draw_geometry(wm: WheeledModel, rng: np.random.Generator,
             if key not in masses:
                 masses[key] = float(rng.uniform(*MASS_FACTORS))
             links[link] = (size, masses[key])
-    return GeometryDraw(MappingProxyType(values), MappingProxyType(links))
+    return GeometryDraw(MappingProxyType(values), MappingProxyType(links), frozenset(uniform))
 
 
 def uniform_scales(wm: WheeledModel, uniform: Collection[str]
@@ -193,7 +196,7 @@ def apply_geometry(wm: WheeledModel, draw: GeometryDraw) -> WheeledModel:
         wheels = tuple(_planar(wm, model, geometry["R"], geometry["L"]))
     for body, links in bodies_of(wm).items():
         if body in moved or set(links) & set(draw.links):
-            _compose(model, body, links, table, draw.links)
+            _compose(model, body, links, table, draw.links, draw.uniform)
     contact = wm.contact
     if contact is not None:
         link = contact.spec.link
@@ -218,7 +221,8 @@ def apply_geometry(wm: WheeledModel, draw: GeometryDraw) -> WheeledModel:
 
 
 def _compose(model: pin.Model, body: int, links: list[str], table: GeometryTable,
-             factors: Mapping[str, tuple[float, float]]) -> None:
+             factors: Mapping[str, tuple[float, float]],
+             uniform: frozenset[str] = frozenset()) -> None:
     r"""Body ``body``'s inertia as the sum of its links' own inertias at their (moved) frames,
     each scaled by its (size, mass) factors: :math:`\mu m`, :math:`s c`, :math:`\mu s^2 I_G`."""
     total = pin.Inertia.Zero()
@@ -226,7 +230,7 @@ def _compose(model: pin.Model, body: int, links: list[str], table: GeometryTable
         if link not in table.inertials or table.inertials[link][0] <= 0:
             continue                  # no mass (a ROS base_footprint): nothing to add
         # a link drawn uniform: the uniform body's, where the URDF prints that (rounded)
-        read = table.uniform[link][0] if link in factors and link in table.uniform else \
+        read = table.uniform[link][0] if link in uniform and link in table.uniform else \
             table.inertials[link]
         own = pin.Inertia.FromDynamicParameters(np.asarray(read))
         size, mass = factors.get(link, (1.0, 1.0))

@@ -73,10 +73,12 @@ def check_model_names(d) -> None:
                 from ...models.link_parameters import merged_links
                 body = merged_links(wm).get(link)
                 if body is not None:        # a link fixed to another: no parameters of its own
+                    head = call.func.__name__ + "("
+                    own = sorted({k[len(head):-1] for k in values if k.startswith(head)})
                     raise DerivationNameError(
                         d.path, item, f"link of its own (it is fixed to the rigid body named "
                         f"{body.carrier}: {', '.join(body.members)}; name that body)", link,
-                        links, line)
+                        own, line)
             if link not in links:
                 kind = GEOMETRY_NAMES.get(call.func.__name__, "link")   # origin_x(joint)
                 raise DerivationNameError(d.path, item, kind, link,
