@@ -178,12 +178,12 @@ def urdf_lengths(text: str) -> tuple[dict[str, tuple[float, float, float]],
     cylinder (collision, then visual; None where absent)."""
     root = ET.fromstring(text)
     origins: dict[str, tuple[float, float, float]] = {}
-    for joint in root.iter("joint"):
+    for joint in root.findall("joint"):      # not a <transmission>'s <joint>
         origin = joint.find("origin")
         xyz = (origin.get("xyz", "0 0 0") if origin is not None else "0 0 0").split()
         origins[joint.get("name", "")] = tuple(float(x) for x in xyz)  # type: ignore[assignment]
     shapes: dict[str, tuple[float | None, float | None]] = {}
-    for link in root.iter("link"):
+    for link in root.findall("link"):
         found: tuple[float | None, float | None] = (None, None)
         for group in ("collision", "visual"):
             for item in link.findall(group):
@@ -225,7 +225,7 @@ def link_inertials(text: str, path: Path | None = None) -> dict[str, tuple[float
     :class:`~wheeled_dyn.errors.InputFileError` naming the URDF ``path`` and the link."""
     import pinocchio as pin
     out: dict[str, tuple[float, ...]] = {}
-    for link in ET.fromstring(text).iter("link"):
+    for link in ET.fromstring(text).findall("link"):
         inertial = link.find("inertial")
         mass = None if inertial is None else inertial.find("mass")
         if inertial is None or mass is None:

@@ -72,7 +72,7 @@ def uniform_inertials(text: str, shapes: Mapping[str, tuple[float | None, float 
     sphere or cylinder."""
     import pinocchio as pin
     out: dict[str, tuple[tuple[float, ...], str]] = {}
-    for link in ET.fromstring(text).iter("link"):
+    for link in ET.fromstring(text).findall("link"):
         name = link.get("name", "")
         element = link.find("inertial/inertia")
         radius, length = shapes.get(name, (None, None))

@@ -151,7 +151,7 @@ class UrdfSource:
                 rpy = np.array([float(x) for x in origin.get("rpy", "").split()])
                 origin.set("rpy", " ".join(repr(float(x)) for x in right_angles(rpy)))
                 _turned_exactly(inertial, origin, inertial_rotation(rpy))
-        for joint in root.iter("joint"):
+        for joint in root.findall("joint"):
             if joint.get("type") == "continuous":
                 joint.set("type", "revolute")
                 limit = joint.find("limit")

@@ -51,7 +51,7 @@ def _without_mesh(text: str, mesh: str) -> tuple[str, list[str]]:
     r"""``text`` without the ``<visual>`` elements whose mesh is ``mesh``, and their links."""
     root = ET.fromstring(text)
     links = []
-    for link in root.iter("link"):
+    for link in root.findall("link"):
         for visual in list(link.findall("visual")):
             found = visual.find("geometry/mesh")
             if found is not None and found.get("filename") == mesh:
