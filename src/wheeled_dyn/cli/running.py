@@ -88,10 +88,13 @@ def run_comparison(files: Sequence[Path], samples: int, param_sets: int, seed: i
         _known_model(item)
         if model is not None and model_key(item.model) != model_key(model):
             missing = model.endswith((".toml", ".urdf")) and not Path(model).exists()
+            urdf = model.endswith(".urdf") and not missing
             raise DerivationError(item.path, "model", f"the file describes model "
                                   f"{item.model!r}, not {model!r}" + (
                                       f" ({model} does not exist: a model file's path is "
-                                      f"taken from {Path.cwd()})" if missing else ""))
+                                      f"taken from {Path.cwd()})" if missing else "") + (
+                                      " (a URDF is no model file: 'wheeled-dyn model "
+                                      f"{model} --out MODEL.toml' writes one)" if urdf else ""))
         if item.path not in linear:
             check_model_names(item)
     for d in derivations:

@@ -8,20 +8,22 @@ truth drawn in the URDF's proportions differed from it by the rounding, 3·10⁻
 moment: beyond the comparison's tolerance of 10⁻⁷, "the document is 1.000001 × the truth".
 
 So each principal moment of a link's ``<inertia>`` (the tensor diagonal, its products of
-inertia printed zero) is compared with the moments of the uniform bodies its first cylinder
-or sphere gives (radius :math:`r`, length :math:`L`, mass :math:`m` as printed):
+inertia printed zero, printed to three significant digits or more) is compared with the
+moments of the uniform bodies its first cylinder or sphere gives (radius :math:`r`, length
+:math:`L`, mass :math:`m` as printed):
 
 .. math::
 
     \tfrac12 mr^2,\quad \tfrac1{12}m(3r^2 + L^2),\quad \tfrac1{12}mL^2\ \text{(slender)},
     \quad \tfrac25 mr^2\ \text{(ball)},
 
-and where exactly one lies within half a unit of the last digit printed, and the printed
-value is not already it, the link's moment is read as that body's (:func:`uniform_inertials`;
-where two do, as a slender rod's and a cylinder's may to four digits, it is not read). The reading
-is made only for the links a document declares uniform (``[assumes] uniform``, the families
-``uniform(link)`` and ``urdf_proportions``): their inertia is the uniform body's by
-declaration, and the URDF agrees with it to its printed digits. The report says so (a note).
+and where exactly one lies within a unit of the last digit printed (the value rounded there,
+or cut: ``"0.024645"`` for 0.0246458), and the printed value is not already it, the link's
+moment is read as that body's (:func:`uniform_inertials`; where two do, as a slender rod's
+and a thin cylinder's may, it is not read). The reading is made only for the links a
+document declares uniform (``[assumes] uniform``, the families ``uniform(link)`` and
+``urdf_proportions``): their inertia is the uniform body's by declaration, and the URDF agrees
+with it to its printed digits. The report says so (a note).
 """
 
 from __future__ import annotations
@@ -36,9 +38,9 @@ import numpy as np
 DIAGONAL, PRODUCTS = ("ixx", "iyy", "izz"), ("ixy", "ixz", "iyz")
 
 
-#: Largest half unit of the last printed digit, relative to the value, of a moment read as a
-#: uniform body's (four significant digits and more: "1e-05" tells nothing).
-DIGITS = 5e-4
+#: Largest unit of the last printed digit, relative to the value, of a moment read as a
+#: uniform body's (three significant digits and more: "1e-05" tells nothing).
+DIGITS = 1e-2
 
 
 def half_unit(text: str) -> float | None:
@@ -86,12 +88,12 @@ def uniform_inertials(text: str, shapes: Mapping[str, tuple[float | None, float 
         own = pin.Inertia.FromDynamicParameters(np.asarray(inertials[name]))
         moments, said = np.diag(own.inertia).copy(), []
         for axis, key in enumerate(DIAGONAL):
-            printed, unit = element.get(key, "0"), half_unit(element.get(key, "0"))
+            printed, half = element.get(key, "0"), half_unit(element.get(key, "0"))
             value = float(printed)
-            if unit is None or not unit <= DIGITS * abs(value):
+            if half is None or not 2 * half <= DIGITS * abs(value):
                 continue                   # too few digits to tell one body from another
-            near = [(v, f) for v, f in _candidates(own.mass, radius, length)
-                    if abs(v - value) <= unit]
+            near = [(v, f) for v, f in _candidates(own.mass, radius, length)   # rounded or
+                    if abs(v - value) <= 2 * half]                          # cut at its digits
             # one body's only (0.01067 is a 0.8 m rod's m L²/12 and its cylinder's both, to
             # four digits: no reading), and not printed exactly
             if len(near) == 1 and near[0][0] != value:
