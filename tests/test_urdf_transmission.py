@@ -52,3 +52,18 @@ def test_every_form_agrees_with_transmissions(tmp_path: Path, form: str) -> None
     result = ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(
         load_derivation(path))
     assert result.equivalent is True, [t for e in result.equations for t in e.texts]
+
+
+def test_a_urdf_given_as_the_model_is_told_how_to_make_one(tmp_path: Path) -> None:
+    r"""``compare robot.urdf doc.toml``: one error naming the derivation and saying how a model
+    file is made of the URDF (it said only that the file describes another model)."""
+    from wheeled_dyn.cli.running import run_comparison
+    from wheeled_dyn.errors import DerivationError
+    model = _arm_with_transmissions(tmp_path)
+    path = P.write(tmp_path, "arm", "equations", None)
+    path.write_text(path.read_text().replace(str(DATA / "two_link_arm.toml"), str(model)))
+    urdf = str(tmp_path / "two_link_arm.urdf")
+    with pytest.raises(DerivationError) as err:
+        run_comparison([path], 20, 1, model=urdf)
+    text = str(err.value)
+    assert path.name in text and f"wheeled-dyn model {urdf} --out MODEL.toml" in text, text
