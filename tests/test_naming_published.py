@@ -569,3 +569,30 @@ def test_inputs_left_undivided_are_the_odd_dimension_not_the_inertia(engine, tmp
     flagged = {r.element: r for r in result.records if r.verdict != "agrees"}
     assert set(flagged) == {"B[1,1]", "B[1,2]"}, {k: r.texts for k, r in flagged.items()}
     assert all(any(d.kind == K.DIMENSION for d in r.diagnoses) for r in flagged.values())
+
+
+def test_a_right_equation_is_not_blamed_for_anothers_error(engine, tmp_path):
+    r"""The cart and double pendulum of ``data/published/cart_double_pendulum_equations.toml``
+    (written for the tests) with its first equation divided by the total mass and a1 written
+    for L1 in one inertia term of the second (a1*L1 for a1**2): the second equation differs
+    and is named. The document's det A then changes sign between robots of other masses, and
+    the third equation, right and unchanged, was said "not defined for every robot of the
+    model" (the rows of a null vector there); it agrees."""
+    source = DATA / "cart_double_pendulum_equations.toml"
+    for name in ("cart_double_pendulum.toml", "cart_double_pendulum.urdf"):
+        (tmp_path / name).write_text((DATA / name).read_text())
+    text = source.read_text()
+    first = ('"L1*ddth1*m2*cos(th1) - L1*dth1**2*m2*sin(th1) + a1*ddth1*m1*cos(th1) - '
+             'a1*dth1**2*m1*sin(th1) + a2*ddth2*m2*cos(th2) - a2*dth2**2*m2*sin(th2) + ddx*m1 + '
+             'ddx*m2 + ddx*mc = u"')
+    assert text.count(first) == 1 and text.count("a1**2*ddth1*m1") == 1
+    text = text.replace(first, '"(' + first[1:-len(' = u"')] + ')/(m1 + m2 + mc) = '
+                        'u/(m1 + m2 + mc)"').replace("a1**2*ddth1*m1", "L1*a1*ddth1*m1")
+    path = tmp_path / source.name
+    path.write_text(text)
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False
+    assert [e.verdict for e in result.equations] == ["agrees", "differs", "agrees"], \
+        [t for e in result.equations for t in e.texts]
+    assert any(d.kind == K.SWAP for r in result.records if r.element == "A[2,2]"
+               for d in r.diagnoses)

@@ -157,7 +157,11 @@ def _further(funcs: DocumentFunctions, sides: Sides, doc_side: equivalence.Side,
     if changes is None or not set(changes[0]) - named:
         return second
     rows, pole = changes
-    wrong = tuple(k for k in rows if second.equations[k].verdict == Verdict.DIFFERS) or rows
+    wrong = tuple(k for k in rows if second.equations[k].verdict == Verdict.DIFFERS)
+    if not wrong and any(e.verdict == Verdict.DIFFERS for e in second.equations):
+        return second    # det A_doc changing sign may be the equation that differs already
+        #                  (a symbol for another in one inertia): a right one is not blamed
+    wrong = wrong or rows
     names = ", ".join(str(k + 1) for k in wrong)
     which = f"equations {names} are" if len(wrong) > 1 else f"equation {names} is"
     return equivalence.mark_lost(second, wrong, (
