@@ -596,3 +596,19 @@ def test_a_right_equation_is_not_blamed_for_anothers_error(engine, tmp_path):
         [t for e in result.equations for t in e.texts]
     assert any(d.kind == K.SWAP for r in result.records if r.element == "A[2,2]"
                for d in r.diagnoses)
+
+
+def test_wrong_declared_units_of_a_right_equation_are_said(engine, tmp_path):
+    r"""The arm's equations, right, with the first link's inertia declared in kg: the
+    equations agree (numbers), and the notes say the units as declared are inconsistent, in
+    which term and element (it was silent)."""
+    path = P.write(tmp_path, "arm", "equations", None)
+    text = path.read_text()
+    old = 'I1 = { value = "IYY(link1)", units = "kg*m**2" }'
+    assert text.count(old) == 1
+    path.write_text(text.replace(old, 'I1 = { value = "IYY(link1)", units = "kg" }'))
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is True
+    said = [n for n in result.notes if n.startswith("units as declared:")]
+    assert said and "term I1 is kg beside kg·m^2" in said[0] and "A[1,1]" in said[0], \
+        result.notes

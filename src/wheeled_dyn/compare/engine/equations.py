@@ -23,6 +23,20 @@ from ..records import (Diagnosis, DiagnosisKind as K, EquationRecord, Verdict, d
 from ..sides.both import Sides
 
 
+def units_notes(drafts: Sequence[ElementDraft]) -> list[str]:
+    r"""A note of the terms whose units disagree in elements that agree (numerically, their
+    equation right): a symbol's declared units are wrong (an inertia declared in kg), not its
+    equation."""
+    said: dict[str, list[str]] = {}
+    for r in drafts:
+        if r.verdict == Verdict.AGREES:
+            for x in r.diagnoses:
+                if x.kind == K.DIMENSION:
+                    said.setdefault(x.detail or x.text, []).append(r.element)
+    return [f"units as declared: {text} — {', '.join(elements)} (the equations agree: a "
+            "symbol's declared units are probably wrong)" for text, elements in said.items()]
+
+
 def _lost(d: Derivation, i: int) -> list[str]:
     return [e for e in d.missing if e.split("[")[1].split(",")[0].split("]")[0] == str(i + 1)]
 
@@ -47,9 +61,10 @@ def _reconcile(verdict: Verdict, row: Sequence[ElementDraft], error: float = flo
                                          "only the factorisation of C differs, not the "
                                          "equations")]
             elif r.verdict != Verdict.UNDECIDED:
-                r.verdict = Verdict.AGREES
-                r.diagnoses = [diagnosis(K.NOTE, "within the equation's tolerance (its "
-                                         "equation agrees)", prefix="")]
+                r.verdict = Verdict.AGREES   # its terms' units kept: a symbol's declared
+                r.diagnoses = [diagnosis(K.NOTE, "within the equation's tolerance (its "  # (kg
+                                         "equation agrees)", prefix=""),  # for an inertia)
+                               *(x for x in r.diagnoses if x.kind == K.DIMENSION)]
         return []
     if verdict == Verdict.DIFFERS and not any(
             r.verdict in (Verdict.DIFFERS, Verdict.AGREES_IF) and r.key != "C" for r in row):

@@ -40,7 +40,7 @@ from ..sides.document import DocumentFunctions
 from ..sides.elements import swap_groups
 from ..sides.evaluation import Evaluation
 from ..sides.framed import framed, row_of, row_scale
-from .equations import equation_records
+from .equations import equation_records, units_notes
 from .printing import corrected, print_drafts
 from .constraint_factors import lost_constraints
 from .deciding import decide
@@ -277,7 +277,7 @@ def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed
         functions = constants = (None,) * d.n
     notes = list(sides.notes) + [f"{e} was lost in the extracted text: not compared"
                                  for e in d.missing] + _held(grid.cs) + _off_ground(grid) \
-        + _uniform_read(grid, assumed)
+        + _uniform_read(grid, assumed) + units_notes(drafts)
     result = DerivationResult(
         path=d.path, title=d.title, model=d.model, source=dict(d.source),
         coordinates=grid.cs.name, velocities=tuple(str(v) for v in d.velocities),
