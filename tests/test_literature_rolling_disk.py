@@ -285,24 +285,21 @@ def test_a_lean_range_past_flat_is_drawn_on_the_ground(tmp_path):
                for note in result.notes), result.notes
 
 
-def test_without_ranges_the_disk_off_the_ground_is_one_error_asking_for_them(tmp_path):
+@pytest.mark.parametrize("change, said", [
+    (("ranges = { theta = [-1.3, 1.3] }\n", ""), "ranges"),          # off the ground in part
+    (('z = "r*cos(theta)"', 'z = "r*sin(theta)"'), "every drawn state"),      # everywhere
+], ids=["no-ranges", "wrong-height"])
+def test_a_map_off_the_ground_is_one_error_naming_it(tmp_path, change, said):
+    r"""Without its lean ranges (the disk sunk beyond a right angle on much of the default
+    range: asked for them), or with a centre height that is never the rim's lowest point:
+    one error naming the file and its map."""
     from wheeled_dyn.errors import DerivationError
-    path = _copy(tmp_path, ("ranges = { theta = [-1.3, 1.3] }\n", ""))
+    path = _copy(tmp_path, change)
     with pytest.raises(DerivationError) as err:
         _compare(path)
     text = str(err.value)
     assert path.name in text and "coordinates.configuration" in text, text
-    assert "off the ground" in text and "ranges" in text, text
-
-
-def test_a_centre_height_off_the_ground_is_one_error_naming_the_map(tmp_path):
-    from wheeled_dyn.errors import DerivationError
-    path = _copy(tmp_path, ('z = "r*cos(theta)"', 'z = "r*sin(theta)"'))
-    with pytest.raises(DerivationError) as err:
-        _compare(path)
-    text = str(err.value)
-    assert path.name in text and "coordinates.configuration" in text, text
-    assert "off the ground" in text and "every drawn state" in text, text
+    assert "off the ground" in text and said in text, text
 
 
 POINT_MASS = [
