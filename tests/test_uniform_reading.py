@@ -175,3 +175,14 @@ def test_three_digits_and_cut_values_are_read(printed: str) -> None:
         assert read == {}                  # the rod's and the cylinder's both within a unit
     else:
         assert "as m L²/12" in read["rod"][1]
+
+
+def test_text_that_is_no_number_is_no_reading() -> None:
+    r"""An ``rpy`` or a moment that is no number (an unexpanded xacro property, ``nan``) is
+    left to the URDF's own checks: no reading, and no error from here."""
+    text = ('<robot><link name="rod"><inertial><origin rpy="${pi} 0 0"/><mass value="0.2"/>'
+            '<inertia ixx="${i}" iyy="nan" izz="0" ixy="0" ixz="0" iyz="0"/></inertial>'
+            '</link></robot>')
+    inertials = {"rod": (0.2, 0.0, 0.0, 0.08, 0.04, 0.0, 0.04, 0.0, 0.0, 0.0)}
+    assert uniform_inertials(text, {"rod": (0.01, 0.8)}, inertials) == {}
+    assert uniform_inertials(text.replace("${pi}", "0"), {"rod": (0.01, 0.8)}, inertials) == {}

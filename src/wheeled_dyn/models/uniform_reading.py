@@ -82,15 +82,21 @@ def uniform_inertials(text: str, shapes: Mapping[str, tuple[float | None, float 
             continue
         origin = link.find("inertial/origin")
         rpy = "0 0 0" if origin is None else origin.get("rpy", "0 0 0")
-        if any(float(x) != 0.0 for x in rpy.split()) or any(
-                float(element.get(k, "0")) != 0.0 for k in PRODUCTS):
+        try:
+            turned = any(float(x) != 0.0 for x in rpy.split()) or any(
+                float(element.get(k, "0")) != 0.0 for k in PRODUCTS)
+        except ValueError:                 # not numbers: the URDF's checks say so, not this
+            continue
+        if turned:
             continue                       # its principal axes are not the tensor's axes
         own = pin.Inertia.FromDynamicParameters(np.asarray(inertials[name]))
         moments, said = np.diag(own.inertia).copy(), []
         for axis, key in enumerate(DIAGONAL):
             printed, half = element.get(key, "0"), half_unit(element.get(key, "0"))
+            if half is None:
+                continue
             value = float(printed)
-            if half is None or not 2 * half <= DIGITS * abs(value):
+            if not 2 * half <= DIGITS * abs(value):
                 continue                   # too few digits to tell one body from another
             near = [(v, f) for v, f in _candidates(own.mass, radius, length)   # rounded or
                     if abs(v - value) <= 2 * half]                          # cut at its digits
