@@ -612,3 +612,18 @@ def test_wrong_declared_units_of_a_right_equation_are_said(engine, tmp_path):
     said = [n for n in result.notes if n.startswith("units as declared:")]
     assert said and "term I1 is kg beside kg·m^2" in said[0] and "A[1,1]" in said[0], \
         result.notes
+
+
+def test_a_long_summary_line_is_cut_on_the_terminal(engine, tmp_path, capsys):
+    r"""A summary line of thousands of characters (an energy residual left unsimplified) is
+    printed cut, saying how long it is; the reports hold it whole."""
+    from dataclasses import replace
+
+    from wheeled_dyn.cli.report_output import SUMMARY_WIDTH, print_summary
+    from wheeled_dyn.compare.records import EnergyCheck
+    result = engine.compare(load_derivation(P.write(tmp_path, "arm", "equations", None)))
+    long = replace(result, energy=EnergyCheck(False, 1.0, "x*y + " * 2000))
+    print_summary([long])
+    out = capsys.readouterr().out
+    assert max(len(line) for line in out.splitlines()) <= SUMMARY_WIDTH
+    assert "(12041 characters: the reports hold it whole)" in out, out  # with its prefix

@@ -22,11 +22,19 @@ def summary_heading(r: DerivationResult) -> str:
     return f"{r.path.name} — {where}: {r.title}" if where else f"{r.path.name}: {r.title}"
 
 
+#: Longest summary line printed whole (an energy residual unsimplified ran to 10 000
+#: characters); a longer one is cut, the reports holding it whole.
+SUMMARY_WIDTH = 600
+
+
 def print_summary(results: Sequence[DerivationResult]) -> None:
     from ..report.markdown import summary_lines
     for r in results:
         print(summary_heading(r))
         for line in summary_lines(r):
+            if len(line) > SUMMARY_WIDTH:
+                line = (f"{line[:SUMMARY_WIDTH // 2]}… ({len(line)} characters: the reports "
+                        "hold it whole)")
             print(f"    {line}")
 
 
