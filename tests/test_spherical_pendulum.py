@@ -125,3 +125,20 @@ def test_trigsimp_only_on_short_expressions() -> None:
     long = sum(sp.sin(k * x + y) ** 2 / (k + sp.cos(x) ** 2) for k in range(1, 40))
     assert sp.count_ops(long) > TRIGSIMP_OPS
     assert simplify_expr(long) == long
+
+
+def test_rows_that_become_one_where_the_truth_loses_another_are_lost() -> None:
+    r"""Three equations at a state where the true first row vanishes (the truth of rank 2
+    there): a document whose second and third rows become one there, though none of them
+    vanishes, loses an equation the truth keeps — its second and third are named, not the
+    first (lost in the truth too); a document of the truth's rank there loses none."""
+    from wheeled_dyn.compare.judge.lost_at import vanishing_at
+    rng = np.random.default_rng(5)
+    X = rng.normal(size=(20, 3, 3))
+    true = X @ np.swapaxes(X, 1, 2) + 3 * np.eye(3)
+    true[0] = np.diag([0.0, 1.0, 2.0])
+    doc = true.copy()
+    doc[0] = [[0.0, 0.0, 0.0], [0.0, 1.0, 2.0], [0.0, 1.0, 2.0]]
+    assert vanishing_at(doc, true) == (1, 2)
+    doc[0] = [[0.0, 0.0, 0.0], [0.0, 1.0, 2.0], [0.0, 1.0, -2.0]]
+    assert vanishing_at(doc, true) is None
