@@ -191,7 +191,7 @@ def _solve_rows(M: np.ndarray, regular: np.ndarray, rhs: np.ndarray) -> np.ndarr
 
 #: The matrices :func:`combination_weights` solves with, by truth and replaced column, with
 #: where they are regular: every row of a document is solved with the same ones (the
-#: determinants were most of the frames' time), at most :data:`MATRICES_KEPT`.
+#: determinants were more than half of the solving time), at most :data:`MATRICES_KEPT`.
 _MATRICES: dict[tuple, tuple[tuple, np.ndarray, np.ndarray]] = {}
 MATRICES_KEPT = 32
 
