@@ -241,17 +241,21 @@ def _solved_with(engine, tmp_path, model: str, form: str, old: str, new: str) ->
 @pytest.mark.parametrize("files, old, new, named", [
     # a symbol written for another in a product of the equations it solved
     (("cart_double_pendulum",), "- L1*g*m2*sin(th1) + T", "- a1*g*m2*sin(th1) + T",
-     "Q[2] truth − document = g*m2*(L1 - a1)*sin(th1)"),
+     "Q[2]: L1 and a1, one written where the other fits (truth − document = "
+     "g*m2*(L1 - a1)*sin(th1))"),
     (("double_pendulum", "double_pendulum_solved"), "(m1*a1 + m2*L1)*g*sin(th1)",
-     "(m1*a1 + m2*a1)*g*sin(th1)", "Q[1] truth − document = g*m2*(L1 - a1)*sin(th1)"),
+     "(m1*a1 + m2*a1)*g*sin(th1)", "Q[1]: L1 and a1, one written where the other fits "
+     "(truth − document = g*m2*(L1 - a1)*sin(th1))"),
     # ... in the inertia it inverted, with as many inputs as coordinates
     (("double_pendulum", "double_pendulum_solved"), 'a12 = "m2*L1*a2*cos(th1 - th2)"',
      'a12 = "m2*a1*a2*cos(th1 - th2)"',
-     "A[1,2] truth − document = a2*m2*(L1 - a1)*cos(th1 - th2)"),
+     "A[1,2]: L1 and a1, one written where the other fits (truth − document = "
+     "a2*m2*(L1 - a1)*cos(th1 - th2))"),
     # ... and with fewer inputs (two) than coordinates (three): a symbol for another, an
     # inertia dropped, a sign (it was "no single-term diagnosis" on every solved element)
     (("cart_double_pendulum",), 'M22 = "I1 + L1**2*m2 + a1**2*m1"',
-     'M22 = "I1 + a1**2*m2 + a1**2*m1"', "A[2,2] truth − document = L1**2*m2 - a1**2*m2"),
+     'M22 = "I1 + a1**2*m2 + a1**2*m1"', "A[2,2]: L1 and a1, one written where the other "
+     "fits (truth − document = m2*(L1**2 - a1**2))"),
     (("cart_double_pendulum",), 'M22 = "I1 + L1**2*m2 + a1**2*m1"',
      'M22 = "L1**2*m2 + a1**2*m1"', "A[2,2] truth − document = I1"),
     (("cart_double_pendulum",), 'M12 = "(L1*m2 + a1*m1)*cos(th1)"',
@@ -271,6 +275,29 @@ def test_a_solved_form_names_a_symbol_for_another_and_its_inverted_inertia(
     assert named in said, said
 
 
+def test_a_gravity_term_dropped_before_solving_is_named_on_every_element_it_reaches(
+        engine, tmp_path):
+    r"""The double pendulum solved for its accelerations with link 2's gravity term left out
+    of its second equation before solving: both solved rows' gravity elements differ, each a
+    rational function of every parameter (one was "no single-term diagnosis", the other
+    named by a term of eleven factors); both now say the term as the source equation lacks
+    it."""
+    for name in ("double_pendulum.toml", "double_pendulum.urdf"):
+        (tmp_path / name).write_text((DATA / name).read_text())
+    text = (DATA / "double_pendulum_solved.toml").read_text()
+    old = " + m2*a2*g*sin(th2) + k2"
+    assert text.count(old) == 1
+    path = tmp_path / "doc.toml"
+    path.write_text(text.replace(old, " + k2"))
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False
+    flagged = {r.element: r for r in result.records if r.verdict != "agrees"}
+    assert set(flagged) == {"Q[1]", "Q[2]"}, set(flagged)
+    for r in flagged.values():
+        assert "the equations differ: Q[2] truth − document = a2*g*m2*sin(th2)" in r.texts[0], \
+            r.texts
+
+
 def test_a_solved_cart_pole_with_a_cos_for_a_sin_names_it_not_its_inertia(engine, tmp_path):
     r"""The cart-pole solved as Barto et al.'s simulation computes it, with cos written for sin
     in its gravity term: one input for two coordinates, and the gravity term alone carries
@@ -280,7 +307,8 @@ def test_a_solved_cart_pole_with_a_cos_for_a_sin_names_it_not_its_inertia(engine
     assert result.equivalent is False
     said = " ".join(t for e in result.equations for t in e.texts)
     assert "the inertia matrix the document inverted" not in said, said
-    assert "Q[2] truth − document = g*l*m*(-sin(theta) + cos(theta))" in said, said
+    assert "Q[2]: cos(theta) and sin(theta), one written where the other fits (truth − " \
+        "document = g*l*m*(-sin(theta) + cos(theta)))" in said, said
 
 
 @pytest.mark.parametrize("old, new, term", [

@@ -214,3 +214,26 @@ def test_a_mass_written_for_another_is_named_with_or_without_units(engine, tmp_p
     (record,) = [r for r in result.records if r.verdict == "differs"]
     assert record.element == "Q[2]" and record.kinds[0] == K.SWAP, record.texts
     assert record.texts[0] == "swap: M where m fits", record.texts
+
+
+#: What the arm's equations, read back before they were solved, say of each planted error.
+READ_BACK = {"sign": "h[1]:dq2*dq2: the document has the opposite sign",
+             "factor": "h[1]:dq1*dq2: the document is 1/2 × the truth",
+             "dropped": "A[1,1] truth − document = I1",
+             "swap": "A[1,1]: l1 and lc1, one written where the other fits"}
+
+
+@pytest.mark.parametrize("form", SOLVED)
+@pytest.mark.parametrize("error", P.ARM_ERRORS)
+def test_every_element_a_solved_error_reaches_names_it(engine, tmp_path, form, error):
+    r"""One planted error of the source equations reaches many elements of a solved form, each
+    a rational function of every parameter: every element flagged names it — by its own
+    diagnosis of the error's kind, or by the equations read back before solving (the term
+    as the author wrote it: "A[1,1] truth − document = I1") — none is left unnamed ("no
+    single-term diagnosis") or named only by a residual of many terms."""
+    result = engine.compare(load_derivation(P.write(tmp_path, "arm", form, error)))
+    flagged = [r for r in result.records if r.verdict not in ("agrees", "factorization")]
+    assert flagged
+    for r in flagged:
+        assert KIND[("arm", error)] in r.kinds or READ_BACK[error] in r.texts[0], \
+            (r.element, r.texts)

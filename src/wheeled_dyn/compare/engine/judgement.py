@@ -30,7 +30,7 @@ from ..judge.fitting import bases
 from ..judge.named import NAMED, name_terms, own_moments
 from ..judge.rows import drafts_of_row, row_values
 from ..judge.units import DimensionChecker
-from ..judge.unsolved import inertia_diagnoses, unsolved_terms
+from ..judge.unsolved import inertia_diagnoses, read_back, unsolved_terms
 from ..readings.describe import describe
 from ..readings.frames import Frame, FrameKind, FrameRule, evaluate_rule
 from .frames import bind_declared, choose_frames, declared_weights, id_frames, row_factors
@@ -217,6 +217,8 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
             and id_sides.doc.A is not None:
         solved = inertia_diagnoses(id_sides.doc, id_sides.truth, id_sides.B_true, found) or \
             unsolved_terms(id_sides.doc, id_sides.truth, id_sides.B_true, d.velocities, found)
+        read_back(drafts, {i for i, r in enumerate(rules) if r.kind >= FrameKind.FUNCTION},
+                  solved)
     equations = equation_records(d, decision, drafts, texts, label, grids, funcs, rules, solved)
     fixes = print_drafts(d, drafts, sides.grid.cs, texts, assumed, funcs.exprs)
     equations = corrected(d, equations, fixes)

@@ -15,7 +15,17 @@ from .fitting import EXPONENTS, _independent, _try
 
 def fit_swap(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
              ) -> sp.Expr | None:
-    r"""A monomial :math:`M` in ``bases`` times the difference of two of them,
+    r""":math:`M\,(x - y)` of :func:`swap_pair` as one expression, or None."""
+    pair = swap_pair(target, bases)
+    if pair is None:
+        return None
+    found, x, y = pair
+    return sp.Mul(found, x - y, evaluate=False) if found.is_Number else found * (x - y)
+
+
+def swap_pair(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
+              ) -> tuple[sp.Expr, sp.Expr, sp.Expr] | None:
+    r"""``(M, x, y)``: a monomial :math:`M` in ``bases`` times the difference of two of them,
     :math:`M\,(x - y)`, or of two symbols' squares, :math:`M\,(x^2 - y^2)`, equal to
     ``target`` at every sample: truth − document where the document writes :math:`y` for
     :math:`x` in one product (:math:`g m_2 (L_1 - a_1)\sin\theta_1`: the centre's distance for
@@ -43,8 +53,8 @@ def fit_swap(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
         if found is not None:             # the monomial's sign on it: g*m2*(L1 - a1)*sin(th1)
             if found.could_extract_minus_sign():
                 found, (x, y) = -found, (y, x)
-            return sp.Mul(found, x - y, evaluate=False) if found.is_Number else found * (x - y)
+            return found, x, y
     return None
 
 
-__all__ = ["fit_swap"]
+__all__ = ["fit_swap", "swap_pair"]

@@ -22,14 +22,17 @@ their equivalence.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 
 import numpy as np
 import sympy as sp
 
-from ..records import Diagnosis, DiagnosisKind as K
-from .diagnose import AGREE_TOL
+from ..records import Diagnosis, DiagnosisKind as K, Verdict, has_kind
+from .diagnose import AGREE_TOL, value_diagnoses
+from .draft import ElementDraft
 from .fitting import fit_factor, fit_sum
-from .swap_fit import fit_swap
+from .named import NAMED
+from .swap_fit import fit_swap, swap_pair
 
 
 def _fit(residual: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> sp.Expr | None:
@@ -42,6 +45,50 @@ def _fit(residual: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> s
 
 def _said(found: sp.Expr | None) -> str:
     return f"truth − document = {sp.sstr(found)}" if found is not None else "differs"
+
+
+@dataclass(frozen=True)
+class _Part:
+    r"""One entry of the equations read back before solving that differs: its ``text``,
+    ``found`` truth − document in the document's symbols (or None), and its ``kind``."""
+
+    text: str
+    found: sp.Expr | None
+    kind: K
+
+
+def _part(where: str, T: np.ndarray, D: np.ndarray, scale: float,
+          bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> _Part:
+    r"""The entry ``where`` read back, ``T`` the truth's values and ``D`` the document's: the
+    whole entry's sign, factor, absence or excess where the numbers say one
+    (:func:`~.diagnose.value_diagnoses`); one of two symbols written where the other fits in a
+    product where truth − document is :math:`M(x - y)` or :math:`M(x^2 - y^2)`
+    (:func:`~.swap_fit.swap_pair`: "l1 and lc1, one written where the other fits" says what
+    the two terms :math:`m_2l_1^2 - m_2l_{c1}^2` say; which one the author wrote, the sign of
+    :math:`M` in the source equation would tell, and the numbers do not); else the terms the
+    document lacks."""
+    found = _fit(T - D, bases)
+    whole = value_diagnoses(D, T, scale)
+    if whole:
+        said = f" ({_said(found)})" if found is not None else ""
+        return _Part(f"{where}: {whole[0].detail}{said}", found, whole[0].kind)
+    pair = swap_pair(T - D, bases) if found is None or \
+        len(sp.Add.make_args(sp.expand(found))) == 2 else None
+    if pair is not None:           # which of the two was written the numbers cannot tell
+        M, x, y = pair
+        found = sp.Mul(M, x - y, evaluate=False) if M.is_Number else M * (x - y)
+        a, b = (sp.sstr(e.base) if e.is_Pow and e.exp == 2 else sp.sstr(e) for e in (x, y))
+        return _Part(f"{where}: {a} and {b}, one written where the other fits "
+                     f"({_said(found)})", found, K.SWAP)
+    return _Part(f"{where} {_said(found)}", found, K.MISSING)
+
+
+def _diagnosis(head: str, parts: Sequence[_Part]) -> Diagnosis:
+    r"""``parts`` as one diagnosis: their kind where they share one, else ``missing``."""
+    text = "; ".join(p.text for p in parts)
+    kinds = {p.kind for p in parts}
+    return Diagnosis(kinds.pop() if len(kinds) == 1 else K.MISSING, f"{head}{text}", text,
+                     terms=tuple(sp.sstr(p.found) for p in parts if p.found is not None))
 
 
 def solved_for(row: np.ndarray) -> tuple[int, float] | None:
@@ -142,21 +189,13 @@ def inertia_diagnoses(doc, truth, true_B: np.ndarray | None,
     else:
         return None
     scale = float(np.abs(true_A).max())
-    parts, terms = [], []
-    for i in range(n):
-        for j in range(n):
-            residual = true_A[:, i, j] - M[:, i, j]
-            if np.abs(residual).max() <= AGREE_TOL * scale:
-                continue
-            fit = _fit(residual, bases)
-            parts.append(f"A[{i + 1},{j + 1}] {_said(fit)}")
-            if fit is not None:
-                terms.append(sp.sstr(fit))
+    parts = [_part(f"A[{i + 1},{j + 1}]", true_A[:, i, j], M[:, i, j], scale, bases)
+             for i in range(n) for j in range(n)
+             if np.abs(true_A[:, i, j] - M[:, i, j]).max() > AGREE_TOL * scale]
     if not parts:
         return None
-    return Diagnosis(K.MISSING, f"the inertia matrix the document inverted (read back from "
-                     f"{how}) differs from the truth's: " + "; ".join(parts), "; ".join(parts),
-                     terms=tuple(terms))
+    return _diagnosis(f"the inertia matrix the document inverted (read back from {how}) "
+                      "differs from the truth's: ", parts)
 
 
 #: Most differing entries of the equations read back before solving for them to be named
@@ -192,7 +231,7 @@ def unsolved_terms(doc, truth, true_B: np.ndarray | None, velocities: Sequence[s
     if T is None:
         return None
     n = doc.A.shape[1]
-    parts: list[tuple[str, sp.Expr | None]] = []           # (where, truth − document)
+    parts: list[_Part] = []
     if doc.B is not None and true_B is not None:
         B = np.einsum("ski,sij->skj", T, doc.B)
         if np.abs(true_B - B).max() > AGREE_TOL * max(float(np.abs(true_B).max()), 1e-300):
@@ -200,7 +239,7 @@ def unsolved_terms(doc, truth, true_B: np.ndarray | None, velocities: Sequence[s
     if doc.Q is not None and truth.Q is not None:
         Q = np.einsum("ski,si->sk", T, doc.Q)
         scale = float(np.abs(truth.Q).max())
-        parts += [(f"Q[{k + 1}]", _fit(truth.Q[:, k] - Q[:, k], bases)) for k in range(n)
+        parts += [_part(f"Q[{k + 1}]", truth.Q[:, k], Q[:, k], scale, bases) for k in range(n)
                   if np.abs(truth.Q[:, k] - Q[:, k]).max() > AGREE_TOL * scale]
     rows = truth.H_rows
     if doc.H is not None and truth.H is not None and rows is not None:
@@ -210,18 +249,32 @@ def unsolved_terms(doc, truth, true_B: np.ndarray | None, velocities: Sequence[s
         for k in range(n):
             for j in range(n):
                 for m in range(j, n):
-                    off = (truth.H[:, k, j, m] - H[:, k, j, m]) * (1 if j == m else 2)
-                    if np.abs(off).max() > AGREE_TOL * scale:
+                    both = 1 if j == m else 2
+                    t, v = truth.H[:, k, j, m] * both, H[:, k, j, m] * both
+                    if np.abs(t - v).max() > AGREE_TOL * scale:
                         product = f"{velocities[j]}*{velocities[m]}"
-                        parts.append((f"h[{k + 1}]:{product}", _fit(off, at)))
+                        parts.append(_part(f"h[{k + 1}]:{product}", t, v, scale, at))
     if not parts or len(parts) > MAX_UNSOLVED:
         return None
-    text = "; ".join(f"{where} {_said(found)}" for where, found in parts)
-    return Diagnosis(K.MISSING, "read back before it was solved (its rows times A A_doc⁻¹: "
-                     f"its inputs' coefficients are then the truth's), the equations differ: "
-                     f"{text}", text, terms=tuple(sp.sstr(found) for _, found in parts
-                                                 if found is not None))
+    return _diagnosis("read back before it was solved (its rows times A A_doc⁻¹: its inputs' "
+                      "coefficients are then the truth's), the equations differ: ", parts)
 
 
-__all__ = ["MAX_UNSOLVED", "implied_inertia", "inertia_diagnoses", "solved_for",
+def read_back(drafts: Sequence[ElementDraft], rows: set[int], found: Diagnosis | None) -> None:
+    r"""``found`` (:func:`inertia_diagnoses` or :func:`unsolved_terms`: the document's
+    equations read back before it solved or combined them) said first on each element of
+    those ``rows`` (divided by a function or combined) that differs and that no diagnosis
+    names yet (no sign, factor, swap ...): one wrong term of the source
+    equations lands in every solved element it reaches, in a rational function of every
+    parameter, and is named where the author wrote it. An explanation only: no verdict
+    changes."""
+    if found is None:
+        return
+    for r in drafts:
+        if r.row in rows and r.verdict == Verdict.DIFFERS and r.key != "C" \
+                and not has_kind(r.diagnoses, *NAMED, K.FACTOR):
+            r.diagnoses.insert(0, found)
+
+
+__all__ = ["MAX_UNSOLVED", "implied_inertia", "inertia_diagnoses", "read_back", "solved_for",
            "unsolved_terms"]
