@@ -257,7 +257,8 @@ def _solved_with(engine, tmp_path, model: str, form: str, old: str, new: str) ->
      'M22 = "I1 + a1**2*m2 + a1**2*m1"', "A[2,2]: L1 and a1, one written where the other "
      "fits (truth − document = m2*(L1**2 - a1**2))"),
     (("cart_double_pendulum",), 'M22 = "I1 + L1**2*m2 + a1**2*m1"',
-     'M22 = "L1**2*m2 + a1**2*m1"', "A[2,2] truth − document = I1"),
+     'M22 = "L1**2*m2 + a1**2*m1"', "A[2,2]: the moment of inertia Iyy(link1) about its own "
+     "centre of mass is missing, a point mass (truth − document = I1)"),
     (("cart_double_pendulum",), 'M12 = "(L1*m2 + a1*m1)*cos(th1)"',
      'M12 = "(L1*m2 - a1*m1)*cos(th1)"', "A[1,2] truth − document = 2*a1*m1*cos(th1)"),
 ])

@@ -219,7 +219,8 @@ def test_a_mass_written_for_another_is_named_with_or_without_units(engine, tmp_p
 #: What the arm's equations, read back before they were solved, say of each planted error.
 READ_BACK = {"sign": "h[1]:dq2*dq2: the document has the opposite sign",
              "factor": "h[1]:dq1*dq2: the document is 1/2 × the truth",
-             "dropped": "A[1,1] truth − document = I1",
+             "dropped": "A[1,1]: the moment of inertia Iyy(link1) about its own centre of mass "
+                        "is missing, a point mass (truth − document = I1)",
              "swap": "A[1,1]: l1 and lc1, one written where the other fits"}
 
 

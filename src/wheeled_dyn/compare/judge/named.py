@@ -78,8 +78,8 @@ def own_moments(values: Sequence[Mapping[str, float]], states: int, parallel: bo
     return out
 
 
-def _point_mass(residual: np.ndarray, moments: Mapping[str, np.ndarray],
-                bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> tuple[str, sp.Expr] | None:
+def point_mass_fit(residual: np.ndarray, moments: Mapping[str, np.ndarray],
+                   bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> tuple[str, sp.Expr] | None:
     r"""``(moment name(s), multiplier)`` with :math:`\Delta` = multiplier × moment(s); the
     multiplier a simple rational, or a monomial in ``bases`` (the document's lengths and
     positions: geometry, never another inertia)."""
@@ -272,8 +272,8 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
                                                              1e-300):
             continue                          # agrees on these sets (a family's condition)
         own = residual if not factors or r.row not in factors else residual / factors[r.row]
-        hit = _point_mass(own, moments, lengths) if r.key == "A" else None
-        steiner = _point_mass(own, parallel, lengths) if r.key == "A" and parallel else None
+        hit = point_mass_fit(own, moments, lengths) if r.key == "A" else None
+        steiner = point_mass_fit(own, parallel, lengths) if r.key == "A" and parallel else None
         if steiner is not None and steiner[1] == 1 and (hit is None or hit[1] != 1):
             _parallel_axis(r, steiner[0], _plainest(fit_factor(residual, bases), bases))
             continue

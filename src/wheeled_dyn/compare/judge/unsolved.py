@@ -21,7 +21,7 @@ their equivalence.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -31,7 +31,7 @@ from ..records import Diagnosis, DiagnosisKind as K, Verdict, has_kind
 from .diagnose import AGREE_TOL, value_diagnoses
 from .draft import ElementDraft
 from .fitting import fit_factor, fit_sum
-from .named import NAMED
+from .named import NAMED, own_moments, point_mass_fit
 from .swap_fit import fit_swap, swap_pair
 
 
@@ -58,20 +58,26 @@ class _Part:
 
 
 def _part(where: str, T: np.ndarray, D: np.ndarray, scale: float,
-          bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> _Part:
+          bases: Sequence[tuple[sp.Expr, np.ndarray]],
+          moments: Mapping[str, np.ndarray] | None = None) -> _Part:
     r"""The entry ``where`` read back, ``T`` the truth's values and ``D`` the document's: the
     whole entry's sign, factor, absence or excess where the numbers say one
     (:func:`~.diagnose.value_diagnoses`); one of two symbols written where the other fits in a
     product where truth − document is :math:`M(x - y)` or :math:`M(x^2 - y^2)`
     (:func:`~.swap_fit.swap_pair`: "l1 and lc1, one written where the other fits" says what
     the two terms :math:`m_2l_1^2 - m_2l_{c1}^2` say; which one the author wrote, the sign of
-    :math:`M` in the source equation would tell, and the numbers do not); else the terms the
-    document lacks."""
+    :math:`M` in the source equation would tell, and the numbers do not); a body's own moment
+    about its centre of mass where truth − document is exactly one of ``moments``
+    (:func:`~.named.own_moments`: a point mass); else the terms the document lacks."""
     found = _fit(T - D, bases)
     whole = value_diagnoses(D, T, scale)
     if whole:
         said = f" ({_said(found)})" if found is not None else ""
         return _Part(f"{where}: {whole[0].detail}{said}", found, whole[0].kind)
+    hit = point_mass_fit(T - D, moments, ()) if moments else None
+    if hit is not None and hit[1] == 1:
+        return _Part(f"{where}: the moment of inertia {hit[0]} about its own centre of mass is "
+                     f"missing, a point mass ({_said(found)})", found, K.POINT_MASS)
     pair = swap_pair(T - D, bases) if found is None or \
         len(sp.Add.make_args(sp.expand(found))) == 2 else None
     if pair is not None:           # which of the two was written the numbers cannot tell
@@ -163,13 +169,16 @@ def source_weights(doc, truth, true_B: np.ndarray | None) -> tuple[np.ndarray, n
     return W, rows
 
 
-def inertia_diagnoses(doc, truth, true_B: np.ndarray | None,
-                      bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> Diagnosis | None:
+def inertia_diagnoses(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> Diagnosis | None:
     r"""The elements of the document's own inertia matrix (read back from its inputs,
     module text; where its inputs are fewer than its coordinates, from its inputs, gravity
-    and velocity terms, :func:`source_weights`) that differ from the truth's, named; None
-    when all agree or it cannot be read back."""
+    and velocity terms, :func:`source_weights`) that differ from the truth's, named (a
+    link's own moment missing: a point mass); None when all agree or it cannot be read back.
+    ``sides``: both sides on a grid (:class:`~..sides.both.Sides`)."""
+    doc, truth, true_B = sides.doc, sides.truth, sides.B_true
     doc_A, true_A = doc.A, truth.need("A")
+    sets = [ps.values for ps in sides.grid.sets]
+    moments = own_moments(sets, len(true_A) // max(len(sets), 1))
     n = doc_A.shape[1]
     if doc.B is None or true_B is None or not np.isfinite(doc_A).all():
         return None
@@ -184,12 +193,13 @@ def inertia_diagnoses(doc, truth, true_B: np.ndarray | None,
         except np.linalg.LinAlgError:
             return None
         true_A, bases = true_A[rows], [(e, v[rows]) for e, v in bases]
+        moments = {name: v[rows] for name, v in moments.items()}
         how = ("its inputs', gravity and velocity terms' coefficients: W [B Q H] = "
                "[B_doc Q_doc H_doc], M = W⁻¹ A_doc")
     else:
         return None
     scale = float(np.abs(true_A).max())
-    parts = [_part(f"A[{i + 1},{j + 1}]", true_A[:, i, j], M[:, i, j], scale, bases)
+    parts = [_part(f"A[{i + 1},{j + 1}]", true_A[:, i, j], M[:, i, j], scale, bases, moments)
              for i in range(n) for j in range(n)
              if np.abs(true_A[:, i, j] - M[:, i, j]).max() > AGREE_TOL * scale]
     if not parts:
