@@ -48,14 +48,15 @@ x, th, dx, dth, ddx, ddth, F = sp.symbols("x theta dx dtheta ddx ddtheta F", rea
 M, m, l = sp.symbols("M m l", real=True)
 
 #: Planted errors of the arm (in its first equation and in d11) and of the cart-pole.
-ARM_ERRORS = ("sign", "factor", "dropped", "swap")
+ARM_ERRORS = ("sign", "factor", "dropped", "swap", "gravity")
 POLE_ERRORS = ("point_mass", "sign", "dropped", "trig")
 
 
 def arm(error: str | None = None) -> tuple[sp.Matrix, sp.Matrix, sp.Matrix]:
     r"""(D, c, φ) of the arm, with the planted ``error``: the sign of :math:`h\dot q_2^2`, the
     factor 2 of :math:`2h\dot q_1\dot q_2` lost, :math:`I_1` dropped from :math:`d_{11}`,
-    :math:`l_{c1}` written for :math:`l_1` in :math:`m_2l_1^2`; ``point_mass2``: :math:`I_2`
+    :math:`l_{c1}` written for :math:`l_1` in :math:`m_2l_1^2`, link 2's gravity term left out
+    of the second equation (``gravity``); ``point_mass2``: :math:`I_2`
     dropped from every element (link 2 taken as a point mass)."""
     l1_sq = lc1 ** 2 if error == "swap" else l1 ** 2
     own = 0 if error == "point_mass2" else I2          # link 2 a point mass: I2 everywhere
@@ -68,7 +69,7 @@ def arm(error: str | None = None) -> tuple[sp.Matrix, sp.Matrix, sp.Matrix]:
         * dq2 ** 2
     c2 = -h * dq1 ** 2
     phi1 = (m1 * lc1 + m2 * l1) * g * sp.cos(q1) + m2 * lc2 * g * sp.cos(q1 + q2)
-    phi2 = m2 * lc2 * g * sp.cos(q1 + q2)
+    phi2 = 0 if error == "gravity" else m2 * lc2 * g * sp.cos(q1 + q2)
     return sp.Matrix([[d11, d12], [d12, d22]]), sp.Matrix([c1, c2]), sp.Matrix([phi1, phi2])
 
 

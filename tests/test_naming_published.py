@@ -299,6 +299,62 @@ def test_a_gravity_term_dropped_before_solving_is_named_on_every_element_it_reac
             r.texts
 
 
+def _acrobot(tmp_path: Path, old: str, new: str):
+    r"""The acrobot solved as simulation code does (``data/published/acrobot_simulation.toml``,
+    Tedrake's equations, written for the tests) with ``old`` planted as ``new``, compared."""
+    for name in ("acrobot.toml", "acrobot.urdf"):
+        (tmp_path / name).write_text((DATA / name).read_text())
+    text = (DATA / "acrobot_simulation.toml").read_text()
+    assert text.count(old) == 1, old
+    path = tmp_path / "doc.toml"
+    path.write_text(text.replace(old, new))
+    return ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(load_derivation(path))
+
+
+def test_a_term_dropped_before_solving_is_not_a_term_too_many(tmp_path):
+    r"""The acrobot's second equation without link 2's gravity term, then solved (one input
+    for two coordinates): in the solved frame the element shows terms the document has "too
+    much", and the cause was "a term the truth does not have"; the equations read back before
+    solving say the term it lacks, and that is the cause."""
+    result = _acrobot(tmp_path, " - g*lc2*m2*(I1 + I2 + l1**2*m2 + 2*l1*lc2*m2*cos(q2))*"
+                      "sin(q1 + q2)", "")
+    assert result.equivalent is False
+    q2 = next(r for r in result.records if r.element == "Q[2]")
+    assert "Q[2]: the document has 0 (truth − document = g*lc2*m2*sin(q1 + q2))" in \
+        q2.texts[0], q2.texts
+    causes = {c.explanation: c.elements for c in result.causes if c.kind == "missing_physics"}
+    assert "Q[2]" in causes.get("a term the document leaves out", ()), causes
+    assert "a term the truth does not have" not in causes, causes
+
+
+def test_a_divisor_printed_with_the_error_names_it_before_the_division(tmp_path):
+    r"""The acrobot's first equation written out and divided by its own diagonal inertia,
+    with lc1 written for l1 in it (and so in the divisor): every element but the
+    acceleration's own agrees in the frame of that divisor, and the one left differing is
+    a ratio of two inertias; taken back before the division it is the swap."""
+    for name in ("acrobot.toml", "acrobot.urdf"):
+        (tmp_path / name).write_text((DATA / name).read_text())
+    text = (DATA / "acrobot_simulation.toml").read_text()
+    d11 = "(I1 + I2 + lc1**2*m2 + 2*l1*lc2*m2*cos(q2))"
+    first = (f"ddq1 + (I2 + l1*lc2*m2*cos(q2))*ddq2/{d11} + (-2*dq1*dq2*l1*lc2*m2*sin(q2) - "
+             f"dq2**2*l1*lc2*m2*sin(q2) + g*lc1*m1*sin(q1) + g*m2*(l1*sin(q1) + lc2*sin(q1 + "
+             f"q2)))/{d11} = 0")
+    second = ("I2*ddq2 + (I2 + l1*lc2*m2*cos(q2))*ddq1 + dq1**2*l1*lc2*m2*sin(q2) + "
+              "g*lc2*m2*sin(q1 + q2) = u")
+    head = text[:text.index("[matrices]")]
+    path = tmp_path / "doc.toml"
+    path.write_text(head + f'[matrices]\nequations = [\n  "{first}",\n  "{second}"\n]\n')
+    result = ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(
+        load_derivation(path))
+    assert result.equivalent is False
+    flagged = {r.element: r for r in result.records if r.verdict != "agrees"}
+    assert set(flagged) == {"A[1,1]"}, set(flagged)
+    record = flagged["A[1,1]"]
+    assert record.kinds[0] == K.SWAP, record.texts
+    assert "before the document divided its equation by its own quantity: l1 and lc1, one " \
+        "written where the other fits" in record.texts[0], record.texts
+
+
 def test_a_solved_cart_pole_with_a_cos_for_a_sin_names_it_not_its_inertia(engine, tmp_path):
     r"""The cart-pole solved as Barto et al.'s simulation computes it, with cos written for sin
     in its gravity term: one input for two coordinates, and the gravity term alone carries

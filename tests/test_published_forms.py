@@ -35,7 +35,7 @@ POLE_FORMS = ("equations", "divided", "solved", "kane")
 SOLVED = ("solved", "simulation")
 #: The diagnosis kind that names each planted error.
 KIND = {("arm", "sign"): K.SIGN, ("arm", "factor"): K.FACTOR,
-        ("arm", "dropped"): K.POINT_MASS, ("arm", "swap"): K.SWAP,
+        ("arm", "dropped"): K.POINT_MASS, ("arm", "swap"): K.SWAP, ("arm", "gravity"): K.MISSING,
         ("pole", "point_mass"): K.POINT_MASS, ("pole", "sign"): K.SIGN,
         ("pole", "dropped"): K.MISSING, ("pole", "trig"): K.SWAP}
 
@@ -221,7 +221,8 @@ READ_BACK = {"sign": "h[1]:dq2*dq2: the document has the opposite sign",
              "factor": "h[1]:dq1*dq2: the document is 1/2 × the truth",
              "dropped": "A[1,1]: the moment of inertia Iyy(link1) about its own centre of mass "
                         "is missing, a point mass (truth − document = I1)",
-             "swap": "A[1,1]: l1 and lc1, one written where the other fits"}
+             "swap": "A[1,1]: l1 and lc1, one written where the other fits",
+             "gravity": "Q[2]: the document has 0 (truth − document = g*lc2*m2*cos(q1 + q2))"}
 
 
 @pytest.mark.parametrize("form", SOLVED)

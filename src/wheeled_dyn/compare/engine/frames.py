@@ -18,6 +18,7 @@ import sympy as sp
 from ...derivations.schema import Derivation
 from ..judge.equivalence import EquationDecision, SystemDecision
 from ..judge.fitting import bases, fit_factor
+from ..judge.unsolved import read_back_explains
 from ..readings.frame_choice import choose, elements_of, score, solved_row
 from ..readings.frames import (Frame, FrameKind, FrameRule, candidate_rules,
                                combination_variants, evaluate_rule)
@@ -47,6 +48,8 @@ def choose_frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], d
         return fit_factor(ratio[rows], found) is not None
     declared_scale = None
     on = [(s.doc, s.truth, s.B_true) for s in grids]
+    read_back = decision is not None and not decision.equivalent and \
+        read_back_explains(main.doc, main.truth, main.B_true)
     for i in range(d.n):
         right = decision is not None and decision.equations[i].verdict == Verdict.AGREES
         has_declared = d.row_scale is not None
@@ -59,11 +62,14 @@ def choose_frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], d
             frames.append(_always(i, rule, main, declared_scale))
             continue
         rules_i = candidate_rules(i, on, False, simple)
+        if read_back:      # the equations read back name the error: A_doc,i A⁻¹ is the form's
+            rules_i = [replace(r, identified=True) if r.kind == FrameKind.COMBINATION
+                       and r.variant is None else r for r in rules_i]
         totals: dict[FrameRule, int] = {}
         rule = choose(i, rules_i, on, has_declared and not right, right, totals)
         if not right and not has_declared and not solved_row(main.doc, i) \
                 and _differing(i, rule, main) > d.n:     # a solved row's form is its frame
-            rule = choose(i, rules_i + combination_variants(on), on, False, totals=totals)
+            rule = choose(i, rules_i + combination_variants(on, i), on, False, totals=totals)
         evaluated = evaluate_rule(i, rule, main.doc, main.truth, main.doc.B, main.B_true,
                                   declared_scale)
         if evaluated is not None and solved_row(main.doc, i):

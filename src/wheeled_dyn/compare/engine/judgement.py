@@ -22,7 +22,7 @@ from ..causes.frames import frame_causes
 from ..grid.assumptions import Assumptions, declared, undeclared_cases
 from ..judge import families
 from ..judge.consistency import consistent_cases, contradiction_causes
-from ..judge.document_checks import asymmetry, constraint_problems, constraint_rows, energy_check
+from ..judge.document_checks import constraint_problems, constraint_rows
 from ..judge.draft import ElementDraft
 from ..judge.element import Trials, judge
 from ..judge.factorization import factorization
@@ -44,6 +44,7 @@ from .equations import equation_records, units_notes
 from .printing import corrected, print_drafts
 from .constraint_factors import lost_constraints
 from .deciding import decide
+from .own_checks import own_checks
 
 #: Smaller grid used to test special parameter families: states per set, sets.
 SPECIAL_SAMPLES, SPECIAL_SETS = 40, 2
@@ -260,10 +261,7 @@ def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed
     if len(scales) != d.n:
         scales = np.ones(d.n)
     no_factor = (None,) * d.n
-    diagonal = _diagonal(d, texts, rules)
-    energy = None if diagonal is None else energy_check(
-        funcs, sides.doc, diagonal, grid.flat_q, grid.flat_nu, sides.values, d)
-    own = _unscaled(sides.doc, frames, rules)
+    energy, asymmetric = own_checks(d, funcs, sides, texts, rules, frames)
     ev = Evaluation(funcs=funcs, doc=sides.doc, truth=sides.truth, B_true=sides.B_true,
                     scales=scales, q=grid.flat_q, nu=grid.flat_nu, values=sides.values,
                     row_factor=no_factor, kind=grid.cs.kind)
@@ -284,8 +282,7 @@ def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed
         path=d.path, title=d.title, model=d.model, source=dict(d.source),
         coordinates=grid.cs.name, velocities=tuple(str(v) for v in d.velocities),
         form=d.form, records=tuple(r.freeze() for r in drafts), row_factors=constants,
-        energy=energy, asymmetric=() if own is None or own.A is None else asymmetry(
-            own, _sizes(own.A), d.n, sides.truth.A, sides.doc.A),
+        energy=energy, asymmetric=asymmetric,
         constraints=constraint_rows(sides.doc, sides.truth, scales),
         reconstructed=dict(d.reconstructed), samples=grid.q.shape[1],
         parameter_sets=len(grid.sets), notes=tuple(notes), assumes=assumed.describe(),
@@ -332,48 +329,6 @@ def _off_ground(grid) -> list[str]:
             "flat there (its centre's height is the rim's lowest point above the ground only "
             "within a part of the positions' range; [coordinates] ranges says where the "
             "document's coordinates hold)"]
-
-
-def _diagonal(d: Derivation, texts, rules) -> list[sp.Expr] | None:
-    r"""Each row's factor of the true equation when every row is the true one times a factor
-    (symbolic, identified), else None: the document's own checks (energy) read it so."""
-    out = []
-    for i, (t, r) in enumerate(zip(texts, rules)):
-        if r.kind == FrameKind.IDENTITY:
-            out.append(sp.Integer(1))
-        elif r.kind == FrameKind.DECLARED and d.row_scale is not None:
-            out.append(d.row_scale[i])
-        elif r.kind in (FrameKind.CONSTANT, FrameKind.FUNCTION) and r.partner == i \
-                and t.factor is not None:
-            out.append(t.factor)
-        else:
-            return None
-    return out
-
-
-def _unscaled(doc, frames, rules):
-    r"""The document's arrays with each row divided by its factor per sample, when every row
-    is the true one times a factor; None otherwise (its A's symmetry and definiteness are
-    then not judged: a solved or combined form has neither)."""
-    from ..grid.arrays import Arrays
-    factors = []
-    for i, (f, r) in enumerate(zip(frames, rules)):
-        if r.kind not in (FrameKind.IDENTITY, FrameKind.DECLARED, FrameKind.CONSTANT,
-                          FrameKind.FUNCTION) or r.partner not in (i, -1):
-            return None
-        factors.append(f.weights[:, i])
-    c = np.stack(factors, axis=1)
-    if doc.A is None:
-        return doc
-    with np.errstate(all="ignore"):
-        return Arrays(A=doc.A / c[:, :, None])
-
-
-def _sizes(A: np.ndarray) -> np.ndarray:
-    r"""Each row's largest finite magnitude (1 for a row with none)."""
-    finite = np.where(np.isfinite(A), np.abs(A), 0.0)
-    size = finite.max(axis=(0, 2))
-    return np.where(size > 0, size, 1.0)
 
 
 def _combination(texts, rules, frames, n: int) -> tuple[tuple[str, ...], ...]:

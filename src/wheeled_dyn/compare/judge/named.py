@@ -32,6 +32,7 @@ from ..records import Diagnosis, DiagnosisKind as K, Verdict, diagnosis, has_kin
 from .diagnose import nice_number
 from .draft import ElementDraft
 from .fitting import RATIO_TOL, fit_factor, fit_sum
+from .swap_fit import swap_pair
 
 #: Diagnoses after which no term is named (the error is named already); a constant factor
 #: may still be a point mass's (m l² for the uniform rod's m l²/3 is "factor 3/4").
@@ -301,6 +302,9 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
             if np.abs(residual).min() > 0 else None
         found = found if found is not None else fit_sum(residual, bases)
         if found is None:
+            before = _undivided(own, bases) if own is not residual else None
+            if before is not None:
+                r.diagnoses.insert(0, before)
             continue
         written_wrong = _written_term(found, r.expr) if r.expr is not None else None
         if written_wrong is not None:
@@ -316,4 +320,29 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
                                      prefix="terms", terms=tuple(sp.sstr(t) for t in parts)))
 
 
-__all__ = ["AXES", "NAMED", "name_terms", "own_moments"]
+def _undivided(before: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
+               ) -> Diagnosis | None:
+    r"""Truth − document of a row the document divided by a function of the state, taken back
+    before that division (``before``: the residual over the row's factor), named where it is
+    a monomial, a sum of two, or :math:`M(x - y)` — one of two symbols written where the other
+    fits (a divisor printed with :math:`l_{c1}^2` for :math:`l_1^2` divides every element by
+    it, and only the element it leaves differing shows the error, as a ratio of two
+    inertias); None otherwise."""
+    found = fit_factor(before, bases) if np.abs(before).min() > 0 else None
+    found = found if found is not None else fit_sum(before, bases)
+    pair = swap_pair(before, bases) if found is None or \
+        len(sp.Add.make_args(sp.expand(found))) == 2 else None
+    head = "before the document divided its equation by its own quantity: "
+    if pair is not None:            # which of the two was written the numbers cannot tell
+        M, x, y = pair
+        found = sp.Mul(M, x - y, evaluate=False) if M.is_Number else M * (x - y)
+        a, b = (sp.sstr(e.base) if e.is_Pow and e.exp == 2 else sp.sstr(e) for e in (x, y))
+        return diagnosis(K.SWAP, f"{head}{a} and {b}, one written where the other fits (truth "
+                         f"− document = {sp.sstr(found)})", terms=(sp.sstr(found),))
+    if found is None:
+        return None
+    return diagnosis(K.MISSING, f"{head}truth − document = {sp.sstr(found)}", prefix="terms",
+                     terms=tuple(sp.sstr(t) for t in sp.Add.make_args(sp.expand(found))))
+
+
+__all__ = ["AXES", "NAMED", "name_terms", "own_moments", "point_mass_fit"]

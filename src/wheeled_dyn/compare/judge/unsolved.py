@@ -225,6 +225,44 @@ def _undo(true_A: np.ndarray, doc_A: np.ndarray) -> np.ndarray | None:
         return None
 
 
+def _entries(doc, truth, true_B: np.ndarray | None, velocities: Sequence[sp.Symbol] = ()
+             ) -> list[tuple[str, np.ndarray, np.ndarray, float, bool]] | None:
+    r"""The entries of the document's equations read back before it solved or combined them
+    (its rows times :math:`AA_{doc}^{-1}`) that differ from the truth's: (where, truth,
+    document, scale, on ``H_rows``); None where it cannot be read back or its inputs'
+    coefficients then differ from the truth's (the inertia it inverted is not the truth's)."""
+    if doc.A is None or truth.A is None or not np.isfinite(doc.A).all():
+        return None
+    T = _undo(truth.A, doc.A)
+    if T is None:
+        return None
+    n = doc.A.shape[1]
+    out = []
+    if doc.B is not None and true_B is not None:
+        B = np.einsum("ski,sij->skj", T, doc.B)
+        if np.abs(true_B - B).max() > AGREE_TOL * max(float(np.abs(true_B).max()), 1e-300):
+            return None
+    if doc.Q is not None and truth.Q is not None:
+        Q = np.einsum("ski,si->sk", T, doc.Q)
+        scale = float(np.abs(truth.Q).max())
+        out += [(f"Q[{k + 1}]", truth.Q[:, k], Q[:, k], scale, False) for k in range(n)
+                if np.abs(truth.Q[:, k] - Q[:, k]).max() > AGREE_TOL * scale]
+    rows = truth.H_rows
+    if doc.H is not None and truth.H is not None and rows is not None:
+        H = np.einsum("ski,sijl->skjl", T[rows], doc.H)
+        scale = float(np.abs(truth.H).max())
+        for k in range(n):
+            for j in range(n):
+                for m in range(j, n):
+                    both = 1 if j == m else 2
+                    t, v = truth.H[:, k, j, m] * both, H[:, k, j, m] * both
+                    if np.abs(t - v).max() > AGREE_TOL * scale:
+                        product = (f"{velocities[j]}*{velocities[m]}" if velocities
+                                   else f"{j},{m}")
+                        out.append((f"h[{k + 1}]:{product}", t, v, scale, True))
+    return out
+
+
 def unsolved_terms(doc, truth, true_B: np.ndarray | None, velocities: Sequence[sp.Symbol],
                    bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> Diagnosis | None:
     r"""A document solved for its accelerations (or its rows combined), read back before it
@@ -235,46 +273,39 @@ def unsolved_terms(doc, truth, true_B: np.ndarray | None, velocities: Sequence[s
     symbols (a sign in one h term changed all three solved rows, and none was named); where
     its inputs' coefficients differ too or more than :data:`MAX_UNSOLVED` entries do, the
     inertia it inverted is not the truth's and nothing is said here."""
-    if doc.A is None or truth.A is None or not np.isfinite(doc.A).all():
+    entries = _entries(doc, truth, true_B, velocities)
+    if not entries or len(entries) > MAX_UNSOLVED:
         return None
-    T = _undo(truth.A, doc.A)
-    if T is None:
-        return None
-    n = doc.A.shape[1]
-    parts: list[_Part] = []
-    if doc.B is not None and true_B is not None:
-        B = np.einsum("ski,sij->skj", T, doc.B)
-        if np.abs(true_B - B).max() > AGREE_TOL * max(float(np.abs(true_B).max()), 1e-300):
-            return None
-    if doc.Q is not None and truth.Q is not None:
-        Q = np.einsum("ski,si->sk", T, doc.Q)
-        scale = float(np.abs(truth.Q).max())
-        parts += [_part(f"Q[{k + 1}]", truth.Q[:, k], Q[:, k], scale, bases) for k in range(n)
-                  if np.abs(truth.Q[:, k] - Q[:, k]).max() > AGREE_TOL * scale]
     rows = truth.H_rows
-    if doc.H is not None and truth.H is not None and rows is not None:
-        H = np.einsum("ski,sijl->skjl", T[rows], doc.H)
-        scale = float(np.abs(truth.H).max())
-        at = [(e, v[rows]) for e, v in bases]
-        for k in range(n):
-            for j in range(n):
-                for m in range(j, n):
-                    both = 1 if j == m else 2
-                    t, v = truth.H[:, k, j, m] * both, H[:, k, j, m] * both
-                    if np.abs(t - v).max() > AGREE_TOL * scale:
-                        product = f"{velocities[j]}*{velocities[m]}"
-                        parts.append(_part(f"h[{k + 1}]:{product}", t, v, scale, at))
-    if not parts or len(parts) > MAX_UNSOLVED:
-        return None
+    at = [(e, v[rows]) for e, v in bases] if rows is not None else []
+    parts = [_part(where, t, v, scale, at if on_rows else bases)
+             for where, t, v, scale, on_rows in entries]
     return _diagnosis("read back before it was solved (its rows times A A_doc⁻¹: its inputs' "
                       "coefficients are then the truth's), the equations differ: ", parts)
+
+
+def read_back_explains(doc, truth, true_B: np.ndarray | None) -> bool:
+    r"""Whether the document's equations, read back before it solved or combined them
+    (:func:`unsolved_terms`), are the truth's with its inputs' coefficients and all but one
+    to :data:`MAX_UNSOLVED` of their other entries: then each row is :math:`A_{doc,i}A^{-1}`
+    of such equations, a combination the form says (its inputs, stated, confirm it)."""
+    if doc.B is None or true_B is None or not np.abs(true_B).max(initial=0.0) > 0:
+        return False
+    entries = _entries(doc, truth, true_B)
+    return entries is not None and 0 < len(entries) <= MAX_UNSOLVED
+
+
+#: An element's own diagnoses that name its error where the document solved or combined its
+#: equations (its terms "too much" or missing in that frame do not: a term dropped before
+#: solving shows there as terms the document has too much).
+STRONG = tuple(k for k in (*NAMED, K.FACTOR) if k != K.EXTRA)
 
 
 def read_back(drafts: Sequence[ElementDraft], rows: set[int], found: Diagnosis | None) -> None:
     r"""``found`` (:func:`inertia_diagnoses` or :func:`unsolved_terms`: the document's
     equations read back before it solved or combined them) said first on each element of
     those ``rows`` (divided by a function or combined) that differs and that no diagnosis
-    names yet (no sign, factor, swap ...): one wrong term of the source
+    names yet (none of :data:`STRONG`): one wrong term of the source
     equations lands in every solved element it reaches, in a rational function of every
     parameter, and is named where the author wrote it. An explanation only: no verdict
     changes."""
@@ -282,9 +313,9 @@ def read_back(drafts: Sequence[ElementDraft], rows: set[int], found: Diagnosis |
         return
     for r in drafts:
         if r.row in rows and r.verdict == Verdict.DIFFERS and r.key != "C" \
-                and not has_kind(r.diagnoses, *NAMED, K.FACTOR):
+                and not has_kind(r.diagnoses, *STRONG):
             r.diagnoses.insert(0, found)
 
 
-__all__ = ["MAX_UNSOLVED", "implied_inertia", "inertia_diagnoses", "read_back", "solved_for",
-           "unsolved_terms"]
+__all__ = ["MAX_UNSOLVED", "STRONG", "implied_inertia", "inertia_diagnoses", "read_back",
+           "read_back_explains", "solved_for", "unsolved_terms"]
