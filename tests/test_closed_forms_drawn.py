@@ -26,9 +26,12 @@ from wheeled_dyn.symbolic.parameters import PARAMETER_NAMES
 
 DATA = Path(__file__).parent / "data"
 #: (model, coordinate set): a planar model on its wheels (the tree's forms in R, L), a
-#: fixed-base arm (its joint offsets drawn), a free body.
+#: fixed-base arm (its joint offsets drawn), an arm whose elbow sits on a bracket fixed to the
+#: first link at a drawn distance (its fixed joint's origin was a number in the closed forms),
+#: a free body.
 CASES = [(str(DATA / "ros_balancer" / "ros_balancer.toml"), "heading"),
          (str(DATA / "published" / "two_link_arm.toml"), None),
+         (str(DATA / "published" / "fixed_clamp_arm.toml"), None),
          ("free_body", None)]
 SETS, STATES, SEED = 3, 4, 20261127
 #: Agreement of closed form and Pinocchio, relative to the largest element of the matrix.

@@ -32,20 +32,65 @@ def length_symbols(wm: WheeledModel) -> dict[str, sp.Expr]:
 def translations(wm: WheeledModel, lengths: Mapping[str, sp.Expr]) -> dict | None:
     r"""The joint placements' translations in the drawn lengths: for a moving joint of parent
     link frame :math:`(R_p, p_p)` in its parent joint, :math:`p_p + R_p\,t` with :math:`t` its
-    origin (symbols where drawn); None where every one is a number."""
+    origin (symbols where drawn) and :math:`p_p` through the origins of the fixed joints
+    between (:func:`_frame_translation`: a link clamped at a drawn distance moves the joint
+    after it); None where every one is a number."""
     model = wm.model
     out = {}
     for j in range(1, model.njoints):
         name = model.names[j]
         t = [lengths.get(f"origin_{a}({name})") for a in "xyz"]
-        if any(x is None for x in t) or all(sp.sympify(x).is_Number for x in t):
-            continue
-        frame = model.frames[model.getFrameId(name, pin.FrameType.JOINT)]
+        fid = model.getFrameId(name, pin.FrameType.JOINT)
+        if any(x is None for x in t) or fid >= len(model.frames):
+            continue                  # a joint the model adds (a planar base's): no origin
+        frame = model.frames[fid]
         parent = model.frames[frame.parentFrame].placement
-        t_num = np.array([wm.dimensions[f"origin_{a}({name})"] for a in "xyz"])
-        rest = model.jointPlacements[j].translation - parent.rotation @ t_num
-        out[j] = tuple(exact_translation(rest) + exact_rotation(parent.rotation) * sp.Matrix(t))
+        p = _frame_translation(model, frame.parentFrame, lengths)
+        if all(sp.sympify(x).is_Number for x in (*t, *p)):
+            continue
+        placed = p + exact_rotation(parent.rotation) * sp.Matrix(t)
+        if not _places(placed, model.jointPlacements[j].translation, wm, lengths):
+            rest = model.jointPlacements[j].translation - parent.rotation @ np.array(
+                [wm.dimensions[f"origin_{a}({name})"] for a in "xyz"])
+            placed = exact_translation(rest) + exact_rotation(parent.rotation) * sp.Matrix(t)
+        out[j] = tuple(placed)
     return out or None
+
+
+def _places(placed: sp.Matrix, translation: np.ndarray, wm: WheeledModel,
+            lengths: Mapping[str, sp.Expr]) -> bool:
+    r"""Whether ``placed`` at the model's own lengths is Pinocchio's ``translation``."""
+    at = {v: wm.dimensions[k] for k, v in lengths.items()
+          if isinstance(v, sp.Symbol) and k in wm.dimensions}
+    try:
+        value = np.array([float(sp.sympify(x).xreplace(at)) for x in placed])
+    except TypeError:                 # a symbol without a value (a length named otherwise)
+        return False
+    return bool(np.abs(value - translation).max() <= 1e-9 * max(1.0, np.abs(translation).max()))
+
+
+def _frame_translation(model: pin.Model, fid: int, lengths: Mapping[str, sp.Expr]
+                       ) -> sp.Matrix:
+    r"""The translation of frame ``fid`` in its parent joint's frame, through the origins of
+    the fixed joints from that joint to it (:math:`p_f = p_{parent} + R_{parent}\,t_f`, the
+    drawn ones as symbols); the exact number where a fixed joint's origin is not among
+    ``lengths`` (:func:`translations` checks the sum against Pinocchio's placement)."""
+    frame = model.frames[fid]
+    here = exact_translation(frame.placement.translation)
+    if frame.type not in (pin.FrameType.BODY, pin.FrameType.FIXED_JOINT) or \
+            frame.parentFrame == fid or model.frames[frame.parentFrame].parentJoint != \
+            frame.parentJoint:
+        return here
+    if frame.type == pin.FrameType.BODY:
+        up = model.frames[frame.parentFrame]
+        same = np.allclose(up.placement.translation, frame.placement.translation)
+        return _frame_translation(model, frame.parentFrame, lengths) if same else here
+    t = [lengths.get(f"origin_{a}({frame.name})") for a in "xyz"]
+    if any(x is None for x in t):
+        return here
+    parent = model.frames[frame.parentFrame].placement
+    p = _frame_translation(model, frame.parentFrame, lengths)
+    return p + exact_rotation(parent.rotation) * sp.Matrix(t)
 
 
 def planar_translations(wm: WheeledModel, lengths: Mapping[str, sp.Expr]) -> dict | None:

@@ -1,0 +1,38 @@
+r"""Truth − document printed where the truth holds decimals (a rotation by a rounded angle)
+and the document the same numbers written out: the pairs that cancel to round-off are gone,
+and what is left is the term that differs (a residual of 2 kB hid one term before)."""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from wheeled_dyn.compare.presentation.closed_form import TRIG_EXPAND_LIMIT, _residual_text
+
+x, y, q, g = sp.symbols("x y q g", real=True)
+NAMES = {"x": x, "y": y, "q": q, "g": g}
+
+
+def _read(text: str) -> sp.Expr:
+    return sp.sympify(text, locals=NAMES)
+
+
+def test_decimal_pairs_cancel_and_the_wrong_term_is_left():
+    r"""Eight parameters in brackets of decimals (too long to be expanded with the
+    trigonometric identities), the document's the same fractions, one term's sign flipped."""
+    params = sp.symbols("p1:9", real=True)
+    decimals = [0.0978433950072557 * (k + 1) ** 0.5 for k in range(8)]
+    truth = sum((sp.Float(c) * p * (sp.sin(q) + 2 * sp.cos(q)) for c, p in zip(decimals, params)),
+                sp.Integer(0)) + sp.Float(0.241704332108682) * g * y
+    doc = sp.expand(sum((sp.nsimplify(sp.Float(c), rational=True) * p * (sp.sin(q) + 2 *
+                                                                        sp.cos(q))
+                         for c, p in zip(decimals, params)), sp.Integer(0))) \
+        - sp.Rational(241704332108682, 10 ** 15) * g * y          # written out, as printed
+    assert sp.count_ops(truth - doc) > TRIG_EXPAND_LIMIT
+    text = _residual_text(truth, doc, physical=True)
+    assert _read(text).free_symbols == {g, y}, text
+    assert abs(float(_read(text).coeff(g * y)) - 2 * 0.241704332108682) < 1e-12, text
+
+
+def test_a_residual_without_decimals_is_kept_whole():
+    text = _residual_text(x * sp.sin(q) + y, x * sp.sin(q) - y, physical=True)
+    assert _read(text) == 2 * y, text
