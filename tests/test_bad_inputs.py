@@ -386,3 +386,25 @@ def test_a_model_without_a_moving_joint_says_so(tmp_path):
                                        'type = "fixed"\nbody = "base_link"\n')
     _raises_picklable(lambda: wd.matrices(str(tmp_path / "one.toml")), ModelError,
                       "no moving joint")
+
+
+def test_an_input_of_a_model_without_motors_says_where_motors_are_named(tmp_path):
+    r"""A derivation with an input for a model file that names no motors (``wheeled-dyn
+    model`` writes none for a fixed-base arm): one error naming the file, its line and the
+    key, and where a model file names its motors."""
+    from wheeled_dyn.compare.engine import ComparisonEngine
+    data = Path(__file__).parent / "data" / "two_link_arm"
+    for name in ("two_link_arm.urdf",):
+        (tmp_path / name).write_text((data / name).read_text())
+    (tmp_path / "arm.toml").write_text('name = "arm_without_motors"\n[urdf]\n'
+                                       'path = "two_link_arm.urdf"\n[base]\ntype = "fixed"\n')
+    doc = tmp_path / "doc.toml"
+    doc.write_text((data / "arm_lagrange.toml").read_text().replace(
+        'model = "two_link_arm.toml"', 'model = "arm.toml"'))
+    from wheeled_dyn.derivations.errors import DerivationNameError
+    with pytest.raises(DerivationNameError) as err:
+        ComparisonEngine(samples=20, param_sets=1).compare(load_derivation(doc))
+    assert err.value.path == doc and err.value.item == "inputs.tau_1"
+    said = str(err.value)
+    assert str(doc) in said and "inputs." in said and "there are none" in said, said
+    assert "[joints] actuated" in said, said

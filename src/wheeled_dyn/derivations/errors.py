@@ -39,6 +39,9 @@ class DerivationNameError(UnknownNameError):
         if call is not None:               # a model length as a coordinate map writes it
             self.args = (self.args[0] + f"; for the model length {call}, declare a symbol "
                          f"in [symbols] (x = {{ value = \"{call}\" }}) and write it here",)
+        if kind == "model input":          # a starter model file lists no motors
+            self.args = (self.args[0] + "; a model's inputs are the motors its model file "
+                         "names: [joints] actuated = [the joints], inputs = [their names]",)
 
 
 class ExpressionError(ValueError):
