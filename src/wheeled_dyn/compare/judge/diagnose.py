@@ -54,6 +54,17 @@ def nice_number(c: float) -> str:
     return repr(c)
 
 
+#: Denominators above which a fraction of a document's term is printed as the decimal it was
+#: written as (the parser reads 0.241704332108682 as 120852166054341/500000000000000).
+DECIMAL_DENOMINATOR = 10 ** 6
+
+
+def term_text(term: sp.Expr) -> str:
+    r"""``term`` as text, its fractions of large denominators as the decimals they were."""
+    big = {r: sp.Float(r, 15) for r in term.atoms(sp.Rational) if r.q > DECIMAL_DENOMINATOR}
+    return sp.sstr(term.xreplace(big) if big else term)
+
+
 def value_diagnoses(D: np.ndarray, T: np.ndarray, scale: float) -> list[Diagnosis]:
     r"""Diagnoses from the numbers alone (sign, factor, extra, missing)."""
     tol = AGREE_TOL * scale
@@ -153,7 +164,7 @@ def term_diagnoses(expr: sp.Expr, evaluate: Callable[[sp.Expr], np.ndarray], D: 
             trials.append((holding, sum((value(t) for t in holding), np.zeros(D.shape))))
 
     def text(x: sp.Expr | tuple[sp.Expr, ...]) -> str:
-        return sp.sstr(sp.factor_terms(sp.Add(*x)) if isinstance(x, tuple) else x)
+        return term_text(sp.factor_terms(sp.Add(*x)) if isinstance(x, tuple) else x)
     found = []
     for term, tv in trials:
         tt = float(tv @ tv)

@@ -11,8 +11,8 @@ import numpy as np
 import sympy as sp
 
 from ..records import Diagnosis, DiagnosisKind as K, diagnosis
-from .diagnose import (MAX_TERMS, agrees, power_diagnoses, term_diagnoses,
-                       trig_swap_diagnoses)
+from .diagnose import (AGREE_TOL, MAX_TERMS, agrees, nice_number, power_diagnoses,
+                       term_diagnoses, term_text, trig_swap_diagnoses)
 from .small_angle import small_angle_diagnoses
 from ..sides.document import DocumentFunctions
 
@@ -85,10 +85,50 @@ def element_term_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequen
 
     found = power_diagnoses(expr, funcs.params, evaluate, T, scale, powered)
     if not found and not has_factor:
-        found = term_diagnoses(expr, evaluate, D, T, scale)
+        found = term_diagnoses(expr, evaluate, D, T, scale) or \
+            many_term_diagnoses(expr, funcs, argv, c, D, T, scale)
     if not found and not has_factor:
         found = trig_diagnoses(expr, funcs, argv, factor, D, T, scale)
     return found
+
+
+#: Most terms of an element (expanded) among which one with the wrong sign or factor is
+#: looked for all at once (a derivation written from a URDF with rotated frames: a hundred
+#: terms with decimal coefficients).
+MAX_MANY_TERMS = 600
+
+
+def many_term_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.ndarray],
+                        c: float, D: np.ndarray, T: np.ndarray, scale: float
+                        ) -> list[Diagnosis]:
+    r"""One additive term :math:`t` of an element of more than :data:`~.diagnose.MAX_TERMS`
+    terms with the wrong sign or a constant factor (:math:`T = D + k\,t`: :math:`k = -2` a
+    sign, else the term is :math:`1/(1 + k)` × what fits), every term evaluated in one
+    compiled function and :math:`k` fitted to each by least squares; only where exactly one
+    term fits at every sample (two equal terms: nothing is said). ``c``: the row's factor."""
+    from ...compiled import numpy_function
+    expanded = sp.Add.make_args(sp.expand(expr))
+    if not MAX_TERMS < len(expanded) <= MAX_MANY_TERMS:
+        return []
+    with np.errstate(all="ignore"):
+        V = np.stack([np.broadcast_to(np.asarray(v, float), D.shape)
+                      for v in numpy_function(funcs.args, list(expanded))(*argv)]) / c
+    if not np.isfinite(V).all():
+        return []
+    tt = np.einsum("ks,ks->k", V, V)
+    usable = tt > (AGREE_TOL * scale) ** 2 * len(D)
+    k = V @ (T - D) / np.where(usable, tt, 1.0)
+    off = np.abs(D[None, :] + k[:, None] * V - T[None, :]).max(axis=1)
+    hits = np.flatnonzero(usable & (off <= AGREE_TOL * scale) & (np.abs(1 + k) > 1e-12))
+    if len(hits) != 1:
+        return []
+    term, fit = term_text(expanded[hits[0]]), float(k[hits[0]])
+    if abs(fit + 2) <= 1e-9:
+        return [diagnosis(K.SIGN, f"the term {term} has the wrong sign", term=term,
+                          factor="-1")]
+    times = nice_number(1 / (1 + fit))
+    return [diagnosis(K.FACTOR, f"the term {term} is {times} × what fits", term=term,
+                      factor=times)]
 
 
 def product_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[np.ndarray],
