@@ -36,3 +36,14 @@ def test_decimal_pairs_cancel_and_the_wrong_term_is_left():
 def test_a_residual_without_decimals_is_kept_whole():
     text = _residual_text(x * sp.sin(q) + y, x * sp.sin(q) - y, physical=True)
     assert _read(text) == 2 * y, text
+
+
+def test_a_decimal_against_an_exact_sine_is_round_off():
+    r"""A bracket turned by half a radian: the truth's decimal 2 sin(1/2), the document's
+    exact ``2*sin(1/2)`` — they cancel; the term that differs is left."""
+    params = sp.symbols("p1:9", real=True)
+    truth = sum((sp.Float(2 * float(sp.sin(sp.Rational(1, 2)))) * p * sp.sin(q) for p in params),
+                sp.Integer(0)) + g * y
+    doc = sum((2 * sp.sin(sp.Rational(1, 2)) * p * sp.sin(q) for p in params), sp.Integer(0))
+    text = _residual_text(truth, doc, physical=True)
+    assert _read(text).free_symbols == {g, y}, text

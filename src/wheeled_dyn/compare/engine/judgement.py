@@ -216,7 +216,7 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
                    own_moments([ps.values for ps in id_sides.grid.sets], ID_STATES, True))
     if decision is not None and not decision.equivalent and combined and id_sides is not None \
             and id_sides.doc.A is not None:
-        solved = inertia_diagnoses(id_sides, found) or \
+        solved = inertia_diagnoses(id_sides, found, d.velocities) or \
             unsolved_terms(id_sides.doc, id_sides.truth, id_sides.B_true, d.velocities, found)
         read_back(drafts, {i for i, r in enumerate(rules) if r.kind >= FrameKind.FUNCTION},
                   solved)

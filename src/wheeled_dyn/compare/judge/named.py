@@ -182,17 +182,26 @@ def _plainest(found: sp.Expr | None, bases: Sequence[tuple[sp.Expr, np.ndarray]]
     return best
 
 
-def _missing_factor(D: np.ndarray, T: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
-                    ) -> Diagnosis | None:
+def _missing_factor(D: np.ndarray, T: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]],
+                    expr: sp.Expr | None = None) -> Diagnosis | None:
     r"""The truth a monomial :math:`f` in the document's names (not a number: a constant factor
     is :func:`.diagnose.value_diagnoses`') times the document: a factor it lacks
-    (:math:`L` dropped from :math:`L(\tau_R - \tau_L)/R`), or has too much (:math:`f = 1/L`)."""
+    (:math:`L` dropped from :math:`L(\tau_R - \tau_L)/R`), or has too much (:math:`f = 1/L`);
+    where :math:`f = (x/y)^k` of two names and the document's ``expr`` writes :math:`y`, one
+    written for the other (:math:`r` where :math:`l` fits, in a form solved for the
+    accelerations: "lacks a factor l/r" said it backwards)."""
     if not D.size or np.abs(D).min() <= 0:
         return None
     f = fit_factor(T / D, bases)
     if f is None or f.is_number:
         return None
     numerator, denominator = sp.fraction(f)
+    (x, k), (y, j) = (b.as_base_exp() for b in (numerator, denominator))
+    if isinstance(x, sp.Symbol) and isinstance(y, sp.Symbol) and k == j and \
+            expr is not None and y in expr.free_symbols:
+        written, fits = sp.sstr(y ** k), sp.sstr(x ** k)
+        return diagnosis(K.SWAP, f"{written} where {fits} fits (the document is "
+                         f"{sp.sstr(1 / f)} × the truth)", written=written, fits=fits)
     what = f"lacks a factor {sp.sstr(f)}" if denominator == 1 else \
         f"has a factor {sp.sstr(1 / f)} too much" if numerator == 1 else \
         f"lacks a factor {sp.sstr(f)}"
@@ -294,7 +303,7 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
                 terms=(sp.sstr(term) if term is not None else f"{sp.sstr(c)}*{name}",),
                 fits=name, factor=sp.sstr(c)))
             continue
-        missing = _missing_factor(D, T, bases)
+        missing = _missing_factor(D, T, bases, r.expr)
         if missing is not None:
             r.diagnoses.insert(0, missing)
             continue
@@ -302,7 +311,9 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
             if np.abs(residual).min() > 0 else None
         found = found if found is not None else fit_sum(residual, bases)
         if found is None:
-            before = _undivided(own, bases) if own is not residual else None
+            f = factors.get(r.row) if factors else None      # a function, not a constant:
+            varies = f is not None and np.ptp(f) > 1e-9 * float(np.abs(f).max(initial=0.0))
+            before = _undivided(own, bases) if varies else None
             if before is not None:
                 r.diagnoses.insert(0, before)
             continue

@@ -40,16 +40,20 @@ def swap_pair(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
     pairs = [(x, y, vx, vy) for (x, vx), (y, vy) in itertools.combinations(full, 2)]
     pairs += [(x ** 2, y ** 2, vx ** 2, vy ** 2) for x, y, vx, vy in pairs
               if isinstance(x, sp.Symbol) and isinstance(y, sp.Symbol)]
-    for x, y, vx, vy in pairs:
-        gap = vx - vy
-        if np.abs(gap).min() <= 1e-12 * np.abs(vx).max():
-            continue                  # equal somewhere: no ratio (and no swap to tell)
-        ratio = target / gap
-        e = np.linalg.lstsq(X, np.log(np.abs(ratio)), rcond=None)[0][:-1]
-        rounded = np.rint(e).astype(int)
-        if np.abs(e - rounded).max() >= 1e-6 or np.abs(rounded).max() > max(EXPONENTS):
-            continue
-        found = _try(ratio, full, rounded)
+    # equal somewhere: no ratio (and no swap to tell)
+    pairs = [p for p in pairs if np.abs(p[2] - p[3]).min() > 1e-12 * np.abs(p[2]).max()]
+    if not pairs:
+        return None
+    # every pair's least squares at once: X has independent columns, so its pseudo-inverse
+    # gives what lstsq gives, one product for all pairs
+    ratios = target[None, :] / np.stack([vx - vy for _, _, vx, vy in pairs])
+    exponents = (np.log(np.abs(ratios)) @ np.linalg.pinv(X).T)[:, :-1]
+    rounded = np.rint(exponents).astype(int)
+    fits = (np.abs(exponents - rounded).max(axis=1, initial=0.0) < 1e-6) & \
+        (np.abs(rounded).max(axis=1, initial=0) <= max(EXPONENTS))
+    for k in np.flatnonzero(fits):
+        x, y = pairs[k][:2]
+        found = _try(ratios[k], full, rounded[k])
         if found is not None:             # the monomial's sign on it: g*m2*(L1 - a1)*sin(th1)
             if found.could_extract_minus_sign():
                 found, (x, y) = -found, (y, x)

@@ -131,7 +131,9 @@ class DimensionChecker:
     def row_dimension(self, i: int, elements: list[tuple[str, tuple[int, ...], sp.Expr]]
                       ) -> None:
         r"""Set row ``i``'s dimension to the one most of its ``elements`` (key, index,
-        expression) imply, the unscaled one on a tie (a declared scale is kept). Where the
+        expression) imply, the unscaled one on a tie, none on a tie it is not in (a row
+        divided by its inertia but for its gravity term, the positions without units: the
+        input's vote against the gravity term's; a declared scale is kept). Where the
         positions have no units, the velocity, gravity and input terms vote alone (a torque
         row whose inputs are in N·m: its gravity element's term in N is the odd one, not its
         neighbour in N·m)."""
@@ -145,8 +147,11 @@ class DimensionChecker:
         if not votes:
             return
         unscaled = self.row_dims[i]
-        best = max(votes.items(), key=lambda kv: (kv[1], kv[0] == unscaled))[0]
-        self.row_dims[i] = best
+        ranked = sorted(votes.items(), key=lambda kv: (kv[1], kv[0] == unscaled), reverse=True)
+        if len(ranked) > 1 and ranked[0][1] == ranked[1][1] and ranked[0][0] != unscaled:
+            self.row_dims[i] = None        # a tie nothing breaks: no unit is blamed on either
+            return
+        self.row_dims[i] = ranked[0][0]
 
     def dim(self, expr: sp.Expr, problems: list[str]) -> Dim | None:
         r"""Dimension of ``expr``; inconsistent sums and dimensioned function arguments are

@@ -169,12 +169,17 @@ def source_weights(doc, truth, true_B: np.ndarray | None) -> tuple[np.ndarray, n
     return W, rows
 
 
-def inertia_diagnoses(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> Diagnosis | None:
+def inertia_diagnoses(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
+                      velocities: Sequence[sp.Symbol] = ()) -> Diagnosis | None:
     r"""The elements of the document's own inertia matrix (read back from its inputs,
     module text; where its inputs are fewer than its coordinates, from its inputs, gravity
     and velocity terms, :func:`source_weights`) that differ from the truth's, named (a
     link's own moment missing: a point mass); None when all agree or it cannot be read back.
-    ``sides``: both sides on a grid (:class:`~..sides.both.Sides`)."""
+    Read back from its inputs, the inertia must be symmetric (an input exchanged, of the
+    wrong sign or scaled reads back as none) and the equations' other entries so read back
+    are named too where at most :data:`MAX_UNSOLVED` differ (a term wrong beside the
+    inertia), else nothing is said. ``sides``: both sides on a grid
+    (:class:`~..sides.both.Sides`)."""
     doc, truth, true_B = sides.doc, sides.truth, sides.B_true
     doc_A, true_A = doc.A, truth.need("A")
     sets = [ps.values for ps in sides.grid.sets]
@@ -182,10 +187,17 @@ def inertia_diagnoses(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> Dia
     n = doc_A.shape[1]
     if doc.B is None or true_B is None or not np.isfinite(doc_A).all():
         return None
-    M = implied_inertia(doc.B, true_B)
+    T = implied_inertia(doc.B, true_B)
     how = "its inputs' coefficients, M = B B_doc⁻¹ A_doc"
-    if M is not None:
-        M = M @ doc_A
+    extra: list[tuple[str, np.ndarray, np.ndarray, float, bool]] = []
+    if T is not None:
+        M = T @ doc_A
+        size = max(float(np.abs(M).max(initial=0.0)), 1e-300)
+        if np.abs(M - np.swapaxes(M, 1, 2)).max() > AGREE_TOL * size:
+            return None                     # no inertia matrix: the inputs are not the truth's
+        extra = _entries(doc, truth, true_B, velocities, T) or []
+        if len(extra) > MAX_UNSOLVED:
+            return None
     elif (found := source_weights(doc, truth, true_B)) is not None:
         W, rows = found
         try:
@@ -205,7 +217,15 @@ def inertia_diagnoses(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> Dia
     if not parts:
         return None
     return _diagnosis(f"the inertia matrix the document inverted (read back from {how}) "
-                      "differs from the truth's: ", parts)
+                      "differs from the truth's: ", parts + _named(extra, truth, bases))
+
+
+def _named(entries, truth, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> list[_Part]:
+    r"""The differing ``entries`` of :func:`_entries`, named in the document's symbols."""
+    rows = truth.H_rows
+    at = [(e, v[rows]) for e, v in bases] if rows is not None else []
+    return [_part(where, t, v, scale, at if on_rows else bases)
+            for where, t, v, scale, on_rows in entries]
 
 
 #: Most differing entries of the equations read back before solving for them to be named
@@ -225,20 +245,23 @@ def _undo(true_A: np.ndarray, doc_A: np.ndarray) -> np.ndarray | None:
         return None
 
 
-def _entries(doc, truth, true_B: np.ndarray | None, velocities: Sequence[sp.Symbol] = ()
+def _entries(doc, truth, true_B: np.ndarray | None, velocities: Sequence[sp.Symbol] = (),
+             T: np.ndarray | None = None
              ) -> list[tuple[str, np.ndarray, np.ndarray, float, bool]] | None:
     r"""The entries of the document's equations read back before it solved or combined them
-    (its rows times :math:`AA_{doc}^{-1}`) that differ from the truth's: (where, truth,
-    document, scale, on ``H_rows``); None where it cannot be read back or its inputs'
-    coefficients then differ from the truth's (the inertia it inverted is not the truth's)."""
+    (its rows times :math:`AA_{doc}^{-1}`, or ``T`` given) that differ from the truth's:
+    (where, truth, document, scale, on ``H_rows``) — of its gravity and velocity terms; None
+    where it cannot be read back or its inputs' coefficients then differ from the truth's
+    (the inertia it inverted is not the truth's)."""
     if doc.A is None or truth.A is None or not np.isfinite(doc.A).all():
         return None
-    T = _undo(truth.A, doc.A)
+    given = T is not None
+    T = T if T is not None else _undo(truth.A, doc.A)
     if T is None:
         return None
     n = doc.A.shape[1]
     out = []
-    if doc.B is not None and true_B is not None:
+    if doc.B is not None and true_B is not None and not given:
         B = np.einsum("ski,sij->skj", T, doc.B)
         if np.abs(true_B - B).max() > AGREE_TOL * max(float(np.abs(true_B).max()), 1e-300):
             return None
@@ -276,12 +299,9 @@ def unsolved_terms(doc, truth, true_B: np.ndarray | None, velocities: Sequence[s
     entries = _entries(doc, truth, true_B, velocities)
     if not entries or len(entries) > MAX_UNSOLVED:
         return None
-    rows = truth.H_rows
-    at = [(e, v[rows]) for e, v in bases] if rows is not None else []
-    parts = [_part(where, t, v, scale, at if on_rows else bases)
-             for where, t, v, scale, on_rows in entries]
-    return _diagnosis("read back before it was solved (its rows times A A_doc⁻¹: its inputs' "
-                      "coefficients are then the truth's), the equations differ: ", parts)
+    return _diagnosis("read back before it was solved or combined (its rows times A A_doc⁻¹: "
+                      "its inputs' coefficients are then the truth's), the equations differ: ",
+                      _named(entries, truth, bases))
 
 
 def read_back_explains(doc, truth, true_B: np.ndarray | None) -> bool:

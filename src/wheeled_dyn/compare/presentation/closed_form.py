@@ -365,7 +365,8 @@ CHOP_TOL = 1e-9
 def _chopped(expr: sp.Expr) -> sp.Expr:
     r"""``expr`` (expanded) without the terms whose numeric coefficient is below
     :data:`CHOP_TOL` of its largest: :math:`0.0978\ldots\,x - \tfrac{978\ldots}{10^{16}}\,x`
-    leaves round-off, and a residual of 2 kB hid the one term that differs."""
+    leaves round-off, and a residual of 2 kB hid the one term that differs (the numbers
+    evaluated first: :math:`0.9588\ldots\,x - 2\sin\tfrac12\,x` is round-off too)."""
     terms = sp.Add.make_args(expr)
     sizes = [abs(float(t.as_coeff_Mul()[0])) for t in terms]
     largest = max(sizes, default=0.0)
@@ -392,7 +393,7 @@ def _residual_text(truth: sp.Expr, doc: sp.Expr, physical: bool, solved: bool = 
                    ) -> str | None:
     residual = truth - doc
     if residual.has(sp.Float):                # a rotation's decimals against the document's
-        residual = _chopped(sp.expand(residual))
+        residual = _chopped(sp.expand(sp.expand(residual).evalf(15)))   # or sin(1/2)'s
     if solved:                                # a quotient: over one denominator, if short
         if sp.count_ops(residual) > SOLVED_RESIDUAL_LIMIT:
             return None
