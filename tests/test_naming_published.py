@@ -755,3 +755,21 @@ def test_a_symbol_for_another_in_a_solved_form_is_a_swap_not_a_factor(tmp_path):
     assert set(flagged) == {"Q[1]"}, {e: r.texts for e, r in flagged.items()}
     assert flagged["Q[1]"].kinds[0] == K.SWAP, flagged["Q[1]"].texts
     assert flagged["Q[1]"].texts[0].startswith("swap: r where l fits"), flagged["Q[1]"].texts
+
+
+def test_a_parallel_axis_term_equal_about_two_axes_names_both(tmp_path):
+    r"""The planar WIP written out (``data/published/wip_planar_x.toml``) with the body's
+    inertia about its centre where the one about the axle fits: its centre of mass lies on
+    one of its axes, so its parallel-axis terms about the two others are the same number;
+    the first was named ("about its x axis", the pitch axis is another), now both are."""
+    text = (DATA / "wip_planar_x.toml").read_text()
+    old = "(I_b + m*l**2)*ddtheta"
+    assert text.count(old) == 1
+    path = tmp_path / "doc.toml"
+    path.write_text(text.replace(old, "(I_b)*ddtheta"))
+    result = ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(
+        load_derivation(path))
+    record = next(r for r in result.records if r.element == "A[2,2]")
+    assert record.kinds[0] == K.PARALLEL_AXIS, record.texts
+    assert "the parallel-axis term of body about its x or z axis" in record.texts[0], \
+        record.texts

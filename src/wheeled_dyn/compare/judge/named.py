@@ -115,15 +115,29 @@ def _plainness(c: sp.Expr) -> tuple[int, int]:
     return int(sp.count_ops(c)), size
 
 
-def _parallel_axis(r: ElementDraft, name: str, term: sp.Expr | None) -> None:
+def _same_parts(name: str, parallel: Mapping[str, np.ndarray]) -> str:
+    r"""The axes (letters) of the link's other parallel-axis terms equal to ``name``'s at every
+    sample (a centre of mass on one axis: the terms about the two others are the same
+    number, and which one the element needs its values cannot tell)."""
+    if " + " in name or name[1] == ":" or name not in parallel:
+        return ""
+    link = name[name.index("("):]
+    return "".join(a for a in AXES if a != name[1] and f"P{a}{a}{link}" in parallel
+                   and np.allclose(parallel[f"P{a}{a}{link}"], parallel[name], rtol=1e-12,
+                                   atol=0.0))
+
+
+def _parallel_axis(r: ElementDraft, name: str, term: sp.Expr | None, also: str = "") -> None:
     r"""Name on ``r`` the parallel-axis term ``name`` (``Pyy(body)``) it lacks, as ``term`` in
-    the document's symbols where one fits; a factor found for the whole element (the term is
-    a constant fraction of it only under a family that keeps proportions) goes."""
+    the document's symbols where one fits (``also``: the axes whose terms are the same
+    number, named with it); a factor found for the whole element (the term is a constant
+    fraction of it only under a family that keeps proportions) goes."""
     parts = []
     for one in name.split(" + "):
         link = one[one.index("(") + 1:-1]
+        axes = " or ".join((one[1], *also)) if one[1] != ":" else ""
         parts.append(f"the part M c_{one[2]}² of {link}'s parallel-axis term" if one[1] == ":"
-                     else f"the parallel-axis term of {link} about its {one[1]} axis")
+                     else f"the parallel-axis term of {link} about its {axes} axis")
     written = f" ({sp.sstr(term)} in the document's symbols)" if term is not None else ""
     r.diagnoses[:] = [x for x in r.diagnoses if x.kind != K.FACTOR]
     r.diagnoses.insert(0, diagnosis(
@@ -285,7 +299,8 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
         hit = point_mass_fit(own, moments, lengths) if r.key == "A" else None
         steiner = point_mass_fit(own, parallel, lengths) if r.key == "A" and parallel else None
         if steiner is not None and steiner[1] == 1 and (hit is None or hit[1] != 1):
-            _parallel_axis(r, steiner[0], _plainest(fit_factor(residual, bases), bases))
+            _parallel_axis(r, steiner[0], _plainest(fit_factor(residual, bases), bases),
+                           _same_parts(steiner[0], parallel or {}))
             continue
         if has_kind(r.diagnoses, K.FACTOR) and (hit is None or hit[1] != 1):
             continue                          # a constant factor says it more plainly
