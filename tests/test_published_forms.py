@@ -171,6 +171,9 @@ def test_a_point_mass_link_in_every_inertia_is_named_in_every_form(engine, tmp_p
     assert wrong == {"A[1,1]", "A[1,2]", "A[2,1]", "A[2,2]"}, [
         (r.element, r.texts) for r in result.records if r.verdict != "agrees"]
     assert all(r.kinds[0] == K.POINT_MASS for r in result.records if r.element in wrong)
+    # the body named: link 2, not "the body"
+    assert all("the document treats link2 as a point mass" in r.texts[0]
+               for r in result.records if r.element in wrong)
 
 
 def test_a_row_with_the_reaction_eliminated_names_an_error_of_its_own_terms(engine, tmp_path):

@@ -6,7 +6,7 @@ On the identification grid (many parameter sets) :math:`\Delta` is fitted
 
 1. as a body's own inertia about its centre of mass (one link's moment about one of its axes,
    or the same moment of two links), times a monomial in the document's names: the document
-   treats the body as a point mass, or drops its inertia (a wheel's spin inertia
+   treats the body as a point mass (named), or drops its inertia (a wheel's spin inertia
    :math:`2 I_w / r^2`) — ``point_mass``; but where :math:`\Delta` is exactly a link's
    parallel-axis term :math:`M (c_y^2 + c_z^2)` (the mass times its centre's squared distance
    from the axis) and not exactly its own moment, the document wrote the inertia about the
@@ -113,6 +113,14 @@ def _plainness(c: sp.Expr) -> tuple[int, int]:
     coeff = c.as_coeff_Mul()[0]
     size = int(abs(coeff.p) + coeff.q) if isinstance(coeff, sp.Rational) else 10 ** 6
     return int(sp.count_ops(c)), size
+
+
+def _bodies(name: str) -> str:
+    r"""``"link1 as a point mass"``, ``"wheel_left and wheel_right as point masses"`` for
+    the moments ``name`` (``Izz(wheel_left) + Izz(wheel_right)``) of :func:`own_moments`."""
+    links = list(dict.fromkeys(one[one.index("(") + 1:-1] for one in name.split(" + ")))
+    return f"{links[0]} as a point mass" if len(links) == 1 else \
+        f"{' and '.join(links)} as point masses"
 
 
 def _same_parts(name: str, parallel: Mapping[str, np.ndarray]) -> str:
@@ -313,7 +321,7 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
                 else ""
             r.diagnoses.insert(0, diagnosis(
                 K.POINT_MASS, f"the moment of inertia {name} about its own centre of mass"
-                f"{times}{own} is missing: the document treats the body as a point mass "
+                f"{times}{own} is missing: the document treats {_bodies(name)} "
                 "(or drops its inertia)", prefix="missing",
                 terms=(sp.sstr(term) if term is not None else f"{sp.sstr(c)}*{name}",),
                 fits=name, factor=sp.sstr(c)))
