@@ -9,7 +9,13 @@ c - \phi)`, with errors planted in the source before solving.
   with it name the other two (only the point mass was named: both errors were blamed on it).
 - The inputs exchanged, or one of the wrong sign: the inertia "read back" from them is no
   inertia matrix (not symmetric), and nothing is said of it (it was "the inertia matrix the
-  document inverted differs", an inverse of the true one).
+  document inverted differs", an inverse of the true one); every input of the wrong sign or
+  doubled (a cart-pole with both joints driven, written for the tests): the true inertia
+  times one number, which nothing tells from an inertia so scaled — nothing said either.
+
+And a factor of two names the document lacks is that factor, not one name written for the
+other, unless writing the one for the other (or exchanging them) makes the truth (two
+differential-drive robots of ``data/published``).
 """
 
 from __future__ import annotations
@@ -71,3 +77,72 @@ def test_wrong_inputs_are_not_read_as_an_inverted_inertia(engine, tmp_path, tau)
     assert "the inertia matrix the document inverted" not in _said(result), _said(result)
     assert not any("the inertia matrix the document inverted" in t
                    for r in result.records for t in r.texts)
+
+
+DATA = Path(__file__).parent / "data" / "published"
+
+
+def _planted(tmp_path: Path, model: str, form: str, old: str, new: str) -> Path:
+    r"""``data/published/<form>.toml`` (model ``<model>``) with ``old`` planted as ``new``."""
+    for name in (model + ".toml", model + ".urdf"):
+        if (DATA / name).exists():
+            (tmp_path / name).write_text((DATA / name).read_text())
+    text = (DATA / (form + ".toml")).read_text()
+    assert text.count(old) == 1, old
+    path = tmp_path / "doc.toml"
+    path.write_text(text.replace(old, new))
+    return path
+
+
+@pytest.mark.parametrize("c", [-1, 2])
+def test_every_input_of_the_wrong_sign_or_scaled_is_no_inverted_inertia(engine, tmp_path, c):
+    r"""The cart-pole with both joints driven, solved (``cart_pole_driven_solved.toml``), its
+    inputs all negated or doubled: the inertia read back from them is the true one times -1
+    or 1/2, symmetric — and an inertia so scaled, with every other term, reads the same.
+    It was "the inertia matrix the document inverted differs: A[1,1] opposite sign ...;
+    Q[2] ...; h[1] ..."; now only the inputs' elements are named."""
+    for name in ("cart_pole_driven.toml", "cart_pole.urdf"):
+        (tmp_path / name).write_text((DATA / name).read_text())
+    text = (DATA / "cart_pole_driven_solved.toml").read_text()
+    F, tau = sp.symbols("F tau")
+    lines = []
+    for line in text.split("\n"):
+        if line.strip().startswith('"dd'):
+            left, right = line.strip().strip('",').split(" = ")
+            right = sp.sstr(sp.sympify(right).xreplace({F: c * F, tau: c * tau}))
+            line = f'  "{left} = {right}",'
+        lines.append(line)
+    path = tmp_path / "doc.toml"
+    path.write_text("\n".join(lines))
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False
+    assert "the inertia matrix the document inverted" not in _said(result), _said(result)
+    flagged = {r.element for r in result.records if r.verdict != "agrees"}
+    assert flagged and all(e.startswith("B[") for e in flagged), flagged
+
+
+def test_a_factor_dropped_is_no_symbol_written_for_another(engine, tmp_path):
+    r"""A differential-drive robot's first equation (``dd_offset_wheels.toml``) with a
+    factor R/L dropped from one term, R³/L² → R²/L: the element is the truth times L/R; L
+    for R in that term would not make the truth (it holds L elsewhere). It was "L where R
+    fits", and is the factor the document lacks."""
+    path = _planted(tmp_path, "dd_offset", "dd_offset_wheels",
+                    "- R**3*a*dphi_L**2*m_b/(4*L**2)", "- R**2*a*dphi_L**2*m_b/(4*L)")
+    result = engine.compare(load_derivation(path))
+    record = next(r for r in result.records if r.element == "h[1]:dphi_L*dphi_L")
+    assert record.verdict == "differs"
+    assert not any(k == "swap" for k in record.kinds), record.texts
+    assert "lacks a factor R/L" in record.texts[0], record.texts
+
+
+def test_two_names_exchanged_are_named_as_exchanged(engine, tmp_path):
+    r"""The differential-drive robot in (v, ω) (``dd_swivel_vw.toml``) with its yaw input
+    written R(τR − τL)/L where L(τR − τL)/R fits: the two exchanged ("R**2 where L**2 fits"
+    named a square the document does not write)."""
+    path = _planted(tmp_path, "dd_swivel", "dd_swivel_vw", "= L*(tau_R - tau_L)/R",
+                    "= R*(tau_R - tau_L)/L")
+    result = engine.compare(load_derivation(path))
+    flagged = {r.element: r for r in result.records if r.verdict == "differs"}
+    assert set(flagged) == {"B[2,1]", "B[2,2]"}, {e: r.texts for e, r in flagged.items()}
+    assert all(r.texts[0].startswith("swap: L and R exchanged") for r in flagged.values()), \
+        {e: r.texts for e, r in flagged.items()}

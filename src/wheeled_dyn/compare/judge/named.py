@@ -32,7 +32,7 @@ from ..records import Diagnosis, DiagnosisKind as K, Verdict, diagnosis, has_kin
 from .diagnose import nice_number
 from .draft import ElementDraft
 from .fitting import RATIO_TOL, fit_factor, fit_sum
-from .swap_fit import swap_pair
+from .swap_fit import swap_reading
 
 #: Diagnoses after which no term is named (the error is named already); a constant factor
 #: may still be a point mass's (m l² for the uniform rod's m l²/3 is "factor 3/4").
@@ -209,26 +209,44 @@ def _missing_factor(D: np.ndarray, T: np.ndarray, bases: Sequence[tuple[sp.Expr,
     r"""The truth a monomial :math:`f` in the document's names (not a number: a constant factor
     is :func:`.diagnose.value_diagnoses`') times the document: a factor it lacks
     (:math:`L` dropped from :math:`L(\tau_R - \tau_L)/R`), or has too much (:math:`f = 1/L`);
-    where :math:`f = (x/y)^k` of two names and the document's ``expr`` writes :math:`y`, one
-    written for the other (:math:`r` where :math:`l` fits, in a form solved for the
-    accelerations: "lacks a factor l/r" said it backwards)."""
+    where :math:`f = (x/y)^k` of two names one written for the other, or the two exchanged, in
+    the document's ``expr`` (:func:`_swapped`: :math:`r` where :math:`l` fits, in a form
+    solved for the accelerations, was "lacks a factor l/r")."""
     if not D.size or np.abs(D).min() <= 0:
         return None
     f = fit_factor(T / D, bases)
     if f is None or f.is_number:
         return None
     numerator, denominator = sp.fraction(f)
-    (x, k), (y, j) = (b.as_base_exp() for b in (numerator, denominator))
-    if isinstance(x, sp.Symbol) and isinstance(y, sp.Symbol) and k == j and \
-            expr is not None and y in expr.free_symbols:
-        written, fits = sp.sstr(y ** k), sp.sstr(x ** k)
-        return diagnosis(K.SWAP, f"{written} where {fits} fits (the document is "
-                         f"{sp.sstr(1 / f)} × the truth)", written=written, fits=fits)
+    swapped = _swapped(f, expr)
+    if swapped is not None:
+        return diagnosis(K.SWAP, f"{swapped[0]} (the document is {sp.sstr(1 / f)} × the "
+                         "truth)", written=swapped[1], fits=swapped[2])
     what = f"lacks a factor {sp.sstr(f)}" if denominator == 1 else \
         f"has a factor {sp.sstr(1 / f)} too much" if numerator == 1 else \
         f"lacks a factor {sp.sstr(f)}"
     return diagnosis(K.FACTOR, f"the document {what}: it is {sp.sstr(1 / f)} × the truth",
                      factor=sp.sstr(1 / f))
+
+
+def _swapped(f: sp.Expr, expr: sp.Expr | None) -> tuple[str, str, str] | None:
+    r"""Where the truth is :math:`f = (x/y)^k` times the document's ``expr`` of two names and
+    writing :math:`x` for :math:`y` in ``expr`` makes the truth (``"r where l fits"``), or
+    exchanging the two does (``"L and R exchanged"``): (the words, written, fits); else None
+    — a factor the document lacks (R/L dropped from a term that holds L elsewhere too is no
+    L written for R)."""
+    if expr is None or sp.count_ops(expr) > MAX_WRITTEN_OPS:
+        return None
+    numerator, denominator = sp.fraction(f)
+    (x, k), (y, j) = (b.as_base_exp() for b in (numerator, denominator))
+    if not (isinstance(x, sp.Symbol) and isinstance(y, sp.Symbol) and k == j) or \
+            y not in expr.free_symbols:
+        return None
+    if sp.cancel(expr.xreplace({y: x}) - f * expr) == 0:
+        return f"{sp.sstr(y ** k)} where {sp.sstr(x ** k)} fits", sp.sstr(y), sp.sstr(x)
+    if x in expr.free_symbols and sp.cancel(expr.xreplace({x: y, y: x}) - f * expr) == 0:
+        return f"{sp.sstr(x)} and {sp.sstr(y)} exchanged", sp.sstr(y), sp.sstr(x)
+    return None
 
 
 def _written_term(found: sp.Expr, expr: sp.Expr) -> Diagnosis | None:
@@ -364,15 +382,11 @@ def _undivided(before: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
     inertias); None otherwise."""
     found = fit_factor(before, bases) if np.abs(before).min() > 0 else None
     found = found if found is not None else fit_sum(before, bases)
-    pair = swap_pair(before, bases) if found is None or \
-        len(sp.Add.make_args(sp.expand(found))) == 2 else None
+    swap = swap_reading(before, bases, found)
     head = "before the document divided its equation by its own quantity: "
-    if pair is not None:            # which of the two was written the numbers cannot tell
-        M, x, y = pair
-        found = sp.Mul(M, x - y, evaluate=False) if M.is_Number else M * (x - y)
-        a, b = (sp.sstr(e.base) if e.is_Pow and e.exp == 2 else sp.sstr(e) for e in (x, y))
-        return diagnosis(K.SWAP, f"{head}{a} and {b}, one written where the other fits (truth "
-                         f"− document = {sp.sstr(found)})", terms=(sp.sstr(found),))
+    if swap is not None:
+        return diagnosis(K.SWAP, f"{head}{swap[1]} (truth − document = {sp.sstr(swap[0])})",
+                         terms=(sp.sstr(swap[0]),))
     if found is None:
         return None
     return diagnosis(K.MISSING, f"{head}truth − document = {sp.sstr(found)}", prefix="terms",

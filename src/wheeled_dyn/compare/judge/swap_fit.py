@@ -23,6 +23,25 @@ def fit_swap(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
     return sp.Mul(found, x - y, evaluate=False) if found.is_Number else found * (x - y)
 
 
+def swap_reading(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]],
+                 found: sp.Expr | None) -> tuple[sp.Expr, str] | None:
+    r"""Truth − document ``target`` read as one of two symbols written where the other fits,
+    where no plainer fit was ``found`` (none, or a sum of two terms:
+    :math:`m_2l_1^2 - m_2l_{c1}^2` says what :math:`m_2(l_1^2 - l_{c1}^2)` says):
+    (:math:`M(x - y)`, ``"x and y, one written where the other fits"``) — which of the two
+    the author wrote, the sign of :math:`M` in the source would tell, and the numbers do
+    not; None otherwise (:func:`swap_pair`)."""
+    if found is not None and len(sp.Add.make_args(sp.expand(found))) != 2:
+        return None
+    pair = swap_pair(target, bases)
+    if pair is None:
+        return None
+    M, x, y = pair
+    a, b = (sp.sstr(e.base) if e.is_Pow and e.exp == 2 else sp.sstr(e) for e in (x, y))
+    return (sp.Mul(M, x - y, evaluate=False) if M.is_Number else M * (x - y),
+            f"{a} and {b}, one written where the other fits")
+
+
 def swap_pair(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
               ) -> tuple[sp.Expr, sp.Expr, sp.Expr] | None:
     r"""``(M, x, y)``: a monomial :math:`M` in ``bases`` times the difference of two of them,
@@ -61,4 +80,4 @@ def swap_pair(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
     return None
 
 
-__all__ = ["fit_swap", "swap_pair"]
+__all__ = ["fit_swap", "swap_pair", "swap_reading"]

@@ -32,7 +32,7 @@ from .diagnose import AGREE_TOL, value_diagnoses
 from .draft import ElementDraft
 from .fitting import fit_factor, fit_sum
 from .named import NAMED, own_moments, point_mass_fit
-from .swap_fit import fit_swap, swap_pair
+from .swap_fit import fit_swap, swap_reading
 
 
 def _fit(residual: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> sp.Expr | None:
@@ -63,10 +63,7 @@ def _part(where: str, T: np.ndarray, D: np.ndarray, scale: float,
     r"""The entry ``where`` read back, ``T`` the truth's values and ``D`` the document's: the
     whole entry's sign, factor, absence or excess where the numbers say one
     (:func:`~.diagnose.value_diagnoses`); one of two symbols written where the other fits in a
-    product where truth − document is :math:`M(x - y)` or :math:`M(x^2 - y^2)`
-    (:func:`~.swap_fit.swap_pair`: "l1 and lc1, one written where the other fits" says what
-    the two terms :math:`m_2l_1^2 - m_2l_{c1}^2` say; which one the author wrote, the sign of
-    :math:`M` in the source equation would tell, and the numbers do not); a body's own moment
+    product (:func:`~.swap_fit.swap_reading`); a body's own moment
     about its centre of mass where truth − document is exactly one of ``moments``
     (:func:`~.named.own_moments`: a point mass); else the terms the document lacks."""
     found = _fit(T - D, bases)
@@ -78,14 +75,9 @@ def _part(where: str, T: np.ndarray, D: np.ndarray, scale: float,
     if hit is not None and hit[1] == 1:
         return _Part(f"{where}: the moment of inertia {hit[0]} about its own centre of mass is "
                      f"missing, a point mass ({_said(found)})", found, K.POINT_MASS)
-    pair = swap_pair(T - D, bases) if found is None or \
-        len(sp.Add.make_args(sp.expand(found))) == 2 else None
-    if pair is not None:           # which of the two was written the numbers cannot tell
-        M, x, y = pair
-        found = sp.Mul(M, x - y, evaluate=False) if M.is_Number else M * (x - y)
-        a, b = (sp.sstr(e.base) if e.is_Pow and e.exp == 2 else sp.sstr(e) for e in (x, y))
-        return _Part(f"{where}: {a} and {b}, one written where the other fits "
-                     f"({_said(found)})", found, K.SWAP)
+    swap = swap_reading(T - D, bases, found)
+    if swap is not None:
+        return _Part(f"{where}: {swap[1]} ({_said(swap[0])})", swap[0], K.SWAP)
     return _Part(f"{where} {_said(found)}", found, K.MISSING)
 
 
@@ -176,7 +168,9 @@ def inertia_diagnoses(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
     and velocity terms, :func:`source_weights`) that differ from the truth's, named (a
     link's own moment missing: a point mass); None when all agree or it cannot be read back.
     Read back from its inputs, the inertia must be symmetric (an input exchanged, of the
-    wrong sign or scaled reads back as none) and the equations' other entries so read back
+    wrong sign or scaled reads back as none) and not the truth's times one number (every
+    input of the wrong sign, or scaled: nothing tells that from an inertia so scaled, with
+    every term too) and the equations' other entries so read back
     are named too where at most :data:`MAX_UNSOLVED` differ (a term wrong beside the
     inertia), else nothing is said. ``sides``: both sides on a grid
     (:class:`~..sides.both.Sides`)."""
@@ -193,7 +187,7 @@ def inertia_diagnoses(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
     if T is not None:
         M = T @ doc_A
         size = max(float(np.abs(M).max(initial=0.0)), 1e-300)
-        if np.abs(M - np.swapaxes(M, 1, 2)).max() > AGREE_TOL * size:
+        if np.abs(M - np.swapaxes(M, 1, 2)).max() > AGREE_TOL * size or _scaled(M, true_A):
             return None                     # no inertia matrix: the inputs are not the truth's
         extra = _entries(doc, truth, true_B, velocities, T) or []
         if len(extra) > MAX_UNSOLVED:
@@ -218,6 +212,18 @@ def inertia_diagnoses(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
         return None
     return _diagnosis(f"the inertia matrix the document inverted (read back from {how}) "
                       "differs from the truth's: ", parts + _named(extra, truth, bases))
+
+
+def _scaled(M: np.ndarray, true_A: np.ndarray) -> bool:
+    r"""Whether ``M`` is the true inertia times one number other than 1 (the inputs of the
+    wrong sign or scaled, all of them: an inertia c A inverted and inputs and terms c × the
+    truth's read the same, and nothing tells them apart)."""
+    big = np.abs(true_A) > 1e-9 * float(np.abs(true_A).max(initial=0.0))
+    if not big.any():
+        return False
+    ratio = M[big] / true_A[big]
+    c = float(np.median(ratio))
+    return abs(c - 1.0) > AGREE_TOL and float(np.abs(ratio - c).max()) <= AGREE_TOL * abs(c)
 
 
 def _named(entries, truth, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> list[_Part]:
