@@ -210,8 +210,7 @@ def _missing_factor(D: np.ndarray, T: np.ndarray, bases: Sequence[tuple[sp.Expr,
     is :func:`.diagnose.value_diagnoses`') times the document: a factor it lacks
     (:math:`L` dropped from :math:`L(\tau_R - \tau_L)/R`), or has too much (:math:`f = 1/L`);
     where :math:`f = (x/y)^k` of two names one written for the other, or the two exchanged, in
-    the document's ``expr`` (:func:`_swapped`: :math:`r` where :math:`l` fits, in a form
-    solved for the accelerations, was "lacks a factor l/r")."""
+    the document's ``expr`` (:func:`_swapped`: R(τR − τL)/L where L(τR − τL)/R fits)."""
     if not D.size or np.abs(D).min() <= 0:
         return None
     f = fit_factor(T / D, bases)
