@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from wheeled_dyn.compare.presentation.closed_form import TRIG_EXPAND_LIMIT, _residual_text
+from wheeled_dyn.compare.presentation.residuals import TRIG_EXPAND_LIMIT, _residual_text
 
 x, y, q, g = sp.symbols("x y q g", real=True)
 NAMES = {"x": x, "y": y, "q": q, "g": g}
