@@ -168,11 +168,10 @@ def inertia_diagnoses(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
     and velocity terms, :func:`source_weights`) that differ from the truth's, named (a
     link's own moment missing: a point mass); None when all agree or it cannot be read back.
     Read back from its inputs, the inertia must be symmetric (an input exchanged, of the
-    wrong sign or scaled reads back as none) and not the truth's times one number (every
-    input of the wrong sign, or scaled: nothing tells that from an inertia so scaled, with
-    every term too) and the equations' other entries so read back
-    are named too where at most :data:`MAX_UNSOLVED` differ (a term wrong beside the
-    inertia), else nothing is said. ``sides``: both sides on a grid
+    wrong sign or scaled reads back as none), and not the truth's times one number (every
+    input of the wrong sign, or scaled: nothing tells that from an inertia so scaled with
+    every term too); the equations' other entries so read back are named beside it where at
+    most :data:`MAX_UNSOLVED` differ (a term wrong beside the inertia), else nothing is said. ``sides``: both sides on a grid
     (:class:`~..sides.both.Sides`)."""
     doc, truth, true_B = sides.doc, sides.truth, sides.B_true
     doc_A, true_A = doc.A, truth.need("A")
@@ -312,9 +311,9 @@ def unsolved_terms(doc, truth, true_B: np.ndarray | None, velocities: Sequence[s
 
 def read_back_explains(doc, truth, true_B: np.ndarray | None) -> bool:
     r"""Whether the document's equations, read back before it solved or combined them
-    (:func:`unsolved_terms`), are the truth's with its inputs' coefficients and all but one
-    to :data:`MAX_UNSOLVED` of their other entries: then each row is :math:`A_{doc,i}A^{-1}`
-    of such equations, a combination the form says (its inputs, stated, confirm it)."""
+    (:func:`unsolved_terms`), have the truth's inputs' coefficients and differ from the truth
+    in one to :data:`MAX_UNSOLVED` other entries: then each row is :math:`A_{doc,i}A^{-1}`
+    times such equations, a combination the form says (its inputs, stated, confirm it)."""
     if doc.B is None or true_B is None or not np.abs(true_B).max(initial=0.0) > 0:
         return False
     entries = _entries(doc, truth, true_B)
