@@ -20,7 +20,7 @@ from wheeled_dyn import cache_trust, compiled, disk_cache  # noqa: E402
 from wheeled_dyn.cli import compare_cmd as commands  # noqa: E402
 from wheeled_dyn.compare.judge import document_checks  # noqa: E402
 from wheeled_dyn.compare.other_documents import tables as seed_table  # noqa: E402
-from wheeled_dyn.compare.presentation import closed_form, printing  # noqa: E402
+from wheeled_dyn.compare.presentation import printing, residuals  # noqa: E402
 from wheeled_dyn.derivations import builtin_derivations  # noqa: E402
 from wheeled_dyn.disk_cache import CACHE_ENV, MAGIC, REUSE_ENV, load, save_memos, store  # noqa: E402
 from wheeled_dyn.models import registry  # noqa: E402
@@ -31,7 +31,7 @@ from wheeled_dyn.symbolic import wheeled  # noqa: E402
 QUICK_EXAMPLES, COMPARISON_EXAMPLES = 1000, 40
 #: A small grid: the verdicts only have to be the same as from an intact cache.
 SAMPLES, PARAM_SETS = 30, 1
-MEMOS = (printing.PRINTED, closed_form.RESIDUALS, document_checks.RESIDUALS, compiled.SOURCES,
+MEMOS = (printing.PRINTED, residuals.RESIDUALS, document_checks.RESIDUALS, compiled.SOURCES,
          seed_table.SHOWN, symbols.RENDERED, html_text.MATHML)
 
 #: A value with the kinds of objects entries hold.

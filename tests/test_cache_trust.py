@@ -25,7 +25,7 @@ from conftest import SEED
 from wheeled_dyn import cache_trust, compiled, disk_cache
 from wheeled_dyn.cli import compare_cmd as commands
 from wheeled_dyn.compare.other_documents import tables as seed_table
-from wheeled_dyn.compare.presentation import closed_form, printing
+from wheeled_dyn.compare.presentation import printing, residuals
 from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.compare.runtime.result_cache import result_key
 from wheeled_dyn.derivations import builtin_derivations, load_derivation
@@ -36,7 +36,7 @@ from wheeled_dyn.errors import CacheWarning
 OTHER_UID = 65534
 #: A small grid: the tests are about where numbers come from, not about the verdicts.
 SAMPLES, PARAM_SETS = 30, 1
-MEMOS = (printing.PRINTED, closed_form.RESIDUALS, compiled.SOURCES, seed_table.SHOWN)
+MEMOS = (printing.PRINTED, residuals.RESIDUALS, compiled.SOURCES, seed_table.SHOWN)
 
 
 @pytest.fixture

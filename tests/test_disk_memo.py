@@ -11,14 +11,14 @@ from conftest import SEED
 from wheeled_dyn import compiled
 from wheeled_dyn.compare.judge import document_checks
 from wheeled_dyn.compare.other_documents import tables as seed_table
-from wheeled_dyn.compare.presentation import closed_form, printing
+from wheeled_dyn.compare.presentation import printing, residuals
 from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.derivations import builtin_derivations, load_derivation
 from wheeled_dyn.disk_cache import CACHE_ENV, MAGIC, DiskMemo, load, save_memos
 
 x, phi = sp.symbols("x phi", real=True)
 #: The memos a comparison fills (all of them are emptied between the two runs below).
-MEMOS = (printing.PRINTED, closed_form.RESIDUALS, document_checks.RESIDUALS, compiled.SOURCES,
+MEMOS = (printing.PRINTED, residuals.RESIDUALS, document_checks.RESIDUALS, compiled.SOURCES,
          seed_table.SHOWN)
 
 
