@@ -26,6 +26,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
+
 from conftest import SEED
 from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.compare.records import DiagnosisKind as K
@@ -64,23 +66,21 @@ def test_the_right_combined_forms_agree(tmp_path):
             assert frame in result.equations[0].frame, result.equations[0].frame
 
 
-def test_an_inertia_dropped_in_a_row_combined_with_numbers_is_named_in_its_frame(tmp_path):
-    result = _compare(tmp_path, "rwp", ("I1*ddq1 + I2*ddq1 + I2*ddq2", "I1*ddq1 + I2*ddq2"))
+@pytest.mark.parametrize("old, new, kind, text", [
+    # d11 without I2: the wheel's own inertia missing from the combined row
+    ("I1*ddq1 + I2*ddq1 + I2*ddq2", "I1*ddq1 + I2*ddq2", K.POINT_MASS, "Iyy(wheel)"),
+    # lc1 written for l1 in m2 l1²
+    ("ddq1*l1**2*m2", "ddq1*lc1**2*m2", K.SWAP, "lc1"),
+])
+def test_an_error_in_a_row_combined_with_numbers_is_named_in_its_frame(tmp_path, old, new,
+                                                                        kind, text):
+    result = _compare(tmp_path, "rwp", (old, new))
     assert result.equivalent is False
     assert "eq1 - eq2" in result.equations[0].frame, result.equations[0].frame
     flagged = _flagged(result)
     assert set(flagged) == {"A[1,1]"}, {e: r.texts for e, r in flagged.items()}
-    assert flagged["A[1,1]"].kinds[0] == K.POINT_MASS, flagged["A[1,1]"].texts
-    assert "Iyy(wheel)" in flagged["A[1,1]"].texts[0], flagged["A[1,1]"].texts
-
-
-def test_a_symbol_for_another_in_a_row_combined_with_numbers_is_named(tmp_path):
-    result = _compare(tmp_path, "rwp", ("ddq1*l1**2*m2", "ddq1*lc1**2*m2"))
-    assert result.equivalent is False
-    assert "eq1 - eq2" in result.equations[0].frame, result.equations[0].frame
-    flagged = _flagged(result)
-    assert set(flagged) == {"A[1,1]"}, {e: r.texts for e, r in flagged.items()}
-    assert K.SWAP in flagged["A[1,1]"].kinds, flagged["A[1,1]"].texts
+    assert flagged["A[1,1]"].kinds[0] == kind, flagged["A[1,1]"].texts
+    assert text in flagged["A[1,1]"].texts[0], flagged["A[1,1]"].texts
 
 
 def test_a_term_dropped_from_an_equation_combined_with_functions_is_named_alone(tmp_path):

@@ -714,6 +714,17 @@ def test_a_long_summary_line_is_cut_on_the_terminal(engine, tmp_path, capsys):
     assert "(12041 characters: the reports hold it whole)" in out, out  # with its prefix
 
 
+def _wip_with(tmp_path: Path, form: str, old: str, new: str):
+    r"""``data/published/<form>.toml`` (a WIP form, the built-in model) with ``old`` planted as
+    ``new``, compared."""
+    text = (DATA / f"{form}.toml").read_text()
+    assert text.count(old) == 1, old
+    path = tmp_path / "doc.toml"
+    path.write_text(text.replace(old, new))
+    return ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(
+        load_derivation(path))
+
+
 def test_a_term_left_undivided_blames_no_unit_on_a_tie(tmp_path):
     r"""The planar WIP's pitch equation divided by its inertia, its gravity term left out of
     the division (``data/published/wip_planar_divided.toml``, positions without units): the
@@ -721,13 +732,9 @@ def test_a_term_left_undivided_blames_no_unit_on_a_tie(tmp_path):
     one, one vote each. The input's right coefficient was flagged "dimension ... numerically
     equal here only because the inconsistent term vanishes"; on such a tie no unit is blamed,
     and the gravity term is named as not divided."""
-    text = (DATA / "wip_planar_divided.toml").read_text()
-    old = "(m*l*cos(theta)*ddx - m*g*l*sin(theta))/(I_b + m*l**2)"
-    assert text.count(old) == 1
-    path = tmp_path / "doc.toml"
-    path.write_text(text.replace(old, "m*l*cos(theta)*ddx/(I_b + m*l**2) - m*g*l*sin(theta)"))
-    result = ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(
-        load_derivation(path))
+    result = _wip_with(tmp_path, "wip_planar_divided",
+                       "(m*l*cos(theta)*ddx - m*g*l*sin(theta))/(I_b + m*l**2)",
+                       "m*l*cos(theta)*ddx/(I_b + m*l**2) - m*g*l*sin(theta)")
     assert result.equivalent is False
     flagged = {r.element: r for r in result.records if r.verdict != "agrees"}
     assert set(flagged) == {"Q[2]"}, {e: r.texts for e, r in flagged.items()}
@@ -743,13 +750,7 @@ def test_a_parallel_axis_term_equal_about_two_axes_names_both(tmp_path):
     inertia about its centre where the one about the axle fits: its centre of mass lies on
     one of its axes, so its parallel-axis terms about the two others are the same number;
     the first was named ("about its x axis", the pitch axis is another), now both are."""
-    text = (DATA / "wip_planar_x.toml").read_text()
-    old = "(I_b + m*l**2)*ddtheta"
-    assert text.count(old) == 1
-    path = tmp_path / "doc.toml"
-    path.write_text(text.replace(old, "(I_b)*ddtheta"))
-    result = ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(
-        load_derivation(path))
+    result = _wip_with(tmp_path, "wip_planar_x", "(I_b + m*l**2)*ddtheta", "(I_b)*ddtheta")
     record = next(r for r in result.records if r.element == "A[2,2]")
     assert record.kinds[0] == K.PARALLEL_AXIS, record.texts
     assert "the parallel-axis term of body about its x or z axis" in record.texts[0], \
