@@ -20,8 +20,8 @@ from ..judge.equivalence import EquationDecision, SystemDecision
 from ..judge.fitting import bases, fit_factor
 from ..judge.unsolved import read_back_explains
 from ..readings.frame_choice import choose, elements_of, score, solved_row
-from ..readings.frames import (Frame, FrameKind, FrameRule, candidate_rules,
-                               combination_variants, evaluate_rule)
+from ..readings.frames import Frame, FrameKind, FrameRule, candidate_rules, evaluate_rule
+from ..readings.variants import combination_variants
 from ..records import DiagnosisKind, Verdict, diagnosis
 from ..sides.both import Sides
 from ..sides.document import DocumentFunctions
@@ -61,7 +61,7 @@ def choose_frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], d
             rules.append(rule)
             frames.append(_always(i, rule, main, declared_scale))
             continue
-        rules_i = candidate_rules(i, on, False, simple)
+        rules_i = candidate_rules(i, on, simple)
         if read_back:      # the equations read back name the error: A_doc,i A⁻¹ is the form's
             rules_i = [replace(r, identified=True) if r.kind == FrameKind.COMBINATION
                        and r.variant is None else r for r in rules_i]

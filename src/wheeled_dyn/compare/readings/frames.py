@@ -29,7 +29,7 @@ under every frame (if all agreed, :math:`f_i = w_i` and the equation would be ri
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from enum import IntEnum
 
 import numpy as np
@@ -287,15 +287,13 @@ def evaluate_rule(i: int, rule: FrameRule, doc: Arrays, truth: Arrays,
 
 
 def candidate_rules(i: int, grids: Sequence[tuple[Arrays, Arrays, np.ndarray | None]],
-                    robust: bool, simple: Callable[[np.ndarray], bool] | None = None
-                    ) -> list[FrameRule]:
+                    simple: Callable[[np.ndarray], bool] | None = None) -> list[FrameRule]:
     r"""The rules tried for row ``i``: the identity; for each true row the elements vote for
     on some grid ((document, truth, true B) each, the document's B in its ``Arrays.B``), the
     constant they share there, else a function (``identified`` where ``simple`` finds its
     ratio a simple expression of the document's names on the first grid, however many
-    elements share it: as good as a constant); the combination :math:`A_{doc,i}A^{-1}`, and
-    with ``robust`` (an equation that is not right) its variants with one inertia column
-    replaced."""
+    elements share it: as good as a constant); the combination :math:`A_{doc,i}A^{-1}` (its
+    variants with one inertia column replaced: :mod:`.variants`)."""
     doc0, truth0, B0 = grids[0]
     n = truth0.need("A").shape[1]
     out = [FrameRule(FrameKind.IDENTITY)]
@@ -321,7 +319,7 @@ def candidate_rules(i: int, grids: Sequence[tuple[Arrays, Arrays, np.ndarray | N
     if doc0.A is None:                    # no inertia: no combination to find
         return out
     out.append(_combination(i, grids[0], simple))
-    return out + combination_variants(grids, i) if robust else out
+    return out
 
 
 def _combination(i: int, grid: tuple[Arrays, Arrays, np.ndarray | None],
@@ -343,44 +341,6 @@ def _combination(i: int, grid: tuple[Arrays, Arrays, np.ndarray | None],
     return rule
 
 
-def combination_variants(grids: Sequence[tuple[Arrays, Arrays, np.ndarray | None]],
-                         i: int | None = None) -> list[FrameRule]:
-    r"""The combinations with one inertia column replaced (the rules ``candidate_rules`` adds
-    for an equation that is not right). Their weights are fitted to the row with one
-    inertia column left out, so weights that are simple expressions there say little of the
-    form; but where they are the same constants at every sample of every grid (row ``i``:
-    eq1 − eq2 with an error in its first inertia column), a combination of the true rows
-    reproduces the rest of the row with numbers, not functions, fitted — as good as a
-    constant factor (``identified``)."""
-    doc0, truth0, B0 = grids[0]
-    n = truth0.need("A").shape[1]
-    m = 0 if doc0.B is None or B0 is None else doc0.B.shape[2]
-    rules = [FrameRule(FrameKind.COMBINATION, variant=(j, c))
-             for j in range(n) for c in range(-1, m)]
-    if i is None:
-        return rules
-    return [replace(rule, identified=True) if _constant(i, rule, grids) else rule
-            for rule in rules]
-
-
-def _constant(i: int, rule: FrameRule, grids: Sequence[tuple[Arrays, Arrays,
-                                                               np.ndarray | None]]) -> bool:
-    r"""Whether the weights of ``rule`` for row ``i`` are the same constants at every sample of
-    every grid, two of them or more not zero (one alone is a constant factor's rule)."""
-    first = None
-    for doc, truth, B_true in grids:
-        w = combination_weights(i, rule, doc, truth, doc.B, B_true)
-        if not np.isfinite(w).all():
-            return False
-        size = float(np.abs(w).max(initial=0.0))
-        if size == 0.0 or np.ptp(w, axis=0).max() > CONSTANT_SPREAD * size:
-            return False
-        first = w[0] if first is None else first
-        if np.abs(w[0] - first).max() > CONSTANT_SPREAD * size:
-            return False
-    return first is not None and int((np.abs(first) > CONSTANT_SPREAD * size).sum()) > 1
-
-
 __all__ = ["CONSTANT_SPREAD", "Frame", "FrameKind", "FrameRule", "RATIO_TOL", "VOTE_FLOOR",
-           "candidate_rules", "combination_variants", "combination_weights", "evaluate_rule",
+           "candidate_rules", "combination_weights", "evaluate_rule",
            "paired"]

@@ -1,0 +1,78 @@
+r"""The combinations a row that is not right may be explained in besides
+:math:`A_{doc,i}A^{-1}` (:mod:`.frames`): the true rows' weights fitted with one inertia
+column of the row left out, replaced by the velocity and gravity terms or by an input's
+column — an error in that column then stands alone — and which of them are as good as a
+constant factor (their weights the same numbers at every sample).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import replace
+
+import numpy as np
+
+from ..grid.arrays import Arrays
+from .frames import CONSTANT_SPREAD, FrameKind, FrameRule, combination_weights
+
+
+def combination_variants(grids: Sequence[tuple[Arrays, Arrays, np.ndarray | None]],
+                         i: int | None = None) -> list[FrameRule]:
+    r"""The combinations with one inertia column replaced (tried for an equation that is not
+    right where the simpler rules leave many elements differing). Their weights are fitted to the row with one
+    inertia column left out, so weights that are simple expressions there say little of the
+    form; but where they are the same constants at every sample of every grid (row ``i``:
+    eq1 − eq2 with an error in its first inertia column), a combination of the true rows
+    reproduces the rest of the row with numbers, not functions, fitted — as good as a
+    constant factor (``identified``)."""
+    doc0, truth0, B0 = grids[0]
+    n = truth0.need("A").shape[1]
+    m = 0 if doc0.B is None or B0 is None else doc0.B.shape[2]
+    rules = [FrameRule(FrameKind.COMBINATION, variant=(j, c))
+             for j in range(n) for c in range(-1, m)]
+    if i is None:
+        return rules
+    return [replace(rule, identified=True) if _constant(i, rule, grids) else rule
+            for rule in rules]
+
+
+def _constant(i: int, rule: FrameRule, grids: Sequence[tuple[Arrays, Arrays,
+                                                               np.ndarray | None]]) -> bool:
+    r"""Whether the weights of ``rule`` for row ``i`` are the same constants at every sample of
+    every grid, two of them or more not zero (one alone is a constant factor's rule); tried
+    on :data:`CONSTANT_SCREEN` samples of the first grid before all (most are not)."""
+    doc, truth, B_true = grids[0]
+    S = len(truth.need("A"))
+    at = np.linspace(0, S - 1, min(S, CONSTANT_SCREEN)).astype(int)
+
+    def some(a: np.ndarray | None) -> np.ndarray | None:
+        return None if a is None else a[at]
+    screened = (Arrays(A=some(doc.A), Q=some(doc.Q), B=some(doc.B), h=some(doc.h)),
+                Arrays(A=some(truth.A), Q=some(truth.Q), h=some(truth.h)), some(B_true))
+    if S > CONSTANT_SCREEN and not _same_numbers(i, rule, [screened]):
+        return False
+    return _same_numbers(i, rule, grids)
+
+
+#: Samples a combination's weights are first tried on for being constants (:func:`_constant`).
+CONSTANT_SCREEN = 32
+
+
+def _same_numbers(i: int, rule: FrameRule, grids: Sequence[tuple[Arrays, Arrays,
+                                                                 np.ndarray | None]]) -> bool:
+    r"""The test of :func:`_constant` on ``grids``."""
+    first = None
+    for doc, truth, B_true in grids:
+        w = combination_weights(i, rule, doc, truth, doc.B, B_true)
+        if not np.isfinite(w).all():
+            return False
+        size = float(np.abs(w).max(initial=0.0))
+        if size == 0.0 or np.ptp(w, axis=0).max() > CONSTANT_SPREAD * size:
+            return False
+        first = w[0] if first is None else first
+        if np.abs(w[0] - first).max() > CONSTANT_SPREAD * size:
+            return False
+    return first is not None and int((np.abs(first) > CONSTANT_SPREAD * size).sum()) > 1
+
+
+__all__ = ["CONSTANT_SCREEN", "combination_variants"]
