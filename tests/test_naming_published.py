@@ -755,3 +755,22 @@ def test_a_parallel_axis_term_equal_about_two_axes_names_both(tmp_path):
     assert record.kinds[0] == K.PARALLEL_AXIS, record.texts
     assert "the parallel-axis term of body about its x or z axis" in record.texts[0], \
         record.texts
+
+
+def test_a_plain_equation_is_not_said_to_be_divided(tmp_path):
+    r"""A two-link arm whose elbow sits on a bracket turned by half a radian, its equations
+    written out as if the bracket were not turned (``turned_bracket_arm_unturned.toml``,
+    written for the tests): cos(q2) where cos(q2 + 1/2) fits. Its rows are the true
+    equations themselves; the swap is named, and not "before the document divided its
+    equation by its own quantity" (a row's factor of 1 was taken for a division)."""
+    for name in ("turned_bracket_arm.toml", "turned_bracket_arm.urdf",
+                 "turned_bracket_arm_unturned.toml"):
+        (tmp_path / name).write_text((DATA / name).read_text())
+    result = ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(
+        load_derivation(tmp_path / "turned_bracket_arm_unturned.toml"))
+    assert result.equivalent is False
+    assert all(e.frame == "the true equation" for e in result.equations)
+    flagged = [r for r in result.records if r.verdict != "agrees"]
+    assert flagged
+    assert not any("divided" in t for r in flagged for t in r.texts), \
+        [(r.element, r.texts) for r in flagged]
