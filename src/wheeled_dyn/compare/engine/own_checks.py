@@ -19,17 +19,17 @@ def own_checks(d: Derivation, funcs, sides, texts, rules, frames
     r"""(the power identity's check or None, the asymmetric pairs and definiteness as text) of
     the document ``d``; ``sides`` both sides on the main grid, ``texts``, ``rules``,
     ``frames`` each row's frame."""
-    own = unscaled(sides.doc, frames, rules)
+    own = _unscaled(sides.doc, frames, rules)
     asymmetric = () if own is None or own.A is None else asymmetry(
-        own, entry_sizes(own.A), d.n, sides.truth.A, sides.doc.A)
-    diagonal = diagonal_factors(d, texts, rules)
+        own, _entry_sizes(own.A), d.n, sides.truth.A, sides.doc.A)
+    diagonal = _diagonal_factors(d, texts, rules)
     grid = sides.grid
     energy = None if diagonal is None else energy_check(
         funcs, sides.doc, diagonal, grid.flat_q, grid.flat_nu, sides.values, d)
     return energy, asymmetric
 
 
-def diagonal_factors(d: Derivation, texts, rules) -> list[sp.Expr] | None:
+def _diagonal_factors(d: Derivation, texts, rules) -> list[sp.Expr] | None:
     r"""Each row's factor of the true equation when every row is the true one times a factor
     (symbolic, identified), else None: the document's own checks (energy) read it so."""
     out = []
@@ -46,7 +46,7 @@ def diagonal_factors(d: Derivation, texts, rules) -> list[sp.Expr] | None:
     return out
 
 
-def unscaled(doc, frames, rules):
+def _unscaled(doc, frames, rules):
     r"""The document's arrays with each row divided by its factor per sample, when every row
     is the true one times a factor; None otherwise (its A's symmetry and definiteness are
     then not judged: a solved or combined form has neither)."""
@@ -64,11 +64,11 @@ def unscaled(doc, frames, rules):
         return Arrays(A=doc.A / c[:, :, None])
 
 
-def entry_sizes(A: np.ndarray) -> np.ndarray:
+def _entry_sizes(A: np.ndarray) -> np.ndarray:
     r"""Each row's largest finite magnitude (1 for a row with none)."""
     finite = np.where(np.isfinite(A), np.abs(A), 0.0)
     size = finite.max(axis=(0, 2))
     return np.where(size > 0, size, 1.0)
 
 
-__all__ = ["diagonal_factors", "own_checks", "entry_sizes", "unscaled"]
+__all__ = ["own_checks"]

@@ -174,27 +174,10 @@ def independent_rows(Mn: np.ndarray, rank: int) -> list[int]:
     return chosen
 
 
-def asymmetric_pairs(doc: Arrays, scales, n: int, printed_A: np.ndarray | None = None
-                     ) -> list[tuple[int, int]]:
-    r"""The pairs :math:`(i, j)`, :math:`i < j`, 0-based, where :math:`A_{ij} \ne A_{ji}` —
-    of ``doc`` (rows divided by their factors), and of the ``printed_A`` too where it is
-    given (elements lost in the extracted text, NaN, left out)."""
-    if doc.A is None:
-        return []
-    lost = ~np.isfinite(doc.A).all(axis=0)
-    both = [doc.A] if printed_A is None or printed_A.shape != doc.A.shape else \
-        [doc.A, printed_A]
-    return [(i, j) for i in range(n) for j in range(i + 1, n)
-            if not (lost[i, j] or lost[j, i])
-            and not any(agrees(A[:, i, j], A[:, j, i], max(scales[i], scales[j]))
-                        for A in both)]
-
-
 def asymmetry(doc: Arrays, scales, n: int, truth_A: np.ndarray | None = None,
               printed_A: np.ndarray | None = None) -> tuple[str, ...]:
-    r"""Pairs A[i,j] ≠ A[j,i] (:func:`asymmetric_pairs`), and whether A is positive definite
-    (elements lost in the extracted text, NaN, are left out; A with a lost element is not
-    tested for definiteness):
+    r"""Pairs A[i,j] ≠ A[j,i], and whether A is positive definite (elements lost in the
+    extracted text, NaN, are left out; A with a lost element is not tested for definiteness):
     not where its smallest eigenvalue is negative, or is zero (to :data:`AGREE_TOL` of its
     largest entry) where the truth's ``truth_A`` is not (a rolling disk's A near lying flat
     is nearly singular on both sides: its heading and spin turn about one axis there).
@@ -204,13 +187,19 @@ def asymmetry(doc: Arrays, scales, n: int, truth_A: np.ndarray | None = None,
     "asymmetric", as printed it is not)."""
     if doc.A is None:
         return ()
-    out = [f"A[{i + 1},{j + 1}] ≠ A[{j + 1},{i + 1}]"
-           for i, j in asymmetric_pairs(doc, scales, n, printed_A)]
+    out = []
     lost = ~np.isfinite(doc.A).all(axis=0)
-    if lost.any():
-        return tuple(out)
     both = [doc.A] if printed_A is None or printed_A.shape != doc.A.shape else \
         [doc.A, printed_A]
+    for i in range(n):
+        for j in range(i + 1, n):
+            if lost[i, j] or lost[j, i]:
+                continue
+            if not any(agrees(A[:, i, j], A[:, j, i], max(scales[i], scales[j]))
+                       for A in both):
+                out.append(f"A[{i + 1},{j + 1}] ≠ A[{j + 1},{i + 1}]")
+    if lost.any():
+        return tuple(out)
     lows = [_lowest(A) for A in both]
     lowest = lows[0]
     singular = _lowest(truth_A) <= AGREE_TOL if truth_A is not None and \
@@ -391,7 +380,7 @@ def constraint_problems(d: Derivation, funcs: DocumentFunctions, sides: Sides
                  for text in constraint_space(rows, truth.G, sets))
 
 
-__all__ = ["FACTOR_LIMIT", "RANK_TOL", "RATE_POINT_SEED", "RATE_RANK_TOL", "ROUND_OFF",
-           "ROW_TOL", "asymmetric_pairs", "asymmetry", "constraint_problems", "constraint_rows",
-           "constraint_space", "energy_check", "independent_rows", "position_rates", "row_rank",
-           "solve_rates", "unit_rows"]
+__all__ = ["FACTOR_LIMIT", "RANK_TOL", "ROUND_OFF", "ROW_TOL", "RATE_POINT_SEED", "RATE_RANK_TOL",
+           "asymmetry", "constraint_problems", "constraint_rows", "constraint_space",
+           "energy_check", "independent_rows", "position_rates", "row_rank", "solve_rates",
+           "unit_rows"]

@@ -32,7 +32,7 @@ from ..records import Diagnosis, DiagnosisKind as K, Verdict, diagnosis, has_kin
 from .diagnose import nice_number
 from .draft import ElementDraft
 from .fitting import RATIO_TOL, fit_factor, fit_sum
-from .swap_fit import swap_reading
+from .swap_fit import difference_reading
 
 #: Diagnoses after which no term is named (the error is named already); a constant factor
 #: may still be a point mass's (m l² for the uniform rod's m l²/3 is "factor 3/4").
@@ -379,9 +379,7 @@ def _undivided(before: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
     fits (a divisor printed with :math:`l_{c1}^2` for :math:`l_1^2` divides every element by
     it, and only the element it leaves differing shows the error, as a ratio of two
     inertias); None otherwise."""
-    found = fit_factor(before, bases) if np.abs(before).min() > 0 else None
-    found = found if found is not None else fit_sum(before, bases)
-    swap = swap_reading(before, bases, found)
+    found, swap = difference_reading(before, bases)
     head = "before the document divided its equation by its own quantity: "
     if swap is not None:
         return diagnosis(K.SWAP, f"{head}{swap[1]} (truth − document = {sp.sstr(swap[0])})",

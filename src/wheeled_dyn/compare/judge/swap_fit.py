@@ -10,17 +10,28 @@ from collections.abc import Sequence
 import numpy as np
 import sympy as sp
 
-from .fitting import EXPONENTS, _independent, _try
+from .fitting import EXPONENTS, _independent, _try, fit_factor, fit_sum
+
+
+def _product(M: sp.Expr, x: sp.Expr, y: sp.Expr) -> sp.Expr:
+    r""":math:`M\,(x - y)` as one expression (a number kept in front: ``2*(l1 - lc1)``)."""
+    return sp.Mul(M, x - y, evaluate=False) if M.is_Number else M * (x - y)
 
 
 def fit_swap(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
              ) -> sp.Expr | None:
     r""":math:`M\,(x - y)` of :func:`swap_pair` as one expression, or None."""
     pair = swap_pair(target, bases)
-    if pair is None:
-        return None
-    found, x, y = pair
-    return sp.Mul(found, x - y, evaluate=False) if found.is_Number else found * (x - y)
+    return None if pair is None else _product(*pair)
+
+
+def difference_reading(residual: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
+                       ) -> tuple[sp.Expr | None, tuple[sp.Expr, str] | None]:
+    r"""Truth − document ``residual`` in the document's names: (a monomial or a sum of two
+    that fits it, or None; :func:`swap_reading` of it, or None) — the swap searched once."""
+    found = fit_factor(residual, bases) if np.abs(residual).min() > 0 else None
+    found = found if found is not None else fit_sum(residual, bases)
+    return found, swap_reading(residual, bases, found)
 
 
 def swap_reading(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]],
@@ -38,8 +49,7 @@ def swap_reading(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
         return None
     M, x, y = pair
     a, b = (sp.sstr(e.base) if e.is_Pow and e.exp == 2 else sp.sstr(e) for e in (x, y))
-    return (sp.Mul(M, x - y, evaluate=False) if M.is_Number else M * (x - y),
-            f"{a} and {b}, one written where the other fits")
+    return _product(M, x, y), f"{a} and {b}, one written where the other fits"
 
 
 def swap_pair(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
@@ -80,4 +90,4 @@ def swap_pair(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
     return None
 
 
-__all__ = ["fit_swap", "swap_pair", "swap_reading"]
+__all__ = ["difference_reading", "fit_swap", "swap_pair", "swap_reading"]

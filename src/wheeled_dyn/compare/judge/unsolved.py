@@ -30,17 +30,8 @@ import sympy as sp
 from ..records import Diagnosis, DiagnosisKind as K, Verdict, has_kind
 from .diagnose import AGREE_TOL, value_diagnoses
 from .draft import ElementDraft
-from .fitting import fit_factor, fit_sum
 from .named import NAMED, own_moments, point_mass_fit
-from .swap_fit import fit_swap, swap_reading
-
-
-def _fit(residual: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> sp.Expr | None:
-    r"""Truth − document as a monomial, or a sum of two, or a monomial times the difference of
-    two names (one written for the other in a product), in the document's names, or None."""
-    found = None if np.abs(residual).min() <= 0 else fit_factor(residual, bases)
-    found = found if found is not None else fit_sum(residual, bases)
-    return found if found is not None else fit_swap(residual, bases)
+from .swap_fit import difference_reading
 
 
 def _said(found: sp.Expr | None) -> str:
@@ -66,7 +57,8 @@ def _part(where: str, T: np.ndarray, D: np.ndarray, scale: float,
     product (:func:`~.swap_fit.swap_reading`); a body's own moment
     about its centre of mass where truth − document is exactly one of ``moments``
     (:func:`~.named.own_moments`: a point mass); else the terms the document lacks."""
-    found = _fit(T - D, bases)
+    found, swap = difference_reading(T - D, bases)
+    found = found if found is not None or swap is None else swap[0]
     whole = value_diagnoses(D, T, scale)
     if whole:
         said = f" ({_said(found)})" if found is not None else ""
@@ -75,7 +67,6 @@ def _part(where: str, T: np.ndarray, D: np.ndarray, scale: float,
     if hit is not None and hit[1] == 1:
         return _Part(f"{where}: the moment of inertia {hit[0]} about its own centre of mass is "
                      f"missing, a point mass ({_said(found)})", found, K.POINT_MASS)
-    swap = swap_reading(T - D, bases, found)
     if swap is not None:
         return _Part(f"{where}: {swap[1]} ({_said(swap[0])})", swap[0], K.SWAP)
     return _Part(f"{where} {_said(found)}", found, K.MISSING)

@@ -16,22 +16,20 @@ from ..grid.arrays import Arrays
 from .frames import CONSTANT_SPREAD, FrameKind, FrameRule, combination_weights
 
 
-def combination_variants(grids: Sequence[tuple[Arrays, Arrays, np.ndarray | None]],
-                         i: int | None = None) -> list[FrameRule]:
-    r"""The combinations with one inertia column replaced (tried for an equation that is not
-    right where the simpler rules leave many elements differing). Their weights are fitted to the row with one
-    inertia column left out, so weights that are simple expressions there say little of the
-    form; but where they are the same constants at every sample of every grid (row ``i``:
-    eq1 − eq2 with an error in its first inertia column), a combination of the true rows
-    reproduces the rest of the row with numbers, not functions, fitted — as good as a
-    constant factor (``identified``)."""
+def combination_variants(grids: Sequence[tuple[Arrays, Arrays, np.ndarray | None]], i: int
+                         ) -> list[FrameRule]:
+    r"""Row ``i``'s combinations with one inertia column replaced (tried for an equation that
+    is not right where the simpler rules leave many elements differing). Their weights are
+    fitted to the row with one inertia column left out, so weights that are simple
+    expressions there say little of the form; but where they are the same constants at every
+    sample of every grid (eq1 − eq2 with an error in its first inertia column), a combination
+    of the true rows reproduces the rest of the row with numbers, not functions, fitted — as
+    good as a constant factor (``identified``)."""
     doc0, truth0, B0 = grids[0]
     n = truth0.need("A").shape[1]
     m = 0 if doc0.B is None or B0 is None else doc0.B.shape[2]
     rules = [FrameRule(FrameKind.COMBINATION, variant=(j, c))
              for j in range(n) for c in range(-1, m)]
-    if i is None:
-        return rules
     return [replace(rule, identified=True) if _constant(i, rule, grids) else rule
             for rule in rules]
 
