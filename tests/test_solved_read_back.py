@@ -22,6 +22,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 import sympy as sp
 
@@ -146,3 +147,32 @@ def test_two_names_exchanged_are_named_as_exchanged(engine, tmp_path):
     assert set(flagged) == {"B[2,1]", "B[2,2]"}, {e: r.texts for e, r in flagged.items()}
     assert all(r.texts[0].startswith("swap: L and R exchanged") for r in flagged.values()), \
         {e: r.texts for e, r in flagged.items()}
+
+
+def test_a_plain_inertia_error_is_not_read_back_as_a_combination():
+    r""":func:`~wheeled_dyn.compare.judge.unsolved.read_back_explains` on arrays: two
+    uncoupled equations, an input on the second, the document plain but for its first
+    inertia (a + ε for a). Read back (rows times A A_doc⁻¹) its inputs are the truth's and
+    its first gravity term differs — one entry, as many as the document as printed differs
+    in: that is no better reading, and its first row is not to be explained as a
+    combination (its inertia's error would be hidden in the frame)."""
+    from wheeled_dyn.compare.grid.arrays import Arrays
+    from wheeled_dyn.compare.judge.unsolved import read_back_explains
+    rng = np.random.default_rng(SEED)
+    S = 50
+    a, c, g1, g2 = (rng.uniform(1.0, 2.0, S) for _ in range(4))
+    A = np.zeros((S, 2, 2))
+    A[:, 0, 0], A[:, 1, 1] = a, c
+    A_doc = A.copy()
+    A_doc[:, 0, 0] = 1.3 * a
+    B = np.zeros((S, 2, 1))
+    B[:, 1, 0] = 1.0
+    Q = np.stack([g1, g2], axis=1)
+    truth, doc = Arrays(A=A, Q=Q), Arrays(A=A_doc, Q=Q.copy(), B=B.copy())
+    assert not read_back_explains(doc, truth, B)
+    # solved for its accelerations, the same document is read back: one entry, where as
+    # printed every entry of A, B and Q differs
+    inv = np.linalg.inv(A_doc)
+    solved = Arrays(A=np.broadcast_to(np.eye(2), A.shape).copy(),
+                    Q=np.einsum("sij,sj->si", inv, Q), B=inv @ B)
+    assert read_back_explains(solved, truth, B)

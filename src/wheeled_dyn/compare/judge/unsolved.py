@@ -303,12 +303,30 @@ def unsolved_terms(doc, truth, true_B: np.ndarray | None, velocities: Sequence[s
 def read_back_explains(doc, truth, true_B: np.ndarray | None) -> bool:
     r"""Whether the document's equations, read back before it solved or combined them
     (:func:`unsolved_terms`), have the truth's inputs' coefficients and differ from the truth
-    in one to :data:`MAX_UNSOLVED` other entries: then each row is :math:`A_{doc,i}A^{-1}`
-    times such equations, a combination the form says (its inputs, stated, confirm it)."""
+    in one to :data:`MAX_UNSOLVED` other entries, fewer than the equations as printed do:
+    then each row is :math:`A_{doc,i}A^{-1}` times such equations, a combination the form
+    says (its inputs, stated, confirm it). A document written plainly with one inertia wrong
+    differs as printed in that entry alone, and read back in its gravity or velocity terms
+    instead: it is not read back (its rows' frames would hide the inertia's error)."""
     if doc.B is None or true_B is None or not np.abs(true_B).max(initial=0.0) > 0:
         return False
     entries = _entries(doc, truth, true_B)
-    return entries is not None and 0 < len(entries) <= MAX_UNSOLVED
+    return entries is not None and 0 < len(entries) <= MAX_UNSOLVED and \
+        len(entries) < _as_printed(doc, truth, true_B)
+
+
+def _as_printed(doc, truth, true_B: np.ndarray) -> int:
+    r"""The entries of the document's A, B, gravity and velocity terms that differ from the
+    truth's as printed (each row read as the true one)."""
+    assert doc.A is not None and doc.B is not None
+    same = np.broadcast_to(np.eye(doc.A.shape[1]), doc.A.shape)
+    out = len(_entries(doc, truth, true_B, T=same) or [])
+    for mine, theirs in ((doc.A, truth.need("A")), (doc.B, true_B)):
+        if mine.shape != theirs.shape:
+            return 10 ** 9                  # no entry-wise reading: anything is fewer
+        scale = max(float(np.abs(theirs).max(initial=0.0)), 1e-300)
+        out += int((np.abs(mine - theirs).max(axis=0) > AGREE_TOL * scale).sum())
+    return out
 
 
 #: An element's own diagnoses that name its error where the document solved or combined its
