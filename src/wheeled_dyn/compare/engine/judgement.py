@@ -218,8 +218,8 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
             and id_sides.doc.A is not None:
         solved = inertia_diagnoses(id_sides, found, d.velocities) or \
             unsolved_terms(id_sides.doc, id_sides.truth, id_sides.B_true, d.velocities, found)
-        read_back(drafts, {i for i, r in enumerate(rules) if r.kind >= FrameKind.FUNCTION},
-                  solved)
+        read_back(drafts, {i for i, r in enumerate(rules)
+                           if r.kind in (FrameKind.FUNCTION, FrameKind.COMBINATION)}, solved)
     equations = equation_records(d, decision, drafts, texts, label, grids, funcs, rules, solved)
     fixes = print_drafts(d, drafts, sides.grid.cs, texts, assumed, funcs.exprs)
     equations = corrected(d, equations, fixes)
