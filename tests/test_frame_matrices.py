@@ -1,7 +1,8 @@
 r"""The combination frames' weights (:func:`wheeled_dyn.compare.readings.frames.combination_weights`)
 against a direct solution, per row, with the matrices the rows share remembered: the weights
 follow the truth's arrays when they are replaced (a grid's truth read under an assumption is
-new arrays), and a singular sample is NaN whichever row asked first."""
+new arrays), a singular sample is NaN whichever row asked first, and the main grid's
+matrices are kept while the small screens' come and go."""
 
 from __future__ import annotations
 
@@ -9,11 +10,14 @@ import numpy as np
 import pytest
 
 from wheeled_dyn.compare.grid.arrays import Arrays
-from wheeled_dyn.compare.readings.frames import FrameKind, FrameRule, combination_weights
+from wheeled_dyn.compare.readings import frames
+from wheeled_dyn.compare.readings.frames import (MATRICES_FROM, FrameKind, FrameRule,
+                                                 combination_weights)
 
 #: Agreement of two solutions of the same small systems (condition numbers below 1e3 here).
 TOL = 1e-10
-S, N = 200, 3
+#: Samples: enough for the matrices to be remembered.
+S, N = MATRICES_FROM, 3
 
 
 def _spd(rng: np.random.Generator) -> np.ndarray:
@@ -79,3 +83,26 @@ def test_singular_samples_are_nan_for_every_row() -> None:
         w = combination_weights(i, rule, doc, truth, B_doc, B_true)
         assert np.isnan(w[5]).all() and np.isnan(w[7]).all()
         assert np.isfinite(np.delete(w, [5, 7], axis=0)).all()
+
+
+def test_main_matrices_kept_between_screens(monkeypatch: pytest.MonkeyPatch) -> None:
+    r"""Every variant of the main grid asked again after a round of small screens (fewer
+    samples than :data:`MATRICES_FROM`, new arrays each) is found, not made again: its
+    determinants are taken once."""
+    doc, truth, B_doc, B_true = _sides(5)
+    made: list[int] = []
+    real = frames.relative_det
+    monkeypatch.setattr(frames, "relative_det", lambda M: made.append(len(M)) or real(M))
+    variants = [None, *((j, c) for j in range(N) for c in (-1, 0, 1))]
+    rules = [FrameRule(FrameKind.COMBINATION, variant=v) for v in variants]
+    for i in range(N):
+        for rule in rules:
+            combination_weights(i, rule, doc, truth, B_doc, B_true)
+            for k in range(3):             # three screens on 32 samples each
+                part = slice(32 * k, 32 * (k + 1))
+                small = Arrays(A=truth.A[part].copy(), h=truth.h[part].copy(),
+                               Q=truth.Q[part].copy())
+                combination_weights(i, rule, Arrays(A=doc.A[part], h=doc.h[part],
+                                                    Q=doc.Q[part]),
+                                    small, B_doc[part], B_true[part].copy())
+    assert sum(m == S for m in made) == len(variants)

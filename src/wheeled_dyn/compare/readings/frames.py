@@ -28,6 +28,7 @@ under every frame (if all agreed, :math:`f_i = w_i` and the equation would be ri
 
 from __future__ import annotations
 
+from collections import OrderedDict
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from enum import IntEnum
@@ -191,9 +192,12 @@ def _solve_rows(M: np.ndarray, regular: np.ndarray, rhs: np.ndarray) -> np.ndarr
 
 #: The matrices :func:`combination_weights` solves with, by truth and replaced column, with
 #: where they are regular: every row of a document is solved with the same ones (the
-#: determinants were more than half of the solving time), at most :data:`MATRICES_KEPT`.
-_MATRICES: dict[tuple, tuple[tuple, np.ndarray, np.ndarray]] = {}
-MATRICES_KEPT = 32
+#: determinants were more than half of the solving time), at most :data:`MATRICES_KEPT`, the
+#: least recently used given up first; those of fewer than :data:`MATRICES_FROM` samples are
+#: made again (cheap: the screens of :mod:`.variants` had pushed the main grid's out, and 5
+#: of section 5's 209 were found).
+_MATRICES: OrderedDict[tuple, tuple[tuple, np.ndarray, np.ndarray]] = OrderedDict()
+MATRICES_KEPT, MATRICES_FROM = 32, 256
 
 
 def _matrix(truth: Arrays, B_true: np.ndarray | None, variant: tuple[int, int] | None
@@ -208,6 +212,7 @@ def _matrix(truth: Arrays, B_true: np.ndarray | None, variant: tuple[int, int] |
     key = (*map(id, parts), variant)
     found = _MATRICES.get(key)
     if found is not None and all(a is b for a, b in zip(found[0], parts)):
+        _MATRICES.move_to_end(key)
         return found[1], found[2]
     A_true = truth.need("A")
     if variant is None:
@@ -222,9 +227,10 @@ def _matrix(truth: Arrays, B_true: np.ndarray | None, variant: tuple[int, int] |
             M[:, :, j] = B_true[:, :, c]
     regular = np.isfinite(M).all(axis=(1, 2))
     regular[regular] = relative_det(M[regular]) > SINGULAR_TOL
-    if len(_MATRICES) >= MATRICES_KEPT:
-        _MATRICES.clear()
-    _MATRICES[key] = (parts, M, regular)
+    if len(M) >= MATRICES_FROM:
+        while len(_MATRICES) >= MATRICES_KEPT:
+            _MATRICES.popitem(last=False)
+        _MATRICES[key] = (parts, M, regular)
     return M, regular
 
 
