@@ -30,6 +30,7 @@ from ..judge.fitting import bases
 from ..judge.named import NAMED, name_terms, own_moments
 from ..judge.rows import drafts_of_row, row_values
 from ..judge.units import DimensionChecker
+from ..judge.source_entry import source_entry
 from ..judge.unsolved import inertia_diagnoses, read_back, unsolved_terms
 from ..readings.describe import describe
 from ..readings.frames import Frame, FrameKind, FrameRule, evaluate_rule
@@ -217,7 +218,8 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     if decision is not None and not decision.equivalent and combined and id_sides is not None \
             and id_sides.doc.A is not None:
         solved = inertia_diagnoses(id_sides, found, d.velocities) or \
-            unsolved_terms(id_sides.doc, id_sides.truth, id_sides.B_true, d.velocities, found)
+            unsolved_terms(id_sides.doc, id_sides.truth, id_sides.B_true, d.velocities, found) \
+            or source_entry(id_sides, found, d.velocities)
         read_back(drafts, {i for i, r in enumerate(rules)
                            if r.kind in (FrameKind.FUNCTION, FrameKind.COMBINATION)}, solved)
     equations = equation_records(d, decision, drafts, texts, label, grids, funcs, rules, solved)

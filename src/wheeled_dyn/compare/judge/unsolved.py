@@ -51,22 +51,23 @@ class _Part:
 def _part(where: str, T: np.ndarray, D: np.ndarray, scale: float,
           bases: Sequence[tuple[sp.Expr, np.ndarray]],
           moments: Mapping[str, np.ndarray] | None = None) -> _Part:
-    r"""The entry ``where`` read back, ``T`` the truth's values and ``D`` the document's: the
-    whole entry's sign, factor, absence or excess where the numbers say one
-    (:func:`~.diagnose.value_diagnoses`); one of two symbols written where the other fits in a
-    product (:func:`~.swap_fit.swap_reading`); a body's own moment
-    about its centre of mass where truth − document is exactly one of ``moments``
-    (:func:`~.named.own_moments`: a point mass); else the terms the document lacks."""
+    r"""The entry ``where`` read back, ``T`` the truth's values and ``D`` the document's: a
+    body's own moment about its centre of mass where truth − document is exactly one of
+    ``moments`` (:func:`~.named.own_moments`: a point mass, also where that makes the whole
+    entry a factor of the truth, as a uniform rod's does); the whole entry's sign, factor,
+    absence or excess where the numbers say one (:func:`~.diagnose.value_diagnoses`); one of
+    two symbols written where the other fits in a product (:func:`~.swap_fit.swap_reading`);
+    else the terms the document lacks."""
     found, swap = difference_reading(T - D, bases)
     found = found if found is not None or swap is None else swap[0]
+    hit = point_mass_fit(T - D, moments, ()) if moments else None
+    if hit is not None and hit[1] == 1:     # before the whole entry's factor (a uniform rod's)
+        return _Part(f"{where}: the moment of inertia {hit[0]} about its own centre of mass is "
+                     f"missing, a point mass ({_said(found)})", found, K.POINT_MASS)
     whole = value_diagnoses(D, T, scale)
     if whole:
         said = f" ({_said(found)})" if found is not None else ""
         return _Part(f"{where}: {whole[0].detail}{said}", found, whole[0].kind)
-    hit = point_mass_fit(T - D, moments, ()) if moments else None
-    if hit is not None and hit[1] == 1:
-        return _Part(f"{where}: the moment of inertia {hit[0]} about its own centre of mass is "
-                     f"missing, a point mass ({_said(found)})", found, K.POINT_MASS)
     if swap is not None:
         return _Part(f"{where}: {swap[1]} ({_said(swap[0])})", swap[0], K.SWAP)
     return _Part(f"{where} {_said(found)}", found, K.MISSING)

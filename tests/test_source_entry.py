@@ -1,0 +1,149 @@
+r"""One wrong entry of the equations a document solved, found where its inertia cannot be read
+back from its inputs (:mod:`wheeled_dyn.compare.judge.source_entry`): fewer inputs than
+coordinates, and a column of :math:`[B\;Q\;H]` that alone carries a row.
+
+- The identity itself, on random numbers: rows :math:`D = W(T + \delta e_re_c^T)` give back
+  the planted :math:`\delta` at :math:`(r, c)` and no other entry; errors in two rows give
+  none.
+- A cart-pole solved for the accelerations as a textbook does (:mod:`published_forms`), the
+  pole taken as a point mass (:math:`ml^2` for :math:`\tfrac43ml^2`): every element of the
+  pole's solved equation differed with "truth − document = …" of eleven factors, or with
+  nothing; now each names :math:`A_{22}` and the pole's own moment. Two errors planted at
+  once: no one entry is claimed.
+- A reaction-wheel pendulum after M. W. Spong, P. Corke, R. Lozano, *Nonlinear control of the
+  reaction wheel pendulum*, Automatica 37 (2001) (``data/published/rwp*``), its two equations
+  :math:`d_{11}\ddot q_1 + d_{12}\ddot q_2 + \phi_1 = 0`, :math:`d_{21}\ddot q_1 +
+  d_{22}\ddot q_2 = \tau` solved by SymPy, with one error planted in :math:`d_{11}` before
+  solving: the pendulum's own moment dropped, the wheel's dropped, :math:`l_{c1}` written for
+  :math:`l_1` — each named where it was made.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+import sympy as sp
+
+import published_forms as P
+from conftest import SEED
+from wheeled_dyn.compare.engine import ComparisonEngine
+from wheeled_dyn.compare.judge.source_entry import _entry_values, _explains
+from wheeled_dyn.compare.records import DiagnosisKind as K
+from wheeled_dyn.derivations import load_derivation
+
+DATA = Path(__file__).parent / "data" / "published"
+#: Engine grid.
+SAMPLES, PARAM_SETS = 200, 3
+#: Agreement of the recovered entry with the planted one (well-conditioned random systems).
+TOL = 1e-8
+HEAD = "one entry differs"
+
+
+@pytest.fixture(scope="module")
+def engine():
+    return ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED)
+
+
+def _system(rng: np.random.Generator, S: int = 50, n: int = 3, m: int = 8):
+    T = rng.normal(size=(S, n, m))
+    W = rng.normal(size=(S, n, n)) + 3.0 * np.eye(n)
+    return T, W
+
+
+@pytest.mark.parametrize("r, c", [(0, 0), (1, 4), (2, 7)])
+def test_the_planted_entry_and_no_other_is_found(r: int, c: int) -> None:
+    T, W = _system(np.random.default_rng(SEED + r))
+    delta = np.random.default_rng(SEED).uniform(0.5, 2.0, len(T))
+    V = T.copy()
+    V[:, r, c] += delta
+    D = W @ V
+    found = []
+    for row in range(T.shape[1]):
+        values = _entry_values(T, D, row)
+        if values is None:
+            continue
+        found += [(row, col) for col in range(T.shape[2])
+                  if _explains(T, D, row, col, values[:, col])]
+        if row == r:
+            assert np.abs(values[:, c] - delta).max() <= TOL * np.abs(delta).max()
+    assert found == [(r, c)]
+
+
+def test_errors_in_two_rows_are_no_one_entry() -> None:
+    T, W = _system(np.random.default_rng(SEED))
+    V = T.copy()
+    V[:, 0, 1] += 1.0
+    V[:, 2, 5] -= 0.5
+    D = W @ V
+    assert all(_entry_values(T, D, row) is None for row in range(T.shape[1]))
+
+
+def _texts(result, row: int) -> list[str]:
+    return [x.text for r in result.records if r.verdict != "agrees" and r.index[0] == row
+            for x in r.diagnoses[:1]]
+
+
+def test_cart_pole_solved_with_a_point_mass_names_the_pole(engine, tmp_path):
+    result = engine.compare(load_derivation(P.write(tmp_path, "pole", "solved", "point_mass")))
+    assert result.equivalent is False
+    texts = _texts(result, 1)
+    assert texts and all(HEAD in t and "A[2,2]" in t and "Ixx(pole)" in t and "point mass"
+                         in t for t in texts), texts
+    assert any(c.kind == K.POINT_MASS for c in result.causes)
+
+
+def test_two_errors_before_solving_are_no_one_entry(engine, tmp_path):
+    path = P.write(tmp_path, "pole", "solved", "point_mass")
+    cart, pole = P.cart_pole("point_mass")
+    pole = pole + 2 * P.m * P.g * P.l * sp.sin(P.th)              # and gravity's sign
+    (sol,) = sp.solve([cart, pole], [P.ddx, P.ddth], dict=True)
+    lines = path.read_text().splitlines()
+    at = next(i for i, line in enumerate(lines) if line.strip().startswith('"ddtheta ='))
+    lines[at] = f'  "ddtheta = {sp.sstr(sp.simplify(sol[P.ddth]))}"'
+    path.write_text("\n".join(lines) + "\n")
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False
+    assert not any(HEAD in x.text for r in result.records for x in r.diagnoses)
+
+
+q1, q2, dq1, dq2, ddq1, ddq2 = sp.symbols("q1 q2 dq1 dq2 ddq1 ddq2", real=True)
+m1, m2, l1, lc1, I1, I2, g, tau = sp.symbols("m1 m2 l1 lc1 I1 I2 g tau", real=True)
+
+
+def _rwp_solved(tmp_path: Path, d11: sp.Expr) -> Path:
+    r"""``data/published/rwp_combined.toml`` with its equations replaced by Spong, Corke &
+    Lozano's, :math:`d_{11}` as given, solved for the accelerations."""
+    for name in ("rwp.toml", "rwp.urdf"):
+        (tmp_path / name).write_text((DATA / name).read_text())
+    phi1 = -(m1 * lc1 + m2 * l1) * g * sp.sin(q1)
+    eqs = [d11 * ddq1 + I2 * ddq2 + phi1, I2 * ddq1 + I2 * ddq2 - tau]
+    sol = sp.solve(eqs, [ddq1, ddq2], dict=True)[0]
+    text = (DATA / "rwp_combined.toml").read_text()
+    text = text[:text.index("equations = [")] + "equations = [\n" + ",\n".join(
+        f'  "{a} = {sp.sstr(sp.simplify(sol[a]))}"' for a in (ddq1, ddq2)) + "\n]\n"
+    path = tmp_path / "rwp_solved.toml"
+    path.write_text(text)
+    return path
+
+
+D11 = m1 * lc1 ** 2 + m2 * l1 ** 2 + I1 + I2
+
+
+def test_rwp_solved_right_agrees(engine, tmp_path):
+    result = engine.compare(load_derivation(_rwp_solved(tmp_path, D11)))
+    assert result.equivalent is True
+
+
+@pytest.mark.parametrize("d11, kind, said", [
+    (D11 - I1, K.POINT_MASS, "Iyy(pend)"),          # the pendulum's own moment dropped
+    (D11 - I2, K.POINT_MASS, "Iyy(wheel)"),         # the wheel's dropped from d11
+    (D11.subs(l1, lc1), K.SWAP, "l1 and lc1"),      # lc1 written for l1 in m2 l1²
+])
+def test_rwp_solved_error_in_d11_is_named(engine, tmp_path, d11, kind, said):
+    result = engine.compare(load_derivation(_rwp_solved(tmp_path, d11)))
+    assert result.equivalent is False
+    texts = _texts(result, 0) + _texts(result, 1)
+    assert texts and all(HEAD in t and "A[1,1]" in t and said in t for t in texts), texts
+    assert any(c.kind == kind and "A[1,1]" in c.explanation for c in result.causes)
