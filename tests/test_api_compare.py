@@ -120,3 +120,18 @@ def test_a_submodule_imported_first_does_not_hide_the_api_function():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True).stdout.split()
     assert out == ["True", "function", "True"]
+
+
+def test_one_engine_tells_two_derivations_of_one_title_apart(tmp_path):
+    r"""One engine kept for several derivations built in Python with the same title (their
+    path is ``<python: title>``, which has no file): the second, with a wrong A[1,1], is
+    compared, not given the first's result."""
+    from wheeled_dyn.derivations.from_python import derivation_from_sympy
+    engine = ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED)
+    right = derivation_from_sympy("wip", **_sympy_tables())
+    wrong = derivation_from_sympy("wip", **_sympy_tables({("A", 0, 0): "2*m_C"}))
+    assert right.path == wrong.path
+    assert all(r.verdict == "agrees" for r in engine.compare(right).records)
+    assert any(r.element == "A[1,1]" and r.verdict == "differs"
+               for r in engine.compare(wrong).records)
+    assert all(r.verdict == "agrees" for r in engine.compare(right).records)

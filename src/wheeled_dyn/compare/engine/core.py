@@ -26,6 +26,7 @@ The element pipeline lives in :mod:`.judgement`; this module wires the stages.
 
 from __future__ import annotations
 
+import hashlib
 from collections.abc import Callable
 from dataclasses import replace
 from os import PathLike
@@ -92,11 +93,13 @@ class ComparisonEngine:
                                 "(wheeled_dyn.derivations.load_derivation) or the path of a "
                                 "derivation file")
         check_model_names(derivation)
-        key = (str(derivation.path),
+        from ..steps.chain import steps_state, with_steps    # earlier steps, upstream causes
+        # per content: of the derivation (one built in Python has no file, and two of the same
+        # title had shared a result), of the step files beside it and of the model's files
+        key = (hashlib.sha256(repr(derivation).encode()).hexdigest(),
                derivation.path.stat().st_mtime_ns if derivation.path.exists() else 0,
-               model_version(derivation.model))          # and per content of the model's files
+               steps_state(derivation.path), model_version(derivation.model))
         if key not in self._results:
-            from ..steps.chain import with_steps       # earlier steps, upstream causes
             self._results[key] = with_steps(derivation, self._compare, self.seed,
                                             self.parallel_steps,
                                             lambda stage: self.stage(derivation, stage))

@@ -205,6 +205,12 @@ def _neighbours(path: Path) -> list[Path]:
     return [p for p in sorted(folder.glob("*" + STEPS_SUFFIX)) if p != path]
 
 
+def steps_state(path: Path) -> tuple[tuple[str, int], ...]:
+    r"""The step files beside the derivation file ``path`` with their times of change (what a
+    comparison of it reads besides it: a result remembered is stale when one changes)."""
+    return tuple((p.name, p.stat().st_mtime_ns) for p in _neighbours(path))
+
+
 def feeding_files(d: Derivation) -> list[Path]:
     r"""The ``*_steps.toml`` files beside ``d`` whose ``feeds`` name it (sorted)."""
     return _feeding(d.path)
