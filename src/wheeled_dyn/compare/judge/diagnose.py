@@ -15,6 +15,8 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 
+import math
+
 import numpy as np
 import sympy as sp
 
@@ -168,8 +170,8 @@ def term_diagnoses(expr: sp.Expr, evaluate: Callable[[sp.Expr], np.ndarray], D: 
     found = []
     for term, tv in trials:
         tt = float(tv @ tv)
-        if tt <= (AGREE_TOL * scale) ** 2 * len(tv):
-            continue
+        if math.sqrt(tt) <= AGREE_TOL * scale * math.sqrt(len(tv)):   # no square of scale:
+            continue                                                   # it overflowed at 1e154
         if agrees(D - 2 * tv, T, scale):
             found.append(diagnosis(K.SIGN, f"the term {text(term)} has the wrong sign",
                                    term=text(term), factor="-1"))

@@ -116,7 +116,7 @@ def many_term_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[
     if not np.isfinite(V).all():
         return []
     tt = np.einsum("ks,ks->k", V, V)
-    usable = tt > (AGREE_TOL * scale) ** 2 * len(D)
+    usable = np.sqrt(tt) > AGREE_TOL * scale * np.sqrt(len(D))   # (scale² overflowed)
     k = V @ (T - D) / np.where(usable, tt, 1.0)
     off = np.abs(D[None, :] + k[:, None] * V - T[None, :]).max(axis=1)
     hits = np.flatnonzero(usable & (off <= AGREE_TOL * scale) & (np.abs(1 + k) > 1e-12))
