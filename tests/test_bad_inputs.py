@@ -408,3 +408,23 @@ def test_an_input_of_a_model_without_motors_says_where_motors_are_named(tmp_path
     said = str(err.value)
     assert str(doc) in said and "inputs." in said and "there are none" in said, said
     assert "[joints] actuated" in said, said
+
+
+@pytest.mark.parametrize("name", ["elbow", "nolink"])
+def test_a_joint_named_as_a_uniform_link_is_an_unknown_link(tmp_path, name):
+    r"""``[assumes] uniform`` names links; a joint's name there (``elbow``: Pinocchio has a
+    frame of that name, a joint's) is one error listing the links, as an unknown name is —
+    it was taken, and the right file was "not right as a system"."""
+    from wheeled_dyn.compare.engine import ComparisonEngine
+    from wheeled_dyn.errors import DerivationError
+    data = Path(__file__).parent / "data" / "two_link_arm"
+    for path in data.iterdir():
+        (tmp_path / path.name).write_bytes(path.read_bytes())
+    doc = tmp_path / "arm_lagrange.toml"
+    doc.write_text(doc.read_text().replace('uniform = ["upper_arm", "forearm"]',
+                                           f'uniform = ["upper_arm", "{name}"]'))
+    with pytest.raises(DerivationError) as err:
+        ComparisonEngine(samples=20, param_sets=1).compare(load_derivation(doc))
+    said = str(err.value)
+    assert err.value.path == doc and f"unknown link {name!r}" in said, said
+    assert "valid: base, forearm, upper_arm" in said, said

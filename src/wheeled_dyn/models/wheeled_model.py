@@ -142,11 +142,12 @@ class WheeledModel:
                                    where=f"model {self.name}") from None
 
     def joint_id_of_link(self, link: str) -> int:
-        r"""The joint that moves ``link`` (its body frame's parent joint)."""
-        if not self.model.existFrame(link):
+        r"""The joint that moves ``link`` (its body frame's parent joint); a name that is no
+        link's (a joint's: its frame is no body's) is an unknown link."""
+        if not self.model.existFrame(link, pin.FrameType.BODY):
             names = [f.name for f in self.model.frames if f.type == pin.FrameType.BODY]
             raise UnknownNameError("link", link, names, where=f"model {self.name}")
-        return self.model.frames[self.model.getFrameId(link)].parentJoint
+        return self.model.frames[self.model.getFrameId(link, pin.FrameType.BODY)].parentJoint
 
     def input_matrix(self) -> np.ndarray:
         r"""B (nv × number of motors): motor k acts on its joint, :math:`B_{ik}=\delta_{i,j_k}`
