@@ -249,3 +249,21 @@ def test_a_joint_of_several_coordinates_is_named_by_its_urdf_type(tmp_path, caps
     said = capsys.readouterr()
     assert f"URDF joint type '{kind}'" in said.out + said.err
     assert "caster_joint" in said.out + said.err
+
+
+@pytest.mark.parametrize("radius", ["0", "-0.1"])
+def test_a_wheel_radius_left_at_zero_names_the_file_and_line(tmp_path, radius):
+    r"""A starter whose wheel radius reads 0 (no collision cylinder to read it from) loaded
+    as written: one error naming the model file, the line and ``wheels.radius`` (it named
+    only the model and the link, at build time)."""
+    from wheeled_dyn.errors import WheeledDynError
+    out = tmp_path / "robot.toml"
+    assert main(["model", str(urdf_dir() / "wip.urdf"), "--out", str(out)]) == 0
+    text = out.read_text()
+    line = next(x for x in text.splitlines() if x.startswith("radius ="))
+    out.write_text(text.replace(line, f"radius = {radius}"))
+    at = text.splitlines().index(line) + 1
+    with pytest.raises(WheeledDynError) as err:
+        load_model(str(out))
+    said = str(err.value)
+    assert f"{out}:{at}: wheels.radius" in said and "positive" in said, said

@@ -279,6 +279,9 @@ def _validate_joints(mf: ModelFile, d: Mapping[str, Any]) -> None:
     wheels = d.get("wheels", {})
     if "radius" in wheels:
         _number(mf, "wheels", "radius", wheels["radius"])
+        if not wheels["radius"] > 0:             # a starter's "radius = 0  # CHECK" left as is
+            raise mf.fail("radius", f"expected the wheels' rolling radius, a positive number "
+                          f"of metres, got {wheels['radius']!r}", "wheels")
     joints = d.get("joints", {})
     for key in ("locked", "aliases"):
         raw = joints.get(key, {})
