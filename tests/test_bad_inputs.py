@@ -428,3 +428,24 @@ def test_a_joint_named_as_a_uniform_link_is_an_unknown_link(tmp_path, name):
     said = str(err.value)
     assert err.value.path == doc and f"unknown link {name!r}" in said, said
     assert "valid: base, forearm, upper_arm" in said, said
+
+
+@pytest.mark.parametrize("term, words", [("exp(m2)*dq1", "linear in the velocity dq1"),
+                                         ("ddq1*ddq2", "not linear in the accelerations")])
+def test_a_term_of_no_kind_names_its_equations_line(tmp_path, term, words):
+    r"""A term in equation 2 that is no inertia, velocity, gravity or input term: one error
+    naming the file, the line the equation is written on and the equation (the line was
+    missing)."""
+    from wheeled_dyn.errors import DerivationError
+    data = Path(__file__).parent / "data" / "two_link_arm"
+    for path in data.iterdir():
+        (tmp_path / path.name).write_bytes(path.read_bytes())
+    doc = tmp_path / "arm_lagrange.toml"
+    lines = doc.read_text().splitlines()
+    at = next(n for n, x in enumerate(lines, 1) if x.strip().startswith('"') and "tau2" in x)
+    lines[at - 1] = lines[at - 1].replace(" = tau2", f" + {term} = tau2")
+    doc.write_text("\n".join(lines) + "\n")
+    with pytest.raises(DerivationError) as err:
+        load_derivation(doc).read_off()
+    said = str(err.value)
+    assert err.value.line == at and f"{doc}:{at}: equation 2" in said and words in said, said

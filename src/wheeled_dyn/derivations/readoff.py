@@ -84,7 +84,7 @@ def split_equation_terms(expressions: Sequence[sympy.Expr],
             degrees = _degrees(term, everything)
             if degrees is None:
                 raise DerivationError(path, item, f"term {term} is not a polynomial in the "
-                                      "accelerations, velocities and inputs")
+                                      "accelerations, velocities and inputs", _line(path, i))
             acc = {s: e for s, e in degrees.items() if s in acc_index}
             vel = {s: e for s, e in degrees.items() if s in vel_set}
             inp = {s: e for s, e in degrees.items() if s in inp_index}
@@ -92,13 +92,13 @@ def split_equation_terms(expressions: Sequence[sympy.Expr],
             if n_acc:
                 if n_acc != 1 or n_vel or n_inp:
                     raise DerivationError(path, item, f"term {term} is not linear in the "
-                                          "accelerations alone")
+                                          "accelerations alone", _line(path, i))
                 (a,) = acc
                 A[i, acc_index[a]] += term / a
             elif n_inp:
                 if n_inp != 1 or n_vel:
                     raise DerivationError(path, item, f"term {term} is not linear in the "
-                                          "inputs alone")
+                                          "inputs alone", _line(path, i))
                 (u,) = inp
                 B[i, inp_index[u]] -= term / u
             elif n_vel == 2:
@@ -110,6 +110,14 @@ def split_equation_terms(expressions: Sequence[sympy.Expr],
                 what = (f"linear in the velocity {names}" if n_vel == 1
                         else f"of degree {n_vel} in the velocities ({names})")
                 raise DerivationError(path, item, f"term {term} is {what}: it is neither an "
-                                      "inertia, Coriolis/centrifugal, gravity nor input term")
+                                      "inertia, Coriolis/centrifugal, gravity nor input term",
+                                      _line(path, i))
     return EquationTerms(sympy.ImmutableMatrix(A), sympy.ImmutableMatrix(h),
                          sympy.ImmutableMatrix(Q), sympy.ImmutableMatrix(B), tuple(inputs))
+
+
+def _line(path: str | Path, i: int) -> int | None:
+    r"""The line of equation ``i`` (from 0) in the file ``path``, where it can be found."""
+    from .source import array_item_line
+    return array_item_line(path, "matrices", "equations", i)
+

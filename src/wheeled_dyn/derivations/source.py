@@ -150,3 +150,26 @@ def read_toml(path: str | Path) -> tuple[dict[str, Any], SourceText]:
     except RecursionError:
         raise InputFileError(p, "malformed TOML: arrays or tables nested too deeply") from None
     return data, SourceText(p, text)
+
+
+def array_item_line(path: str | Path, table: str | None, key: str, index: int) -> int | None:
+    r"""The line of item ``index`` (from 0) of the array ``key`` in ``[table]`` of the file
+    ``path`` where the array is written one string a line after its opening bracket (as
+    ``equations = [`` is); else the key's line (:func:`key_line`); None where neither is
+    found: for an error found in one item after the file was parsed."""
+    start = key_line(path, table, key)
+    if start is None:
+        return None
+    try:
+        lines = read_small_text(Path(path)).splitlines()
+    except (OSError, WheeledDynError):
+        return start
+    if not lines[start - 1].rstrip().endswith("["):
+        return start
+    items = [n for n in range(start + 1, len(lines) + 1)
+             if lines[n - 1].lstrip().startswith(('"', "'"))]
+    ends = next((n for n in range(start + 1, len(lines) + 1)
+                 if lines[n - 1].strip().startswith("]")), len(lines) + 1)
+    items = [n for n in items if n < ends]
+    return items[index] if index < len(items) else start
+
