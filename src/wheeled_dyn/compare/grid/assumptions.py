@@ -42,13 +42,18 @@ class Assumptions:
     linearised_about: tuple[tuple[str, float], ...] = ()
     equilibrium_potential: bool = False
     text: tuple[str, ...] = field(default=())
+    #: ``[coordinates] ranges``: (position, low, high) — the states are drawn there only
+    ranges: tuple[tuple[str, float, float], ...] = ()
 
     def describe(self) -> tuple[str, ...]:
-        r"""The "assumes:" items, in words."""
+        r"""The "assumes:" items, in words; a declared range among them (the comparison
+        holds there only: a small angle's approximation agrees on a narrow one)."""
         out = [c.description for c in self.families]
         if self.linearised_about:
             point = ", ".join(f"{k} = {v:g}" for k, v in self.linearised_about)
             out.append(f"the equations are linearised about {point}")
+        out += [f"{p} only in [{lo:g}, {hi:g}] (the file's ranges: compared there only)"
+                for p, lo, hi in self.ranges]
         if self.equilibrium_potential:
             out.append("the potential is measured from the equilibrium at that state")
         return (*out, *self.text)
@@ -71,8 +76,12 @@ def declared(d: Derivation) -> Assumptions:
         families.append(named_family(d, f"uniform({', '.join(links)})", "assumes.uniform"))
     _massless_named(d, families)
     point = tuple((k, float(v)) for k, v in dict(raw.get("linearised_about", {})).items())
+    coordinates: Mapping[str, Any] = d.coordinates.raw           # as read from TOML
+    drawn: Mapping[str, Any] = coordinates.get("ranges", {})
+    ranges = tuple((str(p), float(r[0]), float(r[1])) for p, r in drawn.items()
+                   if p not in dict(point))
     return Assumptions(tuple(families), point, raw.get("potential") == "equilibrium",
-                       tuple(raw.get("text", ())))
+                       tuple(raw.get("text", ())), ranges)
 
 
 def _massless_named(d: Derivation, families: list[SpecialCase]) -> None:
