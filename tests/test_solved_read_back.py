@@ -176,3 +176,31 @@ def test_a_plain_inertia_error_is_not_read_back_as_a_combination():
     solved = Arrays(A=np.broadcast_to(np.eye(2), A.shape).copy(),
                     Q=np.einsum("sij,sj->si", inv, Q), B=inv @ B)
     assert read_back_explains(solved, truth, B)
+
+
+@pytest.mark.parametrize("changed, cause, named", [
+    # the m1 lc1 g cos q1 gravity term doubled: no term the document leaves out
+    (lambda c, phi: (c, phi + sp.Matrix([P.m1 * P.lc1 * P.g * sp.cos(P.q1), 0])),
+     "a constant factor", "Q[1]: the term g*lc1*m1*cos(q1) is 2 × what fits"),
+    # a term the truth does not have, m2 g l1 sin q2 in the second equation
+    (lambda c, phi: (c, phi + sp.Matrix([0, P.m2 * P.g * P.l1 * sp.sin(P.q2)])),
+     "a term the truth does not have", "Q[2]: the document has g*l1*m2*sin(q2) too much"),
+    # half of the m2 lc2 g cos(q1 + q2) gravity term of the first equation dropped
+    (lambda c, phi: (c, phi - sp.Matrix([P.m2 * P.lc2 * P.g * sp.cos(P.q1 + P.q2) / 2, 0])),
+     "a constant factor", "Q[1]: the term g*lc2*m2*cos(q1 + q2) is 1/2 × what fits"),
+])
+def test_a_term_read_back_is_named_against_the_truths_entry(engine, tmp_path, changed, cause,
+                                                            named):
+    r"""An entry read back before solving that differs by a term is named against the
+    truth's entry in the document's symbols: a term twice (it was "truth − document =
+    −g·lc1·m1·cos q1", and the cause a term the document leaves out), a term the truth does
+    not have, a term halved."""
+    D, c, phi = P.arm(None)
+    c, phi = changed(c, phi)
+    result = engine.compare(load_derivation(_solved(tmp_path, D, c, phi)))
+    assert result.equivalent is False
+    said = _said(result)
+    assert named in said, said
+    explained = [c.explanation for c in result.causes]
+    assert any(named in e or cause in e for e in explained), explained
+    assert not any("leaves out" in e for e in explained), explained

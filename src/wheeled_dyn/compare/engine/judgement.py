@@ -42,7 +42,7 @@ from ..sides.elements import swap_groups
 from ..sides.evaluation import Evaluation
 from ..sides.framed import framed, row_of, row_scale
 from .equations import equation_records, units_notes
-from .printing import corrected, print_drafts
+from .printing import corrected, document_truth, print_drafts
 from .constraint_factors import lost_constraints
 from .deciding import decide
 from .own_checks import own_checks
@@ -217,9 +217,10 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
                    own_moments([ps.values for ps in id_sides.grid.sets], ID_STATES, True))
     if decision is not None and not decision.equivalent and combined and id_sides is not None \
             and id_sides.doc.A is not None:
-        solved = inertia_diagnoses(id_sides, found, d.velocities) or \
-            unsolved_terms(id_sides.doc, id_sides.truth, id_sides.B_true, d.velocities, found) \
-            or source_entry(id_sides, found, d.velocities)
+        truths = document_truth(d, sides.grid.cs, assumed)
+        solved = inertia_diagnoses(id_sides, found, d.velocities, truths) or \
+            unsolved_terms(id_sides.doc, id_sides.truth, id_sides.B_true, d.velocities, found,
+                           truths) or source_entry(id_sides, found, d.velocities, truths)
         read_back(drafts, {i for i, r in enumerate(rules)
                            if r.kind in (FrameKind.FUNCTION, FrameKind.COMBINATION)}, solved)
     equations = equation_records(d, decision, drafts, texts, label, grids, funcs, rules, solved)

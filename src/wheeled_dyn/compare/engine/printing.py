@@ -43,14 +43,31 @@ def print_drafts(d: Derivation, drafts: Sequence[ElementDraft], cs, texts: Seque
             frames[i] = t.weights
         elif t.factor is not None:
             frames[i] = t.factor
+    solved = {i: (t.solved[0], sp.nsimplify(t.solved[1], rational=True))
+              for i, t in enumerate(texts) if t.solved is not None and i not in frames}
+    return Corrections(closed_form.annotate(d, list(drafts), cs, frames, *_read(d, assumed),
+                                            solved), frames)
+
+
+def _read(d: Derivation, assumed: Assumptions
+          ) -> tuple[tuple[str, ...], frozenset[str],
+                     tuple[tuple[tuple[str, float], ...], bool] | None, frozenset[str]]:
+    r"""How the closed forms are read under the document's assumptions: (families, uniform
+    links, the linearisation, massless links), as :func:`~..presentation.closed_form.annotate`
+    takes them."""
     uniform = frozenset(uniform_links(load_model(d.model), assumed.families))
     linearised = None if not assumed.linearised_about else (assumed.linearised_about,
                                                             assumed.equilibrium_potential)
     massless = frozenset(link for c in assumed.families for link in c.massless)
-    solved = {i: (t.solved[0], sp.nsimplify(t.solved[1], rational=True))
-              for i, t in enumerate(texts) if t.solved is not None and i not in frames}
-    return Corrections(closed_form.annotate(d, list(drafts), cs, frames, families, uniform,
-                                            linearised, massless, solved), frames)
+    return tuple(c.name for c in assumed.families), uniform, linearised, massless
+
+
+def document_truth(d: Derivation, cs, assumed: Assumptions) -> dict[str, sp.Expr] | None:
+    r"""The truth's entries (``A[1,2]``, ``Q[2]``, ``h[2]:dq1*dq2``) in the document's own
+    symbols, as the reports print them; None where the closed forms or the declarations do
+    not give them."""
+    found = closed_form.true_forms(d, cs, *_read(d, assumed))
+    return found[0] if found is not None and found[3] else None
 
 
 @dataclass(frozen=True)

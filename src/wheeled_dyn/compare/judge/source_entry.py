@@ -19,7 +19,7 @@ the equations' verdicts are decided by their equivalence.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 import sympy as sp
@@ -97,10 +97,12 @@ def _explains(T: np.ndarray, D: np.ndarray, r: int, c: int, delta: np.ndarray) -
 
 
 def source_entry(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
-                 velocities: Sequence[sp.Symbol] = ()) -> Diagnosis | None:
+                 velocities: Sequence[sp.Symbol] = (),
+                 truths: Mapping[str, sp.Expr] | None = None) -> Diagnosis | None:
     r"""The one wrong entry of the equations the document solved or combined (module text),
     named; None where no entry, or more than one, explains every sample. ``sides``: both
-    sides on a grid (:class:`~..sides.both.Sides`), ``bases`` the names' values on it."""
+    sides on a grid (:class:`~..sides.both.Sides`), ``bases`` the names' values on it,
+    ``truths`` the truth's entries in the document's symbols (or None)."""
     doc, truth = sides.doc, sides.truth
     rows = truth.H_rows if truth.H_rows is not None else np.arange(len(truth.need("A")))
     true = _columns(truth, sides.B_true, rows, velocities)
@@ -125,7 +127,7 @@ def source_entry(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
     truth_entry = T[:, r, c]
     scale = float(np.abs(T[:, :, c]).max())
     part = _part(names[c].format(r=r + 1), truth_entry, truth_entry + delta, scale, at,
-                 moments)
+                 moments, truths)
     return _diagnosis("read back before it was solved or combined (the equations whose "
                       "combinations its rows are), one entry differs: ", [part])
 

@@ -30,6 +30,7 @@ import sympy as sp
 from ..records import Diagnosis, DiagnosisKind as K, Verdict, has_kind
 from .diagnose import AGREE_TOL, value_diagnoses
 from .draft import ElementDraft
+from .entry_terms import entry_reading
 from .named import NAMED, own_moments, point_mass_fit
 from .swap_fit import difference_reading
 
@@ -50,14 +51,17 @@ class _Part:
 
 def _part(where: str, T: np.ndarray, D: np.ndarray, scale: float,
           bases: Sequence[tuple[sp.Expr, np.ndarray]],
-          moments: Mapping[str, np.ndarray] | None = None) -> _Part:
+          moments: Mapping[str, np.ndarray] | None = None,
+          truths: Mapping[str, sp.Expr] | None = None) -> _Part:
     r"""The entry ``where`` read back, ``T`` the truth's values and ``D`` the document's: a
     body's own moment about its centre of mass where truth − document is exactly one of
     ``moments`` (:func:`~.named.own_moments`: a point mass, also where that makes the whole
     entry a factor of the truth, as a uniform rod's does); the whole entry's sign, factor,
     absence or excess where the numbers say one (:func:`~.diagnose.value_diagnoses`); one of
     two symbols written where the other fits in a product (:func:`~.swap_fit.swap_reading`);
-    else the terms the document lacks."""
+    a term missing, of the wrong sign or factor, or too much, against the truth's entry in
+    ``truths`` (closed forms in the document's symbols, :func:`~.entry_terms.entry_reading`);
+    else truth − document (a term the document lacks, unless those say otherwise)."""
     found, swap = difference_reading(T - D, bases)
     found = found if found is not None or swap is None else swap[0]
     hit = point_mass_fit(T - D, moments, ()) if moments else None
@@ -70,6 +74,10 @@ def _part(where: str, T: np.ndarray, D: np.ndarray, scale: float,
         return _Part(f"{where}: {whole[0].detail}{said}", found, whole[0].kind)
     if swap is not None:
         return _Part(f"{where}: {swap[1]} ({_said(swap[0])})", swap[0], K.SWAP)
+    truth = None if truths is None or found is None else truths.get(where)
+    read = None if truth is None else entry_reading(found, truth)
+    if read is not None:
+        return _Part(f"{where}: {read[1]} ({_said(found)})", found, read[0])
     return _Part(f"{where} {_said(found)}", found, K.MISSING)
 
 
@@ -154,7 +162,8 @@ def source_weights(doc, truth, true_B: np.ndarray | None) -> tuple[np.ndarray, n
 
 
 def inertia_diagnoses(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
-                      velocities: Sequence[sp.Symbol] = ()) -> Diagnosis | None:
+                      velocities: Sequence[sp.Symbol] = (),
+                      truths: Mapping[str, sp.Expr] | None = None) -> Diagnosis | None:
     r"""The elements of the document's own inertia matrix (read back from its inputs,
     module text; where its inputs are fewer than its coordinates, from its inputs, gravity
     and velocity terms, :func:`source_weights`) that differ from the truth's, named (a
@@ -196,13 +205,14 @@ def inertia_diagnoses(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
     else:
         return None
     scale = float(np.abs(true_A).max())
-    parts = [_part(f"A[{i + 1},{j + 1}]", true_A[:, i, j], M[:, i, j], scale, bases, moments)
+    parts = [_part(f"A[{i + 1},{j + 1}]", true_A[:, i, j], M[:, i, j], scale, bases, moments,
+                   truths)
              for i in range(n) for j in range(n)
              if np.abs(true_A[:, i, j] - M[:, i, j]).max() > AGREE_TOL * scale]
     if not parts:
         return None
     return _diagnosis(f"the inertia matrix the document inverted (read back from {how}) "
-                      "differs from the truth's: ", parts + _named(extra, truth, bases))
+                      "differs from the truth's: ", parts + _named(extra, truth, bases, truths))
 
 
 def _scaled(M: np.ndarray, true_A: np.ndarray) -> bool:
@@ -217,11 +227,12 @@ def _scaled(M: np.ndarray, true_A: np.ndarray) -> bool:
     return abs(c - 1.0) > AGREE_TOL and float(np.abs(ratio - c).max()) <= AGREE_TOL * abs(c)
 
 
-def _named(entries, truth, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> list[_Part]:
+def _named(entries, truth, bases: Sequence[tuple[sp.Expr, np.ndarray]],
+           truths: Mapping[str, sp.Expr] | None = None) -> list[_Part]:
     r"""The differing ``entries`` of :func:`_entries`, named in the document's symbols."""
     rows = truth.H_rows
     at = [(e, v[rows]) for e, v in bases] if rows is not None else []
-    return [_part(where, t, v, scale, at if on_rows else bases)
+    return [_part(where, t, v, scale, at if on_rows else bases, None, truths)
             for where, t, v, scale, on_rows in entries]
 
 
@@ -284,7 +295,8 @@ def _entries(doc, truth, true_B: np.ndarray | None, velocities: Sequence[sp.Symb
 
 
 def unsolved_terms(doc, truth, true_B: np.ndarray | None, velocities: Sequence[sp.Symbol],
-                   bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> Diagnosis | None:
+                   bases: Sequence[tuple[sp.Expr, np.ndarray]],
+                   truths: Mapping[str, sp.Expr] | None = None) -> Diagnosis | None:
     r"""A document solved for its accelerations (or its rows combined), read back before it
     was: its rows times :math:`AA_{doc}^{-1}` (``doc``, ``truth``: arrays on the same
     samples, A, Q, B and the products' tensor H on ``H_rows``). Where that undoes it — its
@@ -298,7 +310,7 @@ def unsolved_terms(doc, truth, true_B: np.ndarray | None, velocities: Sequence[s
         return None
     return _diagnosis("read back before it was solved or combined (its rows times A A_doc⁻¹: "
                       "its inputs' coefficients are then the truth's), the equations differ: ",
-                      _named(entries, truth, bases))
+                      _named(entries, truth, bases, truths))
 
 
 def read_back_explains(doc, truth, true_B: np.ndarray | None) -> bool:
@@ -340,16 +352,19 @@ def read_back(drafts: Sequence[ElementDraft], rows: set[int], found: Diagnosis |
     r"""``found`` (:func:`inertia_diagnoses` or :func:`unsolved_terms`: the document's
     equations read back before it solved or combined them) said first on each element of
     those ``rows`` (divided by a function or combined) that differs and that no diagnosis
-    names yet (none of :data:`STRONG`): one wrong term of the source
-    equations lands in every solved element it reaches, in a rational function of every
-    parameter, and is named where the author wrote it. An explanation only: no verdict
-    changes."""
+    names yet (none of :data:`STRONG`), in place of its own terms missing or too much there:
+    one wrong term of the source equations lands in every solved element it reaches, in a
+    rational function of every parameter, and is named where the author wrote it. An
+    explanation only: no verdict changes."""
     if found is None:
         return
     for r in drafts:
         if r.row in rows and r.verdict == Verdict.DIFFERS and r.key != "C" \
                 and not has_kind(r.diagnoses, *STRONG):
-            r.diagnoses.insert(0, found)
+            # its own terms missing or too much in the solved frame are what the source's
+            # error became there, not its name (a term too much before solving was "lacks −t")
+            r.diagnoses[:] = [found, *(x for x in r.diagnoses
+                                       if x.kind not in (K.MISSING, K.EXTRA))]
 
 
 __all__ = ["MAX_UNSOLVED", "STRONG", "implied_inertia", "inertia_diagnoses", "read_back",
