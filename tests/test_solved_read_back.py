@@ -204,3 +204,35 @@ def test_a_term_read_back_is_named_against_the_truths_entry(engine, tmp_path, ch
     explained = [c.explanation for c in result.causes]
     assert any(named in e or cause in e for e in explained), explained
     assert not any("leaves out" in e for e in explained), explained
+
+
+@pytest.mark.parametrize("tau, q1, reading", [
+    ([P.tau2, P.tau1], P.q1, "tau1 ↔ tau2"),          # the inputs exchanged
+    ([-P.tau1, P.tau2], P.q1, "tau1 → −tau1"),        # one input's sign
+    ([P.tau1, P.tau2], -P.q1, "q1 → −q1"),            # the first angle the other way
+])
+@pytest.mark.parametrize("convention", ["unknown", "declared"])
+def test_a_solved_form_in_another_convention_is_read_so(engine, tmp_path, tau, q1, reading,
+                                                         convention):
+    r"""A form solved for the accelerations, right but for its convention: its inputs
+    exchanged, one input's sign, or q1 measured the other way (the solved equations of
+    :math:`q_1' = -q_1`, whose acceleration is :math:`-\ddot q_1`). No element of a solved row
+    agrees under any reading, so the search counts the equations each reading makes right:
+    a file that declares its convention unknown is compared under the reading and agrees (it
+    was "not right as a system", with a term's sign named where there is none); one that
+    declares the convention has the reading as its cause."""
+    D, c, phi = P.arm(None)
+    flip = {P.q1: q1, P.dq1: P.dq1 * (1 if q1 == P.q1 else -1)}
+    D, c, phi = (M.xreplace(flip) for M in (D, c, phi))
+    path = _solved(tmp_path, D, c, phi, sp.Matrix(tau))
+    if q1 != P.q1:                                     # row 1 is the equation of q1' = -q1
+        lines = path.read_text().splitlines()
+        at = next(i for i, x in enumerate(lines) if x.strip().startswith('"ddq1 ='))
+        lines[at] = lines[at].replace('"ddq1 = ', '"ddq1 = -(') [:-2] + ')",'
+        path.write_text("\n".join(lines) + "\n")
+    if convention == "unknown":
+        path.write_text('convention = "unknown"\n' + path.read_text())
+    result = engine.compare(load_derivation(path))
+    explained = " ".join(c.explanation for c in result.causes)
+    assert reading in explained, explained
+    assert result.equivalent is (convention == "unknown")

@@ -33,7 +33,7 @@ def _search(j, complete_gain: int = signs.MIN_GAIN_ORDER) -> tuple | None:
     search = search_evaluation(j)
     d = j.funcs.d
     return signs.best_reading(d, search.doc_at, search.score, search.score_readings,
-                              search.elements(search.doc_at((1,) * d.n)), complete_gain)
+                              search.most(), complete_gain)
 
 
 def _right(result: DerivationResult) -> int:
@@ -57,7 +57,7 @@ def unknown_convention(engine, d: Derivation) -> tuple[Derivation, Cause] | None
     return flipped, Cause(CauseKind.CONVENTION, (), (
         f"the file declares its document's sign convention unknown: compared as {text} "
         f"({signs.maps_text(flipped)}) instead of the file's {signs.maps_text(d)}, the reading "
-        "under which most elements agree"))
+        "under which most equations are right and most elements agree"))
 
 
 def convention_finding(engine, d: Derivation, j) -> tuple[Cause, ConventionSummary] | None:

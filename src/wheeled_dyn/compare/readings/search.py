@@ -1,6 +1,9 @@
 r"""The engine's evaluation of one derivation, with what the convention search needs
-(:mod:`.conventions`): the document at sign-flipped states, and how many elements agree in a
-set of arrays, on a subset of the samples.
+(:mod:`.conventions`): the document at sign-flipped states, and how many of its equations
+are combinations of the true ones and how many elements agree in a set of arrays, on a
+subset of the samples — an equation made right counting more than every element (a form
+solved for the accelerations has no element that agrees under any reading; its inputs
+exchanged or a position's sign reversed make its equations right).
 """
 
 from __future__ import annotations
@@ -11,6 +14,7 @@ import numpy as np
 
 from ..sides.evaluation import Evaluation
 from ..judge.diagnose import AGREE_TOL
+from ..judge.equivalence import _part, combination_rows
 from .signs import flip_arrays
 from .row_factors import (apply_row_factors, decided_factor, explaining, row_factors,
                           row_scales, row_sizes, row_votes)
@@ -60,9 +64,59 @@ class SearchEvaluation(Evaluation):
         values = {p: np.asarray(v)[rows] if np.ndim(v) else v for p, v in self.values.items()}
         return self.funcs.evaluate(self.q[rows] * S, self.nu[rows] * S, values)
 
+    def weight(self) -> int:
+        r"""What one equation right counts in :meth:`score`: more than every element."""
+        if not hasattr(self, "_weight"):
+            self._weight = self.elements(self.doc_at((1,) * self.q.shape[1])) + 1
+        return self._weight
+
+    def most(self) -> int:
+        r"""The score of a reading under which everything agrees."""
+        return self.weight() - 1 + self.weight() * self.q.shape[1]
+
+    def _combinations(self, doc: Arrays) -> tuple[np.ndarray, np.ndarray] | None:
+        r"""(:math:`W = A_{doc}A^{-1}`, whether each row's velocity and gravity terms are
+        :math:`w_i` times the truth's) on the search's samples, or None where the document
+        gives no A (as :func:`~..judge.equivalence.decide` decides, on fewer samples)."""
+        _, truth, _ = self._subset()
+        if doc.A is None or truth.A is None:
+            return None
+        W = combination_rows(doc.A, truth.A)
+        S, n = doc.A.shape[:2]
+        mine = (doc.h if doc.h is not None else 0.0) + (doc.Q if doc.Q is not None else 0.0)
+        true = (truth.h if truth.h is not None else 0.0) + \
+            (truth.Q if truth.Q is not None else 0.0)
+        mine, true = np.broadcast_to(mine, (S, n)), np.broadcast_to(true, (S, n))
+        ok = np.zeros(n, dtype=bool)
+        for i in range(n):
+            least = np.abs(doc.A[:, i, :]).max(axis=1)
+            rel, finite, _ = _part(mine[:, i:i + 1], true[:, :, None], W[:, i], least)
+            ok[i] = bool(finite.all() and rel.max(initial=0.0) <= AGREE_TOL)
+        return W, ok
+
+    def _right(self, doc: Arrays, B: np.ndarray | None,
+               found: tuple[np.ndarray, np.ndarray] | None) -> int:
+        r"""Equations of ``doc`` (its inputs' coefficients ``B``) that are combinations of
+        the true ones, ``found`` their weights (:meth:`_combinations`)."""
+        _, _, B_true = self._subset()
+        if found is None or doc.A is None:
+            return 0
+        W, ok = found
+        count = 0
+        for i in np.flatnonzero(ok):
+            if B is not None and B_true is not None:
+                least = np.abs(doc.A[:, i, :]).max(axis=1)
+                rel, finite, _ = _part(B[:, i, :], B_true, W[:, i], least)
+                if not (finite.all() and rel.max(initial=0.0) <= AGREE_TOL):
+                    continue
+            count += 1
+        return count
+
     def score(self, doc: Arrays) -> int:
-        r"""Elements of ``doc`` (on the search's samples) that agree with the truth, after
-        its own row factors."""
+        r"""Equations of ``doc`` (on the search's samples) that are combinations of the true
+        ones (:meth:`weight` each), and elements that agree with the truth, after its own
+        row factors."""
+        right = self.weight() * self._right(doc, doc.B, self._combinations(doc))
         n = self.q.shape[1]
         _, truth, B_true = self._subset()
         truth_sizes, truth_H = self._truth_parts()
@@ -79,7 +133,7 @@ class SearchEvaluation(Evaluation):
         if doc.H is not None:            # the velocity products j <= k (2 H_ijk for j < k)
             upper = np.triu(np.ones((n, n), dtype=bool))
             count += _agreeing(doc.H * _product_weights(n), _needed(truth_H), scales, upper)
-        return count
+        return right + count
 
     def elements(self, doc: Arrays) -> int:
         r"""How many elements :meth:`score` counts at most (each that agrees counts one)."""
@@ -109,6 +163,7 @@ class SearchEvaluation(Evaluation):
         votes_a, every = row_votes(Arrays(A=doc.A, Q=doc.Q), truth, None, n)
         fixed = (votes_a, every[:, votes_a.shape[1]:])
         rows = _RowParts(doc, truth, *self._truth_parts(), n)
+        combinations = self._combinations(doc)
         out = []
         for t, order in readings:
             B = doc.B[:, :, list(order)] if len(order) else doc.B
@@ -122,7 +177,7 @@ class SearchEvaluation(Evaluation):
                 count, scale = rows.part(i, f)
                 Bi = B[:, i:i + 1] if f is None else B[:, i:i + 1] / f
                 total += count + _agreeing(Bi, B_true[:, i:i + 1], np.array([scale]))
-            out.append(total)
+            out.append(total + self.weight() * self._right(doc, B, combinations))
         return out
 
 
