@@ -206,8 +206,13 @@ def equations_line(result: DerivationResult) -> str:
 def system_word(result: DerivationResult) -> str:
     r"""``"not right as a system"`` where the equations are decided not equivalent to the true
     ones (also when every element agrees: an equation multiplied by a factor that vanishes,
-    lost, repeated; its constraints not the model's), else ``""``."""
-    return "not right as a system" if result.equations and result.equivalent is False else ""
+    lost, repeated; its constraints not the model's), ``"not decided as a system"`` where an
+    equation is undecided (every element may agree: a combination whose parts differ in size
+    beyond the tolerance), else ``""``."""
+    if not result.equations:
+        return ""
+    return {False: "not right as a system", None: "not decided as a system"}.get(
+        result.equivalent, "")
 
 
 #: Words for an equation's verdict.

@@ -47,6 +47,7 @@ import numpy as np
 from ..records import Diagnosis, DiagnosisKind, Verdict, diagnosis
 from .diagnose import AGREE_TOL, FLOOR
 from .multipliers import multiplier_terms, unit_multipliers
+from .precision import combination_span
 
 #: :math:`|\det A_{doc}|` relative to its rows' sizes, below this fraction of the truth's:
 #: W singular at that sample.
@@ -80,6 +81,8 @@ class EquationDecision:
     diagnoses: tuple[Diagnosis, ...]
     max_error: float
     w: np.ndarray
+    #: undecided because the parts of its combination differ in size beyond the tolerance
+    beyond_precision: bool = False
 
 
 @dataclass(frozen=True)
@@ -223,6 +226,14 @@ def decide_row(i: int, doc: Side, truth: Side, W: np.ndarray,
         return EquationDecision(Verdict.UNDECIDED, (diagnosis(
             DiagnosisKind.UNDECIDED, f"values not finite at {int((~finite).sum())} of {total} "
             "samples; it agrees wherever they are finite"),), worst, w)
+    span = combination_span(w, truth.A, (truth.n, truth.B), finite)
+    if span is not None:
+        return EquationDecision(Verdict.UNDECIDED, (diagnosis(
+            DiagnosisKind.UNDECIDED, f"equation {i + 1} agrees as a combination of the true "
+            f"equations whose parts differ in size by a factor {span:.2g} (W = A_doc A⁻¹): "
+            "a difference in its smaller part, even as large as that part, would be below "
+            "the comparison's tolerance, so it cannot be decided (write the equations so "
+            "that no one is a multiple of another to that precision)"),), worst, w, True)
     return EquationDecision(Verdict.AGREES, (), worst, w)
 
 
@@ -331,6 +342,8 @@ def decide(doc: Side, truth: Side, sets: int,
         where = ("with the model's own numbers, at a special position (a coordinate at 0, "
                  "±π/2 or π) or at a state searched where its weights are least"
                  ) if rows is not None else ""
+    if rows is not None and not pole and any(e.beyond_precision for e in decisions):
+        rows = None         # nearly dependent only to the precision that left one undecided
     if rows is not None:
         wrong = [k for k in rows if decisions[k].verdict == Verdict.DIFFERS]
         rows = tuple(wrong) or rows     # an equation that is no combination explains it
