@@ -131,7 +131,7 @@ def test_a_planted_error_is_flagged_where_it_is_and_named(engine, tmp_path, syst
         # the inertia the document inverted, read back from its inputs' coefficients
         assert "the inertia matrix the document inverted" in named, named
         assert ("truth − document = I1" if error == "dropped" else "lc1**2*m2") in named
-    elif (system, error) != ("pole", "point_mass"):
+    else:                 # the pole's point mass too (read back from its solved form)
         assert any(kind in r.kinds for r in flagged.values()), named
 
 
@@ -149,13 +149,16 @@ def test_the_pole_equation_divided_by_m_l_is_consistent_in_its_units(engine, tmp
     assert "divided by l*m" in result.equations[1].frame
 
 
-def test_a_point_mass_for_the_pole_is_named_as_such(engine, tmp_path):
+@pytest.mark.parametrize("form", ["equations", "kane"])
+def test_a_point_mass_for_the_pole_is_named_as_such(engine, tmp_path, form):
     r"""The point-mass pendulum's m l² for the uniform pole's 4/3 m l²: not only "factor
-    3/4" but the pole's own inertia about its centre missing, and that is the cause."""
-    result = engine.compare(load_derivation(P.write(tmp_path, "pole", "equations",
-                                                    "point_mass")))
+    3/4" but the pole's own inertia about its centre missing, and that is the cause; its
+    moment written positive in Kane's form too (it was "-l**2*m/3": that row is −1 × the
+    true one)."""
+    result = engine.compare(load_derivation(P.write(tmp_path, "pole", form, "point_mass")))
     (record,) = [r for r in result.records if r.verdict == "differs"]
     assert record.kinds[0] == K.POINT_MASS and "pole" in record.texts[0], record.texts
+    assert "(l**2*m/3 in the document's symbols)" in record.texts[0], record.texts
     assert any(c.kind == "point_mass" and record.element in c.elements for c in result.causes)
 
 

@@ -334,6 +334,8 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
             times = "" if c == 1 else f" × {sp.sstr(c)}"
             term = _plainest(fit_factor(residual, bases), bases) \
                 if np.abs(residual).min() > 0 else None
+            if term is not None and term.could_extract_minus_sign():
+                term = -term          # a moment is positive (a row of Kane's form: −1 × the truth)
             own = f" ({sp.sstr(term)} in the document's symbols)" if term is not None \
                 else ""
             r.diagnoses.insert(0, diagnosis(
