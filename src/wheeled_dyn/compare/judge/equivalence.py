@@ -47,7 +47,7 @@ import numpy as np
 from ..records import Diagnosis, DiagnosisKind, Verdict, diagnosis
 from .diagnose import AGREE_TOL, FLOOR
 from .multipliers import multiplier_terms, unit_multipliers
-from .precision import combination_span
+from .precision import combination_span, row_sizes
 
 #: :math:`|\det A_{doc}|` relative to its rows' sizes, below this fraction of the truth's:
 #: W singular at that sample.
@@ -184,11 +184,12 @@ def weights_told(doc: Side, truth: Side) -> tuple[bool, ...]:
 def decide_row(i: int, doc: Side, truth: Side, W: np.ndarray,
                multipliers: np.ndarray | None = None,
                multiplier_floor: np.ndarray | None = None,
-               with_A: bool = False) -> EquationDecision:
+               with_A: bool = False, sizes: np.ndarray | None = None) -> EquationDecision:
     r"""The verdict on equation ``i`` (module text), :math:`W` known; ``multipliers``: the
     true multipliers' coefficients recombined for the document (:func:`multiplier_terms`),
     where both sides keep the constraints; ``with_A``: :math:`W` was given, not found from
-    :math:`A_{doc}`, and the inertia row is compared too."""
+    :math:`A_{doc}`, and the inertia row is compared too; ``sizes``: the true rows' sizes
+    (:func:`~.precision.row_sizes`, made once for every row)."""
     w = W[:, i, :]
     inertia = np.abs(doc.A[:, i, :]).max(axis=1)
     residuals, masks = [], []
@@ -226,7 +227,8 @@ def decide_row(i: int, doc: Side, truth: Side, W: np.ndarray,
         return EquationDecision(Verdict.UNDECIDED, (diagnosis(
             DiagnosisKind.UNDECIDED, f"values not finite at {int((~finite).sum())} of {total} "
             "samples; it agrees wherever they are finite"),), worst, w)
-    span = combination_span(w, truth.A, (truth.n, truth.B), finite)
+    sizes = row_sizes(truth.A, (truth.n, truth.B)) if sizes is None else sizes
+    span = combination_span(w, sizes, finite)
     if span is not None:
         return EquationDecision(Verdict.UNDECIDED, (diagnosis(
             DiagnosisKind.UNDECIDED, f"equation {i + 1} agrees as a combination of the true "
@@ -319,7 +321,8 @@ def decide(doc: Side, truth: Side, sets: int,
         multiplier_terms(doc.L, truth.L, W)
     floor = None if multipliers is None or doc.L is None else \
         _multiplier_floor(doc.L, multipliers)            # every row's, made once
-    decisions = [decide_row(i, doc, truth, W, multipliers, floor, with_A=not told[i])
+    sizes = row_sizes(truth.A, (truth.n, truth.B))
+    decisions = [decide_row(i, doc, truth, W, multipliers, floor, not told[i], sizes)
                  for i in range(n)]
     told = () if all(told) else told
     lost = singular_everywhere(doc.A, truth.A, W)

@@ -20,19 +20,24 @@ PRECISION_SHARE = AGREE_TOL
 ABSENT_SHARE = 1e-13
 
 
-def combination_span(w: np.ndarray, A: np.ndarray, others: Sequence[np.ndarray | None],
-                     finite: np.ndarray) -> float | None:
-    r"""The ratio of the largest to the smallest present part :math:`|w_{il}|\,\|T_l\|` of
-    a row's combination :math:`w` (S × n; :math:`T_l` the true row l: its ``A`` and the
-    ``others``, n and B) at the sample where that ratio is least, where it exceeds
-    1/:data:`PRECISION_SHARE` even there (eq1 + 10¹⁰ eq2 with a term of eq1 missing agreed:
-    the term is 1e-10 of the row); else None."""
-    if not finite.any():
-        return None
+def row_sizes(A: np.ndarray, others: Sequence[np.ndarray | None]) -> np.ndarray:
+    r""":math:`\|T_l\|` per sample and true row (S × n): the largest magnitude of row l of
+    ``A`` and of the ``others`` (n: S × n, B: S × n × k)."""
     sizes = np.abs(A).max(axis=2)
     for T in others:
         if T is not None:
             sizes = np.maximum(sizes, np.abs(T if T.ndim == 3 else T[:, :, None]).max(axis=2))
+    return sizes
+
+
+def combination_span(w: np.ndarray, sizes: np.ndarray, finite: np.ndarray) -> float | None:
+    r"""The ratio of the largest to the smallest present part :math:`|w_{il}|\,\|T_l\|` of
+    a row's combination :math:`w` (S × n; :math:`\|T_l\|` in ``sizes``, :func:`row_sizes`)
+    at the sample where that ratio is least, where it exceeds
+    1/:data:`PRECISION_SHARE` even there (eq1 + 10¹⁰ eq2 with a term of eq1 missing agreed:
+    the term is 1e-10 of the row); else None."""
+    if not finite.any():
+        return None
     with np.errstate(all="ignore"):
         parts = (np.abs(w) * sizes)[finite]
         largest = parts.max(axis=1)
@@ -42,4 +47,4 @@ def combination_span(w: np.ndarray, A: np.ndarray, others: Sequence[np.ndarray |
     return 1.0 / share if 0.0 < share < PRECISION_SHARE else None
 
 
-__all__ = ["ABSENT_SHARE", "PRECISION_SHARE", "combination_span"]
+__all__ = ["ABSENT_SHARE", "PRECISION_SHARE", "combination_span", "row_sizes"]

@@ -22,6 +22,8 @@ from ..grid.arrays import Arrays
 
 #: Samples the convention search scores each reading on (spread over the parameter sets).
 SEARCH_SAMPLES = 400
+#: Of those, the samples each reading's equations are decided on (:meth:`_few`).
+EQUATION_SAMPLES = 64
 
 
 class SearchEvaluation(Evaluation):
@@ -74,6 +76,13 @@ class SearchEvaluation(Evaluation):
         r"""The score of a reading under which everything agrees."""
         return self.weight() - 1 + self.weight() * self.q.shape[1]
 
+    def _few(self) -> np.ndarray:
+        r"""The samples of the search's (:data:`EQUATION_SAMPLES`, spread) its equations are
+        decided on: a reading is only ranked here, the one found is judged on every one."""
+        rows, _, _ = self._subset()
+        return np.unique(np.linspace(0, len(rows) - 1, min(EQUATION_SAMPLES, len(rows)))
+                         .astype(int))
+
     def _combinations(self, doc: Arrays) -> tuple[np.ndarray, np.ndarray] | None:
         r"""(:math:`W = A_{doc}A^{-1}`, whether each row's velocity and gravity terms are
         :math:`w_i` times the truth's) on the search's samples, or None where the document
@@ -81,15 +90,15 @@ class SearchEvaluation(Evaluation):
         _, truth, _ = self._subset()
         if doc.A is None or truth.A is None:
             return None
-        W = combination_rows(doc.A, truth.A)
-        S, n = doc.A.shape[:2]
-        mine = (doc.h if doc.h is not None else 0.0) + (doc.Q if doc.Q is not None else 0.0)
-        true = (truth.h if truth.h is not None else 0.0) + \
-            (truth.Q if truth.Q is not None else 0.0)
-        mine, true = np.broadcast_to(mine, (S, n)), np.broadcast_to(true, (S, n))
+        at = self._few()
+        A_doc = doc.A[at]
+        W = combination_rows(A_doc, truth.A[at])
+        S, n = A_doc.shape[:2]
+        mine = sum((x[at] for x in (doc.h, doc.Q) if x is not None), np.zeros((S, n)))
+        true = sum((x[at] for x in (truth.h, truth.Q) if x is not None), np.zeros((S, n)))
         ok = np.zeros(n, dtype=bool)
         for i in range(n):
-            least = np.abs(doc.A[:, i, :]).max(axis=1)
+            least = np.abs(A_doc[:, i, :]).max(axis=1)
             rel, finite, _ = _part(mine[:, i:i + 1], true[:, :, None], W[:, i], least)
             ok[i] = bool(finite.all() and rel.max(initial=0.0) <= AGREE_TOL)
         return W, ok
@@ -102,11 +111,12 @@ class SearchEvaluation(Evaluation):
         if found is None or doc.A is None:
             return 0
         W, ok = found
+        at = self._few()
         count = 0
         for i in np.flatnonzero(ok):
             if B is not None and B_true is not None:
-                least = np.abs(doc.A[:, i, :]).max(axis=1)
-                rel, finite, _ = _part(B[:, i, :], B_true, W[:, i], least)
+                least = np.abs(doc.A[at, i, :]).max(axis=1)
+                rel, finite, _ = _part(B[at, i, :], B_true[at], W[:, i], least)
                 if not (finite.all() and rel.max(initial=0.0) <= AGREE_TOL):
                     continue
             count += 1
