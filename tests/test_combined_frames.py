@@ -98,3 +98,33 @@ def test_a_term_dropped_from_an_equation_combined_with_functions_is_named_alone(
         {e: r.texts for e, r in flagged.items()}
     assert not any(c.kind in ("energy", "not_positive_definite") for c in result.causes), \
         result.causes
+
+
+def test_a_combination_whose_inertia_columns_both_carry_the_error_is_read_as_one(tmp_path):
+    r"""The two-link arm of :mod:`published_forms` (Spong, Hutchinson & Vidyasagar) with
+    :math:`l_{c1}` written for :math:`l_1` in :math:`d_{12}` and :math:`d_{21}` alike, its
+    first equation replaced by eq1 − eq2: both inertia columns of the combined row carry the
+    error, so no frame that keeps one of them fits the row with numbers; its velocity,
+    gravity and input terms alone give the weights (1, −1) at every sample. It was read as
+    the true eq1, with a gravity term "missing" and a velocity term "swapped"; now as
+    eq1 − eq2, and the swap named where it is."""
+    import published_forms as P
+    import sympy as sp
+    D, c, phi = P.arm(None)
+    wrong = D[0, 1].subs(P.l1, P.lc1)
+    D = sp.Matrix([[D[0, 0], wrong], [wrong, D[1, 1]]])
+    acc = sp.Matrix([P.ddq1, P.ddq2])
+    lhs = [sp.sstr((D[i, :] * acc)[0] + c[i] + phi[i]) for i in range(2)]
+    eqs = [f"{lhs[0]} - ({lhs[1]}) = tau1 - tau2", f"{lhs[1]} = tau2"]
+    path = tmp_path / "combined.toml"
+    path.write_text(P.ARM_HEAD.format(form="combined", error=", lc1 for l1 in d12, d21",
+                                      model=P.DATA / "two_link_arm.toml",
+                                      eqs=",\n".join(f'  "{e}"' for e in eqs)))
+    result = ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED).compare(
+        load_derivation(path))
+    assert result.equivalent is False
+    assert "eq1 - eq2" in result.equations[0].frame, result.equations[0].frame
+    flagged = _flagged(result)
+    assert set(flagged) == {"A[1,1]", "A[1,2]", "A[2,1]"}, set(flagged)
+    for r in flagged.values():
+        assert r.kinds[0] == K.SWAP and "lc1 where l1 fits" in r.texts[0], r.texts

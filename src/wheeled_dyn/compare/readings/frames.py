@@ -67,7 +67,7 @@ class FrameRule:
     ``COMBINATION``: ``None`` for
     :math:`A_{doc,i}A^{-1}`, ``(j, c)`` for the :math:`w` fitting the row with inertia column
     ``j`` replaced by column ``c`` of the rest (``-1``: the velocity-and-gravity term,
-    ``k >= 0``: input ``k``)."""
+    ``k >= 0``: input ``k``), ``(-1, -1)`` for every inertia column left out (:data:`TERMS`)."""
 
     kind: FrameKind
     partner: int = -1
@@ -234,12 +234,49 @@ def _matrix(truth: Arrays, B_true: np.ndarray | None, variant: tuple[int, int] |
     return M, regular
 
 
+#: The variant of a ``COMBINATION`` whose weights are fitted to the row's velocity-and-gravity
+#: term and inputs' columns alone (every inertia column left out: an error in two of them,
+#: eq1 − eq2 with a symbol for another in both d12 and d21, leaves none to fit them on).
+TERMS = (-1, -1)
+
+
+def _terms_weights(i: int, doc: Arrays, truth: Arrays, B_doc: np.ndarray | None,
+                   B_true: np.ndarray | None) -> np.ndarray:
+    r""":math:`w` with :math:`w\,[h + Q\;\; B] = [h_{doc,i} + Q_{doc,i}\;\; B_{doc,i}]` per
+    sample by least squares (:data:`TERMS`), NaN where that does not fit or does not
+    determine :math:`w` (fewer columns than rows, or not independent)."""
+    S, n = truth.need("A").shape[:2]
+    out = np.full((S, n), np.nan)
+    if doc.h is None or truth.h is None or B_doc is None or B_true is None or \
+            1 + B_true.shape[2] < n:
+        return out
+    zero = np.zeros((S, n))
+    M = np.concatenate([(truth.h + (truth.Q if truth.Q is not None else zero))[:, :, None],
+                        B_true], axis=2)                                  # S × n × (1 + k)
+    rhs = np.concatenate([(doc.h[:, i] + (doc.Q[:, i] if doc.Q is not None else 0.0)
+                           )[:, None], B_doc[:, i, :]], axis=1)           # S × (1 + k)
+    ok = np.isfinite(M).all(axis=(1, 2)) & np.isfinite(rhs).all(axis=1)
+    if not ok.any():
+        return out
+    sv = np.linalg.svd(M[ok], compute_uv=False)
+    w = np.einsum("sk,skn->sn", rhs[ok], np.linalg.pinv(M[ok]))
+    fit = np.einsum("sn,snk->sk", w, M[ok])
+    size = np.maximum(np.abs(rhs[ok]).max(axis=1), 1e-300)
+    good = (sv[:, n - 1] > 1e-9 * sv[:, 0]) & \
+        (np.abs(fit - rhs[ok]).max(axis=1) <= CONSTANT_SPREAD * 100 * size)
+    w[~good] = np.nan
+    out[ok] = w
+    return out
+
+
 def combination_weights(i: int, rule: FrameRule, doc: Arrays, truth: Arrays,
                         B_doc: np.ndarray | None, B_true: np.ndarray | None) -> np.ndarray:
     r"""The weights of a ``COMBINATION`` rule (see :class:`FrameRule`)."""
     A_doc = doc.need("A")
     if rule.variant is None:
         return _solve_rows(*_matrix(truth, B_true, None), A_doc[:, i, :])
+    if rule.variant == TERMS:
+        return _terms_weights(i, doc, truth, B_doc, B_true)
     j, c = rule.variant
     if c < 0:
         if doc.h is None or truth.h is None:

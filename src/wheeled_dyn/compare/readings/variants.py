@@ -1,8 +1,9 @@
 r"""The combinations a row that is not right may be explained in besides
 :math:`A_{doc,i}A^{-1}` (:mod:`.frames`): the true rows' weights fitted with one inertia
 column of the row left out, replaced by the velocity and gravity terms or by an input's
-column — an error in that column then stands alone — and which of them are as good as a
-constant factor (their weights the same numbers at every sample).
+column — an error in that column then stands alone —, or with every inertia column left out
+(an error in two of them), and which of them are as good as a constant factor (their
+weights the same numbers at every sample).
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ from dataclasses import replace
 import numpy as np
 
 from ..grid.arrays import Arrays
-from .frames import CONSTANT_SPREAD, FrameKind, FrameRule, combination_weights
+from .frames import CONSTANT_SPREAD, TERMS, FrameKind, FrameRule, combination_weights
 
 
 def combination_variants(grids: Sequence[tuple[Arrays, Arrays, np.ndarray | None]], i: int
@@ -30,6 +31,8 @@ def combination_variants(grids: Sequence[tuple[Arrays, Arrays, np.ndarray | None
     m = 0 if doc0.B is None or B0 is None else doc0.B.shape[2]
     rules = [FrameRule(FrameKind.COMBINATION, variant=(j, c))
              for j in range(n) for c in range(-1, m)]
+    if 1 + m >= n:                       # every inertia column left out (frames.TERMS)
+        rules.append(FrameRule(FrameKind.COMBINATION, variant=TERMS))
     return [replace(rule, identified=True) if _constant(i, rule, grids) else rule
             for rule in rules]
 
