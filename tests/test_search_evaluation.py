@@ -1,5 +1,6 @@
 """The convention search counts a reading's agreeing elements matrix by matrix: the same count
-as judging every element on its own (:func:`wheeled_dyn.compare.judge.diagnose.agrees`)."""
+as judging every element on its own (:func:`wheeled_dyn.compare.judge.diagnose.agrees`); and
+its equations right, as many as the decision finds."""
 
 from __future__ import annotations
 
@@ -36,7 +37,7 @@ def test_score_counts_what_element_by_element_counts(group, stem):
         scales = row_scales(one, truth, n)
         expected = sum(bool(np.isfinite(D).all()) and agrees(D, T, scales[index[0]])
                        for _, D, T, index, _ in element_values(ev.funcs, one, truth, B_true, n))
-        assert ev.score(ev.doc_at(signs)) == expected, signs
+        assert ev.agreeing(ev.doc_at(signs)) == expected, signs
         counts.add(expected)
     assert len(counts) > 1                      # the readings do differ
 
@@ -63,3 +64,21 @@ def test_readings_scored_together_score_as_each_alone(group, stem):
         assert together == alone, s
         values.update(alone)
     assert len(values) > 1                      # the readings do differ
+
+
+@pytest.mark.parametrize("group, stem", [("seed001", "eq25_lagrange"),
+                                         ("seed001", "book_eq9_11"),
+                                         ("seed000", "p4_9_pendulum_support")])
+def test_score_counts_the_equations_the_decision_finds_right(group, stem):
+    r"""Beyond its elements, a reading's score counts :meth:`weight` for each equation that is
+    a combination of the true ones on the search's samples: as declared, as many as the
+    judged derivation's equations that agree (decided on every sample)."""
+    from wheeled_dyn.compare.records import Verdict
+    d = load_derivation(next(p for p in builtin_derivations(group) if p.stem == stem))
+    j = ComparisonEngine(samples=60, param_sets=2, seed=SEED).judge(d)
+    ev = search_evaluation(j)
+    declared = ev.doc_at((1,) * ev.q.shape[1])
+    right = sum(e.verdict == Verdict.AGREES for e in j.result.equations)
+    score, agreeing = ev.score(declared), ev.agreeing(ev.doc_at((1,) * ev.q.shape[1]))
+    assert (score - agreeing) == ev.weight() * right, (score, agreeing, right)
+    assert ev.weight() > ev.elements(declared)

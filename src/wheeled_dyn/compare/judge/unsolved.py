@@ -348,14 +348,17 @@ def _as_printed(doc, truth, true_B: np.ndarray) -> int:
 STRONG = tuple(k for k in (*NAMED, K.FACTOR) if k != K.EXTRA)
 
 
-def read_back(drafts: Sequence[ElementDraft], rows: set[int], found: Diagnosis | None) -> None:
+def read_back(drafts: Sequence[ElementDraft], rows: set[int], found: Diagnosis | None,
+              varying: set[int] | frozenset[int] = frozenset()) -> None:
     r"""``found`` (:func:`inertia_diagnoses` or :func:`unsolved_terms`: the document's
     equations read back before it solved or combined them) said first on each element of
     those ``rows`` (divided by a function or combined) that differs and that no diagnosis
-    names yet (none of :data:`STRONG`), in place of its own terms missing or too much there:
-    one wrong term of the source equations lands in every solved element it reaches, in a
-    rational function of every parameter, and is named where the author wrote it. An
-    explanation only: no verdict changes."""
+    names yet (none of :data:`STRONG`) — in the rows ``varying`` (their weights functions of
+    the state: solved) in place of its own terms missing or too much there: one wrong term
+    of the source equations lands in every solved element it reaches, in a rational function
+    of every parameter, and is named where the author wrote it (a row combined with numbers,
+    eq1 − eq2, keeps its own: its terms are the author's). An explanation only: no verdict
+    changes."""
     if found is None:
         return
     for r in drafts:
@@ -363,8 +366,8 @@ def read_back(drafts: Sequence[ElementDraft], rows: set[int], found: Diagnosis |
                 and not has_kind(r.diagnoses, *STRONG):
             # its own terms missing or too much in the solved frame are what the source's
             # error became there, not its name (a term too much before solving was "lacks −t")
-            r.diagnoses[:] = [found, *(x for x in r.diagnoses
-                                       if x.kind not in (K.MISSING, K.EXTRA))]
+            weak = (K.MISSING, K.EXTRA) if r.row in varying else ()
+            r.diagnoses[:] = [found, *(x for x in r.diagnoses if x.kind not in weak)]
 
 
 __all__ = ["MAX_UNSOLVED", "STRONG", "implied_inertia", "inertia_diagnoses", "read_back",

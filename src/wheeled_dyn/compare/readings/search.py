@@ -125,8 +125,13 @@ class SearchEvaluation(Evaluation):
     def score(self, doc: Arrays) -> int:
         r"""Equations of ``doc`` (on the search's samples) that are combinations of the true
         ones (:meth:`weight` each), and elements that agree with the truth, after its own
-        row factors."""
-        right = self.weight() * self._right(doc, doc.B, self._combinations(doc))
+        row factors (:meth:`agreeing`)."""
+        return self.weight() * self._right(doc, doc.B, self._combinations(doc)) + \
+            self.agreeing(doc)
+
+    def agreeing(self, doc: Arrays) -> int:
+        r"""Elements of ``doc`` (on the search's samples) that agree with the truth, after
+        its own row factors (applied to ``doc``)."""
         n = self.q.shape[1]
         _, truth, B_true = self._subset()
         truth_sizes, truth_H = self._truth_parts()
@@ -143,7 +148,7 @@ class SearchEvaluation(Evaluation):
         if doc.H is not None:            # the velocity products j <= k (2 H_ijk for j < k)
             upper = np.triu(np.ones((n, n), dtype=bool))
             count += _agreeing(doc.H * _product_weights(n), _needed(truth_H), scales, upper)
-        return right + count
+        return count
 
     def elements(self, doc: Arrays) -> int:
         r"""How many elements :meth:`score` counts at most (each that agrees counts one)."""

@@ -39,11 +39,18 @@ def document_arrays(d: Derivation, funcs: "DocumentFunctions", sets, q: np.ndarr
     return doc, per_set, values
 
 
+#: Each model-namespace expression's calls with their names (``XX(link)``), found once.
+_CALLS: dict[sp.Expr, tuple[tuple[sp.Expr, str], ...]] = {}
+
+
 def model_value(expr: sp.Expr, values: Mapping[str, float]) -> float:
     r"""A model-namespace expression (physical names, ``XX(link)`` calls) at ``values``."""
+    named = _CALLS.get(expr)
+    if named is None:
+        named = _CALLS[expr] = tuple((call, f"{call.func.__name__}({call.args[0]})")
+                                     for call in expr.atoms(AppliedUndef))
     calls = {}
-    for call in expr.atoms(AppliedUndef):
-        key = f"{call.func.__name__}({call.args[0]})"
+    for call, key in named:
         if key not in values:
             from ...errors import UnknownNameError
             raise UnknownNameError("model parameter", key,
