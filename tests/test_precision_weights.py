@@ -8,6 +8,8 @@ replaced by eq1 + w·eq2.
 - w = 1e12, right: W = [[1, 1e12], [0, 1]] is invertible (det 1), but its rows are parallel
   to 1e-12 — eq2 was "not independent", the system not right. Now undecided, nothing lost.
 - w = 1e5 with the same term left out: it differs (decided), and w = 2, right, agrees.
+
+The summary says "not decided as a system" where an equation is undecided (it said nothing).
 """
 
 from __future__ import annotations
@@ -20,6 +22,7 @@ from conftest import SEED
 from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.compare.records import Verdict
 from wheeled_dyn.derivations import load_derivation
+from wheeled_dyn.report.summary import system_word
 
 #: Engine grid.
 SAMPLES, PARAM_SETS = 200, 3
@@ -53,3 +56,5 @@ def test_parts_beyond_the_tolerance_are_undecided(tmp_path, weight, drop, first,
     if first == Verdict.UNDECIDED:
         said = " ".join(t for t in result.equations[0].texts)
         assert "parts differ in size by a factor" in said, said
+    assert system_word(result) == {None: "not decided as a system", False:
+                                   "not right as a system", True: ""}[system]
