@@ -245,3 +245,19 @@ def test_every_element_a_solved_error_reaches_names_it(engine, tmp_path, form, e
     for r in flagged:
         assert KIND[("arm", error)] in r.kinds or READ_BACK[error] in r.texts[0], \
             (r.element, r.texts)
+
+
+@pytest.mark.parametrize("error", ["point_mass", "dropped", "sign"])
+def test_the_cart_row_less_the_pole_row_names_the_error_in_its_frame(engine, tmp_path, error):
+    r"""The cart-pole with the pole's reaction eliminated from the cart's equation
+    (eq1 − (3 cos θ/(4l))·eq2, weights that are functions of the state) and an error in what
+    was combined: the row is read in that frame — its weights simple expressions of the
+    document's names, as good as a constant — and only the elements the error changed are
+    flagged and named (a point mass was read in the true eq1's frame, with a term "the
+    truth does not have" and a factor 1/4 beside it). A cos written for a sin is left out:
+    in the combined row it is "a factor sin θ/cos θ" missing, not a swap."""
+    test_a_planted_error_is_flagged_where_it_is_and_named(engine, tmp_path, "pole",
+                                                          "combined", error)
+    result = engine.compare(load_derivation(P.write(tmp_path, "pole", "combined", error)))
+    assert result.equations[0].frame.startswith("= eq1 - 3*eq2*cos(theta)/(4*l)"), \
+        result.equations[0].frame

@@ -68,8 +68,10 @@ def choose_frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], d
         totals: dict[FrameRule, int] = {}
         rule = choose(i, rules_i, on, has_declared and not right, right, totals)
         if not right and not has_declared and not solved_row(main.doc, i) \
-                and _differing(i, rule, main) > d.n:     # a solved row's form is its frame
-            rule = choose(i, rules_i + combination_variants(on, i), on, False, totals=totals)
+                and _differing(i, rule, main) > 1:     # a solved row's form is its frame
+            rule = choose(i, rules_i + combination_variants(
+                on, i, (rows, lambda w: fit_factor(w, found) is not None)), on, False,
+                totals=totals)
         evaluated = evaluate_rule(i, rule, main.doc, main.truth, main.doc.B, main.B_true,
                                   declared_scale)
         if evaluated is not None and solved_row(main.doc, i):
