@@ -147,3 +147,39 @@ def test_rwp_solved_error_in_d11_is_named(engine, tmp_path, d11, kind, said):
     texts = _texts(result, 0) + _texts(result, 1)
     assert texts and all(HEAD in t and "A[1,1]" in t and said in t for t in texts), texts
     assert any(c.kind == kind and "A[1,1]" in c.explanation for c in result.causes)
+
+
+def test_a_factor_of_one_entry_is_said_with_its_equal(engine, tmp_path):
+    r"""One entry of a source row a factor of the truth's — the cart's coupling
+    :math:`ml\cos\theta\,\ddot\theta` written twice, then solved — is the same equations as
+    every other entry of that row the inverse factor × the truth's (a row's common factor
+    goes into its weight): both are said, not the one as a fact."""
+    path = P.write(tmp_path, "pole", "solved", None)
+    cart, pole = P.cart_pole(None)
+    cart = cart + P.m * P.l * sp.cos(P.th) * P.ddth
+    (sol,) = sp.solve([cart, pole], [P.ddx, P.ddth], dict=True)
+    lines = path.read_text().splitlines()
+    for name, acc in (("ddx", P.ddx), ("ddtheta", P.ddth)):
+        at = next(i for i, x in enumerate(lines) if x.strip().startswith(f'"{name} ='))
+        end = "," if lines[at].rstrip().endswith(",") else ""
+        lines[at] = f'  "{name} = {sp.sstr(sp.simplify(sol[acc]))}"{end}'
+    path.write_text("\n".join(lines) + "\n")
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False
+    said = [t for r in result.records if r.verdict != "agrees" for t in r.texts[:1]]
+    assert said and all("A[1,2]: the document is 2 × the truth" in t and "or, the same "
+                        "equations: every other entry of equation 1 is 1/2 × the truth's" in t
+                        for t in said), said
+
+
+def test_a_residual_read_back_claims_no_term_missing():
+    r"""An entry read back whose truth − document no single or double term reads (φ₂ of
+    the arm with cos(q1 + q2) written cos q1 + cos q2: terms too much and terms missing at
+    once) is said as truth − document, of no kind that claims a term missing."""
+    from wheeled_dyn.compare.judge.unsolved import _part
+    rng = np.random.default_rng(SEED)
+    a, b = rng.uniform(-3, 3, 200), rng.uniform(-3, 3, 200)
+    T = np.cos(a + b)
+    D = np.cos(a) + np.cos(b)
+    part = _part("Q[2]", T, D, float(np.abs(T).max()), [], None, {"Q[2]": sp.cos(q1 + q2)})
+    assert part.kind == K.RESIDUAL, part

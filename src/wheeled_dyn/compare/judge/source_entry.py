@@ -13,19 +13,22 @@ then projected away from the other true rows (:math:`P_\perp`, the complement of
 :math:`d = \alpha P_\perp T_r + \alpha\delta P_\perp e_c` gives :math:`\delta` per sample by
 least squares, and :math:`D = (DV^+)V` with :math:`W = DV^+` invertible confirms it. The entry
 is named in the document's symbols (:func:`~.unsolved._part`: a point mass, a sign, a factor, a
-symbol for another) only where exactly one entry so explains every sample. This only explains:
-the equations' verdicts are decided by their equivalence.
+symbol for another) only where exactly one entry so explains every sample; an entry that is a
+factor f of the truth's is said with its equal, every other entry of its equation 1/f × the
+truth's (the row's common factor goes into its weight). This only explains: the equations'
+verdicts are decided by their equivalence.
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from dataclasses import replace
 
 import numpy as np
 import sympy as sp
 
 from ..records import Diagnosis
-from .diagnose import AGREE_TOL
+from .diagnose import AGREE_TOL, nice_number
 from .equivalence import SINGULAR_TOL, relative_det
 from .named import own_moments
 from .unsolved import _diagnosis, _part
@@ -96,6 +99,17 @@ def _explains(T: np.ndarray, D: np.ndarray, r: int, c: int, delta: np.ndarray) -
                 and (relative_det(W) > SINGULAR_TOL).all())
 
 
+def _whole_factor(T: np.ndarray, D: np.ndarray) -> float | None:
+    r"""The number :math:`f` with ``D`` = f ``T`` at every sample (the entry a factor of the
+    truth's), or None."""
+    big = np.abs(T) > 1e-12 * float(np.abs(T).max(initial=0.0))
+    if not big.any():
+        return None
+    ratio = D[big] / T[big]
+    f = float(np.median(ratio))
+    return f if f != 0.0 and float(np.abs(ratio - f).max()) <= AGREE_TOL * abs(f) else None
+
+
 def source_entry(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
                  velocities: Sequence[sp.Symbol] = (),
                  truths: Mapping[str, sp.Expr] | None = None) -> Diagnosis | None:
@@ -128,6 +142,10 @@ def source_entry(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
     scale = float(np.abs(T[:, :, c]).max())
     part = _part(names[c].format(r=r + 1), truth_entry, truth_entry + delta, scale, at,
                  moments, truths)
+    factor = _whole_factor(truth_entry, truth_entry + delta)
+    if factor is not None:          # a row's common factor goes into its weight: the same
+        part = replace(part, text=f"{part.text} — or, the same equations: every other entry "
+                       f"of equation {r + 1} is {nice_number(1.0 / factor)} × the truth's")
     return _diagnosis("read back before it was solved or combined (the equations whose "
                       "combinations its rows are), one entry differs: ", [part])
 

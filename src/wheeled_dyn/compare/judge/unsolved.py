@@ -61,7 +61,7 @@ def _part(where: str, T: np.ndarray, D: np.ndarray, scale: float,
     two symbols written where the other fits in a product (:func:`~.swap_fit.swap_reading`);
     a term missing, of the wrong sign or factor, or too much, against the truth's entry in
     ``truths`` (closed forms in the document's symbols, :func:`~.entry_terms.entry_reading`);
-    else truth − document (a term the document lacks, unless those say otherwise)."""
+    else truth − document, with no claim of what it is."""
     found, swap = difference_reading(T - D, bases)
     found = found if found is not None or swap is None else swap[0]
     hit = point_mass_fit(T - D, moments, ()) if moments else None
@@ -78,14 +78,15 @@ def _part(where: str, T: np.ndarray, D: np.ndarray, scale: float,
     read = None if truth is None else entry_reading(found, truth)
     if read is not None:
         return _Part(f"{where}: {read[1]} ({_said(found)})", found, read[0])
-    return _Part(f"{where} {_said(found)}", found, K.MISSING)
+    # no claim of a term missing: truth − document may be terms too much, or some of each
+    return _Part(f"{where} {_said(found)}", found, K.RESIDUAL)
 
 
 def _diagnosis(head: str, parts: Sequence[_Part]) -> Diagnosis:
-    r"""``parts`` as one diagnosis: their kind where they share one, else ``missing``."""
+    r"""``parts`` as one diagnosis, of the first part's kind (the one its cause names; the
+    others are said in its text)."""
     text = "; ".join(p.text for p in parts)
-    kinds = {p.kind for p in parts}
-    return Diagnosis(kinds.pop() if len(kinds) == 1 else K.MISSING, f"{head}{text}", text,
+    return Diagnosis(parts[0].kind, f"{head}{text}", text,
                      terms=tuple(sp.sstr(p.found) for p in parts if p.found is not None))
 
 
