@@ -176,10 +176,10 @@ def test_a_residual_read_back_claims_no_term_missing():
     r"""An entry read back whose truth − document no single or double term reads (φ₂ of
     the arm with cos(q1 + q2) written cos q1 + cos q2: terms too much and terms missing at
     once) is said as truth − document, of no kind that claims a term missing."""
-    from wheeled_dyn.compare.judge.unsolved import _part
+    from wheeled_dyn.compare.judge.unsolved import entry_part
     rng = np.random.default_rng(SEED)
     a, b = rng.uniform(-3, 3, 200), rng.uniform(-3, 3, 200)
     T = np.cos(a + b)
     D = np.cos(a) + np.cos(b)
-    part = _part("Q[2]", T, D, float(np.abs(T).max()), [], None, {"Q[2]": sp.cos(q1 + q2)})
+    part = entry_part("Q[2]", T, D, float(np.abs(T).max()), [], None, {"Q[2]": sp.cos(q1 + q2)})
     assert part.kind == K.RESIDUAL, part

@@ -129,7 +129,7 @@ def combination_rows(doc_A: np.ndarray, true_A: np.ndarray) -> np.ndarray:
     return W
 
 
-def _part(doc: np.ndarray, true: np.ndarray, w: np.ndarray, least: np.ndarray
+def row_residual(doc: np.ndarray, true: np.ndarray, w: np.ndarray, least: np.ndarray
           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     r"""For one row: (relative residual per sample, finite mask, scale per sample) of
     ``doc`` (S × k) against :math:`w\,` ``true`` (S × n × k), the scale at least ``least``
@@ -201,7 +201,7 @@ def decide_row(i: int, doc: Side, truth: Side, W: np.ndarray,
         T3 = T[:, :, None] if T.ndim == 2 else T
         least = inertia if D is not doc.L else multiplier_floor if \
             multiplier_floor is not None else _multiplier_floor(D, T)
-        rel, finite, _ = _part(D2, T3, w, least)
+        rel, finite, _ = row_residual(D2, T3, w, least)
         residuals.append(rel)
         masks.append(finite)
     finite = np.logical_and.reduce(masks) if masks else np.isfinite(w).all(axis=1)
@@ -376,4 +376,5 @@ def mark_lost(decision: SystemDecision, rows: tuple[int, ...], text: str) -> Sys
 
 __all__ = ["EquationDecision", "FLOOR", "NULL_SHARE", "SINGULAR_TOL", "Side", "SystemDecision",
            "combination_rows", "decide", "decide_row", "mark_lost", "multiplier_terms",
-           "relative_det", "sign_changes", "singular_everywhere", "weights_told"]
+           "relative_det", "row_residual", "sign_changes", "singular_everywhere",
+           "weights_told"]

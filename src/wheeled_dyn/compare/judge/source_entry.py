@@ -12,7 +12,7 @@ then projected away from the other true rows (:math:`P_\perp`, the complement of
 :math:`P_\perp(T_r + \delta e_c)`: the projected :math:`D` has rank one, its direction
 :math:`d = \alpha P_\perp T_r + \alpha\delta P_\perp e_c` gives :math:`\delta` per sample by
 least squares, and :math:`D = (DV^+)V` with :math:`W = DV^+` invertible confirms it. The entry
-is named in the document's symbols (:func:`~.unsolved._part`: a point mass, a sign, a factor, a
+is named in the document's symbols (:func:`~.unsolved.entry_part`: a point mass, a sign, a factor, a
 symbol for another) only where exactly one entry so explains every sample; an entry that is a
 factor f of the truth's is said with its equal, every other entry of its equation 1/f × the
 truth's (the row's common factor goes into its weight). This only explains: the equations'
@@ -31,7 +31,7 @@ from ..records import Diagnosis
 from .diagnose import AGREE_TOL, nice_number
 from .equivalence import SINGULAR_TOL, relative_det
 from .named import own_moments
-from .unsolved import _diagnosis, _part
+from .unsolved import entry_part, read_back_diagnosis
 
 #: A projected document of rank one: its second singular value at most this times its first.
 RANK_ONE_TOL = 1e-7
@@ -140,13 +140,13 @@ def source_entry(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
     moments = {k: v[rows] for k, v in moments.items()}
     truth_entry = T[:, r, c]
     scale = float(np.abs(T[:, :, c]).max())
-    part = _part(names[c].format(r=r + 1), truth_entry, truth_entry + delta, scale, at,
+    part = entry_part(names[c].format(r=r + 1), truth_entry, truth_entry + delta, scale, at,
                  moments, truths)
     factor = _whole_factor(truth_entry, truth_entry + delta)
     if factor is not None:          # a row's common factor goes into its weight: the same
         part = replace(part, text=f"{part.text} — or, the same equations: every other entry "
                        f"of equation {r + 1} is {nice_number(1.0 / factor)} × the truth's")
-    return _diagnosis("read back before it was solved or combined (the equations whose "
+    return read_back_diagnosis("read back before it was solved or combined (the equations whose "
                       "combinations its rows are), one entry differs: ", [part])
 
 

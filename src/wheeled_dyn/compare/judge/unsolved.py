@@ -49,7 +49,7 @@ class _Part:
     kind: K
 
 
-def _part(where: str, T: np.ndarray, D: np.ndarray, scale: float,
+def entry_part(where: str, T: np.ndarray, D: np.ndarray, scale: float,
           bases: Sequence[tuple[sp.Expr, np.ndarray]],
           moments: Mapping[str, np.ndarray] | None = None,
           truths: Mapping[str, sp.Expr] | None = None) -> _Part:
@@ -82,7 +82,7 @@ def _part(where: str, T: np.ndarray, D: np.ndarray, scale: float,
     return _Part(f"{where} {_said(found)}", found, K.RESIDUAL)
 
 
-def _diagnosis(head: str, parts: Sequence[_Part]) -> Diagnosis:
+def read_back_diagnosis(head: str, parts: Sequence[_Part]) -> Diagnosis:
     r"""``parts`` as one diagnosis, of the first part's kind (the one its cause names; the
     others are said in its text)."""
     text = "; ".join(p.text for p in parts)
@@ -206,13 +206,13 @@ def inertia_diagnoses(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
     else:
         return None
     scale = float(np.abs(true_A).max())
-    parts = [_part(f"A[{i + 1},{j + 1}]", true_A[:, i, j], M[:, i, j], scale, bases, moments,
+    parts = [entry_part(f"A[{i + 1},{j + 1}]", true_A[:, i, j], M[:, i, j], scale, bases, moments,
                    truths)
              for i in range(n) for j in range(n)
              if np.abs(true_A[:, i, j] - M[:, i, j]).max() > AGREE_TOL * scale]
     if not parts:
         return None
-    return _diagnosis(f"the inertia matrix the document inverted (read back from {how}) "
+    return read_back_diagnosis(f"the inertia matrix the document inverted (read back from {how}) "
                       "differs from the truth's: ", parts + _named(extra, truth, bases, truths))
 
 
@@ -233,7 +233,7 @@ def _named(entries, truth, bases: Sequence[tuple[sp.Expr, np.ndarray]],
     r"""The differing ``entries`` of :func:`_entries`, named in the document's symbols."""
     rows = truth.H_rows
     at = [(e, v[rows]) for e, v in bases] if rows is not None else []
-    return [_part(where, t, v, scale, at if on_rows else bases, None, truths)
+    return [entry_part(where, t, v, scale, at if on_rows else bases, None, truths)
             for where, t, v, scale, on_rows in entries]
 
 
@@ -309,7 +309,7 @@ def unsolved_terms(doc, truth, true_B: np.ndarray | None, velocities: Sequence[s
     entries = _entries(doc, truth, true_B, velocities)
     if not entries or len(entries) > MAX_UNSOLVED:
         return None
-    return _diagnosis("read back before it was solved or combined (its rows times A A_doc⁻¹: "
+    return read_back_diagnosis("read back before it was solved or combined (its rows times A A_doc⁻¹: "
                       "its inputs' coefficients are then the truth's), the equations differ: ",
                       _named(entries, truth, bases, truths))
 
@@ -371,5 +371,6 @@ def read_back(drafts: Sequence[ElementDraft], rows: set[int], found: Diagnosis |
             r.diagnoses[:] = [found, *(x for x in r.diagnoses if x.kind not in weak)]
 
 
-__all__ = ["MAX_UNSOLVED", "STRONG", "implied_inertia", "inertia_diagnoses", "read_back",
-           "read_back_explains", "solved_for", "unsolved_terms"]
+__all__ = ["MAX_UNSOLVED", "STRONG", "entry_part", "implied_inertia", "inertia_diagnoses",
+           "read_back", "read_back_diagnosis", "read_back_explains", "solved_for",
+           "unsolved_terms"]

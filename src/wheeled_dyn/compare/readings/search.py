@@ -14,7 +14,7 @@ import numpy as np
 
 from ..sides.evaluation import Evaluation
 from ..judge.diagnose import AGREE_TOL
-from ..judge.equivalence import _part, combination_rows
+from ..judge.equivalence import combination_rows, row_residual
 from .signs import flip_arrays
 from .row_factors import (apply_row_factors, decided_factor, explaining, row_factors,
                           row_scales, row_sizes, row_votes)
@@ -99,7 +99,7 @@ class SearchEvaluation(Evaluation):
         ok = np.zeros(n, dtype=bool)
         for i in range(n):
             least = np.abs(A_doc[:, i, :]).max(axis=1)
-            rel, finite, _ = _part(mine[:, i:i + 1], true[:, :, None], W[:, i], least)
+            rel, finite, _ = row_residual(mine[:, i:i + 1], true[:, :, None], W[:, i], least)
             ok[i] = bool(finite.all() and rel.max(initial=0.0) <= AGREE_TOL)
         return W, ok
 
@@ -116,7 +116,7 @@ class SearchEvaluation(Evaluation):
         for i in np.flatnonzero(ok):
             if B is not None and B_true is not None:
                 least = np.abs(doc.A[at, i, :]).max(axis=1)
-                rel, finite, _ = _part(B[at, i, :], B_true[at], W[:, i], least)
+                rel, finite, _ = row_residual(B[at, i, :], B_true[at], W[:, i], least)
                 if not (finite.all() and rel.max(initial=0.0) <= AGREE_TOL):
                     continue
             count += 1
