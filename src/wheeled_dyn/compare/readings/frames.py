@@ -258,8 +258,9 @@ def _terms_weights(i: int, doc: Arrays, truth: Arrays, B_doc: np.ndarray | None,
     ok = np.isfinite(M).all(axis=(1, 2)) & np.isfinite(rhs).all(axis=1)
     if not ok.any():
         return out
-    sv = np.linalg.svd(M[ok], compute_uv=False)
-    w = np.einsum("sk,skn->sn", rhs[ok], np.linalg.pinv(M[ok]))
+    u, sv, vt = np.linalg.svd(M[ok], full_matrices=False)     # M = U Σ Vᵀ: w = rhs V Σ⁻¹ Uᵀ
+    with np.errstate(all="ignore"):
+        w = np.einsum("sk,sjk,sj,snj->sn", rhs[ok], vt, 1.0 / sv, u)
     fit = np.einsum("sn,snk->sk", w, M[ok])
     size = np.maximum(np.abs(rhs[ok]).max(axis=1), 1e-300)
     good = (sv[:, n - 1] > 1e-9 * sv[:, 0]) & \
