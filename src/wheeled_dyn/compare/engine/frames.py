@@ -67,11 +67,15 @@ def choose_frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], d
                        and r.variant is None else r for r in rules_i]
         totals: dict[FrameRule, int] = {}
         rule = choose(i, rules_i, on, has_declared and not right, right, totals)
-        if not right and not has_declared and not solved_row(main.doc, i) \
-                and _differing(i, rule, main) > 1:     # a solved row's form is its frame
-            rule = choose(i, rules_i + combination_variants(
-                on, i, (rows, lambda w: fit_factor(w, found) is not None)), on, False,
-                totals=totals)
+        differing = 0 if right or has_declared or solved_row(main.doc, i) else \
+            _differing(i, rule, main)             # a solved row's form is its frame
+        if differing > 1:
+            variants = combination_variants(on, i, (rows, lambda w: fit_factor(w, found)
+                                                    is not None))
+            if differing <= d.n:       # no more than n weights fit: only numbers, or names
+                variants = [v for v in variants if v.identified]
+            if variants:
+                rule = choose(i, rules_i + variants, on, False, totals=totals)
         evaluated = evaluate_rule(i, rule, main.doc, main.truth, main.doc.B, main.B_true,
                                   declared_scale)
         if evaluated is not None and solved_row(main.doc, i):
