@@ -335,7 +335,7 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
             term = _plainest(fit_factor(residual, bases), bases) \
                 if np.abs(residual).min() > 0 else None
             if term is not None and term.could_extract_minus_sign():
-                term = -term          # a moment is positive (a row of Kane's form: −1 × the truth)
+                term = -term        # a moment is positive (a Kane row: −1 × the truth)
             own = f" ({sp.sstr(term)} in the document's symbols)" if term is not None \
                 else ""
             r.diagnoses.insert(0, diagnosis(

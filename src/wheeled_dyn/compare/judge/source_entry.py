@@ -141,13 +141,13 @@ def source_entry(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
     truth_entry = T[:, r, c]
     scale = float(np.abs(T[:, :, c]).max())
     part = entry_part(names[c].format(r=r + 1), truth_entry, truth_entry + delta, scale, at,
-                 moments, truths)
+                      moments, truths)
     factor = _whole_factor(truth_entry, truth_entry + delta)
     if factor is not None:          # a row's common factor goes into its weight: the same
         part = replace(part, text=f"{part.text} — or, the same equations: every other entry "
                        f"of equation {r + 1} is {nice_number(1.0 / factor)} × the truth's")
-    return read_back_diagnosis("read back before it was solved or combined (the equations whose "
-                      "combinations its rows are), one entry differs: ", [part])
+    return read_back_diagnosis("read back before it was solved or combined (the equations "
+                               "whose combinations its rows are), one entry differs: ", [part])
 
 
 __all__ = ["source_entry"]

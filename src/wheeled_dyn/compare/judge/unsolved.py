@@ -50,9 +50,9 @@ class _Part:
 
 
 def entry_part(where: str, T: np.ndarray, D: np.ndarray, scale: float,
-          bases: Sequence[tuple[sp.Expr, np.ndarray]],
-          moments: Mapping[str, np.ndarray] | None = None,
-          truths: Mapping[str, sp.Expr] | None = None) -> _Part:
+               bases: Sequence[tuple[sp.Expr, np.ndarray]],
+               moments: Mapping[str, np.ndarray] | None = None,
+               truths: Mapping[str, sp.Expr] | None = None) -> _Part:
     r"""The entry ``where`` read back, ``T`` the truth's values and ``D`` the document's: a
     body's own moment about its centre of mass where truth − document is exactly one of
     ``moments`` (:func:`~.named.own_moments`: a point mass, also where that makes the whole
@@ -173,8 +173,8 @@ def inertia_diagnoses(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
     wrong sign or scaled reads back as none), and not the truth's times one number (every
     input of the wrong sign, or scaled: nothing tells that from an inertia so scaled with
     every term too); the equations' other entries so read back are named beside it where at
-    most :data:`MAX_UNSOLVED` differ (a term wrong beside the inertia), else nothing is said. ``sides``: both sides on a grid
-    (:class:`~..sides.both.Sides`)."""
+    most :data:`MAX_UNSOLVED` differ (a term wrong beside the inertia), else nothing is said.
+    ``sides``: both sides on a grid (:class:`~..sides.both.Sides`)."""
     doc, truth, true_B = sides.doc, sides.truth, sides.B_true
     doc_A, true_A = doc.A, truth.need("A")
     sets = [ps.values for ps in sides.grid.sets]
@@ -206,14 +206,15 @@ def inertia_diagnoses(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
     else:
         return None
     scale = float(np.abs(true_A).max())
-    parts = [entry_part(f"A[{i + 1},{j + 1}]", true_A[:, i, j], M[:, i, j], scale, bases, moments,
-                   truths)
+    parts = [entry_part(f"A[{i + 1},{j + 1}]", true_A[:, i, j], M[:, i, j], scale, bases,
+                        moments, truths)
              for i in range(n) for j in range(n)
              if np.abs(true_A[:, i, j] - M[:, i, j]).max() > AGREE_TOL * scale]
     if not parts:
         return None
-    return read_back_diagnosis(f"the inertia matrix the document inverted (read back from {how}) "
-                      "differs from the truth's: ", parts + _named(extra, truth, bases, truths))
+    return read_back_diagnosis(
+        f"the inertia matrix the document inverted (read back from {how}) differs from the "
+        "truth's: ", parts + _named(extra, truth, bases, truths))
 
 
 def _scaled(M: np.ndarray, true_A: np.ndarray) -> bool:
@@ -309,9 +310,10 @@ def unsolved_terms(doc, truth, true_B: np.ndarray | None, velocities: Sequence[s
     entries = _entries(doc, truth, true_B, velocities)
     if not entries or len(entries) > MAX_UNSOLVED:
         return None
-    return read_back_diagnosis("read back before it was solved or combined (its rows times A A_doc⁻¹: "
-                      "its inputs' coefficients are then the truth's), the equations differ: ",
-                      _named(entries, truth, bases, truths))
+    return read_back_diagnosis(
+        "read back before it was solved or combined (its rows times A A_doc⁻¹: its inputs' "
+        "coefficients are then the truth's), the equations differ: ",
+        _named(entries, truth, bases, truths))
 
 
 def read_back_explains(doc, truth, true_B: np.ndarray | None) -> bool:

@@ -258,7 +258,7 @@ def _terms_weights(i: int, doc: Arrays, truth: Arrays, B_doc: np.ndarray | None,
     ok = np.isfinite(M).all(axis=(1, 2)) & np.isfinite(rhs).all(axis=1)
     if not ok.any():
         return out
-    u, sv, vt = np.linalg.svd(M[ok], full_matrices=False)     # M = U Σ Vᵀ: w = rhs V Σ⁻¹ Uᵀ
+    u, sv, vt = np.linalg.svd(M[ok], full_matrices=False)   # M = UΣVᵀ: w = rhs VΣ⁻¹Uᵀ
     with np.errstate(all="ignore"):
         w = np.einsum("sk,sjk,sj,snj->sn", rhs[ok], vt, 1.0 / sv, u)
     fit = np.einsum("sn,snk->sk", w, M[ok])
