@@ -9,12 +9,15 @@ exchanged or a position's sign reversed make its equations right).
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import replace
 
 import numpy as np
 
 from ..sides.evaluation import Evaluation
 from ..judge.diagnose import AGREE_TOL
-from ..judge.equivalence import combination_rows, row_residual
+from ..judge.equivalence import Side, combination_rows, decide_row
+from ..judge.precision import row_sizes as row_sizes_of
+from ..records import Verdict
 from .signs import flip_arrays
 from .row_factors import (apply_row_factors, decided_factor, explaining, row_factors,
                           row_scales, row_sizes, row_votes)
@@ -83,50 +86,41 @@ class SearchEvaluation(Evaluation):
         return np.unique(np.linspace(0, len(rows) - 1, min(EQUATION_SAMPLES, len(rows)))
                          .astype(int))
 
-    def _combinations(self, doc: Arrays) -> tuple[np.ndarray, np.ndarray] | None:
-        r"""(:math:`W = A_{doc}A^{-1}`, whether each row's velocity and gravity terms are
-        :math:`w_i` times the truth's) on the search's samples, or None where the document
-        gives no A (as :func:`~..judge.equivalence.decide` decides, on fewer samples)."""
-        _, truth, _ = self._subset()
+    def _combinations(self, doc: Arrays
+                      ) -> tuple[Side, Side, np.ndarray, np.ndarray] | None:
+        r"""Both sides on the samples the equations are decided on (:meth:`_few`; the
+        document's B left out: a reading of the inputs gives it), :math:`W = A_{doc}A^{-1}`
+        and the true rows' sizes there, or None where the document gives no A."""
+        _, truth, B_true = self._subset()
         if doc.A is None or truth.A is None:
             return None
         at = self._few()
-        A_doc = doc.A[at]
-        W = combination_rows(A_doc, truth.A[at])
-        S, n = A_doc.shape[:2]
-        mine = sum((x[at] for x in (doc.h, doc.Q) if x is not None), np.zeros((S, n)))
-        true = sum((x[at] for x in (truth.h, truth.Q) if x is not None), np.zeros((S, n)))
-        ok = np.zeros(n, dtype=bool)
-        for i in range(n):
-            least = np.abs(A_doc[:, i, :]).max(axis=1)
-            rel, finite, _ = row_residual(mine[:, i:i + 1], true[:, :, None], W[:, i], least)
-            ok[i] = bool(finite.all() and rel.max(initial=0.0) <= AGREE_TOL)
-        return W, ok
 
-    def _right(self, doc: Arrays, B: np.ndarray | None,
-               found: tuple[np.ndarray, np.ndarray] | None) -> int:
-        r"""Equations of ``doc`` (its inputs' coefficients ``B``) that are combinations of
-        the true ones, ``found`` their weights (:meth:`_combinations`)."""
-        _, _, B_true = self._subset()
-        if found is None or doc.A is None:
+        def n_of(a: Arrays) -> np.ndarray | None:
+            parts = [x[at] for x in (a.h, a.Q) if x is not None]
+            return sum(parts[1:], parts[0]) if parts else None
+        mine = Side(doc.A[at], n_of(doc), None)
+        true = Side(truth.A[at], n_of(truth), None if B_true is None else B_true[at])
+        return mine, true, combination_rows(mine.A, true.A), \
+            row_sizes_of(true.A, (true.n, true.B))
+
+    def _right(self, B: np.ndarray | None,
+               found: tuple[Side, Side, np.ndarray, np.ndarray] | None) -> int:
+        r"""Equations that are combinations of the true ones, as
+        :func:`~..judge.equivalence.decide_row` decides them, of the document ``found``
+        (:meth:`_combinations`) with its inputs' coefficients ``B``."""
+        if found is None:
             return 0
-        W, ok = found
-        at = self._few()
-        count = 0
-        for i in np.flatnonzero(ok):
-            if B is not None and B_true is not None:
-                least = np.abs(doc.A[at, i, :]).max(axis=1)
-                rel, finite, _ = row_residual(B[at, i, :], B_true[at], W[:, i], least)
-                if not (finite.all() and rel.max(initial=0.0) <= AGREE_TOL):
-                    continue
-            count += 1
-        return count
+        mine, true, W, sizes = found
+        mine = replace(mine, B=None if B is None or true.B is None else B[self._few()])
+        return sum(decide_row(i, mine, true, W, sizes=sizes).verdict == Verdict.AGREES
+                   for i in range(W.shape[1]))
 
     def score(self, doc: Arrays) -> int:
         r"""Equations of ``doc`` (on the search's samples) that are combinations of the true
         ones (:meth:`weight` each), and elements that agree with the truth, after its own
         row factors (:meth:`agreeing`)."""
-        return self.weight() * self._right(doc, doc.B, self._combinations(doc)) + \
+        return self.weight() * self._right(doc.B, self._combinations(doc)) + \
             self.agreeing(doc)
 
     def agreeing(self, doc: Arrays) -> int:
@@ -192,7 +186,7 @@ class SearchEvaluation(Evaluation):
                 count, scale = rows.part(i, f)
                 Bi = B[:, i:i + 1] if f is None else B[:, i:i + 1] / f
                 total += count + _agreeing(Bi, B_true[:, i:i + 1], np.array([scale]))
-            out.append(total + self.weight() * self._right(doc, B, combinations))
+            out.append(total + self.weight() * self._right(B, combinations))
         return out
 
 
