@@ -58,3 +58,22 @@ def test_parts_beyond_the_tolerance_are_undecided(tmp_path, weight, drop, first,
         assert "parts differ in size by a factor" in said, said
     assert system_word(result) == {None: "not decided as a system", False:
                                    "not right as a system", True: ""}[system]
+
+
+def test_an_equation_lost_beside_one_beyond_precision_is_still_lost():
+    r"""W is called singular no more only where the equations left undecided for precision
+    make it so: eq1 + 1e12·eq2 beside eq2 is nearly dependent by precision alone, but with
+    eq2 written twice beside it, the repeated equation is lost whatever the first says."""
+    import numpy as np
+
+    from wheeled_dyn.compare.judge.equivalence import EquationDecision, _precision_only
+    S = 4
+    undecided = EquationDecision(Verdict.UNDECIDED, (), 0.0, np.zeros((S, 3)), True)
+    agrees = EquationDecision(Verdict.AGREES, (), 0.0, np.zeros((S, 3)))
+    near = np.broadcast_to(np.array([[1.0, 1e12, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]),
+                           (S, 3, 3))
+    lost = np.broadcast_to(np.array([[1.0, 1e12, 0.0], [0.0, 1.0, 0.0], [0.0, 1.0, 0.0]]),
+                           (S, 3, 3))
+    assert _precision_only(near, [undecided, agrees, agrees])
+    assert not _precision_only(lost, [undecided, agrees, agrees])
+    assert not _precision_only(near, [agrees, agrees, agrees])

@@ -40,6 +40,7 @@ These are pure functions of numbers; the engine supplies both sides on the same 
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -345,7 +346,7 @@ def decide(doc: Side, truth: Side, sets: int,
         where = ("with the model's own numbers, at a special position (a coordinate at 0, "
                  "±π/2 or π) or at a state searched where its weights are least"
                  ) if rows is not None else ""
-    if rows is not None and not pole and any(e.beyond_precision for e in decisions):
+    if rows is not None and not pole and _precision_only(W, decisions):
         rows = None         # nearly dependent only to the precision that left one undecided
     if rows is not None:
         wrong = [k for k in rows if decisions[k].verdict == Verdict.DIFFERS]
@@ -359,6 +360,22 @@ def decide(doc: Side, truth: Side, sets: int,
             "equation lost, repeated, or multiplied by a factor that vanishes)")
         return mark_lost(SystemDecision(tuple(decisions), W, told), rows, text)
     return SystemDecision(tuple(decisions), W, told)
+
+
+def _precision_only(W: np.ndarray, decisions: Sequence[EquationDecision]) -> bool:
+    r"""Whether :math:`W` looks singular only through the equations left undecided for the
+    precision of their combinations: without them, the other rows of :math:`W` are
+    independent at every sample (eq1 + 1e12·eq2 beside eq2; eq2 written twice beside it is
+    still lost)."""
+    beyond = [k for k, e in enumerate(decisions) if e.beyond_precision]
+    if not beyond:
+        return False
+    rest = np.delete(W, beyond, axis=1)
+    if rest.shape[1] == 0:
+        return True
+    rest = rest[np.isfinite(rest).all(axis=(1, 2))]
+    sv = np.linalg.svd(rest, compute_uv=False)
+    return bool(len(sv) and (sv[:, -1] > SINGULAR_TOL * sv[:, 0]).all())
 
 
 def mark_lost(decision: SystemDecision, rows: tuple[int, ...], text: str) -> SystemDecision:
