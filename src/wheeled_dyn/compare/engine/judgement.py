@@ -33,7 +33,7 @@ from ..judge.units import DimensionChecker
 from ..judge.source_entry import source_entry
 from ..judge.unsolved import inertia_diagnoses, read_back, unsolved_terms
 from ..readings.describe import describe
-from ..readings.frames import Frame, FrameKind, FrameRule, evaluate_rule
+from ..readings.frames import Frame, FrameKind, FrameRule, constant_weights, evaluate_rule
 from .frames import bind_declared, choose_frames, declared_weights, id_frames, row_factors
 from ..records import Cause, CauseKind, DerivationResult, Verdict, has_kind
 from ..sides.both import Sides, both_sides
@@ -223,21 +223,13 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
                            truths) or source_entry(id_sides, found, d.velocities, truths)
         read_back(drafts, {i for i, r in enumerate(rules)
                            if r.kind in (FrameKind.FUNCTION, FrameKind.COMBINATION)}, solved,
-                  {i for i, f in enumerate(frames) if _varying(f.weights)})
+                  {i for i, f in enumerate(frames) if not constant_weights(f.weights)})
     equations = equation_records(d, decision, drafts, texts, label, grids, funcs, rules, solved)
     fixes = print_drafts(d, drafts, sides.grid.cs, texts, assumed, funcs.exprs)
     equations = corrected(d, equations, fixes)
     j = _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed,
                    declared_wrong, fixes.truth is not None, engine.seed)
     return replace(j, causes=(*contradiction_causes(d, funcs, assumed, engine.seed), *j.causes))
-
-
-def _varying(weights: np.ndarray) -> bool:
-    r"""Whether a frame's weights (S × n) are functions of the state, not the same numbers at
-    every sample."""
-    size = float(np.abs(weights).max(initial=0.0))
-    return not np.isfinite(weights).all() or \
-        float(np.ptp(weights, axis=0).max(initial=0.0)) > 1e-9 * size
 
 
 def _geometric(d: Derivation) -> set[sp.Symbol]:

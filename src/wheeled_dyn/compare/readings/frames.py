@@ -42,6 +42,13 @@ from ..grid.arrays import Arrays
 RATIO_TOL = 1e-8
 #: A ratio counts as one constant when its relative spread is below this.
 CONSTANT_SPREAD = 1e-9
+def constant_weights(w: np.ndarray) -> bool:
+    r"""Whether weights ``w`` (S × n) are the same numbers at every sample (finite, not all
+    zero, each within :data:`CONSTANT_SPREAD` of the largest)."""
+    size = float(np.abs(w).max(initial=0.0)) if np.isfinite(w).all() else 0.0
+    return size > 0.0 and float(np.ptp(w, axis=0).max()) <= CONSTANT_SPREAD * size
+
+
 #: An element takes part in a vote when its smallest magnitude is above this fraction of the
 #: row's largest.
 VOTE_FLOOR = 1e-9
@@ -386,5 +393,5 @@ def _combination(i: int, grid: tuple[Arrays, Arrays, np.ndarray | None],
 
 
 __all__ = ["CONSTANT_SPREAD", "Frame", "FrameKind", "FrameRule", "RATIO_TOL", "VOTE_FLOOR",
-           "candidate_rules", "combination_weights", "evaluate_rule",
+           "TERMS", "candidate_rules", "combination_weights", "constant_weights", "evaluate_rule",
            "paired"]

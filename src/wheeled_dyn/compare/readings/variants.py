@@ -14,7 +14,8 @@ from dataclasses import replace
 import numpy as np
 
 from ..grid.arrays import Arrays
-from .frames import CONSTANT_SPREAD, TERMS, FrameKind, FrameRule, combination_weights
+from .frames import (CONSTANT_SPREAD, TERMS, FrameKind, FrameRule, combination_weights,
+                     constant_weights)
 
 
 def combination_variants(grids: Sequence[tuple[Arrays, Arrays, np.ndarray | None]], i: int,
@@ -89,11 +90,9 @@ def _same_numbers(i: int, rule: FrameRule, grids: Sequence[tuple[Arrays, Arrays,
     first = None
     for doc, truth, B_true in grids:
         w = combination_weights(i, rule, doc, truth, doc.B, B_true)
-        if not np.isfinite(w).all():
+        if not constant_weights(w):
             return False
-        size = float(np.abs(w).max(initial=0.0))
-        if size == 0.0 or np.ptp(w, axis=0).max() > CONSTANT_SPREAD * size:
-            return False
+        size = float(np.abs(w).max())
         first = w[0] if first is None else first
         if np.abs(w[0] - first).max() > CONSTANT_SPREAD * size:
             return False
