@@ -85,3 +85,35 @@ def test_closed_forms_equal_pinocchio_on_drawn_sets(model, coords):
                     assert not left, (label, left)
                     got = float(expr.xreplace(at))
                     assert abs(got - M[idx]) <= TOL * scale, (label, got, M[idx])
+
+
+def test_the_closed_forms_remembered_follow_the_models_files(tmp_path, monkeypatch):
+    r"""The closed forms the judge's read-backs and the reports' annotations share are made
+    once per derivation, coordinate set and content of the model's files: asked again for
+    the same derivation after its URDF is saved with another mass (as ``compare --watch``
+    keeps a derivation whose file did not change), they are made again."""
+    import published_forms as P
+    import wheeled_dyn.symbolic as symbolic
+    from wheeled_dyn.compare.engine import ComparisonEngine
+    from wheeled_dyn.compare.presentation import closed_form
+    from wheeled_dyn.derivations import load_derivation
+    for name in ("two_link_arm.toml", "two_link_arm.urdf"):
+        (tmp_path / name).write_text((DATA / "published" / name).read_text())
+    text = P.write(tmp_path, "arm", "equations", None).read_text()
+    doc = tmp_path / "doc.toml"
+    doc.write_text(text.replace(f'model = "{P.DATA / "two_link_arm.toml"}"',
+                                f'model = "{tmp_path / "two_link_arm.toml"}"'))
+    assert str(tmp_path / "two_link_arm.toml") in doc.read_text()
+    j = ComparisonEngine(samples=20, param_sets=1, seed=SEED).judge(load_derivation(doc))
+    d, cs = j.funcs.d, j.sides.grid.cs
+    made: list[str] = []
+    real = symbolic.true_expressions
+    monkeypatch.setattr(symbolic, "true_expressions",
+                        lambda model, c: made.append(model) or real(model, c))
+    closed_form.true_forms(d, cs)
+    closed_form.true_forms(d, cs)
+    assert len(made) == 1                      # remembered
+    urdf = tmp_path / "two_link_arm.urdf"
+    urdf.write_text(urdf.read_text().replace('<mass value="2.0"/>', '<mass value="2.5"/>', 1))
+    closed_form.true_forms(d, cs)
+    assert len(made) == 2                      # the URDF was saved: made again

@@ -16,7 +16,7 @@ from sympy.core.function import AppliedUndef
 
 from ...derivations.expressions import physical_in_standard
 from ...derivations.schema import Derivation
-from ...models.registry import model_entry
+from ...models.registry import model_entry, model_version
 from ...models.wip_parameters import WipParameters, standard_parameters
 from ..records import Diagnosis, DiagnosisKind
 from .in_document import in_document
@@ -273,8 +273,9 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
     return truth if in_symbols else None
 
 
-#: :func:`true_forms`' last answer, by the identity of its arguments (the read-backs of the
-#: judge and the reports' annotations ask for the same).
+#: :func:`true_forms`' last answer, by the identity of its derivation and coordinate set and
+#: its other arguments and the model's files (the judge's read-backs and the reports'
+#: annotations ask for the same).
 _FORMS: list = [None, None]
 
 
@@ -287,7 +288,8 @@ def true_forms(d: Derivation, cs, families: tuple[str, ...] = (),
     (the truth by element label, whether the document's side is read in the same parameters,
     the map of a document expression to them, whether they are the document's own symbols);
     None where the symbolic engine gives none."""
-    key = (families, uniform, linearised, massless)
+    # a model file or URDF saved since (compare --watch keeps the derivation): other forms
+    key = (families, uniform, linearised, massless, model_version(d.model))
     last = _FORMS[0]
     if last is not None and last[0] is d and last[1] is cs and last[2] == key:
         return _FORMS[1]
