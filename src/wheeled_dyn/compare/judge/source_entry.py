@@ -31,7 +31,7 @@ from ..records import Diagnosis
 from .diagnose import AGREE_TOL, nice_number
 from .equivalence import SINGULAR_TOL, relative_det
 from .named import own_moments
-from .unsolved import entry_part, read_back_diagnosis
+from .unsolved import entry_part, read_back_diagnosis, term_columns
 
 #: A projected document of rank one: its second singular value at most this times its first.
 RANK_ONE_TOL = 1e-7
@@ -39,24 +39,21 @@ RANK_ONE_TOL = 1e-7
 
 def _columns(arrays, B: np.ndarray | None, rows: np.ndarray, velocities: Sequence[sp.Symbol]
              ) -> tuple[np.ndarray, list[str]] | None:
-    r"""Each equation's coefficients of the accelerations, inputs, gravity term and velocity
-    products (:math:`H_{jj}`, :math:`H_{jl} + H_{lj}`) on the samples ``rows`` (samples × n ×
-    columns) and the columns' labels as the reports write entries; None where one of them is
-    not given or not finite."""
-    if arrays.A is None or B is None or arrays.Q is None or arrays.H is None or \
-            len(arrays.H) != len(rows):
+    r"""Each equation's coefficients of the accelerations, then of the inputs, the gravity
+    term and the velocity products (:func:`~.unsolved.term_columns`) on the samples ``rows``
+    (samples × n × columns) and the columns' labels as the reports write entries; None where
+    one of them is not given or not finite."""
+    terms = term_columns(arrays, B, rows)
+    if arrays.A is None or B is None or terms is None:
         return None
-    H, n = arrays.H, arrays.A.shape[1]
-    pairs = [(j, m) for j in range(n) for m in range(j, n)]
-    products = [H[:, :, j, j] if j == m else H[:, :, j, m] + H[:, :, m, j] for j, m in pairs]
-    out = np.concatenate([arrays.A[rows], B[rows], arrays.Q[rows][:, :, None],
-                          np.stack(products, axis=2)], axis=2)
+    out = np.concatenate([arrays.A[rows], terms], axis=2)
     if not np.isfinite(out).all():
         return None
+    n = arrays.A.shape[1]
     names = [*(f"A[{{r}},{j + 1}]" for j in range(n)),
              *(f"B[{{r}},{c + 1}]" for c in range(B.shape[2])), "Q[{r}]",
              *(f"h[{{r}}]:{velocities[j]}*{velocities[m]}" if velocities else
-               f"h[{{r}}]:{j},{m}" for j, m in pairs)]
+               f"h[{{r}}]:{j},{m}" for j in range(n) for m in range(j, n))]
     return out, names
 
 

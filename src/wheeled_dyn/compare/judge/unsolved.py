@@ -113,11 +113,11 @@ def implied_inertia(doc_B: np.ndarray, true_B: np.ndarray) -> np.ndarray | None:
     return true_B @ np.linalg.inv(doc_B)
 
 
-def _columns(arrays, B: np.ndarray | None, rows: np.ndarray) -> np.ndarray | None:
+def term_columns(arrays, B: np.ndarray | None, rows: np.ndarray) -> np.ndarray | None:
     r"""The coefficients of the inputs, the gravity terms and each velocity product
     (:math:`H_{jl} + H_{lj}`) of every equation on the samples ``rows``: samples × n × columns;
-    None where one of them is not given."""
-    if B is None or arrays.Q is None or arrays.H is None:
+    None where one of them is not given (H: on those samples)."""
+    if B is None or arrays.Q is None or arrays.H is None or len(arrays.H) != len(rows):
         return None
     H = arrays.H
     n = H.shape[1]
@@ -148,7 +148,7 @@ def source_weights(doc, truth, true_B: np.ndarray | None) -> tuple[np.ndarray, n
     rows = truth.H_rows if truth.H_rows is not None else np.arange(len(truth.need("A")))
     if doc.H is None or doc.H.shape[0] != len(rows):
         return None
-    C_true, C_doc = _columns(truth, true_B, rows), _columns(doc, doc.B, rows)
+    C_true, C_doc = term_columns(truth, true_B, rows), term_columns(doc, doc.B, rows)
     if C_true is None or C_doc is None or C_true.shape != C_doc.shape:
         return None
     if not (np.isfinite(C_true).all() and np.isfinite(C_doc).all()):
@@ -373,6 +373,6 @@ def read_back(drafts: Sequence[ElementDraft], rows: set[int], found: Diagnosis |
             r.diagnoses[:] = [found, *(x for x in r.diagnoses if x.kind not in weak)]
 
 
-__all__ = ["MAX_UNSOLVED", "STRONG", "entry_part", "implied_inertia", "inertia_diagnoses",
+__all__ = ["MAX_UNSOLVED", "STRONG", "entry_part", "term_columns", "implied_inertia", "inertia_diagnoses",
            "read_back", "read_back_diagnosis", "read_back_explains", "solved_for",
            "unsolved_terms"]
