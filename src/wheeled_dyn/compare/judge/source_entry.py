@@ -31,7 +31,7 @@ from ..records import Diagnosis
 from .diagnose import AGREE_TOL, nice_number
 from .equivalence import SINGULAR_TOL, relative_det
 from .named import own_moments
-from .unsolved import entry_part, read_back_diagnosis, term_columns
+from .unsolved import entry_part, read_back_diagnosis, term_columns, whole_factor
 
 #: A projected document of rank one: its second singular value at most this times its first.
 RANK_ONE_TOL = 1e-7
@@ -96,17 +96,6 @@ def _explains(T: np.ndarray, D: np.ndarray, r: int, c: int, delta: np.ndarray) -
                 and (relative_det(W) > SINGULAR_TOL).all())
 
 
-def _whole_factor(T: np.ndarray, D: np.ndarray) -> float | None:
-    r"""The number :math:`f` with ``D`` = f ``T`` at every sample (the entry a factor of the
-    truth's), or None."""
-    big = np.abs(T) > 1e-12 * float(np.abs(T).max(initial=0.0))
-    if not big.any():
-        return None
-    ratio = D[big] / T[big]
-    f = float(np.median(ratio))
-    return f if f != 0.0 and float(np.abs(ratio - f).max()) <= AGREE_TOL * abs(f) else None
-
-
 def source_entry(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
                  velocities: Sequence[sp.Symbol] = (),
                  truths: Mapping[str, sp.Expr] | None = None) -> Diagnosis | None:
@@ -139,7 +128,7 @@ def source_entry(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
     scale = float(np.abs(T[:, :, c]).max())
     part = entry_part(names[c].format(r=r + 1), truth_entry, truth_entry + delta, scale, at,
                       moments, truths)
-    factor = _whole_factor(truth_entry, truth_entry + delta)
+    factor = whole_factor(truth_entry, truth_entry + delta)
     if factor is not None:          # a row's common factor goes into its weight: the same
         part = replace(part, text=f"{part.text} — or, the same equations: every other entry "
                        f"of equation {r + 1} is {nice_number(1.0 / factor)} × the truth's")

@@ -217,16 +217,23 @@ def inertia_diagnoses(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
         "truth's: ", parts + _named(extra, truth, bases, truths))
 
 
+def whole_factor(T: np.ndarray, D: np.ndarray) -> float | None:
+    r"""The number :math:`c` with ``D`` = c ``T`` wherever ``T`` is not negligible (every
+    entry of an array of any shape: the same one number), or None."""
+    big = np.abs(T) > 1e-9 * float(np.abs(T).max(initial=0.0))
+    if not big.any():
+        return None
+    ratio = D[big] / T[big]
+    c = float(np.median(ratio))
+    return c if c != 0.0 and float(np.abs(ratio - c).max()) <= AGREE_TOL * abs(c) else None
+
+
 def _scaled(M: np.ndarray, true_A: np.ndarray) -> bool:
     r"""Whether ``M`` is the true inertia times one number other than 1 (the inputs of the
     wrong sign or scaled, all of them: an inertia c A inverted and inputs and terms c × the
     truth's read the same, and nothing tells them apart)."""
-    big = np.abs(true_A) > 1e-9 * float(np.abs(true_A).max(initial=0.0))
-    if not big.any():
-        return False
-    ratio = M[big] / true_A[big]
-    c = float(np.median(ratio))
-    return abs(c - 1.0) > AGREE_TOL and float(np.abs(ratio - c).max()) <= AGREE_TOL * abs(c)
+    c = whole_factor(true_A, M)
+    return c is not None and abs(c - 1.0) > AGREE_TOL
 
 
 def _named(entries, truth, bases: Sequence[tuple[sp.Expr, np.ndarray]],
@@ -375,4 +382,4 @@ def read_back(drafts: Sequence[ElementDraft], rows: set[int], found: Diagnosis |
 
 __all__ = ["MAX_UNSOLVED", "STRONG", "entry_part", "term_columns", "implied_inertia", "inertia_diagnoses",
            "read_back", "read_back_diagnosis", "read_back_explains", "solved_for",
-           "unsolved_terms"]
+           "unsolved_terms", "whole_factor"]
