@@ -115,6 +115,8 @@ def _diagnosis_kind(record: ElementRecord, diagnosis: Diagnosis | None) -> str:
         return "assumption"
     if record.verdict == "factorization":
         return "factorization"
+    if record.verdict == "undecided":
+        return "undecided"
     if diagnosis is None:
         return "differs"
     return {K.MISSING: "missing", K.EXTRA: "extra", K.DIMENSION: "dimension", K.SIGN: "sign",
@@ -160,7 +162,7 @@ def _first_diagnosis(record: ElementRecord) -> Diagnosis | None:
 #: Order of the grouped kinds: typos, then physics, factorisation, conditions.
 _GROUP_ORDER = ("dimension", "sign", "power", "factor", "swap", "small_angle", "point_mass",
                 "parallel_axis", "missing", "extra", "differs",
-                "factorization", "assumption")
+                "factorization", "assumption", "undecided")
 
 
 def cause_lines(result: DerivationResult) -> list[CauseLine]:

@@ -38,6 +38,9 @@ class ElementDraft:
     equation: str = ""
     step: Step = Step.EQUATIONS_OF_MOTION
     notes: list[str] = field(default_factory=list)
+    #: the truth's own round-off in the element's row (:func:`~.precision.row_round_off`): a
+    #: difference no larger is not decided
+    round_off: float = 0.0
 
     @property
     def row(self) -> int:

@@ -6,6 +6,7 @@ values :math:`T_s` (:mod:`..readings.frames`), against the row's scale :math:`\s
 - values not finite on either side: a finite sample that differs decides *differs*; else the
   element is *undecided* (never agreeing, never a scale);
 - :math:`\max_s|D_s - T_s| \le \epsilon\sigma`: *agrees*, unless its units are inconsistent;
+- no more than the truth's own round-off in the row (:mod:`.precision`): *undecided*;
 - otherwise *differs*, with the diagnoses, in this order of trial: from the numbers (sign,
   factor, missing, extra: :func:`.diagnose.value_diagnoses`), from its expression (a symbol to
   the wrong power, one additive term with the wrong sign or factor, sin for cos:
@@ -25,7 +26,7 @@ import sympy as sp
 
 from ..records import Diagnosis, DiagnosisKind as K, Verdict, diagnosis, has_kind
 from ..sides.document import DocumentFunctions
-from .diagnose import agrees, value_diagnoses
+from .diagnose import agrees, max_error, value_diagnoses
 from .draft import ElementDraft
 from .swaps import product_swaps, symbol_swaps
 from .terms import element_term_diagnoses, product_diagnoses, undivided_term_diagnoses
@@ -111,6 +112,14 @@ def judge(d: ElementDraft, problems: Sequence[str], trials: Trials,
             d.diagnoses.append(diagnosis(
                 K.COINCIDENCE, "numerically equal here only because the inconsistent term "
                 "vanishes for this model's parameters", prefix=""))
+        return
+    error = max_error(d.D, d.T)
+    if error <= d.round_off:
+        d.verdict = Verdict.UNDECIDED
+        d.diagnoses.insert(0, diagnosis(K.UNDECIDED, f"differs from the truth by {error:.2g} "
+                                        "at most, within the truth's own round-off in its row "
+                                        f"({d.round_off:.2g}: the row carries that of the "
+                                        "model's largest terms)"))
         return
     d.verdict = Verdict.DIFFERS
     d.diagnoses += value_diagnoses(d.D, d.T, d.scale)

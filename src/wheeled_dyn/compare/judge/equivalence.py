@@ -30,10 +30,10 @@ found singular
 Tolerances are relative, per sample: a residual counts when it exceeds :data:`~.diagnose.
 AGREE_TOL` of the largest quantity the row sums at that sample (the document's terms, the sums
 :math:`\sum_l |w_{il}|\,|n_l|`, the row's inertia; the multipliers' terms at their own size),
-floored at :data:`FLOOR` of the row's largest over all samples. Values that are not finite
-never decide and never enter a scale: an
-equation that differs at a finite sample differs; one that agrees wherever it is finite but is
-not finite somewhere is undecided.
+floored at :data:`FLOOR` of the row's largest over all samples; a residual within the truth's
+own round-off is undecided (:mod:`.precision`). Values that are not finite never decide and
+never enter a scale: an equation that differs at a finite sample differs; one that agrees
+wherever it is finite but is not finite somewhere is undecided.
 
 These are pure functions of numbers; the engine supplies both sides on the same grid.
 """
@@ -47,8 +47,9 @@ import numpy as np
 
 from ..records import Diagnosis, DiagnosisKind, Verdict, diagnosis
 from .diagnose import AGREE_TOL, FLOOR
-from .multipliers import multiplier_terms, unit_multipliers
-from .precision import combination_span, row_sizes
+from .multipliers import multiplier_floor, multiplier_terms, unit_multipliers
+from .precision import (combination_span, round_off, round_off_diagnosis, row_sizes,
+                        within_round_off)
 
 #: :math:`|\det A_{doc}|` relative to its rows' sizes, below this fraction of the truth's:
 #: W singular at that sample.
@@ -82,7 +83,8 @@ class EquationDecision:
     diagnoses: tuple[Diagnosis, ...]
     max_error: float
     w: np.ndarray
-    #: undecided because the parts of its combination differ in size beyond the tolerance
+    #: undecided for precision: the parts of its combination differ in size beyond the
+    #: tolerance, or it differs within the truth's own round-off
     beyond_precision: bool = False
 
 
@@ -132,9 +134,10 @@ def combination_rows(doc_A: np.ndarray, true_A: np.ndarray) -> np.ndarray:
 
 def row_residual(doc: np.ndarray, true: np.ndarray, w: np.ndarray, least: np.ndarray
           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    r"""For one row: (relative residual per sample, finite mask, scale per sample) of
-    ``doc`` (S × k) against :math:`w\,` ``true`` (S × n × k), the scale at least ``least``
-    (the row's inertia; for the multipliers' terms, their own floor)."""
+    r"""For one row: (relative residual per sample, finite mask, the scale per sample it is
+    relative to) of ``doc`` (S × k) against :math:`w\,` ``true`` (S × n × k), the scale at
+    least ``least`` (the row's inertia; for the multipliers' terms, their own floor) and at
+    least :data:`FLOOR` of its largest."""
     with np.errstate(all="ignore"):
         predicted = np.einsum("sl,slk->sk", w, true)
         sums = np.einsum("sl,slk->sk", np.abs(w), np.abs(true))
@@ -145,21 +148,9 @@ def row_residual(doc: np.ndarray, true: np.ndarray, w: np.ndarray, least: np.nda
         scale = np.where(finite, scale, 0.0)
         floor = FLOOR * float(scale.max(initial=0.0))
         error = np.abs(doc - predicted).max(axis=1, initial=0.0)
-        relative = np.where(finite, error / np.maximum(np.maximum(scale, floor), 1e-300), 0.0)
+        scale = np.maximum(np.maximum(scale, floor), 1e-300)
+        relative = np.where(finite, error / scale, 0.0)
     return relative, finite, scale
-
-
-def _multiplier_floor(doc_L: np.ndarray, mixed: np.ndarray) -> np.ndarray:
-    r"""The least scale of a row's multiplier terms at each sample: :data:`FLOOR` of the
-    largest finite coefficient of either side over every row and sample. The multipliers'
-    coefficients are measured at their own size (a multiplier is an unknown, scaled at will:
-    :func:`unit_multipliers`), not at the row's inertia's, which in other units could hide a
-    wrong coefficient; the floor keeps the round-off of a row with no multiplier term from
-    deciding."""
-    with np.errstate(all="ignore"):
-        size = max(float(np.abs(np.where(np.isfinite(x), x, 0.0)).max(initial=0.0))
-                   for x in (doc_L, mixed))
-    return np.full(len(doc_L), FLOOR * size)
 
 
 def weights_told(doc: Side, truth: Side) -> tuple[bool, ...]:
@@ -184,7 +175,7 @@ def weights_told(doc: Side, truth: Side) -> tuple[bool, ...]:
 
 def decide_row(i: int, doc: Side, truth: Side, W: np.ndarray,
                multipliers: np.ndarray | None = None,
-               multiplier_floor: np.ndarray | None = None,
+               least_multiplier: np.ndarray | None = None,
                with_A: bool = False, sizes: np.ndarray | None = None) -> EquationDecision:
     r"""The verdict on equation ``i`` (module text), :math:`W` known; ``multipliers``: the
     true multipliers' coefficients recombined for the document (:func:`multiplier_terms`),
@@ -193,22 +184,27 @@ def decide_row(i: int, doc: Side, truth: Side, W: np.ndarray,
     (:func:`~.precision.row_sizes`, made once for every row)."""
     w = W[:, i, :]
     inertia = np.abs(doc.A[:, i, :]).max(axis=1)
-    residuals, masks = [], []
+    rho = round_off(w, truth.A, truth.n)
+    residuals, masks, scales = [], [], []
     parts = ((doc.n, truth.n), (doc.B, truth.B), (doc.L, multipliers))
     for D, T in ((doc.A, truth.A), *parts) if with_A else parts:
         if D is None or T is None:
             continue
         D2 = D[:, i:i + 1] if D.ndim == 2 else D[:, i, :]
         T3 = T[:, :, None] if T.ndim == 2 else T
-        least = inertia if D is not doc.L else multiplier_floor if \
-            multiplier_floor is not None else _multiplier_floor(D, T)
-        rel, finite, _ = row_residual(D2, T3, w, least)
+        least = inertia if D is not doc.L else least_multiplier if \
+            least_multiplier is not None else multiplier_floor(D, T)
+        rel, finite, scale = row_residual(D2, T3, w, least)
         residuals.append(rel)
         masks.append(finite)
+        scales.append(None if D is doc.L else scale)  # the multipliers': geometry, exact
     finite = np.logical_and.reduce(masks) if masks else np.isfinite(w).all(axis=1)
     finite &= np.isfinite(w).all(axis=1)
     worst = max((float(r[finite].max(initial=0.0)) for r in residuals), default=0.0)
     total = len(finite)
+    if worst > AGREE_TOL and within_round_off(residuals, scales, rho, finite):
+        return EquationDecision(Verdict.UNDECIDED, (round_off_diagnosis(i, worst),), worst, w,
+                                True)
     if worst > AGREE_TOL and with_A:
         return EquationDecision(Verdict.DIFFERS, (diagnosis(
             DiagnosisKind.NOT_EQUIVALENT, f"equation {i + 1} is not the true one (it states "
@@ -321,7 +317,7 @@ def decide(doc: Side, truth: Side, sets: int,
     multipliers = None if doc.L is None or truth.L is None else \
         multiplier_terms(doc.L, truth.L, W)
     floor = None if multipliers is None or doc.L is None else \
-        _multiplier_floor(doc.L, multipliers)            # every row's, made once
+        multiplier_floor(doc.L, multipliers)            # every row's, made once
     sizes = row_sizes(truth.A, (truth.n, truth.B))
     decisions = [decide_row(i, doc, truth, W, multipliers, floor, not told[i], sizes)
                  for i in range(n)]

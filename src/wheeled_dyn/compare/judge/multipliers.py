@@ -69,6 +69,19 @@ def multiplier_terms(doc_L: np.ndarray, true_L: np.ndarray, W: np.ndarray) -> np
     return out
 
 
+def multiplier_floor(doc_L: np.ndarray, mixed: np.ndarray) -> np.ndarray:
+    r"""The least scale of a row's multiplier terms at each sample: :data:`FLOOR` of the
+    largest finite coefficient of either side over every row and sample. The multipliers'
+    coefficients are measured at their own size (a multiplier is an unknown, scaled at will:
+    :func:`unit_multipliers`), not at the row's inertia's, which in other units could hide a
+    wrong coefficient; the floor keeps the round-off of a row with no multiplier term from
+    deciding."""
+    with np.errstate(all="ignore"):
+        size = max(float(np.abs(np.where(np.isfinite(x), x, 0.0)).max(initial=0.0))
+                   for x in (doc_L, mixed))
+    return np.full(len(doc_L), FLOOR * size)
+
+
 def unit_multipliers(L: np.ndarray) -> np.ndarray:
     r"""The document's multipliers' coefficients (S × n × m) with each multiplier's column
     scaled to a largest finite magnitude of 1: :math:`\lambda_k` is an unknown of the
@@ -78,4 +91,4 @@ def unit_multipliers(L: np.ndarray) -> np.ndarray:
     return L / np.where(size > 0, size, 1.0)
 
 
-__all__ = ["multiplier_terms", "unit_multipliers"]
+__all__ = ["multiplier_floor", "multiplier_terms", "unit_multipliers"]
