@@ -29,7 +29,7 @@ import sympy as sp
 import published_forms as P
 from conftest import SEED
 from wheeled_dyn.compare.engine import ComparisonEngine
-from wheeled_dyn.compare.judge.source_entry import _entry_values, _explains
+from wheeled_dyn.compare.judge.source_entry import _entry_values, _explains, _pair_values
 from wheeled_dyn.compare.records import DiagnosisKind as K
 from wheeled_dyn.derivations import load_derivation
 
@@ -65,10 +65,34 @@ def test_the_planted_entry_and_no_other_is_found(r: int, c: int) -> None:
         if values is None:
             continue
         found += [(row, col) for col in range(T.shape[2])
-                  if _explains(T, D, row, col, values[:, col])]
+                  if _explains(T, D, [(row, col)], values[:, col]) is not None]
         if row == r:
             assert np.abs(values[:, c] - delta).max() <= TOL * np.abs(delta).max()
     assert found == [(r, c)]
+
+
+def test_a_symmetric_pair_of_the_inertia_is_found_with_its_combination() -> None:
+    r"""The coupling :math:`A_{12} = A_{21}` wrong by the same amount in both source
+    equations (module :mod:`~wheeled_dyn.compare.judge.source_entry`): no one entry explains
+    the document; the pair's :math:`\delta` is the planted one, and the :math:`W` found is the
+    combination planted."""
+    T, W = _system(np.random.default_rng(SEED + 7))
+    delta = np.random.default_rng(SEED).uniform(0.5, 2.0, len(T))
+    V = T.copy()
+    V[:, 0, 1] += delta
+    V[:, 1, 0] += delta
+    D = W @ V
+    singles = [(row, col) for row in range(T.shape[1])
+               if (values := _entry_values(T, D, row)) is not None
+               for col in range(T.shape[2])
+               if _explains(T, D, [(row, col)], values[:, col]) is not None]
+    assert singles == []
+    found = _pair_values(T, D, 0, 1)
+    assert found is not None and np.abs(found - delta).max() <= TOL * np.abs(delta).max()
+    weights = _explains(T, D, [(0, 1), (1, 0)], found)
+    assert weights is not None and np.abs(weights - W).max() <= TOL * np.abs(W).max()
+    assert _pair_values(T, D, 0, 2) is None or _explains(
+        T, D, [(0, 2), (2, 0)], _pair_values(T, D, 0, 2)) is None
 
 
 def test_errors_in_two_rows_are_no_one_entry() -> None:

@@ -15,14 +15,20 @@ least squares, and :math:`D = (DV^+)V` with :math:`W = DV^+` invertible confirms
 is named in the document's symbols (:func:`~.unsolved.entry_part`: a point mass, a sign, a factor, a
 symbol for another) only where exactly one entry so explains every sample; an entry that is a
 factor f of the truth's is said with its equal, every other entry of its equation 1/f × the
-truth's (the row's common factor goes into its weight). This only explains: the equations'
-verdicts are decided by their equivalence.
+truth's (the row's common factor goes into its weight).
+
+Where no one entry does, a symmetric pair of the inertia's, :math:`V = T + \delta(e_re_c^T +
+e_ce_r^T)` — the coupling an author derives once and writes in both equations — is tried:
+the columns but :math:`r, c` give :math:`W` by least squares (:math:`D_j = WT_j`), then
+:math:`D_c - WT_c = \delta W_r` and :math:`D_r - WT_r = \delta W_c` give :math:`\delta` per
+sample, confirmed as above. This only explains: the equations' verdicts are decided by their
+equivalence.
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
-from dataclasses import replace
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, replace
 
 import numpy as np
 import sympy as sp
@@ -82,27 +88,88 @@ def _entry_values(T: np.ndarray, D: np.ndarray, r: int) -> np.ndarray | None:
         return np.where(np.abs(det) > 1e-12 * uu[:, None] * vv, beta / alpha, np.nan)
 
 
-def _explains(T: np.ndarray, D: np.ndarray, r: int, c: int, delta: np.ndarray) -> bool:
-    r"""Whether :math:`V = T + \delta e_re_c^T` gives the document's rows as :math:`WV` with
-    :math:`W` invertible at every sample, and :math:`\delta` is not zero throughout."""
+def _pair_values(T: np.ndarray, D: np.ndarray, r: int, c: int) -> np.ndarray | None:
+    r""":math:`\delta` per sample for the symmetric pair of inertia entries :math:`(r, c)` and
+    :math:`(c, r)` of the source equations (module text); None where the other columns do not
+    give :math:`W` (too few, or the document's rows are no combination of the truth's there)."""
+    keep = [j for j in range(T.shape[2]) if j not in (r, c)]
+    if len(keep) < T.shape[1]:
+        return None
+    Tk, Dk = T[:, :, keep], D[:, :, keep]
+    W = Dk @ np.linalg.pinv(Tk)
+    if np.abs(W @ Tk - Dk).max() > AGREE_TOL * max(float(np.abs(D).max()), 1e-300):
+        return None
+    y = np.concatenate([D[:, :, c] - np.einsum("sij,sj->si", W, T[:, :, c]),
+                        D[:, :, r] - np.einsum("sij,sj->si", W, T[:, :, r])], axis=1)
+    x = np.concatenate([W[:, :, r], W[:, :, c]], axis=1)
+    with np.errstate(all="ignore"):
+        return np.einsum("si,si->s", x, y) / np.einsum("si,si->s", x, x)
+
+
+def _explains(T: np.ndarray, D: np.ndarray, entries: Sequence[tuple[int, int]],
+              delta: np.ndarray) -> np.ndarray | None:
+    r""":math:`W` per sample where :math:`V = T + \delta\sum e_re_c^T` over the ``entries``
+    gives the document's rows as :math:`WV` with :math:`W` invertible at every sample, and
+    :math:`\delta` is not zero throughout; else None."""
+    c = entries[0][1]
     if not np.isfinite(delta).all() or not np.abs(delta).max() > AGREE_TOL * np.abs(
             T[:, :, c]).max(initial=0.0):
-        return False
+        return None
     V = T.copy()
-    V[:, r, c] += delta
+    for r, c in entries:
+        V[:, r, c] += delta
     W = D @ np.linalg.pinv(V)
     scale = max(float(np.abs(D).max()), 1e-300)
-    return bool(np.abs(W @ V - D).max() <= AGREE_TOL * scale
-                and (relative_det(W) > SINGULAR_TOL).all())
+    ok = np.abs(W @ V - D).max() <= AGREE_TOL * scale and (relative_det(W) > SINGULAR_TOL).all()
+    return W if ok else None
+
+
+@dataclass(frozen=True)
+class SourceEntry:
+    r"""The wrong entry named (:func:`source_entry`) and the document's rows that are
+    combinations of several source equations (a row of :math:`W` not a multiple of a unit
+    row: eq1 − (d₁₂/d₂₂)·eq2, solved; not a row only scaled or divided)."""
+
+    diagnosis: Diagnosis
+    combined: frozenset[int]
+    #: :math:`W` (the document's rows as combinations of the source's) on the ``samples``
+    weights: np.ndarray
+    samples: np.ndarray
+
+    def other_frames(self, frames: Sequence[np.ndarray | None]) -> frozenset[int]:
+        r"""The combined rows whose frame's weights (per row, samples × n on the grid, or
+        None) are not the combination :math:`W` says: a frame fitted to the row has taken
+        the wrong entry into its weights (eq1 − (3M cos θ/(4lm))·eq2 for the author's
+        eq1 − (3 cos θ/(4l))·eq2 with M for m in the coupling), and its elements' names are
+        not the author's."""
+        out = set()
+        for i in self.combined:
+            frame = frames[i]
+            w = None if frame is None else frame[self.samples]
+            mine = self.weights[:, i, :]
+            scale = max(float(np.abs(mine).max()), 1e-300)
+            if w is None or w.shape != mine.shape or not np.abs(w - mine).max() <= \
+                    AGREE_TOL * scale:
+                out.add(i)
+        return frozenset(out)
+
+
+def _combined_rows(W: np.ndarray) -> frozenset[int]:
+    r"""The rows of :math:`W` (S × n × n) with more than one entry nonzero somewhere."""
+    size = np.abs(W).max(axis=0)
+    big = size > 1e-9 * size.max(axis=1, keepdims=True)
+    return frozenset(int(i) for i in np.flatnonzero(big.sum(axis=1) > 1))
 
 
 def source_entry(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
                  velocities: Sequence[sp.Symbol] = (),
-                 truths: Mapping[str, sp.Expr] | None = None) -> Diagnosis | None:
+                 truths: Mapping[str, sp.Expr] | None
+                 | Callable[[], Mapping[str, sp.Expr] | None] = None) -> SourceEntry | None:
     r"""The one wrong entry of the equations the document solved or combined (module text),
-    named; None where no entry, or more than one, explains every sample. ``sides``: both
-    sides on a grid (:class:`~..sides.both.Sides`), ``bases`` the names' values on it,
-    ``truths`` the truth's entries in the document's symbols (or None)."""
+    named, with the rows it combined; None where no entry, or more than one, explains every
+    sample. ``sides``: both sides on a grid (:class:`~..sides.both.Sides`), ``bases`` the
+    names' values on it, ``truths`` the truth's entries in the document's symbols (or
+    None; or a function giving them, called only where an entry is found)."""
     doc, truth = sides.doc, sides.truth
     rows = truth.H_rows if truth.H_rows is not None else np.arange(len(truth.need("A")))
     true = _columns(truth, sides.B_true, rows, velocities)
@@ -110,16 +177,24 @@ def source_entry(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
     if true is None or mine is None or true[0].shape != mine[0].shape:
         return None
     (T, names), D = true, mine[0]
+    n = T.shape[1]
     fits = []
-    for r in range(T.shape[1]):
+    for r in range(n):
         deltas = _entry_values(T, D, r)
         if deltas is None:
             continue
-        fits += [(r, c, deltas[:, c]) for c in range(T.shape[2])
-                 if _explains(T, D, r, c, deltas[:, c])]
+        fits += [(r, c, deltas[:, c], W) for c in range(T.shape[2])
+                 if (W := _explains(T, D, [(r, c)], deltas[:, c])) is not None]
+    pair = False
+    if not fits:                       # a symmetric pair of the inertia's (module text)
+        fits = [(r, c, delta, W) for r in range(n) for c in range(r + 1, n)
+                if (delta := _pair_values(T, D, r, c)) is not None
+                and (W := _explains(T, D, [(r, c), (c, r)], delta)) is not None]
+        pair = True
     if len(fits) != 1:
         return None
-    r, c, delta = fits[0]
+    r, c, delta, W = fits[0]
+    truths = truths() if callable(truths) else truths
     sets = [ps.values for ps in sides.grid.sets]
     moments = own_moments(sets, len(truth.need("A")) // max(len(sets), 1))
     at = [(e, v[rows]) for e, v in bases]
@@ -128,12 +203,16 @@ def source_entry(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
     scale = float(np.abs(T[:, :, c]).max())
     part = entry_part(names[c].format(r=r + 1), truth_entry, truth_entry + delta, scale, at,
                       moments, truths)
-    factor = whole_factor(truth_entry, truth_entry + delta)
+    if pair:
+        part = replace(part, text=f"{part.text} — and in A[{c + 1},{r + 1}], the same "
+                       "symmetric entry")
+    factor = None if pair else whole_factor(truth_entry, truth_entry + delta)
     if factor is not None:          # a row's common factor goes into its weight: the same
         part = replace(part, text=f"{part.text} — or, the same equations: every other entry "
                        f"of equation {r + 1} is {nice_number(1.0 / factor)} × the truth's")
-    return read_back_diagnosis("read back before it was solved or combined (the equations "
-                               "whose combinations its rows are), one entry differs: ", [part])
+    return SourceEntry(read_back_diagnosis(
+        "read back before it was solved or combined (the equations whose combinations its "
+        "rows are), one entry differs: ", [part]), _combined_rows(W), W, rows)
 
 
-__all__ = ["source_entry"]
+__all__ = ["SourceEntry", "source_entry"]
