@@ -28,6 +28,7 @@ from ..records import Diagnosis, DiagnosisKind as K, Verdict, diagnosis, has_kin
 from ..sides.document import DocumentFunctions
 from .diagnose import agrees, max_error, value_diagnoses
 from .draft import ElementDraft
+from .numbers import number_for_gravity
 from .swaps import product_swaps, symbol_swaps
 from .terms import element_term_diagnoses, product_diagnoses, undivided_term_diagnoses
 
@@ -126,6 +127,12 @@ def judge(d: ElementDraft, problems: Sequence[str], trials: Trials,
     expr = d.expr
     if expr is None:
         return
+    if problems:                 # a number where a parameter fits: its units say it first
+        found = number_for_gravity(expr, trials.funcs.d, trials.evaluate, d.T, d.scale,
+                                   problems)
+        if found:
+            d.diagnoses[:] = found
+            return
     if sp.count_ops(expr) > TRIAL_OPS:       # only the symbols read as others: no compiling
         if d.key != "h" and not has_kind(d.diagnoses, K.SIGN, K.FACTOR, K.EXTRA):
             d.diagnoses += symbol_swaps(d, trials, groups)

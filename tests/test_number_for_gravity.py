@@ -1,0 +1,48 @@
+r"""A number written where the model's gravity fits: the cart-pole's equations (Florian 2007,
+:func:`published_forms.cart_pole`) with Earth's 9.81 written for :math:`g` in the pole's
+gravity term, as simulation code writes it. The comparison draws g as it draws every
+parameter, so the document differs (it holds for g = 9.81 only); it was named by its units
+alone ("has kg, expected kg·m·s⁻²"), and now as the number written where g fits. A number
+near 9.81 that is not g's place (the term lacking l as well) is not so named."""
+
+from __future__ import annotations
+
+import published_forms as P
+import pytest
+from conftest import SEED
+from wheeled_dyn.compare.engine import ComparisonEngine
+from wheeled_dyn.compare.records import DiagnosisKind as K
+from wheeled_dyn.compare.records import Verdict
+from wheeled_dyn.derivations import load_derivation
+
+#: Engine grid.
+SAMPLES, PARAM_SETS = 200, 3
+GRAVITY = "g*l*m*sin(theta)"
+
+
+@pytest.mark.parametrize("number", ["9.81", "9.8", "9.80665"])
+def test_earths_gravity_written_for_g_is_named(tmp_path, number):
+    result = _compare(tmp_path, f"{number}*l*m*sin(theta)")
+    assert result.equivalent is False
+    q2 = next(r for r in result.records if r.element == "Q[2]")
+    assert q2.verdict == Verdict.DIFFERS
+    first = q2.diagnoses[0]
+    assert first.kind == K.SWAP, q2.diagnoses
+    assert f"the number {float(number):g} is written where g fits" in first.text
+    assert all(r.verdict == Verdict.AGREES for r in result.records if r.element != "Q[2]")
+
+
+def test_a_number_that_is_not_gs_place_is_not_so_named(tmp_path):
+    result = _compare(tmp_path, "9.81*m*sin(theta)")
+    q2 = next(r for r in result.records if r.element == "Q[2]")
+    assert q2.verdict == Verdict.DIFFERS
+    assert not any("written where g fits" in d.text for d in q2.diagnoses), q2.diagnoses
+
+
+def _compare(folder, gravity: str):
+    path = P.write(folder, "pole", "equations", None)
+    text = path.read_text()
+    assert text.count(GRAVITY) == 1
+    path.write_text(text.replace(GRAVITY, gravity))
+    engine = ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED)
+    return engine.compare(load_derivation(path))
