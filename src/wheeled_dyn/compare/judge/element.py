@@ -97,6 +97,28 @@ def _undecided(d: ElementDraft, finite: np.ndarray) -> bool:
     return True
 
 
+def _settled(d: ElementDraft, problems: Sequence[str]) -> bool:
+    r"""Agreeing (or equal only by coincidence where its units are inconsistent), or differing
+    by no more than the truth's own round-off in its row (undecided): True when the element
+    is settled here, its verdict set."""
+    if agrees(d.D, d.T, d.scale):
+        d.verdict = Verdict.DIFFERS if problems else Verdict.AGREES
+        if problems:
+            d.diagnoses.append(diagnosis(
+                K.COINCIDENCE, "numerically equal here only because the inconsistent term "
+                "vanishes for this model's parameters", prefix=""))
+        return True
+    error = max_error(d.D, d.T)
+    if error <= d.round_off:
+        d.verdict = Verdict.UNDECIDED
+        d.diagnoses.insert(0, diagnosis(K.UNDECIDED, f"differs from the truth by {error:.2g} "
+                                        "at most, within the truth's own round-off in its row "
+                                        f"({d.round_off:.2g}: the row carries that of the "
+                                        "model's largest terms)"))
+        return True
+    return False
+
+
 def judge(d: ElementDraft, problems: Sequence[str], trials: Trials,
           groups: Sequence[Sequence[sp.Symbol]], row_factor: np.ndarray | None = None) -> None:
     r"""Fill the draft's verdict and diagnoses (module text); ``problems`` are its units'
@@ -106,21 +128,7 @@ def judge(d: ElementDraft, problems: Sequence[str], trials: Trials,
     finite = np.isfinite(d.D) & np.isfinite(d.T)
     if _undecided(d, finite):
         return
-    ok = agrees(d.D, d.T, d.scale)
-    if ok:
-        d.verdict = Verdict.DIFFERS if problems else Verdict.AGREES
-        if problems:
-            d.diagnoses.append(diagnosis(
-                K.COINCIDENCE, "numerically equal here only because the inconsistent term "
-                "vanishes for this model's parameters", prefix=""))
-        return
-    error = max_error(d.D, d.T)
-    if error <= d.round_off:
-        d.verdict = Verdict.UNDECIDED
-        d.diagnoses.insert(0, diagnosis(K.UNDECIDED, f"differs from the truth by {error:.2g} "
-                                        "at most, within the truth's own round-off in its row "
-                                        f"({d.round_off:.2g}: the row carries that of the "
-                                        "model's largest terms)"))
+    if _settled(d, problems):
         return
     d.verdict = Verdict.DIFFERS
     d.diagnoses += value_diagnoses(d.D, d.T, d.scale)
