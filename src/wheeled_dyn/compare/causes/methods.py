@@ -181,8 +181,32 @@ def method_causes(ev: Evaluation, d, records: Sequence) -> list[Cause]:
             elements=tuple(r.element for r in inconsistent) + c_elements(rows),
             explanation=("these velocity products of C q̇ are not the Christoffel terms of the "
                          "document's own A (nor the truth's): C was not derived from this A "
-                         f"(rows {', '.join(str(i + 1) for i in sorted(rows))})")))
+                         f"(rows {', '.join(str(i + 1) for i in sorted(rows))})"
+                         + _terms_said(inconsistent))))
     return out
+
+
+#: Velocity products whose terms the C-inconsistent cause says (a few dropped or added; more
+#: are a method's error, said by the cause alone).
+TERMS_SAID = 3
+
+
+def _terms_said(records: Sequence) -> str:
+    r"""The terms the records name as lacking or too much (a centripetal term dropped from a
+    C otherwise right: "; h[2]:dtheta*dtheta lacks -m2*r"), or ``""`` where one names none
+    or there are more than :data:`TERMS_SAID`."""
+    if len(records) > TERMS_SAID:
+        return ""
+    said = []
+    for r in records:
+        named = [(x.kind, x.terms) for x in r.diagnoses
+                 if x.kind in (K.MISSING, K.EXTRA) and x.terms]
+        if not named:
+            return ""
+        kind, terms = named[0]
+        said.append(f"{r.element} " + ("lacks " if kind == K.MISSING else "has too much ")
+                    + ", ".join(terms))
+    return "; " + "; ".join(said) if said else ""
 
 
 def velocity_latex(d) -> dict[sp.Symbol, str]:

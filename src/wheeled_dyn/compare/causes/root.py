@@ -122,14 +122,20 @@ TERM_KINDS = (
 def _term_kinds(diagnoses: Sequence) -> tuple:
     r""":data:`TERM_KINDS`, with a symbol written for another before a term's factor where the
     element says the swap first (a factor that is the ratio of two of the model's parameters:
-    :func:`~..judge.element.judge`)."""
+    :func:`~..judge.element.judge`), and a term's factor or swap before the units where the
+    element says it first (a term not divided as the rest of its row: its units follow)."""
     kinds = [x.kind for x in diagnoses]
+    order = list(TERM_KINDS)
     if K.SWAP in kinds and K.FACTOR in kinds and kinds.index(K.SWAP) < kinds.index(K.FACTOR):
-        swap = next(t for t in TERM_KINDS if t[0] == K.SWAP)
-        rest = [t for t in TERM_KINDS if t[0] != K.SWAP]
-        at = next(i for i, t in enumerate(rest) if t[0] == K.FACTOR)
-        return (*rest[:at], swap, *rest[at:])
-    return TERM_KINDS
+        swap = next(t for t in order if t[0] == K.SWAP)
+        order.remove(swap)
+        order.insert(next(i for i, t in enumerate(order) if t[0] == K.FACTOR), swap)
+    if K.DIMENSION in kinds:
+        said = next((k for k in kinds if k in (K.DIMENSION, K.FACTOR, K.SWAP)), K.DIMENSION)
+        if said != K.DIMENSION:
+            units = order.pop(0)
+            order.insert(next(i for i, t in enumerate(order) if t[0] == said) + 1, units)
+    return tuple(order)
 
 
 def _one_swap(r, hit) -> str:

@@ -162,7 +162,7 @@ def undivided_term_diagnoses(expr: sp.Expr, evaluate: Callable[[sp.Expr], np.nda
     expanded = sp.Add.make_args(sp.expand(expr))
     if len(expanded) > MAX_TERMS:
         return []
-    for t in dict.fromkeys((*expanded, *sp.Add.make_args(expr))):
+    for t in dict.fromkeys((*expanded, *sp.Add.make_args(expr), expr)):   # or all of it
         tv = np.broadcast_to(np.asarray(evaluate(t), float), D.shape)
         if agrees(D + (factor - 1) * tv, T, scale):
             return [diagnosis(K.FACTOR, f"the term {sp.sstr(t)} is not divided as the rest of "
