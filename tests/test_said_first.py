@@ -67,3 +67,17 @@ def test_a_whole_term_of_several_left_undivided_is_named(tmp_path):
     assert result.equivalent is False
     q1 = next(r for r in result.records if r.element == "Q[1]")
     assert "not divided as the rest of its row is" in q1.diagnoses[0].text, q1.diagnoses
+
+
+def test_a_row_that_differs_is_not_said_to_be_the_same_equations(tmp_path):
+    r"""The cart-pole's x declared the other way round: the cart's row is compared times −1
+    (most of its elements agree so), but it differs — it is not "−1 × the equations of
+    motion (the same equations)"; a right row times −1 (Kane's form) still is."""
+    from wheeled_dyn.report.summary import row_factor_line
+    result = _compare(_planted(tmp_path, "pole", "equations", 'x = "x"', 'x = "-x"'))
+    assert result.equivalent is False
+    assert result.row_factors[0] == "-1" and result.equations[0].verdict.value == "differs"
+    line = row_factor_line(result)
+    assert "the same equations" not in line and "row 1 is compared with -1" in line, line
+    kane = _compare(P.write(tmp_path, "pole", "kane", None))
+    assert kane.equivalent is True and "the same equations" in row_factor_line(kane)

@@ -20,7 +20,8 @@ import re
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
-from ..compare.records import Diagnosis, DiagnosisKind as K, DerivationResult, ElementRecord
+from ..compare.records import (Diagnosis, DiagnosisKind as K, DerivationResult, ElementRecord,
+                               Verdict)
 from ..derivations.schema import equation_labels
 
 #: Words for the cause kinds of :data:`wheeled_dyn.compare.records.CAUSE_KINDS`.
@@ -240,10 +241,23 @@ def conventions_line(result: DerivationResult) -> str:
 
 
 def row_factor_line(result: DerivationResult) -> str:
-    r"""A sentence on the rows the document multiplied by a constant, or ``""``."""
-    rows = [(i + 1, c) for i, c in enumerate(result.row_factors) if c]
+    r"""A sentence on the rows the document multiplied by a constant, or ``""``: "the same
+    equations" for the rows that are right; a row that differs is said only to be compared
+    in that frame (the factor under which most of its elements agree: a position's sign
+    reversed makes the row's odd terms agree times −1, not the row)."""
+    wrong = {i for i, e in enumerate(result.equations) if e.verdict != Verdict.AGREES}
+    shown = [(i + 1, c) for i, c in enumerate(result.row_factors) if c and i in wrong]
+    rows = [(i + 1, c) for i, c in enumerate(result.row_factors) if c and i not in wrong]
+    framed = "; ".join(f"row {i} is compared with {c} × the equations of motion, the factor "
+                       "under which most of its elements agree (the row differs)"
+                       for i, c in shown)
     if not rows:
-        return ""
+        return framed
+    said = _right_rows(rows)
+    return f"{said}; {framed}" if framed else said
+
+
+def _right_rows(rows: list[tuple[int, str]]) -> str:
     factors = {c for _, c in rows}
     which = ", ".join(str(i) for i, _ in rows)
     if len(factors) == 1:
