@@ -48,8 +48,8 @@ import numpy as np
 from ..records import Diagnosis, DiagnosisKind, Verdict, diagnosis
 from .diagnose import AGREE_TOL, FLOOR
 from .multipliers import multiplier_floor, multiplier_terms, unit_multipliers
-from .precision import (combination_span, round_off, round_off_diagnosis, row_sizes,
-                        within_round_off)
+from .precision import (combination_span, largest_terms, round_off, round_off_diagnosis,
+                        row_sizes, within_round_off)
 
 #: :math:`|\det A_{doc}|` relative to its rows' sizes, below this fraction of the truth's:
 #: W singular at that sample.
@@ -176,15 +176,17 @@ def weights_told(doc: Side, truth: Side) -> tuple[bool, ...]:
 def decide_row(i: int, doc: Side, truth: Side, W: np.ndarray,
                multipliers: np.ndarray | None = None,
                least_multiplier: np.ndarray | None = None,
-               with_A: bool = False, sizes: np.ndarray | None = None) -> EquationDecision:
+               with_A: bool = False, sizes: np.ndarray | None = None,
+               largest: np.ndarray | None = None) -> EquationDecision:
     r"""The verdict on equation ``i`` (module text), :math:`W` known; ``multipliers``: the
     true multipliers' coefficients recombined for the document (:func:`multiplier_terms`),
     where both sides keep the constraints; ``with_A``: :math:`W` was given, not found from
     :math:`A_{doc}`, and the inertia row is compared too; ``sizes``: the true rows' sizes
-    (:func:`~.precision.row_sizes`, made once for every row)."""
+    (:func:`~.precision.row_sizes`, made once for every row), ``largest`` their
+    :func:`~.precision.largest_terms` (likewise)."""
     w = W[:, i, :]
     inertia = np.abs(doc.A[:, i, :]).max(axis=1)
-    rho = round_off(w, truth.A, truth.n)
+    rho = round_off(w, truth.A, truth.n, largest)
     residuals, masks, scales = [], [], []
     parts = ((doc.n, truth.n), (doc.B, truth.B), (doc.L, multipliers))
     for D, T in ((doc.A, truth.A), *parts) if with_A else parts:
@@ -319,7 +321,8 @@ def decide(doc: Side, truth: Side, sets: int,
     floor = None if multipliers is None or doc.L is None else \
         multiplier_floor(doc.L, multipliers)            # every row's, made once
     sizes = row_sizes(truth.A, (truth.n, truth.B))
-    decisions = [decide_row(i, doc, truth, W, multipliers, floor, not told[i], sizes)
+    largest = largest_terms(truth.A, truth.n)
+    decisions = [decide_row(i, doc, truth, W, multipliers, floor, not told[i], sizes, largest)
                  for i in range(n)]
     told = () if all(told) else told
     lost = singular_everywhere(doc.A, truth.A, W)

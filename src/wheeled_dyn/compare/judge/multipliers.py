@@ -13,6 +13,12 @@ import numpy as np
 
 from .diagnose import AGREE_TOL, FLOOR
 
+#: Samples a subset of the equations is first fitted on (spread over the grid), and the
+#: residual there above which it is not fitted on every sample: the fit is per sample, so a
+#: subset that fails there fails on all (the tolerance, ten times AGREE_TOL, covers the floor
+#: of the screen's own scale, below the grid's).
+SCREEN_SAMPLES, SCREEN_TOL = 64, 10 * AGREE_TOL
+
 
 def multiplier_terms(doc_L: np.ndarray, true_L: np.ndarray, W: np.ndarray) -> np.ndarray:
     r"""The true multipliers' coefficients recombined for the document (S × n × m_doc):
@@ -39,29 +45,36 @@ def multiplier_terms(doc_L: np.ndarray, true_L: np.ndarray, W: np.ndarray) -> np
     # out, and the three right ones were said to be no combination)
     n, m = D.shape[1], int(np.linalg.matrix_rank(true_L[ok][:10]).max())
 
-    def fit(left_out: tuple[int, ...]) -> tuple[float, np.ndarray]:
+    screen = np.unique(np.linspace(0, len(D) - 1, min(SCREEN_SAMPLES, len(D))).astype(int))
+
+    def fit(left_out: tuple[int, ...], at: np.ndarray | None = None
+            ) -> tuple[float, np.ndarray]:
         rows = [i for i in range(n) if i not in left_out]
-        M = np.linalg.pinv(mixed[:, rows]) @ D[:, rows]
-        fitted = mixed[:, rows] @ M
-        scale = np.maximum(np.abs(D[:, rows]).max(axis=2), np.abs(fitted).max(axis=2))
-        floor = FLOOR * float(scale.max(initial=0.0))
-        off = np.abs(D[:, rows] - fitted).max(axis=2) / np.maximum(np.maximum(scale, floor),
-                                                                    1e-300)
+        X, Y = (mixed[:, rows], D[:, rows]) if at is None else (mixed[at][:, rows],
+                                                                 D[at][:, rows])
+        M = np.linalg.pinv(X) @ Y
+        fitted = X @ M
+        scale = np.maximum(np.abs(Y).max(axis=2), np.abs(fitted).max(axis=2))
+        floor = FLOOR * max(float(scale.max(initial=0.0)), float(np.abs(D[:, rows]).max()))
+        off = np.abs(Y - fitted).max(axis=2) / np.maximum(np.maximum(scale, floor), 1e-300)
         return float(off.max(initial=0.0)), M
 
-    # the mixing the document's own constraint rows give (G_doc = P G: M = Pᵀ): among the
-    # subsets that fit, the one closest to it (leaving out either of two equations may fit)
-    reference = np.linalg.pinv(true_L[ok]) @ D
+    reference: list[np.ndarray] = []
 
     def distance(M: np.ndarray) -> float:
-        return float(np.nanmean(np.abs(M - reference)))
+        # the mixing the document's own constraint rows give (G_doc = P G: M = Pᵀ): among the
+        # subsets that fit, the one closest to it (leaving out either of two may fit)
+        if not reference:
+            reference.append(np.linalg.pinv(true_L[ok]) @ D)
+        return float(np.nanmean(np.abs(M - reference[0])))
 
     best = fit(())
     for size in (1, 2):
         if best[0] <= AGREE_TOL or n - size < m:
             break
-        fits = [f for f in (fit(c) for c in itertools.combinations(range(n), size))
-                if f[0] <= AGREE_TOL]
+        # a subset that does not fit on the screening samples fits on none (a per-sample fit)
+        fits = [f for f in (fit(c) for c in itertools.combinations(range(n), size)
+                            if fit(c, screen)[0] <= SCREEN_TOL) if f[0] <= AGREE_TOL]
         if fits:
             best = min(fits, key=lambda f: distance(f[1]))
     M = best[1]

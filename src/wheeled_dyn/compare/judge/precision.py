@@ -56,16 +56,25 @@ def combination_span(w: np.ndarray, sizes: np.ndarray, finite: np.ndarray) -> fl
     return 1.0 / share if 0.0 < share < PRECISION_SHARE else None
 
 
-def round_off(w: np.ndarray, A: np.ndarray | None, n: np.ndarray | None) -> np.ndarray:
+def largest_terms(A: np.ndarray, n: np.ndarray | None) -> np.ndarray:
+    r"""Per sample, the largest magnitude of the true inertia, velocity and gravity terms
+    (S): what the truth's round-off is relative to (module text)."""
+    return row_sizes(A, (n,)).max(axis=1)
+
+
+def round_off(w: np.ndarray, A: np.ndarray | None, n: np.ndarray | None,
+              largest: np.ndarray | None = None) -> np.ndarray:
     r"""The truth's round-off in the row :math:`w\,T` per sample (module text): ``w`` the
-    row's weights (S × n), ``A`` (S × n × n) and ``n`` (S × n) the true terms. NaN where
-    they are not finite; 0 without A (nothing computed by Pinocchio to round)."""
-    if A is None:
+    row's weights (S × n), ``A`` (S × n × n) and ``n`` (S × n) the true terms, or their
+    :func:`largest_terms` made once. NaN where they are not finite; 0 without A (nothing
+    computed by Pinocchio to round)."""
+    if largest is None and A is None:
         return np.zeros(len(w))
-    sizes = row_sizes(A, (n,))
+    if largest is None:
+        assert A is not None
+        largest = largest_terms(A, n)
     with np.errstate(all="ignore"):
-        return (ROUND_OFF_EPS * float(np.finfo(float).eps) * sizes.max(axis=1)
-                * np.abs(w).sum(axis=1))
+        return ROUND_OFF_EPS * float(np.finfo(float).eps) * largest * np.abs(w).sum(axis=1)
 
 
 def row_round_off(w: np.ndarray, A: np.ndarray | None, n: np.ndarray | None) -> float:
@@ -98,6 +107,6 @@ def round_off_diagnosis(i: int, worst: float) -> Diagnosis:
         "carries the round-off of the model's largest terms): it cannot be decided")
 
 
-__all__ = ["ABSENT_SHARE", "PRECISION_SHARE", "ROUND_OFF_EPS", "combination_span",
+__all__ = ["ABSENT_SHARE", "PRECISION_SHARE", "ROUND_OFF_EPS", "combination_span", "largest_terms",
            "round_off", "row_round_off", "round_off_diagnosis", "row_sizes",
            "within_round_off"]

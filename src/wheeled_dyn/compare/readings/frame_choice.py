@@ -12,7 +12,7 @@ import numpy as np
 from ..grid.arrays import Arrays
 from ..judge.diagnose import AGREE_TOL
 from ..judge.unsolved import solved_for
-from ..sides.framed import framed, row_of, row_scale
+from ..sides.framed import framed, row_of, row_scale, side_size
 from .frames import FrameKind, FrameRule, evaluate_rule
 
 
@@ -26,9 +26,10 @@ def _agreeing(D: np.ndarray | None, T: np.ndarray | None, tol: float,
     return int((ok & mask).sum() if mask is not None else ok.sum())
 
 
-def score(doc_row: Arrays, true_row: Arrays) -> int:
-    r"""The number of the row's A, Q, B elements and velocity products of H that agree."""
-    tol = AGREE_TOL * row_scale(doc_row, true_row)
+def score(doc_row: Arrays, true_row: Arrays, doc_size: float | None = None) -> int:
+    r"""The number of the row's A, Q, B elements and velocity products of H that agree
+    (``doc_size``: the document's side of :func:`~..sides.framed.row_scale`, made once)."""
+    tol = AGREE_TOL * row_scale(doc_row, true_row, doc_size)
     count = _agreeing(doc_row.A, true_row.A, tol) + _agreeing(doc_row.Q, true_row.Q, tol)
     count += _agreeing(doc_row.B, true_row.B, tol) + _agreeing(doc_row.K, true_row.K, tol)
     if doc_row.H is not None and true_row.H is not None:
@@ -90,15 +91,17 @@ def choose(i: int, rules: Sequence[FrameRule], grids: Sequence[tuple[Arrays, Arr
     if declared:
         return FrameRule(FrameKind.DECLARED)
     n = grids[0][1].need("A").shape[1]
+    rows = [(row, side_size(row), elements_of(row), solved_row(doc, i))
+            for row, doc in ((row_of(doc, i), doc) for doc, _, _ in grids)]
     best: tuple[int, int, FrameRule] | None = None
     for order, rule in enumerate(rules):
         floor = None if best is None else best[0]
         if right or totals is None:
-            total = _total(i, rule, grids, right, n, floor)
+            total = _total(i, rule, grids, rows, right, n, floor)
         elif rule in totals:
             total = totals[rule]
         else:
-            total = _total(i, rule, grids, right, n, floor)
+            total = _total(i, rule, grids, rows, right, n, floor)
             if total is not None:
                 totals[rule] = total
         if total is None:
@@ -115,27 +118,28 @@ _RIGHT = 10 ** 12
 
 
 def _total(i: int, rule: FrameRule, grids: Sequence[tuple[Arrays, Arrays, np.ndarray | None]],
-           right: bool, n: int, floor: int | None = None) -> int | None:
+           rows: Sequence[tuple[Arrays, float, int, bool]], right: bool, n: int,
+           floor: int | None = None) -> int | None:
     r"""The score of ``rule`` for row ``i`` (:func:`choose`), summed over the grids; -10⁹
     where it has no frame; :data:`_RIGHT` where ``right`` and every element agrees; None as
     soon as it cannot exceed ``floor`` (the best score so far: every element of the grids
-    left agreeing would not lift it above), so that the rest is not scored."""
+    left agreeing would not lift it above), so that the rest is not scored. ``rows``: per
+    grid, the document's row, its side of the row's scale, its number of elements and
+    whether it is solved for an acceleration."""
     total = 0
-    for g, (doc, truth, B_true) in enumerate(grids):
+    for g, ((doc, truth, B_true), (row, size, count, solved)) in enumerate(zip(grids, rows)):
         if right and g:
             break
         frame = evaluate_rule(i, rule, doc, truth, doc.B, B_true)
         if frame is None:
             return -10 ** 9
-        row = row_of(doc, i)
-        got = score(row, framed(frame.weights, truth, B_true, full=False))
+        got = score(row, framed(frame.weights, truth, B_true, full=False), size)
         if right:
-            return _RIGHT if got == elements_of(row) else -10 ** 9
-        fitted = freedom(rule, n, solved_row(doc, i))
+            return _RIGHT if got == count else -10 ** 9
+        fitted = freedom(rule, n, solved)
         total += got - fitted
         left = len(grids) - g - 1
-        if floor is not None and left and \
-                total + left * (elements_of(row) - fitted) <= floor:
+        if floor is not None and left and total + left * (count - fitted) <= floor:
             return None
     return total
 

@@ -16,7 +16,7 @@ import numpy as np
 from ..sides.evaluation import Evaluation
 from ..judge.diagnose import AGREE_TOL
 from ..judge.equivalence import Side, combination_rows, decide_row
-from ..judge.precision import row_sizes as row_sizes_of
+from ..judge.precision import largest_terms, row_sizes as row_sizes_of
 from ..records import Verdict
 from .signs import flip_arrays
 from .row_factors import (apply_row_factors, decided_factor, explaining, row_factors,
@@ -87,10 +87,11 @@ class SearchEvaluation(Evaluation):
                          .astype(int))
 
     def _combinations(self, doc: Arrays
-                      ) -> tuple[Side, Side, np.ndarray, np.ndarray] | None:
+                      ) -> tuple[Side, Side, np.ndarray, np.ndarray, np.ndarray] | None:
         r"""Both sides on the samples the equations are decided on (:meth:`_few`; the
-        document's B left out: a reading of the inputs gives it), :math:`W = A_{doc}A^{-1}`
-        and the true rows' sizes there, or None where the document gives no A."""
+        document's B left out: a reading of the inputs gives it), :math:`W = A_{doc}A^{-1}`,
+        the true rows' sizes there and their largest terms (the round-off's), or None where
+        the document gives no A."""
         _, truth, B_true = self._subset()
         if doc.A is None or truth.A is None:
             return None
@@ -102,19 +103,19 @@ class SearchEvaluation(Evaluation):
         mine = Side(doc.A[at], n_of(doc), None)
         true = Side(truth.A[at], n_of(truth), None if B_true is None else B_true[at])
         return mine, true, combination_rows(mine.A, true.A), \
-            row_sizes_of(true.A, (true.n, true.B))
+            row_sizes_of(true.A, (true.n, true.B)), largest_terms(true.A, true.n)
 
     def _right(self, B: np.ndarray | None,
-               found: tuple[Side, Side, np.ndarray, np.ndarray] | None) -> int:
+               found: tuple[Side, Side, np.ndarray, np.ndarray, np.ndarray] | None) -> int:
         r"""Equations that are combinations of the true ones, as
         :func:`~..judge.equivalence.decide_row` decides them, of the document ``found``
         (:meth:`_combinations`) with its inputs' coefficients ``B``."""
         if found is None:
             return 0
-        mine, true, W, sizes = found
+        mine, true, W, sizes, largest = found
         mine = replace(mine, B=None if B is None or true.B is None else B[self._few()])
-        return sum(decide_row(i, mine, true, W, sizes=sizes).verdict == Verdict.AGREES
-                   for i in range(W.shape[1]))
+        return sum(decide_row(i, mine, true, W, sizes=sizes, largest=largest).verdict
+                   == Verdict.AGREES for i in range(W.shape[1]))
 
     def score(self, doc: Arrays) -> int:
         r"""Equations of ``doc`` (on the search's samples) that are combinations of the true

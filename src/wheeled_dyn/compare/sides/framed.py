@@ -46,21 +46,27 @@ def row_of(doc: Arrays, i: int) -> Arrays:
     return out
 
 
-def row_scale(doc_row: Arrays, true_row: Arrays) -> float:
+def row_scale(doc_row: Arrays, true_row: Arrays, doc_size: float | None = None) -> float:
     r"""The row's scale: the largest magnitude of its A, C, Q and H entries on either side
     among the entries finite at every sample (1 for a row of zeros). An entry that overflows
     somewhere never sets it, not even where it is finite: a term of 1e299 there would make
-    every other element of its row agree whatever it is."""
-    s = 0.0
-    for a in (doc_row, true_row):
-        for name in ("A", "C", "Q", "H"):
-            M = getattr(a, name)
-            if M is not None and M.size:
-                entries = np.abs(M).reshape(M.shape[0], -1)
-                finite = np.isfinite(entries).all(axis=0)
-                if finite.any():
-                    s = max(s, float(entries[:, finite].max()))
+    every other element of its row agree whatever it is. ``doc_size``: the document's side's
+    :func:`side_size`, where it was found before (a row scored in many frames)."""
+    s = max(side_size(doc_row) if doc_size is None else doc_size, side_size(true_row))
     return s if s > 0 else 1.0
 
 
-__all__ = ["framed", "row_of", "row_scale"]
+def side_size(row: Arrays) -> float:
+    r"""One side's part of :func:`row_scale` (0 for a row of zeros)."""
+    s = 0.0
+    for name in ("A", "C", "Q", "H"):
+        M = getattr(row, name)
+        if M is not None and M.size:
+            entries = np.abs(M).reshape(M.shape[0], -1)
+            finite = np.isfinite(entries).all(axis=0)
+            if finite.any():
+                s = max(s, float(entries[:, finite].max()))
+    return s
+
+
+__all__ = ["framed", "row_of", "row_scale", "side_size"]
