@@ -33,6 +33,7 @@ KIND_TEXT = {
     "sign": "sign", "power": "power", "factor": "factor", "swap": "swapped symbol",
     "small_angle": "small-angle approximation",
     "swapped_inputs": "swapped inputs", "dimension": "units", "missing_physics": "missing physics",
+    "extra_term": "extra term",
     "assumption": "holds only if", "energy": "energy", "not_positive_definite":
     "A not positive definite", "file_error": "error of the derivation file",
     # kinds of the grouping by diagnosis

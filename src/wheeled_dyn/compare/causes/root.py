@@ -115,7 +115,7 @@ TERM_KINDS = (
     (K.SWAP, CauseKind.SWAP, "one symbol written for another"),
     (K.SMALL_ANGLE, CauseKind.SMALL_ANGLE, "a small-angle approximation"),
     (K.MISSING, CauseKind.MISSING_PHYSICS, "a term the document leaves out"),
-    (K.EXTRA, CauseKind.MISSING_PHYSICS, "a term the truth does not have"),
+    (K.EXTRA, CauseKind.EXTRA_TERM, "a term the truth does not have"),
 )
 
 
@@ -174,7 +174,8 @@ def term_causes(records: Sequence, explained: set[str],
                               f" ≈ {hit.position}, cos({hit.position}) ≈ 1) but declares no "
                               "linearisation (linearised_about): compared with the exact "
                               "equations")
-                key = (kind, sentence if kind == CauseKind.MISSING_PHYSICS else detail)
+                key = (kind, sentence if kind in (CauseKind.MISSING_PHYSICS,
+                                                  CauseKind.EXTRA_TERM) else detail)
                 groups.setdefault(key, []).append(r.element)
                 break
     covered = covered_products(records, velocities)

@@ -39,6 +39,7 @@ class CauseKind(StrEnum):
     SWAPPED_INPUTS = "swapped_inputs"  # input columns exchanged
     DIMENSION = "dimension"            # a term with inconsistent units
     MISSING_PHYSICS = "missing_physics"  # an effect the document leaves out and does not state
+    EXTRA_TERM = "extra_term"          # a term the truth does not have
     POINT_MASS = "point_mass"          # a rigid body treated as a point mass
     PARALLEL_AXIS = "parallel_axis"    # the inertia about the centre where the pivot's fits
     ASSUMPTION = "assumption"          # holds only under a condition the document did not state
