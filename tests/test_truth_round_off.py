@@ -107,3 +107,12 @@ def test_the_round_off_of_a_combination_adds_its_weights():
     eps = float(np.finfo(float).eps)
     assert np.allclose(one, ROUND_OFF_EPS * eps * 1e14)
     assert np.allclose(both, 4 * one)
+
+
+def test_the_report_says_not_decided(tmp_path):
+    r"""The HTML section of an undecided system says so ("not decided", "cannot decide"),
+    not "not equivalent" nor "values not finite"."""
+    from wheeled_dyn.report.html import derivation_html
+    html = derivation_html(_compare(_arm(tmp_path / "arm", 1e7)))
+    assert "not decided" in html and "cannot decide" in html
+    assert "not equivalent" not in html and "values not finite" not in html

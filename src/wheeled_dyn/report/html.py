@@ -107,7 +107,10 @@ def _counts(result: DerivationResult) -> str:
 
     def pill(v: str, n: int) -> str:
         if v == "differs" and not n and whole:
-            return f'<span class="pill v-differs" title="{esc(whole)}">not equivalent</span>'
+            decided = result.equivalent is not None
+            return (f'<span class="pill {"v-differs" if decided else "v-undecided"}" '
+                    f'title="{esc(whole)}">{"not equivalent" if decided else "not decided"}'
+                    '</span>')
         return f'<span class="pill {f"v-{v}" if n else "zero"}">{n} {SHORT[v]}</span>'
     return "".join(pill(v, n) for v, n in c.items() if n or v in ("agrees", "differs"))
 

@@ -14,7 +14,7 @@ from .symbols import derivation_notation, difference_latex, product_latex, text_
 
 VERDICT_TEXT = {"agrees": "agrees", "agrees_if": "agrees only for special values",
                 "factorization": "C differs, C q̇ agrees", "differs": "differs",
-                "undecided": "cannot decide (values not finite)"}
+                "undecided": "cannot decide"}
 #: Causes named per derivation in the summary table (all of them in its section).
 SUMMARY_CAUSES = 3
 #: Formulas longer than this (characters of LaTeX) are left to the HTML report.

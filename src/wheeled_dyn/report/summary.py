@@ -139,7 +139,7 @@ def condition(record: ElementRecord) -> str:
 
 def _no_diagnosis(record: ElementRecord) -> str:
     return {"differs": "no single-term diagnosis",
-            "undecided": "values not finite"}.get(record.verdict, record.verdict.value)
+            "undecided": "cannot decide"}.get(record.verdict, record.verdict.value)
 
 
 def _group_sentence(kind: str, diagnosis: Diagnosis | None, record: ElementRecord) -> str:
