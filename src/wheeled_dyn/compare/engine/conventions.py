@@ -3,8 +3,9 @@ r"""A better reading of a file's sign conventions: a cause, never a verdict.
 The file's maps (coordinates, velocities, inputs) are how the document is read, and the
 verdicts under them are the verdicts (declarations are binding). When the equations are not
 right as declared, the signs of the positions and inputs and the order of the inputs are
-searched (:mod:`..readings.signs`); a reading under which more elements agree is reported as a
-cause — "under τ → −τ, 30 elements agree instead of 19 (every equation is right): the file's
+searched (:mod:`..readings.signs`), and where most equations stay wrong an angle read from the
+opposite direction (θ → θ + π, π − θ: measured from the upright where the map measures it
+hanging); a reading under which more elements agree is reported as a cause — "under τ → −τ, 30 elements agree instead of 19 (every equation is right): the file's
 torque signs are probably reversed" — with the verdicts left as declared.
 
 Only a file that says its document's convention is unknown (``convention = "unknown"``) is
@@ -12,6 +13,8 @@ compared under the reading found, and the report says so first.
 """
 
 from __future__ import annotations
+
+import sympy as sp
 
 from ...derivations.schema import Derivation
 from ..readings import signs
@@ -33,7 +36,20 @@ def _search(j, complete_gain: int = signs.MIN_GAIN_ORDER) -> tuple | None:
     search = search_evaluation(j)
     d = j.funcs.d
     return signs.best_reading(d, search.doc_at, search.score, search.score_readings,
-                              search.most(), complete_gain)
+                              search.most(), complete_gain, _trig_positions(j.funcs),
+                              lambda score: score // search.weight() <= d.n // 2)
+
+
+def _trig_positions(funcs) -> tuple[int, ...]:
+    r"""The positions (indices) the document takes sines, cosines or tangents of: those a
+    reading from the opposite direction (:math:`+\pi`) can change."""
+    positions = list(funcs.d.positions)
+    inside: set = set()
+    for e in funcs.exprs.values():
+        if isinstance(e, sp.Basic):
+            for f in e.atoms(sp.sin, sp.cos, sp.tan):
+                inside |= f.free_symbols
+    return tuple(k for k, p in enumerate(positions) if p in inside)
 
 
 def _right(result: DerivationResult) -> int:
@@ -84,6 +100,7 @@ def convention_finding(engine, d: Derivation, j) -> tuple[Cause, ConventionSumma
     kind = CauseKind.SWAPPED_INPUTS if signs.is_permutation_only(reading) else \
         CauseKind.CONVENTION
     what = "inputs are probably exchanged" if kind == CauseKind.SWAPPED_INPUTS else \
+        "angles are probably measured from the opposite direction" if reading[3] else \
         "declared signs of these are probably reversed"
     cause = Cause(kind, elements, f"{finding}: the file's {what}; the verdicts are under the "
                   "file's declaration (declare the maps the document uses, or "

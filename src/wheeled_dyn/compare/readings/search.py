@@ -61,18 +61,21 @@ class SearchEvaluation(Evaluation):
             self._parts = (row_sizes(truth, n), H)
         return self._parts
 
-    def doc_at(self, s: Sequence[int]) -> Arrays:
-        r"""The document's arrays at :math:`(Sp, S\nu)` on the search's samples (rows not
-        yet divided by factors)."""
+    def doc_at(self, s: Sequence[int], offsets: Sequence[int] = ()) -> Arrays:
+        r"""The document's arrays at :math:`(S(p - \pi o), S\nu)` on the search's samples,
+        :math:`o_k = 1` for the positions ``offsets`` (rows not yet divided by factors): the
+        document read with :math:`p_k \to s_kp_k + \pi o_k` against the truth at :math:`p`."""
         rows, _, _ = self._subset()
         S = np.asarray(s, float)
+        shift = np.zeros(self.q.shape[1])
+        shift[list(offsets)] = np.pi
         values = {p: np.asarray(v)[rows] if np.ndim(v) else v for p, v in self.values.items()}
-        return self.funcs.evaluate(self.q[rows] * S, self.nu[rows] * S, values)
+        return self.funcs.evaluate((self.q[rows] - shift) * S, self.nu[rows] * S, values)
 
     def weight(self) -> int:
         r"""What one equation right counts in :meth:`score`: more than every element."""
         if not hasattr(self, "_weight"):
-            self._weight = self.elements(self.doc_at((1,) * self.q.shape[1])) + 1
+            self._weight = self.elements(self.doc_at((1,) * self.q.shape[1], ())) + 1
         return self._weight
 
     def most(self) -> int:

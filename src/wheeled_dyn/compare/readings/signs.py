@@ -49,7 +49,16 @@ MIN_GAIN_ORDER = 2
 FLIPPED_KEY = "_convention"
 
 
-Reading = tuple[tuple[int, ...], tuple[int, ...], tuple[int, ...]]
+#: A reading :math:`(s, t, \pi, o)`: the positions' signs, the inputs' signs, the inputs'
+#: order, and the positions (indices) measured from the opposite direction (:math:`+\pi`).
+Reading = tuple[tuple[int, ...], tuple[int, ...], tuple[int, ...], tuple[int, ...]]
+
+
+def _input_readings(m: int) -> list[tuple[tuple[int, ...], tuple[int, ...]]]:
+    r"""Every :math:`(t, \pi)` of ``m`` inputs, the declared one first."""
+    orders = list(itertools.permutations(range(m))) if m <= MAX_PERMUTED else [tuple(range(m))]
+    return [(tuple(t), tuple(order)) for t in itertools.product((1, -1), repeat=m)
+            for order in orders]
 
 
 def readings(d: Derivation) -> list[Reading]:
@@ -60,14 +69,28 @@ def readings(d: Derivation) -> list[Reading]:
     flips = 0 if d.coordinates.use else n        # a built-in set's positions are the model's
     if FLIPPED_KEY in d.coordinates.raw or flips + m > MAX_SIGNS or flips + m == 0:
         return []
-    orders = list(itertools.permutations(range(m))) if m <= MAX_PERMUTED else [tuple(range(m))]
-    identity = tuple(range(m))
-    out = []
-    for signs in itertools.product((1, -1), repeat=flips + m):
-        s = tuple(signs[:flips]) if flips else (1,) * n
-        for order in orders:
-            if any(x < 0 for x in signs) or order != identity:
-                out.append((s, tuple(signs[flips:]), tuple(order)))
+    out: list[Reading] = []
+    for s in itertools.product((1, -1), repeat=flips):
+        for t, order in _input_readings(m):
+            if any(x < 0 for x in (*s, *t)) or order != tuple(range(m)):
+                out.append((tuple(s) if flips else (1,) * n, t, order, ()))
+    return out
+
+
+def offset_readings(d: Derivation, angles: Sequence[int]) -> list[Reading]:
+    r"""The readings with one of the ``angles`` (position indices: those the document takes
+    sines or cosines of) measured from the opposite direction, :math:`p_k \to p_k + \pi` or
+    :math:`\pi - p_k` (a pendulum's angle from the upright where the file's map measures it
+    from the hanging position), each with every reading of the inputs; none where
+    :func:`readings` has none."""
+    if not readings(d) or d.coordinates.use:
+        return []
+    n, m = d.n, len(d.input_symbols) if d.inputs else 0
+    out: list[Reading] = []
+    for k in angles:
+        for sign in (1, -1):
+            s = tuple(sign if j == k else 1 for j in range(n))
+            out += [(s, t, order, (k,)) for t, order in _input_readings(m)]
     return out
 
 
@@ -95,33 +118,44 @@ def flip_arrays(doc: Arrays, s: Sequence[int], t: Sequence[int],
     return out
 
 
-def best_reading(d: Derivation, evaluate: Callable[[Sequence[int]], Arrays],
+def best_reading(d: Derivation, evaluate: Callable[[Sequence[int], Sequence[int]], Arrays],
                  score: Callable[[Arrays], int],
                  score_readings: Callable[[Arrays, Sequence[int], list], list[int]] | None = None,
-                 total: int | None = None, complete_gain: int = MIN_GAIN_ORDER
+                 total: int | None = None, complete_gain: int = MIN_GAIN_ORDER,
+                 angles: Sequence[int] = (), offsets: Callable[[int], bool] | None = None
                  ) -> tuple[Reading, int, int] | None:
     r"""``((s, t, order), declared score, best score)`` when a reading beats the declared one
     by at least :data:`MIN_GAIN` agreeing elements — or by :data:`MIN_GAIN_ORDER` where every
     one of the ``total`` elements agrees under it (one input's sign in a robot's two rows:
     two elements, and nothing else left to explain; ``complete_gain`` for a file that declares
     its convention unknown, where one input's sign shows in one element) — else None.
-    ``evaluate(s)`` gives the document's arrays at the flipped states, ``score(arrays)`` the
-    number of agreeing elements; ``score_readings(arrays, s, [(t, order), ...])``, where
-    given, the scores of several readings of the inputs at once (the same numbers)."""
+    ``evaluate(s, o)`` gives the document's arrays at the flipped states (the positions
+    ``o`` shifted by π), ``score(arrays)`` the number of agreeing elements;
+    ``score_readings(arrays, s, [(t, order), ...])``, where given, the scores of several
+    readings of the inputs at once (the same numbers). The ``angles`` are read from the
+    opposite direction too (:func:`offset_readings`) where ``offsets(best score so far)``
+    says so (a reading that leaves most equations wrong: one that makes them right is no
+    π away)."""
     options = readings(d)
     if not options:
         return None
-    declared = score(evaluate((1,) * d.n))
+    declared = score(evaluate((1,) * d.n, ()))
     if score_readings is None:
         def score_readings(base, s, rest):
             return [score(flip_arrays(base, s, t, order)) for t, order in rest]
     best: tuple[Reading | None, int] = (None, declared)
-    for s, group in itertools.groupby(options, key=lambda o: o[0]):   # each s's consecutive
-        members = list(group)
-        values = score_readings(evaluate(s), s, [(t, order) for _, t, order in members])
-        for reading, value in zip(members, values):
-            if value > best[1]:
-                best = (reading, value)
+
+    def search(options: list[Reading]) -> None:
+        nonlocal best
+        for (s, o), group in itertools.groupby(options, key=lambda r: (r[0], r[3])):
+            members = list(group)                      # each (s, o)'s consecutive
+            values = score_readings(evaluate(s, o), s, [(r[1], r[2]) for r in members])
+            for reading, value in zip(members, values):
+                if value > best[1]:
+                    best = (reading, value)
+    search(options)
+    if angles and (offsets is None or offsets(best[1])):
+        search(offset_readings(d, angles))
     complete = total is not None and best[1] == total
     if best[0] is None or best[1] < declared + (
             complete_gain if complete else
@@ -131,16 +165,19 @@ def best_reading(d: Derivation, evaluate: Callable[[Sequence[int]], Arrays],
 
 
 def flipped(d: Derivation, s: Sequence[int], t: Sequence[int],
-            order: Sequence[int] = ()) -> Derivation:
-    r"""``d`` with its maps read under :math:`(s, t, \pi)` (see the module docstring)."""
+            order: Sequence[int] = (), offsets: Sequence[int] = ()) -> Derivation:
+    r"""``d`` with its maps read under :math:`(s, t, \pi, o)` (see the module docstring):
+    position :math:`p_k` read as :math:`s_kp_k`, or :math:`s_kp_k + \pi` for :math:`k` in
+    ``offsets``."""
     spec = d.coordinates
-    pos = {p: sign * p for p, sign in zip(d.positions, s) if sign < 0}
+    pos = {p: sign * p + (sp.pi if k in offsets else 0)
+           for k, (p, sign) in enumerate(zip(d.positions, s)) if sign < 0 or k in offsets}
     configuration = {k: sp.sympify(v).xreplace(pos) for k, v in spec.configuration.items()}
     sign = dict(zip(spec.velocities, s))
     velocity_map = {v: (-sp.sympify(e) if sign.get(v, 1) < 0 else e)
                     for v, e in spec.velocity_map.items()}
     raw = dict(spec.raw)
-    raw[FLIPPED_KEY] = describe(d, s, t, order)
+    raw[FLIPPED_KEY] = describe(d, s, t, order, offsets)
     new_spec = replace(spec, configuration=configuration, velocity_map=velocity_map, raw=raw)
     inputs = d.inputs
     u = list(d.input_symbols)
@@ -152,12 +189,16 @@ def flipped(d: Derivation, s: Sequence[int], t: Sequence[int],
 
 
 def describe(d: Derivation, s: Sequence[int], t: Sequence[int],
-             order: Sequence[int] = ()) -> str:
+             order: Sequence[int] = (), offsets: Sequence[int] = ()) -> str:
     r"""``"theta → −theta, u1 → −u1, u1 ↔ u2"``: the flipped names and the exchanged inputs,
-    in the document's symbols."""
-    names = [str(p) for p, x in zip(d.positions, s) if x < 0]
+    in the document's symbols; ``"theta → theta + π"`` (``"π − theta"``) for a position of
+    the ``offsets``."""
+    parts = [f"{p} → π − {p}" if x < 0 else f"{p} → {p} + π"
+             for k, (p, x) in enumerate(zip(d.positions, s)) if k in offsets]
+    names = [str(p) for k, (p, x) in enumerate(zip(d.positions, s))
+             if x < 0 and k not in offsets]
     names += [str(u) for u, x in zip(d.input_symbols, t) if x < 0]
-    parts = [f"{x} → −{x}" for x in names]
+    parts += [f"{x} → −{x}" for x in names]
     u = list(d.input_symbols)
     done: set[int] = set()
     for k, j in enumerate(order):
@@ -171,9 +212,10 @@ def describe(d: Derivation, s: Sequence[int], t: Sequence[int],
 
 
 def is_permutation_only(reading: Reading) -> bool:
-    r"""A reading that only reorders the inputs (no sign flipped)."""
-    s, t, order = reading
-    return all(x > 0 for x in (*s, *t)) and tuple(order) != tuple(range(len(order)))
+    r"""A reading that only reorders the inputs (no sign flipped, no position shifted)."""
+    s, t, order, offsets = reading
+    return all(x > 0 for x in (*s, *t)) and not offsets and \
+        tuple(order) != tuple(range(len(order)))
 
 
 def row_orders(d: Derivation) -> list[tuple[int, ...]]:
@@ -240,6 +282,7 @@ def maps_text(d: Derivation) -> str:
     return "; ".join(parts)
 
 
-__all__ = ["MAX_PERMUTED", "MAX_SIGNS", "MIN_GAIN", "MIN_GAIN_ORDER", "Reading", "best_reading", "describe",
+__all__ = ["MAX_PERMUTED", "MAX_SIGNS", "MIN_GAIN", "MIN_GAIN_ORDER", "Reading", "best_reading",
+           "describe", "offset_readings",
            "best_row_order", "describe_rows", "flip_arrays", "flipped", "is_permutation_only",
            "maps_text", "permute_rows", "readings", "reordered", "row_orders"]

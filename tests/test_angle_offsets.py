@@ -1,0 +1,84 @@
+r"""An angle measured from the opposite direction: the cart-pole's equations (Florian 2007,
+:mod:`published_forms`) written for :math:`\theta' = \theta + \pi` or :math:`\pi - \theta` —
+the pole's angle from the upright where the model's joint measures it from the hanging
+position, or the other way — while the file's map says ``theta = "theta"``.
+
+Declared, the equations are not the model's (declarations are binding), and the cause now
+says the reading that makes them right, θ → θ + π (it named the sign of every term that
+changes: the gravity, the coupling, the centripetal term). With ``convention = "unknown"``
+they are compared under that reading and agree; a real error planted beside the offset still
+differs under it.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import published_forms as P
+import pytest
+import sympy as sp
+from conftest import SEED
+from wheeled_dyn.compare.engine import ComparisonEngine
+from wheeled_dyn.compare.records import CauseKind, Verdict
+from wheeled_dyn.derivations import load_derivation
+
+#: Engine grid.
+SAMPLES, PARAM_SETS = 300, 3
+#: The document's angle in the model's: (the substitution that writes the equations in it —
+#: its rates too —, how the reading is said).
+OFFSETS = {"plus": ({P.th: P.th + sp.pi}, "theta → theta + π"),
+           "minus": ({P.th: sp.pi - P.th, P.dth: -P.dth, P.ddth: -P.ddth},
+                     "theta → π − theta")}
+
+
+def _write(folder: Path, form: str, offset: str, unknown: bool, error: str | None = None
+           ) -> Path:
+    r"""The cart-pole's ``form`` (with the planted ``error``) written in the document's angle
+    of ``offset``, the file's map unchanged."""
+    path = P.write(folder, "pole", form, error)
+    head, body = path.read_text().split("equations = [")
+    angle, _ = OFFSETS[offset]
+    written = []
+    for line in (x.strip().rstrip(",").strip('"') for x in body.splitlines()
+                 if x.strip().startswith('"')):
+        names = {"theta": P.th, "dtheta": P.dth, "ddtheta": P.ddth, "M": P.M}
+        sides = [sp.sympify(x, locals=names) for x in line.split(" = ")]
+        written.append(" = ".join(sp.sstr(sp.simplify(x.subs(angle, simultaneous=True)))
+                                  for x in sides))
+    if unknown:
+        head = head.replace("[coordinates]", 'convention = "unknown"\n[coordinates]')
+    path.write_text(head + "equations = [\n" + ",\n".join(f'  "{e}"' for e in written)
+                    + "\n]\n")
+    return path
+
+
+def _compare(path: Path):
+    engine = ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED)
+    return engine.compare(load_derivation(path))
+
+
+@pytest.mark.parametrize("offset", sorted(OFFSETS))
+@pytest.mark.parametrize("form", ["equations", "solved"])
+def test_declared_the_reading_is_the_cause(tmp_path, form, offset):
+    result = _compare(_write(tmp_path, form, offset, unknown=False))
+    assert result.equivalent is False
+    first = result.causes[0]
+    assert first.kind == CauseKind.CONVENTION, [c.explanation for c in result.causes]
+    assert OFFSETS[offset][1] in first.explanation
+    assert "measured from the opposite direction" in first.explanation
+
+
+@pytest.mark.parametrize("offset", sorted(OFFSETS))
+@pytest.mark.parametrize("form", ["equations", "solved"])
+def test_unknown_it_is_compared_under_the_reading(tmp_path, form, offset):
+    result = _compare(_write(tmp_path, form, offset, unknown=True))
+    assert result.equivalent is True, result.equations
+    assert OFFSETS[offset][1] in result.causes[0].explanation
+
+
+def test_a_real_error_beside_the_offset_still_differs(tmp_path):
+    result = _compare(_write(tmp_path, "equations", "plus", unknown=True, error="sign"))
+    assert result.equivalent is False
+    assert OFFSETS["plus"][1] in result.causes[0].explanation
+    wrong = [r.element for r in result.records if r.verdict == Verdict.DIFFERS]
+    assert wrong == ["h[1]:dtheta*dtheta"], wrong
