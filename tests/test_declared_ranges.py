@@ -39,3 +39,21 @@ def test_a_declared_range_is_said_where_it_decides(tmp_path):
     everywhere = _small_angle(tmp_path, False)
     assert everywhere.equivalent is False
     assert not any("ranges" in a for a in everywhere.assumes)
+
+
+def test_a_narrow_range_is_said_among_the_causes(tmp_path):
+    r"""A range this narrow decides: it is the first cause ("holds only if q2 stays in ..."),
+    even where every element agrees; a wide one is not a cause."""
+    from wheeled_dyn.compare.records import CauseKind
+    within = _small_angle(tmp_path, True)
+    first = within.causes[0]
+    assert first.kind == CauseKind.ASSUMPTION
+    assert "q2 stays in [-0.0001, 0.0001]" in first.explanation, first.explanation
+    path = P.write(tmp_path, "arm", "equations", None)
+    text = path.read_text().replace('units = { q1 = "rad", q2 = "rad" }',
+                                    'units = { q1 = "rad", q2 = "rad" }\n'
+                                    'ranges = { q2 = [-1.5, 1.5] }')
+    path.write_text(text)
+    wide = ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED).compare(
+        load_derivation(path))
+    assert wide.equivalent is True and not wide.causes, wide.causes

@@ -231,7 +231,9 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     equations = corrected(d, equations, fixes)
     j = _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed,
                    declared_wrong, fixes.truth is not None, engine.seed)
-    return replace(j, causes=(*contradiction_causes(d, funcs, assumed, engine.seed), *j.causes))
+    narrow = tuple(Cause(CauseKind.ASSUMPTION, (), text) for text in assumed.narrow_ranges())
+    return replace(j, causes=(*narrow, *contradiction_causes(d, funcs, assumed, engine.seed),
+                              *j.causes))
 
 
 def _read_back(d: Derivation, drafts: list[ElementDraft], rules: list[FrameRule],

@@ -34,6 +34,11 @@ from ...errors import DerivationError, ParameterError, UnknownNameError
 from .samples import SpecialCase, family, massless_family, special_cases
 
 
+#: A declared range narrower than this share of the default span of a position is said
+#: among the causes (:meth:`Assumptions.narrow_ranges`).
+NARROW = 0.01
+
+
 @dataclass(frozen=True)
 class Assumptions:
     r"""The declared assumptions of one derivation, resolved against its model."""
@@ -52,11 +57,20 @@ class Assumptions:
         if self.linearised_about:
             point = ", ".join(f"{k} = {v:g}" for k, v in self.linearised_about)
             out.append(f"the equations are linearised about {point}")
-        out += [f"{p} only in [{lo:g}, {hi:g}] (the file's ranges: compared there only)"
+        out += [f"{p} only in [{lo:.10g}, {hi:.10g}] (the file's ranges: compared there only)"
                 for p, lo, hi in self.ranges]
         if self.equilibrium_potential:
             out.append("the potential is measured from the equilibrium at that state")
         return (*out, *self.text)
+
+    def narrow_ranges(self) -> tuple[str, ...]:
+        r"""The declared ranges narrower than :data:`NARROW` (of the default span, 2π), in
+        words: the comparison sees little of the motion there, and says so among the causes
+        (a term wrong everywhere else agrees on them: cos for sin at θ = π/4)."""
+        return tuple(f"{p} stays in [{lo:.10g}, {hi:.10g}], as the file's ranges declare (a "
+                     f"span of {hi - lo:.2g}): the comparison sees no other state of {p}, and "
+                     "a term wrong elsewhere may agree there"
+                     for p, lo, hi in self.ranges if hi - lo < NARROW * 2 * np.pi)
 
     def key(self) -> tuple:
         r"""Hashable identity (cache key of the truth)."""
