@@ -158,3 +158,56 @@ def test_an_equation_lost_for_the_robot_of_the_file_is_not_equivalent(engine, tm
     assert result.equivalent is equivalent, [c.explanation for c in result.causes]
     if not equivalent:
         assert any(d.kind == K.SINGULAR for d in result.equations[1].diagnoses)
+
+
+def test_a_tiny_body_kept_by_the_family_does_not_vanish(tmp_path):
+    r"""A proof mass of 1 µg at 0.1 mm on a 1 kg cart (the cart-pole of
+    ``tests/data/published`` with its pole made tiny): under ``urdf_structure`` its own moment
+    J (3e-18 kg m², as in its URDF) is kept, not made 0 — the sets drawn without the family
+    draw inertias of no particular size, grams, beside which J is 1e-15. A right file that
+    declares the family and writes J had the cause "the file declares urdf_structure, under
+    which J is 0"."""
+    import shutil
+    from pathlib import Path
+    from wheeled_dyn.compare.engine import ComparisonEngine
+    from wheeled_dyn.compare.records import CauseKind
+    from wheeled_dyn.derivations import load_derivation
+    data = Path(__file__).parent / "data" / "published"
+    shutil.copy(data / "cart_pole.toml", tmp_path / "cart_pole.toml")
+    urdf = (data / "cart_pole.urdf").read_text()
+    for old, new in (('<origin xyz="0 0 0.5" rpy="0 0 0"/>\n      <mass value="0.3"/>',
+                      '<origin xyz="0 0 0.0001" rpy="0 0 0"/>\n      <mass value="1e-09"/>'),
+                     ('ixx="0.025" ixy="0" ixz="0" iyy="0.025" iyz="0" izz="0.0"',
+                      'ixx="3e-18" ixy="0" ixz="0" iyy="3e-18" iyz="0" izz="0.0"')):
+        assert old in urdf
+        urdf = urdf.replace(old, new)
+    (tmp_path / "cart_pole.urdf").write_text(urdf)
+    doc = tmp_path / "proof_mass.toml"
+    doc.write_text(f"""title = "Cart with a proof mass"
+model = "{tmp_path / 'cart_pole.toml'}"
+[coordinates]
+positions = ["x", "theta"]
+kind = "holonomic"
+rolling = "none"
+configuration = {{ x = "x", theta = "theta" }}
+units = {{ x = "m", theta = "rad" }}
+[inputs]
+F = "F"
+[symbols]
+M = {{ value = "M(cart)", units = "kg" }}
+m = {{ value = "M(pole)", units = "kg" }}
+l = {{ value = "CZ(pole)", units = "m" }}
+J = {{ value = "IYY(pole)", units = "kg*m**2" }}
+g = {{ value = "g", units = "m/s**2" }}
+F = {{ input = true, units = "N" }}
+[assumes]
+families = ["urdf_structure"]
+[matrices]
+equations = [
+  "(M + m)*ddx + m*l*cos(theta)*ddtheta - m*l*sin(theta)*dtheta**2 = F",
+  "m*l*cos(theta)*ddx + (J + m*l**2)*ddtheta - m*g*l*sin(theta) = 0"
+]
+""")
+    result = ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(load_derivation(doc))
+    assert result.equivalent is True, result.equations
+    assert not any(c.kind == CauseKind.FILE_ERROR for c in result.causes), result.causes

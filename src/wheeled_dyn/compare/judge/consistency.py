@@ -15,7 +15,11 @@ sign or factor, so the family explains nothing about it.
   declaration stand.
 
 A symbol vanishes under a family where its value is at most :data:`ZERO` of its largest on
-parameter sets drawn without the family, in every set drawn with it.
+parameter sets drawn without the family, in every set drawn with it — and, for a model of a
+URDF, at most that of its value in the URDF itself: the sets drawn without a family have
+inertias of no particular size (a proof mass of 1 µg, its moment 3e-18 kg m², is drawn there
+as a body of grams), so a family that keeps the URDF's own small moment does not make it
+vanish.
 """
 
 from __future__ import annotations
@@ -62,18 +66,36 @@ def _values(d: Derivation, special: Sequence[SpecialCase], seed: int
     return [document_symbol_values(d, ps, rng) for ps in _DRAWN[key]]
 
 
-def _gone(d: Derivation, written: set[sp.Symbol], free: list[dict], held: list[dict]
-          ) -> list[sp.Symbol]:
+def _gone(d: Derivation, written: set[sp.Symbol], free: list[dict], held: list[dict],
+          seed: int) -> list[sp.Symbol]:
     r"""The ``written`` symbols nonzero in some set of ``free`` and zero in every one of
-    ``held`` (module text), in the file's order."""
+    ``held``, beside their largest in ``free`` and, for a model of a URDF, beside their value
+    in the URDF (module text), in the file's order."""
     if not free or not held:
         return []
     out = []
+    own: list[dict | None] = []
     for s in (spec.symbol for spec in d.symbols.values() if spec.symbol in written):
         size = max(abs(v[s]) for v in free)
-        if size > 0 and all(abs(v[s]) <= ZERO * size for v in held):
+        if not (size > 0 and all(abs(v[s]) <= ZERO * size for v in held)):
+            continue
+        if not own:
+            own.append(_own(d, seed))
+        if own[0] is None or all(abs(v[s]) <= ZERO * abs(own[0][s]) for v in held):
             out.append(s)
     return out
+
+
+def _own(d: Derivation, seed: int) -> dict[sp.Symbol, float] | None:
+    r"""The document's symbols at the model's own parameters (its URDF's numbers); None for
+    a model of a physical record (its parameters are drawn in their own ranges)."""
+    from ...models.registry import load_model, model_entry
+    from ..grid.samples import ParameterSet, namespace_values
+    if model_entry(d.model).parameters is not None:
+        return None
+    wm = load_model(d.model)
+    return document_symbol_values(d, ParameterSet(wm, namespace_values(wm, None)),
+                                  np.random.default_rng(seed))
 
 
 def vanishing(d: Derivation, written: set[sp.Symbol], without: Sequence[SpecialCase],
@@ -82,7 +104,8 @@ def vanishing(d: Derivation, written: set[sp.Symbol], without: Sequence[SpecialC
     (module text), in the file's order."""
     if not written:
         return []
-    return _gone(d, written, _values(d, without, seed), _values(d, (*without, case), seed))
+    return _gone(d, written, _values(d, without, seed), _values(d, (*without, case), seed),
+                 seed)
 
 
 def consistent_cases(d: Derivation, funcs: DocumentFunctions, cases: Sequence[SpecialCase],
@@ -93,7 +116,7 @@ def consistent_cases(d: Derivation, funcs: DocumentFunctions, cases: Sequence[Sp
         return tuple(cases)
     free = _values(d, assumed.families, seed)
     return tuple(c for c in cases if not _gone(
-        d, written, free, _values(d, (*assumed.families, c), seed)))
+        d, written, free, _values(d, (*assumed.families, c), seed), seed))
 
 
 def contradicted_families(d: Derivation, funcs: DocumentFunctions, assumed: Assumptions,
