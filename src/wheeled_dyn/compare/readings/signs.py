@@ -54,10 +54,18 @@ FLIPPED_KEY = "_convention"
 Reading = tuple[tuple[int, ...], tuple[int, ...], tuple[int, ...], tuple[int, ...]]
 
 
-def _input_readings(m: int) -> list[tuple[tuple[int, ...], tuple[int, ...]]]:
-    r"""Every :math:`(t, \pi)` of ``m`` inputs, the declared one first."""
-    orders = list(itertools.permutations(range(m))) if m <= MAX_PERMUTED else [tuple(range(m))]
-    return [(tuple(t), tuple(order)) for t in itertools.product((1, -1), repeat=m)
+def _input_readings(d: Derivation) -> list[tuple[tuple[int, ...], tuple[int, ...]]]:
+    r"""Every :math:`(t, \pi)` of ``d``'s inputs, the declared one first; inputs exchanged
+    only where their declared units agree (a torque in N·m is no force in N: a document that
+    writes the force where the torque fits is wrong, not in another convention)."""
+    from ..judge.units import units_dim
+    m = len(d.input_symbols) if d.inputs else 0
+    dims = [units_dim(spec.units) if spec is not None else None
+            for spec in (d.symbols.get(str(u)) for u in d.input_symbols[:m])]
+    orders = [tuple(o) for o in itertools.permutations(range(m))
+              if all(dims[k] == dims[j] for k, j in enumerate(o))] \
+        if m <= MAX_PERMUTED else [tuple(range(m))]
+    return [(tuple(t), order) for t in itertools.product((1, -1), repeat=m)
             for order in orders]
 
 
@@ -71,7 +79,7 @@ def readings(d: Derivation) -> list[Reading]:
         return []
     out: list[Reading] = []
     for s in itertools.product((1, -1), repeat=flips):
-        for t, order in _input_readings(m):
+        for t, order in _input_readings(d):
             if any(x < 0 for x in (*s, *t)) or order != tuple(range(m)):
                 out.append((tuple(s) if flips else (1,) * n, t, order, ()))
     return out
@@ -85,12 +93,12 @@ def offset_readings(d: Derivation, angles: Sequence[int]) -> list[Reading]:
     :func:`readings` has none."""
     if not readings(d) or d.coordinates.use:
         return []
-    n, m = d.n, len(d.input_symbols) if d.inputs else 0
+    n = d.n
     out: list[Reading] = []
     for k in angles:
         for sign in (1, -1):
             s = tuple(sign if j == k else 1 for j in range(n))
-            out += [(s, t, order, (k,)) for t, order in _input_readings(m)]
+            out += [(s, t, order, (k,)) for t, order in _input_readings(d)]
     return out
 
 

@@ -1,4 +1,5 @@
-r"""An angle measured from the opposite direction: the cart-pole's equations (Florian 2007,
+r"""Readings of a file whose convention is unknown or declared wrongly. An angle measured from
+the opposite direction: the cart-pole's equations (Florian 2007,
 :mod:`published_forms`) written for :math:`\theta' = \theta + \pi` or :math:`\pi - \theta` —
 the pole's angle from the upright where the model's joint measures it from the hanging
 position, or the other way — while the file's map says ``theta = "theta"``.
@@ -82,3 +83,31 @@ def test_a_real_error_beside_the_offset_still_differs(tmp_path):
     assert OFFSETS["plus"][1] in result.causes[0].explanation
     wrong = [r.element for r in result.records if r.verdict == Verdict.DIFFERS]
     assert wrong == ["h[1]:dtheta*dtheta"], wrong
+
+
+def test_inputs_of_other_units_are_never_read_as_exchanged(tmp_path):
+    r"""A cart-pole with a force on the cart (N) and a torque at the hinge (N·m), its
+    equations written with the torque in the cart's equation and the force in the pole's:
+    wrong, whatever the convention — a torque is no force. With ``convention = "unknown"`` the
+    search had read it as "tau ↔ F" and it agreed (with its units blamed on the file)."""
+    import shutil
+    from pathlib import Path
+    from wheeled_dyn.compare.engine import ComparisonEngine
+    from wheeled_dyn.derivations import load_derivation
+    data = Path(__file__).parent / "data" / "published"
+    for name in ("cart_pole_driven.toml", "cart_pole.urdf"):
+        shutil.copy(data / name, tmp_path / name)
+    text = (data / "cart_pole_driven_solved.toml").read_text()
+    head = text[:text.index("equations = [")]
+    swapped = ('equations = [\n'
+               '  "(M + m)*ddx + m*l*cos(theta)*ddtheta - m*l*sin(theta)*dtheta**2 = tau",\n'
+               '  "m*l*cos(theta)*ddx + 4*m*l**2/3*ddtheta - m*g*l*sin(theta) = F"\n]\n')
+    right = swapped.replace("= tau", "= TAU").replace("= F", "= tau").replace("= TAU", "= F")
+    for equations, agrees in ((right, True), (swapped, False)):
+        doc = tmp_path / "driven.toml"
+        doc.write_text(head.replace("[coordinates]", 'convention = "unknown"\n[coordinates]')
+                       + equations)
+        result = ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(
+            load_derivation(doc))
+        assert result.equivalent is agrees, (equations, result.equations)
+        assert not any("↔" in c.explanation for c in result.causes), result.causes
