@@ -81,3 +81,22 @@ def test_a_row_that_differs_is_not_said_to_be_the_same_equations(tmp_path):
     assert "the same equations" not in line and "row 1 is compared with -1" in line, line
     kane = _compare(P.write(tmp_path, "pole", "kane", None))
     assert kane.equivalent is True and "the same equations" in row_factor_line(kane)
+
+
+def test_units_of_a_linearisation_point_are_said_as_such():
+    r"""A right document linearised about r = 0.2 m writes m2*(1/5)**2 for m2 r0²: its units
+    look wrong (kg beside kg m²); the note says the point's numbers carry them, not only
+    that a symbol's declared units are wrong."""
+    import numpy as np
+    from wheeled_dyn.compare.engine.equations import units_notes
+    from wheeled_dyn.compare.judge.draft import ElementDraft
+    from wheeled_dyn.compare.records import DiagnosisKind as K
+    from wheeled_dyn.compare.records import Verdict, diagnosis
+    draft = ElementDraft(element="A[1,1]", key="A", index=(0, 0), verdict=Verdict.AGREES,
+                         diagnoses=[diagnosis(K.DIMENSION, "term m2/25 is kg beside kg·m^2")],
+                         D=np.ones(3), T=np.ones(3), scale=1.0)
+    plain, = units_notes([draft])
+    linearised, = units_notes([draft], (("theta", 0.3), ("r", 0.2)))
+    assert "declared units are probably wrong" in plain
+    assert "linearisation point (theta = 0.3, r = 0.2)" in linearised, linearised
+    assert units_notes([draft], (("theta", 0.0),)) == [plain]

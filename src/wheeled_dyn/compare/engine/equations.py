@@ -23,18 +23,25 @@ from ..records import (Diagnosis, DiagnosisKind as K, EquationRecord, Verdict, d
 from ..sides.both import Sides
 
 
-def units_notes(drafts: Sequence[ElementDraft]) -> list[str]:
+def units_notes(drafts: Sequence[ElementDraft],
+                point: Sequence[tuple[str, float]] = ()) -> list[str]:
     r"""A note of the terms whose units disagree in elements that agree (numerically, their
     equation right): a symbol's declared units are wrong (an inertia declared in kg), not its
-    equation."""
+    equation — or, in a document linearised about a ``point`` where a position is not 0, the
+    numbers of the point written in it carry units the text does not show (r = 0.2 m written
+    as 1/5)."""
     said: dict[str, list[str]] = {}
     for r in drafts:
         if r.verdict == Verdict.AGREES:
             for x in r.diagnoses:
                 if x.kind == K.DIMENSION:
                     said.setdefault(x.detail or x.text, []).append(r.element)
-    return [f"units as declared: {text} — {', '.join(elements)} (the equations agree: a "
-            "symbol's declared units are probably wrong)" for text, elements in said.items()]
+    values = ", ".join(f"{k} = {v:g}" for k, v in point if v)
+    why = (f"the numbers of the linearisation point ({values}) written in it carry units the "
+           "text does not show, or a symbol's declared units are wrong") if values else \
+        "a symbol's declared units are probably wrong"
+    return [f"units as declared: {text} — {', '.join(elements)} (the equations agree: {why})"
+            for text, elements in said.items()]
 
 
 def _lost(d: Derivation, i: int) -> list[str]:

@@ -321,7 +321,7 @@ def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed
         functions = constants = (None,) * d.n
     notes = list(sides.notes) + [f"{e} was lost in the extracted text: not compared"
                                  for e in d.missing] + _held(grid.cs) + _off_ground(grid) \
-        + _uniform_read(grid, assumed) + units_notes(drafts)
+        + _uniform_read(grid, assumed) + units_notes(drafts, assumed.linearised_about)
     result = DerivationResult(
         path=d.path, title=d.title, model=d.model, source=dict(d.source),
         coordinates=grid.cs.name, velocities=tuple(str(v) for v in d.velocities),
