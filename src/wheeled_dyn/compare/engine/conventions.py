@@ -5,8 +5,9 @@ verdicts under them are the verdicts (declarations are binding). When the equati
 right as declared, the signs of the positions and inputs and the order of the inputs are
 searched (:mod:`..readings.signs`), and where most equations stay wrong an angle read from the
 opposite direction (θ → θ + π, π − θ: measured from the upright where the map measures it
-hanging); a reading under which more elements agree is reported as a cause — "under τ → −τ, 30 elements agree instead of 19 (every equation is right): the file's
-torque signs are probably reversed" — with the verdicts left as declared.
+hanging); a reading under which more elements agree is reported as a cause — "under
+τ → −τ, 30 elements agree instead of 19 (every equation is right): the file's torque signs
+are probably reversed" — with the verdicts left as declared.
 
 Only a file that says its document's convention is unknown (``convention = "unknown"``) is
 compared under the reading found, and the report says so first.
