@@ -45,6 +45,8 @@ MIN_GAIN = 3
 #: ... or this many, for a reading that only reorders the inputs (a swap of two symmetric
 #: motors shows in the two elements of the turning row alone).
 MIN_GAIN_ORDER = 2
+#: An angle read from the opposite direction must make this many more elements agree.
+MIN_GAIN_OFFSET = 2
 #: The key marking a derivation whose maps a convention has flipped (no search in it again).
 FLIPPED_KEY = "_convention"
 
@@ -130,7 +132,8 @@ def best_reading(d: Derivation, evaluate: Callable[[Sequence[int], Sequence[int]
                  score: Callable[[Arrays], int],
                  score_readings: Callable[[Arrays, Sequence[int], list], list[int]] | None = None,
                  total: int | None = None, complete_gain: int = MIN_GAIN_ORDER,
-                 angles: Sequence[int] = (), offsets: Callable[[int], bool] | None = None
+                 angles: Sequence[int] = (), offsets: Callable[[int], bool] | None = None,
+                 elements: Callable[[int], int] | None = None
                  ) -> tuple[Reading, int, int] | None:
     r"""``((s, t, order), declared score, best score)`` when a reading beats the declared one
     by at least :data:`MIN_GAIN` agreeing elements — or by :data:`MIN_GAIN_ORDER` where every
@@ -143,7 +146,9 @@ def best_reading(d: Derivation, evaluate: Callable[[Sequence[int], Sequence[int]
     readings of the inputs at once (the same numbers). The ``angles`` are read from the
     opposite direction too (:func:`offset_readings`) where ``offsets(best score so far)``
     says so (a reading that leaves most equations wrong: one that makes them right is no
-    π away)."""
+    π away), and such a reading is taken only where it makes at least
+    :data:`MIN_GAIN_OFFSET` more elements agree (``elements(score)``): one term's sign is a
+    term's error, not a pendulum's angle measured from the upright."""
     options = readings(d)
     if not options:
         return None
@@ -159,7 +164,8 @@ def best_reading(d: Derivation, evaluate: Callable[[Sequence[int], Sequence[int]
             members = list(group)                      # each (s, o)'s consecutive
             values = score_readings(evaluate(s, o), s, [(r[1], r[2]) for r in members])
             for reading, value in zip(members, values):
-                if value > best[1]:
+                if value > best[1] and (not reading[3] or elements is None or elements(value)
+                                        - elements(declared) >= MIN_GAIN_OFFSET):
                     best = (reading, value)
     search(options)
     if angles and (offsets is None or offsets(best[1])):
