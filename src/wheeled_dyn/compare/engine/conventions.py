@@ -39,7 +39,7 @@ def _search(j, complete_gain: int = signs.MIN_GAIN_ORDER) -> tuple | None:
     return signs.best_reading(d, search.doc_at, search.score, search.score_readings,
                               search.most(), complete_gain, _trig_positions(j.funcs),
                               lambda score: score // search.weight() <= d.n // 2,
-                              lambda score: score % search.weight())
+                              search.weight())
 
 
 def _trig_positions(funcs) -> tuple[int, ...]:

@@ -104,6 +104,20 @@ def offset_readings(d: Derivation, angles: Sequence[int]) -> list[Reading]:
     return out
 
 
+def _offset_gains(value: int, declared: int, weight: int | None) -> bool:
+    r"""Whether a reading of score ``value`` makes :data:`MIN_GAIN_OFFSET` more elements
+    agree, or equations right, than the declared one (scores of ``weight`` per equation)."""
+    if weight is None:
+        return value - declared >= MIN_GAIN_OFFSET
+    return (value % weight - declared % weight >= MIN_GAIN_OFFSET
+            or value // weight - declared // weight >= MIN_GAIN_OFFSET)
+
+
+def _all_right(value: int, n: int, weight: int | None) -> bool:
+    r"""Whether a score of ``value`` counts all ``n`` equations right (``weight`` each)."""
+    return weight is not None and value // weight >= n
+
+
 def flip_arrays(doc: Arrays, s: Sequence[int], t: Sequence[int],
                 order: Sequence[int] = ()) -> Arrays:
     r"""The document's arrays (evaluated at flipped states :math:`Sp, S\nu`) read in
@@ -133,8 +147,7 @@ def best_reading(d: Derivation, evaluate: Callable[[Sequence[int], Sequence[int]
                  score_readings: Callable[[Arrays, Sequence[int], list], list[int]] | None = None,
                  total: int | None = None, complete_gain: int = MIN_GAIN_ORDER,
                  angles: Sequence[int] = (), offsets: Callable[[int], bool] | None = None,
-                 elements: Callable[[int], int] | None = None
-                 ) -> tuple[Reading, int, int] | None:
+                 weight: int | None = None) -> tuple[Reading, int, int] | None:
     r"""``((s, t, order), declared score, best score)`` when a reading beats the declared one
     by at least :data:`MIN_GAIN` agreeing elements — or by :data:`MIN_GAIN_ORDER` where every
     one of the ``total`` elements agrees under it (one input's sign in a robot's two rows:
@@ -147,8 +160,10 @@ def best_reading(d: Derivation, evaluate: Callable[[Sequence[int], Sequence[int]
     opposite direction too (:func:`offset_readings`) where ``offsets(best score so far)``
     says so (a reading that leaves most equations wrong: one that makes them right is no
     π away), and such a reading is taken only where it makes at least
-    :data:`MIN_GAIN_OFFSET` more elements agree (``elements(score)``): one term's sign is a
-    term's error, not a pendulum's angle measured from the upright."""
+    :data:`MIN_GAIN_OFFSET` more elements agree or more equations right (a score is
+    ``weight`` per equation right and one per element): one term's sign is a term's error,
+    not a pendulum's angle measured from the upright — unless the file asks for its
+    convention and every equation is right under it."""
     options = readings(d)
     if not options:
         return None
@@ -157,6 +172,7 @@ def best_reading(d: Derivation, evaluate: Callable[[Sequence[int], Sequence[int]
         def score_readings(base, s, rest):
             return [score(flip_arrays(base, s, t, order)) for t, order in rest]
     best: tuple[Reading | None, int] = (None, declared)
+    asked = complete_gain < MIN_GAIN_ORDER          # the file asks for its convention
 
     def search(options: list[Reading]) -> None:
         nonlocal best
@@ -164,8 +180,9 @@ def best_reading(d: Derivation, evaluate: Callable[[Sequence[int], Sequence[int]
             members = list(group)                      # each (s, o)'s consecutive
             values = score_readings(evaluate(s, o), s, [(r[1], r[2]) for r in members])
             for reading, value in zip(members, values):
-                if value > best[1] and (not reading[3] or elements is None or elements(value)
-                                        - elements(declared) >= MIN_GAIN_OFFSET):
+                if value > best[1] and (not reading[3] or _offset_gains(
+                        value, declared, weight) or (asked and _all_right(value, d.n,
+                                                                          weight))):
                     best = (reading, value)
     search(options)
     if angles and (offsets is None or offsets(best[1])):
