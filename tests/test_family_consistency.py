@@ -182,32 +182,21 @@ def test_a_tiny_body_kept_by_the_family_does_not_vanish(tmp_path):
         assert old in urdf
         urdf = urdf.replace(old, new)
     (tmp_path / "cart_pole.urdf").write_text(urdf)
+    import published_forms as P
     doc = tmp_path / "proof_mass.toml"
-    doc.write_text(f"""title = "Cart with a proof mass"
-model = "{tmp_path / 'cart_pole.toml'}"
-[coordinates]
-positions = ["x", "theta"]
-kind = "holonomic"
-rolling = "none"
-configuration = {{ x = "x", theta = "theta" }}
-units = {{ x = "m", theta = "rad" }}
-[inputs]
-F = "F"
-[symbols]
-M = {{ value = "M(cart)", units = "kg" }}
-m = {{ value = "M(pole)", units = "kg" }}
-l = {{ value = "CZ(pole)", units = "m" }}
-J = {{ value = "IYY(pole)", units = "kg*m**2" }}
-g = {{ value = "g", units = "m/s**2" }}
-F = {{ input = true, units = "N" }}
-[assumes]
-families = ["urdf_structure"]
-[matrices]
-equations = [
-  "(M + m)*ddx + m*l*cos(theta)*ddtheta - m*l*sin(theta)*dtheta**2 = F",
-  "m*l*cos(theta)*ddx + (J + m*l**2)*ddtheta - m*g*l*sin(theta) = 0"
-]
-""")
+    text = P.POLE_HEAD.format(form="a proof mass", error="", model=tmp_path / "cart_pole.toml",
+                              eqs=",\n".join(f'  "{e}"' for e in EQUATIONS))
+    text = text.replace('families = ["urdf_proportions"]', 'families = ["urdf_structure"]')
+    text = text.replace('l = { value = "CZ(pole)", units = "m" }\n',
+                        'l = { value = "CZ(pole)", units = "m" }\n'
+                        'J = { value = "IYY(pole)", units = "kg*m**2" }\n')
+    assert "urdf_structure" in text and "IYY(pole)" in text
+    doc.write_text(text)
     result = ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(load_derivation(doc))
     assert result.equivalent is True, result.equations
     assert not any(c.kind == CauseKind.FILE_ERROR for c in result.causes), result.causes
+
+
+#: The cart with a pendulum of its own moment J about its centre of mass (Lagrange).
+EQUATIONS = ("(M + m)*ddx + m*l*cos(theta)*ddtheta - m*l*sin(theta)*dtheta**2 - F = 0",
+             "m*l*cos(theta)*ddx + (J + m*l**2)*ddtheta - m*g*l*sin(theta) = 0")
