@@ -145,3 +145,38 @@ equations = ["1/3*m*l**2*ddtheta - m*g*l/2*sin(theta) = 0"]
     result = _compare(doc)
     assert result.equivalent is False
     assert [c.kind for c in result.causes] == [CauseKind.SIGN], result.causes
+
+
+def _planted_forms(tmp_path: Path, name: str, coupling: sp.Expr, gravity: sp.Expr,
+                   form: str) -> Path:
+    r"""The cart-pole (Florian's equations) with the coupling and the pole's gravity term
+    given, written ``solved`` or ``combined`` (the cart's equation less 3 cos θ/(4l) × the
+    pole's)."""
+    cart = (P.M + P.m) * P.ddx + coupling * P.ddth - P.m * P.l * P.dth ** 2 * sp.sin(P.th) - P.F
+    pole = coupling * P.ddx + sp.Rational(4, 3) * P.m * P.l ** 2 * P.ddth - gravity
+    if form == "solved":
+        (sol,) = sp.solve([cart, pole], [P.ddx, P.ddth], dict=True)
+        eqs = [f"ddx = {P._s(sp.simplify(sol[P.ddx]))}",
+               f"ddtheta = {P._s(sp.simplify(sol[P.ddth]))}"]
+    else:
+        eqs = [f"{P._s(cart)} - (3*cos(theta)/(4*l))*({P._s(pole)}) = 0", f"{P._s(pole)} = 0"]
+    path = tmp_path / f"{name}_{form}.toml"
+    path.write_text(P.POLE_HEAD.format(form=form, error=f", {name}",
+                                       model=P.DATA / "cart_pole.toml",
+                                       eqs=",\n".join(f'  "{e}"' for e in eqs)))
+    return path
+
+
+@pytest.mark.parametrize("form", ["solved", "combined"])
+@pytest.mark.parametrize("error", ["gravity_sign", "coupling_sign"])
+def test_one_wrong_entry_is_no_reading_of_the_positions(tmp_path, form, error):
+    r"""One term wrong in the equations before they were solved or combined — the pole's
+    gravity sign, or the coupling's sign in both equations — reads as π − θ, or −θ, too: it
+    is said as the term's error, not as the file's angles measured from the other side."""
+    coupling = P.m * P.l * sp.cos(P.th) * (-1 if error == "coupling_sign" else 1)
+    gravity = P.m * P.g * P.l * sp.sin(P.th) * (-1 if error == "gravity_sign" else 1)
+    result = _compare(_planted_forms(tmp_path, error, coupling, gravity, form))
+    assert result.equivalent is False
+    assert not any("→" in c.explanation for c in result.causes), \
+        [c.explanation for c in result.causes]
+    assert any(c.kind == CauseKind.SIGN for c in result.causes), result.causes

@@ -18,6 +18,7 @@ from __future__ import annotations
 import sympy as sp
 
 from ...derivations.schema import Derivation
+from ..judge.source_entry import one_wrong_entry
 from ..readings import signs
 from ..readings.search import SearchEvaluation
 from ..records import Cause, CauseKind, Convention, ConventionSummary, DerivationResult, Verdict
@@ -80,11 +81,17 @@ def unknown_convention(engine, d: Derivation) -> tuple[Derivation, Cause] | None
 
 def convention_finding(engine, d: Derivation, j) -> tuple[Cause, ConventionSummary] | None:
     r"""A reading under which more elements agree than as declared: the cause and the
-    summary (module text); the verdicts stay as declared."""
+    summary (module text); the verdicts stay as declared. A reading of the positions is no
+    cause where one wrong entry of the equations (or one symmetric pair of the inertia's)
+    gives the document as well (:func:`~..judge.source_entry.one_wrong_entry`): a pole's
+    gravity sign solved for the accelerations reads as π − θ, its coupling's sign as −θ."""
     best = _search(j)
     if best is None:
         return None
     reading = best[0]
+    if (any(x < 0 for x in reading[0]) or reading[3]) and one_wrong_entry(j.sides,
+                                                                          d.velocities):
+        return None          # one term's error (a gravity sign): said as that, not as a reading
     flipped = signs.flipped(d, *reading)
     better = engine.judge(flipped).result
     declared = j.result

@@ -161,15 +161,10 @@ def _combined_rows(W: np.ndarray) -> frozenset[int]:
     return frozenset(int(i) for i in np.flatnonzero(big.sum(axis=1) > 1))
 
 
-def source_entry(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
-                 velocities: Sequence[sp.Symbol] = (),
-                 truths: Mapping[str, sp.Expr] | None
-                 | Callable[[], Mapping[str, sp.Expr] | None] = None) -> SourceEntry | None:
-    r"""The one wrong entry of the equations the document solved or combined (module text),
-    named, with the rows it combined; None where no entry, or more than one, explains every
-    sample. ``sides``: both sides on a grid (:class:`~..sides.both.Sides`), ``bases`` the
-    names' values on it, ``truths`` the truth's entries in the document's symbols (or
-    None; or a function giving them, called only where an entry is found)."""
+def _fits(sides, velocities: Sequence[sp.Symbol]):
+    r"""The entries (or else the symmetric pairs of the inertia's) of the source equations
+    that, wrong, give the document at every sample (module text): ``(fits, pair, T,
+    labels, samples)`` with each fit ``(r, c, δ, W)``; None where a side lacks a part."""
     doc, truth = sides.doc, sides.truth
     rows = truth.H_rows if truth.H_rows is not None else np.arange(len(truth.need("A")))
     true = _columns(truth, sides.B_true, rows, velocities)
@@ -191,8 +186,31 @@ def source_entry(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
                 if (delta := _pair_values(T, D, r, c)) is not None
                 and (W := _explains(T, D, [(r, c), (c, r)], delta)) is not None]
         pair = True
-    if len(fits) != 1:
+    return fits, pair, T, names, rows
+
+
+def one_wrong_entry(sides, velocities: Sequence[sp.Symbol] = ()) -> bool:
+    r"""Whether exactly one entry of the source equations, or one symmetric pair of the
+    inertia's, wrong gives the document at every sample (module text): one term's error,
+    which a reading of the positions that also makes it right must not be said for."""
+    found = _fits(sides, velocities)
+    return found is not None and len(found[0]) == 1
+
+
+def source_entry(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
+                 velocities: Sequence[sp.Symbol] = (),
+                 truths: Mapping[str, sp.Expr] | None
+                 | Callable[[], Mapping[str, sp.Expr] | None] = None) -> SourceEntry | None:
+    r"""The one wrong entry of the equations the document solved or combined (module text),
+    named, with the rows it combined; None where no entry, or more than one, explains every
+    sample. ``sides``: both sides on a grid (:class:`~..sides.both.Sides`), ``bases`` the
+    names' values on it, ``truths`` the truth's entries in the document's symbols (or
+    None; or a function giving them, called only where an entry is found)."""
+    found = _fits(sides, velocities)
+    if found is None or len(found[0]) != 1:
         return None
+    fits, pair, T, names, rows = found
+    truth = sides.truth
     r, c, delta, W = fits[0]
     truths = truths() if callable(truths) else truths
     sets = [ps.values for ps in sides.grid.sets]
@@ -215,4 +233,4 @@ def source_entry(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
         "rows are), one entry differs: ", [part]), _combined_rows(W), W, rows)
 
 
-__all__ = ["SourceEntry", "source_entry"]
+__all__ = ["SourceEntry", "one_wrong_entry", "source_entry"]

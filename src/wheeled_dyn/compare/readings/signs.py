@@ -45,7 +45,8 @@ MIN_GAIN = 3
 #: ... or this many, for a reading that only reorders the inputs (a swap of two symmetric
 #: motors shows in the two elements of the turning row alone).
 MIN_GAIN_ORDER = 2
-#: An angle read from the opposite direction must make this many more elements agree.
+#: A reading that moves a position (its sign, or an angle from the opposite direction) must
+#: make this many more elements agree, or equations right.
 MIN_GAIN_OFFSET = 2
 #: The key marking a derivation whose maps a convention has flipped (no search in it again).
 FLIPPED_KEY = "_convention"
@@ -159,8 +160,8 @@ def best_reading(d: Derivation, evaluate: Callable[[Sequence[int], Sequence[int]
     readings of the inputs at once (the same numbers). The ``angles`` are read from the
     opposite direction too (:func:`offset_readings`) where ``offsets(best score so far)``
     says so (a reading that leaves most equations wrong: one that makes them right is no
-    π away), and such a reading is taken only where it makes at least
-    :data:`MIN_GAIN_OFFSET` more elements agree or more equations right (a score is
+    π away). A reading that moves a position (its sign, or π) is taken only where it makes
+    at least :data:`MIN_GAIN_OFFSET` more elements agree or more equations right (a score is
     ``weight`` per equation right and one per element): one term's sign is a term's error,
     not a pendulum's angle measured from the upright — unless the file asks for its
     convention and every equation is right under it."""
@@ -180,7 +181,8 @@ def best_reading(d: Derivation, evaluate: Callable[[Sequence[int], Sequence[int]
             members = list(group)                      # each (s, o)'s consecutive
             values = score_readings(evaluate(s, o), s, [(r[1], r[2]) for r in members])
             for reading, value in zip(members, values):
-                if value > best[1] and (not reading[3] or _offset_gains(
+                moves = reading[3] or any(x < 0 for x in reading[0])
+                if value > best[1] and (not moves or _offset_gains(
                         value, declared, weight) or (asked and _all_right(value, d.n,
                                                                           weight))):
                     best = (reading, value)
