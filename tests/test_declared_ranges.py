@@ -57,3 +57,16 @@ def test_a_narrow_range_is_said_among_the_causes(tmp_path):
     wide = ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED).compare(
         load_derivation(path))
     assert wide.equivalent is True and not wide.causes, wide.causes
+
+
+def test_a_narrow_range_of_a_position_the_equations_lack_is_no_cause(tmp_path):
+    r"""The cart-pole's cart position x (in no term of its equations) declared in [0, 0.03]:
+    nothing is hidden, and nothing is said."""
+    path = P.write(tmp_path, "pole", "equations", None)
+    text = path.read_text()
+    units = 'units = { x = "m", theta = "rad" }'
+    assert units in text
+    path.write_text(text.replace(units, units + "\nranges = { x = [0.0, 0.03] }"))
+    result = ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED).compare(
+        load_derivation(path))
+    assert result.equivalent is True and not result.causes, result.causes

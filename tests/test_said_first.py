@@ -100,3 +100,17 @@ def test_units_of_a_linearisation_point_are_said_as_such():
     assert "declared units are probably wrong" in plain
     assert "linearisation point (theta = 0.3, r = 0.2)" in linearised, linearised
     assert units_notes([draft], (("theta", 0.0),)) == [plain]
+
+
+def test_a_mass_left_out_is_no_point_mass(tmp_path):
+    r"""The cart's inertia written M for M + m: under the cart-pole's declared proportions the
+    pole's mass is 3 Ixx/l², and it was named "the moment Ixx(pole) × 3/l² is missing: a
+    point mass". The term the entry lacks is one of the document's symbols: that is its
+    name, and the cause says it."""
+    from wheeled_dyn.compare.records import DiagnosisKind as K
+    cart = "ddx*(M + m)"
+    result = _compare(_planted(tmp_path, "pole", "equations", cart, "ddx*M"))
+    a11 = next(r for r in result.records if r.element == "A[1,1]")
+    assert not any(d.kind == K.POINT_MASS for d in a11.diagnoses), a11.diagnoses
+    cause = next(c for c in result.causes if "A[1,1]" in c.elements)
+    assert cause.kind == CauseKind.MISSING_PHYSICS and "A[1,1] lacks m" in cause.explanation

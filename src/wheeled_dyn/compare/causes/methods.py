@@ -182,7 +182,7 @@ def method_causes(ev: Evaluation, d, records: Sequence) -> list[Cause]:
             explanation=("these velocity products of C q̇ are not the Christoffel terms of the "
                          "document's own A (nor the truth's): C was not derived from this A "
                          f"(rows {', '.join(str(i + 1) for i in sorted(rows))})"
-                         + _terms_said(inconsistent))))
+                         + terms_said(inconsistent))))
     return out
 
 
@@ -191,22 +191,25 @@ def method_causes(ev: Evaluation, d, records: Sequence) -> list[Cause]:
 TERMS_SAID = 3
 
 
-def _terms_said(records: Sequence) -> str:
+def terms_said(records: Sequence) -> str:
     r"""The terms the records name as lacking or too much (a centripetal term dropped from a
-    C otherwise right: "; h[2]:dtheta*dtheta lacks -m2*r"), or ``""`` where one names none
-    or there are more than :data:`TERMS_SAID`."""
-    if len(records) > TERMS_SAID:
-        return ""
-    said = []
+    C otherwise right: "; h[2]:dtheta*dtheta lacks -m2*r"; one entry read back before the
+    equations were solved, said once for every element it reaches), or ``""`` where one
+    names none or there are more than :data:`TERMS_SAID` (a cause of missing or extra
+    terms, or of a C not derived from A, says them)."""
+    by: dict = {}
     for r in records:
-        named = [(x.kind, x.terms) for x in r.diagnoses
-                 if x.kind in (K.MISSING, K.EXTRA) and x.terms]
-        if not named:
+        named = next((x for x in r.diagnoses if x.kind in (K.MISSING, K.EXTRA) and x.terms),
+                     None)
+        if named is None:
             return ""
-        kind, terms = named[0]
-        said.append(f"{r.element} " + ("lacks " if kind == K.MISSING else "has too much ")
-                    + ", ".join(terms))
-    return "; " + "; ".join(said) if said else ""
+        by.setdefault(named, []).append(r.element)
+    if not by or len(by) > TERMS_SAID:
+        return ""
+    said = [x.detail if len(elements) > 1 else f"{elements[0]} " + (
+        "lacks " if x.kind == K.MISSING else "has too much ") + ", ".join(x.terms)
+        for x, elements in by.items()]
+    return "; " + "; ".join(said)
 
 
 def velocity_latex(d) -> dict[sp.Symbol, str]:
@@ -242,4 +245,4 @@ def _missing_terms_latex(records: Sequence, d) -> str:
 
 
 __all__ = ["EXPLAINED_VERDICTS", "christoffel_h", "christoffel_tensor", "covered_products",
-           "method_causes", "product_of", "specific", "velocity_latex"]
+           "method_causes", "product_of", "specific", "terms_said", "velocity_latex"]

@@ -47,7 +47,7 @@ from ..judge.diagnose import AGREE_TOL
 from ..sides.evaluation import Evaluation
 from ..records import Cause, CauseKind, DiagnosisKind as K, Step, Verdict, first_of
 from .methods import (EXPLAINED_VERDICTS, covered_products, method_causes, product_of,
-                      velocity_latex)
+                      terms_said, velocity_latex)
 
 #: Share of samples at which A must have rank n − m to call the constraints substituted.
 RANK_SHARE = 0.99
@@ -187,7 +187,10 @@ def term_causes(records: Sequence, explained: set[str],
     for elements in groups.values():
         elements[:] = [e for e in elements if e not in covered or e in taken
                        and covered[e] in elements]
-    return [Cause(kind=kind, elements=tuple(elements), explanation=text)
+    by_element = {r.element: r for r in records}
+    return [Cause(kind=kind, elements=tuple(elements), explanation=text + (
+                terms_said([by_element[e] for e in elements if e in by_element])
+                if kind in (CauseKind.MISSING_PHYSICS, CauseKind.EXTRA_TERM) else ""))
             for (kind, text), elements in groups.items() if elements]
 
 

@@ -231,9 +231,8 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     equations = corrected(d, equations, fixes)
     j = _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed,
                    declared_wrong, fixes.truth is not None, engine.seed)
-    narrow = tuple(Cause(CauseKind.ASSUMPTION, (), text) for text in assumed.narrow_ranges())
-    return replace(j, causes=(*narrow, *contradiction_causes(d, funcs, assumed, engine.seed),
-                              *j.causes))
+    return replace(j, causes=(*assumed.narrow_ranges(funcs.exprs.values()),
+                              *contradiction_causes(d, funcs, assumed, engine.seed), *j.causes))
 
 
 def _read_back(d: Derivation, drafts: list[ElementDraft], rules: list[FrameRule],

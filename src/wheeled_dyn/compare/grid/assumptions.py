@@ -23,14 +23,16 @@ and names as "agrees only if ..." only a condition the document did not state.
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from typing import Any
 from dataclasses import dataclass, field
 
 import numpy as np
+import sympy as sp
 
 from ...derivations.schema import Derivation
 from ...errors import DerivationError, ParameterError, UnknownNameError
+from ..records import Cause, CauseKind
 from .samples import SpecialCase, family, massless_family, special_cases
 
 
@@ -63,14 +65,17 @@ class Assumptions:
             out.append("the potential is measured from the equilibrium at that state")
         return (*out, *self.text)
 
-    def narrow_ranges(self) -> tuple[str, ...]:
-        r"""The declared ranges narrower than :data:`NARROW` (of the default span, 2π), in
-        words: the comparison sees little of the motion there, and says so among the causes
-        (a term wrong everywhere else agrees on them: cos for sin at θ = π/4)."""
-        return tuple(f"{p} stays in [{lo:.10g}, {hi:.10g}], as the file's ranges declare (a "
-                     f"span of {hi - lo:.2g}): the comparison sees no other state of {p}, and "
-                     "a term wrong elsewhere may agree there"
-                     for p, lo, hi in self.ranges if hi - lo < NARROW * 2 * np.pi)
+    def narrow_ranges(self, exprs: Iterable[sp.Basic | None]) -> tuple[Cause, ...]:
+        r"""A cause for each declared range narrower than :data:`NARROW` (of the default span,
+        2π) of a position the equations ``exprs`` are functions of: the comparison sees
+        little of the motion there (a term wrong everywhere else agrees on it: cos for sin at
+        θ = π/4)."""
+        written = {str(x) for e in exprs if e is not None for x in e.free_symbols}
+        return tuple(Cause(CauseKind.ASSUMPTION, (), (
+            f"{p} stays in [{lo:.10g}, {hi:.10g}], as the file's ranges declare (a span of "
+            f"{hi - lo:.2g}): the comparison sees no other state of {p}, and a term wrong "
+            "elsewhere may agree there")) for p, lo, hi in self.ranges
+            if hi - lo < NARROW * 2 * np.pi and p in written)
 
     def key(self) -> tuple:
         r"""Hashable identity (cache key of the truth)."""

@@ -329,11 +329,14 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
             continue
         if has_kind(r.diagnoses, K.FACTOR) and (hit is None or hit[1] != 1):
             continue                          # a constant factor says it more plainly
+        term = _plainest(fit_factor(residual, bases), bases) \
+            if hit is not None and np.abs(residual).min() > 0 else None
+        if hit is not None and hit[1] != 1 and term is not None and ((-term).is_Symbol or \
+                term.is_Symbol):      # one of the document's symbols (m for 3 Ixx/l²): plainer
+            hit = None
         if hit is not None:
             name, c = hit
             times = "" if c == 1 else f" × {sp.sstr(c)}"
-            term = _plainest(fit_factor(residual, bases), bases) \
-                if np.abs(residual).min() > 0 else None
             if term is not None and term.could_extract_minus_sign():
                 term = -term        # a moment is positive (a Kane row: −1 × the truth)
             own = f" ({sp.sstr(term)} in the document's symbols)" if term is not None \
