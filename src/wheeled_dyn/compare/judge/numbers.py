@@ -1,5 +1,5 @@
 r"""A number written where a parameter of the model fits: :math:`9.81` for the gravity
-:math:`g`. The comparison draws every parameter of the model, gravity too (a document's
+:math:`g` (or a simple fraction of it: 9.81/2 for g/2). The comparison draws every parameter of the model, gravity too (a document's
 equations must hold for every robot of the model, on any planet: a term that needs :math:`g`
 and lacks it is an error), so a document that writes Earth's value differs — it holds for
 :math:`g = 9.81` only — and its units say so ("has kg, expected kg·m·s⁻²"). That is its
@@ -29,6 +29,29 @@ def gravity_symbol(d: Derivation) -> sp.Symbol | None:
                  if isinstance(spec.value, sp.Symbol) and spec.value.name == "g"), None)
 
 
+#: Earth's gravity as documents write it, each number of an element is tried as a simple
+#: fraction of (9.81/2 for g/2).
+EARTH = (9.81, 9.8, 9.80665, 9.807)
+
+
+def _gravity_parts(expr: sp.Expr) -> list[tuple[sp.Number, sp.Rational]]:
+    r"""Each positive number of ``expr`` (its value) that is a simple fraction (denominator
+    at most 12) of one of :data:`EARTH`'s values or within :data:`GRAVITY_NUMBERS`, with that
+    fraction (1 for the latter)."""
+    low, high = GRAVITY_NUMBERS
+    out = []
+    for x in sorted({abs(a) for a in expr.atoms(sp.Number) if a != 0}, key=float):
+        if low <= float(x) <= high:
+            out.append((x, sp.Integer(1)))
+            continue
+        for earth in EARTH:
+            part = sp.nsimplify(float(x) / earth, rational=True, tolerance=1e-12)
+            if part.q <= 12 and abs(float(part) * earth - float(x)) <= 1e-12 * float(x):
+                out.append((x, part))
+                break
+    return out
+
+
 def number_for_gravity(expr: sp.Expr, d: Derivation,
                        evaluate: Callable[[sp.Expr], np.ndarray], T: np.ndarray,
                        scale: float, problems: Sequence[str] = ()) -> list[Diagnosis]:
@@ -39,19 +62,15 @@ def number_for_gravity(expr: sp.Expr, d: Derivation,
     g = gravity_symbol(d)
     if g is None:
         return []
-    low, high = GRAVITY_NUMBERS
-    numbers = sorted({x for x in expr.atoms(sp.Number) if low <= abs(float(x)) <= high},
-                     key=float)
-    for number in numbers:
-        value = abs(number)
-        trial = expr.xreplace({value: g, -value: -g})
+    for value, part in _gravity_parts(expr):
+        trial = expr.xreplace({value: part * g, -value: -part * g})
         if trial != expr and agrees(evaluate(trial), T, scale):
-            shown = f"{float(value):g}"
-            return [diagnosis(K.SWAP, f"the number {shown} is written where {g} fits (the "
+            shown, fits = f"{float(value):g}", sp.sstr(part * g)
+            return [diagnosis(K.SWAP, f"the number {shown} is written where {fits} fits (the "
                               "comparison draws gravity, as every parameter of the model: "
-                              f"the equations hold for {g} = {shown} only{units})",
-                              written=shown, fits=str(g))]
+                              f"the equations hold for {g} = {float(value / part):g} only"
+                              f"{units})", written=shown, fits=fits)]
     return []
 
 
-__all__ = ["GRAVITY_NUMBERS", "gravity_symbol", "number_for_gravity"]
+__all__ = ["EARTH", "GRAVITY_NUMBERS", "gravity_symbol", "number_for_gravity"]
