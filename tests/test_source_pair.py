@@ -107,3 +107,18 @@ def test_a_point_mass_in_the_combinations_weight_is_named(tmp_path):
     for r in combined:
         assert r.diagnoses[0].kind == K.POINT_MASS, (r.element, r.diagnoses)
         assert not any(d.kind in AS_PRINTED for d in r.diagnoses), (r.element, r.diagnoses)
+
+
+
+@pytest.mark.parametrize("error", ["point_mass", "sign", "dropped"])
+def test_a_form_neither_solved_nor_combined_is_not_said_read_back(tmp_path, error):
+    r"""The cart-pole's pole equation divided by m·l (published_forms' "divided" form, a row
+    scaled, none combined) with one error: its elements name it; no equation is said "read
+    back before it was solved or combined" (the one wrong entry found there combines no
+    rows)."""
+    import published_forms as P
+    engine = ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED)
+    result = engine.compare(load_derivation(P.write(tmp_path, "pole", "divided", error)))
+    assert result.equivalent is False
+    said = [d.text for e in result.equations for d in e.diagnoses]
+    assert not any("read back" in t for t in said), said

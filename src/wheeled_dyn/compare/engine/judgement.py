@@ -255,8 +255,9 @@ def _read_back(d: Derivation, drafts: list[ElementDraft], rules: list[FrameRule]
                            said)
         entry = None if solved is not None else source_entry(id_sides, found, d.velocities,
                                                               said)
-    else:
+    else:                  # as printed but for rows it shows combined: else none read back
         entry = source_entry(id_sides, found, d.velocities, truths)
+        entry = entry if entry is not None and entry.combined else None
     if entry is not None:
         solved = entry.diagnosis
     if solved is None:
