@@ -193,6 +193,24 @@ equations = [
 '''
 
 
+#: A uniform rod pendulum (docs/derivation-format.md's example, model ``rod_pendulum``) with
+#: its gravity term written as ``{gravity}`` (right: ``m*g*l/2*sin(theta)``).
+ROD = """title = "Uniform rod pendulum"
+model = "rod_pendulum"
+[coordinates]
+positions = ["theta"]
+configuration = {{ theta = "theta" }}
+units = {{ theta = "rad" }}
+[symbols]
+m = {{ value = "M(rod)", units = "kg" }}
+l = {{ value = "length(rod)", units = "m" }}
+g = {{ value = "g", units = "m/s**2" }}
+[assumes]
+uniform = ["rod"]
+[matrices]
+equations = ["1/3*m*l**2*ddtheta + {gravity} = 0"]
+"""
+
 def write(folder: Path, system: str, form: str, error: str | None) -> Path:
     r"""The derivation file of one form of ``system`` ("arm" or "pole") with ``error``."""
     eqs = (arm_forms if system == "arm" else pole_forms)(error)[form]

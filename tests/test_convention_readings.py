@@ -127,21 +127,7 @@ def test_one_terms_sign_is_not_an_angle_from_the_other_side(tmp_path):
     θ → θ + π would make it right too, but one element is one term's error: the cause is
     its sign, not the angle measured from the upright."""
     doc = tmp_path / "rod.toml"
-    doc.write_text('''title = "Uniform rod pendulum, gravity sign wrong"
-model = "rod_pendulum"
-[coordinates]
-positions = ["theta"]
-configuration = { theta = "theta" }
-units = { theta = "rad" }
-[symbols]
-m = { value = "M(rod)", units = "kg" }
-l = { value = "length(rod)", units = "m" }
-g = { value = "g", units = "m/s**2" }
-[assumes]
-uniform = ["rod"]
-[matrices]
-equations = ["1/3*m*l**2*ddtheta - m*g*l/2*sin(theta) = 0"]
-''')
+    doc.write_text(P.ROD.format(gravity="- m*g*l/2*sin(theta)"))
     result = _compare(doc)
     assert result.equivalent is False
     assert [c.kind for c in result.causes] == [CauseKind.SIGN], result.causes

@@ -49,28 +49,12 @@ def _compare(folder, gravity: str):
 
 
 
-ROD = """title = "Uniform rod pendulum"
-model = "rod_pendulum"
-[coordinates]
-positions = ["theta"]
-configuration = {{ theta = "theta" }}
-units = {{ theta = "rad" }}
-[symbols]
-m = {{ value = "M(rod)", units = "kg" }}
-l = {{ value = "length(rod)", units = "m" }}
-g = {{ value = "g", units = "m/s**2" }}
-[assumes]
-uniform = ["rod"]
-[matrices]
-equations = ["1/3*m*l**2*ddtheta + {gravity} = 0"]
-"""
-
 
 def test_a_fraction_of_earths_gravity_is_named(tmp_path):
     r"""A rod pendulum (derivation-format.md's example) with 9.81/2 written where g/2 fits
     (read as 4.905): named as such, the equations holding for g = 9.81 only."""
     path = tmp_path / "rod.toml"
-    path.write_text(ROD.format(gravity="9.81/2*m*l*sin(theta)"))
+    path.write_text(P.ROD.format(gravity="9.81/2*m*l*sin(theta)"))
     engine = ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED)
     result = engine.compare(load_derivation(path))
     q1 = next(r for r in result.records if r.element == "Q[1]")
