@@ -29,7 +29,7 @@ from ..judge.element import Trials, judge
 from ..judge.factorization import factorization
 from ..judge.fitting import bases
 from ..judge.named import NAMED, name_terms, own_moments
-from ..judge.precision import row_round_off
+from ..judge.precision import largest_terms, row_round_off
 from ..judge.rows import drafts_of_row, row_values
 from ..judge.units import DimensionChecker
 from ..judge.source_entry import source_entry
@@ -115,7 +115,7 @@ def _row_drafts(d: Derivation, funcs: DocumentFunctions, sides: Sides, frames: l
     drafts: list[ElementDraft] = []
     gammas = {}
     h, Q = sides.truth.h, sides.truth.Q
-    truth_n = h if Q is None else Q if h is None else h + Q
+    largest = largest_terms(sides.truth.need("A"), h if Q is None else Q if h is None else h + Q)
     for i, (frame, rule) in enumerate(zip(frames, rules)):
         doc_row, true_row = row_of(sides.doc, i), framed(frame.weights, sides.truth,
                                                           sides.B_true)
@@ -124,7 +124,7 @@ def _row_drafts(d: Derivation, funcs: DocumentFunctions, sides: Sides, frames: l
         scale = row_scale(doc_row, true_row)
         row = drafts_of_row(doc_row, true_row, i, funcs.exprs, d.velocities, scale, lost,
                             label)
-        rho = row_round_off(frame.weights, sides.truth.A, truth_n)
+        rho = row_round_off(frame.weights, largest)
         for r in row:
             r.round_off = rho
         dims.row_dimension(i, [(r.key, r.index, r.expr) for r in row

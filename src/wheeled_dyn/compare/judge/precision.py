@@ -77,10 +77,11 @@ def round_off(w: np.ndarray, A: np.ndarray | None, n: np.ndarray | None,
         return ROUND_OFF_EPS * float(np.finfo(float).eps) * largest * np.abs(w).sum(axis=1)
 
 
-def row_round_off(w: np.ndarray, A: np.ndarray | None, n: np.ndarray | None) -> float:
-    r"""The largest finite :func:`round_off` of the row over the samples (0 where none is
-    finite): an element of the row that differs by no more is not decided."""
-    rho = round_off(w, A, n)
+def row_round_off(w: np.ndarray, largest: np.ndarray) -> float:
+    r"""The largest finite :func:`round_off` of the row of weights ``w`` over the samples (0
+    where none is finite), the truth's :func:`largest_terms` given: an element of the row
+    that differs by no more is not decided."""
+    rho = round_off(w, None, None, largest)
     rho = rho[np.isfinite(rho)]
     return float(rho.max(initial=0.0))
 
