@@ -15,8 +15,9 @@ from .diagnose import AGREE_TOL, FLOOR
 
 #: Samples a subset of the equations is first fitted on (spread over the grid), and the
 #: residual there above which it is not fitted on every sample: the fit is per sample, so a
-#: subset that fails there fails on all (the tolerance, ten times AGREE_TOL, covers the floor
-#: of the screen's own scale, below the grid's).
+#: subset that fails there by far fails on all (ten times AGREE_TOL: a margin for the screen's
+#: scale, whose floor is taken from the document's whole grid but not from the fit's; the
+#: four groups' reports and the multiplier tests are unchanged by the screening).
 SCREEN_SAMPLES, SCREEN_TOL = 64, 10 * AGREE_TOL
 
 
