@@ -36,6 +36,9 @@ from ..errors import ModelError
 #: compared (a wheel's cylinder and its joint axis, an axle and the body's y, left and right):
 #: URDFs round π/2 as 1.5708 (3.7e-6 rad off) or 1.57 (8e-4 rad off).
 ANGLE_TOL = 1e-2
+#: Largest distance of a tyre's centre (its cylinder's) from the wheel's spin axis, relative
+#: to the radius: a rolling wheel is round about its axle (URDFs round their numbers).
+TYRE_OFF_AXIS_TOL = 1e-3
 #: Largest distance (rad) of an inertia's orientation angle from a multiple of π/2 for it to
 #: be read as that multiple (:func:`right_angles`): URDFs round π/2 as 1.5708 or 1.57 and π as
 #: 3.1416 or 3.14 (1.6e-3 rad off).

@@ -23,7 +23,7 @@ import numpy as np
 import pinocchio as pin
 
 from ..errors import ModelError
-from .conventions import ANGLE_TOL, check_sides
+from .conventions import ANGLE_TOL, TYRE_OFF_AXIS_TOL, check_sides
 from .geometry_constants import planar_lengths
 from .model_joints import (bind_springs, finish_coordinates, joint_axis, move_joint_to,
                            unit_direction)
@@ -62,10 +62,34 @@ def _spin_joint(source: UrdfSource, spec: ModelSpec, link: str) -> JointInfo:
                                       f"{where}")
 
 
+def _tyre_plane(source: UrdfSource, spec: ModelSpec, link: str, axis: np.ndarray,
+                radius: float) -> np.ndarray:
+    r"""Where the tyre's mid-plane crosses the spin axis, from the wheel link's origin, in the
+    link's frame: the centre of its cylinder projected on the axis (``axis``, in the link's
+    frame), where the cylinder is about the axis — a tyre set off along its axle (a collision
+    cylinder at ``xyz="0 0.03 0"``) touches the ground in its own mid-plane, not the link's.
+    Zero without a cylinder about the axis; :class:`ModelError` for a cylinder about the
+    axis whose centre is off it (by more than :data:`TYRE_OFF_AXIS_TOL` × the radius)."""
+    placement = source.cylinder_placement(link)
+    if placement is None:
+        return np.zeros(3)
+    centre, cylinder_axis = placement
+    if np.linalg.norm(np.cross(cylinder_axis, axis)) > np.sin(ANGLE_TOL):
+        return np.zeros(3)           # a cylinder turned across the axle: no tyre's plane
+    along = (centre @ axis) * axis
+    off = float(np.linalg.norm(centre - along))
+    if off > TYRE_OFF_AXIS_TOL * radius:
+        raise ModelError(spec.name, link, f"the wheel's cylinder is centred {off:.3g} m off "
+                                          "the spin axis: a rolling wheel is round about its "
+                                          "axle (centre the cylinder on the axis)")
+    return along
+
+
 def _wheel_geometry(source: UrdfSource, spec: ModelSpec, model: pin.Model, data: pin.Data,
-                    link: str) -> tuple[np.ndarray, np.ndarray, float, float, str]:
-    """Centre, spin axis (in the URDF root frame), radius, width and joint name of a wheel
-    (the joint that spins it: the first moving joint above ``link``)."""
+                    link: str) -> tuple[np.ndarray, np.ndarray, float, float, str, np.ndarray]:
+    """Centre (on the tyre's mid-plane: :func:`_tyre_plane`), spin axis (in the URDF root
+    frame), radius, width and joint name of a wheel (the joint that spins it: the first
+    moving joint above ``link``), and the tyre's plane from the link's origin (link frame)."""
     joint = _spin_joint(source, spec, link)
     if joint.type not in ("continuous", "revolute"):
         raise ModelError(spec.name, link, f"wheel joint {joint.name!r} is {joint.type!r}, "
@@ -88,7 +112,9 @@ def _wheel_geometry(source: UrdfSource, spec: ModelSpec, model: pin.Model, data:
         radius, width = cylinder
     if not radius > 0:
         raise ModelError(spec.name, link, f"wheel radius {radius} is not positive")
-    return centre, axis, radius, width, joint.name
+    frame = data.oMf[model.getFrameId(link, pin.FrameType.BODY)]
+    plane = _tyre_plane(source, spec, link, frame.rotation.T @ axis, radius)
+    return frame.act(plane), axis, radius, width, joint.name, plane
 
 
 
@@ -169,7 +195,7 @@ def build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
     pin.forwardKinematics(urdf_model, data, pin.neutral(urdf_model))
     pin.updateFramePlacements(urdf_model, data)
 
-    (cl, al, rl, wl, jl), (cr, ar, rr, wr, jr) = (
+    (cl, al, rl, wl, jl, pl), (cr, ar, rr, wr, jr, pr) = (
         _wheel_geometry(source, spec, urdf_model, data, link) for link in spec.wheels)
     for link, jname in ((spec.wheels[0], jl), (spec.wheels[1], jr)):
         _check_on_body(spec, source, body_link, link, jname)
@@ -220,10 +246,13 @@ def build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
                                   pin.SE3(np.eye(3), -centre))
     coordinate_names = finish_coordinates(spec, model, names)
     wheels = []
-    for link, side, jname, width in ((spec.wheels[0], "left", jl, wl),
-                                     (spec.wheels[1], "right", jr, wr)):
+    for link, side, jname, width, plane in ((spec.wheels[0], "left", jl, wl, pl),
+                                            (spec.wheels[1], "right", jr, wr, pr)):
         jid = model.getJointId(jname)
-        move_joint_to(model, geom, jid, model.frames[model.getFrameId(link, pin.FrameType.BODY)])
+        body = model.frames[model.getFrameId(link, pin.FrameType.BODY)]
+        tyre = pin.Frame(link, body.parentJoint, body.parentFrame,
+                         body.placement * pin.SE3(np.eye(3), plane), pin.FrameType.OP_FRAME)
+        move_joint_to(model, geom, jid, tyre)     # the joint on the tyre's mid-plane
         wheels.append(Wheel(link, side, jname, jid, model.joints[jid].idx_v, rl, width))
     turns = [(wheel.joint_name, _along_axle(model, wheel.joint_id)) for wheel in wheels]
     body_jid = model.frames[model.getFrameId(body_link)].parentJoint

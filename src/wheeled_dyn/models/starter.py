@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .conventions import ANGLE_TOL
+from .conventions import ANGLE_TOL, TYRE_OFF_AXIS_TOL
 from .starter_urdf import caster_links, read_checked
 
 #: Largest relative difference of two wheel radii to pair them.
@@ -66,17 +66,19 @@ class UrdfInventory:
     casters: tuple[str, ...] = ()                       # links keeping the body level
 
 
-def _cylinders(link) -> Iterator[tuple[float, float, np.ndarray, str]]:
-    r"""The link's cylinders, collision ones first: (radius, length, axis, kind)."""
+def _cylinders(link) -> Iterator[tuple[float, float, np.ndarray, str, np.ndarray]]:
+    r"""The link's cylinders, collision ones first: (radius, length, axis, kind, centre), the
+    axis and centre in the link's frame."""
     for kind, shapes in (("collision", link.collisions), ("visual", link.visuals)):
         for shape in shapes:
             cyl = shape.geometry.cylinder if shape.geometry is not None else None
             if cyl is not None:
                 origin = shape.origin if shape.origin is not None else np.eye(4)
-                yield float(cyl.radius), float(cyl.length), np.asarray(origin)[:3, 2], kind
+                yield (float(cyl.radius), float(cyl.length), np.asarray(origin)[:3, 2], kind,
+                       np.asarray(origin)[:3, 3])
 
 
-def _cylinder(link) -> tuple[float, float, np.ndarray, str] | None:
+def _cylinder(link) -> tuple[float, float, np.ndarray, str, np.ndarray] | None:
     return next(_cylinders(link), None)
 
 
@@ -115,8 +117,18 @@ def _candidate(urdf, link, cyl, parent_joint, carriers, root: str, why: dict[str
         why.setdefault(joint.name, f"{link.name}'s {cyl[3]} cylinder axis is {angle:.3g} rad "
                                    f"from the joint axis (at most {ANGLE_TOL} rad for a wheel)")
         return None
-    pos = tuple(float(x) for x in urdf.get_transform(link.name, root)[:3, 3])
-    spin = urdf.get_transform(joint.child, root)[:3, :3] @ (axis / np.linalg.norm(axis))
+    axis = axis / np.linalg.norm(axis)
+    to_child = urdf.get_transform(link.name, joint.child)
+    centre = to_child[:3, :3] @ cyl[4] + to_child[:3, 3]     # the tyre's, in the joint's frame
+    along = (centre @ axis) * axis
+    off = float(np.linalg.norm(centre - along))
+    if off > TYRE_OFF_AXIS_TOL * cyl[0]:
+        why.setdefault(joint.name, f"{link.name}'s {cyl[3]} cylinder is centred {off:.3g} m "
+                                   "off the joint axis (a wheel is round about its axle)")
+        return None
+    child = urdf.get_transform(joint.child, root)
+    pos = tuple(float(x) for x in child[:3, :3] @ along + child[:3, 3])   # the tyre's plane
+    spin = child[:3, :3] @ axis
     return WheelCandidate(link.name, joint.name, cyl[0], cyl[1], pos,  # type: ignore[arg-type]
                           cyl[3], tuple(float(x) for x in spin))  # type: ignore[arg-type]
 

@@ -30,7 +30,7 @@ from .urdf_values import check_urdf_values
 #: Limits written for ``continuous`` joints turned ``revolute`` (radians): wheels never reach them.
 UNBOUNDED_LIMIT = 1.0e6
 #: Version of :class:`UrdfOutline`: entries of another version are not read.
-OUTLINE_VERSION = "1"
+OUTLINE_VERSION = "2"
 
 
 @dataclass(frozen=True)
@@ -46,11 +46,12 @@ class JointInfo:
 @dataclass(frozen=True)
 class UrdfOutline:
     r"""What the builder needs of a URDF beyond Pinocchio's model: its links, its joints and
-    each link's first cylinder (collision, then visual geometry) as (link, radius, length)."""
+    each link's first cylinder (collision, then visual geometry) as (link, radius, length,
+    centre, axis), its centre and axis in the link's frame."""
 
     links: tuple[str, ...]
     joints: tuple[JointInfo, ...]
-    cylinders: tuple[tuple[str, float, float], ...]
+    cylinders: tuple[tuple[str, float, float, tuple[float, ...], tuple[float, ...]], ...]
 
 
 def _outline(path: Path, text: str) -> UrdfOutline:
@@ -75,7 +76,10 @@ def _outline(path: Path, text: str) -> UrdfOutline:
                   if s.geometry is not None and s.geometry.cylinder is not None]
         if shapes:
             cyl = shapes[0].geometry.cylinder
-            cylinders.append((link.name, float(cyl.radius), float(cyl.length)))
+            origin = np.eye(4) if shapes[0].origin is None else np.asarray(shapes[0].origin)
+            cylinders.append((link.name, float(cyl.radius), float(cyl.length),
+                              tuple(float(x) for x in origin[:3, 3]),
+                              tuple(float(x) for x in origin[:3, 2])))
     outline = UrdfOutline(tuple(link.name for link in robot.links),
                           tuple(JointInfo(j.name, j.type, j.parent, j.child)
                                 for j in robot.joints), tuple(cylinders))
@@ -136,7 +140,14 @@ class UrdfSource:
         r"""(radius, length) of the first cylinder among the link's collision, then visual,
         geometries; None if it has none."""
         self.link(link_name)
-        return next(((r, length) for name, r, length in self.outline.cylinders
+        return next(((r, length) for name, r, length, _, _ in self.outline.cylinders
+                     if name == link_name), None)
+
+    def cylinder_placement(self, link_name: str) -> tuple[np.ndarray, np.ndarray] | None:
+        r"""(centre, axis) of the cylinder :meth:`cylinder` reads, in the link's frame; None
+        if it has none."""
+        self.link(link_name)
+        return next(((np.array(c), np.array(a)) for name, _, _, c, a in self.outline.cylinders
                      if name == link_name), None)
 
     def pinocchio_text(self) -> str:
