@@ -59,8 +59,8 @@ def test_readings_scored_together_score_as_each_alone(group, stem):
     for s, group_ in itertools.islice(itertools.groupby(options, key=lambda o: o[0]),
                                       READINGS):
         group_ = list(group_)
-        together = ev.score_readings(ev.doc_at(s), s, [(t, o) for _, t, o, _ in group_])
-        alone = [ev.score(flip_arrays(ev.doc_at(s), s, t, o)) for _, t, o, _ in group_]
+        together = ev.score_readings(ev.doc_at(s), s, [(t, o) for _, t, o, _, _ in group_])
+        alone = [ev.score(flip_arrays(ev.doc_at(s), s, t, o)) for _, t, o, _, _ in group_]
         assert together == alone, s
         values.update(alone)
     assert len(values) > 1                      # the readings do differ

@@ -89,8 +89,7 @@ def convention_finding(engine, d: Derivation, j) -> tuple[Cause, ConventionSumma
     if best is None:
         return None
     reading = best[0]
-    if (any(x < 0 for x in reading[0]) or reading[3]) and one_wrong_entry(j.sides,
-                                                                          d.velocities):
+    if signs.moves_position(reading) and one_wrong_entry(j.sides, d.velocities):
         return None          # one term's error (a gravity sign): said as that, not as a reading
     flipped = signs.flipped(d, *reading)
     better = engine.judge(flipped).result
@@ -110,6 +109,8 @@ def convention_finding(engine, d: Derivation, j) -> tuple[Cause, ConventionSumma
         CauseKind.CONVENTION
     what = "inputs are probably exchanged" if kind == CauseKind.SWAPPED_INPUTS else \
         "angles are probably measured from the opposite direction" if reading[3] else \
+        "angles are probably measured from another link (absolute where the map takes them " \
+        "relative to the link before, or the reverse)" if reading[4] else \
         "declared signs of these are probably reversed"
     cause = Cause(kind, elements, f"{finding}: the file's {what}; the verdicts are under the "
                   "file's declaration (declare the maps the document uses, or "

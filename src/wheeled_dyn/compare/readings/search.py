@@ -18,6 +18,7 @@ from ..judge.diagnose import AGREE_TOL
 from ..judge.equivalence import Side, combination_rows, decide_row
 from ..judge.precision import largest_terms, row_sizes as row_sizes_of
 from ..records import Verdict
+from .relative_angles import Sum, document_state, sum_arrays
 from .signs import flip_arrays
 from .row_factors import (apply_row_factors, decided_factor, explaining, row_factors,
                           row_scales, row_sizes, row_votes)
@@ -61,21 +62,27 @@ class SearchEvaluation(Evaluation):
             self._parts = (row_sizes(truth, n), H)
         return self._parts
 
-    def doc_at(self, s: Sequence[int], offsets: Sequence[int] = ()) -> Arrays:
+    def doc_at(self, s: Sequence[int], offsets: Sequence[int] = (),
+               sums: Sequence[Sum] = ()) -> Arrays:
         r"""The document's arrays at :math:`(S(p - \pi o), S\nu)` on the search's samples,
         :math:`o_k = 1` for the positions ``offsets`` (rows not yet divided by factors): the
-        document read with :math:`p_k \to s_kp_k + \pi o_k` against the truth at :math:`p`."""
+        document read with :math:`p_k \to s_kp_k + \pi o_k` against the truth at :math:`p`;
+        with ``sums``, at :math:`(L^{-1}p, L^{-1}\nu)` and as equations of :math:`p`
+        (:mod:`.relative_angles`)."""
         rows, _, _ = self._subset()
+        values = {p: np.asarray(v)[rows] if np.ndim(v) else v for p, v in self.values.items()}
+        if sums:
+            q, nu = document_state(self.q[rows], self.nu[rows], sums)
+            return sum_arrays(self.funcs.evaluate(q, nu, values), sums)
         S = np.asarray(s, float)
         shift = np.zeros(self.q.shape[1])
         shift[list(offsets)] = np.pi
-        values = {p: np.asarray(v)[rows] if np.ndim(v) else v for p, v in self.values.items()}
         return self.funcs.evaluate((self.q[rows] - shift) * S, self.nu[rows] * S, values)
 
     def weight(self) -> int:
         r"""What one equation right counts in :meth:`score`: more than every element."""
         if not hasattr(self, "_weight"):
-            self._weight = self.elements(self.doc_at((1,) * self.q.shape[1], ())) + 1
+            self._weight = self.elements(self.doc_at((1,) * self.q.shape[1])) + 1
         return self._weight
 
     def most(self) -> int:

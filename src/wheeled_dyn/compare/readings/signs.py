@@ -31,6 +31,7 @@ import sympy as sp
 
 from ...derivations.schema import Derivation
 from ..grid.arrays import Arrays
+from .relative_angles import Sum, describe_sums
 
 #: Most signs searched (positions + inputs): 2**8 readings, each one evaluation of the document.
 MAX_SIGNS = 8
@@ -45,16 +46,19 @@ MIN_GAIN = 3
 #: ... or this many, for a reading that only reorders the inputs (a swap of two symmetric
 #: motors shows in the two elements of the turning row alone).
 MIN_GAIN_ORDER = 2
-#: A reading that moves a position (its sign, or an angle from the opposite direction) must
-#: make this many more elements agree, or equations right.
+#: A reading that moves a position (its sign, an angle from the opposite direction or from
+#: another link) must make this many more elements agree, or equations right.
 MIN_GAIN_OFFSET = 2
 #: The key marking a derivation whose maps a convention has flipped (no search in it again).
 FLIPPED_KEY = "_convention"
 
 
-#: A reading :math:`(s, t, \pi, o)`: the positions' signs, the inputs' signs, the inputs'
-#: order, and the positions (indices) measured from the opposite direction (:math:`+\pi`).
-Reading = tuple[tuple[int, ...], tuple[int, ...], tuple[int, ...], tuple[int, ...]]
+#: A reading :math:`(s, t, \pi, o, \sigma)`: the positions' signs, the inputs' signs, the
+#: inputs' order, the positions (indices) measured from the opposite direction (:math:`+\pi`),
+#: and the positions read as sums (:mod:`.relative_angles`: an angle measured from another
+#: link).
+Reading = tuple[tuple[int, ...], tuple[int, ...], tuple[int, ...], tuple[int, ...],
+                tuple[Sum, ...]]
 
 
 def _input_readings(d: Derivation) -> list[tuple[tuple[int, ...], tuple[int, ...]]]:
@@ -84,7 +88,7 @@ def readings(d: Derivation) -> list[Reading]:
     for s in itertools.product((1, -1), repeat=flips):
         for t, order in _input_readings(d):
             if any(x < 0 for x in (*s, *t)) or order != tuple(range(m)):
-                out.append((tuple(s) if flips else (1,) * n, t, order, ()))
+                out.append((tuple(s) if flips else (1,) * n, t, order, (), ()))
     return out
 
 
@@ -101,7 +105,25 @@ def offset_readings(d: Derivation, angles: Sequence[int]) -> list[Reading]:
     for k in angles:
         for sign in (1, -1):
             s = tuple(sign if j == k else 1 for j in range(n))
-            out += [(s, t, order, (k,)) for t, order in _input_readings(d)]
+            out += [(s, t, order, (k,), ()) for t, order in _input_readings(d)]
+    return out
+
+
+def sum_readings(d: Derivation, angles: Sequence[int]) -> list[Reading]:
+    r"""The readings with one of the ``angles`` measured from another of them, :math:`p_k \to
+    p_k \pm p_j` (:mod:`.relative_angles`: absolute where the file's map takes it relative to
+    the link before, or the reverse), each with every reading of the inputs; only where the
+    file's own map gives its positions and velocities (a holonomic set: its velocities are
+    its positions' rates) and both angles are declared in the same units."""
+    spec = d.coordinates
+    if not readings(d) or spec.use or spec.velocity_map:
+        return []
+    n, units = d.n, [spec.units.get(str(p)) for p in d.positions]
+    out: list[Reading] = []
+    for k, j in itertools.permutations(angles, 2):
+        if units[k] == units[j]:
+            out += [((1,) * n, t, order, (), ((k, j, c),))
+                    for c in (1, -1) for t, order in _input_readings(d)]
     return out
 
 
@@ -143,7 +165,8 @@ def flip_arrays(doc: Arrays, s: Sequence[int], t: Sequence[int],
     return out
 
 
-def best_reading(d: Derivation, evaluate: Callable[[Sequence[int], Sequence[int]], Arrays],
+def best_reading(d: Derivation,
+                 evaluate: Callable[[Sequence[int], Sequence[int], Sequence[Sum]], Arrays],
                  score: Callable[[Arrays], int],
                  score_readings: Callable[[Arrays, Sequence[int], list], list[int]] | None = None,
                  total: int | None = None, complete_gain: int = MIN_GAIN_ORDER,
@@ -154,13 +177,15 @@ def best_reading(d: Derivation, evaluate: Callable[[Sequence[int], Sequence[int]
     one of the ``total`` elements agrees under it (one input's sign in a robot's two rows:
     two elements, and nothing else left to explain; ``complete_gain`` for a file that declares
     its convention unknown, where one input's sign shows in one element) — else None.
-    ``evaluate(s, o)`` gives the document's arrays at the flipped states (the positions
-    ``o`` shifted by π), ``score(arrays)`` the number of agreeing elements;
+    ``evaluate(s, o, σ)`` gives the document's arrays at the flipped states (the positions
+    ``o`` shifted by π, those of ``σ`` read as sums), ``score(arrays)`` the number of
+    agreeing elements;
     ``score_readings(arrays, s, [(t, order), ...])``, where given, the scores of several
     readings of the inputs at once (the same numbers). The ``angles`` are read from the
-    opposite direction too (:func:`offset_readings`) where ``offsets(best score so far)``
-    says so (a reading that leaves most equations wrong: one that makes them right is no
-    π away). A reading that moves a position (its sign, or π) is taken only where it makes
+    opposite direction, or from another of them, too (:func:`offset_readings`,
+    :func:`sum_readings`) where ``offsets(best score so far)`` says so (a reading that leaves
+    most equations wrong: one that makes them right is no π away). A reading that moves a
+    position (its sign, π, or a sum) is taken only where it makes
     at least :data:`MIN_GAIN_OFFSET` more elements agree or more equations right (a score is
     ``weight`` per equation right and one per element): one term's sign is a term's error,
     not a pendulum's angle measured from the upright — unless the file asks for its
@@ -168,7 +193,7 @@ def best_reading(d: Derivation, evaluate: Callable[[Sequence[int], Sequence[int]
     options = readings(d)
     if not options:
         return None
-    declared = score(evaluate((1,) * d.n, ()))
+    declared = score(evaluate((1,) * d.n, (), ()))
     if score_readings is None:
         def score_readings(base, s, rest):
             return [score(flip_arrays(base, s, t, order)) for t, order in rest]
@@ -177,18 +202,19 @@ def best_reading(d: Derivation, evaluate: Callable[[Sequence[int], Sequence[int]
 
     def search(options: list[Reading]) -> None:
         nonlocal best
-        for (s, o), group in itertools.groupby(options, key=lambda r: (r[0], r[3])):
-            members = list(group)                      # each (s, o)'s consecutive
-            values = score_readings(evaluate(s, o), s, [(r[1], r[2]) for r in members])
+        for (s, o, sums), group in itertools.groupby(options,
+                                                     key=lambda r: (r[0], r[3], r[4])):
+            members = list(group)                      # each (s, o, σ)'s consecutive
+            values = score_readings(evaluate(s, o, sums), s, [(r[1], r[2]) for r in members])
             for reading, value in zip(members, values):
-                moves = reading[3] or any(x < 0 for x in reading[0])
+                moves = moves_position(reading)
                 if value > best[1] and (not moves or _offset_gains(
                         value, declared, weight) or (asked and _all_right(value, d.n,
                                                                           weight))):
                     best = (reading, value)
     search(options)
     if angles and (offsets is None or offsets(best[1])):
-        search(offset_readings(d, angles))
+        search(offset_readings(d, angles) + sum_readings(d, angles))
     complete = total is not None and best[1] == total
     if best[0] is None or best[1] < declared + (
             complete_gain if complete else
@@ -198,19 +224,22 @@ def best_reading(d: Derivation, evaluate: Callable[[Sequence[int], Sequence[int]
 
 
 def flipped(d: Derivation, s: Sequence[int], t: Sequence[int],
-            order: Sequence[int] = (), offsets: Sequence[int] = ()) -> Derivation:
-    r"""``d`` with its maps read under :math:`(s, t, \pi, o)` (see the module docstring):
-    position :math:`p_k` read as :math:`s_kp_k`, or :math:`s_kp_k + \pi` for :math:`k` in
-    ``offsets``."""
+            order: Sequence[int] = (), offsets: Sequence[int] = (),
+            sums: Sequence[Sum] = ()) -> Derivation:
+    r"""``d`` with its maps read under :math:`(s, t, \pi, o, \sigma)` (see the module
+    docstring): position :math:`p_k` read as :math:`s_kp_k`, or :math:`s_kp_k + \pi` for
+    :math:`k` in ``offsets``, or :math:`p_k + c\,p_j` for :math:`(k, j, c)` in ``sums``."""
     spec = d.coordinates
     pos = {p: sign * p + (sp.pi if k in offsets else 0)
            for k, (p, sign) in enumerate(zip(d.positions, s)) if sign < 0 or k in offsets}
+    for k, j, c in sums:
+        pos[d.positions[k]] = pos.get(d.positions[k], d.positions[k]) + c * d.positions[j]
     configuration = {k: sp.sympify(v).xreplace(pos) for k, v in spec.configuration.items()}
     sign = dict(zip(spec.velocities, s))
     velocity_map = {v: (-sp.sympify(e) if sign.get(v, 1) < 0 else e)
                     for v, e in spec.velocity_map.items()}
     raw = dict(spec.raw)
-    raw[FLIPPED_KEY] = describe(d, s, t, order, offsets)
+    raw[FLIPPED_KEY] = describe(d, s, t, order, offsets, sums)
     new_spec = replace(spec, configuration=configuration, velocity_map=velocity_map, raw=raw)
     inputs = d.inputs
     u = list(d.input_symbols)
@@ -222,16 +251,17 @@ def flipped(d: Derivation, s: Sequence[int], t: Sequence[int],
 
 
 def describe(d: Derivation, s: Sequence[int], t: Sequence[int],
-             order: Sequence[int] = (), offsets: Sequence[int] = ()) -> str:
+             order: Sequence[int] = (), offsets: Sequence[int] = (),
+             sums: Sequence[Sum] = ()) -> str:
     r"""``"theta → −theta, u1 → −u1, u1 ↔ u2"``: the flipped names and the exchanged inputs,
     in the document's symbols; ``"theta → theta + π"`` (``"π − theta"``) for a position of
-    the ``offsets``."""
+    the ``offsets``; ``"q2 → q2 − q1"`` for one of the ``sums``."""
     parts = [f"{p} → π − {p}" if x < 0 else f"{p} → {p} + π"
              for k, (p, x) in enumerate(zip(d.positions, s)) if k in offsets]
     names = [str(p) for k, (p, x) in enumerate(zip(d.positions, s))
              if x < 0 and k not in offsets]
     names += [str(u) for u, x in zip(d.input_symbols, t) if x < 0]
-    parts += [f"{x} → −{x}" for x in names]
+    parts += [f"{x} → −{x}" for x in names] + describe_sums(d.positions, sums)
     u = list(d.input_symbols)
     done: set[int] = set()
     for k, j in enumerate(order):
@@ -246,9 +276,14 @@ def describe(d: Derivation, s: Sequence[int], t: Sequence[int],
 
 def is_permutation_only(reading: Reading) -> bool:
     r"""A reading that only reorders the inputs (no sign flipped, no position shifted)."""
-    s, t, order, offsets = reading
-    return all(x > 0 for x in (*s, *t)) and not offsets and \
+    s, t, order, offsets, sums = reading
+    return all(x > 0 for x in (*s, *t)) and not offsets and not sums and \
         tuple(order) != tuple(range(len(order)))
+
+
+def moves_position(reading: Reading) -> bool:
+    r"""A reading that moves a position: its sign, π, or a sum of positions."""
+    return bool(reading[3] or reading[4] or any(x < 0 for x in reading[0]))
 
 
 def row_orders(d: Derivation) -> list[tuple[int, ...]]:
@@ -318,4 +353,5 @@ def maps_text(d: Derivation) -> str:
 __all__ = ["MAX_PERMUTED", "MAX_SIGNS", "MIN_GAIN", "MIN_GAIN_ORDER", "Reading", "best_reading",
            "describe", "offset_readings",
            "best_row_order", "describe_rows", "flip_arrays", "flipped", "is_permutation_only",
-           "maps_text", "permute_rows", "readings", "reordered", "row_orders"]
+           "maps_text", "moves_position", "permute_rows", "readings", "reordered", "row_orders",
+           "sum_readings"]
