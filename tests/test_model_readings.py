@@ -45,14 +45,17 @@ def test_a_locked_joint_is_part_of_its_body():
 
 def test_a_robot_as_published_says_what_it_leaves_out():
     r"""PAL's TIAGo (example-robot-data): its arm joints are damped and its motors have
-    transmissions; TIAGo with its arm locked keeps only the wheels' transmissions."""
+    transmissions; TIAGo with its arm locked keeps only the wheels' transmissions, and its
+    wheels are round to their rounding (:mod:`test_round_wheels`)."""
     full = load_model("tiago").readings
     assert full[0].startswith("joints torso_lift_joint, head_1_joint, head_2_joint and 7 "
                               "more: the damping and friction of their dynamics element"), full
     base = load_model("tiago_base").readings
-    assert base == ("transmissions wheel_right_trans, wheel_left_trans: not applied; the "
-                    "model's inputs are its joints' torques (a reduction between motor and "
-                    "joint is the document's to state)",), base
+    assert base[0] == ("transmissions wheel_right_trans, wheel_left_trans: not applied; the "
+                       "model's inputs are its joints' torques (a reduction between motor and "
+                       "joint is the document's to state)"), base
+    assert len(base) == 2 and base[1].startswith("wheels wheel_left_link, wheel_right_link: "
+                                                 "axisymmetric about their axles"), base
 
 
 def test_a_footprint_off_the_ground_is_said(tmp_path):

@@ -28,6 +28,7 @@ from .geometry_constants import planar_lengths
 from .model_joints import (bind_springs, finish_coordinates, joint_axis, move_joint_to,
                            unit_direction)
 from .readings import TURN_NOTED, ground_reading, wheel_turn
+from .round_wheels import asymmetry, round_reading
 from .urdf_source import JointInfo, UrdfSource
 from .wheeled_model import ModelSpec, Wheel, WheeledModel
 
@@ -265,5 +266,9 @@ def build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
                         springs=bind_springs(spec, model, coordinate_names), lengths=lengths,
                         readings=ground_reading(source.text, source.root_link(),
                                                 rl - float(centre @ up), rl)
-                        + tuple(wheel_turn(j, a) for j, a in turns if a > TURN_NOTED))
+                        + tuple(wheel_turn(j, a) for j, a in turns if a > TURN_NOTED)
+                        + round_reading([w.link for w in wheels], [
+                            asymmetry(model.inertias[w.joint_id],
+                                      joint_axis(model.joints[w.joint_id]), w.radius)
+                            for w in wheels]))
 

@@ -30,6 +30,7 @@ import pinocchio as pin
 from ...errors import ParameterError
 from ...models.builder import WheeledModel
 from ...models.geometry_apply import FACTOR, apply_geometry, bodies_of, draw_geometry
+from ...models.round_wheels import made_round
 from ...models.registry import load_model, model_entry, model_parameters
 from ...models.springs import with_stiffness
 from ...models.wip_parameters import WipParameters, random_wip_parameters
@@ -214,6 +215,9 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
                 pin.LogCholeskyParameters(theta))
     if not composed & {w.joint_id for w in wm.wheels}:
         _alike_wheels(wm, model, rng)
+    else:                                 # uniform wheels, drawn with the lengths: as round
+        for jid, axis in round_wheels(wm).items():
+            model.inertias[jid] = made_round(model.inertias[jid], axis)
     for jid in _massless_bodies(wm, massless):
         model.inertias[jid] = pin.Inertia.Zero()
     if principal:
@@ -231,17 +235,35 @@ def _alike_wheels(wm: WheeledModel, model: pin.Model, rng: np.random.Generator) 
     r"""The two drive wheels of a wheeled model stay alike, as the model declares them: each
     is its URDF inertia scaled by one shared random mass factor and size factor (a centred,
     axisymmetric wheel stays so; the two stay equal; the size is not the drawn radius: a
-    document's disc wheel, I = m R²/2, needs a family)."""
+    document's disc wheel, I = m R²/2, needs a family); wheels axisymmetric to a CAD export's
+    rounding are drawn axisymmetric (:func:`round_wheels`)."""
     wheels = tuple(getattr(wm.spec, "wheels", ()) or ())
     if len(wheels) != 2:
         return
     mass, size = rng.uniform(0.5, 2.0), rng.uniform(0.8, 1.25)
+    axles = round_wheels(wm)
     for link in wheels:
         jid = wm.joint_id_of_link(link)
         old = wm.model.inertias[jid]
+        old = made_round(old, axles[jid]) if jid in axles else old
         if old.mass > 0:
             model.inertias[jid] = pin.Inertia(old.mass * mass, old.lever * size,
                                               old.inertia * mass * size**2)
+
+
+def round_wheels(wm: WheeledModel) -> dict[int, np.ndarray]:
+    r"""The drive wheels' axles (in their joints' frames, by joint) where every wheel's URDF
+    inertia is within :data:`~wheeled_dyn.models.round_wheels.ROUND_TOL` of axisymmetric
+    about it (they are drawn axisymmetric); empty otherwise."""
+    from ...models.model_joints import joint_axis
+    from ...models.round_wheels import ROUND_TOL, asymmetry
+    out = {}
+    for wheel in wm.wheels:
+        axis = joint_axis(wm.model.joints[wheel.joint_id])
+        if asymmetry(wm.model.inertias[wheel.joint_id], axis, wheel.radius) > ROUND_TOL:
+            return {}
+        out[wheel.joint_id] = axis
+    return out
 
 
 def parameter_sets(model_name: str, k: int, rng: np.random.Generator,
