@@ -5,7 +5,8 @@ verdicts under them are the verdicts (declarations are binding). When the equati
 right as declared, the signs of the positions and inputs and the order of the inputs are
 searched (:mod:`..readings.signs`), and where most equations stay wrong an angle read from the
 opposite direction (θ → θ + π, π − θ: measured from the upright where the map measures it
-hanging); a reading under which more elements agree is reported as a cause — "under
+hanging) or from another link (q₂ → q₂ ± q₁: :mod:`..readings.relative_angles`); a reading
+under which more elements agree is reported as a cause — "under
 τ → −τ, 30 elements agree instead of 19 (every equation is right): the file's torque signs
 are probably reversed" — with the verdicts left as declared.
 
