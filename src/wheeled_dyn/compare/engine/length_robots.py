@@ -23,7 +23,7 @@ import sympy as sp
 from ...compiled import numpy_function
 from ...derivations.schema import Derivation
 from ..grid.samples import ParameterSet
-from ..sides.document import model_value
+from ..grid.values import model_value
 
 #: Robots drawn, and the largest factor of each of their lengths (the smallest: its inverse).
 SETS, SPREAD = 16, 10.0

@@ -38,7 +38,7 @@ from ...compiled import numpy_function
 from ...derivations.namespace import GEOMETRY_NAMES, KHALIL_NAMES, PHYSICAL_NAMES
 from ...derivations.schema import Derivation
 from ..grid.samples import ParameterSet
-from ..sides.document import model_value
+from ..grid.values import model_value
 
 #: A link's parameters that scale with its density: its mass, first moments and inertias
 #: (Khalil's about its origin, and those about its centre).

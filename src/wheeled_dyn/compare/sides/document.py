@@ -12,12 +12,12 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 import sympy as sp
-from sympy.core.function import AppliedUndef
 
 from ...derivations.schema import Derivation
 from ...compiled import numpy_function
 from ..grid.arrays import Arrays
 from ..grid.samples import ParameterSet, parameter_sets
+from ..grid.values import model_value
 
 #: Range of the random values of a document's free symbols (present on both sides).
 FREE_RANGE = (0.5, 2.0)
@@ -37,31 +37,6 @@ def document_arrays(d: Derivation, funcs: "DocumentFunctions", sets, q: np.ndarr
     if doc.H is not None and H_rows is not None:
         doc.H = doc.H[H_rows]
     return doc, per_set, values
-
-
-#: Each model-namespace expression's calls with their names (``XX(link)``), found once.
-_CALLS: dict[sp.Expr, tuple[tuple[sp.Expr, str], ...]] = {}
-
-
-def model_value(expr: sp.Expr, values: Mapping[str, float]) -> float:
-    r"""A model-namespace expression (physical names, ``XX(link)`` calls) at ``values``."""
-    named = _CALLS.get(expr)
-    if named is None:
-        named = _CALLS[expr] = tuple((call, f"{call.func.__name__}({call.args[0]})")
-                                     for call in expr.atoms(AppliedUndef))
-    calls = {}
-    for call, key in named:
-        if key not in values:
-            from ...errors import UnknownNameError
-            raise UnknownNameError("model parameter", key,
-                                   [k for k in values if "(" in k])
-        calls[call] = sp.Float(values[key])
-    expr = expr.xreplace(calls)
-    missing = [s.name for s in expr.free_symbols if s.name not in values]
-    if missing:
-        from ...errors import UnknownNameError
-        raise UnknownNameError("model parameter", missing[0], values)
-    return float(expr.xreplace({s: values[s.name] for s in expr.free_symbols}))
 
 
 def document_symbol_values(d: Derivation, ps: ParameterSet, rng: np.random.Generator) -> dict[sp.Symbol, float]:

@@ -20,7 +20,7 @@ from ...grid.samples import ParameterSet, SpecialCase, parameter_sets, special_c
 from ...judge.diagnose import agrees
 from ...readings.row_factors import ROW_FACTORS
 from ...records import DerivationResult
-from ...sides.document import model_value
+from ...grid.values import model_value
 from .text import CHECK_TOL
 
 
