@@ -479,8 +479,9 @@ def test_constraint_substituted_into_the_lagrangian():
 
 
 def test_no_quasi_coordinate_cause_where_no_velocity_term_came_from_the_documents_a(tmp_path):
-    r"""A differential-drive robot whose wheels carry a small product of inertia (ixz, as CAD
-    exports write it) and the (v, ω) equations of Dhaouadi & Abu Hatab (2013), which take the
+    r"""A differential-drive robot whose wheels carry a product of inertia (ixz, 3e-3 of their
+    moments: more than a CAD export's rounding, which would be drawn round:
+    :mod:`test_round_wheels`) and the (v, ω) equations of Dhaouadi & Abu Hatab (2013), which take the
     wheels as symmetric: the truth's q̇₁² and ω² terms of the second equation are missing. The
     document's A is constant, so its own Christoffel terms are all zero and none of its velocity
     terms (m_c d ω², m_c d ω v) is one: the missing terms are physics it leaves out, not the
@@ -497,7 +498,7 @@ def test_no_quasi_coordinate_cause_where_no_velocity_term_came_from_the_document
     wheel = 'ixx="0.0009" ixy="0" ixz="0" iyy="0.0009"'
     assert urdf.count(wheel) == 2
     (tmp_path / "dd_robot.urdf").write_text(urdf.replace(wheel, wheel.replace(
-        'ixz="0"', 'ixz="3e-8"')))
+        'ixz="0"', 'ixz="3e-6"')))
     (tmp_path / "dd_robot.toml").write_text((data / "dd_robot.toml").read_text())
     (tmp_path / "doc.toml").write_text((data / "dd_swivel_vw.toml").read_text().replace(
         'model = "dd_swivel.toml"', 'model = "dd_robot.toml"'))
@@ -517,7 +518,8 @@ def test_an_equation_no_element_of_which_differs_is_not_agrees_only_if(tmp_path,
     hold", no family named and none of its elements needing one; it now differs, saying the
     difference is spread over its terms and how large it is. (The elements are judged at their
     rows' scale here, as they were when this was found; at their own size the product's
-    element differs.)"""
+    element differs. The file names the product, so the wheels are drawn as the URDF has
+    them, not round: :mod:`test_round_wheels`.)"""
     from dataclasses import replace
     from pathlib import Path
 
@@ -531,7 +533,8 @@ def test_an_equation_no_element_of_which_differs_is_not_agrees_only_if(tmp_path,
         wheel, wheel.replace('ixz="0"', 'ixz="1e-10"')))
     (tmp_path / "dd_robot.toml").write_text((data / "dd_robot.toml").read_text())
     (tmp_path / "doc.toml").write_text((data / "dd_swivel_vw.toml").read_text().replace(
-        'model = "dd_swivel.toml"', 'model = "dd_robot.toml"'))
+        'model = "dd_swivel.toml"', 'model = "dd_robot.toml"').replace(
+        "[symbols]", '[symbols]\nP = { value = "IXZ(left_wheel)", units = "kg*m**2" }'))
     from wheeled_dyn.compare.engine import deciding
     calls = []
     decide = deciding.decide

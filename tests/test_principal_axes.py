@@ -1,5 +1,7 @@
 r"""Products of inertia a derivation leaves out. URDFs exported from CAD give every link small
-products of inertia (a probe's TurtleBot-like wheel: ixz of 6e-9 kg m²; here 3e-8); a
+products of inertia (a probe's TurtleBot-like wheel: ixz of 6e-9 kg m²; here 3e-6, 3e-3 of the
+wheel's moments: more than the rounding below which a wheel is drawn round,
+:mod:`test_round_wheels`); a
 derivation in Dhaouadi & Abu Hatab's (v, ω) form of a differential-drive robot (2013) takes the
 axes as principal.
 The truth carries them (``urdf_structure`` keeps what the URDF has), and the elements they
@@ -28,7 +30,7 @@ def _doc(tmp_path: Path, declared: bool) -> Path:
     urdf = (DATA / "dd_robot.urdf").read_text()
     assert urdf.count(WHEEL) == 2
     (tmp_path / "dd_robot.urdf").write_text(urdf.replace(WHEEL, WHEEL.replace(
-        'ixz="0"', 'ixz="3e-8"')))
+        'ixz="0"', 'ixz="3e-6"')))
     (tmp_path / "dd_robot.toml").write_text((DATA / "dd_robot.toml").read_text())
     text = (DATA / "dd_swivel_vw.toml").read_text().replace('model = "dd_swivel.toml"',
                                                              'model = "dd_robot.toml"')

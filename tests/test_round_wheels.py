@@ -156,3 +156,49 @@ def test_a_planted_sign_still_differs(tmp_path, form):
         assert result.causes[0].kind == CauseKind.SIGN, result.causes
     else:                            # (φ̇_R − φ̇_L)² in both wheels' equations
         assert wrong and all(x.startswith("h[") for x in wrong), wrong
+
+
+def _implied(tmp_path: Path, extra: str) -> bool:
+    r"""Whether the (v, ω) file with the symbols ``extra`` added is compared with TIAGo's
+    wheels drawn round, not declaring it."""
+    from wheeled_dyn.compare.grid.assumptions import declared
+    path = _write(tmp_path, "v_omega")
+    path.write_text(path.read_text().replace("[matrices]", extra + "\n[matrices]"))
+    return any(c.name == "round_wheels" for c in declared(load_derivation(path)).families)
+
+
+def test_round_wheels_are_implied_only_where_nothing_of_their_asymmetry_is_written(tmp_path):
+    r"""A symbol that vanishes with the wheels rounded (a product of inertia), or two that
+    come to be equal (the moments about the two diameters), model the asymmetry: the wheels
+    are then drawn as the URDF has them."""
+    assert _implied(tmp_path, "")
+    assert not _implied(tmp_path, 'p = { value = "IXY(wheel_left_link)", units = "kg*m**2" }')
+    assert not _implied(tmp_path, 'D1 = { value = "IXX(wheel_left_link)", units = "kg*m**2" }')
+    assert _implied(tmp_path, 'J2 = { value = "IZZ(wheel_right_link)", units = "kg*m**2" }')
+
+
+def test_an_eccentric_wheels_term_is_compared(tmp_path):
+    r"""Wheels whose centres of mass are 5e-6 m off their axles (5e-5 of the radius): a
+    document that writes the right wheel's gravity term, :math:`m_wge\cos\varphi_R` with
+    :math:`e` = CX(right_wheel), with the wrong sign differs there (drawn round, e would be
+    0 and the term unchecked)."""
+    import shutil
+    data = Path(__file__).parent / "data" / "published"
+    urdf = (data / "dd_offset.urdf").read_text().replace(
+        '<inertial><origin xyz="0 0 0"/><mass value="0.6"/>',
+        '<inertial><origin xyz="0.000005 0 0"/><mass value="0.6"/>')
+    (tmp_path / "dd_offset.urdf").write_text(urdf)
+    shutil.copy(data / "dd_offset.toml", tmp_path / "dd_offset.toml")
+    text = (data / "dd_offset_wheels.toml").read_text()
+    text = text.replace('model = "dd_offset.toml"', f'model = "{tmp_path / "dd_offset.toml"}"')
+    text = text.replace("[matrices]", 'g = { value = "g", units = "m/s**2" }\n'
+                        'e = { value = "CX(right_wheel)", units = "m" }\n'
+                        'e_l = { value = "CX(left_wheel)", units = "m" }\n[matrices]')
+    text = text.replace(" = tau_R", " + m_w*g*e*cos(phi_R) = tau_R")
+    text = text.replace(" = tau_L", " - m_w*g*e_l*cos(phi_L) = tau_L")
+    doc = tmp_path / "eccentric.toml"
+    doc.write_text(text)
+    result = _compare(doc)
+    q1 = next(r for r in result.records if r.element == "Q[1]")
+    assert q1.verdict == Verdict.DIFFERS
+    assert any(x.kind.value == "sign" for x in q1.diagnoses), q1.diagnoses

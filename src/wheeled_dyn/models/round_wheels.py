@@ -6,13 +6,14 @@ reduced equations a difference of about 1e-7 of a row: the size of the compariso
 so each verdict would be the draw's.
 
 The comparisons' random parameter sets draw the two wheels alike, each its URDF inertia scaled
-(:func:`~wheeled_dyn.compare.grid.samples.parameter_sets`); a wheel within
-:data:`ROUND_TOL` of axisymmetric is drawn axisymmetric (:func:`made_round`: about its
-centre, :math:`J\,nn^T + D\,(I - nn^T)` with :math:`n` the axle and :math:`D` the mean of the
-moments about its diameters; its centre of mass put on the axle), and the model's readings
-say so (:func:`round_reading`). A wheel further from it is drawn as the URDF has it, and a
-derivation that takes it as round differs where that shows. The model's own matrices
-(``wheeled-dyn matrices``) are the URDF's, unrounded.
+(:func:`~wheeled_dyn.compare.grid.samples.parameter_sets`); wheels within :data:`ROUND_TOL` of
+axisymmetric are drawn axisymmetric (:func:`made_round`: about the centre,
+:math:`J\,nn^T + D\,(I - nn^T)` with :math:`n` the axle and :math:`D` the mean of the
+moments about the diameters; the centre of mass put on the axle) where the derivation writes
+nothing of their asymmetry (:mod:`wheeled_dyn.compare.grid.round_wheels`), and the model's
+readings say so (:func:`round_reading`). Wheels further from it are drawn as the URDF has
+them (a derivation taking them round differs, "agrees only if round_wheels"). The model's own
+matrices (``wheeled-dyn matrices``) are the URDF's, unrounded.
 """
 
 from __future__ import annotations
@@ -74,7 +75,7 @@ def round_reading(links: Sequence[str], asymmetries: Sequence[float]) -> tuple[s
     return (f"wheels {', '.join(links)}: axisymmetric about their axles to {worst:.1g} (their "
             "moments about their diameters, their products of inertia, their centres of mass "
             "off the axle: a CAD export's rounding); the comparisons' random parameter sets "
-            "draw them axisymmetric",)
+            "draw them axisymmetric where a derivation writes nothing of their asymmetry",)
 
 
 __all__ = ["ROUND_TOL", "asymmetry", "made_round", "round_reading"]

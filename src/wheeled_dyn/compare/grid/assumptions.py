@@ -33,7 +33,9 @@ import sympy as sp
 from ...derivations.schema import Derivation
 from ...errors import DerivationError, ParameterError, UnknownNameError
 from ..records import Cause, CauseKind
-from .samples import SpecialCase, family, massless_family, special_cases
+from .round_wheels import IMPLIED_ROUND_WHEELS, implied_round_wheels
+from .samples import (ROUND_WHEELS, SpecialCase, family, massless_family,
+                      special_cases)
 
 
 #: A declared range narrower than this share of the default span of a position is said
@@ -99,6 +101,8 @@ def declared(d: Derivation) -> Assumptions:
     drawn: Mapping[str, Any] = coordinates.get("ranges", {})
     ranges = tuple((str(p), float(r[0]), float(r[1])) for p, r in drawn.items()
                    if p not in dict(point))
+    if not any(c.name == ROUND_WHEELS.name for c in families) and implied_round_wheels(d):
+        families.append(IMPLIED_ROUND_WHEELS)
     return Assumptions(tuple(families), point, raw.get("potential") == "equilibrium",
                        tuple(raw.get("text", ())), ranges)
 
@@ -143,7 +147,8 @@ def undeclared_cases(d: Derivation, assumed: Assumptions) -> tuple[SpecialCase, 
     r"""The parameter families ``d`` does not declare, weakest first: its model's special
     cases, then, for a model without a physical record, the links the document leaves out
     carrying no mass (:func:`left_out`)."""
-    cases = [c for c in special_cases(d.model) if c not in assumed.families]
+    names = {c.name for c in assumed.families}
+    cases = [c for c in special_cases(d.model) if c.name not in names]
     links = left_out(d)
     if links and not any(set(links) <= set(c.massless) for c in assumed.families):
         them = "it" if len(links) == 1 else "them"

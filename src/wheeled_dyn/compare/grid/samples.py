@@ -85,6 +85,14 @@ URDF_PROPORTIONS = SpecialCase(
     "as a whole, its lengths with it: a uniform body stays uniform)", lambda p: p, ())
 
 
+#: Wheeled models: the two drive wheels axisymmetric about their axles, as a derivation takes
+#: a wheel (:mod:`~wheeled_dyn.models.round_wheels`): declared, offered as an explanation, and
+#: implied where the URDF's are so to its rounding (:mod:`.round_wheels`).
+ROUND_WHEELS = SpecialCase(
+    "round_wheels", "the drive wheels are axisymmetric about their axles (one moment about "
+    "every diameter, no products of inertia, the centres of mass on the axles)", lambda p: p)
+
+
 def uniform_family(links: Sequence[str]) -> SpecialCase:
     r"""The family in which ``links`` stay uniform bodies (declared in a derivation's
     ``[assumes] uniform``)."""
@@ -176,7 +184,7 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
                           keep_structure: bool = False,
                           uniform: frozenset[str] | set[str] = frozenset(),
                           massless: Collection[str] = (), principal: bool = False,
-                          spread: float = FACTOR) -> WheeledModel:
+                          spread: float = FACTOR, rounded: bool = False) -> WheeledModel:
     r"""Random lengths (the ``uniform`` links scaled as a whole with a random mass factor
     each, and their bodies put together again from their links:
     :mod:`~wheeled_dyn.models.geometry_apply`), and random, physically consistent inertias
@@ -188,7 +196,8 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
     with ``principal`` every body's inertia about its centre is made diagonal in its joint's
     axes (the diagonal of a valid one is valid: :math:`J_{ii} = \Sigma_{jj} + \Sigma_{kk}` of
     the second moments' diagonal). ``spread``: each length's factor is drawn in
-    :math:`[1/s, s]` (and with ``keep_structure`` each centre-of-mass coordinate's too)."""
+    :math:`[1/s, s]` (and with ``keep_structure`` each centre-of-mass coordinate's too).
+    ``rounded``: the drive wheels axisymmetric (:data:`ROUND_WHEELS`)."""
     drawn = _with_geometry(wm, rng, uniform, spread)
     model = pin.Model(drawn.model)               # never the model of ``wm`` itself
     composed = {jid for jid, links in bodies_of(wm).items() if uniform & set(links)}
@@ -214,9 +223,9 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
             model.inertias[jid] = pin.Inertia.FromLogCholeskyParameters(
                 pin.LogCholeskyParameters(theta))
     if not composed & {w.joint_id for w in wm.wheels}:
-        _alike_wheels(wm, model, rng)
-    else:                                 # uniform wheels, drawn with the lengths: as round
-        for jid, axis in round_wheels(wm).items():
+        _alike_wheels(wm, model, rng, rounded)
+    elif rounded:                         # uniform wheels, drawn with the lengths: as round
+        for jid, axis in wheel_axles(wm).items():
             model.inertias[jid] = made_round(model.inertias[jid], axis)
     for jid in _massless_bodies(wm, massless):
         model.inertias[jid] = pin.Inertia.Zero()
@@ -231,17 +240,18 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
     return drawn.with_model(model, springs)
 
 
-def _alike_wheels(wm: WheeledModel, model: pin.Model, rng: np.random.Generator) -> None:
+def _alike_wheels(wm: WheeledModel, model: pin.Model, rng: np.random.Generator,
+                  rounded: bool = False) -> None:
     r"""The two drive wheels of a wheeled model stay alike, as the model declares them: each
     is its URDF inertia scaled by one shared random mass factor and size factor (a centred,
     axisymmetric wheel stays so; the two stay equal; the size is not the drawn radius: a
-    document's disc wheel, I = m R²/2, needs a family); wheels axisymmetric to a CAD export's
-    rounding are drawn axisymmetric (:func:`round_wheels`)."""
+    document's disc wheel, I = m R²/2, needs a family); ``rounded``: axisymmetric
+    (:data:`ROUND_WHEELS`)."""
     wheels = tuple(getattr(wm.spec, "wheels", ()) or ())
     if len(wheels) != 2:
         return
     mass, size = rng.uniform(0.5, 2.0), rng.uniform(0.8, 1.25)
-    axles = round_wheels(wm)
+    axles = wheel_axles(wm) if rounded else {}
     for link in wheels:
         jid = wm.joint_id_of_link(link)
         old = wm.model.inertias[jid]
@@ -251,19 +261,10 @@ def _alike_wheels(wm: WheeledModel, model: pin.Model, rng: np.random.Generator) 
                                               old.inertia * mass * size**2)
 
 
-def round_wheels(wm: WheeledModel) -> dict[int, np.ndarray]:
-    r"""The drive wheels' axles (in their joints' frames, by joint) where every wheel's URDF
-    inertia is within :data:`~wheeled_dyn.models.round_wheels.ROUND_TOL` of axisymmetric
-    about it (they are drawn axisymmetric); empty otherwise."""
+def wheel_axles(wm: WheeledModel) -> dict[int, np.ndarray]:
+    r"""The drive wheels' axles in their joints' frames, by joint."""
     from ...models.model_joints import joint_axis
-    from ...models.round_wheels import ROUND_TOL, asymmetry
-    out = {}
-    for wheel in wm.wheels:
-        axis = joint_axis(wm.model.joints[wheel.joint_id])
-        if asymmetry(wm.model.inertias[wheel.joint_id], axis, wheel.radius) > ROUND_TOL:
-            return {}
-        out[wheel.joint_id] = axis
-    return out
+    return {w.joint_id: joint_axis(wm.model.joints[w.joint_id]) for w in wm.wheels}
 
 
 def parameter_sets(model_name: str, k: int, rng: np.random.Generator,
@@ -293,8 +294,10 @@ def parameter_sets(model_name: str, k: int, rng: np.random.Generator,
     uniform = uniform_links(base, special)
     massless = {link for case in special for link in case.massless}
     principal = NO_PRODUCTS in special
+    rounded = any(c.name == ROUND_WHEELS.name for c in special)   # declared or implied
     for _ in range(k):
-        wm = _random_link_inertias(base, rng, keep, uniform, massless, principal, spread)
+        wm = _random_link_inertias(base, rng, keep, uniform, massless, principal, spread,
+                                   rounded)
         out.append(ParameterSet(wm, namespace_values(wm, None)))
     return out
 
@@ -328,15 +331,16 @@ UNIFORM_LINK_FAMILIES = 4
 def special_cases(model_name: str) -> tuple[SpecialCase, ...]:
     r"""The special families of a model, weakest first: the WIP's
     (:data:`WIP_SPECIAL_CASES`); for the others ``urdf_structure``, ``principal_axes``
-    (:data:`NO_PRODUCTS`), each link with mass
-    uniform alone (:func:`uniform_family`, two to :data:`UNIFORM_LINK_FAMILIES` such links)
+    (:data:`NO_PRODUCTS`), for a wheeled model ``round_wheels`` (:data:`ROUND_WHEELS`),
+    each link with mass uniform alone (:func:`uniform_family`, two to :data:`UNIFORM_LINK_FAMILIES` such links)
     and every link uniform (``urdf_proportions``)."""
     if model_entry(model_name).parameters is WipParameters:
         return WIP_SPECIAL_CASES
     links = sorted(uniform_links(load_model(model_name), (URDF_PROPORTIONS,)))
     each = tuple(uniform_family((link,)) for link in links) \
         if 2 <= len(links) <= UNIFORM_LINK_FAMILIES else ()
-    return (URDF_STRUCTURE, NO_PRODUCTS, *each, URDF_PROPORTIONS)
+    wheels = (ROUND_WHEELS,) if len(load_model(model_name).wheels) == 2 else ()
+    return (URDF_STRUCTURE, NO_PRODUCTS, *wheels, *each, URDF_PROPORTIONS)
 
 
 def regular_states(cmap, q: np.ndarray, rng: np.random.Generator,
