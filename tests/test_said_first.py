@@ -114,3 +114,37 @@ def test_a_mass_left_out_is_no_point_mass(tmp_path):
     assert not any(d.kind == K.POINT_MASS for d in a11.diagnoses), a11.diagnoses
     cause = next(c for c in result.causes if "A[1,1]" in c.elements)
     assert cause.kind == CauseKind.MISSING_PHYSICS and "A[1,1] lacks m" in cause.explanation
+
+
+def test_a_factor_is_said_only_where_an_author_could_have_written_it():
+    r"""A term "c × what fits" for a c an author types or a simple ratio gives (2, 3/4, 0.999,
+    1000 for a unit, 180/π); not for a coincidence of the numbers: 1.179e7 (a term a CAD
+    export's rounding is all the truth has of) or 0.8083 (a ratio a family fixes) — a probe's
+    differential drive was told "the term −m_w r²/2 is 1.179e+07 × what fits"."""
+    import math
+
+    from wheeled_dyn.compare.judge.diagnose import plausible_factor
+    for c in (2, -1, 0.5, 0.75, 4 / 3, 16 / 9, 0.999, 1000, 1e-3, 180 / math.pi, 2 * math.pi):
+        assert plausible_factor(c), c
+    for c in (1.179e7, 0.8083001147348357, 0.0, math.inf, math.nan, 1 + 3.1e-7):
+        assert not plausible_factor(c), c
+
+
+def test_a_dropped_coupling_is_said_by_its_h_term_where_its_c_element_names_none(tmp_path):
+    r"""TIAGo's (v, ω) equations as matrices (Fierro & Lewis's M v̇ + V v = B τ,
+    :mod:`test_round_wheels`) with :math:`C_{21} = m_cd\omega` written 0: the truth's
+    :math:`C_{21}` in the document's symbols carries terms of the wheels' rounding besides
+    it, so only h[2]:v*omega names the term; the cause now says it (it said none, every
+    record having to name one)."""
+    from test_round_wheels import HEAD, V_OMEGA
+    matrices = ('A = "[[m_c + 2*m_w + 2*I_w/r**2, -m_c*c], [-m_c*c, I_c + m_c*(d**2 + c**2) '
+                '+ 2*m_w*(L + e)**2 + 2*I_m + 2*L**2*I_w/r**2]]"\n'
+                'C = "[[0, -m_c*d*omega], [0, 0]]"\n'
+                'B = "[[1/r, 1/r], [L/r, -L/r]]"\n')
+    text = HEAD.format(form="matrices", coordinates=V_OMEGA, assumes="", eqs="")
+    text = text[:text.index("equations = [")] + matrices
+    path = tmp_path / "dropped.toml"
+    path.write_text(text)
+    result = _compare(path)
+    cause = next(c for c in result.causes if c.kind == CauseKind.MISSING_PHYSICS)
+    assert "h[2]:v*omega lacks d*m_c" in cause.explanation, cause.explanation

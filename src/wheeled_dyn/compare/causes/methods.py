@@ -194,16 +194,17 @@ TERMS_SAID = 3
 def terms_said(records: Sequence) -> str:
     r"""The terms the records name as lacking or too much (a centripetal term dropped from a
     C otherwise right: "; h[2]:dtheta*dtheta lacks -m2*r"; one entry read back before the
-    equations were solved, said once for every element it reaches), or ``""`` where one
-    names none or there are more than :data:`TERMS_SAID` (a cause of missing or extra
-    terms, or of a C not derived from A, says them)."""
+    equations were solved, said once for every element it reaches), or ``""`` where none
+    names one or there are more than :data:`TERMS_SAID` (a cause of missing or extra
+    terms, or of a C not derived from A, says them). A record that names none is passed
+    over (a C element whose truth carries more than the product named in h: the h element
+    says the term)."""
     by: dict = {}
     for r in records:
         named = next((x for x in r.diagnoses if x.kind in (K.MISSING, K.EXTRA) and x.terms),
                      None)
-        if named is None:
-            return ""
-        by.setdefault(named, []).append(r.element)
+        if named is not None:
+            by.setdefault(named, []).append(r.element)
     if not by or len(by) > TERMS_SAID:
         return ""
     said = [x.detail if len(elements) > 1 else f"{elements[0]} " + (

@@ -56,6 +56,31 @@ def nice_number(c: float) -> str:
     return repr(c)
 
 
+#: Significant digits (and denominators) of a factor an author can have written or a simple
+#: ratio gives: a term "c × what fits" is said only for such a c (:func:`plausible_factor`).
+FACTOR_DIGITS = 1000
+
+
+def plausible_factor(c: float) -> bool:
+    r"""Whether ``c`` is a factor a term can be wrong by: :math:`(p/q)\,10^k\,\pi^j` with
+    :math:`|p| \le` :data:`FACTOR_DIGITS`, :math:`q \le 12`, :math:`|k| \le 9`,
+    :math:`j \in \{-1, 0, 1\}` (a typed 0.999 for 1, 2 for 1, 3/4, 1000 for a unit, 180/π);
+    not a coincidence of the numbers (1.179e7 where a CAD export's rounding is all a term
+    has, 0.8083 where a family fixes a ratio)."""
+    if not np.isfinite(c) or c == 0:
+        return False
+    for base in (c, c / np.pi, c * np.pi):
+        for k in range(-9, 10):
+            x = base / 10.0 ** k
+            if not 1.0 <= abs(x) <= FACTOR_DIGITS:
+                continue
+            frac = sp.nsimplify(x, tolerance=FRACTION_TOL * max(1.0, abs(x)), rational=True)
+            if frac.q <= 12 and abs(frac.p) <= FACTOR_DIGITS and \
+                    abs(float(frac) - x) <= FRACTION_TOL * max(1.0, abs(x)):
+                return True
+    return False
+
+
 #: Denominators above which a fraction of a document's term is printed as the decimal it was
 #: written as (the parser reads 0.241704332108682 as 120852166054341/500000000000000).
 DECIMAL_DENOMINATOR = 10 ** 6
@@ -177,7 +202,8 @@ def term_diagnoses(expr: sp.Expr, evaluate: Callable[[sp.Expr], np.ndarray], D: 
                                    term=text(term), factor="-1"))
             continue
         k = float((T - D) @ tv / tt)                  # T = D + k t, the document's term is
-        if abs(1 + k) > 1e-12 and agrees(D + k * tv, T, scale):   # 1/(1+k) × what fits
+        if abs(1 + k) > 1e-12 and plausible_factor(1 / (1 + k)) and \
+                agrees(D + k * tv, T, scale):                      # 1/(1+k) × what fits
             c = nice_number(1 / (1 + k))
             found.append(diagnosis(K.FACTOR, f"the term {text(term)} is {c} × what fits",
                                    term=text(term), factor=c))

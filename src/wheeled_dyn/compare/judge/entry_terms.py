@@ -17,7 +17,7 @@ from __future__ import annotations
 import sympy as sp
 
 from ..records import DiagnosisKind as K
-from .diagnose import nice_number
+from .diagnose import nice_number, plausible_factor
 
 
 def _terms(expr: sp.Expr, trig: bool = False) -> dict[sp.Expr, sp.Expr]:
@@ -48,6 +48,8 @@ def entry_reading(found: sp.Expr, truth: sp.Expr) -> tuple[K, str] | None:
             said.append((K.MISSING, f"the document lacks {sp.sstr(t * m)}"))
         elif c == 2 * t:
             said.append((K.SIGN, f"the term {sp.sstr(t * m)} has the wrong sign"))
+        elif not plausible_factor(float((t - c) / t)):
+            return None
         else:
             factor = nice_number(float((t - c) / t))
             said.append((K.FACTOR, f"the term {sp.sstr(t * m)} is {factor} × what fits"))

@@ -29,7 +29,7 @@ import numpy as np
 import sympy as sp
 
 from ..records import Diagnosis, DiagnosisKind as K, Verdict, diagnosis, has_kind
-from .diagnose import nice_number
+from .diagnose import nice_number, plausible_factor
 from .draft import ElementDraft
 from .fitting import RATIO_TOL, fit_factor, fit_sum
 from .swap_fit import difference_reading
@@ -260,7 +260,7 @@ def _written_term(found: sp.Expr, expr: sp.Expr) -> Diagnosis | None:
     terms = dict.fromkeys((*sp.Add.make_args(sp.expand(expr)), *sp.Add.make_args(expr)))
     for t in terms:
         c = sp.cancel(found / t)
-        if not c.is_Rational or c == 0 or c == -1:
+        if not c.is_Rational or c in (0, -1) or not plausible_factor(float(1 / (1 + c))):
             continue
         text = sp.sstr(t)
         if c == -2:

@@ -11,8 +11,8 @@ import numpy as np
 import sympy as sp
 
 from ..records import Diagnosis, DiagnosisKind as K, diagnosis
-from .diagnose import (AGREE_TOL, MAX_TERMS, agrees, nice_number, power_diagnoses,
-                       term_diagnoses, term_text, trig_swap_diagnoses)
+from .diagnose import (AGREE_TOL, MAX_TERMS, agrees, nice_number, plausible_factor,
+                       power_diagnoses, term_diagnoses, term_text, trig_swap_diagnoses)
 from .small_angle import small_angle_diagnoses
 from ..sides.document import DocumentFunctions
 
@@ -126,6 +126,8 @@ def many_term_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[
     if abs(fit + 2) <= 1e-9:
         return [diagnosis(K.SIGN, f"the term {term} has the wrong sign", term=term,
                           factor="-1")]
+    if not plausible_factor(1 / (1 + fit)):
+        return []
     times = nice_number(1 / (1 + fit))
     return [diagnosis(K.FACTOR, f"the term {term} is {times} × what fits", term=term,
                       factor=times)]
