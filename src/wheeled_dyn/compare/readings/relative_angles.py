@@ -53,6 +53,11 @@ def sum_arrays(doc: Arrays, sums: Sequence[Sum]) -> Arrays:
     file's positions: the module's formulas."""
     n = next(x.shape[1] for x in (doc.A, doc.Q, doc.h, doc.C, doc.B) if x is not None)
     Li = np.linalg.inv(sum_matrix(n, sums))
+    with np.errstate(all="ignore"):      # a term not finite somewhere stays so: undecided
+        return _combined(doc, Li)
+
+
+def _combined(doc: Arrays, Li: np.ndarray) -> Arrays:
     out = Arrays(H_rows=doc.H_rows)
     if doc.A is not None:
         out.A = np.einsum("ia,sij,jb->sab", Li, doc.A, Li)
