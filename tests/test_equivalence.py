@@ -67,6 +67,25 @@ def test_linearised_pendulum_agrees(engine, tmp_path):
     assert all(r.verdict == "agrees" for r in result.records)
 
 
+@pytest.mark.parametrize("equation, term", [
+    ("1/3*m*l**2*ddtheta + m*g*l/2*sin(theta) = 0", "Q[1] = g*l*m*sin(theta)/2"),
+    ("1/3*m*l**2*ddtheta + m*g*l/2*theta - 5*m*g*l*theta**2 = 0", "Q[1] = "),
+])
+def test_equations_declared_linearised_that_are_not_say_so(engine, tmp_path, equation, term):
+    r"""The file declares its equations linearised, but they are not linear in the deviation:
+    compared at the point, to first order, they agree (a higher-order term, right or wrong,
+    is not seen there: a probe's cart-pole with its centripetal term's sign wrong agreed with
+    nothing said), and the first cause says which terms are not linear."""
+    from wheeled_dyn.compare.records import CauseKind
+    result = _rod(engine, tmp_path, "nonlinear", equation)
+    assert result.equivalent is True
+    first = result.causes[0]
+    assert first.kind == CauseKind.FILE_ERROR, result.causes
+    assert "not linear in the deviations" in first.explanation and term in first.explanation
+    right = _rod(engine, tmp_path, "linear", "1/3*m*l**2*ddtheta + m*g*l/2*theta = 0")
+    assert not any(c.kind == CauseKind.FILE_ERROR for c in right.causes), right.causes
+
+
 @pytest.mark.parametrize("equation, kind, factor", [
     ("1/3*m*l**2*ddtheta + 10*m*g*l/2*theta = 0", K.FACTOR, "10"),
     ("1/3*m*l**2*ddtheta - m*g*l/2*theta = 0", K.SIGN, "-1"),      # the hanging rod unstable

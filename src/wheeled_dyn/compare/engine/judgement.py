@@ -232,6 +232,7 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     j = _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed,
                    declared_wrong, fixes.truth is not None, engine.seed)
     return replace(j, causes=(*assumed.narrow_ranges(funcs.exprs.values()),
+                              *assumed.not_linear(d.positions, funcs.exprs),
                               *contradiction_causes(d, funcs, assumed, engine.seed), *j.causes))
 
 
@@ -348,7 +349,6 @@ def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed
                             "not the model's rolling constraints: " + "; ".join(wrong)))
     result = replace(result, constraints_agree=None if wrong is None else not wrong)
     return Judgement(result, ev, tuple(causes), sides, funcs)
-
 
 
 def _uniform_read(grid, assumed: Assumptions) -> list[str]:

@@ -38,6 +38,8 @@ from .samples import (ROUND_WHEELS, SpecialCase, family, massless_family,
                       special_cases)
 
 
+#: Terms a cause lists where a linearised file's equations are not linear.
+LISTED = 3
 #: A declared range narrower than this share of the default span of a position is said
 #: among the causes (:meth:`Assumptions.narrow_ranges`).
 NARROW = 0.01
@@ -78,6 +80,39 @@ class Assumptions:
             f"{hi - lo:.2g}): the comparison sees no other state of {p}, and a term wrong "
             "elsewhere may agree there")) for p, lo, hi in self.ranges
             if hi - lo < NARROW * 2 * np.pi and p in written)
+
+    def not_linear(self, positions: Sequence[sp.Symbol],
+                   exprs: Mapping[str, sp.Basic | None]) -> tuple[Cause, ...]:
+        r"""For equations declared linearised, a ``file_error`` cause where they are not
+        linear in the deviations from the point: a velocity product (C, h), an inertia or
+        input coefficient that depends on a position (A, B), a Q whose second derivative
+        in the positions is not zero. Such a term is compared at the point only, to first
+        order: its sign or factor there is never seen (a centripetal term's, at θ = 0)."""
+        if not self.linearised_about:
+            return ()
+        found: list[str] = []
+        for key in ("C", "h", "A", "B", "Q"):
+            M = exprs.get(key)
+            if not isinstance(M, sp.MatrixBase):
+                continue
+            for (i, j), e in np.ndenumerate(np.array(M.tolist(), dtype=object)):
+                e = sp.sympify(e)
+                if e == 0 or not (key in "Ch" or e.free_symbols & set(positions)) or (
+                        key == "Q" and all(sp.diff(e, p, r) == 0 for p in positions
+                                           for r in positions)):
+                    continue
+                where = f"{key}[{i + 1}]" if M.shape[1] == 1 else f"{key}[{i + 1},{j + 1}]"
+                found.append(f"{where} = {sp.sstr(e)}")
+        if not found:
+            return ()
+        point = ", ".join(f"{k} = {v:g}" for k, v in self.linearised_about)
+        shown = "; ".join(found[:LISTED]) + (f" and {len(found) - LISTED} more"
+                                             if len(found) > LISTED else "")
+        return (Cause(CauseKind.FILE_ERROR, (), (
+            f"the file declares its equations linearised about {point}, but they are not "
+            f"linear in the deviations from it: {shown}; they are compared at that state "
+            "only, to first order (a term of higher order there, its sign or its factor, is "
+            "not compared: declare the linearisation only for equations that are linear)")),)
 
     def key(self) -> tuple:
         r"""Hashable identity (cache key of the truth)."""
