@@ -143,3 +143,29 @@ def test_one_terms_error_is_no_reading(tmp_path, error):
     assert result.equivalent is False
     assert not any(c.kind == CauseKind.CONVENTION for c in result.causes), \
         [c.explanation for c in result.causes]
+
+
+@pytest.mark.parametrize("unknown", [False, True])
+def test_a_chain_of_three_read_along_it(tmp_path, unknown):
+    r"""A three-link arm's joint-angle equations (``data/published/three_link_arm_divided``:
+    Spong's notation, the third divided by its diagonal inertia) under a map that takes the
+    angles absolute (j2 = q2 − q1, j3 = q3 − q2): read along the chain, q2 → q2 + q1 and
+    q3 → q3 + q1 + q2, every equation is right — the cause, or with ``convention =
+    "unknown"`` the reading compared under (one angle at a time left the third blamed on
+    terms)."""
+    import shutil
+    data = P.DATA
+    for own in ("three_link_arm.toml", "three_link_arm.urdf"):
+        shutil.copy(data / own, tmp_path / own)
+    text = (data / "three_link_arm_divided.toml").read_text()
+    old = 'configuration = { j1 = "q1", j2 = "q2", j3 = "q3" }'
+    assert old in text
+    text = text.replace(old, 'configuration = { j1 = "q1", j2 = "q2 - q1", j3 = "q3 - q2" }')
+    if unknown:                                    # a key of the file: above its tables
+        text = text.replace("model = ", 'convention = "unknown"\nmodel = ', 1)
+    path = tmp_path / "chain.toml"
+    path.write_text(text)
+    result = _compare(path)
+    assert result.equivalent is (True if unknown else False), result.equations
+    first = result.causes[0]
+    assert "q2 → q2 + q1, q3 → q3 + q1 + q2" in first.explanation, first.explanation

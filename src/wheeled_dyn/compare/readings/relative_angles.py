@@ -77,9 +77,12 @@ def _combined(doc: Arrays, Li: np.ndarray) -> Arrays:
 
 
 def describe_sums(positions: Sequence[object], sums: Sequence[Sum]) -> list[str]:
-    r"""``["q2 → q2 − q1"]``: each position read as a sum, in the document's symbols."""
-    return [f"{positions[k]} → {positions[k]} {'+' if c > 0 else '−'} {positions[j]}"
-            for k, j, c in sums]
+    r"""``["q2 → q2 − q1", "q3 → q3 + q1 + q2"]``: each position read as a sum, in the
+    document's symbols."""
+    by: dict[int, list[str]] = {}
+    for k, j, c in sums:
+        by.setdefault(k, []).append(f"{'+' if c > 0 else '−'} {positions[j]}")
+    return [f"{positions[k]} → {positions[k]} " + " ".join(terms) for k, terms in by.items()]
 
 
 __all__ = ["Sum", "describe_sums", "document_state", "sum_arrays", "sum_matrix"]

@@ -112,19 +112,22 @@ def offset_readings(d: Derivation, angles: Sequence[int]) -> list[Reading]:
 def sum_readings(d: Derivation, angles: Sequence[int]) -> list[Reading]:
     r"""The readings with one of the ``angles`` measured from another of them, :math:`p_k \to
     p_k \pm p_j` (:mod:`.relative_angles`: absolute where the file's map takes it relative to
-    the link before, or the reverse), each with every reading of the inputs; only where the
+    the link before, or the reverse), and for three or more, all of them at once along the
+    chain in their order (:math:`p_k \to p_k - p_{k-1}`, :math:`p_k \to \sum_{j\le k} p_j`),
+    each with every reading of the inputs; only where the
     file's own map gives its positions and velocities (a holonomic set: its velocities are
     its positions' rates) and both angles are declared in the same units."""
     spec = d.coordinates
     if not readings(d) or spec.use or spec.velocity_map:
         return []
     n, units = d.n, [spec.units.get(str(p)) for p in d.positions]
-    out: list[Reading] = []
-    for k, j in itertools.permutations(angles, 2):
-        if units[k] == units[j]:
-            out += [((1,) * n, t, order, (), ((k, j, c),))
-                    for c in (1, -1) for t, order in _input_readings(d)]
-    return out
+    sums: list[tuple[Sum, ...]] = [((k, j, c),) for k, j in itertools.permutations(angles, 2)
+                                   if units[k] == units[j] for c in (1, -1)]
+    chain = sorted(angles)
+    if len(chain) > 2 and len({units[k] for k in chain}) == 1:   # a serial chain, every angle
+        sums += [tuple((k, j, 1) for i, k in enumerate(chain) for j in chain[:i]),
+                 tuple((k, chain[i - 1], -1) for i, k in enumerate(chain) if i)]
+    return [((1,) * n, t, order, (), x) for x in sums for t, order in _input_readings(d)]
 
 
 def _offset_gains(value: int, declared: int, weight: int | None) -> bool:
