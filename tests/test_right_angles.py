@@ -120,3 +120,46 @@ def test_mujoco_reads_the_file_as_the_model_does_but_for_the_rounding(tmp_path, 
         ours = np.triu(ours) + np.triu(ours, 1).T
         off = np.abs(M[np.ix_(index, index)] - ours).max() / np.abs(ours).max()
         assert off <= (ROUNDING_TOL if rounded else 1e-12), off
+
+
+#: The arm's elbow frame turned by a right angle about x (its axis then z, link 2's moments
+#: about y and z exchanged): the same arm, as an arm's URDF with turned joint frames writes it.
+TURNED_ELBOW = ('<origin xyz="0.8 0 0" rpy="{roll} 0 0"/>\n    <axis xyz="0 0 1"/>',
+          'ixx="0.003" ixy="0" ixz="0" iyy="0.058" iyz="0" izz="0.06"')
+
+
+def _turned_arm(folder: Path, roll: str) -> Path:
+    r"""The two-link arm (``data/published``) with its elbow joint's origin turned by
+    ``roll`` about x, and Spong's equations of it (:mod:`published_forms`), I2 its moment
+    about the turned frame's z."""
+    import published_forms as P
+    folder.mkdir()
+    urdf = (DATA / "two_link_arm.urdf").read_text()
+    elbow = '<origin xyz="0.8 0 0" rpy="0 0 0"/>\n    <axis xyz="0 -1 0"/>'
+    link2 = 'ixx="0.003" ixy="0" ixz="0" iyy="0.06" iyz="0" izz="0.058"'
+    assert urdf.count(elbow) == 1 and urdf.count(link2) == 1
+    (folder / "two_link_arm.urdf").write_text(
+        urdf.replace(elbow, TURNED_ELBOW[0].format(roll=roll)).replace(link2, TURNED_ELBOW[1]))
+    (folder / "two_link_arm.toml").write_text((DATA / "two_link_arm.toml").read_text())
+    doc = P.write(folder, "arm", "equations", None)
+    text = doc.read_text().replace(str(DATA / "two_link_arm.toml"),
+                                   str(folder / "two_link_arm.toml"))
+    doc.write_text(text.replace('I2 = { value = "IYY(link2)"', 'I2 = { value = "IZZ(link2)"'))
+    return doc
+
+
+@pytest.mark.parametrize("roll", ["1.5707963267948966", "1.5708"])
+def test_a_joint_frame_turned_by_a_rounded_right_angle_is_turned_by_the_right_angle(tmp_path,
+                                                                                     roll):
+    r"""An arm's elbow frame turned by π/2 written 1.5708 (as SO-ARM101's URDF writes its
+    joints): Spong's equations agree, as with the exact angle (they differed by 3.7e-6 of
+    their rows: "the term … is 0.99999 × what fits"); the model's readings say the
+    comparison turns it by the right angle, and its own matrices keep 1.5708."""
+    doc = _turned_arm(tmp_path / roll.replace(".", "_"), roll)
+    result = ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(load_derivation(doc))
+    assert result.equivalent is True, result.equations
+    said = any("origin rpy within" in x for x in result.model_readings)
+    assert said is (roll == "1.5708"), result.model_readings
+    wm = load_model(str(doc.parent / "two_link_arm.toml"))
+    R = wm.model.jointPlacements[wm.model.getJointId("q2")].rotation
+    assert abs(R[2, 1] - np.sin(float(roll))) <= 1e-15          # as written

@@ -56,6 +56,26 @@ def right_angles(rpy: np.ndarray) -> np.ndarray:
     return np.where(np.abs(rpy - nearest) <= RIGHT_ANGLE_TOL, nearest, rpy)
 
 
+def right_angled_joints(model, skip: frozenset[int] = frozenset()) -> int:
+    r"""Each joint's placement (but the ``skip`` ones') whose rotation is within
+    :data:`RIGHT_ANGLE_TOL` per entry of a signed permutation made that permutation, in place
+    (a URDF's ``rpy="0 1.5708 -1.5708"``: an arm's joint origin turned by right angles, which
+    a derivation takes as exact). Returns how many were changed."""
+    import pinocchio as pin
+    changed = 0
+    for jid in range(1, model.njoints):
+        if jid in skip:
+            continue
+        placement = model.jointPlacements[jid]
+        R = np.asarray(placement.rotation)
+        P = np.rint(R)
+        off = float(np.abs(R - P).max())
+        if 0.0 < off <= RIGHT_ANGLE_TOL and np.array_equal(P.T @ P, np.eye(3)):
+            model.jointPlacements[jid] = pin.SE3(P, placement.translation)
+            changed += 1
+    return changed
+
+
 #: The attributes of an ``<inertia>`` as (row, column) of its tensor.
 TENSOR_ENTRIES = {"ixx": (0, 0), "ixy": (0, 1), "ixz": (0, 2), "iyy": (1, 1), "iyz": (1, 2),
                   "izz": (2, 2)}

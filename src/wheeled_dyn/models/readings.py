@@ -13,6 +13,8 @@ silent.
   that writes :math:`b\dot\theta` has a term the truth does not.
 - A root link that is a frame only (``base_footprint``) off the ground the wheels' radius
   puts under a planar model's axle (:func:`ground_reading`).
+- A joint's ``<origin rpy>`` right angles to a rounding (``1.5708``) are taken as right
+  angles in the comparisons' parameter sets (:func:`joint_origin_readings`).
 - A ``<transmission>`` is not applied: the model's inputs are its joints' torques (a
   mechanical reduction between motor and joint is the document's to state).
 - A planar model's drive wheels axisymmetric about their axles to a CAD export's rounding
@@ -64,6 +66,29 @@ def inertial_readings(root: ET.Element) -> list[str]:
     return out
 
 
+def joint_origin_readings(root: ET.Element) -> list[str]:
+    r"""The joints whose ``<origin rpy>`` has an angle within :data:`RIGHT_ANGLE_TOL` of a
+    multiple of :math:`\pi/2` and not on it (beyond :data:`TURN_NOTED`): one line. The
+    comparisons' parameter sets take a joint's turn that is right angles to that rounding as
+    right angles (:func:`~.conventions.right_angled_joints`); ``matrices`` keeps it as
+    written."""
+    near = []
+    for joint in root.iterfind("joint"):
+        origin = joint.find("origin")
+        if origin is None or origin.get("rpy") is None:
+            continue
+        rpy = np.array([float(x) for x in origin.get("rpy", "").split()])
+        off = np.abs(rpy - right_angles(rpy))
+        if np.any((off > TURN_NOTED) & (off <= RIGHT_ANGLE_TOL)):
+            near.append(joint.get("name", ""))
+    if not near:
+        return []
+    return [f"joint{'s' if len(near) > 1 else ''} {_listed(near)}: origin rpy within "
+            f"{RIGHT_ANGLE_TOL:g} rad of right angles (1.5708 for π/2): the comparisons' "
+            "parameter sets turn a joint by the right angles its rounding stands for, as a "
+            "derivation does (the model's own matrices keep the numbers as written)"]
+
+
 def _listed(names: list[str]) -> str:
     return ", ".join(names) if len(names) <= 4 else f"{', '.join(names[:3])} and {len(names) - 3} more"
 
@@ -100,7 +125,8 @@ def urdf_readings(text: str, locked: tuple[str, ...] = ()) -> tuple[str, ...]:
     r"""What the model reads otherwise than the URDF ``text`` writes (module text), its
     ``locked`` joints part of their links' bodies: inertias, then joints and transmissions."""
     root = ET.fromstring(text)
-    return (*inertial_readings(root), *joint_readings(root, locked))
+    return (*inertial_readings(root), *joint_origin_readings(root),
+            *joint_readings(root, locked))
 
 
 #: Height (relative to the wheels' radius) of a frame-only root link above or below the
