@@ -57,6 +57,17 @@ def _equation(term: str) -> tuple[str, str]:
     return EQUATION, EQUATION.replace("sin(theta)", f"sin(theta)*{term}")
 
 
+def test_a_key_of_the_file_written_under_source_is_named(tmp_path):
+    r"""``convention = "unknown"`` written after the ``[source]`` table is, by TOML, a key of
+    ``[source]``: the file was compared as declared, its report even advising to write it.
+    Now one error says where it belongs."""
+    path = _write(tmp_path, "[coordinates]",
+                  '[source]\ndocument = "a textbook"\nconvention = "unknown"\n[coordinates]')
+    with pytest.raises(DerivationError) as err:
+        load_derivation(path)
+    _clear(err.value, path, "source.convention", "above the first table")
+
+
 # -- [coordinates] ---------------------------------------------------------------------------
 def test_a_configuration_that_loses_a_position(tmp_path):
     path = _write(tmp_path, 'theta = "theta" }', 'theta = "0" }')
