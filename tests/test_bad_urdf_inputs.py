@@ -233,3 +233,41 @@ def test_a_starting_file_that_does_not_build_says_so(tmp_path, capsys):
     assert main(["model", str(path), "--out", str(out)]) == 0
     last = capsys.readouterr().out.strip().splitlines()[-1]
     assert "does not build yet" in last and "check the lines marked CHECK" not in last
+
+
+def test_a_joint_locked_outside_its_limits_is_one_error(tmp_path, capsys):
+    r"""A newcomer locks an arm's joint at a value its URDF's limits exclude (a probe's
+    SO-ARM101 shoulder_pan at 3.0 rad, limits ±1.92): one error naming the joint, the value
+    and the limits (the matrices were printed, of a pose the robot cannot take)."""
+    import shutil
+    data = Path(__file__).parent / "data" / "published"
+    shutil.copy(data / "two_link_arm.urdf", tmp_path / "two_link_arm.urdf")
+    old = 'actuated = ["q1", "q2"]\ninputs = ["tau1", "tau2"]'
+    text = (data / "two_link_arm.toml").read_text()
+    assert old in text
+    text = text.replace("{", "{{").replace("}", "}}").replace(
+        old, 'locked = {{ q2 = {value} }}\nactuated = ["q1"]\ninputs = ["tau1"]')
+    path = tmp_path / "arm.toml"
+    path.write_text(text.format(value=20.0))
+    assert main(["matrices", str(path)]) == 2
+    line = _one_error_line(capsys)
+    assert "q2" in line and "locked at 20" in line and "limits [-10, 10]" in line, line
+    path.write_text(text.format(value=0.5))
+    assert load_model(str(path)).model.nq == 1
+
+
+def test_a_link_no_joint_moves_is_said_as_such(tmp_path):
+    r"""A derivation naming the mass of a link that no joint moves (the two-link arm's base,
+    fixed to the ground): one error saying the link does not move, listing the moving ones
+    (it was "unknown link")."""
+    import published_forms as P
+    from wheeled_dyn.derivations import load_derivation
+    from wheeled_dyn.derivations.errors import DerivationNameError
+    from wheeled_dyn.cli.inputs import check_model_names
+    doc = P.write(tmp_path, "arm", "equations", None)
+    doc.write_text(doc.read_text().replace('m1 = { value = "M(link1)"', 'm1 = { value = "M(base)"'))
+    with pytest.raises(DerivationNameError) as err:
+        check_model_names(load_derivation(doc))
+    text = str(err.value)
+    assert "fixed to the ground" in text and "'base'" in text and "link1, link2" in text, text
+    _assert_pickles(err.value)

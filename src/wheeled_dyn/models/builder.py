@@ -112,7 +112,13 @@ def _urdf_models(source: UrdfSource, spec: ModelSpec) -> tuple[pin.Model, pin.Ge
             if not np.isfinite(value):
                 raise ModelError(spec.name, name, f"locked value {value!r}: expected a finite "
                                                   "number")
-            q_ref[model.joints[jid].idx_q] = value
+            k = model.joints[jid].idx_q
+            low, high = float(model.lowerPositionLimit[k]), float(model.upperPositionLimit[k])
+            if low < high and not low <= value <= high:    # limits the URDF gives (not 0, 0)
+                raise ModelError(spec.name, name, f"locked at {value:g}, outside the joint's "
+                                 f"limits [{low:g}, {high:g}] in the URDF (a pose the robot "
+                                 "cannot take: a value in radians, or metres, within them)")
+            q_ref[k] = value
         model, geom = pin.buildReducedModel(model, geom, ids, q_ref)
     return model, geom
 

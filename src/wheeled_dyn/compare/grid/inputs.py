@@ -79,6 +79,11 @@ def check_model_names(d) -> None:
                         d.path, item, f"link of its own (it is fixed to the rigid body named "
                         f"{body.carrier}: {', '.join(body.members)}; name that body)", link,
                         own, line)
+            if link not in links and not geometric and _static(wm, link):
+                raise DerivationNameError(
+                    d.path, item, "moving link (it is fixed to the ground: no joint moves it, "
+                    "its joints to the base being fixed or locked, so none of its parameters "
+                    "enters the dynamics)", link, sorted(named.get("link", links)), line)
             if link not in links:
                 kind = GEOMETRY_NAMES.get(call.func.__name__, "link")   # origin_x(joint)
                 raise DerivationNameError(d.path, item, kind, link,
@@ -90,6 +95,16 @@ def check_model_names(d) -> None:
             if symbol.name not in values:
                 raise DerivationNameError(d.path, item, "model parameter", symbol.name,
                                           [k for k in values if "(" not in k], line)
+
+
+def _static(wm, link: str) -> bool:
+    r"""Whether ``link`` is a link of the model's URDF that no joint moves (its body frame
+    hangs from the world)."""
+    import pinocchio as pin
+    model = wm.model
+    if not model.existFrame(link, pin.FrameType.BODY):
+        return False
+    return model.frames[model.getFrameId(link, pin.FrameType.BODY)].parentJoint == 0
 
 
 __all__ = ["MAX_PARAM_SETS", "MAX_SAMPLES", "MAX_STATES", "check_model_names", "grid_size"]
