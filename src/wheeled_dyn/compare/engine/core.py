@@ -37,6 +37,7 @@ from ...derivations.schema import Derivation
 from ...errors import ArgumentError
 from ...models.registry import model_version
 from .conventions import convention_finding, unknown_convention
+from .symbol_maps import symbol_map_finding
 from ..causes.root import root_causes
 from ..grid.inputs import check_model_names, grid_size
 from ..grid.grid import Grids
@@ -126,6 +127,9 @@ class ComparisonEngine:
             if finding is not None:
                 first.append(finding[0])
                 result = replace(result, conventions=finding[1])
+            else:
+                mapped = symbol_map_finding(d, j)      # a symbol mapped to another axis
+                first += [mapped] if mapped is not None else []
         if result.conventions is None:
             result = replace(result, conventions=ConventionSummary(
                 declared=Convention("as declared", result.counts())))

@@ -1,0 +1,93 @@
+r"""A symbol mapped to another parameter of its link: a cause, never a verdict.
+
+A newcomer maps the document's symbols to the model's parameters in the link's own axes, and
+a CAD export turns those axes: the moment the derivation calls :math:`I_2` is ``IYY(forearm)``
+where the file wrote ``IXX(forearm)``, the centre of mass's offset ``-CZ(link)`` where it wrote
+``CX(link)``. Every element with the symbol then differs, and no term is wrong. The file's
+``[symbols]`` are how the document is read (declarations are binding); where at most half the
+equations are right, each symbol whose value is one link parameter is read, one at a time,
+as another of its kind of the same link (a moment about another axis, a centre-of-mass
+coordinate or a product of inertia along another, either sign), on the convention search's
+samples (:class:`~..readings.search.SearchEvaluation`: the document's compiled functions, the
+symbol's numbers changed, no new truth). One that makes every equation right is the first
+cause (``file_error``): "with I2 = IYY(forearm_link), every equation is right (0 of 2 as
+declared): the file probably maps I2 to the wrong parameter".
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import sympy as sp
+from sympy.core.function import AppliedUndef
+
+from ...derivations.schema import Derivation
+from ...errors import UnknownNameError
+from ..grid.values import model_value
+from ..records import Cause, CauseKind
+from .conventions import search_evaluation
+
+#: Link parameters of one kind: a symbol mapped to one is read as each other one.
+GROUPS: tuple[tuple[str, ...], ...] = (("IXX", "IYY", "IZZ"), ("XX", "YY", "ZZ"),
+                                       ("CX", "CY", "CZ"), ("MX", "MY", "MZ"),
+                                       ("IXY", "IXZ", "IYZ"), ("XY", "XZ", "YZ"))
+#: Of those, the kinds read with either sign (a coordinate along an axis turned the other way).
+SIGNED: frozenset[str] = frozenset(("CX", "CY", "CZ", "MX", "MY", "MZ", "IXY", "IXZ", "IYZ",
+                                    "XY", "XZ", "YZ"))
+
+
+def _alternatives(value: sp.Expr) -> list[sp.Expr]:
+    r"""``value`` (one link parameter, times anything) with that parameter read as each other
+    of its kind (:data:`GROUPS`, :data:`SIGNED` with either sign); none where it holds no
+    link parameter or more than one."""
+    calls = [c for c in value.atoms(AppliedUndef) if any(c.func.__name__ in g for g in GROUPS)]
+    if len(calls) != 1:
+        return []
+    call = calls[0]
+    name = call.func.__name__
+    group = next(g for g in GROUPS if name in g)
+    signs = (1, -1) if name in SIGNED else (1,)
+    return [value.xreplace({call: s * sp.Function(other)(*call.args)})
+            for other in group for s in signs if (other, s) != (name, 1)]
+
+
+def _right(search, values) -> int:
+    r"""How many of the document's equations are right with the symbols' ``values``."""
+    ev = replace(search, values=values)
+    doc = ev.doc_at((1,) * ev.q.shape[1])
+    return ev._right(doc.B, ev._combinations(doc))
+
+
+def symbol_map_finding(d: Derivation, j) -> Cause | None:
+    r"""The first symbol whose value read as another parameter of its link makes every
+    equation of the judged derivation ``j`` right (module text), as a cause; None where none
+    does, or more than half the equations are right as declared."""
+    search = search_evaluation(j)
+    n = search.q.shape[1]
+    declared = _right(search, search.values)
+    if declared > n // 2:
+        return None
+    grid = j.sides.grid
+    n_states = grid.q.shape[1]
+    for spec in d.symbols.values():
+        if spec.is_input or spec.value is None or spec.symbol not in search.values:
+            continue
+        for other in _alternatives(spec.value):
+            try:
+                per_set = [model_value(other, ps.values) for ps in grid.sets]
+            except UnknownNameError:
+                continue
+            values = dict(search.values)
+            values[spec.symbol] = np.repeat(per_set, n_states)
+            if _right(search, values) == n:
+                return Cause(CauseKind.FILE_ERROR, (), (
+                    f"with {spec.symbol} = {sp.sstr(other)} (the file maps it to "
+                    f"{sp.sstr(spec.value)}), every equation is right ({declared} of {n} as "
+                    f"declared): the file probably maps {spec.symbol} to another parameter "
+                    "of the link than the document means (its axes turned: declare the one "
+                    "that fits); the verdicts are under the file's declaration"))
+    return None
+
+
+__all__ = ["GROUPS", "SIGNED", "symbol_map_finding"]
