@@ -110,7 +110,7 @@ class Constant:
         if self.kind is ConstantKind.DERIVED:
             return f"= {self.expression}"
         if self.kind is ConstantKind.TRACK:
-            return "half the distance between the wheel centres"
+            return "half the distance between the wheels (their tyres' mid-planes)"
         return "a constant of the model"
 
 

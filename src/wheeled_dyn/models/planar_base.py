@@ -1,7 +1,8 @@
 r"""The planar base of a wheeled body: two drive wheels on one axle, checked and placed.
 
-From the wheel centres :math:`c_l, c_r` (URDF root frame, neutral configuration) and the
-declared up direction :math:`u` (body link axes, rotated to the root frame):
+From the wheel centres :math:`c_l, c_r` (on the tyres' mid-planes: :func:`_tyre_plane`; URDF
+root frame, neutral configuration) and the declared up direction :math:`u` (body link axes,
+rotated to the root frame):
 
 .. math::
 

@@ -343,8 +343,9 @@ def special_cases(model_name: str) -> tuple[SpecialCase, ...]:
     r"""The special families of a model, weakest first: the WIP's
     (:data:`WIP_SPECIAL_CASES`); for the others ``urdf_structure``, ``principal_axes``
     (:data:`NO_PRODUCTS`), for a wheeled model ``round_wheels`` (:data:`ROUND_WHEELS`),
-    each link with mass uniform alone (:func:`uniform_family`, two to :data:`UNIFORM_LINK_FAMILIES` such links)
-    and every link uniform (``urdf_proportions``)."""
+    each link with mass uniform alone (:func:`uniform_family`, two to
+    :data:`UNIFORM_LINK_FAMILIES` such links) and every link uniform
+    (``urdf_proportions``)."""
     if model_entry(model_name).parameters is WipParameters:
         return WIP_SPECIAL_CASES
     links = sorted(uniform_links(load_model(model_name), (URDF_PROPORTIONS,)))
