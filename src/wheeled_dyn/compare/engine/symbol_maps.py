@@ -63,6 +63,11 @@ def symbol_map_finding(d: Derivation, j) -> Cause | None:
     r"""The first symbol whose value read as another parameter of its link makes every
     equation of the judged derivation ``j`` right (module text), as a cause; None where none
     does, or more than half the equations are right as declared."""
+    readings = [(spec, other) for spec in d.symbols.values()
+                if not spec.is_input and spec.value is not None
+                for other in _alternatives(spec.value)]
+    if not readings:                    # no symbol is one link parameter (a physical record)
+        return None
     search = search_evaluation(j)
     n = search.q.shape[1]
     declared = _right(search, search.values)
@@ -70,10 +75,8 @@ def symbol_map_finding(d: Derivation, j) -> Cause | None:
         return None
     grid = j.sides.grid
     n_states = grid.q.shape[1]
-    for spec in d.symbols.values():
-        if spec.is_input or spec.value is None or spec.symbol not in search.values:
-            continue
-        for other in _alternatives(spec.value):
+    for spec, other in readings:
+        if spec.symbol in search.values:
             try:
                 per_set = [model_value(other, ps.values) for ps in grid.sets]
             except UnknownNameError:
