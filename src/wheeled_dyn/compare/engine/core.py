@@ -37,6 +37,7 @@ from ...derivations.schema import Derivation
 from ...errors import ArgumentError
 from ...models.registry import model_version
 from .conventions import convention_finding, unknown_convention
+from .sliding import sliding_wheels
 from .symbol_maps import symbol_map_finding
 from ..causes.root import root_causes
 from ..grid.inputs import check_model_names, grid_size
@@ -121,6 +122,8 @@ class ComparisonEngine:
             first.append(cause)
         j = self.judge(d, announce=True)
         result = j.result
+        sliding = sliding_wheels(j.sides.grid.cs, j.sides.grid.sets[0].model)
+        first += [sliding] if sliding is not None else []      # the map, before any reading
         self.stage(d, "readings")
         if applied is None and not result.equivalent and result.equations:
             finding = convention_finding(self, d, j)
