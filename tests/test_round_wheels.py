@@ -158,30 +158,38 @@ def test_a_planted_sign_still_differs(tmp_path, form):
         assert wrong and all(x.startswith("h[") for x in wrong), wrong
 
 
-def _implied(tmp_path: Path, extra: str) -> bool:
-    r"""Whether the (v, ω) file with the symbols ``extra`` added is compared with TIAGo's
-    wheels drawn round, not declaring it."""
+def _implied(tmp_path: Path, extra: str, written: bool = True) -> bool:
+    r"""Whether the (v, ω) file with the symbol ``extra`` added (and ``written`` in its first
+    equation) is compared with TIAGo's wheels drawn round, not declaring it."""
     from wheeled_dyn.compare.grid.assumptions import declared
     path = _write(tmp_path, "v_omega")
-    path.write_text(path.read_text().replace("[matrices]", extra + "\n[matrices]"))
+    text = path.read_text().replace("[matrices]", extra + "\n[matrices]")
+    if extra and written:
+        text = text.replace(' = 0"', f' + {extra.split()[0]}*dv = 0"', 1)
+    path.write_text(text)
     return any(c.name == "round_wheels" for c in declared(load_derivation(path)).families)
 
 
 def test_round_wheels_are_implied_only_where_nothing_of_their_asymmetry_is_written(tmp_path):
-    r"""A symbol that vanishes with the wheels rounded (a product of inertia), or two that
-    come to be equal (the moments about the two diameters), model the asymmetry: the wheels
-    are then drawn as the URDF has them."""
+    r"""A written symbol of a product of inertia, or of the second moment about a diameter,
+    names the wheels' asymmetry: they are then drawn free (``free_wheels``), not round; the
+    moment about the axle names none."""
     assert _implied(tmp_path, "")
     assert not _implied(tmp_path, 'p = { value = "IXY(wheel_left_link)", units = "kg*m**2" }')
     assert not _implied(tmp_path, 'D1 = { value = "IXX(wheel_left_link)", units = "kg*m**2" }')
     assert _implied(tmp_path, 'J2 = { value = "IZZ(wheel_right_link)", units = "kg*m**2" }')
+    assert _implied(tmp_path, 'p = { value = "IXY(wheel_left_link)", units = "kg*m**2" }',
+                    written=False)                       # declared, not written: nothing
 
 
 def test_an_eccentric_wheels_term_is_compared(tmp_path):
     r"""Wheels whose centres of mass are 5e-6 m off their axles (5e-5 of the radius): a
     document that writes the right wheel's gravity term, :math:`m_wge\cos\varphi_R` with
-    :math:`e` = CX(right_wheel), with the wrong sign differs there (drawn round, e would be
-    0 and the term unchecked)."""
+    :math:`e` = CX(right_wheel), with the wrong sign differs there, truth − document the
+    term twice (drawn round, e would be 0 and the term unchecked; drawn as the URDF's, a
+    product zero there stays zero). The wheels are drawn free: the file names their
+    asymmetry."""
+    from wheeled_dyn.compare.grid.assumptions import declared
     import shutil
     data = Path(__file__).parent / "data" / "published"
     urdf = (data / "dd_offset.urdf").read_text().replace(
@@ -201,4 +209,33 @@ def test_an_eccentric_wheels_term_is_compared(tmp_path):
     result = _compare(doc)
     q1 = next(r for r in result.records if r.element == "Q[1]")
     assert q1.verdict == Verdict.DIFFERS
-    assert any(x.kind.value == "sign" for x in q1.diagnoses), q1.diagnoses
+    assert "-2*e*g*m_w*cos(phi_R)" in (q1.residual or ""), q1.diagnoses
+    assert any(c.name == "free_wheels" for c in declared(load_derivation(doc)).families)
+
+
+@pytest.mark.parametrize("declare", [False, True])
+def test_a_term_in_a_product_zero_in_the_urdf_is_compared(tmp_path, declare):
+    r"""The differential drive of ``data/published/dd_offset`` (its wheels' products of
+    inertia zero in the URDF), the right equations plus a made-up term in IXY(left_wheel):
+    drawn as the URDF's wheels the product was 0 in every set and the file agreed; the
+    wheels are now drawn free and it differs. Declaring ``round_wheels`` beside it is a
+    file error said first (the family makes the product 0)."""
+    import shutil
+    data = Path(__file__).parent / "data" / "published"
+    for name in ("dd_offset.urdf", "dd_offset.toml"):
+        shutil.copy(data / name, tmp_path / name)
+    text = (data / "dd_offset_wheels.toml").read_text().replace(
+        'model = "dd_offset.toml"', f'model = "{tmp_path / "dd_offset.toml"}"')
+    text = text.replace("[matrices]", 'p = { value = "IXY(left_wheel)", units = "kg*m**2" }\n'
+                        "[matrices]").replace(" = tau_R", " + 7*p*ddphi_L*cos(phi_L) = tau_R")
+    if declare:
+        text = text.replace("[matrices]", '[assumes]\nfamilies = ["round_wheels"]\n[matrices]')
+    doc = tmp_path / "product.toml"
+    doc.write_text(text)
+    result = _compare(doc)
+    if declare:
+        assert result.causes[0].kind == CauseKind.FILE_ERROR, result.causes
+        assert "IXY(left_wheel)" in result.causes[0].explanation
+    else:
+        assert result.equivalent is False
+        assert any(r.verdict == Verdict.DIFFERS for r in result.records)

@@ -10,7 +10,8 @@ The comparisons' random parameter sets draw the two wheels alike, each its URDF 
 axisymmetric are drawn axisymmetric (:func:`made_round`: about the centre,
 :math:`J\,nn^T + D\,(I - nn^T)` with :math:`n` the axle and :math:`D` the mean of the
 moments about the diameters; the centre of mass put on the axle) where the derivation writes
-nothing of their asymmetry (:mod:`wheeled_dyn.compare.grid.round_wheels`), and the model's
+nothing of their asymmetry (:mod:`wheeled_dyn.compare.grid.round_wheels`; where it does, they
+are drawn free), and the model's
 readings say so (:func:`round_reading`). Wheels further from it are drawn as the URDF has
 them (a derivation taking them round differs, "agrees only if round_wheels"). The model's own
 matrices (``wheeled-dyn matrices``) are the URDF's, unrounded.

@@ -231,8 +231,7 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     equations = corrected(d, equations, fixes)
     j = _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed,
                    declared_wrong, fixes.truth is not None, engine.seed)
-    return replace(j, causes=(*assumed.narrow_ranges(funcs.exprs.values()),
-                              *assumed.not_linear(d.positions, funcs.exprs),
+    return replace(j, causes=(*assumed.file_causes(d, funcs.exprs),
                               *contradiction_causes(d, funcs, assumed, engine.seed), *j.causes))
 
 

@@ -33,9 +33,8 @@ import sympy as sp
 from ...derivations.schema import Derivation
 from ...errors import DerivationError, ParameterError, UnknownNameError
 from ..records import Cause, CauseKind
-from .round_wheels import IMPLIED_ROUND_WHEELS, implied_round_wheels
-from .samples import (ROUND_WHEELS, SpecialCase, family, massless_family,
-                      special_cases)
+from .round_wheels import implied_wheel_families, round_contradiction
+from .samples import SpecialCase, family, massless_family, special_cases
 
 
 #: Terms a cause lists where a linearised file's equations are not linear.
@@ -114,6 +113,14 @@ class Assumptions:
             "only, to first order (a term of higher order there, its sign or its factor, is "
             "not compared: declare the linearisation only for equations that are linear)")),)
 
+    def file_causes(self, d: Derivation, exprs: Mapping[str, sp.Basic | None]
+                    ) -> tuple[Cause, ...]:
+        r"""What the file's own declarations say first: a narrow range, equations declared
+        linearised that are not linear, a declared ``round_wheels`` beside symbols of the
+        wheels' asymmetry."""
+        return (*self.narrow_ranges(exprs.values()), *self.not_linear(d.positions, exprs),
+                *round_contradiction(d, self.families))
+
     def key(self) -> tuple:
         r"""Hashable identity (cache key of the truth)."""
         return (tuple(c.name for c in self.families), self.linearised_about,
@@ -136,8 +143,7 @@ def declared(d: Derivation) -> Assumptions:
     drawn: Mapping[str, Any] = coordinates.get("ranges", {})
     ranges = tuple((str(p), float(r[0]), float(r[1])) for p, r in drawn.items()
                    if p not in dict(point))
-    if not any(c.name == ROUND_WHEELS.name for c in families) and implied_round_wheels(d):
-        families.append(IMPLIED_ROUND_WHEELS)
+    families += implied_wheel_families(d, tuple(families))
     return Assumptions(tuple(families), point, raw.get("potential") == "equilibrium",
                        tuple(raw.get("text", ())), ranges)
 

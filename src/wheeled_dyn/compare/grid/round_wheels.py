@@ -1,88 +1,140 @@
-r"""Round wheels implied: a comparison draws a wheeled model's drive wheels axisymmetric
-(:data:`~.samples.ROUND_WHEELS`) where the URDF's are so to its rounding and the document
-writes nothing of their asymmetry.
+r"""How a comparison draws a wheeled model's two drive wheels, from what the document names.
 
-A CAD export's wheel is axisymmetric only to its rounding (TIAGo's to 2e-5:
-:mod:`~wheeled_dyn.models.round_wheels`), which leaves a derivation taking it round a
-difference of about 1e-7 of a row — the comparisons' tolerance, so each verdict would be the
-draw's. The family is implied where
+The random parameter sets draw the wheels alike, each its URDF inertia scaled
+(:func:`~.samples.parameter_sets`): what is zero there (a product of inertia, the centre of
+mass off the axle) stays zero, and a CAD export's rounding (TIAGo's wheels are axisymmetric to
+2e-5: :mod:`~wheeled_dyn.models.round_wheels`) leaves a derivation taking them round a
+difference of about 1e-7 of a row, the comparisons' tolerance. From the symbols the file
+declares:
 
-- the model's wheels are within :data:`~wheeled_dyn.models.round_wheels.ROUND_TOL` of
-  axisymmetric, and not exactly (then drawing them so changes nothing), and
-- no symbol of the document vanishes under it, or comes to equal another: a document that
-  writes a wheel's centre of mass off its axle (``e = CX(right_wheel)``), a product of its
-  inertia, or its two moments about diameters apart (``D1 = IXX(wheel)``, ``D2 =
-  IZZ(wheel)``) models the asymmetry, and its terms in them are compared against the URDF's
-  wheel (a sign error there would vanish with them).
+- **it names their asymmetry** — a wheel parameter other than its mass, its moment about the
+  axle, its centre of mass along the axle and one moment about a diameter (a product of
+  inertia, the centre of mass off the axle, both diametral moments, a ratio of them): the
+  wheels are drawn alike but free (:data:`~.samples.FREE_WHEELS`: a random inertia and centre
+  of mass, the same for both in their joints' frames), so its terms in them are compared;
+  drawn as the URDF's, a term in a product that is zero there vanished in every set;
+- **it names none**, and the URDF's wheels are within
+  :data:`~wheeled_dyn.models.round_wheels.ROUND_TOL` of axisymmetric, not exactly: they are
+  drawn axisymmetric (:data:`IMPLIED_ROUND_WHEELS`);
+- otherwise as the URDF has them.
 
-A document may declare ``round_wheels`` itself; then it is binding, as every family
-(:mod:`~..judge.consistency` says what it makes vanish).
+A file may declare ``round_wheels`` itself; then it is binding, and naming their asymmetry
+besides is a file error said first (:func:`round_contradiction`).
 """
 
 from __future__ import annotations
 
 from dataclasses import replace
-from itertools import combinations
+
+import numpy as np
+from sympy.core.function import AppliedUndef
 
 from ...derivations.schema import Derivation
-from ...errors import UnknownNameError
-from .samples import ROUND_WHEELS, wheel_axles
-from .values import model_value
+from ..records import Cause, CauseKind
+from .samples import FREE_WHEELS, ROUND_WHEELS, SpecialCase
+from .wheel_draws import wheel_axles
 
 #: The implied family, said as such among the assumptions.
 IMPLIED_ROUND_WHEELS = replace(ROUND_WHEELS, description=(
     "the drive wheels are axisymmetric about their axles, as the model's are to its URDF's "
-    "rounding (implied: the document writes nothing of their asymmetry)"))
-#: A symbol's value at most this fraction of its own is zero; two values this close are equal.
-ZERO = 1e-12
+    "rounding (implied: the document names nothing of their asymmetry)"))
+#: A frame axis within this of the axle is along it (the axle in the link's frame).
+ALONG = 1e-9
+_AXES = "XYZ"
+_NAMED: dict[tuple, tuple[str, ...]] = {}
 
-_IMPLIED: dict[tuple, bool] = {}
+
+def _axle_index(wm, link: str) -> int | None:
+    r"""The axis (0, 1, 2) of ``link``'s frame along its wheel's axle, or None where the
+    axle is along none of them (then every parameter but the mass mixes the two)."""
+    import pinocchio as pin
+    model = wm.model
+    frame = model.frames[model.getFrameId(link, pin.FrameType.BODY)]
+    jid = frame.parentJoint
+    axle = frame.placement.rotation.T @ wheel_axles(wm)[jid]
+    k = int(np.argmax(np.abs(axle)))
+    return k if abs(abs(axle[k]) - 1.0) <= ALONG else None
 
 
-def implied_round_wheels(d: Derivation) -> bool:
-    r"""Whether ``d`` is compared with its model's wheels drawn axisymmetric, not declaring
-    it (module text)."""
-    from ...models.registry import load_model, model_entry, model_parameters, model_version
-    from ...models.round_wheels import ROUND_TOL, asymmetry, made_round
-    if model_entry(d.model).parameters is not None:
-        return False                        # a physical record: its own ranges
-    values = tuple((s.symbol, s.value) for s in d.symbols.values()
-                   if s.value is not None and not s.is_input)
-    key = (d.model, model_version(d.model), values)
-    if key in _IMPLIED:
-        return _IMPLIED[key]
-    wm = load_model(d.model)
-    axles = wheel_axles(wm)
-    worst = max((asymmetry(wm.model.inertias[j], a, w.radius)
-                 for (j, a), w in zip(axles.items(), wm.wheels)), default=0.0)
-    found = len(axles) == 2 and 0.0 < worst <= ROUND_TOL
-    if found:
-        import pinocchio as pin
-        model = pin.Model(wm.model)
-        for jid, axis in axles.items():
-            model.inertias[jid] = made_round(model.inertias[jid], axis)
-        found = not _written_asymmetry(values, model_parameters(wm),
-                                       model_parameters(wm.with_model(model)))
-    _IMPLIED[key] = found
+def _written(d: Derivation) -> set:
+    r"""The symbols ``d``'s equations write (its matrices, equations and constraints)."""
+    found: set = set()
+    for part in (d.A, d.C, d.Q, d.B, d.G, *(d.equations or ()), *(d.constraints or ())):
+        if part is not None:
+            found |= part.free_symbols
     return found
 
 
-def _written_asymmetry(values, own: dict[str, float], rounded: dict[str, float]) -> bool:
-    r"""Whether a symbol of ``values`` (symbol, model expression) vanishes with the wheels
-    rounded, or comes to equal another (``own``, ``rounded``: the model's namespace values
-    as its URDF has them and with its wheels axisymmetric)."""
-    try:
-        before = [model_value(v, own) for _, v in values]
-        after = [model_value(v, rounded) for _, v in values]
-    except (UnknownNameError, TypeError, ValueError):
-        return True              # the file's own error, said where its symbols are read
-    if any(abs(b) > 0 and abs(a) <= ZERO * abs(b) for b, a in zip(before, after)):
-        return True
-    for (b1, a1), (b2, a2) in combinations(zip(before, after), 2):
-        size = max(abs(b1), abs(b2))
-        if abs(b1 - b2) > ZERO * size and abs(a1 - a2) <= ZERO * size:
-            return True
-    return False
+def asymmetry_named(d: Derivation, wm) -> tuple[str, ...]:
+    r"""The calls of the symbols ``d``'s equations write that name the drive wheels'
+    asymmetry (module text; a symbol declared and not written names nothing)."""
+    written = _written(d)
+    values = tuple((s.symbol, s.value) for s in d.symbols.values()
+                   if s.value is not None and not s.is_input and s.symbol in written)
+    key = (d.model, values)
+    if key in _NAMED:
+        return _NAMED[key]
+    axles = {w.link: _axle_index(wm, w.link) for w in wm.wheels}
+    named, diametral = [], set()
+    for _, value in values:
+        for call in value.atoms(AppliedUndef):
+            link, name = str(call.args[0]) if call.args else "", call.func.__name__
+            if link not in axles:
+                continue
+            a = axles[link]
+            if name == "M":
+                continue
+            axis = _AXES[a] if a is not None else None
+            if axis is not None and name in (f"I{axis}{axis}", f"{axis}{axis}", f"C{axis}",
+                                             f"M{axis}"):
+                continue                     # the moment about the axle, the COM along it
+            if axis is not None and len(name) in (2, 3) and name[-1] == name[-2] \
+                    and name[-1] in _AXES:   # a moment about a diameter: one of them
+                diametral.add(name[-1])
+                if len(diametral) == 1:
+                    continue
+            named.append(str(call))
+    _NAMED[key] = tuple(dict.fromkeys(named))
+    return _NAMED[key]
 
 
-__all__ = ["IMPLIED_ROUND_WHEELS", "ZERO", "implied_round_wheels"]
+def implied_wheel_families(d: Derivation, families: tuple[SpecialCase, ...]
+                           ) -> tuple[SpecialCase, ...]:
+    r"""The family the comparison of ``d`` draws its model's wheels in, not declared (module
+    text): :data:`~.samples.FREE_WHEELS`, :data:`IMPLIED_ROUND_WHEELS`, or none."""
+    from ...models.registry import load_model, model_entry
+    from ...models.round_wheels import ROUND_TOL, asymmetry
+    if model_entry(d.model).parameters is not None or any(
+            c.name in (ROUND_WHEELS.name, FREE_WHEELS.name) for c in families):
+        return ()
+    wm = load_model(d.model)
+    if len(wm.wheels) != 2:
+        return ()
+    if asymmetry_named(d, wm):
+        return (FREE_WHEELS,)
+    axles = wheel_axles(wm)
+    worst = max(asymmetry(wm.model.inertias[w.joint_id], axles[w.joint_id], w.radius)
+                for w in wm.wheels)
+    return (IMPLIED_ROUND_WHEELS,) if 0.0 < worst <= ROUND_TOL else ()
+
+
+def round_contradiction(d: Derivation, families: tuple[SpecialCase, ...]) -> tuple[Cause, ...]:
+    r"""A ``file_error`` cause where the file declares ``round_wheels`` and names the wheels'
+    asymmetry: its terms in those parameters are the round wheel's, never the URDF's."""
+    from ...models.registry import load_model, model_entry
+    if model_entry(d.model).parameters is not None or not any(
+            c.name == ROUND_WHEELS.name for c in families):
+        return ()
+    named = asymmetry_named(d, load_model(d.model))
+    if not named:
+        return ()
+    return (Cause(CauseKind.FILE_ERROR, (), (
+        f"the file declares round_wheels, but its symbols name the wheels' asymmetry "
+        f"({', '.join(named)}): under the family those are a round wheel's (its moments about "
+        "its diameters equal, no products of inertia, its centre of mass on the axle), and "
+        "the document's terms in them are compared as such (declare the family only where "
+        "the equations take the wheels round)")),)
+
+
+__all__ = ["IMPLIED_ROUND_WHEELS", "asymmetry_named", "implied_wheel_families",
+           "round_contradiction"]

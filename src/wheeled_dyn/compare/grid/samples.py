@@ -32,6 +32,7 @@ from ...models.builder import WheeledModel
 from ...models.geometry_apply import FACTOR, apply_geometry, bodies_of, draw_geometry
 from ...models.conventions import right_angled_joints
 from ...models.round_wheels import made_round
+from .wheel_draws import alike_wheels, wheel_axles
 from ...models.registry import load_model, model_entry, model_parameters
 from ...models.springs import with_stiffness
 from ...models.wip_parameters import WipParameters, random_wip_parameters
@@ -92,6 +93,15 @@ URDF_PROPORTIONS = SpecialCase(
 ROUND_WHEELS = SpecialCase(
     "round_wheels", "the drive wheels are axisymmetric about their axles (one moment about "
     "every diameter, no products of inertia, the centres of mass on the axles)", lambda p: p)
+
+
+#: Wheeled models: the two drive wheels alike but with a random inertia and centre of mass
+#: (the same in their joints' frames), where a document names their asymmetry (a product of
+#: inertia, the centre of mass off the axle): implied (:mod:`.round_wheels`).
+FREE_WHEELS = SpecialCase(
+    "free_wheels", "the drive wheels are drawn alike with a random inertia and centre of mass "
+    "(implied: the document names parameters of their asymmetry, compared as drawn)",
+    lambda p: p)
 
 
 def uniform_family(links: Sequence[str]) -> SpecialCase:
@@ -185,7 +195,8 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
                           keep_structure: bool = False,
                           uniform: frozenset[str] | set[str] = frozenset(),
                           massless: Collection[str] = (), principal: bool = False,
-                          spread: float = FACTOR, rounded: bool = False) -> WheeledModel:
+                          spread: float = FACTOR, rounded: bool = False,
+                          free: bool = False) -> WheeledModel:
     r"""Random lengths (the ``uniform`` links scaled as a whole with a random mass factor
     each, and their bodies put together again from their links:
     :mod:`~wheeled_dyn.models.geometry_apply`), and random, physically consistent inertias
@@ -198,7 +209,8 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
     axes (the diagonal of a valid one is valid: :math:`J_{ii} = \Sigma_{jj} + \Sigma_{kk}` of
     the second moments' diagonal). ``spread``: each length's factor is drawn in
     :math:`[1/s, s]` (and with ``keep_structure`` each centre-of-mass coordinate's too).
-    ``rounded``: the drive wheels axisymmetric (:data:`ROUND_WHEELS`)."""
+    ``rounded``: the drive wheels axisymmetric (:data:`ROUND_WHEELS`); ``free``: drawn
+    alike from a random inertia (:data:`FREE_WHEELS`)."""
     drawn = _with_geometry(wm, rng, uniform, spread)
     model = pin.Model(drawn.model)               # never the model of ``wm`` itself
     right_angled_joints(model, _base_joints(model))
@@ -225,7 +237,7 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
             model.inertias[jid] = pin.Inertia.FromLogCholeskyParameters(
                 pin.LogCholeskyParameters(theta))
     if not composed & {w.joint_id for w in wm.wheels}:
-        _alike_wheels(wm, model, rng, rounded)
+        alike_wheels(wm, model, rng, rounded, free)
     elif rounded:                         # uniform wheels, drawn with the lengths: as round
         for jid, axis in wheel_axles(wm).items():
             model.inertias[jid] = made_round(model.inertias[jid], axis)
@@ -249,33 +261,6 @@ def _base_joints(model: pin.Model) -> frozenset[int]:
             if model.names[j] in ("x0", "y0", "psi", "phi")
             or model.joints[j].shortname() == "JointModelFreeFlyer"}
     return frozenset(base | {j for j in range(1, model.njoints) if model.parents[j] in base})
-
-
-def _alike_wheels(wm: WheeledModel, model: pin.Model, rng: np.random.Generator,
-                  rounded: bool = False) -> None:
-    r"""The two drive wheels of a wheeled model stay alike, as the model declares them: each
-    is its URDF inertia scaled by one shared random mass factor and size factor (a centred,
-    axisymmetric wheel stays so; the two stay equal; the size is not the drawn radius: a
-    document's disc wheel, I = m R²/2, needs a family); ``rounded``: axisymmetric
-    (:data:`ROUND_WHEELS`)."""
-    wheels = tuple(getattr(wm.spec, "wheels", ()) or ())
-    if len(wheels) != 2:
-        return
-    mass, size = rng.uniform(0.5, 2.0), rng.uniform(0.8, 1.25)
-    axles = wheel_axles(wm) if rounded else {}
-    for link in wheels:
-        jid = wm.joint_id_of_link(link)
-        old = wm.model.inertias[jid]
-        old = made_round(old, axles[jid]) if jid in axles else old
-        if old.mass > 0:
-            model.inertias[jid] = pin.Inertia(old.mass * mass, old.lever * size,
-                                              old.inertia * mass * size**2)
-
-
-def wheel_axles(wm: WheeledModel) -> dict[int, np.ndarray]:
-    r"""The drive wheels' axles in their joints' frames, by joint."""
-    from ...models.model_joints import joint_axis
-    return {w.joint_id: joint_axis(wm.model.joints[w.joint_id]) for w in wm.wheels}
 
 
 def parameter_sets(model_name: str, k: int, rng: np.random.Generator,
@@ -306,9 +291,10 @@ def parameter_sets(model_name: str, k: int, rng: np.random.Generator,
     massless = {link for case in special for link in case.massless}
     principal = NO_PRODUCTS in special
     rounded = any(c.name == ROUND_WHEELS.name for c in special)   # declared or implied
+    free = any(c.name == FREE_WHEELS.name for c in special)       # implied
     for _ in range(k):
         wm = _random_link_inertias(base, rng, keep, uniform, massless, principal, spread,
-                                   rounded)
+                                   rounded, free)
         out.append(ParameterSet(wm, namespace_values(wm, None)))
     return out
 
