@@ -241,3 +241,17 @@ def test_engine_compares_a_path_and_refuses_anything_else(tmp_path):
     assert "ComparisonEngine.compare(d=5)" in str(info.value)
     path = _write(tmp_path)
     assert engine.compare(str(path)).equivalent
+
+
+def test_a_map_using_a_symbol_of_a_centre_of_mass_names_that_symbol(tmp_path):
+    r"""A coordinate map may use the model's lengths, not a centre of mass: the error names the
+    symbol the map uses (``delta``), not the first declared one sharing its parameter (it
+    named ``l_c``, which the map does not use)."""
+    from wheeled_dyn.compare.engine import ComparisonEngine
+    text = ROD.replace('g = "g"', 'g = "g"\nl_c = { value = "sqrt(MX(rod)**2 + MZ(rod)**2)" }\n'
+                       'delta = { value = "atan(MX(rod)/MZ(rod))" }').replace(
+        'configuration = { theta = "theta" }', 'configuration = { theta = "theta + delta" }')
+    path = _write(tmp_path, text=text)
+    with pytest.raises(DerivationError) as err:
+        ComparisonEngine(samples=20, param_sets=1).compare(load_derivation(path))
+    _clear(err.value, path, "coordinates.configuration.theta", "the symbol delta is")

@@ -109,12 +109,17 @@ def _not_a_length(d: Derivation, raw: dict, to_model: dict, exc: UnknownNameErro
     written = [s for s, v in to_model.items() if exc.name in {str(x) for x in v.free_symbols}]
     if not written:
         return exc
+    spec = d.coordinates
     for table in ("configuration", "velocity_map"):
         for key, text in raw.get(table, {}).items():
             if exc.name in {str(x) for x in sp.sympify(text).free_symbols}:
+                own = getattr(spec, table).get(key)        # the entry as the file writes it
+                used = [s for s in written if own is not None
+                        and str(s) in {str(x) for x in sp.sympify(own).free_symbols}]
+                symbol = (used or written)[0]
                 return DerivationError(
-                    d.path, f"coordinates.{table}.{key}", f"the symbol {written[0]} is "
-                    f"{d.symbols[str(written[0])].value}, which a coordinate map cannot use: "
+                    d.path, f"coordinates.{table}.{key}", f"the symbol {symbol} is "
+                    f"{d.symbols[str(symbol)].value}, which a coordinate map cannot use: "
                     "it may use the positions and the model's lengths (" +
                     ", ".join(exc.valid or ()) + "), or symbols whose values they are",
                     key_line(d.path, "coordinates", table))
