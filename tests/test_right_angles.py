@@ -163,3 +163,14 @@ def test_a_joint_frame_turned_by_a_rounded_right_angle_is_turned_by_the_right_an
     wm = load_model(str(doc.parent / "two_link_arm.toml"))
     R = wm.model.jointPlacements[wm.model.getJointId("q2")].rotation
     assert abs(R[2, 1] - np.sin(float(roll))) <= 1e-15          # as written
+
+
+def test_the_truth_in_the_documents_symbols_is_the_right_angles(tmp_path):
+    r"""The arm's elbow frame turned by 1.5708: the truth shown in the document's symbols
+    (and the corrected equations) is that of the right angle the comparison drew, not
+    "0.99999936586377*I2 + 6.34e-7*XX_link2 …"."""
+    doc = _turned_arm(tmp_path / "shown", "1.5708")
+    result = ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(load_derivation(doc))
+    a11 = next(r for r in result.records if r.element == "A[1,1]")
+    assert a11.truth == "I1 + I2 + l1**2*m2 + 2*l1*lc2*m2*cos(q2) + lc1**2*m1 + lc2**2*m2", \
+        a11.truth

@@ -56,6 +56,15 @@ def right_angles(rpy: np.ndarray) -> np.ndarray:
     return np.where(np.abs(rpy - nearest) <= RIGHT_ANGLE_TOL, nearest, rpy)
 
 
+def base_joints(model) -> frozenset[int]:
+    r"""The joints a wheeled or free base puts under the URDF's (x0, y0, psi, phi, the free
+    flyer) and the URDF's root joint on them: their turns are the model's own, exact."""
+    base = {j for j in range(1, model.njoints)
+            if model.names[j] in ("x0", "y0", "psi", "phi")
+            or model.joints[j].shortname() == "JointModelFreeFlyer"}
+    return frozenset(base | {j for j in range(1, model.njoints) if model.parents[j] in base})
+
+
 def right_angled_joints(model, skip: frozenset[int] = frozenset()) -> int:
     r"""Each joint's placement (but the ``skip`` ones') whose rotation is within
     :data:`RIGHT_ANGLE_TOL` per entry of a signed permutation made that permutation, in place

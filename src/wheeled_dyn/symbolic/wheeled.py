@@ -215,11 +215,14 @@ def true_expressions(model: str, cs: CoordinateSet, refresh: bool = False
     Cached in memory and on disk (:func:`~.cache.cache_dir`, ``true-<key>.pickle``), keyed by
     the model, the content of ``cs`` and the code version; ``refresh`` re-derives.
     """
+    from ..models.conventions import base_joints, right_angled_joints
     from ..models.registry import load_model, model_entry
     from .expanded import expanded_tree
     model_entry(model)  # unknown names raise here
-    wm = load_model(model)
+    wm = load_model(model)                               # a copy: its joints may be turned
     mode = "physical" if has_physical_record(wm) else "standard"
+    if mode == "standard":        # joint frames rounded to right angles: as the comparisons
+        right_angled_joints(wm.model, base_joints(wm.model))     # draw them (a derivation's)
     tree = _tree(wm, mode)
     key = _true_key(model, cs, wm) + mode
     if key in _MEMORY and not refresh:

@@ -30,7 +30,7 @@ import pinocchio as pin
 from ...errors import ParameterError
 from ...models.builder import WheeledModel
 from ...models.geometry_apply import FACTOR, apply_geometry, bodies_of, draw_geometry
-from ...models.conventions import right_angled_joints
+from ...models.conventions import base_joints, right_angled_joints
 from ...models.round_wheels import made_round
 from .wheel_draws import alike_wheels, wheel_axles
 from ...models.registry import load_model, model_entry, model_parameters
@@ -213,7 +213,7 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
     alike from a random inertia (:data:`FREE_WHEELS`)."""
     drawn = _with_geometry(wm, rng, uniform, spread)
     model = pin.Model(drawn.model)               # never the model of ``wm`` itself
-    right_angled_joints(model, _base_joints(model))
+    right_angled_joints(model, base_joints(model))
     composed = {jid for jid, links in bodies_of(wm).items() if uniform & set(links)}
     for jid in range(1, model.njoints):
         if model.inertias[jid].mass > 0 and jid in composed:
@@ -252,15 +252,6 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
                              rng.uniform(0.5, 2.0, len(wm.springs))) \
         if wm.springs else None
     return drawn.with_model(model, springs)
-
-
-def _base_joints(model: pin.Model) -> frozenset[int]:
-    r"""The joints a wheeled or free base puts under the URDF's (x0, y0, psi, phi, the free
-    flyer) and the URDF's root joint on them: their turns are the model's own, exact."""
-    base = {j for j in range(1, model.njoints)
-            if model.names[j] in ("x0", "y0", "psi", "phi")
-            or model.joints[j].shortname() == "JointModelFreeFlyer"}
-    return frozenset(base | {j for j in range(1, model.njoints) if model.parents[j] in base})
 
 
 def parameter_sets(model_name: str, k: int, rng: np.random.Generator,
