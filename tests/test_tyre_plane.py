@@ -89,6 +89,13 @@ def test_the_contact_is_in_the_tyres_mid_plane(tmp_path):
     assert (turning > 0.01 * np.abs(a[:, 1, 1])).all()      # wheels' share of the turning
 
 
+def test_the_tyres_place_is_a_reading(tmp_path):
+    shifted, _ = _urdfs()
+    wm = _model(tmp_path / "said", "said", shifted)
+    said = [x for x in wm.readings if "tyre's mid-plane" in x]
+    assert len(said) == 2 and all(f"{SHIFT:g} m from the link's origin" in x for x in said)
+
+
 def test_the_starter_measures_the_track_between_the_tyres(tmp_path):
     urdf = tmp_path / "shifted.urdf"
     urdf.write_text(_urdfs()[0])

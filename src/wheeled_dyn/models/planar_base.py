@@ -268,6 +268,12 @@ def build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
                         readings=ground_reading(source.text, source.root_link(),
                                                 rl - float(centre @ up), rl)
                         + tuple(wheel_turn(j, a) for j, a in turns if a > TURN_NOTED)
+                        + tuple(f"wheel {link}: its tyre's mid-plane (its cylinder's centre) "
+                                f"is {np.linalg.norm(plane):.3g} m from the link's origin along "
+                                "the axle: it touches the ground there, and the track is "
+                                "measured between the tyres"
+                                for link, plane in zip(spec.wheels, (pl, pr))
+                                if np.linalg.norm(plane) > TURN_NOTED)
                         + round_reading([w.link for w in wheels], [
                             asymmetry(model.inertias[w.joint_id],
                                       joint_axis(model.joints[w.joint_id]), w.radius)
