@@ -169,3 +169,20 @@ def test_a_chain_of_three_read_along_it(tmp_path, unknown):
     assert result.equivalent is (True if unknown else False), result.equations
     first = result.causes[0]
     assert "q2 → q2 + q1, q3 → q3 + q1 + q2" in first.explanation, first.explanation
+
+
+def test_the_velocity_products_are_combined_as_h_is():
+    r"""The tensor of velocity products H (:math:`h_i = H_{ijk}\nu_j\nu_k`) read as the
+    module says: the document's h at its velocities :math:`\nu'`, combined by
+    :math:`L^{-T}`, is the transformed H at the file's :math:`\nu = L\nu'`."""
+    from wheeled_dyn.compare.readings.relative_angles import sum_matrix
+    rng = np.random.default_rng(SEED)
+    H = rng.normal(size=(7, 3, 3, 3))
+    H = H + np.swapaxes(H, 2, 3)
+    nu = rng.normal(size=(7, 3))                       # the document's velocities
+    h = np.einsum("sijk,sj,sk->si", H, nu, nu)
+    sums = ((2, 0, 1), (2, 1, 1))
+    read = sum_arrays(Arrays(H=H, h=h, Q=np.zeros((7, 3))), sums)
+    file_nu = nu @ sum_matrix(3, sums).T
+    assert np.allclose(np.einsum("sijk,sj,sk->si", read.H, file_nu, file_nu), read.h,
+                       atol=1e-12)

@@ -9,13 +9,15 @@ equations are right, each symbol whose value is one link parameter is read, one 
 as another of its kind of the same link (a moment about another axis, a centre-of-mass
 coordinate or a product of inertia along another, either sign), on the convention search's
 samples (:class:`~..readings.search.SearchEvaluation`: the document's compiled functions, the
-symbol's numbers changed, no new truth). One that makes every equation right is the first
+symbol's numbers changed, no new truth) — a symbol written in an element that agrees is
+mapped right, and not read again. One that makes every equation right is the first
 cause (``file_error``): "with I2 = IYY(forearm_link), every equation is right (0 of 2 as
 declared): the file probably maps I2 to the wrong parameter".
 """
 
 from __future__ import annotations
 
+import re
 from dataclasses import replace
 
 import numpy as np
@@ -25,7 +27,7 @@ from sympy.core.function import AppliedUndef
 from ...derivations.schema import Derivation
 from ...errors import UnknownNameError
 from ..grid.values import model_value
-from ..records import Cause, CauseKind
+from ..records import Cause, CauseKind, Verdict
 from .conventions import search_evaluation
 
 #: Link parameters of one kind: a symbol mapped to one is read as each other one.
@@ -52,6 +54,13 @@ def _alternatives(value: sp.Expr) -> list[sp.Expr]:
             for other in group for s in signs if (other, s) != (name, 1)]
 
 
+def _in_any(name: str, texts: list[str]) -> bool:
+    r"""Whether the symbol ``name`` is written in one of ``texts`` (an element that agrees
+    with it as mapped: its map is right)."""
+    word = re.compile(rf"(?<![A-Za-z0-9_]){re.escape(name)}(?![A-Za-z0-9_])")
+    return any(word.search(t) for t in texts)
+
+
 def _right(search, values) -> int:
     r"""How many of the document's equations are right with the symbols' ``values``."""
     ev = replace(search, values=values)
@@ -63,12 +72,19 @@ def symbol_map_finding(d: Derivation, j) -> Cause | None:
     r"""The first symbol whose value read as another parameter of its link makes every
     equation of the judged derivation ``j`` right (module text), as a cause; None where none
     does, or more than half the equations are right as declared."""
+    search = search_evaluation(j)
+    agreeing = [r.document for r in j.result.records
+                if r.verdict == Verdict.AGREES and r.document not in ("", "0")]
+
+    def mapped_right(symbol) -> bool:            # written, not 0, where an element agrees
+        values = search.values.get(symbol)
+        return values is not None and bool(np.any(np.asarray(values) != 0)) and \
+            _in_any(str(symbol), agreeing)
     readings = [(spec, other) for spec in d.symbols.values()
                 if not spec.is_input and spec.value is not None
-                for other in _alternatives(spec.value)]
+                and not mapped_right(spec.symbol) for other in _alternatives(spec.value)]
     if not readings:                    # no symbol is one link parameter (a physical record)
         return None
-    search = search_evaluation(j)
     n = search.q.shape[1]
     declared = _right(search, search.values)
     if declared > n // 2:

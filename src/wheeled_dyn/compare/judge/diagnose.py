@@ -16,6 +16,7 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 
 import math
+from fractions import Fraction
 
 import numpy as np
 import sympy as sp
@@ -74,9 +75,9 @@ def plausible_factor(c: float) -> bool:
             x = base / 10.0 ** k
             if not 1.0 <= abs(x) <= FACTOR_DIGITS:
                 continue
-            frac = sp.nsimplify(x, tolerance=FRACTION_TOL * max(1.0, abs(x)), rational=True)
-            if frac.q <= 12 and abs(frac.p) <= FACTOR_DIGITS and \
-                    abs(float(frac) - x) <= FRACTION_TOL * max(1.0, abs(x)):
+            frac = Fraction(x).limit_denominator(12)
+            if abs(frac.numerator) <= FACTOR_DIGITS and \
+                    abs(float(frac) - x) <= FRACTION_TOL * abs(x):
                 return True
     return False
 
@@ -202,8 +203,8 @@ def term_diagnoses(expr: sp.Expr, evaluate: Callable[[sp.Expr], np.ndarray], D: 
                                    term=text(term), factor="-1"))
             continue
         k = float((T - D) @ tv / tt)                  # T = D + k t, the document's term is
-        if abs(1 + k) > 1e-12 and plausible_factor(1 / (1 + k)) and \
-                agrees(D + k * tv, T, scale):                      # 1/(1+k) × what fits
+        if abs(1 + k) > 1e-12 and agrees(D + k * tv, T, scale) and \
+                plausible_factor(1 / (1 + k)):                     # 1/(1+k) × what fits
             c = nice_number(1 / (1 + k))
             found.append(diagnosis(K.FACTOR, f"the term {text(term)} is {c} × what fits",
                                    term=text(term), factor=c))

@@ -59,18 +59,22 @@ def sum_arrays(doc: Arrays, sums: Sequence[Sum]) -> Arrays:
 
 def _combined(doc: Arrays, Li: np.ndarray) -> Arrays:
     out = Arrays(H_rows=doc.H_rows)
+    Lt = Li.T
     if doc.A is not None:
-        out.A = np.einsum("ia,sij,jb->sab", Li, doc.A, Li)
+        out.A = Lt @ doc.A @ Li
     if doc.C is not None:
-        out.C = np.einsum("ia,sij,jb->sab", Li, doc.C, Li)
+        out.C = Lt @ doc.C @ Li
     if doc.Q is not None:
         out.Q = doc.Q @ Li
     if doc.B is not None:
-        out.B = np.einsum("ia,sik->sak", Li, doc.B)
+        out.B = Lt @ doc.B
     if doc.h is not None:
         out.h = doc.h @ Li
-    if doc.H is not None:
-        out.H = np.einsum("ia,sijk,jb,kc->sabc", Li, doc.H, Li, Li)
+    if doc.H is not None:                  # H'_abc = Li_ia H_ijk Li_jb Li_kc, one axis at a time
+        H = np.tensordot(doc.H, Li, axes=([1], [0]))        # (s, j, k, a)
+        H = np.tensordot(H, Li, axes=([1], [0]))             # (s, k, a, b)
+        H = np.tensordot(H, Li, axes=([1], [0]))             # (s, a, b, c)
+        out.H = H
     if doc.G is not None:
         out.G = doc.G @ Li
     return out
