@@ -17,8 +17,8 @@ def alike_wheels(wm: WheeledModel, model: pin.Model, rng: np.random.Generator,
     is its URDF inertia scaled by one shared random mass factor and size factor (a centred,
     axisymmetric wheel stays so; the two stay equal; the size is not the drawn radius: a
     document's disc wheel, I = m R²/2, needs a family); ``rounded``: axisymmetric
-    (:data:`~.samples.ROUND_WHEELS`, of the drawn one too); ``free``: one random inertia for both
-    (:func:`_free_wheel`)."""
+    (:data:`~.samples.ROUND_WHEELS`, of the drawn one too); ``free``: one random inertia for
+    both (:func:`_free_wheel`)."""
     wheels = tuple(getattr(wm.spec, "wheels", ()) or ())
     if len(wheels) != 2:
         return
@@ -35,8 +35,8 @@ def alike_wheels(wm: WheeledModel, model: pin.Model, rng: np.random.Generator,
 
 
 def _free_wheel(wm: WheeledModel, rng: np.random.Generator) -> pin.Inertia:
-    r"""A random wheel inertia (about its joint's frame) for :data:`~.samples.FREE_WHEELS`: the first
-    wheel's URDF mass, a centre of mass off its origin by up to a fifth of its radius, and
+    r"""A random wheel inertia (about its joint's frame) for :data:`~.samples.FREE_WHEELS`: the
+    first wheel's URDF mass, a centre of mass off its origin by up to a fifth of its radius, and
     moments about a randomly turned centre from second moments each up to twice the URDF's
     mean (valid: :math:`J_{ii} = \Sigma_{jj} + \Sigma_{kk}`)."""
     wheel = wm.wheels[0]
