@@ -72,11 +72,10 @@ def _header(ld: _Loader) -> tuple[str, str, str, dict[str, Any]]:
     source = ld.table("source")
     if not all(isinstance(v, str) for v in source.values()):
         raise ld.fail("source", "values are strings", ld.line("source"))
-    for key in ("convention", "title", "model"):      # TOML puts a key after a table in it
-        if key in source:
-            raise ld.fail(f"source.{key}", f"'{key}' is a key of the file, not of [source]: "
-                          "write it above the first table (a key after a [table] header "
-                          "belongs to that table)", ld.line("source", key))
+    if source.get("convention") in CONVENTIONS:      # TOML puts a key after a table in it
+        raise ld.fail("source.convention", "'convention' is a key of the file, not of "
+                      "[source]: write it above the first table (a key after a [table] "
+                      "header belongs to that table)", ld.line("source", "convention"))
     return title, model, convention, source
 
 

@@ -4,8 +4,8 @@ The random parameter sets draw the wheels alike, each its URDF inertia scaled
 (:func:`~.samples.parameter_sets`): what is zero there (a product of inertia, the centre of
 mass off the axle) stays zero, and a CAD export's rounding (TIAGo's wheels are axisymmetric to
 2e-5: :mod:`~wheeled_dyn.models.round_wheels`) leaves a derivation taking them round a
-difference of about 1e-7 of a row, the comparisons' tolerance. From the symbols the file
-declares:
+difference of about 1e-7 of a row, the comparisons' tolerance. From the symbols the file's
+equations write (a symbol declared and not written names nothing):
 
 - **it names their asymmetry** — a wheel parameter other than its mass, its moment about the
   axle, its centre of mass along the axle and one moment about a diameter (a product of
@@ -71,7 +71,8 @@ def asymmetry_named(d: Derivation, wm) -> tuple[str, ...]:
     written = _written(d)
     values = tuple((s.symbol, s.value) for s in d.symbols.values()
                    if s.value is not None and not s.is_input and s.symbol in written)
-    key = (d.model, values)
+    from ...models.registry import model_version
+    key = (d.model, model_version(d.model), values)
     if key in _NAMED:
         return _NAMED[key]
     axles = {w.link: _axle_index(wm, w.link) for w in wm.wheels}
