@@ -18,8 +18,8 @@ silent.
 - A ``<transmission>`` is not applied: the model's inputs are its joints' torques (a
   mechanical reduction between motor and joint is the document's to state).
 - A planar model's drive wheels axisymmetric about their axles to a CAD export's rounding
-  are drawn axisymmetric in the comparisons' random parameter sets
-  (:mod:`.round_wheels`).
+  are drawn axisymmetric in the comparisons' random parameter sets where a derivation writes
+  nothing of their asymmetry (:mod:`.round_wheels`).
 """
 
 from __future__ import annotations
