@@ -11,8 +11,9 @@ coordinate or a product of inertia along another, either sign), on the conventio
 samples (:class:`~..readings.search.SearchEvaluation`: the document's compiled functions, the
 symbol's numbers changed, no new truth) — a symbol written in an element that agrees is
 mapped right, and not read again. One that makes every equation right is the first
-cause (``file_error``): "with I2 = IYY(forearm_link), every equation is right (0 of 2 as
-declared): the file probably maps I2 to the wrong parameter".
+cause (``file_error``): "with I2 = IYY(forearm_link) (the file maps it to IXX(forearm_link)),
+every equation is right (0 of 2 as declared): the file probably maps I2 to another parameter
+of the link than the document means …".
 """
 
 from __future__ import annotations
@@ -64,8 +65,7 @@ def _in_any(name: str, texts: list[str]) -> bool:
 def _right(search, values) -> int:
     r"""How many of the document's equations are right with the symbols' ``values``."""
     ev = replace(search, values=values)
-    doc = ev.doc_at((1,) * ev.q.shape[1])
-    return ev._right(doc.B, ev._combinations(doc))
+    return ev.equations_right(ev.doc_at((1,) * ev.q.shape[1]))
 
 
 def symbol_map_finding(d: Derivation, j) -> Cause | None:
@@ -86,7 +86,7 @@ def symbol_map_finding(d: Derivation, j) -> Cause | None:
     if not readings:                    # no symbol is one link parameter (a physical record)
         return None
     n = search.q.shape[1]
-    declared = _right(search, search.values)
+    declared = sum(e.verdict == Verdict.AGREES for e in j.result.equations)   # as decided
     if declared > n // 2:
         return None
     grid = j.sides.grid

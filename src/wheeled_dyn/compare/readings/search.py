@@ -127,11 +127,16 @@ class SearchEvaluation(Evaluation):
         return sum(decide_row(i, mine, true, W, sizes=sizes, largest=largest).verdict
                    == Verdict.AGREES for i in range(W.shape[1]))
 
+    def equations_right(self, doc: Arrays) -> int:
+        r"""How many equations of ``doc`` (on the search's samples) are combinations of the
+        true ones."""
+        return self._right(doc.B, self._combinations(doc))
+
     def score(self, doc: Arrays) -> int:
         r"""Equations of ``doc`` (on the search's samples) that are combinations of the true
         ones (:meth:`weight` each), and elements that agree with the truth, after its own
         row factors (:meth:`agreeing`)."""
-        return self.weight() * self._right(doc.B, self._combinations(doc)) + \
+        return self.weight() * self.equations_right(doc) + \
             self.agreeing(doc)
 
     def agreeing(self, doc: Arrays) -> int:

@@ -100,12 +100,12 @@ def offset_readings(d: Derivation, angles: Sequence[int]) -> list[Reading]:
     :func:`readings` has none."""
     if not readings(d) or d.coordinates.use:
         return []
-    n = d.n
+    n, inputs = d.n, _input_readings(d)
     out: list[Reading] = []
     for k in angles:
         for sign in (1, -1):
             s = tuple(sign if j == k else 1 for j in range(n))
-            out += [(s, t, order, (k,), ()) for t, order in _input_readings(d)]
+            out += [(s, t, order, (k,), ()) for t, order in inputs]
     return out
 
 
@@ -127,7 +127,8 @@ def sum_readings(d: Derivation, angles: Sequence[int]) -> list[Reading]:
     if len(chain) > 2 and len({units[k] for k in chain}) == 1:   # a serial chain, every angle
         sums += [tuple((k, j, 1) for i, k in enumerate(chain) for j in chain[:i]),
                  tuple((k, chain[i - 1], -1) for i, k in enumerate(chain) if i)]
-    return [((1,) * n, t, order, (), x) for x in sums for t, order in _input_readings(d)]
+    inputs = _input_readings(d)
+    return [((1,) * n, t, order, (), x) for x in sums for t, order in inputs]
 
 
 def _offset_gains(value: int, declared: int, weight: int | None) -> bool:
