@@ -2,7 +2,7 @@ r"""Links a document leaves out. A differential-drive robot as ROS users write i
 swivel caster (a continuous swivel joint carrying a fork, a continuous joint carrying the
 caster wheel); a derivation of the robot in the (v, ω) form of Dhaouadi & Abu Hatab, *Dynamic
 modelling of differential-drive mobile robots using Lagrange and Newton-Euler methodologies*,
-J. Automation & Control Eng. (2013), written for this file, leaves the caster out. Its
+Adv. Robot. Autom. 2:107 (2013), written for this file, leaves the caster out. Its
 coordinates hold the caster's joints
 (they name neither), so the truth carries the caster's mass with the chassis, and the document
 names the chassis's mass, centre and inertia by ``base_link`` alone.

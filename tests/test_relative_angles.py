@@ -1,7 +1,8 @@
 r"""Angles measured from another link. The two-link arm of Spong, Hutchinson and Vidyasagar
 (:mod:`published_forms`: joint angles, the elbow's relative to the upper arm) written in
 absolute angles, each link's from the horizontal, as double-pendulum derivations take them
-(J. R. Taylor, *Classical Mechanics*, 2005, ch. 11): the document's :math:`q_2` is the
+(T. W. B. Kibble, F. H. Berkshire, *Classical Mechanics*, 5th ed., ch. 11, the
+double pendulum's θ and φ, each from the vertical): the document's :math:`q_2` is the
 model's :math:`q_1 + q_2`, its equations those of the absolute angles (the relative ones
 combined by :math:`L^{-T}`).
 

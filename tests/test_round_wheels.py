@@ -6,7 +6,7 @@ was the draw's ("not decided", "holds only if principal_axes" with no element di
 
 The differential-drive robot's reduced equations in (v, ω) of R. Dhaouadi, A. Abu Hatab,
 *Dynamic modelling of differential-drive mobile robots using Lagrange and Newton-Euler
-methodologies*, J. Automation & Control Eng. 1(1) 2013, eqs (35)–(36) (and R. Fierro,
+methodologies: a unified framework*, Adv. Robot. Autom. 2:107 (2013) (and R. Fierro,
 F. L. Lewis, J. Robotic Systems 14(3) 1997), with the lateral offset c of the chassis's centre
 of mass and the wheels' centres of mass e outboard of their joints that TIAGo has, and the
 same in the wheel angles (each wheel's equation: the rows combined by the Jacobian's
