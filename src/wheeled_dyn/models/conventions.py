@@ -56,12 +56,15 @@ def right_angles(rpy: np.ndarray) -> np.ndarray:
     return np.where(np.abs(rpy - nearest) <= RIGHT_ANGLE_TOL, nearest, rpy)
 
 
-def base_joints(model) -> frozenset[int]:
-    r"""The joints a wheeled or free base puts under the URDF's (x0, y0, psi, phi, the free
-    flyer) and the URDF's root joint on them: their turns are the model's own, exact."""
-    base = {j for j in range(1, model.njoints)
-            if model.names[j] in ("x0", "y0", "psi", "phi")
-            or model.joints[j].shortname() == "JointModelFreeFlyer"}
+def base_joints(wm) -> frozenset[int]:
+    r"""The joints the model's base puts under the URDF's (a planar base's x0, y0, psi and
+    phi, a free base's six; a fixed base has none) and the URDF's root joints on them: their
+    turns are the model's own, exact."""
+    from .wheeled_model import FREE_BASE
+    spec, model = wm.spec, wm.model
+    count = 3 + int(spec.pitch) if spec.base == "planar" else \
+        len(FREE_BASE) if spec.base == "free" else 0
+    base = set(range(1, 1 + count))
     return frozenset(base | {j for j in range(1, model.njoints) if model.parents[j] in base})
 
 

@@ -222,7 +222,7 @@ def true_expressions(model: str, cs: CoordinateSet, refresh: bool = False
     wm = load_model(model)                               # a copy: its joints may be turned
     mode = "physical" if has_physical_record(wm) else "standard"
     if mode == "standard":        # joint frames rounded to right angles: as the comparisons
-        right_angled_joints(wm.model, base_joints(wm.model))     # draw them (a derivation's)
+        right_angled_joints(wm.model, base_joints(wm))           # draw them (a derivation's)
     tree = _tree(wm, mode)
     key = _true_key(model, cs, wm) + mode
     if key in _MEMORY and not refresh:

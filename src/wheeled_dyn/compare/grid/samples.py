@@ -213,7 +213,7 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
     alike from a random inertia (:data:`FREE_WHEELS`)."""
     drawn = _with_geometry(wm, rng, uniform, spread)
     model = pin.Model(drawn.model)               # never the model of ``wm`` itself
-    right_angled_joints(model, base_joints(model))
+    right_angled_joints(model, base_joints(drawn))
     composed = {jid for jid, links in bodies_of(wm).items() if uniform & set(links)}
     for jid in range(1, model.njoints):
         if model.inertias[jid].mass > 0 and jid in composed:
@@ -325,10 +325,11 @@ def special_cases(model_name: str) -> tuple[SpecialCase, ...]:
     (``urdf_proportions``)."""
     if model_entry(model_name).parameters is WipParameters:
         return WIP_SPECIAL_CASES
-    links = sorted(uniform_links(load_model(model_name), (URDF_PROPORTIONS,)))
+    wm = load_model(model_name)
+    links = sorted(uniform_links(wm, (URDF_PROPORTIONS,)))
     each = tuple(uniform_family((link,)) for link in links) \
         if 2 <= len(links) <= UNIFORM_LINK_FAMILIES else ()
-    wheels = (ROUND_WHEELS,) if len(load_model(model_name).wheels) == 2 else ()
+    wheels = (ROUND_WHEELS,) if len(wm.wheels) == 2 else ()
     return (URDF_STRUCTURE, NO_PRODUCTS, *wheels, *each, URDF_PROPORTIONS)
 
 
