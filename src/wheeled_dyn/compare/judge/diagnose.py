@@ -62,6 +62,13 @@ def nice_number(c: float) -> str:
 FACTOR_DIGITS = 1000
 
 
+def small_fraction(x: float, tol: float, largest_q: int = 12) -> Fraction | None:
+    r"""``x`` as a fraction of denominator at most ``largest_q`` within ``tol`` of it
+    (relative), else None."""
+    frac = Fraction(x).limit_denominator(largest_q)
+    return frac if abs(float(frac) - x) <= tol * abs(x) else None
+
+
 def plausible_factor(c: float) -> bool:
     r"""Whether ``c`` is a factor a term can be wrong by: :math:`(p/q)\,10^k\,\pi^j` with
     :math:`|p| \le` :data:`FACTOR_DIGITS`, :math:`q \le 12`, :math:`|k| \le 9`,
@@ -75,9 +82,8 @@ def plausible_factor(c: float) -> bool:
             x = base / 10.0 ** k
             if not 1.0 <= abs(x) <= FACTOR_DIGITS:
                 continue
-            frac = Fraction(x).limit_denominator(12)
-            if abs(frac.numerator) <= FACTOR_DIGITS and \
-                    abs(float(frac) - x) <= FRACTION_TOL * abs(x):
+            frac = small_fraction(x, FRACTION_TOL)
+            if frac is not None and abs(frac.numerator) <= FACTOR_DIGITS:
                 return True
     return False
 

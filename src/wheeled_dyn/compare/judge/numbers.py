@@ -1,7 +1,8 @@
 r"""A number written where a parameter of the model fits: :math:`9.81` for the gravity
-:math:`g` (or a simple fraction of it: 9.81/2 for g/2). The comparison draws every parameter of the model, gravity too (a document's
-equations must hold for every robot of the model, on any planet: a term that needs :math:`g`
-and lacks it is an error), so a document that writes Earth's value differs — it holds for
+:math:`g` (or a simple fraction of it: 9.81/2 for g/2). The comparison draws every parameter
+of the model, gravity too (a document's equations must hold for every robot of the model,
+on any planet: a term that needs :math:`g` and lacks it is an error), so a document that
+writes Earth's value differs — it holds for
 :math:`g = 9.81` only — and its units say so ("has kg, expected kg·m·s⁻²"). That is its
 name here: each number of an element within :data:`GRAVITY_NUMBERS` of a standard value,
 read as the document's symbol for the model's :math:`g`, makes the element agree at every
@@ -17,7 +18,7 @@ import sympy as sp
 
 from ...derivations.schema import Derivation
 from ..records import Diagnosis, DiagnosisKind as K, diagnosis
-from .diagnose import agrees
+from .diagnose import agrees, small_fraction
 
 #: The numbers read as Earth's gravity (m/s²): 9.7 to 9.9 (9.8, 9.81, 9.807, 9.80665).
 GRAVITY_NUMBERS = (9.7, 9.9)
@@ -45,9 +46,9 @@ def _gravity_parts(expr: sp.Expr) -> list[tuple[sp.Number, sp.Rational]]:
             out.append((x, sp.Integer(1)))
             continue
         for earth in EARTH:
-            part = sp.nsimplify(float(x) / earth, rational=True, tolerance=1e-12)
-            if part.q <= 12 and abs(float(part) * earth - float(x)) <= 1e-12 * float(x):
-                out.append((x, part))
+            part = small_fraction(float(x) / earth, 1e-12)
+            if part is not None:
+                out.append((x, sp.Rational(part.numerator, part.denominator)))
                 break
     return out
 
