@@ -273,7 +273,7 @@ def build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
                                 "the axle: it touches the ground there, and the track is "
                                 "measured between the tyres"
                                 for link, plane in zip(spec.wheels, (pl, pr))
-                                if np.linalg.norm(plane) > TURN_NOTED)
+                                if np.linalg.norm(plane) > AXIS_TOL)
                         + round_reading([w.link for w in wheels], [
                             asymmetry(model.inertias[w.joint_id],
                                       joint_axis(model.joints[w.joint_id]), w.radius)
