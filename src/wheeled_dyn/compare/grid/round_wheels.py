@@ -103,30 +103,44 @@ def implied_wheel_families(d: Derivation, families: tuple[SpecialCase, ...]
                            ) -> tuple[SpecialCase, ...]:
     r"""The family the comparison of ``d`` draws its model's wheels in, not declared (module
     text): :data:`~.samples.FREE_WHEELS`, :data:`IMPLIED_ROUND_WHEELS`, or none."""
-    from ...models.registry import load_model, model_entry
-    from ...models.round_wheels import ROUND_TOL, asymmetry
+    from ...models.registry import model_entry
+    from ...models.round_wheels import ROUND_TOL
     if model_entry(d.model).parameters is not None or any(
             c.name in (ROUND_WHEELS.name, FREE_WHEELS.name) for c in families):
         return ()
-    wm = load_model(d.model)
+    wm, worst = _wheels(d.model)
     if len(wm.wheels) != 2:
         return ()
     if asymmetry_named(d, wm):
         return (FREE_WHEELS,)
-    axles = wheel_axles(wm)
-    worst = max(asymmetry(wm.model.inertias[w.joint_id], axles[w.joint_id], w.radius)
-                for w in wm.wheels)
     return (IMPLIED_ROUND_WHEELS,) if 0.0 < worst <= ROUND_TOL else ()
+
+
+_WHEELS: dict[tuple, tuple] = {}
+
+
+def _wheels(model: str) -> tuple:
+    r"""The model (as built) and its drive wheels' largest asymmetry, once per version of its
+    files (:func:`declared <.assumptions.declared>` asks for every judgement)."""
+    from ...models.registry import load_model, model_version
+    from ...models.round_wheels import asymmetry
+    key = (model, model_version(model))
+    if key not in _WHEELS:
+        wm = load_model(model)
+        axles = wheel_axles(wm)
+        _WHEELS[key] = (wm, max((asymmetry(wm.model.inertias[w.joint_id], axles[w.joint_id],
+                                           w.radius) for w in wm.wheels), default=0.0))
+    return _WHEELS[key]
 
 
 def round_contradiction(d: Derivation, families: tuple[SpecialCase, ...]) -> tuple[Cause, ...]:
     r"""A ``file_error`` cause where the file declares ``round_wheels`` and names the wheels'
     asymmetry: its terms in those parameters are the round wheel's, never the URDF's."""
-    from ...models.registry import load_model, model_entry
+    from ...models.registry import model_entry
     if model_entry(d.model).parameters is not None or not any(
             c.name == ROUND_WHEELS.name for c in families):
         return ()
-    named = asymmetry_named(d, load_model(d.model))
+    named = asymmetry_named(d, _wheels(d.model)[0])
     if not named:
         return ()
     return (Cause(CauseKind.FILE_ERROR, (), (
