@@ -20,6 +20,10 @@ the two commands with everything remembered (``WHEELED_DYN_REUSE=1``, after one 
 fills the cache: nothing changed since), as a check made again runs (issue 25: the signed
 cache must not make them slower).
 
+The package's modules are byte-compiled first, as ``./wd`` does before every command: a shell
+that sets ``PYTHONDONTWRITEBYTECODE`` would otherwise compile every module changed since the
+last compilation in every command timed.
+
 The linear algebra libraries get one thread per process, as the command gives them
 (:func:`wheeled_dyn.cli.main.one_thread_each`), for the figures measured in this process too.
 
@@ -115,6 +119,9 @@ def _check_after_saving(derivation: Path) -> list[float]:
 
 
 def main() -> None:
+    import wheeled_dyn
+    subprocess.run([sys.executable, "-m", "compileall", "-q", str(Path(wheeled_dyn.__file__).parent)],
+                   check=True, stdout=subprocess.DEVNULL)     # as ./wd does (the docstring)
     os.environ["WHEELED_DYN_REUSE"] = "forms"  # every figure is a first check: no results reused
     raw_before = _raw_pinocchio(load_model("wip"))
     files = builtin_derivations("seed001")
