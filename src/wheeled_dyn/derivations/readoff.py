@@ -70,10 +70,12 @@ def split_equation_terms(expressions: Sequence[sympy.Expr],
     if len(accelerations) != n:
         raise DerivationError(path, "equations", f"{n} equations for {len(accelerations)} "
                                                  "coordinates")
-    A = sympy.zeros(n, n)
-    h = sympy.zeros(n, 1)
-    Q = sympy.zeros(n, 1)
-    B = sympy.zeros(n, k)
+    # each element's terms, summed once at the end (adding one term at a time to a SymPy sum
+    # rebuilds it: quadratic in the terms of a solved form's element, minutes for thousands)
+    A: list[list[list[sympy.Expr]]] = [[[] for _ in range(n)] for _ in range(n)]
+    h: list[list[sympy.Expr]] = [[] for _ in range(n)]
+    Q: list[list[sympy.Expr]] = [[] for _ in range(n)]
+    B: list[list[list[sympy.Expr]]] = [[[] for _ in range(k)] for _ in range(n)]
     acc_index = {a: j for j, a in enumerate(accelerations)}
     inp_index = {u: j for j, u in enumerate(inputs)}
     everything = [*accelerations, *velocities, *inputs]
@@ -94,17 +96,17 @@ def split_equation_terms(expressions: Sequence[sympy.Expr],
                     raise DerivationError(path, item, f"term {term} is not linear in the "
                                           "accelerations alone", _line(path, i))
                 (a,) = acc
-                A[i, acc_index[a]] += term / a
+                A[i][acc_index[a]].append(term / a)
             elif n_inp:
                 if n_inp != 1 or n_vel:
                     raise DerivationError(path, item, f"term {term} is not linear in the "
                                           "inputs alone", _line(path, i))
                 (u,) = inp
-                B[i, inp_index[u]] -= term / u
+                B[i][inp_index[u]].append(-term / u)
             elif n_vel == 2:
-                h[i] += term
+                h[i].append(term)
             elif n_vel == 0:
-                Q[i] += term
+                Q[i].append(term)
             else:
                 names = ", ".join(str(s) for s in vel)
                 what = (f"linear in the velocity {names}" if n_vel == 1
@@ -112,8 +114,14 @@ def split_equation_terms(expressions: Sequence[sympy.Expr],
                 raise DerivationError(path, item, f"term {term} is {what}: it is neither an "
                                       "inertia, Coriolis/centrifugal, gravity nor input term",
                                       _line(path, i))
-    return EquationTerms(sympy.ImmutableMatrix(A), sympy.ImmutableMatrix(h),
-                         sympy.ImmutableMatrix(Q), sympy.ImmutableMatrix(B), tuple(inputs))
+    return EquationTerms(_summed(A, n, n), _summed([[t] for t in h], n, 1),
+                         _summed([[t] for t in Q], n, 1), _summed(B, n, k), tuple(inputs))
+
+
+def _summed(terms: list[list[list[sympy.Expr]]], rows: int, cols: int) -> sympy.ImmutableMatrix:
+    r"""The matrix whose element (i, j) is the sum of ``terms[i][j]``."""
+    return sympy.ImmutableMatrix(rows, cols, [sympy.Add(*terms[i][j]) for i in range(rows)
+                                              for j in range(cols)])
 
 
 def _line(path: str | Path, i: int) -> int | None:
