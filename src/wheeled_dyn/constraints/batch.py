@@ -206,7 +206,7 @@ def _configuration(cmap, ctx: _Context, q: np.ndarray, q_doc: np.ndarray | None,
         if cs.rolling == "eliminate":
             assert J is not None, "rolling eliminated: J_c was computed (need_J)"
             Mp = pseudo_inverse(np.concatenate([J, T], axis=1))
-            S = Mp[:, :, J.shape[1]:]
+            S = cmap.basis(Mp, J.shape[1])
         else:
             S = np.linalg.inv(T)
     return _Configuration(A, Q if with_gravity else None, J, S, Mp, Jw, pos)

@@ -37,6 +37,7 @@ from ..coordinates.spec import CoordinateSet, CoordinateSpecError, model_symbols
 from ..dynamics.terms import Terms, check_vector
 from ..models.builder import WheeledModel
 from .batch import lambdify_batch, reduce_batch
+from .held import held_coordinates
 from .linalg import pseudo_inverse
 from .rolling import contact_jacobian, planar_drift, planar_rows
 
@@ -77,16 +78,9 @@ class CoordinateMap:
             self._S_batch = lambdify_batch(S, [*doc_q, *params])
             self._Sdot_batch = lambdify_batch(Sdot, [*doc_q, *doc_v, *params])
         else:
-            mq, mv = model_symbols(wm.coordinate_names)
             vmap = cs.velocity_map
             assert vmap is not None, "a set that is not holonomic maps its velocities"
-            nu = sp.Matrix([vmap[v] for v in cs.velocities])
-            T = nu.jacobian(mv)
-            Tdot = sum((T.diff(s) * ds for s, ds in zip(mq, mv)), sp.zeros(*T.shape))
-            self._T = grouped_function([list(mq), params], T)
-            self._Tdot = grouped_function([list(mq), list(mv), params], Tdot)
-            self._T_batch = lambdify_batch(T, [*mq, *params])
-            self._Tdot_batch = lambdify_batch(Tdot, [*mq, *mv, *params])
+            T = self._compile_velocity_map([vmap[v] for v in cs.velocities], params)
             if cs.rolling != "eliminate" and T.shape[0] != T.shape[1]:
                 raise CoordinateSpecError(cs.name, "velocity_map",
                                           f"{T.shape[0]} velocities for {T.shape[1]} model "
@@ -96,6 +90,42 @@ class CoordinateMap:
             raise CoordinateSpecError(cs.name, "rolling", "'eliminate' needs quasi-velocities "
                                       "(kind = 'quasi'); use 'multipliers' for a holonomic set")
         self.bind()
+        #: The model coordinates the set holds (:mod:`.held`): their velocities are rows of T
+        #: after the document's, each held at zero.
+        self.held: tuple[str, ...] = ()
+        if cs.kind == "quasi" and cs.rolling == "eliminate":
+            self.held = held_coordinates(cs, wm.coordinate_names, self._stacked,
+                                         [w.v_index for w in wm.wheels])
+            if self.held:
+                assert vmap is not None, "a quasi set maps its velocities"
+                _, mv = model_symbols(wm.coordinate_names)
+                index = {c: k for k, c in enumerate(wm.coordinate_names)}
+                self._compile_velocity_map([*(vmap[v] for v in cs.velocities),
+                                            *(mv[index[c]] for c in self.held)], params)
+
+    def _compile_velocity_map(self, rows: list[sp.Expr], params: list[sp.Symbol]) -> sp.Matrix:
+        r""":math:`T = \partial\nu/\partial v` of the velocities ``rows`` and its rate,
+        compiled; returns T."""
+        mq, mv = model_symbols(self.wm.coordinate_names)
+        T = sp.Matrix(rows).jacobian(mv)
+        Tdot = sum((T.diff(s) * ds for s, ds in zip(mq, mv)), sp.zeros(*T.shape))
+        self._T = grouped_function([list(mq), params], T)
+        self._Tdot = grouped_function([list(mq), list(mv), params], Tdot)
+        self._T_batch = lambdify_batch(T, [*mq, *params])
+        self._Tdot_batch = lambdify_batch(Tdot, [*mq, *mv, *params])
+        return T
+
+    def _stacked(self, q_doc: np.ndarray) -> np.ndarray:
+        r""":math:`[J_c; T]` at the model configuration of the document positions ``q_doc``."""
+        q = np.asarray(self._config(q_doc, self._p), dtype=float).reshape(-1)
+        J, _ = contact_jacobian(self.wm, q, data=self._data)
+        return np.vstack([J, np.asarray(self._T(q, self._p), dtype=float)])
+
+    def basis(self, Mp: np.ndarray, constraints: int) -> np.ndarray:
+        r""":math:`S`: the columns of :math:`[J_c; T]^+` (``Mp``, N stacked or one) of the
+        document's velocities, after the ``constraints`` rows of :math:`J_c` and before those
+        of the held coordinates."""
+        return Mp[..., constraints:constraints + self.n]
 
     def bind(self, wm: WheeledModel | None = None) -> "CoordinateMap":
         r"""Use the parameters (R, L, ...) and inertias of ``wm`` (same structure) from now on."""
@@ -123,7 +153,8 @@ class CoordinateMap:
             return np.linalg.inv(T)
         J, _ = contact_jacobian(self.wm, q, data=self._data)
         M = np.vstack([J, T])
-        E = np.vstack([np.zeros((J.shape[0], self.n)), np.eye(self.n)])
+        E = np.vstack([np.zeros((J.shape[0], self.n)), np.eye(self.n),
+                       np.zeros((len(self.held), self.n))])
         S = np.linalg.lstsq(M, E, rcond=None)[0]
         residual = np.abs(M @ S - E).max()
         if residual > PARAMETRISATION_TOL:
@@ -155,7 +186,7 @@ class CoordinateMap:
                 J, _ = contact_jacobian(self.wm, q, data=data)
                 M = np.vstack([J, T])
                 Mp = np.linalg.pinv(M)
-                S = Mp[:, J.shape[0]:]
+                S = self.basis(Mp, J.shape[0])
                 v = S @ nu
                 _, dJ = contact_jacobian(self.wm, q, v, data=data)
                 Tdot = np.asarray(self._Tdot(q, v, self._p), dtype=float)
@@ -205,7 +236,7 @@ class CoordinateMap:
                 planar = wm.contact is None and not wm.rolling_wheels
                 J = planar_rows(wm, data) if planar else contact_jacobian(wm, q, data=data)[0]
                 Mp = pseudo_inverse(np.vstack([J, T]))
-                S = Mp[:, J.shape[0]:]
+                S = self.basis(Mp, J.shape[0])
                 v = S @ nu
                 drift = planar_drift(wm, data, q, v) if planar else \
                     contact_jacobian(wm, q, v, data=data)[1] @ v
@@ -243,7 +274,7 @@ class CoordinateMap:
                 M = self._S_batch(N, *q_doc.T, *self._p)
             else:
                 q = self._config_batch(N, *q_doc.T, *self._p)[:, :, 0]
-                M = self._T_batch(N, *q.T, *self._p)
+                M = self._T_batch(N, *q.T, *self._p)[:, :self.n]   # the document's rows
         M = np.asarray(M, dtype=float)
         out = np.full(N, np.inf)
         finite = np.all(np.isfinite(M.reshape(N, -1)), axis=1)   # a map undefined there

@@ -75,7 +75,17 @@ def both_sides(d: Derivation, funcs: DocumentFunctions, grid: Grid, seed: int,
         doc.Gamma = gamma(funcs, grid.flat_q, values, truth.H_rows)
     argv = (*grid.flat_q.T, *grid.flat_nu.T, *(values[p] for p in funcs.params))
     return Sides(grid, truth, doc, B_true, tuple(per_set), values, argv, tuple(notes),
-                 load_model(d.model).readings)
+                 load_model(d.model).readings + held_readings(grid.cmap))
 
 
-__all__ = ["Sides", "both_sides", "gamma"]
+def held_readings(cmap) -> tuple[str, ...]:
+    r"""What the model reads of the coordinates the file's set holds
+    (:mod:`~wheeled_dyn.constraints.held`), one sentence each."""
+    config = cmap.cs.configuration
+    return tuple(f"coordinate {c} held at {config.get(c, 0)}: the file's velocities leave it "
+                 "free (its configuration is a constant and no velocity maps its rate), so "
+                 "the truth is the model with it held there, as a locked joint or a guide "
+                 "holds it" for c in getattr(cmap, "held", ()))
+
+
+__all__ = ["Sides", "both_sides", "gamma", "held_readings"]

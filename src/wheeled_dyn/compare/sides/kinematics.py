@@ -95,7 +95,7 @@ class Motion:
             if cs.rolling == "eliminate":
                 J, _ = contact_jacobian(wm, q, data=data)
                 Mp = np.linalg.pinv(np.vstack([J, T]))
-                S = Mp[:, J.shape[0]:]
+                S = cmap.basis(Mp, J.shape[0])
                 v = S @ nu
                 _, dJ = contact_jacobian(wm, q, v, data=data)
                 Tdot = np.asarray(cmap._Tdot(q, v, cmap._p), dtype=float)

@@ -1,0 +1,85 @@
+r"""A quasi-velocity set that leaves a motion of the model free (:mod:`wheeled_dyn.constraints.held`).
+
+Seed 001's pendulum pitches and turns. A level-body derivation in :math:`(v, \omega)` — the
+differential drive's form (Dhaouadi & Abu Hatab, Adv. Robot. Autom. 2:107, 2013) — leaves its
+pitch free; a planar one in :math:`(x, \phi)`, its heading. Where the file's configuration holds
+that coordinate at a constant whose rate no velocity maps, the truth is the model with it held:
+the rows of the full three-coordinate set's terms for the velocities kept, with the held rate
+zero (an identity between two reductions: a different set of rolling equations solved). Before,
+a pseudo-inverse filled the free rate in (the smallest velocity norm), a truth of no robot.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from wheeled_dyn import CoordinateMap, builtin_coordinate_set, load_model
+from wheeled_dyn.coordinates.spec import CoordinateSpecError, parse_coordinate_set
+
+SEED = 20261128
+#: Agreement of two reductions of the same model (rounding of two pseudo-inverses).
+TOL = 1e-10
+
+
+def _set(wm, positions, velocities, configuration, velocity_map):
+    return parse_coordinate_set(
+        {"kind": "quasi", "rolling": "eliminate", "positions": positions,
+         "velocities": velocities, "configuration": configuration,
+         "velocity_map": velocity_map}, "test", wm.coordinate_names,
+        tuple(wm.named_lengths()))
+
+
+@pytest.mark.parametrize("kept, held, pitch", [
+    ((0, 1), "phi", 0.3),          # (v, omega): the pitch held at 0.3 rad
+    ((0, 2), "psi", 0.0),          # planar (x, phi): the heading held
+])
+def test_held_coordinate_is_the_full_set_with_its_rate_zero(kept, held, pitch):
+    wm = load_model("wip")
+    full = CoordinateMap(wm, builtin_coordinate_set(wm, "seed001"))      # (x, psi, phi)
+    names = ("x", "psi", "phi")
+    positions = [names[k] for k in kept]
+    config = {"x0": "x", "psi": "psi" if "psi" in positions else "0",
+              "phi": "phi" if "phi" in positions else str(pitch)}
+    vmap = {"dx": "cos(psi)*dx0 + sin(psi)*dy0", "dpsi": "dpsi", "dphi": "dphi"}
+    cs = _set(wm, positions, ["d" + p for p in positions], config,
+              {"d" + p: vmap["d" + p] for p in positions})
+    part = CoordinateMap(wm, cs)
+    assert part.held == (held,)
+    rng = np.random.default_rng(SEED)
+    for _ in range(5):
+        q_full = rng.uniform(-1, 1, 3)
+        q_full[names.index(held)] = pitch if held == "phi" else 0.0
+        nu_full = rng.normal(size=3)
+        nu_full[names.index(held)] = 0.0
+        t_full = full.terms(q_full, nu_full)
+        t_part = part.terms(q_full[list(kept)], nu_full[list(kept)])
+        idx = np.ix_(kept, kept)
+        np.testing.assert_allclose(t_part.A, t_full.A[idx], atol=TOL)
+        np.testing.assert_allclose(t_part.h, t_full.h[list(kept)], atol=TOL)
+        np.testing.assert_allclose(t_part.Q, t_full.Q[list(kept)], atol=TOL)
+        np.testing.assert_allclose(t_part.B, t_full.B[list(kept)], atol=TOL)
+
+
+def test_a_set_that_determines_every_motion_holds_nothing():
+    wm = load_model("wip")
+    assert CoordinateMap(wm, builtin_coordinate_set(wm, "seed001")).held == ()
+
+
+def test_a_free_motion_no_constant_holds_is_refused_naming_it():
+    wm = load_model("wip")
+    # the pitch follows the distance travelled in the configuration, but no velocity maps
+    # its rate: nothing holds it, and nothing determines it
+    cs = _set(wm, ["x", "psi"], ["dx", "dpsi"], {"x0": "x", "psi": "psi", "phi": "x/10"},
+              {"dx": "cos(psi)*dx0 + sin(psi)*dy0", "dpsi": "dpsi"})
+    with pytest.raises(CoordinateSpecError, match=r"leave a motion of the model free.*phi"):
+        CoordinateMap(wm, cs)
+
+
+def test_a_planar_derivation_says_which_coordinate_it_holds():
+    from wheeled_dyn.compare import ComparisonEngine
+    from wheeled_dyn.derivations import builtin_derivations, load_derivation
+    path = next(p for p in builtin_derivations("seed001") if p.name.startswith("report3_eq"))
+    d = load_derivation(path)
+    result = ComparisonEngine(samples=200, param_sets=2).compare(d)
+    assert any("coordinate psi held at 0" in r for r in result.model_readings)
