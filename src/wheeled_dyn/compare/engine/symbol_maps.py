@@ -68,6 +68,12 @@ def _right(search, values) -> int:
     return ev.equations_right(ev.doc_at((1,) * ev.q.shape[1]))
 
 
+def _equations(j) -> list[sp.Expr]:
+    r"""The document's expressions the judged derivation ``j`` compares (None left out)."""
+    exprs = j.funcs.exprs
+    return [e for e in exprs.values() if isinstance(e, sp.Basic)]
+
+
 def symbol_map_finding(d: Derivation, j) -> Cause | None:
     r"""The first symbol whose value read as another parameter of its link makes every
     equation of the judged derivation ``j`` right (module text), as a cause; None where none
@@ -80,15 +86,17 @@ def symbol_map_finding(d: Derivation, j) -> Cause | None:
         values = search.values.get(symbol)
         return values is not None and bool(np.any(np.asarray(values) != 0)) and \
             _in_any(str(symbol), agreeing)
+    written = set().union(*(e.free_symbols for e in _equations(j)))
     readings = [(spec, other) for spec in d.symbols.values()
-                if not spec.is_input and spec.value is not None
+                if not spec.is_input and spec.value is not None and spec.symbol in written
                 and not mapped_right(spec.symbol) for other in _alternatives(spec.value)]
     if not readings:                    # no symbol is one link parameter (a physical record)
         return None
     n = search.q.shape[1]
     declared = sum(e.verdict == Verdict.AGREES for e in j.result.equations)   # as decided
-    if declared > n // 2:
-        return None
+    if declared > n // 2 or _right(search, search.values) != declared:
+        return None          # the samples do not judge as the decision did (a linearised
+        #                      document's stiffness is compared apart): no reading is said
     grid = j.sides.grid
     n_states = grid.q.shape[1]
     for spec, other in readings:
@@ -97,6 +105,9 @@ def symbol_map_finding(d: Derivation, j) -> Cause | None:
                 per_set = [model_value(other, ps.values) for ps in grid.sets]
             except UnknownNameError:
                 continue
+            if not np.any(per_set):
+                continue      # zero in every set (a centre of mass on the axis): the symbol's
+                #               terms would vanish, not be read right
             values = dict(search.values)
             values[spec.symbol] = np.repeat(per_set, n_states)
             if _right(search, values) == n:
