@@ -109,7 +109,7 @@ def value_diagnoses(D: np.ndarray, T: np.ndarray, scale: float) -> list[Diagnosi
     if np.max(np.abs(D + T)) <= tol:
         return [diagnosis(K.SIGN, "the document has the opposite sign", factor="-1")]
     c = float(D.ravel() @ T.ravel() / (T.ravel() @ T.ravel()))
-    if np.max(np.abs(D - c * T)) <= tol:
+    if np.max(np.abs(D - c * T)) <= tol and plausible_factor(c):   # not 1.0003: a term
         return [diagnosis(K.FACTOR, f"the document is {nice_number(c)} × the truth",
                           factor=nice_number(c))]
     return []
@@ -163,6 +163,10 @@ def power_diagnoses(expr: sp.Expr, params: Sequence[sp.Symbol],
         e = next((f.as_base_exp()[1] for f in factors if f.as_base_exp()[0] == s), sp.Integer(0))
         if e == 0 or not e.is_Rational:
             continue
+        dropped = expr.xreplace({s: 0}) if e > 0 else sp.zoo    # (s also divides: none)
+        if not dropped.has(sp.zoo, sp.oo, -sp.oo, sp.nan) and agrees(evaluate(dropped), T, scale):
+            continue         # its terms left out agree: they are extra (a small length to a
+            #                  higher power only makes them vanish), not to another power
         for new in dict.fromkeys((-e, e - 1, e + 1, 2 * e)):
             if new != 0 and agrees(powered(s, new / e), T, scale):
                 found.append(diagnosis(K.POWER, f"{sp.sstr(s ** e)} where {sp.sstr(s ** new)} "
@@ -233,6 +237,8 @@ def _term_powers(terms: Sequence[sp.Expr], value: Callable[[sp.Expr], np.ndarray
             if not (base.is_Symbol and e.is_Rational and e != 0):
                 continue
             tv, sv = value(t), value(base)
+            if agrees(D - tv, T, scale):
+                return []    # the term left out agrees: it is extra, not to another power
             for new in dict.fromkeys((-e, e - 1, e + 1, 2 * e)):
                 with np.errstate(all="ignore"):
                     seen = D[screen] - tv[screen] + tv[screen] * sv[screen] ** float(new - e)

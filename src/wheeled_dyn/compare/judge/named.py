@@ -165,14 +165,14 @@ def _too_much(term: sp.Expr, written: frozenset, positions: Sequence[sp.Symbol] 
     much" by its minus sign); all of the term's sign — it lacks one more of them (a Kane
     row, all its terms negated, lacking one); all of the other sign — it has too much
     (:math:`m` written for :math:`m_c + 2m_w`: :math:`2m_w` too much). Of both signs: by
-    the term's own."""
-    if -term in written:
-        return True
-    if term in written:
-        return False
+    the term's own. Where none of those holds a parameter of the term, it lacks it (an
+    :math:`I_{xz}\cos 2\theta` dropped beside :math:`-m x z\cos 2\theta` was too much)."""
+    if -term in written or term in written:
+        return -term in written
     kind = term.as_independent(*positions, as_Add=False)[1]
-    signs = {w.could_extract_minus_sign() for w in written
-             if w.as_independent(*positions, as_Add=False)[1] == kind}
+    same = [w for w in written if w.as_independent(*positions, as_Add=False)[1] == kind]
+    signs = {w.could_extract_minus_sign() for w in same
+             if w.free_symbols & (term.free_symbols - set(positions))}
     if not signs:
         return False
     if len(signs) == 1:
@@ -369,11 +369,13 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
         parts = sp.Add.make_args(sp.expand(found))
         written = frozenset(sp.Add.make_args(sp.expand(r.expr))) if r.expr is not None \
             and sp.count_ops(r.expr) <= 200 else frozenset()
-        extra = all(_too_much(t, written, positions) for t in parts)   # only terms too many
-        r.diagnoses.append(diagnosis(K.EXTRA if extra else K.MISSING,
+        much = [_too_much(t, written, positions) for t in parts]   # named as written (-t)
+        named_terms = tuple(sp.sstr(-t if all(much) else t) for t in parts) \
+            if all(much) or not any(much) else ()              # both kinds: its sentence
+        r.diagnoses.append(diagnosis(K.EXTRA if all(much) else K.MISSING,
                                      f"{_lacks(found, written, positions)} (truth − document = "
                                      f"{sp.sstr(found)})",
-                                     prefix="terms", terms=tuple(sp.sstr(t) for t in parts)))
+                                     prefix="terms", terms=named_terms))
 
 
 def _undivided(before: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]

@@ -1,0 +1,116 @@
+r"""A wrong term named as the document has it, and no reading that only makes it vanish.
+
+- A term the document has too much is named with the document's sign (a probe's
+  :math:`+m_1h_1^2` was "too much :math:`-h_1^2m_1`"), and a small length's term is extra, not
+  "to another power" (:math:`h_1^2` where :math:`h_1^4` fits only made it negligible).
+- A term the document lacks is lacking even where the element writes another term of the same
+  function of the positions with the other sign (a probe's balancer lacking
+  :math:`I_{xz}\cos 2\theta` beside :math:`-m_bx_bz_b\cos 2\theta` was "too much").
+- A symbol read as another parameter of its link is a cause only where the equations are
+  judged as the decision judged them (a linearised document's wrong stiffness was "right with
+  J2yy = IYY(pend)", a symbol its equations do not write), and never as a parameter that is 0
+  in every parameter set (its terms vanish; they are not read right).
+
+The rod is seed 000's 4.4 (the shipped ``rod_pendulum``: :math:`\tfrac13ml^2\ddot\theta +
+\tfrac12mgl\sin\theta = 0`, its radius 0.01 m); the balancer, the project's ROS balancer
+(``tests/data/ros_balancer``, its matrices from Kane's equations: ``tests/ros_kane.py``).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from conftest import SEED
+from wheeled_dyn.compare.engine import ComparisonEngine
+from wheeled_dyn.compare.records import CauseKind, DiagnosisKind as K
+from wheeled_dyn.derivations import load_derivation
+
+SAMPLES, PARAM_SETS = 200, 3
+DATA = Path(__file__).parent / "data"
+
+ROD = '''title = "Rod pendulum ({name})"
+model = "rod_pendulum"
+[coordinates]
+positions = ["theta"]
+kind = "holonomic"
+rolling = "none"
+configuration = {{ theta = "theta" }}
+units = {{ theta = "rad" }}
+[symbols]
+m = {{ value = "4*MZ(rod)**2/(3*YY(rod))", units = "kg" }}
+l = {{ value = "-3*YY(rod)/(2*MZ(rod))", units = "m" }}
+g = {{ value = "g", units = "m/s**2" }}
+r = {{ value = "radius(rod)", units = "m" }}
+{symbols}
+[assumes]
+families = ["urdf_structure"]
+{assumes}
+[matrices]
+equations = ["{equation}"]
+'''
+
+
+def _compare(tmp_path, name, equation, symbols="", assumes=""):
+    path = tmp_path / f"{name}.toml"
+    path.write_text(ROD.format(name=name, equation=equation, symbols=symbols, assumes=assumes))
+    return ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED).compare(
+        load_derivation(path))
+
+
+def _record(result, element):
+    return next(r for r in result.records if r.element == element)
+
+
+@pytest.mark.parametrize("sign", ["+", "-"])
+def test_a_small_terms_extra_not_to_another_power(tmp_path, sign):
+    result = _compare(tmp_path, "extra", f"(1/3*m*l**2 {sign} m*r**2)*ddtheta "
+                                         "+ m*g*l/2*sin(theta) = 0")
+    record = _record(result, "A[1,1]")
+    assert record.verdict == "differs"
+    kinds = [x.kind for x in record.diagnoses]
+    assert K.POWER not in kinds, record.diagnoses
+    extra = next(x for x in record.diagnoses if x.kind == K.EXTRA)
+    assert extra.terms == ((f"{'-' if sign == '-' else ''}m*r**2",)), extra
+
+
+def test_a_dropped_term_lacks_beside_another_of_its_function(tmp_path):
+    text = (DATA / "ros_balancer" / "ros_balancer_heading.toml").read_text()
+    right = "(I_xz*cos(2*theta) - (I_xx - I_zz)*sin(2*theta)/2"
+    assert text.count(right) == 1
+    path = tmp_path / "ros_balancer_heading.toml"
+    path.write_text(text.replace(right, "(-(I_xx - I_zz)*sin(2*theta)/2"))
+    (tmp_path / "ros_balancer.toml").write_text(
+        (DATA / "ros_balancer" / "ros_balancer.toml").read_text().replace(
+            'path = "ros_balancer.urdf"', f'path = "{DATA / "ros_balancer" / "ros_balancer.urdf"}"'))
+    result = ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED).compare(
+        load_derivation(path))
+    record = _record(result, "h[3]:dpsi*dpsi")
+    named = next(x for x in record.diagnoses if x.kind in (K.MISSING, K.EXTRA))
+    assert named.kind == K.MISSING and named.terms == ("I_xz*cos(2*theta)",), named
+
+
+LINEAR = "linearised_about = { theta = 0.0 }"
+
+
+@pytest.mark.parametrize("symbol, equation", [
+    # a symbol the equation writes, whose other axis (XX = YY on the rod) keeps its A right
+    ('I = { value = "YY(rod)", units = "kg*m**2" }', "I*ddtheta + 5*m*g*l*theta = 0"),
+    # a symbol it does not write
+    ('J = { value = "XX(rod)", units = "kg*m**2" }', "1/3*m*l**2*ddtheta + 5*m*g*l*theta = 0"),
+])
+def test_a_wrong_stiffness_is_no_symbol_map(tmp_path, symbol, equation):
+    result = _compare(tmp_path, "stiff", equation, symbol, LINEAR)
+    assert result.equivalent is False
+    assert _record(result, "K[1,1]").verdict == "differs"
+    assert not any(c.kind == CauseKind.FILE_ERROR for c in result.causes), result.causes
+
+
+def test_a_parameter_zero_in_every_set_is_no_symbol_map(tmp_path):
+    # c = CZ(rod) (l/2) in a term the truth does not have: read as CX(rod) or CY(rod), both
+    # 0 in every set (urdf_structure), the term would vanish
+    result = _compare(tmp_path, "zero", "(1/3*m*l**2 + m*c**2)*ddtheta + m*g*l/2*sin(theta) = 0",
+                      'c = { value = "CZ(rod)", units = "m" }')
+    assert result.equivalent is False
+    assert not any(c.kind == CauseKind.FILE_ERROR for c in result.causes), result.causes
