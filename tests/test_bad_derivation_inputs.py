@@ -255,3 +255,22 @@ def test_a_map_using_a_symbol_of_a_centre_of_mass_names_that_symbol(tmp_path):
     with pytest.raises(DerivationError) as err:
         ComparisonEngine(samples=20, param_sets=1).compare(load_derivation(path))
     _clear(err.value, path, "coordinates.configuration.theta", "the symbol delta is")
+
+
+def test_a_wheel_joints_origin_is_named_by_the_axle(tmp_path):
+    r"""The joints from a planar model's root to its wheels have no lengths of their own: the
+    axle's height is R and half the track L. A symbol valued by one (a newcomer's COM height
+    above the axle written ``CZ(base_link) - origin_z(left_wheel_joint)``) was "unknown joint"
+    with a list of other joints; it now says why, and what to write."""
+    from wheeled_dyn.compare.engine import ComparisonEngine
+    ros = Path(__file__).parent / "data" / "ros_balancer"
+    (tmp_path / "ros_balancer.toml").write_text((ros / "ros_balancer.toml").read_text().replace(
+        'path = "ros_balancer.urdf"', f'path = "{ros / "ros_balancer.urdf"}"'))
+    text = (ros / "ros_balancer_heading.toml").read_text()
+    old = 'z_b  = { value = "CZ(base_link)",'
+    path = _write(tmp_path, old, 'z_b  = { value = "CZ(base_link) - origin_x(left_wheel_joint)",',
+                  text=text)
+    with pytest.raises(DerivationError) as err:
+        ComparisonEngine(samples=20, param_sets=1).compare(load_derivation(path))
+    _clear(err.value, path, "symbols.z_b.value", "origin_x(left_wheel_joint)",
+           "joins the body to the wheels", "write them as numbers")

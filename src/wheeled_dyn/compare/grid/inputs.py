@@ -4,9 +4,11 @@ of its model."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numbers
 
-from ...errors import ArgumentError, LimitError
+from ...errors import ArgumentError, DerivationError, LimitError
 
 #: Ranges of --samples and --param-sets, and of their product (the states of one comparison):
 #: memory and time grow with it (at 10**9 states the comparison asked for 112 GiB).
@@ -86,6 +88,7 @@ def check_model_names(d) -> None:
                     "enters the dynamics)", link, sorted(named.get("link", links)), line)
             if link not in links:
                 kind = GEOMETRY_NAMES.get(call.func.__name__, "link")   # origin_x(joint)
+                _axle_joint(d.path, item, line, wm, key if kind == "joint" else None)
                 raise DerivationNameError(d.path, item, kind, link,
                                           sorted(named.get(kind, links)), line)
             if key not in values:
@@ -95,6 +98,28 @@ def check_model_names(d) -> None:
             if symbol.name not in values:
                 raise DerivationNameError(d.path, item, "model parameter", symbol.name,
                                           [k for k in values if "(" not in k], line)
+
+
+def _axle_joint(path, item: str, line: int | None, wm, key: str | None) -> None:
+    r"""Raise :class:`~wheeled_dyn.errors.DerivationError` where ``key``
+    (``origin_z(joint)``) names a planar model's URDF joint on the path from its root to its
+    wheels: its origin is named by R and L, the rest kept as written, no length of its own
+    to draw (:mod:`~wheeled_dyn.models.geometry`). Nothing for any other ``key``, or None."""
+    from ...models.geometry import urdf_lengths
+    if key is None or wm.base != "planar":
+        return
+    try:
+        origins = urdf_lengths(Path(wm.spec.urdf).read_text())[0]
+    except (OSError, ValueError):
+        return
+    joint = key[key.index("(") + 1:-1]
+    if joint in origins:
+        xyz = ", ".join(f"{v:g}" for v in origins[joint])
+        raise DerivationError(path, item, f"{key}: joint {joint!r} joins the body to the "
+                              "wheels, and the axle's height is R and half the track L, drawn "
+                              "in every parameter set; the other components of its origin, "
+                              f"({xyz}) as the URDF writes them, are kept in every set: write "
+                              "them as numbers", line)
 
 
 def _static(wm, link: str) -> bool:
