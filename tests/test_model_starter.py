@@ -267,3 +267,29 @@ def test_a_wheel_radius_left_at_zero_names_the_file_and_line(tmp_path, radius):
         load_model(str(out))
     said = str(err.value)
     assert f"{out}:{at}: wheels.radius" in said and "positive" in said, said
+
+
+@pytest.mark.parametrize("rpy, size", [("0 0 0", "0.04 0.03 0.06"),
+                                       ("-1.57 0 0", "0.04 0.06 0.03")])
+def test_a_box_caster_on_a_fixed_joint_keeps_the_robot_level(tmp_path, rpy, size):
+    r"""``dd_robot.urdf`` with its caster ball replaced by a box reaching the ground, as a
+    TurtleBot3 Burger's ``caster_back_link`` is (a collision box on a fixed joint, turned by
+    rpy -1.57): ``pitch = false``, the caster named (a probe's TurtleBot3 was read as a
+    balancing robot, nothing said). The same box lifted off the ground is no caster."""
+    from pathlib import Path
+    text = (Path(__file__).parent / "data" / "published" / "dd_robot.urdf").read_text()
+    sphere = '<collision><geometry><sphere radius="0.03"/></geometry></collision>'
+    assert text.count(sphere) == 1
+    box = (f'<collision><origin rpy="{rpy}"/><geometry><box size="{size}"/></geometry>'
+           '</collision>')
+    text = text.replace(sphere, box).replace('<visual><geometry><sphere radius="0.03"/>',
+                                             f'<visual><geometry><box size="{size}"/>')
+    for lift, level in ((0.0, True), (0.05, False)):
+        urdf = tmp_path / f"box_{lift}.urdf"
+        urdf.write_text(text.replace(box, box.replace(
+            '<origin rpy=', f'<origin xyz="0 0 {lift}" rpy=')))
+        out = tmp_path / f"robot_{lift}.toml"
+        assert main(["model", str(urdf), "--out", str(out)]) == 0
+        line = next(x for x in out.read_text().splitlines() if x.startswith("pitch"))
+        assert line.startswith(f"pitch = {str(not level).lower()}"), (lift, line)
+        assert ("caster_link" in line) is level, line

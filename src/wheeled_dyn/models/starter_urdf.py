@@ -65,9 +65,14 @@ def caster_links(urdf, pair, free: tuple[str, ...], up: np.ndarray, root: str
     (a swivel caster, another wheel), whose origin lies no higher than the drive wheels' tops
     (``up``: the up direction in the ``root`` frame, zero configuration) — an arm's links
     above the body were taken for casters, and a balancing robot carrying one was read as
-    kept level; sorted. They keep a wheeled body level (its model's ``pitch = false``)."""
+    kept level; and a link whose collision box reaches the ground (within
+    :data:`SKID_TOL` of a wheel radius) away from the axle (a TurtleBot3's caster, a box on a
+    fixed joint, was not seen); sorted. They keep a wheeled body level (its model's
+    ``pitch = false``)."""
     wheels = {w.link for w in pair}
     top = max(float(np.dot(w.position, up)) + w.radius for w in pair)
+    ground = min(float(np.dot(w.position, up)) - w.radius for w in pair)
+    axle = np.mean([w.position for w in pair], axis=0)
 
     def low(link: str) -> bool:
         return float(np.dot(urdf.get_transform(link, root)[:3, 3], up)) <= top
@@ -76,5 +81,36 @@ def caster_links(urdf, pair, free: tuple[str, ...], up: np.ndarray, root: str
         shape.geometry is not None and shape.geometry.sphere is not None
         for shape in (*link.collisions, *link.visuals))}
     out |= {j.child for j in urdf.robot.joints if j.name in free}
+    radius = min(w.radius for w in pair)
+    for link in urdf.robot.links:
+        if link.name in wheels:
+            continue
+        for corner in _box_corners(urdf, link, root):
+            off = corner - axle
+            if abs(float(np.dot(corner, up)) - ground) <= SKID_TOL * radius and \
+                    np.linalg.norm(off - np.dot(off, up) * up) > radius:
+                out.add(link.name)
     return tuple(sorted(link for link in out if low(link)))
+
+
+#: A collision box of a link other than the wheels whose lowest corner is within this fraction
+#: of the wheel radius of the ground, away from the axle, is a skid or a fixed caster.
+SKID_TOL = 0.25
+
+
+def _box_corners(urdf, link, root: str) -> list[np.ndarray]:
+    r"""The corners of ``link``'s collision boxes in the ``root`` frame (zero configuration)."""
+    out = []
+    for shape in link.collisions:
+        box = None if shape.geometry is None else shape.geometry.box
+        if box is None:
+            continue
+        pose = urdf.get_transform(link.name, root) @ (np.eye(4) if shape.origin is None
+                                                       else np.asarray(shape.origin))
+        half = 0.5 * np.asarray(box.size, dtype=float)
+        for sx in (-1, 1):
+            for sy in (-1, 1):
+                for sz in (-1, 1):
+                    out.append(pose[:3, :3] @ (half * (sx, sy, sz)) + pose[:3, 3])
+    return out
 
