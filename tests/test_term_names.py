@@ -114,3 +114,15 @@ def test_a_parameter_zero_in_every_set_is_no_symbol_map(tmp_path):
                       'c = { value = "CZ(rod)", units = "m" }')
     assert result.equivalent is False
     assert not any(c.kind == CauseKind.FILE_ERROR for c in result.causes), result.causes
+
+
+def test_an_element_that_is_one_wrong_symbol_is_judged(tmp_path):
+    r"""An element written as one symbol, the wrong one (half the rod's moment about its
+    pivot, XX(rod) in Khalil's parameters): judged, differing by its factor (trying it "left
+    out" crashed: SymPy gives the replacement itself back, a Python 0, for a lone symbol)."""
+    result = _compare(tmp_path, "lone", "J*ddtheta + m*g*l/2*sin(theta) = 0",
+                      'J = { value = "XX(rod)/2", units = "kg*m**2" }')
+    assert result.equivalent is False
+    record = _record(result, "A[1,1]")
+    assert record.verdict == "differs"
+    assert any(x.kind == K.FACTOR and x.factor == "1/2" for x in record.diagnoses), record

@@ -163,7 +163,7 @@ def power_diagnoses(expr: sp.Expr, params: Sequence[sp.Symbol],
         e = next((f.as_base_exp()[1] for f in factors if f.as_base_exp()[0] == s), sp.Integer(0))
         if e == 0 or not e.is_Rational:
             continue
-        dropped = expr.xreplace({s: 0}) if e > 0 else sp.zoo    # (s also divides: none)
+        dropped = expr.xreplace({s: sp.S.Zero}) if e > 0 else sp.zoo   # (s divides: none)
         if not dropped.has(sp.zoo, sp.oo, -sp.oo, sp.nan) and agrees(evaluate(dropped), T, scale):
             continue         # its terms left out agree: they are extra (a small length to a
             #                  higher power only makes them vanish), not to another power
