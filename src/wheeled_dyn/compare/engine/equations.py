@@ -90,7 +90,8 @@ def equation_records(d: Derivation, decision, drafts: Sequence[ElementDraft],
     if decision is None:
         return []
     on_families = None
-    if len(grids) > 1 and any(e.verdict == Verdict.DIFFERS for e in decision.equations):
+    if len(grids) > 1 and any(e.verdict in (Verdict.DIFFERS, Verdict.UNDECIDED)
+                              for e in decision.equations):
         from .deciding import decide
         on_families = decide(d, funcs, grids[1])
     out = []
@@ -107,7 +108,10 @@ def equation_records(d: Derivation, decision, drafts: Sequence[ElementDraft],
         # element that differs with a sign is no family's: its equation differs too)
         text = _family_condition(row)
         differing = any(r.verdict == Verdict.DIFFERS and r.key != "C" for r in row)
-        if verdict == Verdict.DIFFERS and not singular and on_families is not None \
+        # (undecided by a residual near the tolerance, not by values that are not finite
+        # or lost text: a CAD export's products of inertia of 1e-7 of a row, a family's)
+        near = verdict == Verdict.UNDECIDED and not lost and bool(np.isfinite(e.max_error))
+        if (verdict == Verdict.DIFFERS or near) and not singular and on_families is not None \
                 and on_families.equations[i].verdict == Verdict.AGREES and text \
                 and not differing:
             verdict = Verdict.AGREES_IF

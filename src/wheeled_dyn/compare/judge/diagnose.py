@@ -109,10 +109,24 @@ def value_diagnoses(D: np.ndarray, T: np.ndarray, scale: float) -> list[Diagnosi
     if np.max(np.abs(D + T)) <= tol:
         return [diagnosis(K.SIGN, "the document has the opposite sign", factor="-1")]
     c = float(D.ravel() @ T.ravel() / (T.ravel() @ T.ravel()))
-    if np.max(np.abs(D - c * T)) <= tol and plausible_factor(c):   # not 1.0003: a term
-        return [diagnosis(K.FACTOR, f"the document is {nice_number(c)} × the truth",
-                          factor=nice_number(c))]
-    return []
+    off = float(np.max(np.abs(D - c * T)))
+    near = small_fraction(c, NEAR_FRACTION) if np.isfinite(c) and c else None
+    if off > NEAR_FRACTION * scale or near == 1 or (near is None and off > tol):
+        return []                         # 0.9999998: no factor (a family's difference)
+    if near == -1:                        # -0.99999: a sign, beside a CAD export's 1e-6
+        return [diagnosis(K.SIGN, "the document has the opposite sign", factor="-1")]
+    if near is not None:
+        c = float(near)
+    elif not plausible_factor(c):         # 1.0003: a term, not a factor an author writes
+        return []
+    return [diagnosis(K.FACTOR, f"the document is {nice_number(c)} × the truth",
+                      factor=nice_number(c))]
+
+
+#: A whole element's factor within this (relative) of a simple fraction, the element within
+#: this of its scale from that multiple of the truth, is that fraction (-0.99999 is -1 where
+#: a CAD export's products of inertia are 1e-6 of the element; only the explanation).
+NEAR_FRACTION = 1e-5
 
 
 def swap_diagnoses(expr: sp.Expr, candidates: Sequence[Sequence[sp.Symbol]],

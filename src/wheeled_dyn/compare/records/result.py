@@ -217,11 +217,14 @@ class DerivationResult:
     @property
     def equivalent(self) -> bool | None:
         r"""Whether the document's equations have the truth's solutions (every equation
-        agrees, W invertible, the constraints it keeps are the model's); None when no equation was decided (a file of steps) or one is
-        undecided."""
+        agrees, W invertible, the constraints it keeps are the model's); None when no equation
+        was decided (a file of steps), or one is undecided and none differs (one equation
+        that differs makes the system wrong, whatever the others)."""
         if not self.equations:
             return None
         if self.constraints_agree is False:         # whatever the equations: not the motions
+            return False
+        if any(e.verdict == Verdict.DIFFERS for e in self.equations):
             return False
         if any(e.verdict == Verdict.UNDECIDED for e in self.equations):
             return None
