@@ -42,6 +42,10 @@ MAX_FUNCTION_ARGUMENT = 1e15
 #: equations, with a full body inertia, 186 (refused at 100). Four elements of 245 terms
 #: each, all differing, are compared in 2.3 s.
 MAX_EXPANDED_TERMS = 300
+#: Most levels of ``[definitions]`` used in one another (each level is a level of every
+#: expression written with the outermost: 400 of them overflowed Python's stack, and 40 of
+#: ``k = j*(j + 1)`` took minutes).
+MAX_DEFINITION_DEPTH = 32
 #: Most symbols a derivation declares (each one's value is parsed and checked against the
 #: model: about 9 ms; a file of 20 000 unused symbols took three minutes). Shipped files
 #: declare at most about 30.
@@ -223,33 +227,48 @@ def expanded_terms(expr: sympy.Basic) -> int:
         return 10 ** 12
 
 
+def _parts(expr: sympy.Basic) -> list[sympy.Basic]:
+    r"""Every distinct subexpression of ``expr``, each once (definitions substituted into one
+    another share theirs: ``k1 = k0*(k0 + 1)``, ``k2 = k1*(k1 + 1)`` ... is a tree of
+    :math:`2^n` nodes and :math:`n` distinct ones; SymPy's ``atoms`` visits the tree)."""
+    seen: set[sympy.Basic] = set()
+    stack = [expr]
+    while stack:
+        e = stack.pop()
+        if e not in seen:
+            seen.add(e)
+            stack.extend(a for a in e.args if isinstance(a, sympy.Basic))
+    return list(seen)
+
+
 def _check_numbers(text: str, expr: sympy.Basic) -> None:
     r"""The numbers of ``expr`` as SymPy simplified it: none with a numerator or denominator
     beyond :data:`MAX_CONSTANT` (``(x*1e100)**(-64)`` holds a fraction of 6400 digits, which
     no printer writes), no function of a number beyond :data:`MAX_FUNCTION_ARGUMENT`."""
     bits = int(MAX_CONSTANT).bit_length()
-    for number in expr.atoms(sympy.Rational):
-        if max(abs(int(number.p)), int(number.q)).bit_length() > bits:
+    for part in _parts(expr):
+        if isinstance(part, sympy.Rational) and \
+                max(abs(int(part.p)), int(part.q)).bit_length() > bits:
             raise ExpressionError(text, f"a number larger than {MAX_CONSTANT:g} or smaller than "
                                         f"{1 / MAX_CONSTANT:g} in magnitude once simplified")
-    for call in expr.atoms(sympy.Function):
-        for arg in call.args:
-            if arg.is_Number and abs(arg) > MAX_FUNCTION_ARGUMENT:
-                raise ExpressionError(text, f"{call.func}(...): a function's argument is at "
-                                            f"most {MAX_FUNCTION_ARGUMENT:g} in magnitude")
+        if isinstance(part, sympy.Function) and any(
+                a.is_Number and abs(a) > MAX_FUNCTION_ARGUMENT for a in part.args):
+            raise ExpressionError(text, f"{part.func}(...): a function's argument is at "
+                                        f"most {MAX_FUNCTION_ARGUMENT:g} in magnitude")
 
 
 def check_expanded(text: str, expr: sympy.Basic) -> None:
     r"""Raise :class:`ExpressionError` if ``expr`` (parsed from ``text``, with any definitions
-    substituted) has more than :data:`MAX_EXPANDED_TERMS` terms once multiplied out."""
-    _check_numbers(text, expr)
+    substituted) has more than :data:`MAX_EXPANDED_TERMS` terms once multiplied out (counted
+    first: on the distinct subexpressions), or a number out of bounds."""
     n = expanded_terms(expr)
     if n > MAX_EXPANDED_TERMS:
         size = f"{n}" if n < 10 ** 12 else "more than 10**12"
         raise ExpressionError(text, f"expression too large: {size} terms once multiplied out, "
                                     f"at most {MAX_EXPANDED_TERMS}")
+    _check_numbers(text, expr)
 
 
 
-__all__ = ["MAX_CONSTANT", "MAX_EXPANDED_TERMS", "MAX_EXPONENT", "MAX_FUNCTION_ARGUMENT", "MAX_NESTING", "MAX_TOKENS",
+__all__ = ["MAX_CONSTANT", "MAX_DEFINITION_DEPTH", "MAX_EXPANDED_TERMS", "MAX_EXPONENT", "MAX_FUNCTION_ARGUMENT", "MAX_NESTING", "MAX_TOKENS",
            "check_expanded", "check_limits", "expanded_terms"]

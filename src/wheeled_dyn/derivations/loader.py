@@ -26,7 +26,7 @@ from .expressions import (RESERVED_NAMES, ExpressionError, UndeclaredNameError,
                           real_symbol, scan_names)
 from .latex import (LATEX_KEYS, LatexNames, LatexSource, is_printed_name, latex_to_sympy,
                     unwrap_latex)
-from .limits import MAX_SYMBOLS
+from .limits import MAX_DEFINITION_DEPTH, MAX_SYMBOLS
 from .schema import SymbolSpec
 from .source import SourceText
 
@@ -267,6 +267,7 @@ class _Loader:
                                      expand=False)
         symbols = {self.names[name]: name for name in raw}
         done: dict[sympy.Symbol, sympy.Expr] = {}
+        depth: dict[sympy.Symbol, int] = {}
 
         def expand(name: str, chain: tuple[str, ...]) -> sympy.Expr:
             symbol = self.names[name]
@@ -275,8 +276,17 @@ class _Loader:
             if name in chain:
                 raise self.fail(f"definitions.{name}", "circular definition: "
                                 + " -> ".join((*chain, name)), self.line("definitions", name))
+            if len(chain) >= MAX_DEFINITION_DEPTH:        # (declared outermost first)
+                raise self.fail(f"definitions.{chain[0]}", "definitions nested more than "
+                                f"{MAX_DEFINITION_DEPTH} deep (each used in the next)",
+                                self.line("definitions", chain[0]))
             inner = {s: expand(symbols[s], (*chain, name))
                      for s in parsed[name].free_symbols if s in symbols}
+            depth[symbol] = 1 + max((depth[s] for s in inner), default=0)
+            if depth[symbol] > MAX_DEFINITION_DEPTH:
+                raise self.fail(f"definitions.{name}", "definitions nested more than "
+                                f"{MAX_DEFINITION_DEPTH} deep (each used in the next)",
+                                self.line("definitions", name))
             done[symbol] = parsed[name].xreplace(inner)
             return done[symbol]
 
