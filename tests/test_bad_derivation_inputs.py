@@ -274,3 +274,34 @@ def test_a_wheel_joints_origin_is_named_by_the_axle(tmp_path):
         ComparisonEngine(samples=20, param_sets=1).compare(load_derivation(path))
     _clear(err.value, path, "symbols.z_b.value", "origin_x(left_wheel_joint)",
            "joins the body to the wheels", "write them as numbers")
+
+
+@pytest.mark.parametrize("body", ["k{p}*(k{p} + 1)", "sin(k{p})"])
+@pytest.mark.parametrize("reverse", [False, True])
+def test_definitions_nested_too_deeply(tmp_path, body, reverse):
+    r"""``[definitions]`` each used in the next: 40 of ``k = j*(j + 1)`` (a tree of 2**40
+    nodes SymPy's traversals visit) ran for minutes before the terms were counted; 400 of
+    ``sin`` overflowed Python's stack (a traceback). Both, in either order, are one error
+    naming the file and the definition, at once."""
+    defs = [f'k{i} = "{body.format(p=i - 1)}"' if i else 'k0 = "theta + m"' for i in range(400)]
+    text = ROD.replace("[matrices]", "[definitions]\n" + "\n".join(
+        reversed(defs) if reverse else defs) + "\n\n[matrices]").replace(
+        "1/3*m*l**2*ddtheta", "(1/3*m*l**2 + 0*k399)*ddtheta")
+    path = _write(tmp_path, text=text)
+    with pytest.raises(DerivationError) as err:
+        load_derivation(path)
+    _clear(err.value, path, "definitions.k", "nested more than")
+
+
+def test_a_loop_of_symbolic_links_is_one_error(tmp_path):
+    r"""A derivation file, and a model file, that are links to themselves: one error naming
+    the path (Python's ``RuntimeError: Symlink loop`` was a traceback)."""
+    import wheeled_dyn as wd
+    from wheeled_dyn.cli.main import main
+    loop = tmp_path / "loop.toml"
+    loop.symlink_to(loop)
+    with pytest.raises(InputFileError) as err:
+        wd.load_model(str(loop))
+    _clear(err.value, loop, "loop")
+    assert main(["compare", "rod_pendulum", str(loop)]) == 2
+    assert main(["compare", str(loop), str(_write(tmp_path))]) == 2

@@ -35,6 +35,18 @@ def example_robot_data_share() -> Path | None:
     return None
 
 
+def resolved(path: str | Path) -> Path:
+    r"""``Path(path).resolve()``: the absolute path with its symbolic links followed; a loop
+    of links (where Python raises a ``RuntimeError``) is
+    :class:`~wheeled_dyn.errors.InputFileError` naming the path."""
+    try:
+        return Path(path).resolve()
+    except RuntimeError:
+        from .errors import InputFileError
+        raise InputFileError(path, "its symbolic links make a loop (the link points back to "
+                                   "itself through other links): point it at a file") from None
+
+
 def file_stamp(path: str | Path) -> tuple[int, int, int] | None:
     r"""``(mtime_ns, size, inode)`` of a file, None when it is missing: what changes when the
     file is saved (an editor's save, a rename over it)."""

@@ -23,7 +23,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from ..errors import WheeledDynError
-from ..paths import file_stamp
+from ..paths import file_stamp, resolved
 
 #: Seconds between two looks at the files' modification times.
 WATCH_INTERVAL: float = 0.25
@@ -45,7 +45,7 @@ def watched_files(files: Sequence[Path], model: str) -> list[Path]:
     from ..models.registry import model_files, model_key
     out = set()
     for f in files:
-        path = Path(f).resolve()
+        path = resolved(f)
         out.update([path, *path.parent.glob("*_steps.toml")])
     try:
         out.update(model_files(model))

@@ -36,6 +36,7 @@ from typing import Any
 
 import sympy
 
+from ..paths import resolved
 from ..errors import DerivationError, InputFileError
 from .expressions import ExpressionError, parse_model_expression, parse_units, scan_names
 from .limits import MAX_CONSTANT
@@ -89,7 +90,7 @@ def resolve_model_reference(path: Path, model: str, line: int | None) -> str:
     from ..models.model_file import is_model_path
     if not is_model_path(model):
         return model
-    target = (path.parent / Path(model).expanduser()).resolve()
+    target = resolved(path.parent / Path(model).expanduser())
     if not target.is_file():
         raise DerivationError(path, "model", f"no model file {model!r} (looked for {target})",
                               line)

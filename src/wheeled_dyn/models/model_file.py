@@ -33,6 +33,7 @@ from pathlib import Path
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
 
+from ..paths import resolved
 from ..derivations.source import SourceText, read_toml
 from ..errors import InputFileError, OptionalDependencyError
 from .urdf_packages import PACKAGES, resolve_package
@@ -88,10 +89,10 @@ class ModelFile:
     def urdf_path(self) -> tuple[Path, tuple[str, ...]]:
         r"""The URDF file and the package folders its ``package://`` meshes resolve in."""
         table = self.data["urdf"]
-        dirs = tuple(str((self.path.parent / d).resolve()) for d in table.get("package_dirs", ()))
+        dirs = tuple(str(resolved(self.path.parent / d)) for d in table.get("package_dirs", ()))
         package = table.get("package")
         if package is None:
-            return (self.path.parent / table["path"]).resolve(), dirs
+            return resolved(self.path.parent / table["path"]), dirs
         try:
             urdf, pkg_dirs = resolve_package(package, table.get("path"))
         except OptionalDependencyError:

@@ -23,7 +23,7 @@ import numpy as np
 import pinocchio as pin
 
 from ..errors import ArgumentError, InputFileError, UnknownNameError
-from ..paths import file_stamp
+from ..paths import file_stamp, resolved
 from .benchmarks import PYTHON_BENCHMARKS
 from .builder import build_wheeled_model
 from .listing import shipped_model_files
@@ -93,7 +93,7 @@ def model_key(reference: str | Path) -> str:
     text = _reference(reference)
     if text in MODELS or not is_model_path(text):
         return text
-    return str(Path(text).expanduser().resolve())
+    return str(resolved(Path(text).expanduser()))
 
 
 def _reference(reference: object) -> str:

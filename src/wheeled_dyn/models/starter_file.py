@@ -8,6 +8,7 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+from ..paths import resolved
 from .starter import UrdfInventory, free_joints, inspect_urdf
 from .urdf_packages import package_reference
 
@@ -18,7 +19,7 @@ def _q(text: str) -> str:
 
 def starter_text(inv: UrdfInventory, out: Path | None) -> str:
     r"""The text of a starting model file for ``inv`` (written next to ``out`` if given)."""
-    urdf = inv.path.resolve()
+    urdf = resolved(inv.path)
     rel = os.path.relpath(urdf, (out.resolve().parent if out else Path.cwd()))
     name = "".join(c if c.isalnum() or c == "_" else "_" for c in (inv.robot or inv.path.stem))
     lines = [f"# Starting model file for {inv.robot or inv.path.stem}, written by "

@@ -21,7 +21,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..errors import OptionalDependencyError
-from ..paths import example_robot_data_share, urdf_dir
+from ..paths import example_robot_data_share, urdf_dir, resolved
 
 #: Package names a model file may give.
 PACKAGES: tuple[str, ...] = ("wheeled-dyn", "example-robot-data", "upkie-description")
@@ -30,7 +30,7 @@ PACKAGES: tuple[str, ...] = ("wheeled-dyn", "example-robot-data", "upkie-descrip
 def _inside(root: Path, path: str | None, package: str) -> Path:
     if path is None:
         raise LookupError(f"package {package!r} needs path = \"...\" (relative to {root})")
-    found = (root / path).resolve()
+    found = resolved(root / path)
     if not found.is_file():
         raise LookupError(f"no file {path!r} in package {package!r} (looked in {root})")
     return found
@@ -62,7 +62,7 @@ def resolve_package(package: str, path: str | None) -> tuple[Path, tuple[str, ..
 def package_reference(urdf: Path) -> tuple[str, str | None] | None:
     r"""``(package, path or None)`` naming ``urdf`` inside an installed package of
     :data:`PACKAGES` (the inverse of :func:`resolve_package`), or None."""
-    urdf = urdf.resolve()
+    urdf = resolved(urdf)
     try:
         import upkie_description
         if urdf == Path(upkie_description.URDF_PATH).resolve():

@@ -34,7 +34,7 @@ from typing import TypeVar
 
 from ...cache_trust import REUSE_ENV, results_reused, reuse_enabled
 from ...disk_cache import cache_root, load, store
-from ...paths import PACKAGE_DIR, file_stamp
+from ...paths import PACKAGE_DIR, file_stamp, resolved
 
 T = TypeVar("T")
 
@@ -65,7 +65,7 @@ def dependencies(path: Path, model: str, extra: Iterable[Path] = ()) -> list[Pat
     r"""Every file the result of derivation ``path`` on ``model`` depends on, sorted: the file,
     the step files beside it, the model's model file and URDF, and ``extra``."""
     from ...models.registry import model_files
-    path = Path(path).resolve()
+    path = resolved(path)
     return sorted({path, *path.parent.glob("*_steps.toml"), *model_files(model),
                    *(Path(p) for p in extra)})
 
@@ -75,7 +75,7 @@ def note_parsed(paths: Iterable[Path]) -> None:
     if they are still those files when the comparison ends."""
     from ...derivations.builtin import derivation_files
     for p in derivation_files(list(paths)):
-        _PARSED[Path(p).resolve()] = file_stamp(p)
+        _PARSED[resolved(p)] = file_stamp(p)
 
 
 def _texts(paths: Iterable[Path]) -> list[bytes]:
@@ -116,7 +116,7 @@ def reused(key: Callable[[], str], kind: type[T], compute: Callable[[], T],
             and isinstance(found[1], kind) and fits(found[1])):
         return found[1]
     value = compute()
-    unchanged = parsed is None or _PARSED.get(Path(parsed).resolve(), ()) == file_stamp(parsed)
+    unchanged = parsed is None or _PARSED.get(resolved(parsed), ()) == file_stamp(parsed)
     if unchanged and key() == before:
         store(entry, (before, value))
     return value
