@@ -162,6 +162,46 @@ def test_a_locked_mimic_joint_is_honoured_or_refused(tmp_path):
 
 
 # -- the Python API --------------------------------------------------------------------------
+def _builtin(group):
+    from wheeled_dyn.derivations import builtin_derivations
+    return builtin_derivations(group)
+
+
+def _shipped() -> Path:
+    return _builtin("seed001")[0]
+
+
+def _nested(depth: int) -> sp.Expr:
+    e = sp.Symbol("theta")
+    for _ in range(depth):
+        e = sp.sin(e)
+    return e
+
+
+def _rod(title: str = "rod", **matrices):
+    return wd.compare("rod_pendulum", coordinates={"positions": ["theta"],
+                                                   "configuration": {"theta": "theta"}},
+                      symbols={"m": "4*MZ(rod)**2/(3*YY(rod))", "l": "-3*YY(rod)/(2*MZ(rod))",
+                               "g": "g"}, assumes={"families": ["urdf_structure"]},
+                      title=title, samples=50, param_sets=1, **matrices)
+
+
+def _simulate(duration: float = 0.1, nu=(0.0, 0.5, 0.0)):
+    from wheeled_dyn.simulate import simulate_fast
+    wip = wd.load_model("wip")
+    cs = wd.builtin_coordinate_set(wip, "seed001")
+    q0 = np.zeros(wip.model.nq)
+    return simulate_fast(wip, cs, q0, np.asarray(nu, float), duration=duration)
+
+
+def test_a_title_longer_than_a_file_name_is_compared():
+    m, l, g, theta = sp.symbols("m l g theta")
+    result = _rod("x" * 1000, A=sp.Matrix([[m * l**2 / 3]]), C=sp.zeros(1, 1),
+                  Q=sp.Matrix([m * g * l / 2 * sp.sin(theta)]))
+    assert result.equivalent is True
+    assert len(str(result.path)) < 200
+
+
 def _raises_picklable(call, kind: type = WheeledDynError, *words: str) -> WheeledDynError:
     with pytest.raises(kind) as info:
         call()
@@ -194,6 +234,12 @@ def _raises_picklable(call, kind: type = WheeledDynError, *words: str) -> Wheele
     (lambda: wd.CoordinateMap(7, None), ArgumentError, ["CoordinateMap(wm=7)", "load_model"]),
     (lambda: wd.CoordinateMap(wd.load_model("wip"), "seed001"), ArgumentError,
      ["CoordinateMap(cs='seed001')", "builtin_coordinate_set"]),
+    # a probe's calls that were TypeError, RecursionError, OSError, MemoryError, OverflowError
+    (lambda: _builtin(5), ArgumentError, ["builtin_derivations(group=5)", "seed001"]),
+    (lambda: load_derivation(_shipped(), parameters=5), ArgumentError, ["parameters=5"]),
+    (lambda: _rod(A=sp.Matrix([[_nested(200)]])), DerivationError, ["nested too deeply"]),
+    (lambda: _simulate(duration=1e9), StateError, ["duration", "samples"]),
+    (lambda: _simulate(nu=[0.0, 1e200, 0.0]), StateError, ["overflows"]),
 ])
 def test_api_arguments_raise_the_projects_picklable_errors(call, kind, words):
     _raises_picklable(call, kind, *words)

@@ -45,6 +45,10 @@ def builtin_groups() -> list[str]:
 
 
 def _group_dir(group: str) -> Path:
+    if not isinstance(group, str):
+        from ..errors import ArgumentError
+        raise ArgumentError("builtin_derivations", "group", group,
+                            "a group's name: " + ", ".join(builtin_groups()))
     folder = BUILTIN_DIR / group
     if not folder.is_dir():
         raise InputFileError(folder, f"no built-in derivation group {group!r}; groups: "

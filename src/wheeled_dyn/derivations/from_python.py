@@ -124,7 +124,7 @@ def derivation_from_sympy(model: str | Path, **tables: Any) -> Derivation:
     (``sympy.Eq`` or expressions equal to 0); ``assumes``, ``title``, ``source`` as in a file.
     Raises the errors a file would, naming ``<python: title>``."""
     title = str(tables.get("title", "derivation from Python"))
-    name = f"<python: {title}>"
+    name = f"<python: {title if len(title) <= 100 else title[:99] + '…'}>"   # a path's name
     if not any(tables.get(k) is not None for k in ("A", "C", "Q", "B", "G", "equations")):
         raise DerivationError(Path(name), "matrices", "nothing to compare: give A, C, Q, B, G "
                               "or equations")
@@ -133,11 +133,15 @@ def derivation_from_sympy(model: str | Path, **tables: Any) -> Derivation:
     except (TypeError, ValueError, AttributeError, sp.SympifyError) as exc:
         raise DerivationError(Path(name), "matrices", "expected SymPy matrices, nested lists "
                               f"of expressions, or sympy.Eq equations ({' '.join(str(exc).split())})") from None
+    except RecursionError:
+        raise DerivationError(Path(name), "matrices", "an expression nested too deeply to "
+                              "print (a file's expressions are at most 32 levels deep)") from None
     model_path = Path(str(model))
     if model_path.suffix == ".toml" and not model_path.is_absolute():
         data["model"] = str(model_path.resolve())
     with tempfile.TemporaryDirectory(prefix="wheeled-dyn-") as folder:
-        path = Path(folder) / ((_NAME.sub("_", title).strip("_") or "derivation") + ".toml")
+        path = Path(folder) / ((_NAME.sub("_", title).strip("_")[:60] or "derivation")
+                               + ".toml")        # (a file name has at most 255 bytes)
         path.write_text(tomli_w.dumps(data), encoding="utf-8")
         try:
             d = load_derivation(path)

@@ -175,6 +175,10 @@ def load_derivation(path: str | Path, *, parameters: Collection[str] | None = No
     if not isinstance(path, (str, os.PathLike)):
         raise ArgumentError("load_derivation", "path", path, "the path of a derivation file "
                             "(str or pathlib.Path)")
+    for argument, given in (("parameters", parameters), ("links", links)):
+        if given is not None and (isinstance(given, str) or not isinstance(given, Iterable)
+                                  or not all(isinstance(n, str) for n in given)):
+            raise ArgumentError("load_derivation", argument, given, "a collection of names")
     p = Path(path)
     data, src = read_toml(p)
     ld = _Loader(p, data, src, parameters, links)

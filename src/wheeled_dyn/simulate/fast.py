@@ -173,6 +173,10 @@ def fast_model(wm: WheeledModel, cs: CoordinateSet) -> FastModel:
     return fm
 
 
+#: Most samples of a trajectory (duration × rate): 10**9 of them took all the memory.
+MAX_SAMPLES = 10 ** 6
+
+
 def simulate_fast(wm: WheeledModel, cs: CoordinateSet, q0: np.ndarray, nu0: np.ndarray,
                   duration: float, rate: float = 1000.0, u: Input | None = None,
                   rtol: float = FAST_RTOL, atol: float = FAST_ATOL) -> Trajectory:
@@ -188,6 +192,9 @@ def simulate_fast(wm: WheeledModel, cs: CoordinateSet, q0: np.ndarray, nu0: np.n
         raise StateError(None, y0.tolist(), f"{nq} finite coordinates and {n} velocities")
     if not (duration > 0 and rate > 0):
         raise StateError("duration", duration, "a positive duration and rate")
+    if duration * rate > MAX_SAMPLES:
+        raise StateError("duration", duration, f"at most {MAX_SAMPLES:g} samples "
+                         f"(duration × rate; the rate is {rate:g} Hz)")
     core = fm.rhs
     zero = [0.0] * fm.n_inputs
     if u is None:
@@ -197,8 +204,13 @@ def simulate_fast(wm: WheeledModel, cs: CoordinateSet, q0: np.ndarray, nu0: np.n
         def rhs(t: float, y: np.ndarray) -> list:
             return core(y.tolist(), np.asarray(u(t, y[:nq], y[nq:]), float).tolist())
     t_eval = np.linspace(0.0, duration, int(round(duration * rate)) + 1)
-    sol = solve_ivp(rhs, (0.0, duration), y0, method="DOP853", t_eval=t_eval, rtol=rtol,
-                    atol=atol)
+    try:
+        with np.errstate(over="raise", invalid="raise"):
+            sol = solve_ivp(rhs, (0.0, duration), y0, method="DOP853", t_eval=t_eval,
+                            rtol=rtol, atol=atol)
+    except (OverflowError, FloatingPointError, ValueError) as exc:
+        raise StateError(None, y0.tolist(), f"a motion the integration can follow ({exc}: "
+                         "the state overflows)") from None
     if not sol.success:
         raise StateError(None, float(sol.t[-1]), f"integration to {duration} s ({sol.message})")
     qs, nus = sol.y[:nq].T, sol.y[nq:].T
