@@ -83,3 +83,49 @@ def test_a_planar_derivation_says_which_coordinate_it_holds():
     d = load_derivation(path)
     result = ComparisonEngine(samples=200, param_sets=2).compare(d)
     assert any("coordinate psi held at 0" in r for r in result.model_readings)
+
+
+def test_a_files_free_motion_names_the_file_and_its_map(tmp_path):
+    from wheeled_dyn.compare import ComparisonEngine
+    from wheeled_dyn.derivations import load_derivation
+    from wheeled_dyn.errors import DerivationError
+    path = tmp_path / "free.toml"
+    path.write_text('''title = "level body on a pitching model, the pitch following x"
+model = "wip"
+[coordinates]
+kind = "quasi"
+positions = ["x", "psi"]
+configuration = { x0 = "x", psi = "psi", phi = "x/10" }
+velocity_map = { dx = "cos(psi)*dx0 + sin(psi)*dy0", dpsi = "dpsi" }
+[symbols]
+m = { value = "m_S", units = "kg" }
+[matrices]
+A = "[[m, 0], [0, m]]"
+''')
+    with pytest.raises(DerivationError) as err:
+        ComparisonEngine(samples=20, param_sets=1).compare(load_derivation(path))
+    text = str(err.value)
+    assert f"{path}:7" in text and "coordinates.velocity_map" in text, text
+    assert "leave a motion of the model free" in text and "phi" in text, text
+
+
+def test_a_velocity_map_that_is_not_linear_names_the_file_and_its_line(tmp_path):
+    from wheeled_dyn.compare import ComparisonEngine
+    from wheeled_dyn.derivations import load_derivation
+    from wheeled_dyn.errors import DerivationError
+    path = tmp_path / "square.toml"
+    path.write_text('''title = "a velocity squared"
+model = "wip"
+[coordinates]
+kind = "quasi"
+positions = ["x", "psi", "phi"]
+configuration = { x0 = "x", psi = "psi", phi = "phi" }
+velocity_map = { dx = "dx0**2", dpsi = "dpsi", dphi = "dphi" }
+[symbols]
+m = { value = "m_S", units = "kg" }
+[matrices]
+A = "[[m, 0, 0], [0, m, 0], [0, 0, m]]"
+''')
+    with pytest.raises(DerivationError) as err:
+        ComparisonEngine(samples=20, param_sets=1).compare(load_derivation(path))
+    assert f"{path}:7: coordinates.velocity_map.dx: must be linear" in str(err.value)

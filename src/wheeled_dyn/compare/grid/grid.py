@@ -23,7 +23,7 @@ import numpy as np
 import sympy as sp
 
 from ...constraints.reduction import CoordinateMap
-from ...coordinates import CoordinateSet
+from ...coordinates import CoordinateSet, CoordinateSpecError
 from ...coordinates import builtin_coordinate_set, parse_coordinate_set
 from ...derivations.schema import Derivation
 from ...derivations.source import key_line
@@ -99,6 +99,10 @@ def derivation_coordinate_set(d: Derivation, ps: ParameterSet) -> CoordinateSet:
                                   + ", ".join(exc.valid or ()),
                                   key_line(d.path, "coordinates", "configuration")) from None
         raise _not_a_length(d, raw, to_model, exc) from None
+    except CoordinateSpecError as exc:       # the file, its line and the map's key
+        table = exc.item.split(".")[0]
+        raise DerivationError(d.path, f"coordinates.{exc.item}", exc.reason,
+                              key_line(d.path, "coordinates", table)) from None
 
 
 def _not_a_length(d: Derivation, raw: dict, to_model: dict, exc: UnknownNameError
@@ -173,7 +177,13 @@ class Grids:
         cs = self._sets[ckey]
         mkey = (d.model, version, repr(cs))
         if mkey not in self._maps:
-            self._maps[mkey] = CoordinateMap(sets[0].model, cs)
+            try:
+                self._maps[mkey] = CoordinateMap(sets[0].model, cs)
+            except CoordinateSpecError as exc:   # a set of the file: its path and line
+                if d.coordinates.use:
+                    raise
+                raise DerivationError(d.path, f"coordinates.{exc.item}", exc.reason, key_line(
+                    d.path, "coordinates", exc.item.split(".")[0])) from None
         cmap = self._maps[mkey]
         n = len(cs.positions)
         ranges = position_ranges(d, cs.positions, assumed)
