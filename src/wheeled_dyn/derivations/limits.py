@@ -100,6 +100,9 @@ def _check_literal(text: str, number: str) -> None:
     if value and abs(value) < decimal.Decimal(1) / decimal.Decimal(MAX_CONSTANT):
         raise ExpressionError(text, f"number {number} smaller than {1 / MAX_CONSTANT:g} in "
                                     "magnitude (write 0, or scale the quantity)")
+    if abs(value) > decimal.Decimal(MAX_CONSTANT):      # (Python reads no int of 4300 digits)
+        raise ExpressionError(text, f"number {short_text(number, 40)} larger than "
+                                    f"{MAX_CONSTANT:g}")
 
 
 def _check_constants(text: str, root: ast.AST) -> None:
