@@ -162,6 +162,16 @@ def test_accepted_inertia_with_a_negative_moment_is_still_one_error(tmp_path, ca
     ('links = ["left_wheel", "right_wheel"]', 'links = ["torso", "right_wheel"]', ModelError,
      ("[wheels] links", "'torso'", "fixed to the body base_link", "torso_joint")),
     ("radius = 0.1 ", "radius = 1e300 ", InputFileError, ("wheels.radius", "1e100")),
+    # a probe's: no file, line or key named, or the URDF named for the model file's typo
+    ('type = "planar"', 'type = "hovering"', InputFileError, ("base.type", "'hovering'",
+                                                              "planar, fixed, free")),
+    ('links = ["left_wheel", "right_wheel"]', 'links = ["left_wheel", "left_wheel"]',
+     InputFileError, ("wheels.links", "'left_wheel' is listed twice")),
+    ('"right_wheel_joint" = "theta_r"', '"right_wheel_joint" = "theta_l"', InputFileError,
+     ("joints.aliases", "'theta_l' names two joints")),
+    ('body = "base_link"', 'body = "no_link"', UnknownNameError, ("[base] body", "'no_link'")),
+    ('links = ["left_wheel", "right_wheel"]', 'links = ["left_wheel", "no_wheel"]',
+     UnknownNameError, ("[wheels] links", "'no_wheel'")),
 ])
 def test_model_file_naming_what_does_not_fit_is_one_error(tmp_path, capsys, old, new, kind,
                                                           names):

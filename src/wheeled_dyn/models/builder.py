@@ -129,6 +129,11 @@ def _check_names(spec: ModelSpec, source: UrdfSource) -> None:
     silently. :class:`UnknownNameError` names the model file (or model), the key and the
     valid names."""
     where = str(spec.source) if spec.source is not None else f"model {spec.name}"
+    for key, links in (("[base] body", (spec.body,) if spec.body else ()),
+                       ("[wheels] links", spec.wheels)):
+        for link in links:
+            if link not in source.link_names:
+                raise UnknownNameError("link", link, source.link_names, where=f"{where}: {key}")
     for joint in spec.aliases:
         if joint not in source.joint_names:
             raise UnknownNameError("joint", joint, source.joint_names,

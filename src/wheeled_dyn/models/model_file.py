@@ -267,6 +267,9 @@ def _validate_base(mf: ModelFile, base: Mapping[str, Any]) -> None:
     for key in ("type", "body"):
         if key in base and not isinstance(base[key], str):
             raise mf.fail(key, "expected a string", "base")
+    from .wheeled_model import BASES
+    if base.get("type", "planar") not in BASES:
+        raise mf.fail("type", f"{base['type']!r}; expected one of {', '.join(BASES)}", "base")
 
 
 def _validate_joints(mf: ModelFile, d: Mapping[str, Any]) -> None:
@@ -293,6 +296,14 @@ def _validate_joints(mf: ModelFile, d: Mapping[str, Any]) -> None:
                 _number(mf, "joints", key, value)
             elif not isinstance(value, str) or not value.isidentifier():
                 raise mf.fail(key, f"alias of {name!r}: expected a coordinate name", "joints")
+        twice = [v for v in raw.values() if list(raw.values()).count(v) > 1]
+        if key == "aliases" and twice:
+            raise mf.fail(key, f"{twice[0]!r} names two joints", "joints")
+    links = d.get("wheels", {}).get("links", [])
+    again = [w for w in links if links.count(w) > 1]
+    if again:
+        raise mf.fail("links", f"{again[0]!r} is listed twice: give the left wheel's link, "
+                      "then the right wheel's", "wheels")
 
 
 def _validate_geometry(mf: ModelFile, geometry: Any) -> None:
