@@ -305,3 +305,23 @@ def test_a_loop_of_symbolic_links_is_one_error(tmp_path):
     _clear(err.value, loop, "loop")
     assert main(["compare", "rod_pendulum", str(loop)]) == 2
     assert main(["compare", str(loop), str(_write(tmp_path))]) == 2
+
+
+def test_a_model_that_cannot_be_read_is_named_before_any_mismatch(tmp_path, capsys):
+    r"""A derivation naming a file that is no model file (``model = "notes.txt"``): the error
+    names the derivation, its ``model`` line and why the file cannot be read (it named the
+    other file only). A model given on the command line that is a FIFO: said as such (it was
+    "the file describes model 'rod_pendulum', not 'fifo.toml'")."""
+    import os
+    from wheeled_dyn.cli.main import main
+    notes = tmp_path / "notes.toml"
+    notes.write_text("these are my notes, not a model\n")
+    path = _write(tmp_path, 'model = "rod_pendulum"', 'model = "notes.toml"')
+    assert main(["compare", "rod_pendulum", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert f"{path}:2: model: the model file it names cannot be read: {notes}" in err, err
+    fifo = tmp_path / "fifo.toml"
+    os.mkfifo(fifo)
+    assert main(["compare", str(fifo), str(_write(tmp_path))]) == 2
+    err = capsys.readouterr().err
+    assert str(fifo) in err and "FIFO" in err, err

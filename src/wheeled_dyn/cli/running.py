@@ -59,14 +59,17 @@ def stage_display(bar) -> Callable[[str, str], None]:
 def _known_model(d) -> None:
     r"""``d``'s model is one the registry knows; else one error naming the derivation file and
     the line of its ``model =`` (it named neither)."""
-    from ..errors import UnknownNameError
+    from ..errors import InputFileError, UnknownNameError
     from ..models.registry import model_entry
+    from ..derivations.source import key_line
     try:
         model_entry(d.model)
     except UnknownNameError as exc:
-        from ..derivations.source import key_line
         raise DerivationError(d.path, "model", str(exc), key_line(d.path, None, "model")
                               ) from None
+    except InputFileError as exc:           # the model file it names: the file says why
+        raise DerivationError(d.path, "model", f"the model file it names cannot be read: "
+                              f"{exc}", key_line(d.path, None, "model")) from None
 
 
 def run_comparison(files: Sequence[Path], samples: int, param_sets: int, seed: int = 2026,
@@ -87,6 +90,9 @@ def run_comparison(files: Sequence[Path], samples: int, param_sets: int, seed: i
     for item in [*derivations, *(load_linear_document(p) for p in linear)]:
         _known_model(item)
         if model is not None and model_key(item.model) != model_key(model):
+            if model.endswith(".toml") and Path(model).exists():
+                from ..models.registry import load_model
+                load_model(model)           # a model file that cannot be read says why first
             missing = model.endswith((".toml", ".urdf")) and not Path(model).exists()
             urdf = model.endswith(".urdf") and not missing
             raise DerivationError(item.path, "model", f"the file describes model "
