@@ -240,6 +240,10 @@ def _raises_picklable(call, kind: type = WheeledDynError, *words: str) -> Wheele
     (lambda: _rod(A=sp.Matrix([[_nested(200)]])), DerivationError, ["nested too deeply"]),
     (lambda: _simulate(duration=1e9), StateError, ["duration", "samples"]),
     (lambda: _simulate(nu=[0.0, 1e200, 0.0]), StateError, ["overflows"]),
+    (lambda: wd.compare("rod_pendulum", coordinates=None, A=[[1]]), DerivationError,
+     ["coordinates: expected a coordinate set"]),                 # it blamed "matrices"
+    (lambda: wd.compare("rod_pendulum", coordinates="x", symbols={"m": object()}, A=[[1]]),
+     DerivationError, ["symbols: expected a mapping"]),
 ])
 def test_api_arguments_raise_the_projects_picklable_errors(call, kind, words):
     _raises_picklable(call, kind, *words)

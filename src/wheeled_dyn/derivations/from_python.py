@@ -11,10 +11,11 @@ check, limit and error of the file format applies unchanged. Errors name the der
 
 from __future__ import annotations
 
+import contextlib
 import inspect
 import re
 import tempfile
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import replace
 from pathlib import Path
 from typing import Any
@@ -27,6 +28,13 @@ from .parse import load_derivation
 from .schema import Derivation
 
 #: Characters kept from a title in the temporary file's name.
+#: What each table of :func:`derivation_from_sympy` is given as, for its errors.
+EXPECTED: dict[str, str] = {
+    "matrices": "SymPy matrices, nested lists of expressions, or sympy.Eq equations",
+    "symbols": "a mapping of names to model values (str, SymPy) or tables",
+    "inputs": "a mapping of model inputs to expressions",
+    "coordinates": "a coordinate set's name or a mapping as [coordinates] of a file",
+    "assumes": "a mapping as [assumes] of a file", "source": "a mapping of str"}
 _NAME = re.compile(r"[^A-Za-z0-9_-]+")
 
 
@@ -75,6 +83,24 @@ def _equation(e: Any) -> str:
     return f"{_text(e)} = 0"
 
 
+class _TableError(Exception):
+    r"""A table of :func:`derivation_data` that the arguments do not make: its name, why."""
+
+    def __init__(self, table: str, reason: str) -> None:
+        super().__init__(table, reason)
+        self.table, self.reason = table, reason
+
+
+@contextlib.contextmanager
+def _table(name: str) -> Iterator[None]:
+    r"""Errors of the arguments making table ``name`` (a ``None`` where a table is expected,
+    an object that is no expression) as :class:`_TableError` naming it."""
+    try:
+        yield
+    except (TypeError, ValueError, AttributeError, sp.SympifyError) as exc:
+        raise _TableError(name, " ".join(str(exc).split())) from None
+
+
 def derivation_data(model: str | Path, *, coordinates: str | Mapping[str, Any],
                     symbols: Mapping[str, Any] | None = None,
                     inputs: Mapping[str, Any] | None = None,
@@ -85,30 +111,36 @@ def derivation_data(model: str | Path, *, coordinates: str | Mapping[str, Any],
                     source: Mapping[str, str] | None = None) -> dict[str, Any]:
     r"""The TOML tables of a derivation file for these SymPy objects (see
     :func:`derivation_from_sympy`)."""
-    symbols = {k: (_text(v) if not isinstance(v, Mapping) else dict(v))
-               for k, v in (symbols or {}).items()}
-    inputs = {k: _text(v) for k, v in (inputs or {}).items()}
-    for text in inputs.values():
-        for s in sorted(sp.sympify(text).free_symbols, key=str):
-            symbols.setdefault(s.name, {"input": True})
+    with _table("symbols"):
+        symbols = {k: (_text(v) if not isinstance(v, Mapping) else dict(v))
+                   for k, v in (symbols or {}).items()}
+    with _table("inputs"):
+        inputs = {k: _text(v) for k, v in (inputs or {}).items()}
+        for text in inputs.values():
+            for s in sorted(sp.sympify(text).free_symbols, key=str):
+                symbols.setdefault(s.name, {"input": True})
     data: dict[str, Any] = {"title": title, "model": str(model)}
-    if source:
-        data["source"] = dict(source)
-    data["coordinates"] = {"use": coordinates} if isinstance(coordinates, str) \
-        else dict(coordinates)
+    with _table("source"):
+        if source:
+            data["source"] = dict(source)
+    with _table("coordinates"):
+        data["coordinates"] = {"use": coordinates} if isinstance(coordinates, str) \
+            else dict(coordinates)
     if inputs:
         data["inputs"] = inputs
     data["symbols"] = symbols
-    if assumes:
-        data["assumes"] = dict(assumes)
+    with _table("assumes"):
+        if assumes:
+            data["assumes"] = dict(assumes)
     matrices: dict[str, Any] = {}
-    if equations is not None:
-        matrices["equations"] = [_equation(e) for e in equations]
-    for key, M in (("A", A), ("C", C), ("B", B), ("G", G)):
-        if M is not None:
-            matrices[key] = _matrix(M)
-    if Q is not None:
-        matrices["Q"] = _matrix(Q, column=True)
+    with _table("matrices"):
+        if equations is not None:
+            matrices["equations"] = [_equation(e) for e in equations]
+        for key, M in (("A", A), ("C", C), ("B", B), ("G", G)):
+            if M is not None:
+                matrices[key] = _matrix(M)
+        if Q is not None:
+            matrices["Q"] = _matrix(Q, column=True)
     data["matrices"] = matrices
     return data
 
@@ -130,9 +162,12 @@ def derivation_from_sympy(model: str | Path, **tables: Any) -> Derivation:
                               "or equations")
     try:
         data = derivation_data(model, **tables)
+    except _TableError as exc:
+        expected = EXPECTED.get(exc.table, "what a file's table holds")
+        raise DerivationError(Path(name), exc.table, f"expected {expected} ({exc.reason})"
+                              ) from None
     except (TypeError, ValueError, AttributeError, sp.SympifyError) as exc:
-        raise DerivationError(Path(name), "matrices", "expected SymPy matrices, nested lists "
-                              f"of expressions, or sympy.Eq equations ({' '.join(str(exc).split())})") from None
+        raise DerivationError(Path(name), "arguments", " ".join(str(exc).split())) from None
     except RecursionError:
         raise DerivationError(Path(name), "matrices", "an expression nested too deeply to "
                               "print (a file's expressions are at most 32 levels deep)") from None
