@@ -189,7 +189,8 @@ def trusted_root(root: str | Path | None = None, create: bool = False) -> Path |
         above = above.parent
     if why is not None:
         warn_once(f"trust {real}", f"the cache folder {path} {why}: not used (make it "
-                  f"private, e.g. chmod 700 {path}, or set {CACHE_ENV} to a private folder)")
+                  f"yours and private: chown $USER and chmod 700 {path}; or set {CACHE_ENV} "
+                  "to a private folder)")
         return None
     return path
 
