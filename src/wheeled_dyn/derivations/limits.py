@@ -42,6 +42,13 @@ MAX_FUNCTION_ARGUMENT = 1e15
 #: equations, with a full body inertia, 186 (refused at 100). Four elements of 245 terms
 #: each, all differing, are compared in 2.3 s.
 MAX_EXPANDED_TERMS = 300
+#: Most terms of one of a document's equations or matrix elements once multiplied out: an
+#: equation solved for the accelerations as generated simulation code prints it (SymPy's solve
+#: of a two-link arm with general centres of mass: 325 terms) is compared in seconds; three
+#: equations of 2574 pathological terms each took about a minute.
+MAX_DOCUMENT_TERMS = 3000
+#: Most terms of all of a document's expressions together (its cost is about their sum).
+MAX_FILE_TERMS = 6000
 #: Most levels of ``[definitions]`` used in one another (each level is a level of every
 #: expression written with the outermost: 400 of them overflowed Python's stack, and 40 of
 #: ``k = j*(j + 1)`` took minutes).
@@ -260,18 +267,19 @@ def _check_numbers(text: str, expr: sympy.Basic) -> None:
                                         f"most {MAX_FUNCTION_ARGUMENT:g} in magnitude")
 
 
-def check_expanded(text: str, expr: sympy.Basic) -> None:
+def check_expanded(text: str, expr: sympy.Basic, limit: int = MAX_EXPANDED_TERMS) -> int:
     r"""Raise :class:`ExpressionError` if ``expr`` (parsed from ``text``, with any definitions
-    substituted) has more than :data:`MAX_EXPANDED_TERMS` terms once multiplied out (counted
-    first: on the distinct subexpressions), or a number out of bounds."""
+    substituted) has more than ``limit`` terms once multiplied out (counted first: on the
+    distinct subexpressions), or a number out of bounds; else return the count."""
     n = expanded_terms(expr)
-    if n > MAX_EXPANDED_TERMS:
+    if n > limit:
         size = f"{n}" if n < 10 ** 12 else "more than 10**12"
         raise ExpressionError(text, f"expression too large: {size} terms once multiplied out, "
-                                    f"at most {MAX_EXPANDED_TERMS}")
+                                    f"at most {limit}")
     _check_numbers(text, expr)
+    return n
 
 
 
-__all__ = ["MAX_CONSTANT", "MAX_DEFINITION_DEPTH", "MAX_EXPANDED_TERMS", "MAX_EXPONENT", "MAX_FUNCTION_ARGUMENT", "MAX_NESTING", "MAX_TOKENS",
+__all__ = ["MAX_CONSTANT", "MAX_DEFINITION_DEPTH", "MAX_DOCUMENT_TERMS", "MAX_EXPANDED_TERMS", "MAX_FILE_TERMS", "MAX_EXPONENT", "MAX_FUNCTION_ARGUMENT", "MAX_NESTING", "MAX_TOKENS",
            "check_expanded", "check_limits", "expanded_terms"]

@@ -26,7 +26,7 @@ from .expressions import (RESERVED_NAMES, ExpressionError, UndeclaredNameError,
                           real_symbol, scan_names)
 from .latex import (LATEX_KEYS, LatexNames, LatexSource, is_printed_name, latex_to_sympy,
                     unwrap_latex)
-from .limits import MAX_DEFINITION_DEPTH, MAX_SYMBOLS
+from .limits import MAX_DEFINITION_DEPTH, MAX_DOCUMENT_TERMS, MAX_FILE_TERMS, MAX_SYMBOLS
 from .schema import SymbolSpec
 from .source import SourceText
 
@@ -45,6 +45,7 @@ class _Loader:
         self.names: dict[str, sympy.Symbol] = {}
         self.kinds: dict[str, str] = {}
         self.expansion: dict[sympy.Symbol, sympy.Expr] = {}
+        self.terms = 0                  # of the expressions read so far, multiplied out
         self.coordinates: dict[str, tuple[str, ...]] = {}     # positions, velocities, ...
         self.latex_input: dict[str, tuple[str, str]] = {}     # item -> (LaTeX, read as)
         self._latex: LatexNames | None = None
@@ -111,7 +112,10 @@ class _Loader:
         try:
             value = parse_expression(source, names)
             value = value.xreplace(self.expansion) if expand and self.expansion else value
-            check_expanded(source, value)
+            self.terms += check_expanded(source, value, MAX_DOCUMENT_TERMS)
+            if self.terms > MAX_FILE_TERMS:
+                raise ExpressionError(source, f"the file's expressions have more than "
+                                      f"{MAX_FILE_TERMS} terms once multiplied out together")
         except UndeclaredNameError as exc:
             if exc.name.lower() in NON_FINITE_NAMES:
                 raise self.fail(item, f"{exc.name!r} is not a finite number (NaN or an "
