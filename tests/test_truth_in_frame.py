@@ -64,6 +64,7 @@ def test_a_term_not_subtracted_is_named_with_the_truth_it_is_compared_with(engin
     assert all(r.verdict == Verdict.AGREES for r in others)
     (extra,) = [d for d in q.diagnoses if d.kind == K.EXTRA]
     m2, l2, g, q1, q2 = sp.symbols("m2 l2 g q1 q2")
-    assert sp.simplify(sp.sympify(extra.terms[0]) + m2 * g * l2 / 2 * sp.cos(q1 + q2)) == 0
+    # the term named as the document has it too much (its sign as written)
+    assert sp.simplify(sp.sympify(extra.terms[0]) - m2 * g * l2 / 2 * sp.cos(q1 + q2)) == 0
     truth, document, residual = (sp.sympify(x) for x in (q.truth, q.document, q.residual))
     assert sp.simplify(truth - document - residual) == 0
