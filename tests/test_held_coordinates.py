@@ -129,3 +129,43 @@ A = "[[m, 0, 0], [0, m, 0], [0, 0, m]]"
     with pytest.raises(DerivationError) as err:
         ComparisonEngine(samples=20, param_sets=1).compare(load_derivation(path))
     assert f"{path}:7: coordinates.velocity_map.dx: must be linear" in str(err.value)
+
+
+@pytest.mark.parametrize("kept, held, value", [((0, 1), "phi", "3/10"), ((0, 2), "psi", "0")])
+def test_the_closed_forms_hold_it_as_the_numbers_do(kept, held, value):
+    r"""The truth in the document's symbols (:func:`wheeled_dyn.symbolic.true_expressions`)
+    of a set holding a coordinate: the full set's closed forms with it at its value and its
+    rate zero (a probe's report showed Q[1] = -2 d g m_c/(3 r) beside a truth that agreed: the
+    closed forms still took the smallest-norm rate)."""
+    import sympy as sp
+
+    from wheeled_dyn.symbolic import true_expressions
+    wm = load_model("wip")
+    full = true_expressions("wip", builtin_coordinate_set(wm, "seed001"))
+    names = ("x", "psi", "phi")
+    positions = [names[k] for k in kept]
+    config = {"x0": "x", "psi": "psi" if "psi" in positions else "0",
+              "phi": "phi" if "phi" in positions else value}
+    vmap = {"dx": "cos(psi)*dx0 + sin(psi)*dy0", "dpsi": "dpsi", "dphi": "dphi"}
+    cs = _set(wm, positions, ["d" + p for p in positions], config,
+              {"d" + p: vmap["d" + p] for p in positions})
+    part = true_expressions("wip", cs)
+    assert full and part
+    at = {sp.Symbol(held, real=True): sp.sympify(value), sp.Symbol("d" + held, real=True): 0}
+    rng = np.random.default_rng(SEED)
+    for key, expr in part.items():
+        kind, rest = key[0], key[2:]
+        if kind == "h":
+            row, product = rest.split("]:")
+            other = f"h[{kept[int(row) - 1] + 1}]:{product}"
+        elif kind == "B":
+            i, j = rest.rstrip("]").split(",")
+            other = f"B[{kept[int(i) - 1] + 1},{j}]"
+        else:
+            idx = [kept[int(i) - 1] + 1 for i in rest.rstrip("]").split(",")]
+            other = f"{kind}[{','.join(map(str, idx))}]"
+        difference = sp.sympify(expr) - sp.sympify(full[other]).xreplace(at)
+        free = sorted(difference.free_symbols, key=str)
+        for _ in range(3):
+            value_at = {s: float(rng.uniform(0.2, 1.2)) for s in free}
+            assert abs(float(difference.xreplace(value_at))) <= TOL * 1e3, (key, difference)

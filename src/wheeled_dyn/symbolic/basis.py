@@ -129,6 +129,25 @@ def rounded_rotation(wm: WheeledModel) -> tuple[str, float] | None:
     return None
 
 
+def _held(wm: WheeledModel, cs: CoordinateSet, J: sp.Matrix, T: sp.Matrix,
+          q: Sequence[sp.Symbol], config: Mapping, pos: Sequence[sp.Symbol]) -> list[int]:
+    r"""The indices of the model coordinates ``cs`` holds (:mod:`~wheeled_dyn.constraints.held`,
+    as the numeric reduction holds them), from :math:`[J_c; T]` at random parameters."""
+    from ..constraints.held import held_coordinates
+    M = J.col_join(T)
+    rng = np.random.default_rng(ROW_SEED)
+    free = set().union(*(sp.sympify(e).free_symbols for e in (*M, *config.values())))
+    params = {k: sp.Float(rng.uniform(0.3, 1.3))        # (SymPy numbers: xreplace gives a
+              for k in sorted(free - set(q) - set(pos), key=str)}   # lone symbol's back)
+
+    def stacked(q_doc):
+        at = {p: sp.Float(float(x)) for p, x in zip(pos, q_doc)}
+        sub = {qi: float(sp.sympify(config[qi]).xreplace(at).xreplace(params)) for qi in q}
+        return np.array(M.xreplace(sub).xreplace(params).evalf(), dtype=float)
+    names = held_coordinates(cs, wm.coordinate_names, stacked, [w.v_index for w in wm.wheels])
+    return [wm.coordinate_names.index(c) for c in names]
+
+
 def velocity_basis(wm: WheeledModel, cs: CoordinateSet, setup: Mapping, q: Sequence[sp.Symbol],
                    qd: Sequence[sp.Symbol], J: sp.Matrix | None
                    ) -> tuple[sp.Matrix, sp.Matrix, dict, tuple, tuple]:
@@ -159,9 +178,12 @@ def velocity_basis(wm: WheeledModel, cs: CoordinateSet, setup: Mapping, q: Seque
                                  "0 0\" for -pi/2; write -1.5707963267948966)? Closed forms "
                                  "of the rolling constraints need exact angles (the comparison, "
                                  "matrices and simulate use the numbers as written)")
+            held = _held(wm, cs, J, T, q, config, pos)      # as the numbers hold them
+            if held:
+                T = T.col_join(sp.Matrix([[int(j == k) for j in range(n)] for k in held]))
             rows = independent_rows(J, T)
             M = J.extract(rows, list(range(n))).col_join(T)
-            E = sp.zeros(len(rows), m).col_join(sp.eye(m))
+            E = sp.zeros(len(rows), m).col_join(sp.eye(m)).col_join(sp.zeros(len(held), m))
             if M.shape[0] == n:
                 S = trig_solve(M, E)
             else:  # fewer velocities than rolling motions: the minimum-norm S, as numerically
