@@ -11,6 +11,7 @@ import pytest
 import sympy as sp
 
 from wheeled_dyn.derivations import builtin_derivations, load_derivation
+from wheeled_dyn.derivations.limits import MAX_DOCUMENT_TERMS
 from wheeled_dyn.derivations.expressions import (MAX_EXPANDED_TERMS, MAX_EXPONENT,
                                                  MAX_NESTING, MAX_TOKENS, ExpressionError,
                                                  UndeclaredNameError, expanded_terms,
@@ -82,7 +83,10 @@ def _mutated(tmp_path, old: str, new: str):
 
 
 @pytest.mark.parametrize("element,reason", [
-    ("(m_c+m_s+sin(phi)+cos(phi)+d)**16*ddx", f"at most {MAX_EXPANDED_TERMS}"),
+    ("(m_c+m_s+sin(phi)+cos(phi)+d)**16*ddx", f"at most {MAX_DOCUMENT_TERMS}"),
+    # multiplied out inside: a denominator, a function's argument (a probe's took 13 GB)
+    ("ddx/(1 + (m_c+m_s+sin(phi)+cos(phi)+d+R+g)**64)", f"at most {MAX_DOCUMENT_TERMS}"),
+    ("sin((m_c+m_s+cos(phi)+d+R+g)**40)*ddx", f"at most {MAX_DOCUMENT_TERMS}"),
     ("(1+sin(phi))**(10**10**10)*ddx", "exponent"), ("9**9**9**9*ddx", "exponent"),
     ("(" + "+".join(["m_c"] * 20000) + ")*ddx", "too long")])
 def test_errors_name_file_line_and_item(element, reason, tmp_path):

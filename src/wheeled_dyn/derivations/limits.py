@@ -108,8 +108,8 @@ def _check_literal(text: str, number: str) -> None:
         raise ExpressionError(text, f"number {number} smaller than {1 / MAX_CONSTANT:g} in "
                                     "magnitude (write 0, or scale the quantity)")
     if abs(value) > decimal.Decimal(MAX_CONSTANT):      # (Python reads no int of 4300 digits)
-        raise ExpressionError(text, f"number {short_text(number, 40)} larger than "
-                                    f"{MAX_CONSTANT:g}")
+        raise ExpressionError(text, f"number larger than {MAX_CONSTANT:g} "
+                                    f"({short_text(number, 40)})")
 
 
 def _check_constants(text: str, root: ast.AST) -> None:
@@ -213,7 +213,10 @@ def expanded_terms(expr: sympy.Basic) -> int:
     r"""How many terms ``sympy.expand(expr)`` has at most, counted without expanding: a sum
     adds its terms' counts, a product multiplies them, a power :math:`s^n` of a sum of
     :math:`t` terms (integer :math:`n > 0`) has :math:`\binom{n+t-1}{t-1}`; any other
-    expression (a function, a quotient's denominator, a fractional power) counts 1."""
+    expression (a function, a quotient's denominator, a fractional power) counts 1. Then the
+    largest of that and of what ``expand`` multiplies out inside: every denominator (a power
+    :math:`s^{-n}`: :math:`s^n` expanded, ``1/(1 + (a + ... + h)**64)`` took all the memory)
+    and every function's argument (``expand`` goes into ``sin((a + b)**40)``)."""
     memo: dict[sympy.Basic, int] = {}
 
     def count(e: sympy.Basic) -> int:
@@ -232,7 +235,13 @@ def expanded_terms(expr: sympy.Basic) -> int:
         return value
 
     try:
-        return count(expr)
+        largest = count(expr)
+        for part in _parts(expr):
+            if isinstance(part, sympy.Pow) and part.exp.is_Integer and part.exp < 0:
+                largest = max(largest, count(sympy.Pow(part.base, -part.exp, evaluate=False)))
+            elif isinstance(part, sympy.Function):
+                largest = max(largest, *(count(a) for a in part.args))
+        return largest
     except RecursionError:
         return 10 ** 12
 
