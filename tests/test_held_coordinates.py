@@ -169,3 +169,33 @@ def test_the_closed_forms_hold_it_as_the_numbers_do(kept, held, value):
         for _ in range(3):
             value_at = {s: float(rng.uniform(0.2, 1.2)) for s in free}
             assert abs(float(difference.xreplace(value_at))) <= TOL * 1e3, (key, difference)
+
+
+def test_a_moving_coordinate_left_at_a_constant_the_truth_depends_on_is_refused(tmp_path):
+    r"""A file mapping the pitch rate (``dtheta = "dphi"``) with the pitch left out of its
+    configuration (so 0): the truth was computed at phi = 0 only, and a probe's equations with
+    phi = 0 substituted (a small-angle model of a pitching robot) agreed. Its heading left at
+    a constant is right (the truth does not depend on it: seed 001's sets leave y0 at 0)."""
+    from wheeled_dyn.compare import ComparisonEngine
+    from wheeled_dyn.derivations import load_derivation
+    from wheeled_dyn.errors import DerivationError
+    text = '''title = "the pitch rate mapped, the pitch left out"
+model = "wip"
+[coordinates]
+kind = "quasi"
+positions = ["x", "psi", "theta"]
+configuration = {{ {config} }}
+velocity_map = {{ dx = "cos(psi)*dx0 + sin(psi)*dy0", dpsi = "dpsi", dtheta = "dphi" }}
+[symbols]
+m = {{ value = "m_S", units = "kg" }}
+[matrices]
+A = "[[m, 0, 0], [0, m, 0], [0, 0, m]]"
+'''
+    path = tmp_path / "left_out.toml"
+    path.write_text(text.format(config='psi = "psi"'))
+    with pytest.raises(DerivationError) as err:
+        ComparisonEngine(samples=20, param_sets=1).compare(load_derivation(path))
+    assert f"{path}:6: coordinates.configuration.phi: phi moves" in str(err.value)
+    path.write_text(text.format(config='x0 = "x", phi = "theta"'))          # psi at 0: right
+    result = ComparisonEngine(samples=20, param_sets=1).compare(load_derivation(path))
+    assert result.equivalent is False                       # (its A is no robot's; compared)

@@ -86,4 +86,30 @@ def held_coordinates(cs: CoordinateSet, coordinates: Sequence[str],
         "it moves by a constant configuration whose velocity the map does not use")
 
 
-__all__ = ["held_coordinates"]
+def check_representatives(cs: CoordinateSet, coordinates: Sequence[str],
+                          moved_at: Callable[[int], float], seed: int = 0) -> None:
+    r"""A model coordinate whose rate the velocity map uses while its configuration is a
+    constant is a *representative* value: right only where the truth does not depend on it
+    (:math:`x_0, y_0`, the heading of a body on flat ground). ``moved_at(k)`` is how much the
+    truth (its inertia matrix and gravity forces, relative to their size) changes when model
+    coordinate ``k`` moves from the set's configuration. One on which it depends is refused
+    naming it: a file mapping the pitch rate (``dtheta = "dphi"``) but leaving ``phi`` out of
+    its configuration was compared at phi = 0 only, and its equations at 0 agreed."""
+    _, mv = model_symbols(coordinates)
+    moved = set().union(*(e.free_symbols for e in (cs.velocity_map or {}).values()))
+    doc_q = set(cs.position_symbols())
+    for k, name in enumerate(coordinates):
+        config = sp.sympify(cs.configuration.get(name, 0))
+        if mv[k] in moved and not config.free_symbols & doc_q and moved_at(k) > DEPENDS_TOL:
+            raise CoordinateSpecError(
+                cs.name, f"configuration.{name}",
+                f"{name} moves (the velocity map uses d{name}) but its configuration is the "
+                f"constant {config}, and the truth depends on it: write {name} as a function "
+                "of the document's positions")
+
+
+#: A relative change of the truth above this, when a coordinate moves, is a dependence.
+DEPENDS_TOL = 1e-9
+
+
+__all__ = ["check_representatives", "held_coordinates"]

@@ -37,7 +37,7 @@ from ..coordinates.spec import CoordinateSet, CoordinateSpecError, model_symbols
 from ..dynamics.terms import Terms, check_vector
 from ..models.builder import WheeledModel
 from .batch import lambdify_batch, reduce_batch
-from .held import held_coordinates
+from .held import check_representatives, held_coordinates
 from .linalg import pseudo_inverse
 from .rolling import contact_jacobian, planar_drift, planar_rows
 
@@ -102,6 +102,8 @@ class CoordinateMap:
                 index = {c: k for k, c in enumerate(wm.coordinate_names)}
                 self._compile_velocity_map([*(vmap[v] for v in cs.velocities),
                                             *(mv[index[c]] for c in self.held)], params)
+        if cs.kind == "quasi":
+            check_representatives(cs, wm.coordinate_names, self._moved_at)
 
     def _compile_velocity_map(self, rows: list[sp.Expr], params: list[sp.Symbol]) -> sp.Matrix:
         r""":math:`T = \partial\nu/\partial v` of the velocities ``rows`` and its rate,
@@ -120,6 +122,29 @@ class CoordinateMap:
         q = np.asarray(self._config(q_doc, self._p), dtype=float).reshape(-1)
         J, _ = contact_jacobian(self.wm, q, data=self._data)
         return np.vstack([J, np.asarray(self._T(q, self._p), dtype=float)])
+
+    def _moved_at(self, k: int, step: float = 0.7) -> float:
+        r"""The relative change of the truth in the document's velocities (:math:`A_\nu` and
+        the gravity forces :math:`S^TQ`) when model coordinate ``k`` moves by ``step`` from the
+        set's configuration at seeded positions."""
+        q = np.asarray(self._config(np.random.default_rng(0).uniform(-1, 1, self.n), self._p),
+                       dtype=float).ravel()
+        dv = np.zeros(self.wm.model.nv)
+        dv[k] = step
+        zero = np.zeros(self.n)
+        try:
+            (A0, F0, _, _), (A1, F1, _, _) = (self.dynamics_at(x, zero) for x in (
+                q, pin.integrate(self.wm.model, q, dv)))
+        except (np.linalg.LinAlgError, ValueError):
+            return 0.0                   # singular there: the comparison's own checks say so
+        out, inertia = 0.0, float(np.abs(A0).max(initial=0.0))
+        # (forces against gravity on that inertia, g ~ 10 per unit of it: a force that is 0 up
+        # to rounding is not a scale)
+        for x0, x1, floor in ((A0, A1, 1e-300), (F0, F1, 10.0 * inertia)):
+            size = max(float(np.abs(x0).max(initial=0.0)), float(np.abs(x1).max(initial=0.0)),
+                       floor)
+            out = max(out, float(np.abs(x1 - x0).max(initial=0.0)) / size)
+        return out
 
     def basis(self, Mp: np.ndarray, constraints: int) -> np.ndarray:
         r""":math:`S`: the columns of :math:`[J_c; T]^+` (``Mp``, N stacked or one) of the
