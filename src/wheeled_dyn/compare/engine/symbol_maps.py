@@ -78,6 +78,9 @@ def symbol_map_finding(d: Derivation, j) -> Cause | None:
     r"""The first symbol whose value read as another parameter of its link makes every
     equation of the judged derivation ``j`` right (module text), as a cause; None where none
     does, or more than half the equations are right as declared."""
+    if j.funcs.exprs.get("K") is not None:
+        return None          # a linearised document: its stiffness is compared apart from the
+        #                      samples a reading is judged on (a wrong K beside a wrong map)
     search = search_evaluation(j)
     agreeing = [r.document for r in j.result.records
                 if r.verdict == Verdict.AGREES and r.document not in ("", "0")]
