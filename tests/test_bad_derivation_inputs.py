@@ -325,3 +325,35 @@ def test_a_model_that_cannot_be_read_is_named_before_any_mismatch(tmp_path, caps
     assert main(["compare", str(fifo), str(_write(tmp_path))]) == 2
     err = capsys.readouterr().err
     assert str(fifo) in err and "FIFO" in err, err
+
+
+def test_a_comparison_that_recurses_too_deeply_is_one_error(tmp_path, monkeypatch):
+    r"""Python's compiler and SymPy recurse once per level of an expression: a comparison
+    that runs out of stack (a probe's 1/(1 + P**16) did, in compiling) is one error naming
+    the file, not a traceback. Made to run out here."""
+    from wheeled_dyn.compare.steps import chain
+
+    def deep(*args, **kwargs):
+        raise RecursionError("maximum recursion depth exceeded")
+    monkeypatch.setattr(chain, "with_steps", deep)
+    path = _write(tmp_path)
+    with pytest.raises(DerivationError) as err:
+        ComparisonEngine(samples=20, param_sets=1).compare(load_derivation(path))
+    _clear(err.value, path, "nested too deeply")
+
+
+@pytest.mark.parametrize("depth, refused", [(12, False), (16, True)])
+def test_definitions_that_double_at_every_level(tmp_path, depth, refused):
+    r"""``k = sin(j + theta) + cos(j - theta)``: two terms, each holding the one before, so a
+    tree of 2**depth copies (a probe's 19 levels ran for minutes): counted written out."""
+    defs = ['k0 = "theta"'] + [f'k{i} = "sin(k{i - 1} + theta) + cos(k{i - 1} - theta)"'
+                               for i in range(1, depth + 1)]
+    text = ROD.replace("[matrices]", "[definitions]\n" + "\n".join(defs) + "\n\n[matrices]"
+                       ).replace("m*g*l/2*sin(theta)", f"m*g*l/2*sin(theta)*(1 + k{depth}/1000)")
+    path = _write(tmp_path, text=text)
+    if refused:
+        with pytest.raises(DerivationError) as err:
+            load_derivation(path)
+        _clear(err.value, path, "nodes written out")
+    else:
+        assert load_derivation(path).equations

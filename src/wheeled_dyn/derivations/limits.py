@@ -47,6 +47,9 @@ MAX_EXPANDED_TERMS = 300
 #: of a two-link arm with general centres of mass: 325 terms) is compared in seconds; three
 #: equations of 2574 pathological terms each took about a minute.
 MAX_DOCUMENT_TERMS = 3000
+#: Most nodes of an expression written out as a tree, definitions substituted (19 levels of
+#: ``k = sin(j + q2) + cos(j - q1)``, each two terms, is a tree of a million nodes: minutes).
+MAX_TREE_NODES = 100_000
 #: Most terms of all of a document's expressions together (its cost is about their sum).
 MAX_FILE_TERMS = 6000
 #: Most levels of ``[definitions]`` used in one another (each level is a level of every
@@ -276,6 +279,24 @@ def _check_numbers(text: str, expr: sympy.Basic) -> None:
                                         f"most {MAX_FUNCTION_ARGUMENT:g} in magnitude")
 
 
+def tree_size(expr: sympy.Basic) -> int:
+    r"""The number of nodes of ``expr`` as a tree (a subexpression used twice counted twice:
+    what SymPy's printers and compilers walk), counted on its distinct subexpressions."""
+    memo: dict[sympy.Basic, int] = {}
+    stack: list[tuple[sympy.Basic, bool]] = [(expr, False)]
+    while stack:
+        e, done = stack.pop()
+        if e in memo:
+            continue
+        kids = [a for a in e.args if isinstance(a, sympy.Basic)]
+        if done:
+            memo[e] = min(1 + sum(memo[a] for a in kids), 10 ** 12)
+        else:
+            stack.append((e, True))
+            stack.extend((a, False) for a in kids if a not in memo)
+    return memo[expr]
+
+
 def check_expanded(text: str, expr: sympy.Basic, limit: int = MAX_EXPANDED_TERMS) -> int:
     r"""Raise :class:`ExpressionError` if ``expr`` (parsed from ``text``, with any definitions
     substituted) has more than ``limit`` terms once multiplied out (counted first: on the
@@ -285,10 +306,14 @@ def check_expanded(text: str, expr: sympy.Basic, limit: int = MAX_EXPANDED_TERMS
         size = f"{n}" if n < 10 ** 12 else "more than 10**12"
         raise ExpressionError(text, f"expression too large: {size} terms once multiplied out, "
                                     f"at most {limit}")
+    nodes = tree_size(expr)
+    if nodes > MAX_TREE_NODES:
+        raise ExpressionError(text, f"expression too large: {nodes} nodes written out (its "
+                                    f"definitions substituted), at most {MAX_TREE_NODES}")
     _check_numbers(text, expr)
     return n
 
 
 
-__all__ = ["MAX_CONSTANT", "MAX_DEFINITION_DEPTH", "MAX_DOCUMENT_TERMS", "MAX_EXPANDED_TERMS", "MAX_FILE_TERMS", "MAX_EXPONENT", "MAX_FUNCTION_ARGUMENT", "MAX_NESTING", "MAX_TOKENS",
-           "check_expanded", "check_limits", "expanded_terms"]
+__all__ = ["MAX_CONSTANT", "MAX_DEFINITION_DEPTH", "MAX_DOCUMENT_TERMS", "MAX_EXPANDED_TERMS", "MAX_FILE_TERMS", "MAX_TREE_NODES", "MAX_EXPONENT", "MAX_FUNCTION_ARGUMENT", "MAX_NESTING", "MAX_TOKENS",
+           "check_expanded", "check_limits", "expanded_terms", "tree_size"]

@@ -102,9 +102,15 @@ class ComparisonEngine:
                derivation.path.stat().st_mtime_ns if derivation.path.exists() else 0,
                steps_state(derivation.path), model_version(derivation.model))
         if key not in self._results:
-            self._results[key] = with_steps(derivation, self._compare, self.seed,
-                                            self.parallel_steps,
-                                            lambda stage: self.stage(derivation, stage))
+            try:
+                self._results[key] = with_steps(derivation, self._compare, self.seed,
+                                                self.parallel_steps,
+                                                lambda stage: self.stage(derivation, stage))
+            except RecursionError:       # SymPy's and Python's compilers recurse per level
+                from ...errors import DerivationError
+                raise DerivationError(derivation.path, "matrices", "an expression nested too "
+                                      "deeply to compile (its definitions substituted): "
+                                      "write it flatter") from None
         return self._results[key]
 
     def judge(self, d: Derivation, announce: bool = False) -> Judgement:
