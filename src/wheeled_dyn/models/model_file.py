@@ -39,6 +39,10 @@ from ..errors import InputFileError, OptionalDependencyError
 from .urdf_packages import PACKAGES, resolve_package
 from .urdf_values import MAX_MODEL_NUMBER, MAX_MODEL_TEXT
 
+#: The bases a model may have (``[base] type``): a wheeled body on the ground, a fixed base, a
+#: free-floating one (checked here, where reading a file needs no model).
+BASES = ("planar", "fixed", "free")
+
 if TYPE_CHECKING:
     from .wheeled_model import ModelSpec
 
@@ -267,7 +271,6 @@ def _validate_base(mf: ModelFile, base: Mapping[str, Any]) -> None:
     for key in ("type", "body"):
         if key in base and not isinstance(base[key], str):
             raise mf.fail(key, "expected a string", "base")
-    from .wheeled_model import BASES
     if base.get("type", "planar") not in BASES:
         raise mf.fail("type", f"{base['type']!r}; expected one of {', '.join(BASES)}", "base")
 

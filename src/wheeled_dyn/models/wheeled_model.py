@@ -25,11 +25,10 @@ import pinocchio as pin
 from ..errors import UnknownNameError
 from . import geometry as geo
 from .contact import BallContact, SphereContact
+from .model_file import BASES  # noqa: F401  (the bases: defined where a model file is read)
 from .rolling_wheel import BoundWheelContact, WheelContact
 from .springs import BoundSpring, JointSpring, spring_energy, spring_force
 
-#: The bases a model may stand on (:mod:`.builder`).
-BASES = ("planar", "fixed", "free")
 #: Coordinate names of the six joints of a free base (ZYX angles: yaw, pitch, roll).
 FREE_BASE = ("x0", "y0", "z0", "yaw", "pitch", "roll")
 
