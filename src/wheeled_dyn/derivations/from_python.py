@@ -23,6 +23,7 @@ from typing import Any
 import sympy as sp
 import tomli_w
 
+from ..paths import resolved
 from ..errors import DerivationError, WheeledDynError
 from .parse import load_derivation
 from .schema import Derivation
@@ -173,7 +174,7 @@ def derivation_from_sympy(model: str | Path, **tables: Any) -> Derivation:
                               "print (a file's expressions are at most 32 levels deep)") from None
     model_path = Path(str(model))
     if model_path.suffix == ".toml" and not model_path.is_absolute():
-        data["model"] = str(model_path.resolve())
+        data["model"] = str(resolved(model_path))
     with tempfile.TemporaryDirectory(prefix="wheeled-dyn-") as folder:
         path = Path(folder) / ((_NAME.sub("_", title).strip("_")[:60] or "derivation")
                                + ".toml")        # (a file name has at most 255 bytes)

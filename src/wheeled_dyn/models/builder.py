@@ -71,8 +71,8 @@ from .unwheeled_base import build_unwheeled
 from .urdf_checks import check_mimic
 from .urdf_source import UrdfSource, read_urdf
 from .visual_geometry import visual_geometry
-from .wheeled_model import (BASES, FREE_BASE, ModelSpec, Wheel, WheeledModel,
-                            coordinate_vector)
+from .model_file import BASES
+from .wheeled_model import FREE_BASE, ModelSpec, Wheel, WheeledModel, coordinate_vector
 
 #: Names importable from here, where the model was built before its parts had modules.
 __all__ = ["AXIS_TOL", "BASES", "DIRECTION_TOL", "FREE_BASE", "GRAVITY", "HORIZONTAL_TOL",

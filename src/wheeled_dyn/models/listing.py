@@ -12,7 +12,7 @@ from functools import lru_cache
 from pathlib import Path
 
 from ..errors import InputFileError
-from ..paths import DATA_DIR
+from ..paths import DATA_DIR, resolved
 from .model_file import ModelFile, read_model_file
 
 #: Folder of the shipped model files.
@@ -40,7 +40,7 @@ def _files(folder: Path) -> dict[str, ModelFile]:
 def shipped_model_files(folder: Path | None = None) -> dict[str, ModelFile]:
     r"""``{name: ModelFile}`` of the model files in ``folder`` (default
     :data:`MODEL_FILES_DIR`), sorted by file name; read once."""
-    return dict(_files((MODEL_FILES_DIR if folder is None else folder).resolve()))
+    return dict(_files(resolved(MODEL_FILES_DIR if folder is None else folder)))
 
 
 def model_summaries(folder: Path | None = None) -> dict[str, str]:

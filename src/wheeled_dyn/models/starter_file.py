@@ -20,7 +20,7 @@ def _q(text: str) -> str:
 def starter_text(inv: UrdfInventory, out: Path | None) -> str:
     r"""The text of a starting model file for ``inv`` (written next to ``out`` if given)."""
     urdf = resolved(inv.path)
-    rel = os.path.relpath(urdf, (out.resolve().parent if out else Path.cwd()))
+    rel = os.path.relpath(urdf, (resolved(out).parent if out else Path.cwd()))
     name = "".join(c if c.isalnum() or c == "_" else "_" for c in (inv.robot or inv.path.stem))
     lines = [f"# Starting model file for {inv.robot or inv.path.stem}, written by "
              f"'wheeled-dyn model {inv.path.name}'.",

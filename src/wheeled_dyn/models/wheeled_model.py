@@ -25,7 +25,6 @@ import pinocchio as pin
 from ..errors import UnknownNameError
 from . import geometry as geo
 from .contact import BallContact, SphereContact
-from .model_file import BASES  # noqa: F401  (the bases: defined where a model file is read)
 from .rolling_wheel import BoundWheelContact, WheelContact
 from .springs import BoundSpring, JointSpring, spring_energy, spring_force
 
