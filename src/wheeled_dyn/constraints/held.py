@@ -42,6 +42,21 @@ def _rank(M: np.ndarray) -> int:
     return int((s > RANK_TOL * max(float(s.max(initial=0.0)), 1e-300)).sum())
 
 
+def _constants(cs: CoordinateSet, coordinates: Sequence[str]
+               ) -> list[tuple[int, str, sp.Expr, bool]]:
+    r"""The model coordinates whose configuration in ``cs`` is a constant (no document
+    position in it): (index, name, the constant, whether the velocity map uses its rate)."""
+    _, mv = model_symbols(coordinates)
+    mapped = set().union(*(e.free_symbols for e in (cs.velocity_map or {}).values()))
+    doc_q = set(cs.position_symbols())
+    out = []
+    for k, name in enumerate(coordinates):
+        config = sp.sympify(cs.configuration.get(name, 0))
+        if not config.free_symbols & doc_q:
+            out.append((k, name, config, mv[k] in mapped))
+    return out
+
+
 def held_coordinates(cs: CoordinateSet, coordinates: Sequence[str],
                      stacked: Callable[[np.ndarray], np.ndarray], wheels: Sequence[int] = (),
                      seed: int = 0) -> tuple[str, ...]:
@@ -59,17 +74,13 @@ def held_coordinates(cs: CoordinateSet, coordinates: Sequence[str],
     nv = draws[0].shape[1]
     if max(_rank(M) for M in draws) >= nv:
         return ()
-    _, mv = model_symbols(coordinates)
-    moved = set().union(*(e.free_symbols for e in (cs.velocity_map or {}).values()))
-    doc_q = set(cs.position_symbols())
     held: list[int] = []
 
     def rank(rows: list[int]) -> int:
         return max(_rank(np.vstack([M, np.eye(nv)[rows]])) for M in draws)
 
-    for k, name in enumerate(coordinates):
-        config = sp.sympify(cs.configuration.get(name, 0))
-        if k in wheels or mv[k] in moved or config.free_symbols & doc_q:
+    for k, _name, _config, mapped in _constants(cs, coordinates):
+        if k in wheels or mapped:
             continue
         if rank([*held, k]) > rank(held):
             held.append(k)
@@ -87,7 +98,7 @@ def held_coordinates(cs: CoordinateSet, coordinates: Sequence[str],
 
 
 def check_representatives(cs: CoordinateSet, coordinates: Sequence[str],
-                          moved_at: Callable[[int], float], seed: int = 0) -> None:
+                          moved_at: Callable[[int], float]) -> None:
     r"""A model coordinate whose rate the velocity map uses while its configuration is a
     constant is a *representative* value: right only where the truth does not depend on it
     (:math:`x_0, y_0`, the heading of a body on flat ground). ``moved_at(k)`` is how much the
@@ -95,12 +106,8 @@ def check_representatives(cs: CoordinateSet, coordinates: Sequence[str],
     coordinate ``k`` moves from the set's configuration. One on which it depends is refused
     naming it: a file mapping the pitch rate (``dtheta = "dphi"``) but leaving ``phi`` out of
     its configuration was compared at phi = 0 only, and its equations at 0 agreed."""
-    _, mv = model_symbols(coordinates)
-    moved = set().union(*(e.free_symbols for e in (cs.velocity_map or {}).values()))
-    doc_q = set(cs.position_symbols())
-    for k, name in enumerate(coordinates):
-        config = sp.sympify(cs.configuration.get(name, 0))
-        if mv[k] in moved and not config.free_symbols & doc_q and moved_at(k) > DEPENDS_TOL:
+    for k, name, config, mapped in _constants(cs, coordinates):
+        if mapped and moved_at(k) > DEPENDS_TOL:
             raise CoordinateSpecError(
                 cs.name, f"configuration.{name}",
                 f"{name} moves (the velocity map uses d{name}) but its configuration is the "

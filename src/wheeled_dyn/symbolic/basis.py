@@ -135,10 +135,9 @@ def _held(wm: WheeledModel, cs: CoordinateSet, J: sp.Matrix, T: sp.Matrix,
     as the numeric reduction holds them), from :math:`[J_c; T]` at random parameters."""
     from ..constraints.held import held_coordinates
     M = J.col_join(T)
-    rng = np.random.default_rng(ROW_SEED)
-    free = set().union(*(sp.sympify(e).free_symbols for e in (*M, *config.values())))
-    params = {k: sp.Float(rng.uniform(0.3, 1.3))        # (SymPy numbers: xreplace gives a
-              for k in sorted(free - set(q) - set(pos), key=str)}   # lone symbol's back)
+    drawn = _random_values([*M, *config.values()], np.random.default_rng(ROW_SEED))
+    params = {k: sp.Float(v) for k, v in drawn.items()     # (SymPy numbers: xreplace gives
+              if k not in set(q) | set(pos)}               # a lone symbol's value back)
 
     def stacked(q_doc):
         at = {p: sp.Float(float(x)) for p, x in zip(pos, q_doc)}

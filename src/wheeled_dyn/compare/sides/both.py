@@ -85,7 +85,7 @@ def held_readings(cmap) -> tuple[str, ...]:
     return tuple(f"coordinate {c} held at {config.get(c, 0)}: the file's velocities leave it "
                  "free (its configuration is a constant and no velocity maps its rate), so "
                  "the truth is the model with it held there, as a locked joint or a guide "
-                 "holds it" for c in getattr(cmap, "held", ()))
+                 "holds it" for c in cmap.held)
 
 
 __all__ = ["Sides", "both_sides", "gamma", "held_readings"]
