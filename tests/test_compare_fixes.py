@@ -25,7 +25,7 @@ PHASE_Q3 = "g*sqrt(MX1**2 + MY1**2)*cos(phi + atan2(MY1, MX1))"
 NAN_A33 = "ZZ1 + 2*I_a + log(2*phi) - log(phi) - log(2)"
 
 
-def test_atan2_phase_form_agrees_without_dimension_finding(engine, tmp_path):
+def test_atan2_phase_form_agrees_without_dimension_finding(engine, tmp_path):  # noqa: F811
     result = engine.compare(load_derivation(_planted(tmp_path, {("Q", 2): PHASE_Q3})))
     r = _records(result)["Q[3]"]
     assert r.verdict == "agrees", r.texts
@@ -33,7 +33,7 @@ def test_atan2_phase_form_agrees_without_dimension_finding(engine, tmp_path):
     _others_agree(result, set())
 
 
-def test_non_finite_element_is_undecided(engine, tmp_path):
+def test_non_finite_element_is_undecided(engine, tmp_path):  # noqa: F811
     result = engine.compare(load_derivation(_planted(tmp_path, {("A", 2, 2): NAN_A33})))
     r = _records(result)["A[3,3]"]
     assert r.verdict == "undecided", (r.verdict, r.texts)

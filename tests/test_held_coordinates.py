@@ -30,6 +30,47 @@ def _set(wm, positions, velocities, configuration, velocity_map):
         tuple(wm.named_lengths()))
 
 
+#: A derivation of seed 001's pendulum with its own quasi-velocity set and a diagonal A.
+FILE = '''title = "{title}"
+model = "wip"
+[coordinates]
+kind = "quasi"
+positions = [{positions}]
+configuration = {{ {configuration} }}
+velocity_map = {{ {velocity_map} }}
+[symbols]
+m = {{ value = "m_S", units = "kg" }}
+[matrices]
+A = "{A}"
+'''
+#: The heading speed and rate as seed 001's set maps them.
+HEADING = 'dx = "cos(psi)*dx0 + sin(psi)*dy0", dpsi = "dpsi"'
+
+
+def _file(tmp_path, name: str, positions: list[str], **fields):
+    r"""``FILE`` with ``fields``, A = m times the identity, written as ``name.toml``."""
+    n = len(positions)
+    A = "[" + ", ".join("[" + ", ".join("m" if i == j else "0" for j in range(n)) + "]"
+                        for i in range(n)) + "]"
+    path = tmp_path / f"{name}.toml"
+    path.write_text(FILE.format(title=name, positions=", ".join(f'"{p}"' for p in positions),
+                                A=A, **fields))
+    return path
+
+
+def _compare_file(path):
+    from wheeled_dyn.compare import ComparisonEngine
+    from wheeled_dyn.derivations import load_derivation
+    return ComparisonEngine(samples=20, param_sets=1).compare(load_derivation(path))
+
+
+def _file_error(path) -> str:
+    from wheeled_dyn.errors import DerivationError
+    with pytest.raises(DerivationError) as err:
+        _compare_file(path)
+    return str(err.value)
+
+
 @pytest.mark.parametrize("kept, held, pitch", [
     ((0, 1), "phi", 0.3),          # (v, omega): the pitch held at 0.3 rad
     ((0, 2), "psi", 0.0),          # planar (x, phi): the heading held
@@ -86,49 +127,18 @@ def test_a_planar_derivation_says_which_coordinate_it_holds():
 
 
 def test_a_files_free_motion_names_the_file_and_its_map(tmp_path):
-    from wheeled_dyn.compare import ComparisonEngine
-    from wheeled_dyn.derivations import load_derivation
-    from wheeled_dyn.errors import DerivationError
-    path = tmp_path / "free.toml"
-    path.write_text('''title = "level body on a pitching model, the pitch following x"
-model = "wip"
-[coordinates]
-kind = "quasi"
-positions = ["x", "psi"]
-configuration = { x0 = "x", psi = "psi", phi = "x/10" }
-velocity_map = { dx = "cos(psi)*dx0 + sin(psi)*dy0", dpsi = "dpsi" }
-[symbols]
-m = { value = "m_S", units = "kg" }
-[matrices]
-A = "[[m, 0], [0, m]]"
-''')
-    with pytest.raises(DerivationError) as err:
-        ComparisonEngine(samples=20, param_sets=1).compare(load_derivation(path))
-    text = str(err.value)
+    path = _file(tmp_path, "free", ["x", "psi"],                 # the pitch following x
+                 configuration='x0 = "x", psi = "psi", phi = "x/10"', velocity_map=HEADING)
+    text = _file_error(path)
     assert f"{path}:7" in text and "coordinates.velocity_map" in text, text
     assert "leave a motion of the model free" in text and "phi" in text, text
 
 
 def test_a_velocity_map_that_is_not_linear_names_the_file_and_its_line(tmp_path):
-    from wheeled_dyn.compare import ComparisonEngine
-    from wheeled_dyn.derivations import load_derivation
-    from wheeled_dyn.errors import DerivationError
-    path = tmp_path / "square.toml"
-    path.write_text('''title = "a velocity squared"
-model = "wip"
-[coordinates]
-kind = "quasi"
-positions = ["x", "psi", "phi"]
-configuration = { x0 = "x", psi = "psi", phi = "phi" }
-velocity_map = { dx = "dx0**2", dpsi = "dpsi", dphi = "dphi" }
-[symbols]
-m = { value = "m_S", units = "kg" }
-[matrices]
-A = "[[m, 0, 0], [0, m, 0], [0, 0, m]]"
-''')
-    with pytest.raises(DerivationError) as err:
-        ComparisonEngine(samples=20, param_sets=1).compare(load_derivation(path))
-    assert f"{path}:7: coordinates.velocity_map.dx: must be linear" in str(err.value)
+    path = _file(tmp_path, "square", ["x", "psi", "phi"],
+                 configuration='x0 = "x", psi = "psi", phi = "phi"',
+                 velocity_map='dx = "dx0**2", dpsi = "dpsi", dphi = "dphi"')
+    assert f"{path}:7: coordinates.velocity_map.dx: must be linear" in _file_error(path)
 
 
 @pytest.mark.parametrize("kept, held, value", [((0, 1), "phi", "3/10"), ((0, 2), "psi", "0")])
@@ -176,26 +186,10 @@ def test_a_moving_coordinate_left_at_a_constant_the_truth_depends_on_is_refused(
     configuration (so 0): the truth was computed at phi = 0 only, and a probe's equations with
     phi = 0 substituted (a small-angle model of a pitching robot) agreed. Its heading left at
     a constant is right (the truth does not depend on it: seed 001's sets leave y0 at 0)."""
-    from wheeled_dyn.compare import ComparisonEngine
-    from wheeled_dyn.derivations import load_derivation
-    from wheeled_dyn.errors import DerivationError
-    text = '''title = "the pitch rate mapped, the pitch left out"
-model = "wip"
-[coordinates]
-kind = "quasi"
-positions = ["x", "psi", "theta"]
-configuration = {{ {config} }}
-velocity_map = {{ dx = "cos(psi)*dx0 + sin(psi)*dy0", dpsi = "dpsi", dtheta = "dphi" }}
-[symbols]
-m = {{ value = "m_S", units = "kg" }}
-[matrices]
-A = "[[m, 0, 0], [0, m, 0], [0, 0, m]]"
-'''
-    path = tmp_path / "left_out.toml"
-    path.write_text(text.format(config='psi = "psi"'))
-    with pytest.raises(DerivationError) as err:
-        ComparisonEngine(samples=20, param_sets=1).compare(load_derivation(path))
-    assert f"{path}:6: coordinates.configuration.phi: phi moves" in str(err.value)
-    path.write_text(text.format(config='x0 = "x", phi = "theta"'))          # psi at 0: right
-    result = ComparisonEngine(samples=20, param_sets=1).compare(load_derivation(path))
-    assert result.equivalent is False                       # (its A is no robot's; compared)
+    pitch = HEADING + ', dtheta = "dphi"'
+    path = _file(tmp_path, "left_out", ["x", "psi", "theta"], configuration='psi = "psi"',
+                 velocity_map=pitch)
+    assert f"{path}:6: coordinates.configuration.phi: phi moves" in _file_error(path)
+    path = _file(tmp_path, "left_out", ["x", "psi", "theta"],          # psi at 0: right
+                 configuration='x0 = "x", phi = "theta"', velocity_map=pitch)
+    assert _compare_file(path).equivalent is False          # (its A is no robot's; compared)

@@ -27,29 +27,16 @@ from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.compare.records import CauseKind, DiagnosisKind as K
 from wheeled_dyn.derivations import load_derivation
 
+from test_equivalence import ROD as EQUIVALENCE_ROD
+
 SAMPLES, PARAM_SETS = 200, 3
 DATA = Path(__file__).parent / "data"
 
-ROD = '''title = "Rod pendulum ({name})"
-model = "rod_pendulum"
-[coordinates]
-positions = ["theta"]
-kind = "holonomic"
-rolling = "none"
-configuration = {{ theta = "theta" }}
-units = {{ theta = "rad" }}
-[symbols]
-m = {{ value = "4*MZ(rod)**2/(3*YY(rod))", units = "kg" }}
-l = {{ value = "-3*YY(rod)/(2*MZ(rod))", units = "m" }}
-g = {{ value = "g", units = "m/s**2" }}
-r = {{ value = "radius(rod)", units = "m" }}
-{symbols}
-[assumes]
-families = ["urdf_structure"]
-{assumes}
-[matrices]
-equations = ["{equation}"]
-'''
+#: test_equivalence's rod file, with the rod's radius and room for more symbols.
+ROD = EQUIVALENCE_ROD.replace('g = {{ value = "g", units = "m/s**2" }}\n',
+                              'g = {{ value = "g", units = "m/s**2" }}\n'
+                              'r = {{ value = "radius(rod)", units = "m" }}\n{symbols}\n')
+assert "{symbols}" in ROD
 
 
 def _compare(tmp_path, name, equation, symbols="", assumes=""):
