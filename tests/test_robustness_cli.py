@@ -405,3 +405,17 @@ def test_list_reads_the_model_files_without_sympy_or_pinocchio():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True).stdout.strip().splitlines()[-1]
     assert out == "[]", out
+
+
+def test_compare_of_a_shipped_derivation_imports_no_scipy(tmp_path):
+    r"""``wheeled-dyn compare wip eq25_lagrange.toml`` needs no SciPy: its linear algebra took
+    0.25–0.35 s to import (a quarter of the command's time, the bench's target being 1 s) for
+    one pseudo-inverse by LAPACK's Cholesky solver. Counted by the modules loaded."""
+    eq25 = next(p for p in builtin_derivations("seed001") if p.name == "eq25_lagrange.toml")
+    code = ("import sys; from wheeled_dyn.cli.main import main; "
+            f"main(['compare', 'wip', {str(eq25)!r}, '--out', {str(tmp_path)!r}]); "
+            "print(sorted(m for m in sys.modules if m.split('.')[0] == 'scipy'))")
+    env = {**os.environ, "WHEELED_DYN_REUSE": "forms"}       # compared, not read back
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True, env=env).stdout.strip().splitlines()[-1]
+    assert out == "[]", out
