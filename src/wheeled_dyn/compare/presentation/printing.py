@@ -25,7 +25,8 @@ PRINTED = DiskMemo("compare", "printed", lambda: [Path(__file__)])
 def printed(expr: sp.Basic, names: Mapping[sp.Symbol, str] | None = None) -> tuple[str, str]:
     r"""``(sympy.sstr(expr), sympy.latex(expr, symbol_names=names))``, remembered
     (:data:`PRINTED`); ``names`` maps symbols to their LaTeX (only those of ``expr`` count)."""
-    names = {s: t for s, t in (names or {}).items() if s in expr.free_symbols}
+    free = expr.free_symbols                    # a walk of the tree: once, not per name
+    names = {s: t for s, t in (names or {}).items() if s in free}
     key = (expr, tuple(sorted((str(s), t) for s, t in names.items())))
     return PRINTED.get(key, lambda: (sp.sstr(expr), sp.latex(expr, symbol_names=names)))
 
