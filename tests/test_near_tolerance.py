@@ -70,3 +70,26 @@ def test_a_flipped_sign_is_a_sign_and_the_system_is_wrong(robot):
                                                    verdict=Verdict.UNDECIDED),
                                            *result.equations[1:]))
     assert undecided.equivalent is False
+
+
+@pytest.mark.parametrize("factor", ["1.000001", "0.999999", "1.0000002"])
+def test_an_element_a_millionth_off_is_no_family_s_doing(tmp_path, factor):
+    r"""The arm of :mod:`published_forms` as matrices (its products of inertia zero in the URDF
+    and declared so, ``urdf_structure``) with d₂₂ written ``factor`` × its truth: the element
+    differs, and no family is said to make it agree. A small grid's row scale had taken the
+    10⁻⁶ within the tolerance under "products of inertia zero", a condition that already
+    holds: a family explains a difference only where it takes it away (a thousandth of it
+    left at most)."""
+    from published_forms import write
+    path = write(tmp_path, "arm", "matrices", None)
+    text = path.read_text()
+    d22 = "I2 + lc2**2*m2"
+    assert text.count(f'"{d22}"]]') == 1, text
+    path.write_text(text.replace(f'"{d22}"]]', f'"{factor}*({d22})"]]'))
+    result = ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED).compare(
+        load_derivation(path))
+    record = next(r for r in result.records if r.element == "A[2,2]")
+    assert record.verdict == Verdict.DIFFERS, record
+    assert not any(x.kind == K.CONDITION for r in result.records for x in r.diagnoses)
+    assert all(r.verdict == Verdict.AGREES for r in result.records if r is not record)
+    assert result.equivalent is False

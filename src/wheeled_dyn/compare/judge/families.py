@@ -8,6 +8,13 @@ single family that suffices (weakest first), else a greedy minimal combination. 
 that no family makes agree but that is a constant factor of the truth under the weakest family
 that gives one says so ("factor: ... (if ...)"); two velocity products of one row of h that are
 each other's truth under a family are a swap "equal only if" it.
+
+A family *explains* a difference only where it takes it away: an element agrees under it when
+its difference there, relative to its row's scale, is at most :data:`EXPLAINED` of what it is on
+the main grid (or the truth's round-off). A product of inertia left out vanishes to round-off
+where the products are zero; an element 1 + 10⁻⁶ times the truth stays 10⁻⁶ off, and falls
+within the tolerance on a small grid only where its row's other terms are larger there: no
+family is its cause.
 """
 
 from __future__ import annotations
@@ -21,9 +28,23 @@ from ..records import Diagnosis, DiagnosisKind as K, Verdict, diagnosis, first_o
 from .diagnose import agrees, value_diagnoses
 from .draft import ElementDraft
 
-#: Which elements agree on a combination's grid: ``("ok", key, index)``,
+#: Which elements agree on a combination's grid: ``("ok", key, index, relative difference)``,
 #: ``("factor", key, index, diagnosis)``, ``("swap", a, b)`` (h indices).
 Agreeing = Callable[[tuple[SpecialCase, ...]], set]
+
+#: The largest fraction of an element's relative difference on the main grid that a family
+#: may leave for the element to agree under it (module text).
+EXPLAINED = 1e-3
+
+
+def _relative(D: np.ndarray, T: np.ndarray, scale: float) -> float:
+    r""":math:`\max|D - T| / s` over the finite samples (inf where none is, or ``s`` is 0)."""
+    with np.errstate(all="ignore"):
+        diff = np.abs(D - T)
+    diff = diff[np.isfinite(diff)]
+    if not diff.size or not scale > 0:
+        return float("inf")
+    return float(diff.max()) / scale
 
 
 def items(elements: Iterable[tuple[str, tuple[int, ...], np.ndarray, np.ndarray, float]]) -> set:
@@ -32,7 +53,7 @@ def items(elements: Iterable[tuple[str, tuple[int, ...], np.ndarray, np.ndarray,
     h_values = {}
     for key, index, D, T, scale in elements:
         if agrees(D, T, scale):
-            ok.add(("ok", key, index))
+            ok.add(("ok", key, index, _relative(D, T, scale)))
         else:                                # a constant factor that holds only here
             found = value_diagnoses(D, T, scale)
             if found and found[0].kind == K.FACTOR:
@@ -52,66 +73,108 @@ def _searchable(d: ElementDraft) -> bool:
         d.diagnoses, K.DIMENSION, K.SIGN, K.FACTOR, K.SWAP, K.SMALL_ANGLE, K.UNDECIDED)
 
 
+class _Grids:
+    r"""The family grids of one search: each combination's :data:`Agreeing` items, asked once,
+    and whether an item holds there (an element agreeing only where the family explains its
+    difference: :func:`_limit`)."""
+
+    def __init__(self, cases: Sequence[SpecialCase], agreeing: Agreeing,
+                 todo: Sequence[ElementDraft]) -> None:
+        self.cases, self._agreeing = tuple(cases), agreeing
+        self._memo: dict[tuple[str, ...], set] = {}
+        self._explained: dict[tuple[str, ...], dict] = {}
+        self._limits = {(r.key, r.index): _limit(r) for r in todo}
+
+    def on(self, combo: tuple[SpecialCase, ...]) -> set:
+        key = tuple(c.name for c in combo)
+        if key not in self._memo:
+            self._memo[key] = self._agreeing(combo)
+            self._explained[key] = {x[1:3]: x[3] for x in self._memo[key] if x[0] == "ok"}
+        return self._memo[key]
+
+    def holds(self, item, combo: tuple[SpecialCase, ...]) -> bool:
+        if item[0] != "ok":
+            return item in self.on(combo)
+        self.on(combo)
+        rel = self._explained[tuple(c.name for c in combo)].get(item[1:3])
+        return rel is not None and rel <= self._limits[item[1:3]]
+
+    def minimal(self, item) -> list[SpecialCase]:
+        r"""The first single family under which ``item`` holds, else a greedy minimal
+        combination."""
+        for case in self.cases:
+            if self.holds(item, (case,)):
+                return [case]
+        needed = list(self.cases)
+        for case in self.cases:
+            trial = tuple(c for c in needed if c is not case)
+            if self.holds(item, trial):
+                needed = list(trial)
+        return needed
+
+
 def search(cases: Sequence[SpecialCase], drafts: Sequence[ElementDraft],
            agreeing: Agreeing) -> None:
     r"""Mark the drafts that agree under undeclared ``cases`` (module text), in place."""
     todo = [r for r in drafts if _searchable(r)]
     if not cases or not todo:
         return
-    memo: dict[tuple[str, ...], set] = {}
+    grids = _Grids(cases, agreeing, todo)
+    swapped = {id(r) for r in _swaps(grids, drafts)}      # drafts compare by their arrays
+    for r in todo:
+        if id(r) not in swapped:
+            _condition(grids, r)
 
-    def on(combo: tuple[SpecialCase, ...]) -> set:
-        key = tuple(c.name for c in combo)
-        if key not in memo:
-            memo[key] = agreeing(combo)
-        return memo[key]
 
-    everything = on(tuple(cases))
-
-    def minimal(item) -> list[SpecialCase]:
-        for case in cases:
-            if item in on((case,)):
-                return [case]
-        needed = list(cases)
-        for case in cases:
-            trial = tuple(c for c in needed if c is not case)
-            if item in on(trial):
-                needed = list(trial)
-        return needed
-
+def _swaps(grids: _Grids, drafts: Sequence[ElementDraft]) -> list[ElementDraft]:
+    r"""Two differing velocity products of a row of h, each the other's truth under a family:
+    each marked a swap "equal only if" it; the drafts marked."""
     by_index = {(r.key, r.index): r for r in drafts}
-    for item in sorted((x for x in everything if x[0] == "swap"), key=str):
+    marked: list[ElementDraft] = []
+    for item in sorted((x for x in grids.on(grids.cases) if x[0] == "swap"), key=str):
         _, a, b = item
         ra, rb = by_index.get(("h", a)), by_index.get(("h", b))
         if ra is None or rb is None or has_kind(ra.diagnoses, K.SWAP) \
                 or ra.verdict != Verdict.DIFFERS:
             continue
-        text = " and ".join(c.description for c in minimal(item))
+        text = " and ".join(c.description for c in grids.minimal(item))
         pa, pb = ra.element.split(":")[1], rb.element.split(":")[1]
         ra.diagnoses.append(diagnosis(K.SWAP, f"the document's {pa} term is the true {pb} "
                                       f"term (equal only if {text})", written=pa, fits=pb,
                                       condition=text))
         rb.diagnoses.append(diagnosis(K.SWAP, f"written as {pa} in the document (equal only "
                                       f"if {text})", written=pa, fits=pb, condition=text))
-        todo = [r for r in todo if r is not ra and r is not rb]
-    for r in todo:
-        if ("ok", r.key, r.index) not in everything:
-            for case in cases:      # no family makes it agree: a factor under the weakest
-                hit = next((x[3] for x in on((case,))
-                            if x[0] == "factor" and x[1:3] == (r.key, r.index)), None)
-                if hit is not None:
-                    r.diagnoses.insert(0, diagnosis(
-                        K.FACTOR, f"{hit.detail} (if {case.description})",
-                        factor=hit.factor, condition=case.description))
-                    break
-            continue
-        needed = minimal(("ok", r.key, r.index))
-        text = " and ".join(c.description for c in needed) if needed else "always"
-        r.verdict = Verdict.AGREES_IF
-        named = [x for x in r.diagnoses if x.kind in (K.MISSING, K.EXTRA)]
-        rest = [x for x in r.diagnoses if x.kind not in (K.MISSING, K.EXTRA)]
-        r.diagnoses = [Diagnosis(K.CONDITION, f"agrees only if {text}", text,
-                                 condition=text)] + rest + named
+        marked += [ra, rb]
+    return marked
+
+
+def _condition(grids: _Grids, r: ElementDraft) -> None:
+    r"""The draft ``r`` "agrees only if" the smallest combination under which it agrees, or,
+    where none does, a factor of the truth under the weakest family that gives one."""
+    if not grids.holds(("ok", r.key, r.index), grids.cases):
+        for case in grids.cases:    # no family makes it agree: a factor under the weakest
+            hit = next((x[3] for x in grids.on((case,))
+                        if x[0] == "factor" and x[1:3] == (r.key, r.index)), None)
+            if hit is not None:
+                r.diagnoses.insert(0, diagnosis(
+                    K.FACTOR, f"{hit.detail} (if {case.description})",
+                    factor=hit.factor, condition=case.description))
+                return
+        return
+    needed = grids.minimal(("ok", r.key, r.index))
+    text = " and ".join(c.description for c in needed) if needed else "always"
+    r.verdict = Verdict.AGREES_IF
+    named = [x for x in r.diagnoses if x.kind in (K.MISSING, K.EXTRA)]
+    rest = [x for x in r.diagnoses if x.kind not in (K.MISSING, K.EXTRA)]
+    r.diagnoses = [Diagnosis(K.CONDITION, f"agrees only if {text}", text,
+                             condition=text)] + rest + named
+
+
+def _limit(d: ElementDraft) -> float:
+    r"""The relative difference a family may leave in the draft ``d`` (:data:`EXPLAINED` of
+    its main grid's, or the truth's round-off in its row, whichever is larger)."""
+    main = _relative(d.D, d.T, d.scale)
+    return max(EXPLAINED * main, d.round_off / d.scale if d.scale > 0 else 0.0)
 
 
 def condition(d: ElementDraft) -> str:
