@@ -62,3 +62,28 @@ def test_a_fraction_of_earths_gravity_is_named(tmp_path):
     assert first.kind == K.SWAP, q1.diagnoses
     assert "the number 4.905 is written where g/2 fits" in first.text, first.text
     assert "hold for g = 9.81 only" in first.text
+
+
+@pytest.mark.parametrize("units", [True, False])
+def test_the_number_is_named_with_units_declared_or_not(tmp_path, units):
+    r"""The arm of :mod:`published_forms` written out, 9.81 for g in its second equation's
+    gravity term: named whether or not the file declares its symbols' units (it was named
+    only where the units said "has kg·m², expected kg·m²·s⁻²" first)."""
+    import re
+    path = P.write(tmp_path, "arm", "equations", None)
+    text = path.read_text()
+    term = "g*lc2*m2*cos(q1 + q2) = tau2"
+    assert text.count(term) == 1, text
+    text = text.replace(term, term.replace("g*", "9.81*"))
+    if not units:
+        text = re.sub(r', units = "[^"]*"', "", text)
+        assert "units" not in text.split("[symbols]")[1]
+    path.write_text(text)
+    engine = ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED)
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False
+    wrong = [r for r in result.records if r.verdict != Verdict.AGREES]
+    assert [r.element for r in wrong] == ["Q[2]"], wrong
+    first = wrong[0].diagnoses[0]
+    assert first.kind == K.SWAP, wrong[0].diagnoses
+    assert "the number 9.81 is written where g fits" in first.text, first.text

@@ -135,12 +135,11 @@ def judge(d: ElementDraft, problems: Sequence[str], trials: Trials,
     expr = d.expr
     if expr is None:
         return
-    if problems:                 # a number where a parameter fits: its units say it first
-        found = number_for_gravity(expr, trials.funcs.d, trials.evaluate, d.T, d.scale,
-                                   problems)
-        if found:
-            d.diagnoses[:] = found
-            return
+    # a number where gravity fits (its units say so too, where the file declares them)
+    found = number_for_gravity(expr, trials.funcs.d, trials.evaluate, d.T, d.scale, problems)
+    if found:
+        d.diagnoses[:] = found
+        return
     if sp.count_ops(expr) > TRIAL_OPS:       # only the symbols read as others: no compiling
         if d.key != "h" and not has_kind(d.diagnoses, K.SIGN, K.FACTOR, K.EXTRA):
             d.diagnoses += symbol_swaps(d, trials, groups)

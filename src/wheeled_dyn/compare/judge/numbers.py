@@ -3,7 +3,8 @@ r"""A number written where a parameter of the model fits: :math:`9.81` for the g
 of the model, gravity too (a document's equations must hold for every robot of the model,
 on any planet: a term that needs :math:`g` and lacks it is an error), so a document that
 writes Earth's value differs — it holds for
-:math:`g = 9.81` only — and its units say so ("has kg, expected kg·m·s⁻²"). That is its
+:math:`g = 9.81` only — and its units say so where the file declares them ("has kg, expected
+kg·m·s⁻²"). That is its
 name here: each number of an element within :data:`GRAVITY_NUMBERS` of a standard value,
 read as the document's symbol for the model's :math:`g`, makes the element agree at every
 sample. An explanation only: the element still differs.
