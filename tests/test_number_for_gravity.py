@@ -11,6 +11,7 @@ import published_forms as P
 import pytest
 from conftest import SEED
 from wheeled_dyn.compare.engine import ComparisonEngine
+from wheeled_dyn.compare.records import CauseKind
 from wheeled_dyn.compare.records import DiagnosisKind as K
 from wheeled_dyn.compare.records import Verdict
 from wheeled_dyn.derivations import load_derivation
@@ -87,3 +88,27 @@ def test_the_number_is_named_with_units_declared_or_not(tmp_path, units):
     first = wrong[0].diagnoses[0]
     assert first.kind == K.SWAP, wrong[0].diagnoses
     assert "the number 9.81 is written where g fits" in first.text, first.text
+
+
+@pytest.mark.parametrize("error", [None, "sign"])
+def test_a_symbol_valued_as_earths_gravity_is_the_cause(tmp_path, error):
+    r"""The arm written out with ``g = 9.81`` in ``[symbols]``: its gravity terms differ (the
+    model's g is drawn) and the first cause says that with g valued as the model's gravity
+    every equation is right. With a planted sign besides, no such cause: it would not make
+    every equation right."""
+    path = P.write(tmp_path, "arm", "equations", error)
+    text = path.read_text()
+    line = 'g = { value = "g", units = "m/s**2" }'
+    assert text.count(line) == 1
+    path.write_text(text.replace(line, line.replace('"g"', '"9.81"')))
+    engine = ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED)
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False
+    assert {r.element for r in result.records if r.verdict != Verdict.AGREES} >= {"Q[1]", "Q[2]"}
+    said = [c for c in result.causes if "valued as the model's gravity" in c.explanation]
+    if error is None:
+        assert said and said[0] is result.causes[0], result.causes
+        assert said[0].kind == CauseKind.FILE_ERROR
+        assert "hold for g = 9.81 only" in said[0].explanation
+    else:
+        assert not said, said

@@ -13,7 +13,9 @@ symbol's numbers changed, no new truth) — a symbol written in an element that 
 mapped right, and not read again. One that makes every equation right is the first
 cause (``file_error``): "with I2 = IYY(forearm_link) (the file maps it to IXX(forearm_link)),
 every equation is right (0 of 2 as declared): the file probably maps I2 to another parameter
-of the link than the document means …".
+of the link than the document means …". A symbol valued as Earth's gravity (a number within
+:data:`~..judge.numbers.GRAVITY_NUMBERS`) is read as the model's ``g``, which the comparison
+draws as every parameter.
 """
 
 from __future__ import annotations
@@ -28,6 +30,7 @@ from sympy.core.function import AppliedUndef
 from ...derivations.schema import Derivation
 from ...errors import UnknownNameError
 from ..grid.values import model_value
+from ..judge.numbers import GRAVITY_NUMBERS
 from ..records import Cause, CauseKind, Verdict
 from .conventions import search_evaluation
 
@@ -40,10 +43,17 @@ SIGNED: frozenset[str] = frozenset(("CX", "CY", "CZ", "MX", "MY", "MZ", "IXY", "
                                     "XY", "XZ", "YZ"))
 
 
+#: The model's gravity, as a symbol's value names it.
+GRAVITY = sp.Symbol("g")
+
+
 def _alternatives(value: sp.Expr) -> list[sp.Expr]:
     r"""``value`` (one link parameter, times anything) with that parameter read as each other
-    of its kind (:data:`GROUPS`, :data:`SIGNED` with either sign); none where it holds no
-    link parameter or more than one."""
+    of its kind (:data:`GROUPS`, :data:`SIGNED` with either sign); a number near Earth's
+    gravity read as the model's :data:`GRAVITY`; none where it holds no link parameter or more
+    than one."""
+    if value.is_Number and GRAVITY_NUMBERS[0] <= abs(float(value)) <= GRAVITY_NUMBERS[1]:
+        return [GRAVITY if value > 0 else -GRAVITY]
     calls = [c for c in value.atoms(AppliedUndef) if any(c.func.__name__ in g for g in GROUPS)]
     if len(calls) != 1:
         return []
@@ -113,6 +123,14 @@ def symbol_map_finding(d: Derivation, j) -> Cause | None:
                 #               terms would vanish, not be read right
             values = dict(search.values)
             values[spec.symbol] = np.repeat(per_set, n_states)
+            if _right(search, values) == n and spec.value.is_Number:
+                return Cause(CauseKind.FILE_ERROR, (), (
+                    f"with {spec.symbol} valued as the model's gravity (the file values "
+                    f"it {float(spec.value):g}), every equation is right ({declared} of {n} "
+                    "as declared): the comparison draws gravity as every parameter of the "
+                    f"model, and the equations as the file values them hold for g = "
+                    f"{abs(float(spec.value)):g} only (value {spec.symbol} as \"g\"); the "
+                    "verdicts are under the file's declaration"))
             if _right(search, values) == n:
                 return Cause(CauseKind.FILE_ERROR, (), (
                     f"with {spec.symbol} = {sp.sstr(other)} (the file maps it to "
