@@ -118,6 +118,24 @@ def test_definitions_are_counted_after_substitution(tmp_path):
     assert "equation 1" in str(err.value) and "terms once multiplied out" in str(err.value)
 
 
+def test_powers_of_definitions_are_held_to_the_exponent_limit(tmp_path):
+    r"""Definitions raised to powers in one another (``c1 = cos(phi - 1)**64``, ``c2 =
+    c1**64`` ...) are a power of 64⁴ once substituted, which SymPy writes as one power and
+    multiplying it out (the residual's text) took all the memory: refused, naming the
+    equation, as a literal exponent beyond the limit is."""
+    text = KIM.read_text().replace("[matrices]", "[definitions]\n" + "".join(
+        f'c{k} = "{"cos(phi - 1)" if k == 1 else f"c{k - 1}"}**{MAX_EXPONENT}"\n'
+        for k in range(1, 5)) + "\n[matrices]", 1)
+    text = text.replace("3*(m_c + m_s)*ddx", "3*(m_c + m_s)*(1 + c4)*ddx", 1)
+    path = tmp_path / "doc.toml"
+    path.write_text(text)
+    with pytest.raises(DerivationError) as err:
+        load_derivation(path)
+    assert "equation 1" in str(err.value), err.value
+    assert f"exponent {MAX_EXPONENT ** 4} out of range" in str(err.value), err.value
+    assert "definitions substituted" in str(err.value)
+
+
 @pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="needs FIFOs (POSIX)")
 def test_fifo_folder_and_large_file(tmp_path):
     fifo = tmp_path / "pipe.toml"

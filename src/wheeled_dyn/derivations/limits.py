@@ -302,13 +302,20 @@ def tree_size(expr: sympy.Basic) -> int:
 def check_expanded(text: str, expr: sympy.Basic, limit: int = MAX_EXPANDED_TERMS) -> int:
     r"""Raise :class:`ExpressionError` if ``expr`` (parsed from ``text``, with any definitions
     substituted) has more than ``limit`` terms once multiplied out (counted first: on the
-    distinct subexpressions), or a number out of bounds; else return the count."""
+    distinct subexpressions), an integer exponent beyond :data:`MAX_EXPONENT` (powers of
+    definitions multiply), too many nodes or a number out of bounds; else return the
+    count."""
     parts = _parts(expr)
     n = expanded_terms(expr, parts)
     if n > limit:
         size = f"{n}" if n < 10 ** 12 else "more than 10**12"
         raise ExpressionError(text, f"expression too large: {size} terms once multiplied out, "
                                     f"at most {limit}")
+    power = next((p for p in parts if isinstance(p, sympy.Pow) and p.exp.is_Integer
+                  and abs(p.exp) > MAX_EXPONENT), None)
+    if power is not None:      # (c**64)**64 of definitions: SymPy makes it c**4096
+        raise ExpressionError(text, f"exponent {power.exp} out of range (at most "
+                                    f"{MAX_EXPONENT} in magnitude, definitions substituted)")
     nodes = tree_size(expr)
     if nodes > MAX_TREE_NODES:
         raise ExpressionError(text, f"expression too large: {nodes} nodes written out (its "
