@@ -39,8 +39,9 @@ def units_notes(drafts: Sequence[ElementDraft],
     values = ", ".join(f"{k} = {v:g}" for k, v in point if v)
     why = (f"the numbers of the linearisation point ({values}) written in it carry units the "
            "text does not show, or a symbol's declared units are wrong") if values else \
-        "a symbol's declared units are probably wrong"
-    return [f"units as declared: {text} — {', '.join(elements)} (the equations agree: {why})"
+        "a symbol's declared units are probably wrong, or a number stands for a quantity " \
+        "with units"
+    return [f"units as declared: {text} — {', '.join(elements)} (the elements agree: {why})"
             for text, elements in said.items()]
 
 

@@ -123,21 +123,23 @@ def symbol_map_finding(d: Derivation, j) -> Cause | None:
                 #               terms would vanish, not be read right
             values = dict(search.values)
             values[spec.symbol] = np.repeat(per_set, n_states)
-            if _right(search, values) == n and spec.value.is_Number:
+            if _right(search, values) != n:
+                continue
+            value = sp.sympify(spec.value)
+            if value.is_Number:
                 return Cause(CauseKind.FILE_ERROR, (), (
                     f"with {spec.symbol} valued as the model's gravity (the file values "
-                    f"it {float(spec.value):g}), every equation is right ({declared} of {n} "
-                    "as declared): the comparison draws gravity as every parameter of the "
+                    f"it {float(value):g}), every equation is right ({declared} of {n} as "
+                    "declared): the comparison draws gravity as every parameter of the "
                     f"model, and the equations as the file values them hold for g = "
-                    f"{abs(float(spec.value)):g} only (value {spec.symbol} as \"g\"); the "
+                    f"{abs(float(value)):g} only (value {spec.symbol} as \"g\"); the "
                     "verdicts are under the file's declaration"))
-            if _right(search, values) == n:
-                return Cause(CauseKind.FILE_ERROR, (), (
-                    f"with {spec.symbol} = {sp.sstr(other)} (the file maps it to "
-                    f"{sp.sstr(spec.value)}), every equation is right ({declared} of {n} as "
-                    f"declared): the file probably maps {spec.symbol} to another parameter "
-                    "of the link than the document means (its axes turned: declare the one "
-                    "that fits); the verdicts are under the file's declaration"))
+            return Cause(CauseKind.FILE_ERROR, (), (
+                f"with {spec.symbol} = {sp.sstr(other)} (the file maps it to "
+                f"{sp.sstr(value)}), every equation is right ({declared} of {n} as "
+                f"declared): the file probably maps {spec.symbol} to another parameter "
+                "of the link than the document means (its axes turned: declare the one "
+                "that fits); the verdicts are under the file's declaration"))
     return None
 
 

@@ -97,13 +97,15 @@ def _undecided(d: ElementDraft, finite: np.ndarray) -> bool:
     return True
 
 
-def _settled(d: ElementDraft, problems: Sequence[str]) -> bool:
-    r"""Agreeing (or equal only by coincidence where its units are inconsistent), or differing
-    by no more than the truth's own round-off in its row (undecided): True when the element
-    is settled here, its verdict set."""
+def _settled(d: ElementDraft, problems: Sequence[str], trials: Trials) -> bool:
+    r"""Agreeing (or equal only by coincidence where its units are inconsistent and one of
+    its terms vanishes at every sample), or differing by no more than the truth's own
+    round-off in its row (undecided): True when the element is settled here, its verdict
+    set."""
     if agrees(d.D, d.T, d.scale):
-        d.verdict = Verdict.DIFFERS if problems else Verdict.AGREES
-        if problems:
+        hidden = bool(problems) and _vanishing_term(d, trials)
+        d.verdict = Verdict.DIFFERS if hidden else Verdict.AGREES
+        if hidden:
             d.diagnoses.append(diagnosis(
                 K.COINCIDENCE, "numerically equal here only because the inconsistent term "
                 "vanishes for this model's parameters", prefix=""))
@@ -119,6 +121,19 @@ def _settled(d: ElementDraft, problems: Sequence[str]) -> bool:
     return False
 
 
+def _vanishing_term(d: ElementDraft, trials: Trials) -> bool:
+    r"""Whether an additive term of the element (multiplied out) is 0 at every sample, within
+    the tolerance: a term the drawn parameters hide, which its inconsistent units may show
+    (a term in a parameter 0 in every set). Where none is, the element's values agree with
+    the truth's on robots drawn at random, and an inconsistency of units is the units'
+    (declared wrong, or a number written for a length) — and where the expression is too
+    long to read term by term, it is taken to be one."""
+    if d.expr is None or sp.count_ops(d.expr) > TRIAL_OPS:
+        return True
+    terms = sp.Add.make_args(sp.expand(d.expr))
+    return any(agrees(trials.evaluate(t), np.zeros_like(d.D), d.scale) for t in terms)
+
+
 def judge(d: ElementDraft, problems: Sequence[str], trials: Trials,
           groups: Sequence[Sequence[sp.Symbol]], row_factor: np.ndarray | None = None) -> None:
     r"""Fill the draft's verdict and diagnoses (module text); ``problems`` are its units'
@@ -128,7 +143,7 @@ def judge(d: ElementDraft, problems: Sequence[str], trials: Trials,
     finite = np.isfinite(d.D) & np.isfinite(d.T)
     if _undecided(d, finite):
         return
-    if _settled(d, problems):
+    if _settled(d, problems, trials):
         return
     d.verdict = Verdict.DIFFERS
     d.diagnoses += value_diagnoses(d.D, d.T, d.scale)
