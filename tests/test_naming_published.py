@@ -25,6 +25,7 @@ import published_forms as P
 from conftest import SEED
 from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.compare.records import DiagnosisKind as K
+from wheeled_dyn.compare.records import Verdict
 from wheeled_dyn.derivations import load_derivation
 
 SAMPLES, PARAM_SETS = 200, 3
@@ -780,3 +781,87 @@ def test_a_plain_equation_is_not_said_to_be_divided(tmp_path):
     assert flagged
     assert not any("divided" in t for r in flagged for t in r.texts), \
         [(r.element, r.texts) for r in flagged]
+
+
+def test_wrong_units_beside_another_error_of_the_row_blame_no_right_element(engine, tmp_path):
+    r"""The arm's equations with the first link's inertia declared in kg (its units wrong, its
+    terms right) and, in the same first equation, the sign of a velocity term flipped: the
+    equation differs and the flipped term is named, while A[1,1] — right, its values those of
+    the truth on robots drawn at random — agrees, its units said. It had been "differs:
+    numerically equal here only because the inconsistent term vanishes", a term that does not
+    vanish (the rule is for a term the drawn parameters hide: :func:`_vanishing_term`)."""
+    path = P.write(tmp_path, "arm", "equations", "sign")
+    text = path.read_text()
+    old = 'I1 = { value = "IYY(link1)", units = "kg*m**2" }'
+    assert text.count(old) == 1
+    path.write_text(text.replace(old, 'I1 = { value = "IYY(link1)", units = "kg" }'))
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False
+    a11 = next(r for r in result.records if r.element == "A[1,1]")
+    assert a11.verdict == Verdict.AGREES, a11.texts
+    assert K.DIMENSION in a11.kinds and K.COINCIDENCE not in a11.kinds
+    flagged = [r for r in result.records if r.verdict != Verdict.AGREES]
+    assert flagged and all(r.element.startswith("h[1]") for r in flagged), \
+        {r.element: r.texts for r in flagged}
+
+
+def test_a_squared_angle_inside_a_sine_is_a_difference_not_a_crash(engine, tmp_path):
+    r"""sin(th1)² typed sin(th1**2) in the gravity of ``data/published/
+    double_pendulum_springs.toml``: the first equation differs (the small-angle readings,
+    tried for the angles the document takes sines and cosines of, had taken th1² for one and
+    stopped the comparison with a traceback)."""
+    text = (DATA / "double_pendulum_springs.toml").read_text()
+    old = "m1*a1*g*sin(th1)"
+    assert text.count(old) == 1
+    for name in ("double_pendulum.toml", "double_pendulum.urdf"):
+        (tmp_path / name).write_text((DATA / name).read_text())
+    path = tmp_path / "doc.toml"
+    path.write_text(text.replace(old, "m1*a1*g*sin(th1**2)"))
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False
+    assert [r.element for r in result.records if r.verdict != Verdict.AGREES] == ["Q[1]"]
+
+
+def _springs_with(tmp_path: Path, old: str, new: str):
+    r"""``data/published/double_pendulum_springs.toml`` with ``old`` written as ``new``,
+    compared."""
+    text = (DATA / "double_pendulum_springs.toml").read_text()
+    assert text.count(old) == 1, old
+    for name in ("double_pendulum.toml", "double_pendulum.urdf"):
+        (tmp_path / name).write_text((DATA / name).read_text())
+    path = tmp_path / "doc.toml"
+    path.write_text(text.replace(old, new))
+    return ComparisonEngine(samples=1000, param_sets=5, seed=SEED).compare(
+        load_derivation(path))
+
+
+#: The double pendulum's second equation, as printed.
+SECOND = ("m2*L1*a2*cos(th1 - th2)*ddth1 + (I2 + m2*a2**2)*ddth2 - m2*L1*a2*sin(th1 - th2)"
+          "*dth1**2 + m2*a2*g*sin(th2) + k2*(th2 - th1 - r2) = T2")
+#: A function of th1 at least 1, near 1 but about th1 = 1, finite everywhere.
+BUMP = "(1 + exp(-10**4*(th1 - 1)**2))"
+
+
+def test_a_row_times_a_narrow_exponential_bump_agrees(tmp_path):
+    r"""The second equation, both sides, times 1 + exp(-10⁴(th1 - 1)²) (at least 1, finite
+    everywhere): the same equation, and it agrees. Multiplied out, the exponential had been
+    split into exp(-10⁴)·exp(2·10⁴ th1)·exp(-10⁴ th1²), which overflows: "not finite at half
+    the samples", the system not decided; and factoring the row's common factor took 20 000
+    as a power of exp(th1) and ran for minutes."""
+    lhs, rhs = SECOND.split(" = ")
+    result = _springs_with(tmp_path, SECOND, f"({lhs})*{BUMP} = {rhs}*{BUMP}")
+    assert result.equivalent is True, [t for r in result.records for t in r.texts]
+    assert all(r.verdict == Verdict.AGREES for r in result.records)
+
+
+def test_an_error_near_one_state_is_no_familys_doing(tmp_path):
+    r"""One gravity term times 1 + exp(-10⁶(th1 - 1)²): an error near th1 = 1 only, which the
+    main grid sees and the family grids (80 samples) do not. Q[1] differs; it had been
+    "agrees only if every link's products of inertia are zero", products that are zero."""
+    result = _springs_with(tmp_path, "m1*a1*g*sin(th1)",
+                           "m1*a1*g*sin(th1)*(1 + exp(-10**6*(th1 - 1)**2))")
+    assert result.equivalent is False
+    wrong = [r for r in result.records if r.verdict != Verdict.AGREES]
+    assert [r.element for r in wrong] == ["Q[1]"], [r.texts for r in wrong]
+    assert wrong[0].verdict == Verdict.DIFFERS
+    assert K.CONDITION not in wrong[0].kinds, wrong[0].texts

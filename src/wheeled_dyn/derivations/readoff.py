@@ -82,7 +82,7 @@ def split_equation_terms(expressions: Sequence[sympy.Expr],
     vel_set = set(velocities)
     for i, expr in enumerate(expressions):
         item = f"equation {i + 1}"
-        for term in sympy.Add.make_args(sympy.expand(expr)):
+        for term in sympy.Add.make_args(sympy.expand(expr, power_exp=False)):  # exp whole
             degrees = _degrees(term, everything)
             if degrees is None:
                 raise DerivationError(path, item, f"term {term} is not a polynomial in the "

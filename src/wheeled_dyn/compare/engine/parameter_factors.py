@@ -64,6 +64,10 @@ def row_factors(row: list[sp.Expr], allowed: set[sp.Symbol],
     ``drawn`` a parameter whose sign the drawn sets may change; a mass never vanishes):
     (base, power), the base the one that changes sign ((cos θ − 1/3)² has the base
     3 cos θ − 1)."""
+    # an exponential never vanishes, and SymPy's polynomials take exp(2·10⁴q) as the power
+    # 20000 of exp(q) (factoring it ran for minutes): each one a generator of its own
+    exps = {x: sp.Dummy() for e in row for x in e.atoms(sp.exp)}
+    row = [e.xreplace(exps) for e in row]
     try:
         numerators = [sp.fraction(sp.together(e))[int(divided)] for e in row if e != 0]
         if not numerators:

@@ -11,10 +11,12 @@ each other's truth under a family are a swap "equal only if" it.
 
 A family *explains* a difference only where it takes it away: an element agrees under it when
 its difference there, relative to its row's scale, is at most :data:`EXPLAINED` of what it is on
-the main grid (or the truth's round-off). A product of inertia left out vanishes to round-off
-where the products are zero; an element 1 + 10⁻⁶ times the truth stays 10⁻⁶ off, and falls
-within the tolerance on a small grid only where its row's other terms are larger there: no
-family is its cause.
+the main grid (or the truth's round-off), and does not on a grid of the same size under the
+declared families alone. A product of inertia left out vanishes to round-off where the
+products are zero; an element 1 + 10⁻⁶ times the truth stays 10⁻⁶ off, and falls within the
+tolerance on a small grid only where its row's other terms are larger there; a term that
+differs only near one state (a narrow bump) agrees on any small grid: no family is their
+cause.
 """
 
 from __future__ import annotations
@@ -95,6 +97,13 @@ class _Grids:
     def holds(self, item, combo: tuple[SpecialCase, ...]) -> bool:
         if item[0] != "ok":
             return item in self.on(combo)
+        return self._within(item, combo) and not self._within(item, ())
+
+    def _within(self, item, combo: tuple[SpecialCase, ...]) -> bool:
+        r"""Whether the element of ``item`` agrees on ``combo``'s grid within its limit; on
+        ``()``, the grid of the declared families alone, of the same size (the control: an
+        element agreeing there too is one these small grids do not see differ, a difference
+        near one state, and no family is its cause)."""
         self.on(combo)
         rel = self._explained[tuple(c.name for c in combo)].get(item[1:3])
         return rel is not None and rel <= self._limits[item[1:3]]

@@ -47,8 +47,11 @@ def bare(expr: sp.Expr, x: sp.Expr, replacement: sp.Expr) -> sp.Expr:
         return expr
     if not isinstance(x, sp.Symbol):
         X = sp.Dummy("X")
-        q, c = next((s, x.coeff(s)) for s in sorted(x.free_symbols, key=sp.default_sort_key)
-                    if x.coeff(s) != 0)
+        found = next(((s, x.coeff(s)) for s in sorted(x.free_symbols, key=sp.default_sort_key)
+                      if x.coeff(s) != 0), None)
+        if found is None:                  # no position to first power (q**2): no reading
+            return expr
+        q, c = found
         moved = sp.expand(expr.subs(q, (X - (x - c * q)) / c))
         read = bare(moved, X, replacement.subs(x, X)).subs(X, x)
         return expr if sp.expand(read - expr) == 0 else read

@@ -56,10 +56,12 @@ _EXPANDED: dict[sp.Expr, sp.Expr] = {}
 
 
 def expanded(expr: sp.Expr) -> sp.Expr:
-    r"""``sympy.expand(expr)``, once per expression in this process (a row of h is expanded
-    for its tensor and for each velocity product's coefficient)."""
+    r"""``sympy.expand(expr)`` (an exponential of a sum kept whole: split, exp(-10⁴(q - 1)²)
+    is exp(-10⁴)·exp(2·10⁴q)·exp(-10⁴q²), which overflows), once per expression in this
+    process (a row of h is expanded for its tensor and for each velocity product's
+    coefficient)."""
     if expr not in _EXPANDED:
-        _EXPANDED[expr] = sp.expand(expr)
+        _EXPANDED[expr] = sp.expand(expr, power_exp=False)
     return _EXPANDED[expr]
 
 
@@ -132,6 +134,14 @@ def compound_trig(d: Derivation) -> list[sp.Expr]:
                    and f.args[0].free_symbols <= positions), key=sp.default_sort_key)
 
 
+def _linear(x: sp.Expr, positions: list[sp.Symbol]) -> bool:
+    r"""Whether ``x`` is :math:`c_0 + \sum_k c_k q_k` in the ``positions``."""
+    try:
+        return sp.Poly(x, *positions).total_degree() == 1
+    except sp.PolynomialError:
+        return False
+
+
 def written_divisors(d: Derivation) -> list[sp.Expr]:
     r"""The sums of parameters and positions the document divides by as printed
     (:math:`(\ldots)/(m_c + 2 m_w + 2 I_w/R^2)` of a row divided by, or solved with, its
@@ -188,12 +198,15 @@ class DocumentFunctions:
         return out
 
     def angles(self) -> list[sp.Expr]:
-        r"""The angles a small-angle reading is tried for: the positions, and the combinations
-        of them the document takes sines or cosines of (:func:`compound_trig`; q1 + q2
-        written where sin(q1 + q2) fits), found once."""
+        r"""The angles a small-angle reading is tried for: the positions, and the linear
+        combinations of them the document takes sines or cosines of (:func:`compound_trig`;
+        q1 + q2 written where sin(q1 + q2) fits; not sin(q1²), a typo's argument), found
+        once."""
         if self._angles is None:
-            compound = dict.fromkeys(f.args[0] for f in compound_trig(self.d))
-            self._angles = [*self.d.positions, *compound]
+            positions = list(self.d.positions)
+            compound = dict.fromkeys(f.args[0] for f in compound_trig(self.d)
+                                     if _linear(f.args[0], positions))
+            self._angles = [*positions, *compound]
         return self._angles
 
     def compiled(self, expr: sp.Expr):
