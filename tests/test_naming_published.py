@@ -865,3 +865,54 @@ def test_an_error_near_one_state_is_no_familys_doing(tmp_path):
     assert [r.element for r in wrong] == ["Q[1]"], [r.texts for r in wrong]
     assert wrong[0].verdict == Verdict.DIFFERS
     assert K.CONDITION not in wrong[0].kinds, wrong[0].texts
+
+
+#: The double pendulum's equations linearised about hanging rest (th1 = th2 = 0), with the
+#: springs' constant terms, and the [assumes] that declares the point.
+LINEARISED = [
+    "(J1 + m2*L1**2)*ddth1 + m2*L1*a2*ddth2 + (m1*a1 + m2*L1)*g*th1 + k1*(th1 - r1) "
+    "- k2*(th2 - th1 - r2) = T1 - T2",
+    "m2*L1*a2*ddth1 + (I2 + m2*a2**2)*ddth2 + m2*a2*g*th2 + k2*(th2 - th1 - r2) = T2"]
+
+
+@pytest.mark.parametrize("constants", [True, False])
+def test_a_springs_preload_is_the_models_under_an_equilibrium_potential(tmp_path, constants):
+    r"""The double pendulum with springs (rest angles drawn, not 0) linearised about 0, its
+    potential declared measured from the equilibrium there: the declaration says springs the
+    model lacks balance gravity at the point, not the model's own springs' preload. With the
+    springs' constant terms the file agrees; without them it had agreed too (its Q at the
+    point taken as zero whatever made it); now Q[1] and Q[2] differ, each lacking its
+    spring's constant."""
+    text = (DATA / "double_pendulum_springs.toml").read_text()
+    old = text[text.index("equations = [") + len("equations = ["):text.index("]", text.index(
+        "equations = ["))]
+    eqs = LINEARISED if constants else [e.replace("(th1 - r1)", "th1").replace(
+        "(th2 - th1 - r2)", "(th2 - th1)") for e in LINEARISED]
+    text = text.replace(old, "\n" + ",\n".join(f'  "{e}"' for e in eqs) + "\n")
+    assumes = 'families = ["urdf_structure"]\n'
+    assert text.count(assumes) == 1
+    text = text.replace(assumes, assumes + 'linearised_about = { th1 = 0.0, th2 = 0.0 }\n'
+                        'potential = "equilibrium"\n')
+    for name in ("double_pendulum.toml", "double_pendulum.urdf"):
+        (tmp_path / name).write_text((DATA / name).read_text())
+    path = tmp_path / "doc.toml"
+    path.write_text(text)
+    result = ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(
+        load_derivation(path))
+    wrong = {r.element: r for r in result.records if r.verdict != Verdict.AGREES}
+    if constants:
+        assert result.equivalent is True and not wrong, {e: r.texts for e, r in wrong.items()}
+        return
+    assert result.equivalent is False
+    assert set(wrong) == {"Q[1]", "Q[2]"}, {e: r.texts for e, r in wrong.items()}
+    assert "-k2*r2" in " ".join(wrong["Q[2]"].texts), wrong["Q[2]"].texts
+
+
+def test_an_angle_wrapped_into_one_turn_differs_where_springs_pull(tmp_path):
+    r"""The hip spring's angle written wrapped, atan2(sin th1, cos th1), as code that keeps
+    angles in [−π, π] does: the same as th1 on one turn, not beyond, where the spring (linear
+    in the joint's angle) pulls harder. Positions were drawn in [−π, π] only, and the file
+    agreed; a model with springs draws them in two turns."""
+    result = _springs_with(tmp_path, "k1*(th1 - r1)", "k1*(atan2(sin(th1), cos(th1)) - r1)")
+    assert result.equivalent is False
+    assert [r.element for r in result.records if r.verdict != Verdict.AGREES] == ["Q[1]"]

@@ -15,7 +15,9 @@ and names as "agrees only if ..." only a condition the document did not state.
   (positions drawn there, velocities random): A and B there, the velocity products of h zero
   (a linearisation about rest has none);
 - ``potential = "equilibrium"``: the potential is measured from the equilibrium at that state
-  (springs the model lacks balance gravity there): the truth's Q at the state is subtracted.
+  (springs the model lacks balance gravity there): the gravity of the truth's Q at the state
+  is subtracted, the model's own springs' force there kept (a spring's preload is the
+  model's, and a document that drops it differs).
   The stiffness (Q's first-order terms) is compared as always: the springs' own constants are
   the document's to give (``[assume]``, 0 where the model has none);
 - ``text``: other assumptions, in words (reported, not used).
@@ -239,24 +241,34 @@ def left_out(d: Derivation) -> tuple[str, ...]:
     return tuple(out)
 
 
-def position_ranges(d: Derivation, positions: Sequence[str],
-                    assumptions: Assumptions) -> list[tuple[float, float]]:
+#: Half the range positions are drawn in where the file declares none: [−π, π], a turn, where
+#: the truth is periodic in them; two turns where the model has springs (a spring's force
+#: grows with its angle: a document writing the angle wrapped into [−π, π] differs beyond).
+PERIOD, SPRUNG = np.pi, 2 * np.pi
+
+
+def position_ranges(d: Derivation, positions: Sequence[str], assumptions: Assumptions,
+                    sprung: bool = False) -> list[tuple[float, float]]:
     r"""Where each position is drawn: the linearisation point, else the file's declared
-    range, else [−π, π]."""
+    range, else [−π, π] (``sprung``, a model with springs: [−2π, 2π])."""
     raw: Mapping[str, Any] = d.coordinates.raw            # as read from TOML
     ranges = dict(raw.get("ranges", {}))
     point = dict(assumptions.linearised_about)
-    return [(point[p], point[p]) if p in point else tuple(ranges.get(p, (-np.pi, np.pi)))
+    half = SPRUNG if sprung else PERIOD
+    return [(point[p], point[p]) if p in point else tuple(ranges.get(p, (-half, half)))
             for p in positions]
 
 
-def apply_to_truth(truth, assumptions: Assumptions) -> None:
+def apply_to_truth(truth, assumptions: Assumptions, springs_Q: np.ndarray | None = None
+                   ) -> None:
     r"""The truth as the document's assumptions read it (in place): linearised about rest, no
-    velocity products; measured from the equilibrium, no Q at the equilibrium state."""
+    velocity products; measured from the equilibrium, no gravity in Q at the equilibrium
+    state (springs the model lacks balance it there): Q is ``springs_Q``, the model's own
+    springs' force there (zero where it has none)."""
     if assumptions.linearised_about:
         for name in ("C", "h", "H"):
             M = getattr(truth, name)
             if M is not None:
                 setattr(truth, name, np.zeros_like(M))
     if assumptions.equilibrium_potential and truth.Q is not None:
-        truth.Q = np.zeros_like(truth.Q)      # every position is at the equilibrium
+        truth.Q = np.zeros_like(truth.Q) if springs_Q is None else springs_Q

@@ -186,7 +186,8 @@ class Grids:
                     d.path, "coordinates", exc.item.split(".")[0])) from None
         cmap = self._maps[mkey]
         n = len(cs.positions)
-        ranges = position_ranges(d, cs.positions, assumed)
+        ranges = position_ranges(d, cs.positions, assumed,
+                                 sprung=any(ps.model.springs for ps in sets))
         q, nu = random_states(n, k * n_states, rng, ranges)
         off = int(cmap.off_ground(q).sum())
         q = regular_states(cmap, q, rng, ranges)
@@ -195,9 +196,27 @@ class Grids:
         if on_truth is not None:
             on_truth()
         truth = self.truth(cmap, sets, q, nu)
-        apply_to_truth(truth, assumed)
+        springs = self._springs_only(cmap, sets, q, nu) if assumed.equilibrium_potential \
+            else None
+        apply_to_truth(truth, assumed, springs)
         return Grid(truth, tuple(sets), q, nu, cs, cmap, tuple((lo, hi) for lo, hi in ranges),
                     off)
+
+
+    def _springs_only(self, cmap: CoordinateMap, sets: Sequence[ParameterSet], q: np.ndarray,
+                      nu: np.ndarray) -> np.ndarray | None:
+        r"""The truth's Q with gravity off in every set (the model's springs' force alone),
+        where the model has springs; None where it has none."""
+        if not any(ps.model.springs for ps in sets):
+            return None
+        saved = [ps.model.model.gravity.copy() for ps in sets]
+        try:
+            for ps in sets:
+                ps.model.model.gravity.setZero()
+            return self.truth(cmap, sets, q, nu).Q
+        finally:
+            for ps, g in zip(sets, saved):
+                ps.model.model.gravity = g
 
 
 def check_finite_map(d: Derivation, cmap: CoordinateMap, q: np.ndarray) -> None:

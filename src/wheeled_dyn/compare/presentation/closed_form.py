@@ -319,7 +319,14 @@ def true_forms(d: Derivation, cs, families: tuple[str, ...] = (),
             out = plain(e)
             return None if out is None else out.xreplace(assumed)
     if linearised is not None:
-        truth = linearised_truth(truth, d.positions, *linearised)
+        # gravity, by the name the truth writes it with: the document's symbol valued g, or
+        # the model's g (where the document names none, or the truth is in the model's)
+        g = {spec.symbol.name for spec in d.symbols.values()
+             if isinstance(spec.value, sp.Symbol) and spec.value.name == "g"} \
+            if ours is not None else set()
+        if not g and (ours is None or all(s.symbol.name != "g" for s in d.symbols.values())):
+            g = {"g"}
+        truth = linearised_truth(truth, d.positions, *linearised, gravity=frozenset(g))
     _FORMS[:] = [(d, cs, key), (truth, physical, to_model, ours is not None)]
     return _FORMS[1]
 

@@ -11,9 +11,10 @@ shows the same: every true element at :math:`q^*`, C and h zero, and
     K_{ij} = \frac{\partial Q_i}{\partial q_j}\Big|_{q^*},
 
 so that truth − document names the stiffness a document got wrong. With a potential measured
-from the equilibrium (``potential = "equilibrium"``) :math:`Q(q^*)` is left out (springs the
-model lacks balance it there); K is compared and shown as always (the springs' own stiffness
-is the document's to give in ``[assume]``: 0 where the model has none).
+from the equilibrium (``potential = "equilibrium"``) the gravity of :math:`Q(q^*)` is left out
+(springs the model lacks balance it there), the model's own springs' force there kept; K is
+compared and shown as always (the springs' own stiffness is the document's to give in
+``[assume]``: 0 where the model has none).
 """
 
 from __future__ import annotations
@@ -24,11 +25,11 @@ import sympy as sp
 
 
 def linearised_truth(truth: Mapping[str, sp.Expr], positions: Sequence[sp.Symbol],
-                     point: Sequence[tuple[str, float]], equilibrium: bool = False
-                     ) -> dict[str, sp.Expr]:
+                     point: Sequence[tuple[str, float]], equilibrium: bool = False,
+                     gravity: frozenset[str] = frozenset()) -> dict[str, sp.Expr]:
     r"""The true elements (labels as the engine's: ``A[1,2]``, ``h[1]:dx*dpsi``, ``Q[3]``)
     linearised about ``point`` (module text), with ``K[i,j]`` added; ``equilibrium``: no
-    :math:`Q(q^*)`."""
+    gravity in :math:`Q(q^*)` (the symbols named in ``gravity`` taken 0 there)."""
     values = dict(point)
     at = {p: sp.nsimplify(values[p.name], rational=True) for p in positions if p.name in values}
     out: dict[str, sp.Expr] = {}
@@ -43,7 +44,9 @@ def linearised_truth(truth: Mapping[str, sp.Expr], positions: Sequence[sp.Symbol
             continue
         row = label.partition("[")[2].partition("]")[0]
         slopes = [sp.diff(e, p).xreplace(at) for p in positions]
-        base = sp.Integer(0) if equilibrium else e.xreplace(at)
+        base = e.xreplace(at)
+        if equilibrium:                  # the model's springs' force at the point stays
+            base = base.xreplace({x: 0 for x in base.free_symbols if x.name in gravity})
         out[label] = base + sp.Add(*(k * (p - at[p]) for k, p in zip(slopes, positions)
                                      if p in at))
         for j, k in enumerate(slopes):
