@@ -72,7 +72,9 @@ def right_angled_joints(model, skip: frozenset[int] = frozenset()) -> int:
     r"""Each joint's placement (but the ``skip`` ones') whose rotation is within
     :data:`RIGHT_ANGLE_TOL` per entry of a signed permutation made that permutation, in place
     (a URDF's ``rpy="0 1.5708 -1.5708"``: an arm's joint origin turned by right angles, which
-    a derivation takes as exact). Returns how many were changed."""
+    a derivation takes as exact); else, where its roll, pitch and yaw include angles within
+    :data:`RIGHT_ANGLE_TOL` of a multiple of π/2, those made that multiple, the others kept
+    (``rpy="1.5708 0 0.3"``: a quarter turn and 0.3 rad). Returns how many were changed."""
     import pinocchio as pin
     changed = 0
     for jid in range(1, model.njoints):
@@ -85,7 +87,30 @@ def right_angled_joints(model, skip: frozenset[int] = frozenset()) -> int:
         if 0.0 < off <= RIGHT_ANGLE_TOL and np.array_equal(P.T @ P, np.eye(3)):
             model.jointPlacements[jid] = pin.SE3(P, placement.translation)
             changed += 1
+        elif off > RIGHT_ANGLE_TOL:
+            turned = _mixed_right_angles(R)
+            if turned is not None:
+                model.jointPlacements[jid] = pin.SE3(turned, placement.translation)
+                changed += 1
     return changed
+
+
+#: Least distance of an angle from a multiple of π/2 that is a rounding (closer, it is one).
+ROUNDING = 1e-12
+
+
+def _mixed_right_angles(R: np.ndarray) -> np.ndarray | None:
+    r"""The rotation of roll, pitch and yaw of ``R`` with those within
+    :data:`RIGHT_ANGLE_TOL` of a multiple of π/2 (and not within :data:`ROUNDING`) made that
+    multiple, where there are some and the rotation moves by no more than the rounding; else
+    None."""
+    import pinocchio as pin
+    rpy = np.asarray(pin.rpy.matrixToRpy(R), dtype=float)
+    snapped = right_angles(rpy)
+    if not np.any(np.abs(snapped - rpy) > ROUNDING):
+        return None
+    turned = np.asarray(pin.rpy.rpyToMatrix(*snapped))
+    return turned if float(np.abs(turned - R).max()) <= 2 * RIGHT_ANGLE_TOL else None
 
 
 #: The attributes of an ``<inertia>`` as (row, column) of its tensor.

@@ -84,9 +84,10 @@ def joint_origin_readings(root: ET.Element) -> list[str]:
     if not near:
         return []
     return [f"joint{'s' if len(near) > 1 else ''} {_listed(near)}: origin rpy within "
-            f"{RIGHT_ANGLE_TOL:g} rad of right angles (1.5708 for π/2): the comparisons' "
-            "parameter sets turn a joint by the right angles its rounding stands for, as a "
-            "derivation does (the model's own matrices keep the numbers as written)"]
+            f"{RIGHT_ANGLE_TOL:g} rad of right angles in one or more of its angles (1.5708 "
+            "for π/2): the comparisons' parameter sets turn a joint by the right angles its "
+            "rounding stands for, its other angles as written, as a derivation does (the "
+            "model's own matrices keep the numbers as written)"]
 
 
 def _listed(names: list[str]) -> str:
