@@ -25,7 +25,7 @@ import published_forms as P
 from conftest import SEED
 from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.compare.records import DiagnosisKind as K
-from wheeled_dyn.compare.records import Verdict
+from wheeled_dyn.compare.records import CauseKind, Verdict
 from wheeled_dyn.derivations import load_derivation
 
 SAMPLES, PARAM_SETS = 200, 3
@@ -916,3 +916,23 @@ def test_an_angle_wrapped_into_one_turn_differs_where_springs_pull(tmp_path):
     result = _springs_with(tmp_path, "k1*(th1 - r1)", "k1*(atan2(sin(th1), cos(th1)) - r1)")
     assert result.equivalent is False
     assert [r.element for r in result.records if r.verdict != Verdict.AGREES] == ["Q[1]"]
+
+
+def test_a_dropped_inertia_is_named_beside_a_terms_wrong_units(engine, tmp_path):
+    r"""The arm with link 2 taken as a point mass (I2 dropped from every element) and the
+    first link's inertia declared in kg: A[1,1] has a term of inconsistent units (I1, right
+    as a number) and lacks I2. The missing moment is named, and first; the units had been
+    taken as the element's error and nothing else was named ("truth − document = I2")."""
+    path = P.write(tmp_path, "arm", "equations", "point_mass2")
+    text = path.read_text()
+    old = 'I1 = { value = "IYY(link1)", units = "kg*m**2" }'
+    assert text.count(old) == 1
+    path.write_text(text.replace(old, 'I1 = { value = "IYY(link1)", units = "kg" }'))
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False
+    a11 = next(r for r in result.records if r.element == "A[1,1]")
+    assert a11.verdict == Verdict.DIFFERS
+    assert a11.diagnoses[0].kind == K.POINT_MASS, a11.texts
+    assert K.DIMENSION in a11.kinds
+    kinds = [c.kind for c in result.causes if "A[1,1]" in c.elements]
+    assert kinds and kinds[0] == CauseKind.POINT_MASS, result.causes

@@ -122,8 +122,9 @@ TERM_KINDS = (
 def _term_kinds(diagnoses: Sequence) -> tuple:
     r""":data:`TERM_KINDS`, with a symbol written for another before a term's factor where the
     element says the swap first (a factor that is the ratio of two of the model's parameters:
-    :func:`~..judge.element.judge`), and a term's factor or swap before the units where the
-    element says it first (a term not divided as the rest of its row: its units follow)."""
+    :func:`~..judge.element.judge`), and any term's diagnosis before the units where the
+    element says it first (a term not divided as the rest of its row: its units follow; a
+    dropped inertia beside a length written as a number)."""
     kinds = [x.kind for x in diagnoses]
     order = list(TERM_KINDS)
     if K.SWAP in kinds and K.FACTOR in kinds and kinds.index(K.SWAP) < kinds.index(K.FACTOR):
@@ -131,7 +132,8 @@ def _term_kinds(diagnoses: Sequence) -> tuple:
         order.remove(swap)
         order.insert(next(i for i, t in enumerate(order) if t[0] == K.FACTOR), swap)
     if K.DIMENSION in kinds:
-        said = next((k for k in kinds if k in (K.DIMENSION, K.FACTOR, K.SWAP)), K.DIMENSION)
+        term_kinds = {t[0] for t in TERM_KINDS}
+        said = next((k for k in kinds if k in term_kinds), K.DIMENSION)
         if said != K.DIMENSION:
             units = order.pop(0)
             order.insert(next(i for i, t in enumerate(order) if t[0] == said) + 1, units)
