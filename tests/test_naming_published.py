@@ -936,3 +936,28 @@ def test_a_dropped_inertia_is_named_beside_a_terms_wrong_units(engine, tmp_path)
     assert K.DIMENSION in a11.kinds
     kinds = [c.kind for c in result.causes if "A[1,1]" in c.elements]
     assert kinds and kinds[0] == CauseKind.POINT_MASS, result.causes
+
+
+def test_equations_linearised_about_rest_declared_about_another_point(tmp_path):
+    r"""The double pendulum's equations linearised about rest, declared linearised about
+    th1 = th2 = 0.5: they differ, and the first cause says they are the linearisation about
+    0, where every equation is right. It had said "the document takes th1 as small … but
+    declares no linearisation", of a file that declares one (positions drawn at the point,
+    where th1 read as sin th1 holds by coincidence)."""
+    text = (DATA / "double_pendulum_springs.toml").read_text()
+    start = text.index("equations = [") + len("equations = [")
+    text = text[:start] + "\n" + ",\n".join(f'  "{e}"' for e in LINEARISED) + "\n" + \
+        text[text.index("]", start):]
+    assumes = 'families = ["urdf_structure"]\n'
+    text = text.replace(assumes, assumes + 'linearised_about = { th1 = 0.5, th2 = 0.5 }\n')
+    for name in ("double_pendulum.toml", "double_pendulum.urdf"):
+        (tmp_path / name).write_text((DATA / name).read_text())
+    path = tmp_path / "doc.toml"
+    path.write_text(text)
+    result = ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(
+        load_derivation(path))
+    assert result.equivalent is False
+    first = result.causes[0]
+    assert first.kind == CauseKind.FILE_ERROR, result.causes
+    assert "linearisation about th1 = 0, th2 = 0" in first.explanation, first.explanation
+    assert not any(K.SMALL_ANGLE in r.kinds for r in result.records)

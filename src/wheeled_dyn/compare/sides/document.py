@@ -201,7 +201,9 @@ class DocumentFunctions:
         r"""The angles a small-angle reading is tried for: the positions, and the linear
         combinations of them the document takes sines or cosines of (:func:`compound_trig`;
         q1 + q2 written where sin(q1 + q2) fits; not sin(q1²), a typo's argument), found
-        once."""
+        once; none for a linearised document (:mod:`..engine.linear_point`)."""
+        if self._angles is None and self.d.assumes.get("linearised_about"):
+            self._angles = []        # positions drawn at the point: a reading holds by chance
         if self._angles is None:
             positions = list(self.d.positions)
             compound = dict.fromkeys(f.args[0] for f in compound_trig(self.d)
