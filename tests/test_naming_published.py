@@ -961,3 +961,16 @@ def test_equations_linearised_about_rest_declared_about_another_point(tmp_path):
     assert first.kind == CauseKind.FILE_ERROR, result.causes
     assert "linearisation about th1 = 0, th2 = 0" in first.explanation, first.explanation
     assert not any(K.SMALL_ANGLE in r.kinds for r in result.records)
+
+
+def test_a_symbol_mapped_to_another_links_parameter_is_the_cause(tmp_path):
+    r"""The double pendulum with ``a2`` valued as the first link's centre of mass
+    (``-CZ(link1)``, a slip of the link's name): the elements written with a2 differ, and the
+    first cause says that with a2 = -CZ(link2) every equation is right. Only another
+    parameter of the same link had been read."""
+    old = 'a2 = { value = "-CZ(link2)"'
+    result = _springs_with(tmp_path, old, old.replace("link2", "link1"))
+    assert result.equivalent is False
+    first = result.causes[0]
+    assert first.kind == CauseKind.FILE_ERROR, result.causes
+    assert "with a2 = -CZ(link2)" in first.explanation and "another link" in first.explanation

@@ -7,7 +7,8 @@ where the file wrote ``IXX(forearm)``, the centre of mass's offset ``-CZ(link)``
 ``[symbols]`` are how the document is read (declarations are binding); where at most half the
 equations are right, each symbol whose value is one link parameter is read, one at a time,
 as another of its kind of the same link (a moment about another axis, a centre-of-mass
-coordinate or a product of inertia along another, either sign), on the convention search's
+coordinate or a product of inertia along another, either sign) and as the same parameter
+(or the mass) of each other link of the model, on the convention search's
 samples (:class:`~..readings.search.SearchEvaluation`: the document's compiled functions, the
 symbol's numbers changed, no new truth) — a symbol written in an element that agrees is
 mapped right, and not read again. One that makes every equation right is the first
@@ -21,6 +22,7 @@ draws as every parameter.
 from __future__ import annotations
 
 import re
+from collections.abc import Sequence
 from dataclasses import replace
 
 import numpy as np
@@ -47,22 +49,31 @@ SIGNED: frozenset[str] = frozenset(("CX", "CY", "CZ", "MX", "MY", "MZ", "IXY", "
 GRAVITY = sp.Symbol("g")
 
 
-def _alternatives(value: sp.Expr) -> list[sp.Expr]:
+#: Why a reading is tried: the link's axes turned, another link meant, Earth's gravity.
+AXES, LINK, EARTH = "axes", "link", "gravity"
+
+
+def _alternatives(value: sp.Expr, links: Sequence[str] = ()) -> list[tuple[sp.Expr, str]]:
     r"""``value`` (one link parameter, times anything) with that parameter read as each other
-    of its kind (:data:`GROUPS`, :data:`SIGNED` with either sign); a number near Earth's
-    gravity read as the model's :data:`GRAVITY`; none where it holds no link parameter or more
-    than one."""
+    of its kind (:data:`GROUPS`, :data:`SIGNED` with either sign), and as the same parameter
+    (or a mass) of each other of the model's ``links``; a number near Earth's gravity read as
+    the model's :data:`GRAVITY`; none where it holds no link parameter or more than one. Each
+    with why it is tried."""
     if value.is_Number and GRAVITY_NUMBERS[0] <= abs(float(value)) <= GRAVITY_NUMBERS[1]:
-        return [GRAVITY if value > 0 else -GRAVITY]
-    calls = [c for c in value.atoms(AppliedUndef) if any(c.func.__name__ in g for g in GROUPS)]
+        return [(GRAVITY if value > 0 else -GRAVITY, EARTH)]
+    kinds = {k for g in GROUPS for k in g} | {"M"}
+    calls = [c for c in value.atoms(AppliedUndef) if c.func.__name__ in kinds]
     if len(calls) != 1:
         return []
     call = calls[0]
     name = call.func.__name__
-    group = next(g for g in GROUPS if name in g)
+    group = next((g for g in GROUPS if name in g), (name,))
     signs = (1, -1) if name in SIGNED else (1,)
-    return [value.xreplace({call: s * sp.Function(other)(*call.args)})
-            for other in group for s in signs if (other, s) != (name, 1)]
+    out = [(value.xreplace({call: s * sp.Function(other)(*call.args)}), AXES)
+           for other in group for s in signs if (other, s) != (name, 1)]
+    here = str(call.args[0]) if len(call.args) == 1 else None
+    return out + [(value.xreplace({call: sp.Function(name)(sp.Symbol(link))}), LINK)
+                  for link in links if here is not None and link != here]
 
 
 def _in_any(name: str, texts: list[str]) -> bool:
@@ -100,9 +111,11 @@ def symbol_map_finding(d: Derivation, j) -> Cause | None:
         return values is not None and bool(np.any(np.asarray(values) != 0)) and \
             _in_any(str(symbol), agreeing)
     written = set().union(*(e.free_symbols for e in _equations(j)))
-    readings = [(spec, other) for spec in d.symbols.values()
+    links = sorted(k[2:-1] for k in j.sides.grid.sets[0].values if k.startswith("M("))
+    readings = [(spec, other, why) for spec in d.symbols.values()
                 if not spec.is_input and spec.value is not None and spec.symbol in written
-                and not mapped_right(spec.symbol) for other in _alternatives(spec.value)]
+                and not mapped_right(spec.symbol)
+                for other, why in _alternatives(spec.value, links)]
     if not readings:                    # no symbol is one link parameter (a physical record)
         return None
     n = search.q.shape[1]
@@ -112,7 +125,7 @@ def symbol_map_finding(d: Derivation, j) -> Cause | None:
         #                      document's stiffness is compared apart): no reading is said
     grid = j.sides.grid
     n_states = grid.q.shape[1]
-    for spec, other in readings:
+    for spec, other, why in readings:
         if spec.symbol in search.values:
             try:
                 per_set = [model_value(other, ps.values) for ps in grid.sets]
@@ -126,7 +139,7 @@ def symbol_map_finding(d: Derivation, j) -> Cause | None:
             if _right(search, values) != n:
                 continue
             value = sp.sympify(spec.value)
-            if value.is_Number:
+            if why == EARTH:
                 return Cause(CauseKind.FILE_ERROR, (), (
                     f"with {spec.symbol} valued as the model's gravity (the file values "
                     f"it {float(value):g}), every equation is right ({declared} of {n} as "
@@ -134,12 +147,14 @@ def symbol_map_finding(d: Derivation, j) -> Cause | None:
                     f"model, and the equations as the file values them hold for g = "
                     f"{abs(float(value)):g} only (value {spec.symbol} as \"g\"); the "
                     "verdicts are under the file's declaration"))
+            meant = "another parameter of the link than the document means (its axes " \
+                "turned: declare the one that fits)" if why == AXES else \
+                "a parameter of another link than the document means (declare the link)"
             return Cause(CauseKind.FILE_ERROR, (), (
                 f"with {spec.symbol} = {sp.sstr(other)} (the file maps it to "
                 f"{sp.sstr(value)}), every equation is right ({declared} of {n} as "
-                f"declared): the file probably maps {spec.symbol} to another parameter "
-                "of the link than the document means (its axes turned: declare the one "
-                "that fits); the verdicts are under the file's declaration"))
+                f"declared): the file probably maps {spec.symbol} to {meant}; the verdicts "
+                "are under the file's declaration"))
     return None
 
 
