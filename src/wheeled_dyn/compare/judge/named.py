@@ -35,9 +35,7 @@ from .fitting import RATIO_TOL, fit_factor, fit_sum
 from .swap_fit import difference_reading
 
 #: Diagnoses after which no term is named (the error is named already); a constant factor
-#: may still be a point mass's (m l² for the uniform rod's m l²/3 is "factor 3/4"), and a
-#: term's inconsistent units need not be the difference (a length written as a number, in a
-#: term that agrees, beside a dropped wheel inertia).
+#: may still be a point mass's (m l² for the rod's m l²/3), units need not be the difference.
 NAMED = (K.SIGN, K.POWER, K.SWAP, K.SMALL_ANGLE, K.EXTRA, K.UNDECIDED, K.POINT_MASS,
          K.PARALLEL_AXIS)
 #: Axes of a link's own moments of inertia.
