@@ -694,12 +694,7 @@ def test_wrong_declared_units_of_a_right_equation_are_said(engine, tmp_path):
     r"""The arm's equations, right, with the first link's inertia declared in kg: the
     equations agree (numbers), and the notes say the units as declared are inconsistent, in
     which term and element (it was silent)."""
-    path = P.write(tmp_path, "arm", "equations", None)
-    text = path.read_text()
-    old = 'I1 = { value = "IYY(link1)", units = "kg*m**2" }'
-    assert text.count(old) == 1
-    path.write_text(text.replace(old, 'I1 = { value = "IYY(link1)", units = "kg" }'))
-    result = engine.compare(load_derivation(path))
+    result = _arm_with_I1_in_kg(engine, tmp_path, None)
     assert result.equivalent is True
     said = [n for n in result.notes if n.startswith("units as declared:")]
     assert said and "term I1 is kg beside kg·m^2" in said[0] and "A[1,1]" in said[0], \
@@ -783,6 +778,18 @@ def test_a_plain_equation_is_not_said_to_be_divided(tmp_path):
         [(r.element, r.texts) for r in flagged]
 
 
+def _arm_with_I1_in_kg(engine, folder: Path, error: str | None):
+    r"""The arm's equations with ``error`` planted and the first link's inertia declared in kg
+    (its units wrong, its terms right), compared."""
+    path = P.write(folder, "arm", "equations", error)
+    text = path.read_text()
+    old = 'I1 = { value = "IYY(link1)", units = "kg*m**2" }'
+    assert text.count(old) == 1
+    path.write_text(text.replace(old, 'I1 = { value = "IYY(link1)", units = "kg" }'))
+    result = engine.compare(load_derivation(path))
+    return result
+
+
 def test_wrong_units_beside_another_error_of_the_row_blame_no_right_element(engine, tmp_path):
     r"""The arm's equations with the first link's inertia declared in kg (its units wrong, its
     terms right) and, in the same first equation, the sign of a velocity term flipped: the
@@ -790,12 +797,7 @@ def test_wrong_units_beside_another_error_of_the_row_blame_no_right_element(engi
     the truth on robots drawn at random — agrees, its units said. It had been "differs:
     numerically equal here only because the inconsistent term vanishes", a term that does not
     vanish (the rule is for a term the drawn parameters hide: :func:`_vanishing_term`)."""
-    path = P.write(tmp_path, "arm", "equations", "sign")
-    text = path.read_text()
-    old = 'I1 = { value = "IYY(link1)", units = "kg*m**2" }'
-    assert text.count(old) == 1
-    path.write_text(text.replace(old, 'I1 = { value = "IYY(link1)", units = "kg" }'))
-    result = engine.compare(load_derivation(path))
+    result = _arm_with_I1_in_kg(engine, tmp_path, "sign")
     assert result.equivalent is False
     a11 = next(r for r in result.records if r.element == "A[1,1]")
     assert a11.verdict == Verdict.AGREES, a11.texts
@@ -923,12 +925,7 @@ def test_a_dropped_inertia_is_named_beside_a_terms_wrong_units(engine, tmp_path)
     first link's inertia declared in kg: A[1,1] has a term of inconsistent units (I1, right
     as a number) and lacks I2. The missing moment is named, and first; the units had been
     taken as the element's error and nothing else was named ("truth − document = I2")."""
-    path = P.write(tmp_path, "arm", "equations", "point_mass2")
-    text = path.read_text()
-    old = 'I1 = { value = "IYY(link1)", units = "kg*m**2" }'
-    assert text.count(old) == 1
-    path.write_text(text.replace(old, 'I1 = { value = "IYY(link1)", units = "kg" }'))
-    result = engine.compare(load_derivation(path))
+    result = _arm_with_I1_in_kg(engine, tmp_path, "point_mass2")
     assert result.equivalent is False
     a11 = next(r for r in result.records if r.element == "A[1,1]")
     assert a11.verdict == Verdict.DIFFERS
