@@ -877,6 +877,24 @@ LINEARISED = [
     "m2*L1*a2*ddth1 + (I2 + m2*a2**2)*ddth2 + m2*a2*g*th2 + k2*(th2 - th1 - r2) = T2"]
 
 
+def _linearised_springs(folder: Path, equations: list[str], declared: str):
+    r"""``data/published/double_pendulum_springs.toml`` with ``equations`` for its own and
+    ``declared`` added to its ``[assumes]``, compared."""
+    text = (DATA / "double_pendulum_springs.toml").read_text()
+    start = text.index("equations = [") + len("equations = [")
+    text = text[:start] + "\n" + ",\n".join(f'  "{e}"' for e in equations) + "\n" + \
+        text[text.index("]", start):]
+    assumes = 'families = ["urdf_structure"]\n'
+    assert text.count(assumes) == 1
+    text = text.replace(assumes, assumes + declared)
+    for name in ("double_pendulum.toml", "double_pendulum.urdf"):
+        (folder / name).write_text((DATA / name).read_text())
+    path = folder / "doc.toml"
+    path.write_text(text)
+    return ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(
+        load_derivation(path))
+
+
 @pytest.mark.parametrize("constants", [True, False])
 def test_a_springs_preload_is_the_models_under_an_equilibrium_potential(tmp_path, constants):
     r"""The double pendulum with springs (rest angles drawn, not 0) linearised about 0, its
@@ -885,22 +903,10 @@ def test_a_springs_preload_is_the_models_under_an_equilibrium_potential(tmp_path
     springs' constant terms the file agrees; without them it had agreed too (its Q at the
     point taken as zero whatever made it); now Q[1] and Q[2] differ, each lacking its
     spring's constant."""
-    text = (DATA / "double_pendulum_springs.toml").read_text()
-    old = text[text.index("equations = [") + len("equations = ["):text.index("]", text.index(
-        "equations = ["))]
     eqs = LINEARISED if constants else [e.replace("(th1 - r1)", "th1").replace(
         "(th2 - th1 - r2)", "(th2 - th1)") for e in LINEARISED]
-    text = text.replace(old, "\n" + ",\n".join(f'  "{e}"' for e in eqs) + "\n")
-    assumes = 'families = ["urdf_structure"]\n'
-    assert text.count(assumes) == 1
-    text = text.replace(assumes, assumes + 'linearised_about = { th1 = 0.0, th2 = 0.0 }\n'
-                        'potential = "equilibrium"\n')
-    for name in ("double_pendulum.toml", "double_pendulum.urdf"):
-        (tmp_path / name).write_text((DATA / name).read_text())
-    path = tmp_path / "doc.toml"
-    path.write_text(text)
-    result = ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(
-        load_derivation(path))
+    result = _linearised_springs(tmp_path, eqs, 'linearised_about = { th1 = 0.0, th2 = 0.0 }\n'
+                                 'potential = "equilibrium"\n')
     wrong = {r.element: r for r in result.records if r.verdict != Verdict.AGREES}
     if constants:
         assert result.equivalent is True and not wrong, {e: r.texts for e, r in wrong.items()}
@@ -941,18 +947,8 @@ def test_equations_linearised_about_rest_declared_about_another_point(tmp_path):
     0, where every equation is right. It had said "the document takes th1 as small … but
     declares no linearisation", of a file that declares one (positions drawn at the point,
     where th1 read as sin th1 holds by coincidence)."""
-    text = (DATA / "double_pendulum_springs.toml").read_text()
-    start = text.index("equations = [") + len("equations = [")
-    text = text[:start] + "\n" + ",\n".join(f'  "{e}"' for e in LINEARISED) + "\n" + \
-        text[text.index("]", start):]
-    assumes = 'families = ["urdf_structure"]\n'
-    text = text.replace(assumes, assumes + 'linearised_about = { th1 = 0.5, th2 = 0.5 }\n')
-    for name in ("double_pendulum.toml", "double_pendulum.urdf"):
-        (tmp_path / name).write_text((DATA / name).read_text())
-    path = tmp_path / "doc.toml"
-    path.write_text(text)
-    result = ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(
-        load_derivation(path))
+    result = _linearised_springs(tmp_path, LINEARISED,
+                                 "linearised_about = { th1 = 0.5, th2 = 0.5 }\n")
     assert result.equivalent is False
     first = result.causes[0]
     assert first.kind == CauseKind.FILE_ERROR, result.causes
