@@ -202,7 +202,6 @@ class Grids:
         return Grid(truth, tuple(sets), q, nu, cs, cmap, tuple((lo, hi) for lo, hi in ranges),
                     off)
 
-
     def _springs_only(self, cmap: CoordinateMap, sets: Sequence[ParameterSet], q: np.ndarray,
                       nu: np.ndarray) -> np.ndarray | None:
         r"""The truth's Q with gravity off in every set (the model's springs' force alone),

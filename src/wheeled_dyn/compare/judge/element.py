@@ -130,7 +130,7 @@ def _vanishing_term(d: ElementDraft, trials: Trials) -> bool:
     long to read term by term, it is taken to be one."""
     if d.expr is None or sp.count_ops(d.expr) > TRIAL_OPS:
         return True
-    terms = sp.Add.make_args(sp.expand(d.expr))
+    terms = sp.Add.make_args(sp.expand(d.expr, power_exp=False))
     return any(agrees(trials.evaluate(t), np.zeros_like(d.D), d.scale) for t in terms)
 
 
