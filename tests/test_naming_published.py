@@ -967,3 +967,17 @@ def test_a_symbol_mapped_to_another_links_parameter_is_the_cause(tmp_path):
     first = result.causes[0]
     assert first.kind == CauseKind.FILE_ERROR, result.causes
     assert "with a2 = -CZ(link2)" in first.explanation and "another link" in first.explanation
+
+
+def test_a_deviations_term_of_inconsistent_units_is_no_hidden_term(tmp_path):
+    r"""The linearised double pendulum with 9.81 written for g in its second equation's
+    stiffness term: K[2,2] differs, named as the number for g; Q[2], right at the point (the
+    term vanishes there as every deviation's does), agrees with a units note. It had been
+    "differs: numerically equal only because the inconsistent term vanishes for this model's
+    parameters" — a term in a deviation, which the point makes 0, is no parameter's zero."""
+    eqs = [LINEARISED[0], LINEARISED[1].replace("m2*a2*g*th2", "m2*a2*9.81*th2")]
+    assert eqs[1] != LINEARISED[1]
+    result = _linearised_springs(tmp_path, eqs, "linearised_about = { th1 = 0.0, th2 = 0.0 }\n")
+    assert result.equivalent is False
+    wrong = [r for r in result.records if r.verdict != Verdict.AGREES]
+    assert [r.element for r in wrong] == ["K[2,2]"], {r.element: r.texts for r in wrong}

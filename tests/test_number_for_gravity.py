@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import published_forms as P
 import pytest
+import sympy as sp
 from conftest import SEED
 from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.compare.records import CauseKind
@@ -112,3 +113,32 @@ def test_a_symbol_valued_as_earths_gravity_is_the_cause(tmp_path, error):
         assert "hold for g = 9.81 only" in said[0].explanation
     else:
         assert not said, said
+
+
+@pytest.mark.parametrize("written, advice", [("-g", "-g"), ("g", "g")])
+def test_a_symbol_valued_as_minus_earths_gravity_is_read_with_either_sign(tmp_path, written,
+                                                                          advice):
+    r"""``g = "-9.81"`` in ``[symbols]``, the equations writing ``written`` for the gravity:
+    the cause names the value that makes every equation right — "-g" where they write -g
+    (it advised "g", which flips both), "g" where they write g (no cause was said)."""
+    path = P.write(tmp_path, "arm", "equations", None)
+    text = path.read_text()
+    line = 'g = { value = "g", units = "m/s**2" }'
+    head, eqs = text.split("equations = [")
+    eqs = eqs.replace("g*", f"({written})*")
+    path.write_text(head.replace(line, line.replace('"g"', '"-9.81"')) + "equations = [" + eqs)
+    engine = ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED)
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False
+    first = result.causes[0]
+    assert first.kind == CauseKind.FILE_ERROR, result.causes
+    assert f'(value g as "{advice}")' in first.explanation, first.explanation
+
+
+def test_earths_gravity_in_a_solved_form_is_no_hundred_g(tmp_path):
+    r"""A number a hundred times Earth's gravity (981, as SymPy writes 9.81 over a common
+    denominator of 100) is no "100*g": only simple fractions of g are read as it."""
+    from wheeled_dyn.compare.judge.numbers import _gravity_parts
+    assert _gravity_parts(sp.Integer(981) * sp.Symbol("x")) == []
+    assert _gravity_parts(sp.Rational(981, 200) * sp.Symbol("x")) == [
+        (sp.Rational(981, 200), sp.Rational(1, 2))]

@@ -60,7 +60,7 @@ def _alternatives(value: sp.Expr, links: Sequence[str] = ()) -> list[tuple[sp.Ex
     the model's :data:`GRAVITY`; none where it holds no link parameter or more than one. Each
     with why it is tried."""
     if value.is_Number and GRAVITY_NUMBERS[0] <= abs(float(value)) <= GRAVITY_NUMBERS[1]:
-        return [(GRAVITY if value > 0 else -GRAVITY, EARTH)]
+        return [(GRAVITY, EARTH), (-GRAVITY, EARTH)]       # either sign: g = -9.81 is one
     kinds = {k for g in GROUPS for k in g} | {"M"}
     calls = [c for c in value.atoms(AppliedUndef) if c.func.__name__ in kinds]
     if len(calls) != 1:
@@ -145,8 +145,8 @@ def symbol_map_finding(d: Derivation, j) -> Cause | None:
                     f"it {float(value):g}), every equation is right ({declared} of {n} as "
                     "declared): the comparison draws gravity as every parameter of the "
                     f"model, and the equations as the file values them hold for g = "
-                    f"{abs(float(value)):g} only (value {spec.symbol} as \"g\"); the "
-                    "verdicts are under the file's declaration"))
+                    f"{abs(float(value)):g} only (value {spec.symbol} as \"{sp.sstr(other)}\"); "
+                    "the verdicts are under the file's declaration"))
             meant = "another parameter of the link than the document means (its axes " \
                 "turned: declare the one that fits)" if why == AXES else \
                 "a parameter of another link than the document means (declare the link)"

@@ -131,7 +131,10 @@ def _vanishing_term(d: ElementDraft, trials: Trials) -> bool:
     if d.expr is None or sp.count_ops(d.expr) > TRIAL_OPS:
         return True
     terms = sp.Add.make_args(sp.expand(d.expr, power_exp=False))
-    return any(agrees(trials.evaluate(t), np.zeros_like(d.D), d.scale) for t in terms)
+    fixed = set(trials.funcs.d.positions) if trials.funcs.d.assumes.get("linearised_about") \
+        else set()              # drawn at the point: a term in a deviation vanishes there
+    return any(agrees(trials.evaluate(t), np.zeros_like(d.D), d.scale) for t in terms
+               if not t.free_symbols & fixed)
 
 
 def judge(d: ElementDraft, problems: Sequence[str], trials: Trials,

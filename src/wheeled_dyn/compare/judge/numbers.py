@@ -48,7 +48,7 @@ def _gravity_parts(expr: sp.Expr) -> list[tuple[sp.Number, sp.Rational]]:
             continue
         for earth in EARTH:
             part = small_fraction(float(x) / earth, 1e-12)
-            if part is not None:
+            if part is not None and abs(part.numerator) <= 12:    # not 981 as 100 g
                 out.append((x, sp.Rational(part.numerator, part.denominator)))
                 break
     return out
