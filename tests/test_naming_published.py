@@ -981,3 +981,28 @@ def test_a_deviations_term_of_inconsistent_units_is_no_hidden_term(tmp_path):
     assert result.equivalent is False
     wrong = [r for r in result.records if r.verdict != Verdict.AGREES]
     assert [r.element for r in wrong] == ["K[2,2]"], {r.element: r.texts for r in wrong}
+
+
+def test_a_frame_constant_is_one_an_author_writes(tmp_path):
+    r"""The Furuta pendulum's equations (``data/published/furuta_equations.toml``) on a URDF
+    whose pendulum's centre of mass is 2 cm off its axis, which they leave out: they differ,
+    and the missing parallel-axis part is named. Row 2 had been compared with "9869/10000 ×
+    the equations of motion" (a ratio the model's proportions made its elements share), its
+    A[2,2] said to hold "only if pend is uniform", and the document's own power identity,
+    checked after that factor, said broken."""
+    urdf = (DATA / "furuta.urdf").read_text()
+    old = '<inertial><origin xyz="0 0 -0.15"/>'
+    assert urdf.count(old) == 1
+    (tmp_path / "furuta.urdf").write_text(urdf.replace(old, '<inertial><origin xyz="0 0.02 '
+                                                            '-0.15"/>'))
+    (tmp_path / "furuta.toml").write_text((DATA / "furuta.toml").read_text())
+    path = tmp_path / "doc.toml"
+    path.write_text((DATA / "furuta_equations.toml").read_text())
+    result = ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(
+        load_derivation(path))
+    assert result.equivalent is False
+    assert not any(c for c in result.row_factors), result.row_factors
+    assert result.energy is not None and result.energy.conserves, result.energy
+    a22 = next(r for r in result.records if r.element == "A[2,2]")
+    assert a22.verdict == Verdict.DIFFERS and a22.diagnoses[0].kind == K.PARALLEL_AXIS, \
+        a22.texts

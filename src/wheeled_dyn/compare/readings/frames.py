@@ -35,6 +35,7 @@ from enum import IntEnum
 
 import numpy as np
 
+from ..judge.diagnose import plausible_factor
 from ..judge.equivalence import SINGULAR_TOL, relative_det
 from ..grid.arrays import Arrays
 
@@ -356,7 +357,9 @@ def candidate_rules(i: int, grids: Sequence[tuple[Arrays, Arrays, np.ndarray | N
             ratio, votes = found
             if np.ptp(ratio) <= CONSTANT_SPREAD * np.abs(ratio).max():
                 c = float(np.median(ratio))
-                if not (k == i and abs(c - 1.0) <= RATIO_TOL):
+                # a factor an author writes (−1, 2, 1/2, 1000); 0.9869 is the model's
+                # proportions the elements happen to share, no frame
+                if not (k == i and abs(c - 1.0) <= RATIO_TOL) and plausible_factor(c):
                     rule = FrameRule(FrameKind.CONSTANT, k, value=c)
                     if not any(r.kind == FrameKind.CONSTANT and r.partner == k and
                                r.value is not None and abs(r.value - c) <= RATIO_TOL * abs(c)
