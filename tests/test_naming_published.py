@@ -914,6 +914,9 @@ def test_a_springs_preload_is_the_models_under_an_equilibrium_potential(tmp_path
     assert result.equivalent is False
     assert set(wrong) == {"Q[1]", "Q[2]"}, {e: r.texts for e, r in wrong.items()}
     assert "-k2*r2" in " ".join(wrong["Q[2]"].texts), wrong["Q[2]"].texts
+    # named as the constants they are: cos(th1) is 1 at the point, no name of its own
+    named = [t for t in wrong["Q[1]"].texts if "the document lacks" in t]
+    assert named and "-k1*r1" in named[0] and "cos" not in named[0], wrong["Q[1]"].texts
 
 
 def test_an_angle_wrapped_into_one_turn_differs_where_springs_pull(tmp_path):

@@ -61,9 +61,12 @@ def bases(d: Derivation, q: np.ndarray, values: Mapping[sp.Symbol, np.ndarray]
     out += _compound_trig(d, q)
     out += _divisors(d, q, values)
     unique: list[tuple[sp.Expr, np.ndarray]] = []
+    positions = set(d.positions)
     for expr, v in out:
         if np.abs(v).min() == 0 or not np.isfinite(v).all():
             continue                   # a name the grid holds constant is a number there
+        if expr.free_symbols & positions and np.ptp(v) <= 1e-12 * np.abs(v).max():
+            continue                   # so is a function of positions held at a point
         if any(np.allclose(v, w, rtol=1e-12, atol=0) for _, w in unique):
             continue
         unique.append((expr, v))
