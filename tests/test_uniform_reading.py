@@ -186,3 +186,29 @@ def test_text_that_is_no_number_is_no_reading() -> None:
     inertials = {"rod": (0.2, 0.0, 0.0, 0.08, 0.04, 0.0, 0.04, 0.0, 0.0, 0.0)}
     assert uniform_inertials(text, {"rod": (0.01, 0.8)}, inertials) == {}
     assert uniform_inertials(text.replace("${pi}", "0"), {"rod": (0.01, 0.8)}, inertials) == {}
+
+
+def test_a_rod_whose_inertia_is_turned_by_a_right_angle_is_read() -> None:
+    r"""The rod's tensor written about its own axes and turned onto the link's by
+    ``<origin rpy="1.5708 0 0">`` (a ROS URDF's wheel or rod): each printed moment is read
+    about the link axis the turn puts it on (the reading had been left out for any turn, and
+    a right file declaring the link uniform differed by the rounding)."""
+    import pinocchio as pin
+    text = ROD.format(ixx="0.0106667", ixy="0", iyy="0.00001", izz="0.0106667").replace(
+        '<origin xyz="0 0 0.4"/>', '<origin xyz="0 0 0.4" rpy="1.5708 0 0"/>')
+    R = np.asarray(pin.rpy.rpyToMatrix(np.pi / 2, 0.0, 0.0)).round()
+    tensor = R @ np.diag([0.0106667, 0.00001, 0.0106667]) @ R.T        # as the model turns it
+    read = read_turned(text, tensor)
+    assert set(read) == {"rod"}
+    own = pin.Inertia.FromDynamicParameters(np.asarray(read["rod"][0]))
+    exact = 0.2 * 0.8 ** 2 / 12
+    assert np.diag(own.inertia) == pytest.approx([exact, exact, 1e-5], rel=1e-15)
+    assert not read_turned(text.replace('rpy="1.5708 0 0"', 'rpy="0.3 0 0"'), tensor)
+
+
+def read_turned(text: str, tensor: np.ndarray) -> dict:
+    r"""The reading of the rod of ``text`` whose model holds the link-frame ``tensor``."""
+    import pinocchio as pin
+    inertia = pin.Inertia(0.2, np.array([0.0, 0.0, 0.4]), tensor)
+    return uniform_inertials(text, {"rod": (0.01, 0.8)},
+                             {"rod": tuple(inertia.toDynamicParameters())})

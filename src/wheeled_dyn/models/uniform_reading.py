@@ -8,7 +8,8 @@ truth drawn in the URDF's proportions differed from it by the rounding, 3·10⁻
 moment: beyond the comparison's tolerance of 10⁻⁷, "the document is 1.000001 × the truth".
 
 So each principal moment of a link's ``<inertia>`` (the tensor diagonal, its products of
-inertia printed zero, printed to three significant digits or more) is compared with the
+inertia printed zero, printed to three significant digits or more; its ``<origin rpy>`` none or
+right angles, each moment then about the link axis the turn puts it on) is compared with the
 moments of the uniform bodies its first cylinder or sphere gives (radius :math:`r`, length
 :math:`L`, mass :math:`m` as printed):
 
@@ -83,15 +84,16 @@ def uniform_inertials(text: str, shapes: Mapping[str, tuple[float | None, float 
         origin = link.find("inertial/origin")
         rpy = "0 0 0" if origin is None else origin.get("rpy", "0 0 0")
         try:
-            turned = any(float(x) != 0.0 for x in rpy.split()) or any(
-                float(element.get(k, "0")) != 0.0 for k in PRODUCTS)
+            axes = _link_axes([float(x) for x in rpy.split()])
+            products = any(float(element.get(k, "0")) != 0.0 for k in PRODUCTS)
         except ValueError:                 # not numbers: the URDF's checks say so, not this
             continue
-        if turned:
+        if axes is None or products:
             continue                       # its principal axes are not the tensor's axes
         own = pin.Inertia.FromDynamicParameters(np.asarray(inertials[name]))
         moments, said = np.diag(own.inertia).copy(), []
-        for axis, key in enumerate(DIAGONAL):
+        for printed_axis, key in enumerate(DIAGONAL):
+            axis = axes[printed_axis]
             printed, half = element.get(key, "0"), half_unit(element.get(key, "0"))
             if half is None:
                 continue
@@ -112,6 +114,24 @@ def uniform_inertials(text: str, shapes: Mapping[str, tuple[float | None, float 
                          f"body's, which it is to the digits the URDF prints ("
                          + "; ".join(said) + ")")
     return out
+
+
+def _link_axes(rpy: list[float]) -> tuple[int, ...] | None:
+    r"""The link axis each axis of an ``<inertial>`` turned by ``rpy`` lies along, where the
+    turn is right angles (to the rounding :func:`~.conventions.right_angles` reads:
+    ``rpy="1.5708 0 0"``, a wheel's tensor written about its own axes, as ROS URDFs do); None
+    for another turn."""
+    import pinocchio as pin
+
+    from .conventions import right_angles
+    if len(rpy) != 3:
+        return None
+    snapped = right_angles(np.asarray(rpy, dtype=float))
+    quarter = snapped / (np.pi / 2)
+    if np.abs(quarter - np.rint(quarter)).max() > 1e-12:
+        return None
+    P = np.rint(np.asarray(pin.rpy.rpyToMatrix(*snapped)))
+    return tuple(int(np.argmax(np.abs(P[:, a]))) for a in range(3))
 
 
 __all__ = ["half_unit", "uniform_inertials"]
