@@ -199,3 +199,38 @@ def test_a_rounded_right_angle_beside_another_angle_is_the_right_angle(tmp_path,
         right_angled_joints(model)
         frames.append(np.asarray(model.jointPlacements[model.getJointId("q2")].rotation))
     assert np.abs(frames[0] - frames[1]).max() <= SAME_TOL, frames
+
+
+@pytest.mark.parametrize("text, rounding", [
+    ("1.5708", True), ("1.57", True), ("1.571", True), ("1.5707", True), ("3.14", True),
+    ("3.1416", True), ("-1.5708", True), ("6.2832", True), ("1.5707963267948966", True),
+    ("1.569", False), ("1.5700", False), ("3.1", True), ("0.001", False)])
+def test_a_rounding_is_the_right_angle_to_its_digits(text, rounding):
+    r"""An angle near a right angle is its rounding only where it is the right angle rounded
+    or cut at the decimals it prints."""
+    from wheeled_dyn.models.rounded_angles import is_rounding
+    assert is_rounding(text) is rounding
+
+
+def test_an_angle_near_a_right_angle_that_is_no_rounding_is_kept(tmp_path):
+    r"""An elbow frame turned by ``rpy="1.569 0 0.3"``: 1.569 is within the tolerance of
+    π/2 but no rounding of it, so the frame is kept as written (a derivation of the URDF as
+    written had differed, the frame turned by π/2), and the reading says so."""
+    from wheeled_dyn.models.conventions import right_angled_joints
+    from wheeled_dyn.models.rounded_angles import unrounded_joints
+    folder = tmp_path / "arm"
+    folder.mkdir()
+    elbow = '<origin xyz="0.8 0 0" rpy="0 0 0"/>'
+    urdf = (DATA / "two_link_arm.urdf").read_text()
+    (folder / "two_link_arm.urdf").write_text(
+        urdf.replace(elbow, '<origin xyz="0.8 0 0" rpy="1.569 0 0.3"/>'))
+    (folder / "two_link_arm.toml").write_text((DATA / "two_link_arm.toml").read_text())
+    wm = load_model(str(folder / "two_link_arm.toml"))
+    kept = unrounded_joints(wm.spec.urdf, RIGHT_ANGLE_TOL)
+    assert kept == {"q2"}, kept
+    model = wm.model.copy()
+    before = np.asarray(model.jointPlacements[model.getJointId("q2")].rotation).copy()
+    assert right_angled_joints(model, kept=kept) == 0
+    assert np.array_equal(np.asarray(model.jointPlacements[model.getJointId("q2")].rotation),
+                          before)
+    assert any("no rounding of it" in x for x in wm.readings), wm.readings

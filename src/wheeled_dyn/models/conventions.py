@@ -68,17 +68,20 @@ def base_joints(wm) -> frozenset[int]:
     return frozenset(base | {j for j in range(1, model.njoints) if model.parents[j] in base})
 
 
-def right_angled_joints(model, skip: frozenset[int] = frozenset()) -> int:
+def right_angled_joints(model, skip: frozenset[int] = frozenset(),
+                        kept: frozenset[str] = frozenset()) -> int:
     r"""Each joint's placement (but the ``skip`` ones') whose rotation is within
     :data:`RIGHT_ANGLE_TOL` per entry of a signed permutation made that permutation, in place
     (a URDF's ``rpy="0 1.5708 -1.5708"``: an arm's joint origin turned by right angles, which
     a derivation takes as exact); else, where its roll, pitch and yaw include angles within
     :data:`RIGHT_ANGLE_TOL` of a multiple of π/2, those made that multiple, the others kept
-    (``rpy="1.5708 0 0.3"``: a quarter turn and 0.3 rad). Returns how many were changed."""
+    (``rpy="1.5708 0 0.3"``: a quarter turn and 0.3 rad). The joints named in ``kept`` print an
+    angle near a right angle that is no rounding of it (:mod:`.rounded_angles`): kept as
+    written. Returns how many were changed."""
     import pinocchio as pin
     changed = 0
     for jid in range(1, model.njoints):
-        if jid in skip:
+        if jid in skip or model.names[jid] in kept:
             continue
         placement = model.jointPlacements[jid]
         R = np.asarray(placement.rotation)

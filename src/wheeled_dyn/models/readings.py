@@ -29,6 +29,7 @@ import xml.etree.ElementTree as ET
 import numpy as np
 
 from .conventions import RIGHT_ANGLE_TOL, right_angles
+from .rounded_angles import is_rounding
 
 #: Smallest turn of a wheel's axis (rad) that a model's readings mention: below it the turn
 #: changes no number by more than round-off of the comparisons' tolerances (a URDF's
@@ -71,23 +72,29 @@ def joint_origin_readings(root: ET.Element) -> list[str]:
     multiple of :math:`\pi/2` and not on it (beyond :data:`TURN_NOTED`): one line. The
     comparisons' parameter sets take a joint's turn that is right angles to that rounding as
     right angles (:func:`~.conventions.right_angled_joints`); ``matrices`` keeps it as
-    written."""
-    near = []
+    written. A joint whose angle near a right angle is no rounding of it (``1.569``:
+    :mod:`.rounded_angles`) is kept as written, and said."""
+    near: list[str] = []
+    kept: list[str] = []
     for joint in root.iterfind("joint"):
         origin = joint.find("origin")
         if origin is None or origin.get("rpy") is None:
             continue
-        rpy = np.array([float(x) for x in origin.get("rpy", "").split()])
+        texts = origin.get("rpy", "").split()
+        rpy = np.array([float(x) for x in texts])
         off = np.abs(rpy - right_angles(rpy))
-        if np.any((off > TURN_NOTED) & (off <= RIGHT_ANGLE_TOL)):
-            near.append(joint.get("name", ""))
-    if not near:
-        return []
-    return [f"joint{'s' if len(near) > 1 else ''} {_listed(near)}: origin rpy within "
-            f"{RIGHT_ANGLE_TOL:g} rad of right angles in one or more of its angles (1.5708 "
-            "for π/2): the comparisons' parameter sets turn a joint by the right angles its "
-            "rounding stands for, its other angles as written, as a derivation does (the "
-            "model's own matrices keep the numbers as written)"]
+        close = (off > TURN_NOTED) & (off <= RIGHT_ANGLE_TOL)
+        if np.any(close):
+            rounded = all(is_rounding(t) for t, c in zip(texts, close) if c)
+            (near if rounded else kept).append(joint.get("name", ""))
+    out = [f"joint{'s' if len(near) > 1 else ''} {_listed(near)}: origin rpy within "
+           f"{RIGHT_ANGLE_TOL:g} rad of right angles in one or more of its angles (1.5708 "
+           "for π/2): the comparisons' parameter sets turn a joint by the right angles its "
+           "rounding stands for, its other angles as written, as a derivation does (the "
+           "model's own matrices keep the numbers as written)"] if near else []
+    return out + ([f"joint{'s' if len(kept) > 1 else ''} {_listed(kept)}: an origin rpy angle "
+                   "near a right angle that is no rounding of it (1.569 or 1.5700, which are "
+                   "not π/2 to the digits they print): kept as written"] if kept else [])
 
 
 def _listed(names: list[str]) -> str:

@@ -215,14 +215,16 @@ def true_expressions(model: str, cs: CoordinateSet, refresh: bool = False
     Cached in memory and on disk (:func:`~.cache.cache_dir`, ``true-<key>.pickle``), keyed by
     the model, the content of ``cs`` and the code version; ``refresh`` re-derives.
     """
-    from ..models.conventions import base_joints, right_angled_joints
+    from ..models.conventions import RIGHT_ANGLE_TOL, base_joints, right_angled_joints
+    from ..models.rounded_angles import unrounded_joints
     from ..models.registry import load_model, model_entry
     from .expanded import expanded_tree
     model_entry(model)  # unknown names raise here
     wm = load_model(model)                               # a copy: its joints may be turned
     mode = "physical" if has_physical_record(wm) else "standard"
     if mode == "standard":        # joint frames rounded to right angles: as the comparisons
-        right_angled_joints(wm.model, base_joints(wm))           # draw them (a derivation's)
+        right_angled_joints(wm.model, base_joints(wm),           # draw them (a derivation's)
+                            unrounded_joints(wm.spec.urdf, RIGHT_ANGLE_TOL))
     tree = _tree(wm, mode)
     key = _true_key(model, cs, wm) + mode
     if key in _MEMORY and not refresh:

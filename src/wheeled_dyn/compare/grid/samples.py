@@ -30,7 +30,8 @@ import pinocchio as pin
 from ...errors import ParameterError
 from ...models.builder import WheeledModel
 from ...models.geometry_apply import FACTOR, apply_geometry, bodies_of, draw_geometry
-from ...models.conventions import base_joints, right_angled_joints
+from ...models.conventions import RIGHT_ANGLE_TOL, base_joints, right_angled_joints
+from ...models.rounded_angles import unrounded_joints
 from ...models.round_wheels import made_round
 from .wheel_draws import alike_wheels, wheel_axles
 from ...models.registry import load_model, model_entry, model_parameters
@@ -213,7 +214,8 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
     alike from a random inertia (:data:`FREE_WHEELS`)."""
     drawn = _with_geometry(wm, rng, uniform, spread)
     model = pin.Model(drawn.model)               # never the model of ``wm`` itself
-    right_angled_joints(model, base_joints(drawn))
+    right_angled_joints(model, base_joints(drawn),
+                        unrounded_joints(drawn.spec.urdf, RIGHT_ANGLE_TOL))
     composed = {jid for jid, links in bodies_of(wm).items() if uniform & set(links)}
     for jid in range(1, model.njoints):
         if model.inertias[jid].mass > 0 and jid in composed:
