@@ -152,10 +152,8 @@ def method_causes(ev: Evaluation, d, records: Sequence) -> list[Cause]:
         elif from_A:
             quasi.append(r)
     # a C said not to come from the document's own A: only where the document gives a C
-    # (equations written out, Kane's method, never took one from A's Christoffel terms), and
-    # in coordinates (a quasi-velocity's C has the Boltzmann–Hamel terms besides: Kane's
-    # right ones are no Christoffel terms of A)
-    if d.C is None or ev.kind == "quasi":
+    # (equations written out, Kane's method, never took one from A's Christoffel terms)
+    if d.C is None:
         inconsistent = []
 
     def c_elements(rows: set[int]) -> tuple[str, ...]:
