@@ -16,6 +16,8 @@ import xml.etree.ElementTree as ET
 from decimal import Decimal, InvalidOperation
 from pathlib import Path
 
+from .conventions import ROUNDING
+
 #: Relative slack of a comparison of two numbers printed to the same digits.
 SAME_DIGITS = 1e-9
 
@@ -29,8 +31,8 @@ def is_rounding(text: str) -> bool:
     except (InvalidOperation, ValueError):
         return False
     exact = round(value / (math.pi / 2)) * (math.pi / 2)
-    if abs(value - exact) <= 1e-12 or not isinstance(exponent, int):
-        return abs(value - exact) <= 1e-12
+    if abs(value - exact) <= ROUNDING or not isinstance(exponent, int):
+        return abs(value - exact) <= ROUNDING
     digits = max(-exponent, 0)
     unit = 10.0 ** -digits
     cut = math.trunc(exact / unit) * unit
@@ -62,7 +64,7 @@ def _unrounded(path: str, stamp: int, tolerance: float) -> frozenset[str]:
             except ValueError:
                 continue
             off = abs(value - round(value / (math.pi / 2)) * (math.pi / 2))
-            if 1e-12 < off <= tolerance and not is_rounding(text):
+            if ROUNDING < off <= tolerance and not is_rounding(text):
                 out.add(joint.get("name", ""))
     return frozenset(out)
 
