@@ -11,6 +11,7 @@ from pathlib import Path
 
 from conftest import SEED
 from wheeled_dyn.compare.engine import ComparisonEngine
+from wheeled_dyn.compare.records import DiagnosisKind
 from wheeled_dyn.derivations import load_derivation
 
 DATA = Path(__file__).parent / "data" / "newcomer_balancer"
@@ -38,3 +39,62 @@ def test_a_height_from_the_wrong_point_differs(tmp_path):
     assert result.equivalent is False
     wrong = {r.element for r in result.records if r.verdict != "agrees"}
     assert {"A[1,3]", "A[3,3]"} <= wrong, wrong
+
+
+#: The pitch row's inertia, the quantity the newcomer divides the row by, and the same
+#: written with z_b for z_b**2 (kg·m beside kg·m²) — everywhere but the acceleration's own
+#: coefficient, which the author writes as 1 (D/D).
+INERTIA = "I_yy + m_b*x_b**2 + m_b*z_b**2"
+NO_SQUARE = "I_yy + m_b*x_b**2 + m_b*z_b"
+
+
+def _divided(divisor: str) -> str:
+    r"""The newcomer's file with the pitch row (the third) of A, C, Q and B divided by
+    ``divisor``, its A[3,3] written 1."""
+    import tomllib
+
+    import sympy as sp
+    text = (DATA / "segbot2_kane.toml").read_text()
+    matrices = tomllib.loads(text)["matrices"]
+    lines = []
+    for key in "ACQB":
+        M = sp.Matrix(sp.sympify(matrices[key]))
+        rows = [list(M.row(i)) for i in range(M.rows)] if M.cols > 1 else [[x] for x in M]
+        rows[2] = [sp.Symbol("DIV_") if x == 0 else sp.sympify(
+            f"({sp.sstr(x)})/({divisor})", evaluate=False) for x in rows[2]]
+        if key == "A":
+            rows[2][2] = sp.Integer(1)
+        rows[2] = [0 if x == sp.Symbol("DIV_") else x for x in rows[2]]
+        body = ", ".join("[" + ", ".join(sp.sstr(x) for x in r) + "]" for r in rows) \
+            if M.cols > 1 else ", ".join(sp.sstr(r[0]) for r in rows)
+        lines.append(f'{key} = "[{body}]"')
+    return text[:text.index("[matrices]")] + "[matrices]\n" + "\n".join(lines) + "\n"
+
+
+def _compare_text(tmp_path: Path, text: str):
+    for name in ("segbot2.toml", "segbot2.urdf"):
+        (tmp_path / name).write_text((DATA / name).read_text())
+    path = tmp_path / "doc.toml"
+    path.write_text(text)
+    return ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(
+        load_derivation(path))
+
+
+def test_the_pitch_row_divided_by_its_inertia_agrees(tmp_path):
+    result = _compare_text(tmp_path, _divided(INERTIA))
+    assert result.equivalent is True, [c.explanation for c in result.causes]
+
+
+def test_a_divisor_with_wrong_units_is_flagged_where_it_is_written(tmp_path):
+    r"""z_b for z_b² in the divisor: the elements that hold it differ, each with the term's
+    units; A[3,3] = 1, written right, agrees (a ratio adding kg·m to kg·m² is no frame the
+    row was written in, though four elements share it)."""
+    result = _compare_text(tmp_path, _divided(NO_SQUARE))
+    assert result.equivalent is False
+    by = {r.element: r for r in result.records}
+    assert by["A[3,3]"].verdict == "agrees", by["A[3,3]"].diagnoses
+    for element in ("A[3,1]", "Q[3]", "B[3,1]", "B[3,2]"):
+        r = by[element]
+        assert r.verdict == "differs", (element, r.diagnoses)
+        assert any(x.kind == DiagnosisKind.DIMENSION and "m_b*z_b is kg·m beside kg·m^2"
+                   in x.text for x in r.diagnoses), (element, r.diagnoses)

@@ -17,8 +17,10 @@ import sympy as sp
 
 from ...derivations.schema import Derivation
 from ..judge.equivalence import EquationDecision, SystemDecision
-from ..judge.fitting import bases, fit_factor
+from ..judge.fitting import RATIO_TOL, bases, fit_factor
+from ..judge.units import DimensionChecker
 from ..judge.unsolved import read_back_explains
+from ..readings.describe import weight_expression
 from ..readings.frame_choice import choose, elements_of, score, solved_row
 from ..readings.frames import Frame, FrameKind, FrameRule, candidate_rules, evaluate_rule
 from ..readings.variants import combination_variants
@@ -75,7 +77,12 @@ def choose_frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], d
             if differing <= d.n:       # no more than n weights fit: only numbers, or names
                 variants = [v for v in variants if v.identified]
             if variants:
-                rule = choose(i, rules_i + variants, on, False, totals=totals)
+                rules_i = rules_i + variants
+                rule = choose(i, rules_i, on, False, totals=totals)
+        while _inhomogeneous(d, i, rule, main, rows, found):
+            after = _next_ratio(i, rule, main, rows, found)
+            rules_i = [r for r in rules_i if r != rule] + ([after] if after else [])
+            rule = choose(i, rules_i, on, has_declared and not right, right, totals)
         evaluated = evaluate_rule(i, rule, main.doc, main.truth, main.doc.B, main.B_true,
                                   declared_scale)
         if evaluated is not None and solved_row(main.doc, i):
@@ -94,6 +101,47 @@ def choose_frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], d
         rules[i] = FrameRule(FrameKind.IDENTITY)
         frames[i] = _always(i, rules[i], main)
     return rules, frames, wrong
+
+
+def _inhomogeneous(d: Derivation, i: int, rule: FrameRule, main: Sides, rows: np.ndarray,
+                   found: list[tuple[sp.Expr, np.ndarray]]) -> bool:
+    r"""Whether ``rule`` reads row ``i`` as the true equation times a factor no author
+    writes: its expression in the document's names (fitted on the samples ``rows`` of the
+    main grid with the bases ``found``) adds terms of different dimensions under the file's
+    declared units, :math:`I_{yy} + m_b(x_b^2 + z_b)`. Such a ratio is the document's own
+    wrongly written divisor shared by the elements that hold the error, not the frame the
+    row was written in: the elements are explained in another frame, where they differ."""
+    if rule.kind != FrameKind.FUNCTION:
+        return False
+    frame = evaluate_rule(i, rule, main.doc, main.truth, main.doc.B, main.B_true)
+    if frame is None:
+        return False
+    factor = weight_expression(frame.weights[rows, rule.partner], found)
+    if factor is None or factor.is_number:
+        return False
+    problems: list[str] = []
+    DimensionChecker(d).dim(factor, problems)
+    return bool(problems)
+
+
+def _next_ratio(i: int, rule: FrameRule, main: Sides, rows: np.ndarray,
+                found: list[tuple[sp.Expr, np.ndarray]]) -> FrameRule | None:
+    r"""The ``FUNCTION`` rule of the ratio the elements share after ``rule``'s (fewer of
+    them), where it is one a frame is written with: the row's own diagonal inertia's (the
+    true divisor :math:`I_{yy} + m_b(x_b^2 + z_b^2)` of the one element written right, a
+    row divided by its inertia) or an expression of the document's names (a monomial, a
+    short sum or its inverse: :func:`~..readings.describe.weight_expression`); None where
+    there is none."""
+    after = replace(rule, rank=rule.rank + 1, identified=True)
+    frame = evaluate_rule(i, after, main.doc, main.truth, main.doc.B, main.B_true)
+    if frame is None:
+        return None
+    ratio = frame.weights[:, rule.partner]
+    with np.errstate(all="ignore"):
+        own = rule.partner == i and main.doc.A is not None and bool(np.allclose(
+            main.doc.A[:, i, i] / main.truth.need("A")[:, i, i], ratio, rtol=RATIO_TOL,
+            atol=0.0))
+    return after if own or weight_expression(ratio[rows], found) is not None else None
 
 
 def _shared_partners(rules: Sequence[FrameRule]) -> list[int]:

@@ -142,7 +142,7 @@ def judge(d: ElementDraft, problems: Sequence[str], trials: Trials,
     r"""Fill the draft's verdict and diagnoses (module text); ``problems`` are its units'
     (:mod:`.units`), ``groups`` the symbols one may have been written for another,
     ``row_factor`` the factor its row is of the true equation per sample, where it is."""
-    d.diagnoses += [diagnosis(K.DIMENSION, p) for p in problems]
+    d.diagnoses += [diagnosis(K.DIMENSION, p) for p in dict.fromkeys(problems)]  # once each
     finite = np.isfinite(d.D) & np.isfinite(d.T)
     if _undecided(d, finite):
         return

@@ -38,7 +38,8 @@ class FrameText:
     solved: tuple[int, float] | None = None
 
 
-def _entry(values: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> sp.Expr | None:
+def weight_expression(values: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
+                      ) -> sp.Expr | None:
     r"""One weight as an expression: 0, a constant, a monomial or a short sum (or its
     inverse)."""
     size = float(np.abs(values).max(initial=0.0))
@@ -91,7 +92,7 @@ def describe(i: int, frame: Frame, id_weights: np.ndarray | None,
         return FrameText("a combination of the true equations (its weights found at each "
                          "state, not identified)")
     if kind == FrameKind.FUNCTION:
-        c = _entry(id_weights[:, k], bases)
+        c = weight_expression(id_weights[:, k], bases)
         if c is None:
             return FrameText(f"the true equation{of} times a function of the state and "
                              "parameters (not identified)")
@@ -99,10 +100,10 @@ def describe(i: int, frame: Frame, id_weights: np.ndarray | None,
     own = np.abs(id_weights[:, i])
     others = np.delete(np.abs(id_weights), i, axis=1)
     if others.size == 0 or others.max() <= ZERO_WEIGHT * max(float(own.max()), 1e-300):
-        c = _entry(id_weights[:, i], bases)          # a combination of its own row only
+        c = weight_expression(id_weights[:, i], bases)    # a combination of its own row only
         if c is not None:
             return FrameText(f"the true equation {_quotient(c)}", single(c), factor=c)
-    entries = [_entry(id_weights[:, j], bases) for j in range(id_weights.shape[1])]
+    entries = [weight_expression(id_weights[:, j], bases) for j in range(id_weights.shape[1])]
     solved = None if doc_A is None else solved_for(doc_A)
     if any(e is None for e in entries):
         text = ("solved for the accelerations (row of A⁻¹ × the true equations)" if solved
@@ -117,4 +118,4 @@ def describe(i: int, frame: Frame, id_weights: np.ndarray | None,
     return FrameText(text, tuple(entries), solved=solved)
 
 
-__all__ = ["FrameText", "ZERO_WEIGHT", "describe"]
+__all__ = ["FrameText", "ZERO_WEIGHT", "describe", "weight_expression"]

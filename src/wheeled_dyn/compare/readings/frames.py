@@ -82,6 +82,7 @@ class FrameRule:
     variant: tuple[int, int] | None = None
     value: float | None = None
     identified: bool = False
+    rank: int = 0
 
 
 @dataclass(frozen=True)
@@ -157,14 +158,15 @@ def _columns(a: Arrays, B: np.ndarray | None, row: int, with_n: bool) -> np.ndar
 
 
 def paired(i: int, k: int, doc: Arrays, truth: Arrays, B_doc: np.ndarray | None,
-           B_true: np.ndarray | None, simple: Callable[[np.ndarray], bool] | None = None
-           ) -> tuple[np.ndarray, int] | None:
+           B_true: np.ndarray | None, simple: Callable[[np.ndarray], bool] | None = None,
+           rank: int = 0) -> tuple[np.ndarray, int] | None:
     r"""The ratio of the document's row ``i`` to the true row ``k`` that most of their nonzero
     elements (A, Q, B) share, per sample, with its votes; only a ratio an element of A shares
     (an equation multiplied through scales its accelerations' coefficients too: a wrong input
     map must not scale a row), and one that varies only with at least two votes or, with one,
     when ``simple`` says it is a simple expression of the document's names (a function fitted
-    to one element would absorb it). None when there is none."""
+    to one element would absorb it); ``rank`` > 0: the ``rank``-th such ratio after it. None
+    when there is none."""
     if doc.A is None or truth.A is None:
         return None
     both = B_doc is not None and B_true is not None
@@ -177,8 +179,11 @@ def paired(i: int, k: int, doc: Arrays, truth: Arrays, B_doc: np.ndarray | None,
     for ratio, votes, inertia, _ in groups:      # made the right terms "differ by 1.234")
         constant = np.ptp(ratio) <= CONSTANT_SPREAD * np.abs(ratio).max()
         if inertia and (constant or votes >= 2 or (simple is not None and simple(ratio))):
+            if rank:
+                rank -= 1
+                continue
             return terms if terms is not None and votes == 1 else (ratio, votes)
-    return terms
+    return None if rank else terms
 
 
 def _matching(truth: Arrays, doc: Arrays) -> Arrays:
@@ -320,7 +325,7 @@ def evaluate_rule(i: int, rule: FrameRule, doc: Arrays, truth: Arrays,
         return Frame(rule, w, rule.value)
     if rule.kind in (FrameKind.CONSTANT, FrameKind.FUNCTION):
         found = paired(i, rule.partner, doc, truth, B_doc, B_true,
-                       (lambda r: True) if rule.identified else None)
+                       (lambda r: True) if rule.identified else None, rule.rank)
         if found is None:
             return None
         ratio = found[0]
