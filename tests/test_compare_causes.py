@@ -254,6 +254,29 @@ def test_c_inconsistent_with_a(engine, tmp_path):
     _explained_once(result)
 
 
+def test_no_quasi_cause_from_a_wrong_inertia(engine, tmp_path):
+    r"""XX1 sin²φ doubled and YY1 cos²φ dropped in A[2,2], and C taken as the Christoffel
+    terms of that A (:math:`\Delta h_2 = (XX1 + YY1)\sin 2\varphi\,\dot\psi\dot\varphi`,
+    :math:`\Delta h_3 = -\tfrac12(XX1 + YY1)\sin 2\varphi\,\dot\psi^2`): h equals the Christoffel terms of its own A
+    and differs from the truth, but because A is wrong along φ, not for any Boltzmann–Hamel
+    term — no quasi-coordinate cause names those products."""
+    extra = "(XX1 + YY1)*sin(2*phi)/2"
+    C = BASE["matrices"]["C"]
+    A22 = BASE["matrices"]["A"][1][1]
+    assert A22.endswith(" + XX1*sin(phi)**2 + XY1*sin(2*phi) + YY1*cos(phi)**2")
+    result = engine.compare(load_derivation(_file(tmp_path, {
+        ("A", 1, 1): A22.replace("XX1*sin(phi)**2", "2*XX1*sin(phi)**2").replace(
+            " + YY1*cos(phi)**2", ""),
+        ("C", 1, 1): f"{C[1][1]} + dphi*{extra}", ("C", 1, 2): f"{C[1][2]} + dpsi*{extra}",
+        ("C", 2, 1): f"{C[2][1]} - dpsi*{extra}"})))
+    assert result.equivalent is False
+    wrong = {r.element for r in result.records if r.verdict == "differs"}
+    assert {"A[2,2]", "h[2]:dpsi*dphi", "h[3]:dpsi*dpsi"} <= wrong, wrong
+    for c in result.causes:
+        if c.kind == "quasi_coordinate_christoffel":
+            assert not {"h[2]:dpsi*dphi", "h[3]:dpsi*dpsi"} & set(c.elements), c
+
+
 # -- single-term errors -------------------------------------------------------------------------
 
 def test_sign_of_one_term(engine, tmp_path):

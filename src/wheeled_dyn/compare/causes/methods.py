@@ -104,6 +104,22 @@ def _from_own_christoffel(ev: Evaluation, own: dict[tuple[int, int, int], bool])
                                  for (i, j, k), same in own.items())
 
 
+def _holds_wrong(index: Sequence[int], wrong: dict[tuple[int, int], sp.Expr | None],
+                 positions: Sequence[sp.Symbol]) -> bool:
+    r"""Whether the Christoffel terms of h product ``index`` = (i, j, k),
+    :math:`\tfrac12(\partial_k A_{ij} + \partial_j A_{ik} - \partial_i A_{jk})`, take a
+    derivative of an element of A that differs (``wrong``: by element, either of a symmetric
+    pair, its truth − document where known) along a position its difference depends on (a
+    constant written wrong in A, a product of inertia, leaves them as they are)."""
+    i, j, k = index
+    for (a, b), along in (((i, j), k), ((i, k), j), ((j, k), i)):
+        for e in ((a, b), (b, a)):
+            if e in wrong and (wrong[e] is None or str(positions[along]) in
+                               {str(x) for x in wrong[e].free_symbols}):
+                return True
+    return False
+
+
 def specific(r) -> bool:
     r"""A diagnosis naming one term's error precisely: the element is left to its
     single-term cause rather than to a method cause."""
@@ -163,15 +179,22 @@ def method_causes(ev: Evaluation, d, records: Sequence) -> list[Cause]:
 
     out = []
     # with coordinates (not quasi-velocities) an h term equal to A's Christoffel term but not
-    # to the truth follows from A, whose own records say what differs: no cause of its own
+    # to the truth follows from A, whose own records say what differs: no cause of its own;
+    # nor a product whose Christoffel terms hold an element of A that differs: those of a
+    # wrong A differ from the truth's whatever the velocities are (wheel angles taken
+    # absolute: their A wrong, their C its own)
+    wrong_A = {(r.index[0], r.index[1]): parse(r.residual) if r.residual else None
+               for r in records if r.key == "A" and r.verdict == Verdict.DIFFERS}
+    quasi = [r for r in quasi if not _holds_wrong(r.index, wrong_A, d.positions)]
     if quasi and ev.kind == "quasi":
         out.append(Cause(
             kind=CauseKind.QUASI_COORDINATE_CHRISTOFFEL,
             elements=tuple(r.element for r in quasi) + c_elements({q.index[0] for q in quasi}),
             explanation=("the document's C is the Christoffel matrix of its own A taken as if "
-                         f"its velocities ({', '.join(names)}) were rates of coordinates; at least "
-                         "one is a quasi-velocity (q̇ = S ν), so the SᵀAṠ (Boltzmann–Hamel) terms "
-                         "are missing" + (" (truth − document below)"
+                         f"its velocities ({', '.join(names)}) were rates of coordinates; with "
+                         "q̇ = S ν, at least one is a quasi-velocity or S eliminates constraints "
+                         "that are not integrable, so the SᵀAṠ (Boltzmann–Hamel) terms are "
+                         "missing" + (" (truth − document below)"
                                           if any(r.residual for r in quasi) else "")),
             latex=_missing_terms_latex(quasi, d)))
     if inconsistent:
