@@ -11,12 +11,14 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+import sympy as sp
 import pytest
 
 import published_forms as P
 from conftest import SEED
 from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.derivations import load_derivation
+from wheeled_dyn.compare.records import DiagnosisKind
 from wheeled_dyn.models.uniform_reading import half_unit, uniform_inertials
 
 DATA = Path(__file__).parent / "data" / "published"
@@ -95,6 +97,73 @@ def test_every_form_agrees_on_the_rounded_pole(tmp_path: Path, form: str) -> Non
                in n for n in result.notes), result.notes
 
 
+def _ambiguous_pole(tmp_path: Path, inertia: str, radius: bool = True) -> object:
+    r"""The rounded cart-pole with the pole's moments printed 0.01067, the 0.8 m rod's
+    m L²/12 and its 1 cm cylinder's m (3r² + L²)/12 both to four digits (read as the
+    cylinder's), and the pole row's inertia written ``inertia`` (``radius``: the document
+    names the pole's radius r)."""
+    model = _rounded_cart_pole(tmp_path)
+    urdf = tmp_path / "cart_pole.urdf"
+    urdf.write_text(urdf.read_text().replace('"0.0106667"', '"0.01067"'))
+    path = P.write(tmp_path, "pole", "equations", None)
+    text = path.read_text().replace(str(DATA / "cart_pole.toml"), str(model))
+    assert text.count("4*ddtheta*l**2*m/3") == 1
+    text = text.replace("4*ddtheta*l**2*m/3", inertia)
+    if radius:
+        text = text.replace('g = {', 'r = { value = "radius(pole)", units = "m" }\ng = {')
+    path.write_text(text)
+    return ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED).compare(
+        load_derivation(path))
+
+
+def test_the_uniform_cylinders_inertia_agrees_where_a_rods_is_as_near(tmp_path: Path) -> None:
+    r"""The pole's inertia about its hinge as a uniform cylinder's,
+    :math:`m(3r^2 + L^2)/12 + ml^2 = m(\tfrac43 l^2 + r^2/4)` (L = 2l): right."""
+    result = _ambiguous_pole(tmp_path, "ddtheta*m*(4*l**2/3 + r**2/4)")
+    assert result.equivalent is True, [t for e in result.equations for t in e.texts]
+
+
+@pytest.mark.parametrize("radius", [True, False], ids=["r-named", "r-not-named"])
+def test_a_slender_rods_inertia_for_the_cylinder_lacks_a_part_of_a_moment(
+        tmp_path: Path, radius: bool) -> None:
+    r"""The slender rod's :math:`\tfrac43 ml^2` for the cylinder: it lacks :math:`mr^2/4`,
+    half the pole's own moment about its axis — a term of the formula, named as such (in the
+    document's r where it names one, else as that part of the model's moment), not the pole
+    taken as a point mass."""
+    result = _ambiguous_pole(tmp_path, "4*ddtheta*l**2*m/3", radius)
+    assert result.equivalent is False
+    (a22,) = [r for r in result.records if r.element == "A[2,2]"]
+    assert a22.verdict == "differs"
+    assert DiagnosisKind.POINT_MASS not in [x.kind for x in a22.diagnoses], a22.diagnoses
+    if radius:
+        assert any(x.kind == DiagnosisKind.MISSING and "m*r**2/4" in x.text
+                   for x in a22.diagnoses), a22.diagnoses
+
+
+@pytest.mark.parametrize("multiplier", [sp.Rational(1, 2), sp.Integer(1)], ids=["half", "whole"])
+def test_a_part_of_a_moment_is_no_point_mass(multiplier: sp.Rational) -> None:
+    r"""A residual that is half a link's own moment (:math:`mr^2/4` of a cylinder whose
+    axial moment is :math:`mr^2/2`, the acrobot's second link written as a slender rod) is
+    named as that part left out of a formula; the whole moment as the link taken as a
+    point mass."""
+    from types import SimpleNamespace
+
+    from wheeled_dyn.compare.judge.named import _own_inertia
+    from wheeled_dyn.compare.judge.own_inertia import point_mass_fit
+    rng = np.random.default_rng(SEED)
+    moment = rng.uniform(0.1, 1.0, 50)
+    hit = point_mass_fit(float(multiplier) * moment, {"Ixx(link2)": moment}, [])
+    assert hit == ("Ixx(link2)", multiplier)
+    draft = SimpleNamespace(diagnoses=[])
+    _own_inertia(draft, hit, None)
+    (said,) = draft.diagnoses
+    if multiplier == 1:
+        assert said.kind == DiagnosisKind.POINT_MASS and "link2 as a point mass" in said.text
+    else:
+        assert said.kind == DiagnosisKind.MISSING and "1/2*Ixx(link2)" in said.text
+        assert "point mass" not in said.text
+
+
 def test_a_point_mass_pole_still_differs_on_the_rounded_pole(tmp_path: Path) -> None:
     model = _rounded_cart_pole(tmp_path)
     path = P.write(tmp_path, "pole", "equations", "point_mass")
@@ -104,11 +173,19 @@ def test_a_point_mass_pole_still_differs_on_the_rounded_pole(tmp_path: Path) -> 
     assert result.equivalent is False
 
 
-def test_two_bodies_within_the_digits_are_no_reading() -> None:
+def test_a_rod_and_its_cylinder_within_the_digits_read_as_the_cylinder() -> None:
     r"""0.01067 is the 0.8 m rod's m L²/12 (0.0106667) and its 1 cm cylinder's
-    m (3r² + L²)/12 (0.0106717) both, to four digits: neither is read (the nearest was, and
-    a document writing the cylinder's formula agreed where the URDF meant the rod)."""
-    assert _read("0.01067", "0.01067", "0.00001") == {}
+    m (3r² + L²)/12 (0.0106717) both, to four digits: read as the cylinder's, the body the
+    URDF draws (left unread, a document writing the uniform cylinder it declares, exactly,
+    was "12/5 × what fits" in m r²/4; the slender rod's formula is the approximation that
+    leaves m r²/4 out)."""
+    import pinocchio as pin
+    read = _read("0.01067", "0.01067", "0.00001")
+    assert "as m (3 r² + L²)/12" in read["rod"][1], read
+    own = pin.Inertia.FromDynamicParameters(np.asarray(read["rod"][0]))
+    cylinder = 0.2 * (3 * 0.01 ** 2 + 0.8 ** 2) / 12
+    assert own.inertia[0, 0] == pytest.approx(cylinder, rel=1e-15)
+    assert own.inertia[1, 1] == pytest.approx(cylinder, rel=1e-15)
 
 
 def _pole_with_bob(tmp_path: Path) -> Path:
@@ -168,11 +245,11 @@ def test_a_link_fixed_to_another_names_the_bodies_with_parameters(tmp_path: Path
 @pytest.mark.parametrize("printed", ["0.0107", "0.010666"], ids=["three-digits", "cut"])
 def test_three_digits_and_cut_values_are_read(printed: str) -> None:
     r"""A moment printed to three digits (0.0107 for the 0.8 m rod's 0.0106667, the 1 cm
-    cylinder's 0.0106717 a unit off too: neither read), or cut rather than rounded: read
+    cylinder's 0.0106717 a unit off too: the cylinder's read), or cut rather than rounded: read
     where one body's value is within a unit of the last digit."""
     read = _read(printed, printed, "0.00001")
     if printed == "0.0107":
-        assert read == {}                  # the rod's and the cylinder's both within a unit
+        assert "as m (3 r² + L²)/12" in read["rod"][1]   # the rod's and the cylinder's both
     else:
         assert "as m L²/12" in read["rod"][1]
 

@@ -20,8 +20,9 @@ moments of the uniform bodies its first cylinder or sphere gives (radius :math:`
 
 and where exactly one lies within a unit of the last digit printed (the value rounded there,
 or cut: ``"0.024645"`` for 0.0246458), and the printed value is not already it, the link's
-moment is read as that body's (:func:`uniform_inertials`; where two do, as a slender rod's
-and a thin cylinder's may, it is not read). The reading is made only for the links a
+moment is read as that body's (:func:`uniform_inertials`; where two do, it is not read —
+but for a slender rod's and a thin cylinder's, where it is read as the cylinder's: the body
+the URDF draws has a radius). The reading is made only for the links a
 document declares uniform (``[assumes] uniform``, the families ``uniform(link)`` and
 ``urdf_proportions``): their inertia is the uniform body's by declaration, and the URDF agrees
 with it to its printed digits. The report says so (a note).
@@ -54,15 +55,19 @@ def half_unit(text: str) -> float | None:
     return 0.5 * 10.0 ** exponent if isinstance(exponent, int) else None
 
 
+#: The moments of a cylinder about a diameter through its centre, and of a slender rod.
+CYLINDER, ROD = "m (3 r² + L²)/12", "m L²/12"
+
+
 def _candidates(mass: float, radius: float | None, length: float | None
                 ) -> list[tuple[float, str]]:
     out: list[tuple[float, str]] = []
     if radius is not None:
         out += [(mass * radius ** 2 / 2, "m r²/2"), (2 * mass * radius ** 2 / 5, "2 m r²/5")]
     if radius is not None and length is not None:
-        out.append((mass * (3 * radius ** 2 + length ** 2) / 12, "m (3 r² + L²)/12"))
+        out.append((mass * (3 * radius ** 2 + length ** 2) / 12, CYLINDER))
     if length is not None:
-        out.append((mass * length ** 2 / 12, "m L²/12"))
+        out.append((mass * length ** 2 / 12, ROD))
     return out
 
 
@@ -102,8 +107,11 @@ def uniform_inertials(text: str, shapes: Mapping[str, tuple[float | None, float 
                 continue                   # too few digits to tell one body from another
             near = [(v, f) for v, f in _candidates(own.mass, radius, length)   # rounded or
                     if abs(v - value) <= 2 * half]                          # cut at its digits
-            # one body's only (0.01067 is a 0.8 m rod's m L²/12 and its cylinder's both, to
-            # four digits: no reading), and not printed exactly
+            if {f for _, f in near} == {CYLINDER, ROD}:
+                near = [x for x in near if x[1] == CYLINDER]
+            # one body's only, and not printed exactly; where a slender rod's m L²/12 and the
+            # cylinder's are both the printed value to its digits (0.0807 for 0.8 kg, 1.1 m,
+            # r = 0.02 m), the cylinder's: the body the URDF draws, its radius not zero
             if len(near) == 1 and near[0][0] != value:
                 moments[axis] = near[0][0]
                 said.append(f"{key} {printed} as {near[0][1]} = {near[0][0]:.10g}")

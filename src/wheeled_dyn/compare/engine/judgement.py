@@ -28,7 +28,8 @@ from ..judge.draft import ElementDraft
 from ..judge.element import Trials, judge
 from ..judge.factorization import factorization
 from ..judge.fitting import bases
-from ..judge.named import NAMED, name_terms, own_moments
+from ..judge.named import NAMED, name_terms
+from ..judge.own_inertia import own_moments
 from ..judge.precision import largest_terms, row_round_off
 from ..judge.rows import drafts_of_row, row_values
 from ..judge.units import DimensionChecker

@@ -12,6 +12,8 @@ On the identification grid (many parameter sets) :math:`\Delta` is fitted
    from the axis) and not exactly its own moment, the document wrote the inertia about the
    centre of mass where the one about the joint's axis fits — ``parallel_axis`` (for a
    uniform rod :math:`m l^2/4` is also 3 × its own moment: the exact fit is the one named);
+   a part of a moment (:math:`mr^2/4`, half a cylinder's axial :math:`mr^2/2`, left out by a
+   slender rod's formula) is a formula's term the document lacks, no point mass;
 2. as a monomial, or a sum of two products, in the document's symbols, positions and their
    sines and cosines (:mod:`.fitting`): the terms the document lacks (those of
    :math:`\Delta`) — ``missing`` with the terms named, ``"the document lacks m*l**2/3"``
@@ -32,95 +34,17 @@ from ..records import Diagnosis, DiagnosisKind as K, Verdict, diagnosis, has_kin
 from .diagnose import nice_number, plausible_factor
 from .draft import ElementDraft
 from .fitting import RATIO_TOL, fit_factor, fit_sum
+from .own_inertia import AXES, bodies, point_mass_fit
 from .swap_fit import difference_reading
 
 #: Diagnoses after which no term is named (the error is named already); a constant factor
 #: may still be a point mass's (m l² for the rod's m l²/3), units need not be the difference.
 NAMED = (K.SIGN, K.POWER, K.SWAP, K.SMALL_ANGLE, K.EXTRA, K.UNDECIDED, K.POINT_MASS,
          K.PARALLEL_AXIS)
-#: Axes of a link's own moments of inertia.
-AXES = ("x", "y", "z")
 #: Most elements of one derivation whose terms are named (each is a search).
 MAX_NAMED = 12
 #: Largest expressions (operations) whose printed terms are compared with a residual.
 MAX_WRITTEN_OPS = 200
-
-
-def own_moments(values: Sequence[Mapping[str, float]], states: int, parallel: bool = False
-                ) -> dict[str, np.ndarray]:
-    r"""Every link's moments about its centre of mass along its own axes, per sample of a grid
-    (``values``: each parameter set's namespace values; ``states`` per set):
-    :math:`I_{xx,c} = XX - (MY^2 + MZ^2)/M` and likewise; with ``parallel`` their
-    parallel-axis parts instead, :math:`(MY^2 + MZ^2)/M = M (c_y^2 + c_z^2)` (keys
-    ``Pxx(link)``), and each part :math:`M c_y^2` (``P:y(link)``, once for both axes it
-    belongs to)."""
-    links = sorted({k[2:-1] for k in values[0] if k.startswith("M(")})
-    out: dict[str, np.ndarray] = {}
-    for link in links:
-        for a, axis in enumerate(AXES):
-            others = [x for x in AXES if x != axis]
-            vals = []
-            parts: dict[str, list[float]] = {}
-            for v in values:
-                m = v.get(f"M({link})", 0.0)
-                first = [v.get(f"M{o.upper()}({link})", 0.0) for o in others]
-                moment = v.get(f"{axis.upper() * 2}({link})", 0.0)
-                shift = sum(f * f for f in first) / m if m > 0 else 0.0
-                vals.append(shift if parallel else moment - shift if m > 0 else 0.0)
-                for o, f in zip(others, first):
-                    parts.setdefault(o, []).append(f * f / m if m > 0 else 0.0)
-            arr = np.repeat(np.asarray(vals, float), states)
-            if np.abs(arr).max(initial=0.0) > 0:
-                out[f"{'P' if parallel else 'I'}{axis}{axis}({link})"] = arr
-            for o, part in parts.items() if parallel else ():
-                arr = np.repeat(np.asarray(part, float), states)
-                if np.abs(arr).max(initial=0.0) > 0:
-                    out[f"P:{o}({link})"] = arr
-    return out
-
-
-def point_mass_fit(residual: np.ndarray, moments: Mapping[str, np.ndarray],
-                   bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> tuple[str, sp.Expr] | None:
-    r"""``(moment name(s), multiplier)`` with :math:`\Delta` = multiplier × moment(s); the
-    multiplier a simple rational, or a monomial in ``bases`` (the document's lengths and
-    positions: geometry, never another inertia)."""
-    items = list(moments.items())
-    trials = [(name, v) for name, v in items]
-    trials += [(f"{a} + {b}", va + vb) for k, (a, va) in enumerate(items)
-               for b, vb in items[k + 1:] if a[:3] == b[:3]]
-    found: list[tuple[str, sp.Expr]] = []
-    for name, v in trials:
-        if np.abs(v).min() <= 0:
-            continue
-        ratio = residual / v
-        if np.ptp(ratio) <= RATIO_TOL * np.abs(ratio).max():
-            c = sp.nsimplify(float(np.median(ratio)), rational=True, tolerance=1e-9)
-            if c != 0 and abs(float(c) - float(np.median(ratio))) <= 1e-9 * abs(float(c)) \
-                    and sp.Rational(c).q <= 12:
-                found.append((name, c))
-                continue
-        fitted = fit_factor(ratio, bases)
-        if fitted is not None:
-            found.append((name, fitted))
-    # a moment the document lacks (never one it has too much: that is no point mass); where
-    # several fit (a family keeps a body's moments proportional), the simplest multiplier
-    lacking = [(name, c) for name, c in found if not c.could_extract_minus_sign()]
-    return min(lacking, key=lambda f: _plainness(f[1]), default=None)
-
-
-def _plainness(c: sp.Expr) -> tuple[int, int]:
-    r"""How plain a multiplier is: its operations, then its rational coefficient's size."""
-    coeff = c.as_coeff_Mul()[0]
-    size = int(abs(coeff.p) + coeff.q) if isinstance(coeff, sp.Rational) else 10 ** 6
-    return int(sp.count_ops(c)), size
-
-
-def _bodies(name: str) -> str:
-    r"""``"link1 as a point mass"``, ``"wheel_left and wheel_right as point masses"`` for
-    the moments ``name`` (``Izz(wheel_left) + Izz(wheel_right)``) of :func:`own_moments`."""
-    links = list(dict.fromkeys(one[one.index("(") + 1:-1] for one in name.split(" + ")))
-    return f"{links[0]} as a point mass" if len(links) == 1 else \
-        f"{' and '.join(links)} as point masses"
 
 
 def _same_parts(name: str, parallel: Mapping[str, np.ndarray]) -> str:
@@ -288,6 +212,31 @@ def _lacks(expr: sp.Expr, written: frozenset = frozenset(),
     return "the document " + "; ".join(parts)
 
 
+def _own_inertia(r: ElementDraft, hit: tuple[str, sp.Expr], term: sp.Expr | None) -> None:
+    r"""Name the residual of ``r`` found to be ``hit`` = (moment name(s), multiplier) of
+    :func:`~.own_inertia.point_mass_fit`, ``term`` it in the document's symbols where found:
+    the body as a point mass — or, for a part of a moment (m r²/4 = ½ m r²/2 of a cylinder
+    written as a slender rod), a formula's term left out, not the body's inertia."""
+    name, c = hit
+    if c.is_Rational and c < 1:
+        part = f"{sp.sstr(c)}*{name}"
+        r.diagnoses.insert(0, diagnosis(
+            K.MISSING, f"the document lacks {part} in the model's parameters, a part of the "
+            f"moment of inertia {name} about its own centre of mass (a formula for the "
+            "body's inertia that leaves a term out)", prefix="missing", terms=(part,)))
+        return
+    times = "" if c == 1 else f" × {sp.sstr(c)}"
+    if term is not None and term.could_extract_minus_sign():
+        term = -term        # a moment is positive (a Kane row: −1 × the truth)
+    own = f" ({sp.sstr(term)} in the document's symbols)" if term is not None else ""
+    r.diagnoses.insert(0, diagnosis(
+        K.POINT_MASS, f"the moment of inertia {name} about its own centre of mass"
+        f"{times}{own} is missing: the document treats {bodies(name)} "
+        "(or drops its inertia)", prefix="missing",
+        terms=(sp.sstr(term) if term is not None else f"{sp.sstr(c)}*{name}",),
+        fits=name, factor=sp.sstr(c)))
+
+
 def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[int, ...]],
                tuple[np.ndarray, np.ndarray]], bases: Sequence[tuple[sp.Expr, np.ndarray]],
                moments: Mapping[str, np.ndarray], geometric: set[sp.Symbol],
@@ -335,18 +284,7 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
                 term.is_Symbol):      # one of the document's symbols (m for 3 Ixx/l²): plainer
             hit = None
         if hit is not None:
-            name, c = hit
-            times = "" if c == 1 else f" × {sp.sstr(c)}"
-            if term is not None and term.could_extract_minus_sign():
-                term = -term        # a moment is positive (a Kane row: −1 × the truth)
-            own = f" ({sp.sstr(term)} in the document's symbols)" if term is not None \
-                else ""
-            r.diagnoses.insert(0, diagnosis(
-                K.POINT_MASS, f"the moment of inertia {name} about its own centre of mass"
-                f"{times}{own} is missing: the document treats {_bodies(name)} "
-                "(or drops its inertia)", prefix="missing",
-                terms=(sp.sstr(term) if term is not None else f"{sp.sstr(c)}*{name}",),
-                fits=name, factor=sp.sstr(c)))
+            _own_inertia(r, hit, term)
             continue
         missing = _missing_factor(D, T, bases, r.expr)
         if missing is not None:
@@ -397,4 +335,4 @@ def _undivided(before: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]
                      terms=tuple(sp.sstr(t) for t in sp.Add.make_args(sp.expand(found))))
 
 
-__all__ = ["AXES", "NAMED", "name_terms", "own_moments", "point_mass_fit"]
+__all__ = ["NAMED", "name_terms"]

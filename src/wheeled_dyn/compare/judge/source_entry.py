@@ -36,7 +36,7 @@ import sympy as sp
 from ..records import Diagnosis
 from .diagnose import AGREE_TOL, nice_number
 from .equivalence import SINGULAR_TOL, relative_det
-from .named import own_moments
+from .own_inertia import own_moments
 from .unsolved import entry_part, read_back_diagnosis, term_columns, whole_factor
 
 #: A projected document of rank one: its second singular value at most this times its first.

@@ -31,7 +31,8 @@ from ..records import Diagnosis, DiagnosisKind as K, Verdict, has_kind
 from .diagnose import AGREE_TOL, value_diagnoses
 from .draft import ElementDraft
 from .entry_terms import entry_reading
-from .named import NAMED, own_moments, point_mass_fit
+from .named import NAMED
+from .own_inertia import own_moments, point_mass_fit
 from .swap_fit import difference_reading
 
 
