@@ -259,7 +259,7 @@ def test_no_quasi_cause_from_a_wrong_inertia(engine, tmp_path):
     terms of that A (:math:`\Delta h_2 = (XX1 + YY1)\sin 2\varphi\,\dot\psi\dot\varphi`,
     :math:`\Delta h_3 = -\tfrac12(XX1 + YY1)\sin 2\varphi\,\dot\psi^2`): h equals the Christoffel terms of its own A
     and differs from the truth, but because A is wrong along φ, not for any Boltzmann–Hamel
-    term — no quasi-coordinate cause names those products."""
+    term — no quasi-coordinate cause names those products: they follow from A[2,2]."""
     extra = "(XX1 + YY1)*sin(2*phi)/2"
     C = BASE["matrices"]["C"]
     A22 = BASE["matrices"]["A"][1][1]
@@ -275,6 +275,9 @@ def test_no_quasi_cause_from_a_wrong_inertia(engine, tmp_path):
     for c in result.causes:
         if c.kind == "quasi_coordinate_christoffel":
             assert not {"h[2]:dpsi*dphi", "h[3]:dpsi*dpsi"} & set(c.elements), c
+    (upstream,) = [c for c in result.causes if "h[2]:dpsi*dphi" in c.elements]
+    assert upstream.kind == "upstream_step" and "(A[2,2])" in upstream.explanation, upstream
+    assert "h[3]:dpsi*dpsi" in upstream.elements
 
 
 # -- single-term errors -------------------------------------------------------------------------

@@ -248,8 +248,10 @@ def test_a_sign_change_through_a_pole_or_a_zero_names_its_equation(pole):
 def test_a_declared_row_scale_binds(engine, tmp_path, printed, agrees):
     r"""``[rows] scale = ["2"]``: the file says the document printed 2 × the true equation.
     Printed so, it agrees (and no undeclared factor is reported); printed unscaled, the
-    equation is right in itself but not as declared: it differs as declared, its elements
-    named as a factor 1/2, and a ``file_error`` cause says the declaration is probably wrong."""
+    equation is right in itself but not as declared: it differs as declared, and a
+    ``file_error`` cause says the declaration is probably wrong and claims its elements,
+    which say they differ only as declared — no term of theirs is diagnosed (a factor 1/2)
+    and no power identity is read through the declared scale."""
     path = tmp_path / "declared.toml"
     path.write_text(ROD.format(name="declared", assumes="", equation=(
         f"{printed}(1/3*m*l**2*ddtheta + m*g*l/2*sin(theta)) = 0")) + '[rows]\nscale = ["2"]\n')
@@ -262,8 +264,14 @@ def test_a_declared_row_scale_binds(engine, tmp_path, printed, agrees):
         return
     assert result.equivalent is False and equation.verdict == "differs"
     assert K.DECLARED in [d.kind for d in equation.diagnoses]
-    assert any(c.kind == "file_error" for c in result.causes), result.causes
-    assert any(d.kind == K.FACTOR for r in result.records for d in r.diagnoses)
+    (cause,) = [c for c in result.causes if c.kind == "file_error"]
+    differing = [r for r in result.records if r.verdict != "agrees"]
+    assert differing and {r.element for r in differing} <= set(cause.elements), cause
+    assert all(r.diagnoses[0].kind == K.DECLARED and {d.kind for d in r.diagnoses}
+               <= {K.DECLARED, K.RESIDUAL} for r in differing), differing
+    assert [c for c in result.causes if set(c.elements) & {r.element for r in differing}] \
+        == [cause], result.causes
+    assert result.energy is None
 
 
 def test_constraints_stated_where_the_model_has_none_are_not_left_aside(engine, tmp_path):

@@ -60,8 +60,11 @@ def frame_causes(d: Derivation, texts: Sequence[FrameText], rules: Sequence[Fram
                          why.detail if why is not None else ""))
     for i in declared_wrong:
         found = first_of(equations[i].diagnoses, K.DECLARED) if i < len(equations) else None
-        if found is not None:
-            out.append(Cause(CauseKind.FILE_ERROR, (equations[i].label,), found.detail))
+        if found is not None:        # its elements differ for it alone (declared_only)
+            elements = tuple(r.element for r in records if r.key in "ACQBhK"
+                             and r.index[0] == i and r.verdict != Verdict.AGREES)
+            out.append(Cause(CauseKind.FILE_ERROR, (equations[i].label, *elements),
+                             found.detail))
     return out
 
 

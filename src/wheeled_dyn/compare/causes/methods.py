@@ -104,20 +104,25 @@ def _from_own_christoffel(ev: Evaluation, own: dict[tuple[int, int, int], bool])
                                  for (i, j, k), same in own.items())
 
 
-def _holds_wrong(index: Sequence[int], wrong: dict[tuple[int, int], sp.Expr | None],
-                 positions: Sequence[sp.Symbol]) -> bool:
-    r"""Whether the Christoffel terms of h product ``index`` = (i, j, k),
-    :math:`\tfrac12(\partial_k A_{ij} + \partial_j A_{ik} - \partial_i A_{jk})`, take a
-    derivative of an element of A that differs (``wrong``: by element, either of a symmetric
-    pair, its truth − document where known) along a position its difference depends on (a
-    constant written wrong in A, a product of inertia, leaves them as they are)."""
+def _wrong_along(index: Sequence[int], wrong: dict[tuple[int, int], sp.Expr | None],
+                 positions: Sequence[sp.Symbol]) -> list[tuple[int, int]]:
+    r"""The elements of A that differ (``wrong``: by element, either of a symmetric pair,
+    their truth − document where known) whose derivative the Christoffel terms of h product
+    ``index`` = (i, j, k),
+    :math:`\tfrac12(\partial_k A_{ij} + \partial_j A_{ik} - \partial_i A_{jk})`, take along
+    a position their difference depends on (a constant written wrong in A, a product of
+    inertia, leaves them as they are)."""
     i, j, k = index
+    out = []
     for (a, b), along in (((i, j), k), ((i, k), j), ((j, k), i)):
         for e in ((a, b), (b, a)):
-            if e in wrong and (wrong[e] is None or str(positions[along]) in
-                               {str(x) for x in wrong[e].free_symbols}):
-                return True
-    return False
+            if e not in wrong:
+                continue
+            difference = wrong[e]
+            if difference is None or str(positions[along]) in {
+                    str(x) for x in difference.free_symbols}:
+                out.append(e)
+    return out
 
 
 def specific(r) -> bool:
@@ -185,7 +190,9 @@ def method_causes(ev: Evaluation, d, records: Sequence) -> list[Cause]:
     # absolute: their A wrong, their C its own)
     wrong_A = {(r.index[0], r.index[1]): parse(r.residual) if r.residual else None
                for r in records if r.key == "A" and r.verdict == Verdict.DIFFERS}
-    quasi = [r for r in quasi if not _holds_wrong(r.index, wrong_A, d.positions)]
+    along = {r.element: _wrong_along(r.index, wrong_A, d.positions) for r in quasi}
+    derived = [r for r in quasi if along[r.element]] if ev.kind == "quasi" else []
+    quasi = [r for r in quasi if not along[r.element]]
     if quasi and ev.kind == "quasi":
         out.append(Cause(
             kind=CauseKind.QUASI_COORDINATE_CHRISTOFFEL,
@@ -197,6 +204,15 @@ def method_causes(ev: Evaluation, d, records: Sequence) -> list[Cause]:
                          "missing" + (" (truth − document below)"
                                           if any(r.residual for r in quasi) else "")),
             latex=_missing_terms_latex(quasi, d)))
+    if derived:
+        sources = sorted({e for r in derived for e in along[r.element]})
+        held = ", ".join(f"A[{a + 1},{b + 1}]" for a, b in sources)
+        out.append(Cause(
+            kind=CauseKind.UPSTREAM_STEP,
+            elements=tuple(r.element for r in derived) + c_elements({q.index[0] for q in derived}),
+            explanation=("these velocity products are the Christoffel terms of the document's "
+                         f"own A along elements of it that differ ({held}): they follow from "
+                         "them, whose own records say what differs")))
     if inconsistent:
         rows = {q.index[0] for q in inconsistent}
         out.append(Cause(

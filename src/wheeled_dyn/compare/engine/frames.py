@@ -16,6 +16,7 @@ import numpy as np
 import sympy as sp
 
 from ...derivations.schema import Derivation
+from ..judge.draft import ElementDraft
 from ..judge.equivalence import EquationDecision, SystemDecision
 from ..judge.fitting import RATIO_TOL, bases, fit_factor
 from ..judge.units import DimensionChecker
@@ -205,6 +206,23 @@ def bind_declared(d: Derivation, decision: SystemDecision, wrong: Sequence[int]
     return replace(decision, equations=tuple(equations))
 
 
+def declared_only(d: Derivation, drafts: Sequence[ElementDraft], wrong: Sequence[int]
+                  ) -> None:
+    r"""The elements of each row of ``wrong`` (right as printed, its declared scale
+    contradicted) that differ: they differ only as the file declares the row to be read, so
+    they say that, in place, and no term of theirs is diagnosed (a term "lc2 where lc2**2
+    fits" in a row the file declares lc2 × the true one is the declaration's doing)."""
+    if d.row_scale is None:
+        return
+    for r in drafts:
+        if r.row in wrong and r.verdict != Verdict.AGREES:
+            r.verdict = Verdict.DIFFERS
+            r.diagnoses = [diagnosis(
+                DiagnosisKind.DECLARED, f"differs only as the file declares equation "
+                f"{r.row + 1} to be read (the true one times {sp.sstr(d.row_scale[r.row])}); "
+                "the equation as printed is right", prefix="")]
+
+
 def _always(i: int, rule: FrameRule, main: Sides, declared: np.ndarray | None = None) -> Frame:
     r"""Row ``i``'s frame under a rule that always has one (the identity, the declared scale)
     on the main grid."""
@@ -259,5 +277,5 @@ def id_frames(d: Derivation, funcs: DocumentFunctions, rules: list[FrameRule],
             for i, rule in enumerate(rules)]
 
 
-__all__ = ["SIMPLE_SAMPLES", "bind_declared", "choose_frames", "declared_weights", "id_frames",
-           "row_factors"]
+__all__ = ["SIMPLE_SAMPLES", "bind_declared", "choose_frames", "declared_only", "declared_weights",
+           "id_frames", "row_factors"]

@@ -37,7 +37,8 @@ from ..judge.source_entry import source_entry
 from ..judge.unsolved import inertia_diagnoses, read_back, unsolved_terms
 from ..readings.describe import describe
 from ..readings.frames import Frame, FrameKind, FrameRule, constant_weights, evaluate_rule
-from .frames import bind_declared, choose_frames, declared_weights, id_frames, row_factors
+from .frames import (bind_declared, choose_frames, declared_only, declared_weights, id_frames,
+                     row_factors)
 from ..records import Cause, CauseKind, DerivationResult, Diagnosis, Verdict, has_kind
 from ..sides.both import Sides, both_sides
 from ..sides.document import DocumentFunctions
@@ -201,6 +202,7 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     drafts, gammas = _row_drafts(d, funcs, sides, frames, rules, DimensionChecker(d), label)
     from ..judge.swaps import h_swaps
     h_swaps(drafts)
+    declared_only(d, drafts, declared_wrong)
     families.search(cases, drafts, _agreeing(engine, d, funcs, rules, assumed))
     factorization(drafts, gammas, d.velocities)
     combined = any(r.kind == FrameKind.COMBINATION for r in rules)
@@ -306,7 +308,7 @@ def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed
     if len(scales) != d.n:
         scales = np.ones(d.n)
     no_factor = (None,) * d.n
-    energy, asymmetric = own_checks(d, funcs, sides, texts, rules, frames)
+    energy, asymmetric = own_checks(d, funcs, sides, texts, rules, frames, declared_wrong)
     ev = Evaluation(funcs=funcs, doc=sides.doc, truth=sides.truth, B_true=sides.B_true,
                     scales=scales, q=grid.flat_q, nu=grid.flat_nu, values=sides.values,
                     row_factor=no_factor, kind=grid.cs.kind)

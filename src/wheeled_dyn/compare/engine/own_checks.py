@@ -14,15 +14,18 @@ from ..readings.frames import FrameKind
 from ..records import EnergyCheck
 
 
-def own_checks(d: Derivation, funcs, sides, texts, rules, frames
+def own_checks(d: Derivation, funcs, sides, texts, rules, frames, declared_wrong=()
                ) -> tuple[EnergyCheck | None, tuple[str, ...]]:
     r"""(the power identity's check or None, the asymmetric pairs and definiteness as text) of
     the document ``d``; ``sides`` both sides on the main grid, ``texts``, ``rules``,
-    ``frames`` each row's frame."""
+    ``frames`` each row's frame; ``declared_wrong`` the rows whose declared scale the
+    equation as printed contradicts: no power identity is read through them (the rows
+    divided by a scale they do not have conserve no energy, and that is the declaration's
+    error, said by its own cause)."""
     own = _unscaled(sides.doc, frames, rules)
     asymmetric = () if own is None or own.A is None else asymmetry(
         own, _entry_sizes(own.A), d.n, sides.truth.A, sides.doc.A)
-    diagonal = _diagonal_factors(d, texts, rules)
+    diagonal = None if declared_wrong else _diagonal_factors(d, texts, rules)
     grid = sides.grid
     energy = None if diagonal is None else energy_check(
         funcs, sides.doc, diagonal, grid.flat_q, grid.flat_nu, sides.values, d)

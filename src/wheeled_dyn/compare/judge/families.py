@@ -72,7 +72,8 @@ def items(elements: Iterable[tuple[str, tuple[int, ...], np.ndarray, np.ndarray,
 
 def _searchable(d: ElementDraft) -> bool:
     return d.verdict == Verdict.DIFFERS and not has_kind(
-        d.diagnoses, K.DIMENSION, K.SIGN, K.FACTOR, K.SWAP, K.SMALL_ANGLE, K.UNDECIDED)
+        d.diagnoses, K.DIMENSION, K.SIGN, K.FACTOR, K.SWAP, K.SMALL_ANGLE, K.UNDECIDED,
+        K.DECLARED)
 
 
 class _Grids:

@@ -40,7 +40,7 @@ from .swap_fit import difference_reading
 #: Diagnoses after which no term is named (the error is named already); a constant factor
 #: may still be a point mass's (m l² for the rod's m l²/3), units need not be the difference.
 NAMED = (K.SIGN, K.POWER, K.SWAP, K.SMALL_ANGLE, K.EXTRA, K.UNDECIDED, K.POINT_MASS,
-         K.PARALLEL_AXIS)
+         K.PARALLEL_AXIS, K.DECLARED)
 #: Most elements of one derivation whose terms are named (each is a search).
 MAX_NAMED = 12
 #: Largest expressions (operations) whose printed terms are compared with a residual.
