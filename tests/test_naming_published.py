@@ -282,6 +282,51 @@ def test_a_solved_form_names_a_symbol_for_another_and_its_inverted_inertia(
     assert named in said, said
 
 
+#: The Furuta pendulum's equations (``data/published/furuta_equations.toml``) solved for the
+#: accelerations as simulation code writes them, A q̈ + h + q = B u inverted by hand (one
+#: input for two coordinates).
+FURUTA_SOLVED = """
+[definitions]
+a11 = "J1 + m1*lc1**2 + L1**2*m2 + Jyy*sin(al)**2 + Jzz*cos(al)**2 + lc2**2*m2*sin(al)**2"
+a12 = "L1*lc2*m2*cos(al)"
+a22 = "Jxx + lc2**2*m2"
+h1 = "2*(Jyy - Jzz + lc2**2*m2)*dal*dth*sin(al)*cos(al) - L1*dal**2*lc2*m2*sin(al)"
+h2 = "-(Jyy - Jzz + lc2**2*m2)*dth**2*sin(al)*cos(al)"
+q2 = "g*lc2*m2*sin(al)"
+
+[matrices]
+equations = [
+  "ddth = (a22*(tau - h1) - a12*(-h2 - q2))/(a11*a22 - a12**2)",
+  "ddal = (a11*(-h2 - q2) - a12*(tau - h1))/(a11*a22 - a12**2)",
+]
+"""
+
+
+@pytest.mark.parametrize("coupling", ["L1*lc2*m2*cos(al)", "-L1*lc2*m2*cos(al)"],
+                         ids=["right", "opposite-sign"])
+def test_a_coupling_inertias_sign_before_solving_is_the_cause(engine, tmp_path, coupling):
+    r"""The Furuta pendulum solved for its accelerations: right, it agrees; its coupling
+    inertia a12 written with the opposite sign, then inverted, every solved element it
+    reaches has a term of the opposite sign, and the cause that claims them names the
+    coupling, A[1,2] = A[2,1], read back before solving (it was "sign: the document has the
+    opposite sign — Q[1], …", the solved elements' own)."""
+    for name in ("furuta.toml", "furuta.urdf"):
+        (tmp_path / name).write_text((DATA / name).read_text())
+    text = (DATA / "furuta_equations.toml").read_text()
+    solved = FURUTA_SOLVED.replace('a12 = "L1*lc2*m2*cos(al)"', f'a12 = "{coupling}"')
+    path = tmp_path / "doc.toml"
+    path.write_text(text[:text.index("[matrices]")] + solved)
+    result = engine.compare(load_derivation(path))
+    if not coupling.startswith("-"):
+        assert result.equivalent is True, [c.explanation for c in result.causes]
+        return
+    assert result.equivalent is False
+    differing = {r.element for r in result.records if r.verdict == "differs" and r.key != "C"}
+    claiming = [c for c in result.causes if set(c.elements) & differing]
+    assert claiming and "A[1,2]: the document has the opposite sign" in \
+        claiming[0].explanation, [c.explanation for c in result.causes]
+
+
 def test_a_gravity_term_dropped_before_solving_is_named_on_every_element_it_reaches(
         engine, tmp_path):
     r"""The double pendulum solved for its accelerations with link 2's gravity term left out

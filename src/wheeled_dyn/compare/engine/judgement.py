@@ -250,12 +250,12 @@ def _read_back(d: Derivation, drafts: list[ElementDraft], rules: list[FrameRule]
     (:func:`source_entry`); the rows it shows combined in another way than their frames (the
     wrong entry in a combination's weight, eq1 − (d₁₂/d₂₂)·eq2, left every frame worse
     than the row as printed, or was taken into the frame's weights) are named by it alone."""
-    solved, entry = None, None
+    solved, entry, inverted = None, None, None
     if combined:
         said = truths()
-        solved = inertia_diagnoses(id_sides, found, d.velocities, said) or \
-            unsolved_terms(id_sides.doc, id_sides.truth, id_sides.B_true, d.velocities, found,
-                           said)
+        inverted = inertia_diagnoses(id_sides, found, d.velocities, said)
+        solved = inverted or unsolved_terms(id_sides.doc, id_sides.truth, id_sides.B_true,
+                                            d.velocities, found, said)
         entry = None if solved is not None else source_entry(id_sides, found, d.velocities,
                                                               said)
     else:                  # as printed but for rows it shows combined: else none read back
@@ -271,7 +271,8 @@ def _read_back(d: Derivation, drafts: list[ElementDraft], rules: list[FrameRule]
         if combined else set()
     other = set() if entry is None else set(entry.other_frames(
         [None if f is None else f.weights for f in on_id]))
-    read_back(drafts, shown | other, solved, varying | other, other)
+    read_back(drafts, shown | other, solved, varying | other, other,
+              varying if inverted is not None else set())
     return solved
 
 

@@ -361,7 +361,8 @@ STRONG = tuple(k for k in (*NAMED, K.FACTOR) if k != K.EXTRA)
 
 def read_back(drafts: Sequence[ElementDraft], rows: set[int], found: Diagnosis | None,
               varying: set[int] | frozenset[int] = frozenset(),
-              alone: set[int] | frozenset[int] = frozenset()) -> None:
+              alone: set[int] | frozenset[int] = frozenset(),
+              first: set[int] | frozenset[int] = frozenset()) -> None:
     r"""``found`` (:func:`inertia_diagnoses` or :func:`unsolved_terms`: the document's
     equations read back before it solved or combined them) said first on each element of
     those ``rows`` (divided by a function or combined) that differs and that no diagnosis
@@ -370,14 +371,18 @@ def read_back(drafts: Sequence[ElementDraft], rows: set[int], found: Diagnosis |
     of the source equations lands in every solved element it reaches, in a rational function
     of every parameter, and is named where the author wrote it (a row combined with numbers,
     eq1 − eq2, keeps its own: its terms are the author's); in the rows ``alone`` (their
-    frames not the author's combination) in place of every name of its own. An explanation
-    only: no verdict changes."""
+    frames not the author's combination) in place of every name of its own; in the rows
+    ``first`` (solved, the inertia the document inverted read back wrong) before every name of
+    its own, which stay after it (a12's sign before solving is each solved element's "opposite
+    sign"). An explanation only: no verdict changes."""
     if found is None:
         return
     for r in drafts:
         if r.row in alone and r.verdict == Verdict.DIFFERS and r.key != "C":
             r.diagnoses[:] = [found, *(x for x in r.diagnoses if x.kind not in (*STRONG, K.EXTRA,
                                                                                 K.MISSING))]
+        elif r.row in first and r.verdict == Verdict.DIFFERS and r.key != "C":
+            r.diagnoses[:] = [found, *r.diagnoses]
         elif r.row in rows and r.verdict == Verdict.DIFFERS and r.key != "C" \
                 and not has_kind(r.diagnoses, *STRONG):
             # its own terms missing or too much in the solved frame are what the source's
