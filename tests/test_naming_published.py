@@ -327,6 +327,28 @@ def test_a_coupling_inertias_sign_before_solving_is_the_cause(engine, tmp_path, 
         claiming[0].explanation, [c.explanation for c in result.causes]
 
 
+def test_two_symbols_exchanged_in_a_term_are_named(engine, tmp_path):
+    r"""The differential drive in (v, ω) (``data/published/dd_swivel_vw.toml`` on the robot
+    without its caster, ``dd_robot``) with the
+    wheels' yaw inertia written :math:`2R^2I_w/L^2` for :math:`2L^2I_w/R^2` (R and L, two
+    lengths, exchanged in one term): the element is named as the exchange (it was "no
+    single-term diagnosis")."""
+    for name in ("dd_robot.toml", "dd_robot.urdf"):      # the robot without its caster
+        (tmp_path / name).write_text((DATA / name).read_text())
+    text = (DATA / "dd_swivel_vw.toml").read_text().replace('model = "dd_swivel.toml"',
+                                                            'model = "dd_robot.toml"')
+    old = "(I + 2*L**2*I_w/R**2)*domega"
+    assert text.count(old) == 1
+    path = tmp_path / "doc.toml"
+    path.write_text(text.replace(old, "(I + 2*R**2*I_w/L**2)*domega"))
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False
+    flagged = {r.element: r for r in result.records if r.verdict != "agrees"}
+    assert set(flagged) == {"A[2,2]"}, set(flagged)
+    (swap,) = [x for x in flagged["A[2,2]"].diagnoses if x.kind == K.SWAP]
+    assert swap.written == "2*I_w*R**2/L**2" and swap.fits == "2*I_w*L**2/R**2", swap
+
+
 def test_a_gravity_term_dropped_before_solving_is_named_on_every_element_it_reaches(
         engine, tmp_path):
     r"""The double pendulum solved for its accelerations with link 2's gravity term left out

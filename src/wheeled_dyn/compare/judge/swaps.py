@@ -37,7 +37,8 @@ def symbol_swaps(d: ElementDraft, trials, groups: Sequence[Sequence[sp.Symbol]]
 def _one_factor_trials(expr: sp.Expr, groups: Sequence[Sequence[sp.Symbol]]):
     r"""``(term, written, fits, trial element)``: in one additive term, a symbol :math:`a`
     read as :math:`b` — everywhere in the term (:math:`a^2` becomes :math:`b^2`), or in one
-    factor of a power (:math:`a^e` becomes :math:`a^{e-1}b`)."""
+    factor of a power (:math:`a^e` becomes :math:`a^{e-1}b`) — or two symbols of the term
+    exchanged (:math:`R^2/L^2` where :math:`L^2/R^2` fits)."""
     members = {s: g for g in groups for s in g}
     terms = sp.Add.make_args(sp.expand(expr))
     if len(terms) > MAX_TERMS:
@@ -57,6 +58,11 @@ def _one_factor_trials(expr: sp.Expr, groups: Sequence[Sequence[sp.Symbol]]):
                 if e > 1:
                     new = t.xreplace({base ** e: base ** (e - 1) * b})
                     yield (t, sp.sstr(base ** e), sp.sstr(base ** (e - 1) * b), expr - t + new)
+        bases = list(dict.fromkeys(base for base, _ in present))
+        for a, b in itertools.combinations(bases, 2):
+            if b in members[a]:
+                new = t.xreplace({a: b, b: a})
+                yield (t, sp.sstr(t), sp.sstr(new), expr - t + new)
 
 
 #: Most trials of :func:`product_swaps` per element.
@@ -82,9 +88,9 @@ def product_swaps(expr: sp.Expr, trials, groups: Sequence[Sequence[sp.Symbol]], 
             continue
         with np.errstate(all="ignore"):
             if agrees(trials.evaluate(trial), T, scale):
-                found.append(diagnosis(K.SWAP, f"{written} where {fits} fits in the term "
-                                       f"{sp.sstr(term)}", written=written, fits=fits,
-                                       term=sp.sstr(term)))
+                where = "" if written == sp.sstr(term) else f" in the term {sp.sstr(term)}"
+                found.append(diagnosis(K.SWAP, f"{written} where {fits} fits{where}",
+                                       written=written, fits=fits, term=sp.sstr(term)))
     return found
 
 
