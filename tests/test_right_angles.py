@@ -176,6 +176,21 @@ def test_the_truth_in_the_documents_symbols_is_the_right_angles(tmp_path):
         a11.truth
 
 
+def test_the_symbolic_command_takes_the_right_angles(tmp_path, capsys):
+    r"""``wheeled-dyn symbolic`` of the arm whose elbow frame is turned by 1.5708: its closed
+    forms are those of the right angle (as docs/model-format.md says), no
+    "0.999999999993254*sin(…) + 3.67e-6*cos(…)"; with the exact angle written, the same."""
+    from wheeled_dyn.cli.main import main
+    outputs = []
+    for roll in ("1.5708", "1.5707963267948966"):
+        doc = _turned_arm(tmp_path / roll.replace(".", "_"), roll)
+        assert main(["symbolic", str(doc.parent / "two_link_arm.toml")]) == 0
+        outputs.append(capsys.readouterr().out)
+    closed = [o[o.index("A(q) nu'"):] for o in outputs]
+    assert "0.99999" not in closed[0] and "e-6" not in closed[0], closed[0]
+    assert closed[0] == closed[1]
+
+
 @pytest.mark.parametrize("rpy", ["1.5708 0 0.3", "0.3 -1.5708 0", "0.2 3.1416 -1.5708"])
 def test_a_rounded_right_angle_beside_another_angle_is_the_right_angle(tmp_path, rpy):
     r"""An elbow frame turned by a rounded right angle and another angle (``rpy="1.5708 0

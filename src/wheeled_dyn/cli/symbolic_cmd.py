@@ -145,10 +145,11 @@ def _cmd_symbolic(args: argparse.Namespace) -> int:
     from ..coordinates import builtin_coordinate_set
     from ..models.registry import load_model
     from ..symbolic.printing import to_latex
-    from ..symbolic.wheeled import physical_latex, wheeled_symbolic
+    from ..symbolic.wheeled import derivation_joints, physical_latex, wheeled_symbolic
     wm = load_model(args.model)
     cs = builtin_coordinate_set(wm, args.coords)
     mode = _mode(args.model, args.parameters)
+    derivation_joints(wm, mode)       # rounded right angles exact, as the comparisons' truth
     form = args.form
     if form == "auto":
         form = "intermediate" if wm.model.nv > EXPANDED_MAX_NV else "expanded"

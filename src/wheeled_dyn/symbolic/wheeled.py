@@ -202,6 +202,19 @@ def trig_polynomial_map(cs: CoordinateSet) -> bool:
     return True
 
 
+def derivation_joints(wm: WheeledModel, mode: str) -> None:
+    r"""Turn ``wm``'s joint frames rounded to right angles by the right angles they stand for,
+    in place, as the comparisons draw them and a derivation takes them
+    (:func:`~..models.conventions.right_angled_joints`), in Khalil's standard parameters
+    (``mode`` ``"standard"``; a physical-parameter record is written for the model as it
+    is). ``wm`` must be a copy of its own (:func:`~..models.registry.load_model` gives one)."""
+    from ..models.conventions import RIGHT_ANGLE_TOL, base_joints, right_angled_joints
+    from ..models.rounded_angles import unrounded_joints
+    if mode == "standard":
+        right_angled_joints(wm.model, base_joints(wm),
+                            unrounded_joints(wm.spec.urdf, RIGHT_ANGLE_TOL))
+
+
 def true_expressions(model: str, cs: CoordinateSet, refresh: bool = False
                      ) -> dict[str, sp.Expr] | None:
     r"""The true elements of model ``model`` (a registry name) in the coordinate set ``cs``,
@@ -215,16 +228,12 @@ def true_expressions(model: str, cs: CoordinateSet, refresh: bool = False
     Cached in memory and on disk (:func:`~.cache.cache_dir`, ``true-<key>.pickle``), keyed by
     the model, the content of ``cs`` and the code version; ``refresh`` re-derives.
     """
-    from ..models.conventions import RIGHT_ANGLE_TOL, base_joints, right_angled_joints
-    from ..models.rounded_angles import unrounded_joints
     from ..models.registry import load_model, model_entry
     from .expanded import expanded_tree
     model_entry(model)  # unknown names raise here
     wm = load_model(model)                               # a copy: its joints may be turned
     mode = "physical" if has_physical_record(wm) else "standard"
-    if mode == "standard":        # joint frames rounded to right angles: as the comparisons
-        right_angled_joints(wm.model, base_joints(wm),           # draw them (a derivation's)
-                            unrounded_joints(wm.spec.urdf, RIGHT_ANGLE_TOL))
+    derivation_joints(wm, mode)
     tree = _tree(wm, mode)
     key = _true_key(model, cs, wm) + mode
     if key in _MEMORY and not refresh:
