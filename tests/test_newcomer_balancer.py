@@ -9,9 +9,11 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
+
 from conftest import SEED
 from wheeled_dyn.compare.engine import ComparisonEngine
-from wheeled_dyn.compare.records import DiagnosisKind
+from wheeled_dyn.compare.records import CauseKind, DiagnosisKind
 from wheeled_dyn.derivations import load_derivation
 
 DATA = Path(__file__).parent / "data" / "newcomer_balancer"
@@ -98,3 +100,37 @@ def test_a_divisor_with_wrong_units_is_flagged_where_it_is_written(tmp_path):
         assert r.verdict == "differs", (element, r.diagnoses)
         assert any(x.kind == DiagnosisKind.DIMENSION and "m_b*z_b is kg·m beside kg·m^2"
                    in x.text for x in r.diagnoses), (element, r.diagnoses)
+
+
+#: The newcomer's derivation in its wheel angles (``segbot2_wheels.toml``): each relative to
+#: the body, as its map declares; and the map of wheel angles measured from the ground
+#: (the body's pitch added), with their rates.
+RELATIVE = ('configuration = { theta_l = "phi_l", theta_r = "-phi_r", '
+            'psi = "R*(phi_r - phi_l)/(2*L)", phi = "-theta" }\n'
+            'velocity_map = { dphi_l = "dtheta_l", dphi_r = "-dtheta_r", dtheta = "-dphi" }')
+ABSOLUTE = ('configuration = { theta_l = "phi_l + theta", theta_r = "-phi_r - theta", '
+            'psi = "R*(phi_r - phi_l)/(2*L)", phi = "-theta" }\n'
+            'velocity_map = { dphi_l = "dtheta_l + dphi", dphi_r = "-dtheta_r + dphi", '
+            'dtheta = "-dphi" }')
+
+
+@pytest.mark.parametrize("declared", ["relative", "absolute"])
+def test_wheel_angles_declared_from_the_ground_are_read_from_the_body(tmp_path, declared):
+    r"""The wheel-angle derivation is right with the wheels' angles relative to the body. A
+    file declaring them from the ground (its equations unchanged) differs, and its first
+    cause reads each wheel's angle from the body, φ → φ − θ for both at once — velocities
+    that are their positions' rates read along (the rolling constraints eliminated, x and y
+    no functions of them); it was "at least one is a quasi-velocity"."""
+    text = (DATA / "segbot2_wheels.toml").read_text()
+    assert text.count(RELATIVE) == 1
+    if declared == "absolute":
+        text = text.replace(RELATIVE, ABSOLUTE)
+    result = _compare_text(tmp_path, text)
+    if declared == "relative":
+        assert result.equivalent is True, [c.explanation for c in result.causes]
+        return
+    assert result.equivalent is False
+    first = result.causes[0]
+    assert first.kind == CauseKind.CONVENTION, result.causes
+    assert "phi_l → phi_l − theta" in first.explanation, first.explanation
+    assert "phi_r → phi_r − theta" in first.explanation, first.explanation

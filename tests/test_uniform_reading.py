@@ -99,12 +99,16 @@ def test_every_form_agrees_on_the_rounded_pole(tmp_path: Path, form: str) -> Non
 
 def _ambiguous_pole(tmp_path: Path, inertia: str, radius: bool = True) -> object:
     r"""The rounded cart-pole with the pole's moments printed 0.01067, the 0.8 m rod's
-    m L²/12 and its 1 cm cylinder's m (3r² + L²)/12 both to four digits (read as the
-    cylinder's), and the pole row's inertia written ``inertia`` (``radius``: the document
-    names the pole's radius r)."""
+    m L²/12 and its 1 cm cylinder's m (3r² + L²)/12 both to four digits, and its axial
+    moment the cylinder's m r²/2 = 0.00001 (read as the cylinder's), and the pole row's
+    inertia written ``inertia`` (``radius``: the document names the pole's radius r)."""
     model = _rounded_cart_pole(tmp_path)
     urdf = tmp_path / "cart_pole.urdf"
-    urdf.write_text(urdf.read_text().replace('"0.0106667"', '"0.01067"'))
+    text = urdf.read_text()
+    axial = 'iyy="0.0106667" iyz="0" izz="0.0"'
+    assert text.count(axial) == 1
+    urdf.write_text(text.replace(axial, 'iyy="0.01067" iyz="0" izz="0.00001"').replace(
+        '"0.0106667"', '"0.01067"'))
     path = P.write(tmp_path, "pole", "equations", None)
     text = path.read_text().replace(str(DATA / "cart_pole.toml"), str(model))
     assert text.count("4*ddtheta*l**2*m/3") == 1
@@ -171,6 +175,13 @@ def test_a_point_mass_pole_still_differs_on_the_rounded_pole(tmp_path: Path) -> 
     result = ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED).compare(
         load_derivation(path))
     assert result.equivalent is False
+
+
+def test_a_rod_printed_with_no_axial_moment_is_the_rods() -> None:
+    r"""The same moments with the axial one printed 0 (a slender rod's, as the seed's rod
+    pendulum prints it): the rod's m L²/12 is meant, not the cylinder's."""
+    read = _read("0.01067", "0.01067", "0")
+    assert "as m L²/12" in read["rod"][1], read
 
 
 def test_a_rod_and_its_cylinder_within_the_digits_read_as_the_cylinder() -> None:

@@ -21,8 +21,9 @@ moments of the uniform bodies its first cylinder or sphere gives (radius :math:`
 and where exactly one lies within a unit of the last digit printed (the value rounded there,
 or cut: ``"0.024645"`` for 0.0246458), and the printed value is not already it, the link's
 moment is read as that body's (:func:`uniform_inertials`; where two do, it is not read —
-but for a slender rod's and a thin cylinder's, where it is read as the cylinder's: the body
-the URDF draws has a radius). The reading is made only for the links a
+but for a slender rod's and a thin cylinder's, where it is read as the cylinder's when the
+URDF prints the cylinder's axial moment :math:`mr^2/2` too — the body it means has a radius —
+and as the rod's when it prints that moment 0). The reading is made only for the links a
 document declares uniform (``[assumes] uniform``, the families ``uniform(link)`` and
 ``urdf_proportions``): their inertia is the uniform body's by declaration, and the URDF agrees
 with it to its printed digits. The report says so (a note).
@@ -97,6 +98,7 @@ def uniform_inertials(text: str, shapes: Mapping[str, tuple[float | None, float 
             continue                       # its principal axes are not the tensor's axes
         own = pin.Inertia.FromDynamicParameters(np.asarray(inertials[name]))
         moments, said = np.diag(own.inertia).copy(), []
+        axial = None if radius is None else _axial(element, own.mass, radius)
         for printed_axis, key in enumerate(DIAGONAL):
             axis = axes[printed_axis]
             printed, half = element.get(key, "0"), half_unit(element.get(key, "0"))
@@ -107,11 +109,12 @@ def uniform_inertials(text: str, shapes: Mapping[str, tuple[float | None, float 
                 continue                   # too few digits to tell one body from another
             near = [(v, f) for v, f in _candidates(own.mass, radius, length)   # rounded or
                     if abs(v - value) <= 2 * half]                          # cut at its digits
-            if {f for _, f in near} == {CYLINDER, ROD}:
-                near = [x for x in near if x[1] == CYLINDER]
+            if {f for _, f in near} == {CYLINDER, ROD} and axial is not None:
+                near = [x for x in near if x[1] == (CYLINDER if axial else ROD)]
             # one body's only, and not printed exactly; where a slender rod's m L²/12 and the
             # cylinder's are both the printed value to its digits (0.0807 for 0.8 kg, 1.1 m,
-            # r = 0.02 m), the cylinder's: the body the URDF draws, its radius not zero
+            # r = 0.02 m), the cylinder's where the URDF prints the cylinder's axial moment
+            # m r²/2 too, the rod's where it prints none (izz="0"), else neither
             if len(near) == 1 and near[0][0] != value:
                 moments[axis] = near[0][0]
                 said.append(f"{key} {printed} as {near[0][1]} = {near[0][0]:.10g}")
@@ -122,6 +125,23 @@ def uniform_inertials(text: str, shapes: Mapping[str, tuple[float | None, float 
                          f"body's, which it is to the digits the URDF prints ("
                          + "; ".join(said) + ")")
     return out
+
+
+def _axial(element: ET.Element, mass: float, radius: float) -> bool | None:
+    r"""Whether ``element`` prints a cylinder's axial moment :math:`mr^2/2` (to its digits,
+    not zero: True), or a slender rod's, zero (False); None where it prints neither."""
+    values = []
+    for key in DIAGONAL:
+        text = element.get(key, "0")
+        half = half_unit(text)
+        try:
+            values.append((float(text), half))
+        except ValueError:
+            continue
+    if any(v != 0.0 and h is not None and abs(v - mass * radius ** 2 / 2) <= 2 * h
+           for v, h in values):
+        return True
+    return False if any(v == 0.0 for v, _ in values) else None
 
 
 def _link_axes(rpy: list[float]) -> tuple[int, ...] | None:

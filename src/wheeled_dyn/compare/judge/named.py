@@ -218,16 +218,17 @@ def _own_inertia(r: ElementDraft, hit: tuple[str, sp.Expr], term: sp.Expr | None
     the body as a point mass — or, for a part of a moment (m r²/4 = ½ m r²/2 of a cylinder
     written as a slender rod), a formula's term left out, not the body's inertia."""
     name, c = hit
-    if c.is_Rational and c < 1:
-        part = f"{sp.sstr(c)}*{name}"
-        r.diagnoses.insert(0, diagnosis(
-            K.MISSING, f"the document lacks {part} in the model's parameters, a part of the "
-            f"moment of inertia {name} about its own centre of mass (a formula for the "
-            "body's inertia that leaves a term out)", prefix="missing", terms=(part,)))
-        return
-    times = "" if c == 1 else f" × {sp.sstr(c)}"
     if term is not None and term.could_extract_minus_sign():
         term = -term        # a moment is positive (a Kane row: −1 × the truth)
+    if c.is_Rational and c < 1:
+        part = f"{sp.sstr(c)}*{name}"
+        own = part if term is None else f"{sp.sstr(term)} ({part} in the model's parameters)"
+        r.diagnoses.insert(0, diagnosis(
+            K.MISSING, f"the document lacks {own}, a part of the moment of inertia {name} "
+            "about its own centre of mass (a formula for the body's inertia that leaves a "
+            "term out)", prefix="missing", terms=(part if term is None else sp.sstr(term),)))
+        return
+    times = "" if c == 1 else f" × {sp.sstr(c)}"
     own = f" ({sp.sstr(term)} in the document's symbols)" if term is not None else ""
     r.diagnoses.insert(0, diagnosis(
         K.POINT_MASS, f"the moment of inertia {name} about its own centre of mass"

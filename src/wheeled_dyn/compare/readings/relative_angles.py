@@ -25,6 +25,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 import numpy as np
+import sympy as sp
 
 from ..grid.arrays import Arrays
 
@@ -80,6 +81,53 @@ def _combined(doc: Arrays, Li: np.ndarray) -> Arrays:
     return out
 
 
+def rates_of_positions(positions: Sequence[sp.Symbol], velocities: Sequence[sp.Symbol],
+                       configuration: dict, velocity_map: dict) -> bool:
+    r"""Whether each of a file's velocities is the rate of its position: with the model
+    coordinates :math:`c = F(p)` its ``configuration`` gives, the ``velocity_map``
+    :math:`\nu_k = G_k(c, \dot c)` is :math:`\dot p_k` once :math:`\dot c = (\partial F/
+    \partial p)\,\nu` (wheel angles and a pitch with rolling eliminated: their rates, though
+    x and y are not functions of them); False where a velocity takes the rate of a coordinate
+    the configuration does not give (:math:`v = \cos\psi\,\dot x_0 + \dots`: a
+    quasi-velocity). Read so, a position read as a sum, :math:`p = Lp'`, has the velocities
+    :math:`\nu' = L^{-1}\nu` (:func:`sum_velocity_map`)."""
+    plain = {str(x): sp.Symbol(str(x)) for x in (*positions, *velocities)}
+
+    def bare(e) -> sp.Expr:
+        e = sp.sympify(e)
+        return e.xreplace({x: sp.Symbol(str(x)) for x in e.free_symbols})
+    config = {name: bare(e) for name, e in configuration.items()}
+    rates = {"d" + name: sum((sp.diff(e, plain[str(p)]) * plain[str(v)]
+                              for p, v in zip(positions, velocities)), sp.Integer(0))
+             for name, e in config.items()}
+    for v in velocities:
+        G = bare(velocity_map.get(str(v), sp.nan))
+        if G.has(sp.nan):
+            return False
+        free = {str(x) for x in G.free_symbols}
+        if any(n.startswith("d") and n not in rates and n not in plain for n in free):
+            return False                  # the rate of a coordinate no position gives
+        got = G.xreplace({sp.Symbol(n): rates[n] for n in free if n in rates})
+        got = got.xreplace({sp.Symbol(n): config[n] for n in free if n in config})
+        if sp.simplify(got - plain[str(v)]) != 0:
+            return False
+    return True
+
+
+def sum_velocity_map(velocities: Sequence[object], velocity_map: dict, n: int,
+                     sums: Sequence[Sum]) -> dict:
+    r"""The ``velocity_map`` of velocities that are their positions' rates
+    (:func:`rates_of_positions`) with the positions read as the ``sums``: :math:`\nu' =
+    L^{-1}\nu`, each velocity the same combination of the file's maps."""
+    inverse = sp.Matrix(n, n, lambda i, j: sp.Integer(int(i == j)))
+    for k, j, c in sums:
+        inverse[k, j] += c
+    inverse = inverse.inv()
+    G = [sp.sympify(velocity_map[str(v)]) for v in velocities]
+    return {str(v): sp.Add(*(inverse[k, m] * G[m] for m in range(n) if inverse[k, m] != 0))
+            for k, v in enumerate(velocities)}
+
+
 def describe_sums(positions: Sequence[object], sums: Sequence[Sum]) -> list[str]:
     r"""``["q2 → q2 − q1", "q3 → q3 + q1 + q2"]``: each position read as a sum, in the
     document's symbols."""
@@ -89,4 +137,5 @@ def describe_sums(positions: Sequence[object], sums: Sequence[Sum]) -> list[str]
     return [f"{positions[k]} → {positions[k]} " + " ".join(terms) for k, terms in by.items()]
 
 
-__all__ = ["Sum", "describe_sums", "document_state", "sum_arrays", "sum_matrix"]
+__all__ = ["Sum", "describe_sums", "document_state", "rates_of_positions", "sum_arrays",
+           "sum_matrix", "sum_velocity_map"]

@@ -31,7 +31,7 @@ import sympy as sp
 
 from ...derivations.schema import Derivation
 from ..grid.arrays import Arrays
-from .relative_angles import Sum, describe_sums
+from .relative_angles import Sum, describe_sums, rates_of_positions, sum_velocity_map
 
 #: Most signs searched (positions + inputs): 2**8 readings, each one evaluation of the document.
 MAX_SIGNS = 8
@@ -110,19 +110,27 @@ def offset_readings(d: Derivation, angles: Sequence[int]) -> list[Reading]:
 
 
 def sum_readings(d: Derivation, angles: Sequence[int]) -> list[Reading]:
-    r"""The readings with one of the ``angles`` measured from another of them, :math:`p_k \to
+    r"""The readings with a position measured from one of the ``angles``, :math:`p_k \to
     p_k \pm p_j` (:mod:`.relative_angles`: absolute where the file's map takes it relative to
-    the link before, or the reverse), and for three or more, all of them at once along the
-    chain in their order (:math:`p_k \to p_k - p_{k-1}`, :math:`p_k \to \sum_{j\le k} p_j`),
-    each with every reading of the inputs; only where the
-    file's own map gives its positions and velocities (a holonomic set: its velocities are
-    its positions' rates) and both angles are declared in the same units."""
+    the link before, or the reverse; a wheel's angle from the ground where the map takes it
+    from the body), every other position in its units from that angle at once (both wheels'
+    angles), and for three or more angles, all of them at once along the chain in their
+    order (:math:`p_k \to p_k - p_{k-1}`, :math:`p_k \to \sum_{j\le k} p_j`), each with every
+    reading of the inputs; only where the file's velocities are its positions' rates (a
+    holonomic set, or a quasi one whose map says so:
+    :func:`~.relative_angles.rates_of_positions`) and the positions are declared in the same
+    units."""
     spec = d.coordinates
-    if not readings(d) or spec.use or spec.velocity_map:
+    if not readings(d) or spec.use or (spec.velocity_map and not rates_of_positions(
+            d.positions, d.velocities, dict(spec.configuration), dict(spec.velocity_map))):
         return []
     n, units = d.n, [spec.units.get(str(p)) for p in d.positions]
-    sums: list[tuple[Sum, ...]] = [((k, j, c),) for k, j in itertools.permutations(angles, 2)
-                                   if units[k] == units[j] for c in (1, -1)]
+    sums: list[tuple[Sum, ...]] = [((k, j, c),) for j in angles for k in range(n)
+                                   if k != j and units[k] == units[j] for c in (1, -1)]
+    for j in angles:                  # every other position from one angle: both wheels
+        others = [k for k in range(n) if k != j and k not in angles and units[k] == units[j]]
+        if len(others) > 1:
+            sums += [tuple((k, j, c) for k in others) for c in (1, -1)]
     chain = sorted(angles)
     if len(chain) > 2 and len({units[k] for k in chain}) == 1:   # a serial chain, every angle
         sums += [tuple((k, j, 1) for i, k in enumerate(chain) for j in chain[:i]),
@@ -242,6 +250,8 @@ def flipped(d: Derivation, s: Sequence[int], t: Sequence[int],
     sign = dict(zip(spec.velocities, s))
     velocity_map = {v: (-sp.sympify(e) if sign.get(v, 1) < 0 else e)
                     for v, e in spec.velocity_map.items()}
+    if sums and velocity_map:            # the velocities are the positions' rates: ν' = L⁻¹ν
+        velocity_map = sum_velocity_map(d.velocities, velocity_map, d.n, sums)
     raw = dict(spec.raw)
     raw[FLIPPED_KEY] = describe(d, s, t, order, offsets, sums)
     new_spec = replace(spec, configuration=configuration, velocity_map=velocity_map, raw=raw)
