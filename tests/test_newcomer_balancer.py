@@ -134,3 +134,35 @@ def test_wheel_angles_declared_from_the_ground_are_read_from_the_body(tmp_path, 
     assert first.kind == CauseKind.CONVENTION, result.causes
     assert "phi_l → phi_l − theta" in first.explanation, first.explanation
     assert "phi_r → phi_r − theta" in first.explanation, first.explanation
+
+
+def test_boltzmann_hamel_terms_missing_beside_a_wrong_inertia_are_said(tmp_path):
+    r"""A[1,2] = A[2,1] written −m_b y_b cos ψ (wrong along ψ) and C taken as the Christoffel
+    matrix of that A in (v, ω, θ̇) as if they were rates of coordinates: the products of h
+    the Christoffel terms of the wrong A do not give, ω² in row 1 and vω in row 2 (the
+    Boltzmann–Hamel terms; in vω the ψ-derivatives cancel), keep their quasi-coordinate
+    cause (they were said to "follow from A[1,2]")."""
+    import tomllib
+
+    import sympy as sp
+
+    from wheeled_dyn.compare.causes.methods import christoffel_tensor
+    text = (DATA / "segbot2_kane.toml").read_text()
+    matrices = tomllib.loads(text)["matrices"]
+    names = {n: sp.Symbol(n) for n in ("x", "psi", "theta", "v", "omega", "dtheta")}
+    A = sp.Matrix(sp.sympify(matrices["A"], locals=names))
+    assert A[0, 1] == -sp.Symbol("m_b") * sp.Symbol("y_b")
+    A[0, 1] = A[1, 0] = A[0, 1] * sp.cos(names["psi"])
+    H = christoffel_tensor(A, [names["x"], names["psi"], names["theta"]])
+    nu = [names["v"], names["omega"], names["dtheta"]]
+    C = sp.Matrix(3, 3, lambda i, j: sp.Add(*(H[i][j][k] * nu[k] for k in range(3))))
+
+    def rows(M: sp.Matrix) -> str:
+        return "[" + ", ".join("[" + ", ".join(sp.sstr(x) for x in M.row(i)) + "]"
+                               for i in range(M.rows)) + "]"
+    body = (f'A = "{rows(A)}"\nC = "{rows(C)}"\nQ = "{matrices["Q"]}"\n'
+            f'B = """{matrices["B"]}"""\n')
+    result = _compare_text(tmp_path, text[:text.index("[matrices]")] + "[matrices]\n" + body)
+    assert result.equivalent is False
+    (quasi,) = [c for c in result.causes if c.kind == CauseKind.QUASI_COORDINATE_CHRISTOFFEL]
+    assert {"h[1]:omega*omega", "h[2]:v*omega"} <= set(quasi.elements), result.causes

@@ -104,25 +104,37 @@ def _from_own_christoffel(ev: Evaluation, own: dict[tuple[int, int, int], bool])
                                  for (i, j, k), same in own.items())
 
 
-def _wrong_along(index: Sequence[int], wrong: dict[tuple[int, int], sp.Expr | None],
-                 positions: Sequence[sp.Symbol]) -> list[tuple[int, int]]:
-    r"""The elements of A that differ (``wrong``: by element, either of a symmetric pair,
-    their truth − document where known) whose derivative the Christoffel terms of h product
-    ``index`` = (i, j, k),
-    :math:`\tfrac12(\partial_k A_{ij} + \partial_j A_{ik} - \partial_i A_{jk})`, take along
-    a position their difference depends on (a constant written wrong in A, a product of
-    inertia, leaves them as they are)."""
+def _from_wrong_A(index: Sequence[int], wrong: dict[tuple[int, int], sp.Expr | None],
+                  residual: sp.Expr | None, positions: Sequence[sp.Symbol]
+                  ) -> list[tuple[int, int]]:
+    r"""The elements of A that differ (``wrong``: by element, their truth − document) whose
+    difference :math:`\Delta A` gives h product ``index`` = (i, j, k) its whole
+    ``residual`` (truth − document) through the Christoffel terms,
+    :math:`\tfrac12(\partial_k\Delta A_{ij} + \partial_j\Delta A_{ik} - \partial_i\Delta
+    A_{jk})` (twice that for j ≠ k): the product follows from A. Empty where it does not —
+    the terms cancel or are zero, a residual is unknown, or the product differs by more (a
+    Boltzmann–Hamel term A does not give)."""
     i, j, k = index
-    out = []
-    for (a, b), along in (((i, j), k), ((i, k), j), ((j, k), i)):
-        for e in ((a, b), (b, a)):
-            if e not in wrong:
-                continue
-            difference = wrong[e]
-            if difference is None or str(positions[along]) in {
-                    str(x) for x in difference.free_symbols}:
-                out.append(e)
-    return out
+    if residual is None:
+        return []
+
+    parts = [((i, j), k), ((i, k), j), ((j, k), i)]
+    rates: list[sp.Expr] = []
+    for (a, b), m in parts:
+        e = wrong.get((a, b), wrong.get((b, a), sp.Integer(0)))
+        if e is None:
+            return []                                   # a difference not known
+        x = {str(s): s for s in e.free_symbols}.get(str(positions[m]))
+        rates.append(sp.diff(e, x) if x is not None else sp.Integer(0))
+    christoffel = (rates[0] + rates[1] - rates[2]) / 2 * (1 if j == k else 2)
+    if christoffel == 0:
+        return []
+    names = {str(x): x for x in christoffel.free_symbols}
+    mine = residual.xreplace({x: names.get(str(x), x) for x in residual.free_symbols})
+    if sp.simplify(sp.expand_trig(mine - christoffel)) != 0:
+        return []
+    return [e if e in wrong else (e[1], e[0]) for (e, _), rate in zip(parts, rates)
+            if rate != 0 and (e in wrong or (e[1], e[0]) in wrong)]
 
 
 def specific(r) -> bool:
@@ -190,7 +202,8 @@ def method_causes(ev: Evaluation, d, records: Sequence) -> list[Cause]:
     # absolute: their A wrong, their C its own)
     wrong_A = {(r.index[0], r.index[1]): parse(r.residual) if r.residual else None
                for r in records if r.key == "A" and r.verdict == Verdict.DIFFERS}
-    along = {r.element: _wrong_along(r.index, wrong_A, d.positions) for r in quasi}
+    along = {r.element: _from_wrong_A(r.index, wrong_A, parse(r.residual) if r.residual
+                                      else None, d.positions) for r in quasi}
     derived = [r for r in quasi if along[r.element]] if ev.kind == "quasi" else []
     quasi = [r for r in quasi if not along[r.element]]
     if quasi and ev.kind == "quasi":
