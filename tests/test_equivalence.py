@@ -16,6 +16,8 @@ The pendulum is seed 000's 4.4 rod (the shipped ``rod_pendulum`` model): mass m,
 
 from __future__ import annotations
 
+import pathlib
+
 import numpy as np
 import pytest
 
@@ -271,7 +273,28 @@ def test_a_declared_row_scale_binds(engine, tmp_path, printed, agrees):
                <= {K.DECLARED, K.RESIDUAL} for r in differing), differing
     assert [c for c in result.causes if set(c.elements) & {r.element for r in differing}] \
         == [cause], result.causes
-    assert result.energy is None
+    assert result.energy is not None and result.energy.conserves, result.energy
+
+
+def test_a_contradicted_row_scale_leaves_the_power_identity_to_the_other_rows(engine,
+                                                                              tmp_path):
+    r"""The double pendulum with springs (``data/published``), its first equation declared
+    twice the true one but printed as it is, its second with the sign of its centripetal
+    term flipped: the power identity is read with the first row as printed, and the second
+    row's gyroscopic term that does work is said (it was not checked at all)."""
+    data = pathlib.Path(__file__).parent / "data" / "published"
+    for name in ("double_pendulum.toml", "double_pendulum.urdf"):
+        (tmp_path / name).write_text((data / name).read_text())
+    text = (data / "double_pendulum_springs.toml").read_text()
+    old = "- m2*L1*a2*sin(th1 - th2)*dth1**2"
+    assert text.count(old) == 1
+    text = text.replace(old, "+ m2*L1*a2*sin(th1 - th2)*dth1**2").replace(
+        "[matrices]", '[rows]\nscale = ["2", "1"]\n\n[matrices]')
+    path = tmp_path / "doc.toml"
+    path.write_text(text)
+    result = engine.compare(load_derivation(path))
+    assert any(c.kind == "file_error" for c in result.causes), result.causes
+    assert result.energy is not None and not result.energy.conserves, result.energy
 
 
 def test_constraints_stated_where_the_model_has_none_are_not_left_aside(engine, tmp_path):

@@ -9,7 +9,7 @@ equation differs as declared (:func:`bind_declared`; a ``file_error`` cause).
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from dataclasses import replace
 
 import numpy as np
@@ -18,6 +18,7 @@ import sympy as sp
 from ...derivations.schema import Derivation
 from ..judge.draft import ElementDraft
 from ..judge.equivalence import EquationDecision, SystemDecision
+from ..judge.diagnose import nice_number
 from ..judge.fitting import RATIO_TOL, bases, fit_factor
 from ..judge.units import DimensionChecker
 from ..judge.unsolved import read_back_explains
@@ -180,7 +181,22 @@ def _solved(i: int, rule: FrameRule, frame: Frame, main: Sides) -> tuple[FrameRu
 SAME_WEIGHTS = 1e-9
 
 
-def bind_declared(d: Derivation, decision: SystemDecision, wrong: Sequence[int]
+def printed_factors(decision: SystemDecision, rows: Collection[int]) -> dict[int, sp.Expr | None]:
+    r"""Per row of ``rows``, the number its equation as printed is the true one times (its
+    weights :math:`w_i` a constant times :math:`e_i`), or None where it is another
+    combination of the true ones."""
+    out: dict[int, sp.Expr | None] = {}
+    for i in rows:
+        w = decision.equations[i].w
+        others, own = np.delete(w, i, axis=1), w[:, i]
+        factor = float(np.median(own))
+        constant = (not others.size or np.abs(others).max() <= 1e-9 * np.abs(own).max()) \
+            and np.ptp(own) <= 1e-9 * abs(factor)
+        out[i] = sp.nsimplify(nice_number(factor)) if constant else None
+    return out
+
+
+def bind_declared(d: Derivation, decision: SystemDecision, wrong: Collection[int]
                   ) -> SystemDecision:
     r"""``decision`` with each equation of ``wrong`` (right as printed, its declared row scale
     contradicted: :func:`choose_frames`) differing, as the file declares it to be read: a
@@ -188,14 +204,9 @@ def bind_declared(d: Derivation, decision: SystemDecision, wrong: Sequence[int]
     if not wrong or d.row_scale is None:
         return decision
     equations = list(decision.equations)
-    for i in wrong:
+    for i, factor in printed_factors(decision, wrong).items():
         e = equations[i]
-        others = np.delete(e.w, i, axis=1)
-        own = e.w[:, i]
-        factor = float(np.median(own))
-        constant = (not others.size or np.abs(others).max() <= 1e-9 * np.abs(own).max()) \
-            and np.ptp(own) <= 1e-9 * abs(factor)
-        actual = f"the true one times {factor:.6g}" if constant else \
+        actual = f"the true one times {sp.sstr(factor)}" if factor is not None else \
             "another combination of the true ones"
         text = (f"the file declares equation {i + 1} as the true one times "
                 f"{sp.sstr(d.row_scale[i])}, but as printed it is {actual}: read as declared "
@@ -206,7 +217,7 @@ def bind_declared(d: Derivation, decision: SystemDecision, wrong: Sequence[int]
     return replace(decision, equations=tuple(equations))
 
 
-def declared_only(d: Derivation, drafts: Sequence[ElementDraft], wrong: Sequence[int]
+def declared_only(d: Derivation, drafts: Sequence[ElementDraft], wrong: Collection[int]
                   ) -> None:
     r"""The elements of each row of ``wrong`` (right as printed, its declared scale
     contradicted) that differ: they differ only as the file declares the row to be read, so
@@ -278,4 +289,4 @@ def id_frames(d: Derivation, funcs: DocumentFunctions, rules: list[FrameRule],
 
 
 __all__ = ["SIMPLE_SAMPLES", "bind_declared", "choose_frames", "declared_only", "declared_weights",
-           "id_frames", "row_factors"]
+           "id_frames", "printed_factors", "row_factors"]

@@ -32,13 +32,13 @@ from ..judge.named import NAMED, name_terms
 from ..judge.own_inertia import own_moments
 from ..judge.precision import largest_terms, row_round_off
 from ..judge.rows import drafts_of_row, row_values
-from ..judge.units import DimensionChecker
+from ..judge.units import DimensionChecker, geometric_symbols
 from ..judge.source_entry import source_entry
 from ..judge.unsolved import inertia_diagnoses, read_back, unsolved_terms
 from ..readings.describe import describe
 from ..readings.frames import Frame, FrameKind, FrameRule, constant_weights, evaluate_rule
 from .frames import (bind_declared, choose_frames, declared_only, declared_weights, id_frames,
-                     row_factors)
+                     printed_factors, row_factors)
 from ..records import Cause, CauseKind, DerivationResult, Diagnosis, Verdict, has_kind
 from ..sides.both import Sides, both_sides
 from ..sides.document import DocumentFunctions
@@ -194,7 +194,9 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     cases = consistent_cases(d, funcs, undeclared_cases(d, assumed), assumed, engine.seed)
     grids = _grids(engine, d, funcs, sides, cases, assumed)
     stage("frames")
-    rules, frames, declared_wrong = choose_frames(d, funcs, grids, decision)
+    rules, frames, wrong = choose_frames(d, funcs, grids, decision)
+    # the rows right as printed that contradict their declared scale, by their printed factor
+    declared_wrong = {} if decision is None else printed_factors(decision, wrong)
     if decision is not None:
         decision = bind_declared(d, decision, declared_wrong)
     stage("judging")
@@ -223,7 +225,7 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     if unnamed and id_sides is not None:
         name_terms(drafts, _id_values(d, funcs, id_sides, frames_on_id), found,
                    own_moments([ps.values for ps in id_sides.grid.sets], ID_STATES),
-                   _geometric(d), d.positions, row_factors(rules, frames_on_id),
+                   geometric_symbols(d), d.positions, row_factors(rules, frames_on_id),
                    own_moments([ps.values for ps in id_sides.grid.sets], ID_STATES, True))
     if decision is not None and not decision.equivalent and id_sides is not None \
             and id_sides.doc.A is not None:
@@ -274,17 +276,6 @@ def _read_back(d: Derivation, drafts: list[ElementDraft], rules: list[FrameRule]
     read_back(drafts, shown | other, solved, varying | other, other,
               varying if inverted is not None else set())
     return solved
-
-
-def _geometric(d: Derivation) -> set[sp.Symbol]:
-    r"""The document's positions and its symbols measured in metres (or dimensionless)."""
-    from ..judge.units import units_dim
-    out = set(d.positions)
-    for spec in d.symbols.values():
-        dim = units_dim(spec.units) if spec.units else None
-        if dim is not None and dim[0] == 0 and dim[2] == 0:
-            out.add(spec.symbol)
-    return out
 
 
 def _id_values(d: Derivation, funcs: DocumentFunctions, id_sides: Sides,

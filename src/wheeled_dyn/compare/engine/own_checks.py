@@ -5,6 +5,8 @@ is the true one times a factor, divided by it (a solved or combined form has non
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 import numpy as np
 import sympy as sp
 
@@ -14,30 +16,38 @@ from ..readings.frames import FrameKind
 from ..records import EnergyCheck
 
 
-def own_checks(d: Derivation, funcs, sides, texts, rules, frames, declared_wrong=()
+def own_checks(d: Derivation, funcs, sides, texts, rules, frames,
+               printed: Mapping[int, sp.Expr | None] | None = None
                ) -> tuple[EnergyCheck | None, tuple[str, ...]]:
     r"""(the power identity's check or None, the asymmetric pairs and definiteness as text) of
     the document ``d``; ``sides`` both sides on the main grid, ``texts``, ``rules``,
-    ``frames`` each row's frame; ``declared_wrong`` the rows whose declared scale the
-    equation as printed contradicts: no power identity is read through them (the rows
-    divided by a scale they do not have conserve no energy, and that is the declaration's
-    error, said by its own cause)."""
+    ``frames`` each row's frame; ``printed``: per row whose declared scale the equation as
+    printed contradicts, the factor it is the true one times (None: a combination), which
+    the power identity reads it with (divided by a scale it does not have, a row conserves
+    no energy, and that is the declaration's error, said by its own cause)."""
     own = _unscaled(sides.doc, frames, rules)
     asymmetric = () if own is None or own.A is None else asymmetry(
         own, _entry_sizes(own.A), d.n, sides.truth.A, sides.doc.A)
-    diagonal = None if declared_wrong else _diagonal_factors(d, texts, rules)
+    diagonal = _diagonal_factors(d, texts, rules, printed or {})
     grid = sides.grid
     energy = None if diagonal is None else energy_check(
         funcs, sides.doc, diagonal, grid.flat_q, grid.flat_nu, sides.values, d)
     return energy, asymmetric
 
 
-def _diagonal_factors(d: Derivation, texts, rules) -> list[sp.Expr] | None:
+def _diagonal_factors(d: Derivation, texts, rules, printed: Mapping[int, sp.Expr | None]
+                      ) -> list[sp.Expr] | None:
     r"""Each row's factor of the true equation when every row is the true one times a factor
-    (symbolic, identified), else None: the document's own checks (energy) read it so."""
-    out = []
+    (symbolic, identified; a row contradicting its declared scale, the factor it is
+    ``printed`` with), else None: the document's own checks (energy) read it so."""
+    out: list[sp.Expr] = []
     for i, (t, r) in enumerate(zip(texts, rules)):
-        if r.kind == FrameKind.IDENTITY:
+        if i in printed:
+            factor = printed[i]
+            if factor is None:
+                return None
+            out.append(factor)
+        elif r.kind == FrameKind.IDENTITY:
             out.append(sp.Integer(1))
         elif r.kind == FrameKind.DECLARED and d.row_scale is not None:
             out.append(d.row_scale[i])

@@ -269,3 +269,13 @@ class DimensionChecker:
         if got is not None and want is not None and got != want and sp.sympify(expr) != 0:
             problems.append(f"has {format_dim(got)}, expected {format_dim(want)}")
         return problems
+
+
+def geometric_symbols(d: Derivation) -> set[sp.Symbol]:
+    r"""The document's positions and its symbols measured in metres (or dimensionless)."""
+    out = set(d.positions)
+    for spec in d.symbols.values():
+        dim = units_dim(spec.units) if spec.units else None
+        if dim is not None and dim[0] == 0 and dim[2] == 0:
+            out.add(spec.symbol)
+    return out
