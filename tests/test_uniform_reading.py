@@ -144,12 +144,33 @@ def test_a_slender_rods_inertia_for_the_cylinder_lacks_a_part_of_a_moment(
                    for x in a22.diagnoses), a22.diagnoses
 
 
-@pytest.mark.parametrize("multiplier", [sp.Rational(1, 2), sp.Integer(1)], ids=["half", "whole"])
+def test_the_axial_moment_for_the_swing_moment_is_given_no_false_name(tmp_path: Path) -> None:
+    r"""The pole's hinge inertia written with the cylinder's axial moment,
+    :math:`m(l^2 + r^2/2)`, for its moment about a diameter: it lacks :math:`ml^2/3 - mr^2/4`,
+    which the pole's proportions, kept in every draw (r = l/40), make equal to a multiple of
+    either length squared — "lacks 6397*m*r**2/12" and "Izz(pole) × 253/6 … a point mass"
+    were said. No such coefficient names it, and no point mass."""
+    result = _ambiguous_pole(tmp_path, "ddtheta*m*(l**2 + r**2/2)")
+    assert result.equivalent is False
+    (a22,) = [r for r in result.records if r.element == "A[2,2]"]
+    assert a22.verdict == "differs"
+    assert DiagnosisKind.POINT_MASS not in [x.kind for x in a22.diagnoses], a22.diagnoses
+    for x in a22.diagnoses:
+        if x.kind == DiagnosisKind.MISSING:
+            for term in x.terms:
+                c = sp.sympify(term).as_coeff_Mul()[0]
+                assert abs(c.p) <= 24 and c.q <= 24, x
+
+
+@pytest.mark.parametrize("multiplier", [sp.Rational(1, 2), sp.Integer(1),
+                                        sp.Rational(253, 6)], ids=["half", "whole", "junk"])
 def test_a_part_of_a_moment_is_no_point_mass(multiplier: sp.Rational) -> None:
     r"""A residual that is half a link's own moment (:math:`mr^2/4` of a cylinder whose
     axial moment is :math:`mr^2/2`, the acrobot's second link written as a slender rod) is
-    named as that part left out of a formula; the whole moment as the link taken as a
-    point mass."""
+    named as that term left out of a formula where the document's symbols give it, and not
+    named otherwise (with a link's proportions kept in every draw, a fraction of any of its
+    moments fits); the whole moment is the link taken as a point mass; 253/6 of one is no
+    number a body's inertia is missing times."""
     from types import SimpleNamespace
 
     from wheeled_dyn.compare.judge.named import _own_inertia
@@ -157,15 +178,22 @@ def test_a_part_of_a_moment_is_no_point_mass(multiplier: sp.Rational) -> None:
     rng = np.random.default_rng(SEED)
     moment = rng.uniform(0.1, 1.0, 50)
     hit = point_mass_fit(float(multiplier) * moment, {"Ixx(link2)": moment}, [])
+    if multiplier.q == 6:
+        assert hit is None
+        return
     assert hit == ("Ixx(link2)", multiplier)
     draft = SimpleNamespace(diagnoses=[])
-    _own_inertia(draft, hit, None)
-    (said,) = draft.diagnoses
+    term = sp.Symbol("m") * sp.Symbol("r") ** 2 / 4
+    assert _own_inertia(draft, hit, None) is (multiplier == 1)
     if multiplier == 1:
+        (said,) = draft.diagnoses
         assert said.kind == DiagnosisKind.POINT_MASS and "link2 as a point mass" in said.text
-    else:
-        assert said.kind == DiagnosisKind.MISSING and "1/2*Ixx(link2)" in said.text
-        assert "point mass" not in said.text
+        return
+    assert draft.diagnoses == []
+    assert _own_inertia(draft, hit, term) is True
+    (said,) = draft.diagnoses
+    assert said.kind == DiagnosisKind.MISSING and "lacks m*r**2/4" in said.text
+    assert "point mass" not in said.text
 
 
 def test_a_point_mass_pole_still_differs_on_the_rounded_pole(tmp_path: Path) -> None:

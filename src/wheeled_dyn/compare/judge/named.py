@@ -128,6 +128,17 @@ def _plainest(found: sp.Expr | None, bases: Sequence[tuple[sp.Expr, np.ndarray]]
     return best
 
 
+def _plain_coefficient(found: sp.Expr) -> bool:
+    r"""Whether each term's coefficient is one a term is written with, :math:`p/q` with
+    :math:`|p|, q \le 24` (not 6397/12: where a family keeps two lengths proportional, any
+    sum of their squares is a multiple of either)."""
+    for term in sp.Add.make_args(sp.expand(found)):
+        c = term.as_coeff_Mul()[0]
+        if c.is_Rational and (abs(c.p) > 24 or c.q > 24):
+            return False
+    return True
+
+
 def _missing_factor(D: np.ndarray, T: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]],
                     expr: sp.Expr | None = None) -> Diagnosis | None:
     r"""The truth a monomial :math:`f` in the document's names (not a number: a constant factor
@@ -212,22 +223,25 @@ def _lacks(expr: sp.Expr, written: frozenset = frozenset(),
     return "the document " + "; ".join(parts)
 
 
-def _own_inertia(r: ElementDraft, hit: tuple[str, sp.Expr], term: sp.Expr | None) -> None:
+def _own_inertia(r: ElementDraft, hit: tuple[str, sp.Expr], term: sp.Expr | None) -> bool:
     r"""Name the residual of ``r`` found to be ``hit`` = (moment name(s), multiplier) of
     :func:`~.own_inertia.point_mass_fit`, ``term`` it in the document's symbols where found:
     the body as a point mass — or, for a part of a moment (m r²/4 = ½ m r²/2 of a cylinder
-    written as a slender rod), a formula's term left out, not the body's inertia."""
+    written as a slender rod), the term in the document's symbols a formula for the body's
+    inertia left out; whether it was named (a part of a moment with no term in the
+    document's symbols is not: which moment a fraction is of, a link's proportions kept in
+    every draw cannot tell)."""
     name, c = hit
     if term is not None and term.could_extract_minus_sign():
         term = -term        # a moment is positive (a Kane row: −1 × the truth)
     if c.is_Rational and c < 1:
-        part = f"{sp.sstr(c)}*{name}"
-        own = part if term is None else f"{sp.sstr(term)} ({part} in the model's parameters)"
+        if term is None:
+            return False
         r.diagnoses.insert(0, diagnosis(
-            K.MISSING, f"the document lacks {own}, a part of the moment of inertia {name} "
-            "about its own centre of mass (a formula for the body's inertia that leaves a "
-            "term out)", prefix="missing", terms=(part if term is None else sp.sstr(term),)))
-        return
+            K.MISSING, f"the document lacks {sp.sstr(term)} ({sp.sstr(c)}*{name} in the "
+            "model's parameters), a part of a body's own inertia (a formula for it that "
+            "leaves a term out)", prefix="missing", terms=(sp.sstr(term),)))
+        return True
     times = "" if c == 1 else f" × {sp.sstr(c)}"
     own = f" ({sp.sstr(term)} in the document's symbols)" if term is not None else ""
     r.diagnoses.insert(0, diagnosis(
@@ -236,6 +250,7 @@ def _own_inertia(r: ElementDraft, hit: tuple[str, sp.Expr], term: sp.Expr | None
         "(or drops its inertia)", prefix="missing",
         terms=(sp.sstr(term) if term is not None else f"{sp.sstr(c)}*{name}",),
         fits=name, factor=sp.sstr(c)))
+    return True
 
 
 def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[int, ...]],
@@ -284,8 +299,7 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
         if hit is not None and hit[1] != 1 and term is not None and ((-term).is_Symbol or \
                 term.is_Symbol):      # one of the document's symbols (m for 3 Ixx/l²): plainer
             hit = None
-        if hit is not None:
-            _own_inertia(r, hit, term)
+        if hit is not None and _own_inertia(r, hit, term):
             continue
         missing = _missing_factor(D, T, bases, r.expr)
         if missing is not None:
@@ -293,7 +307,10 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
             continue
         found = _plainest(fit_factor(residual, bases), bases) \
             if np.abs(residual).min() > 0 else None
-        found = found if found is not None else fit_sum(residual, bases)
+        found = found if found is not None and _plain_coefficient(found) else \
+            fit_sum(residual, bases)      # not 6397*m*r**2/12: lengths a family keeps
+        if found is not None and not _plain_coefficient(found):          # proportional
+            found = None
         if found is None:
             f = factors.get(r.row) if factors else None      # a function, not a constant:
             varies = f is not None and np.ptp(f) > 1e-9 * float(np.abs(f).max(initial=0.0))

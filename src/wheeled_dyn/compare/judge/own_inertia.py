@@ -65,16 +65,24 @@ def point_mass_fit(residual: np.ndarray, moments: Mapping[str, np.ndarray],
         if np.ptp(ratio) <= RATIO_TOL * np.abs(ratio).max():
             c = sp.nsimplify(float(np.median(ratio)), rational=True, tolerance=1e-9)
             if c != 0 and abs(float(c) - float(np.median(ratio))) <= 1e-9 * abs(float(c)) \
-                    and sp.Rational(c).q <= 12:
+                    and _plausible(sp.Rational(c)):
                 found.append((name, c))
                 continue
         fitted = fit_factor(ratio, bases)
-        if fitted is not None:
+        if fitted is not None and not fitted.is_number:   # a number: the plausible ones above
             found.append((name, fitted))
     # a moment the document lacks (never one it has too much: that is no point mass); where
     # several fit (a family keeps a body's moments proportional), the simplest multiplier
     lacking = [(name, c) for name, c in found if not c.could_extract_minus_sign()]
     return min(lacking, key=lambda f: _plainness(f[1]), default=None)
+
+
+def _plausible(c: sp.Rational) -> bool:
+    r"""A number a body's own moment is missing times: a whole one up to four (two wheels'
+    alike, a rod's :math:`ml^2/4` = 3 × its own), or a part of one (:math:`mr^2/4`, half a
+    cylinder's axial moment); not 253/6 (a moment of another axis that a link's proportions,
+    kept in every draw, make any residual a multiple of)."""
+    return (c.q == 1 and 1 <= abs(c.p) <= 4) or (abs(c) < 1 and c.q <= 12)
 
 
 def _plainness(c: sp.Expr) -> tuple[int, int]:
