@@ -139,6 +139,8 @@ def test_a_slender_rods_inertia_for_the_cylinder_lacks_a_part_of_a_moment(
     (a22,) = [r for r in result.records if r.element == "A[2,2]"]
     assert a22.verdict == "differs"
     assert DiagnosisKind.POINT_MASS not in [x.kind for x in a22.diagnoses], a22.diagnoses
+    # truth − document as the numbers read it: m r²/4 with r = l/40 (the pole's proportions)
+    assert sp.simplify(sp.sympify(a22.residual) - sp.sympify("l**2*m/6400")) == 0, a22.residual
     if radius:
         assert any(x.kind == DiagnosisKind.MISSING and "m*r**2/4" in x.text
                    for x in a22.diagnoses), a22.diagnoses

@@ -178,13 +178,25 @@ def uniform_substitution(d: Derivation, links: frozenset[str]) -> dict[sp.Symbol
         frame = wm.model.frames[wm.model.getFrameId(link, pin.FrameType.BODY)]
         if massive.get(body) != [link] or not frame.placement.isIdentity(1e-12):
             continue
-        pi = wm.model.inertias[body].toDynamicParameters()
-        mass = sp.Symbol(f"M_{names[body]}", real=True) / sp.nsimplify(pi[0], rational=True)
-        for k, (key, x) in enumerate(zip(PARAMETER_NAMES, pi)):
+        # the uniform body's where the URDF prints it rounded, as the grid draws it (its
+        # moments m (3 r² + L²)/12 computed in floats: written as the fractions they are)
+        read = link in wm.lengths.uniform
+        pi = wm.lengths.uniform[link][0] if read else \
+            wm.model.inertias[body].toDynamicParameters()
+        exact = [_fraction(x) if read else sp.nsimplify(x, rational=True) for x in pi]
+        mass = sp.Symbol(f"M_{names[body]}", real=True) / exact[0]
+        for k, (key, x) in enumerate(zip(PARAMETER_NAMES, exact)):
             if k:
                 out[sp.Symbol(f"{key}_{names[body]}", real=True)] = \
-                    mass * sp.nsimplify(x, rational=True) * scale ** (1 if k < 4 else 2)
+                    mass * x * scale ** (1 if k < 4 else 2)
     return out
+
+
+def _fraction(x: float) -> sp.Rational:
+    r"""``x`` as the fraction of denominator at most 10⁶ it is to 10⁻¹² (a float's exact
+    binary fraction where it is none)."""
+    near = sp.Rational(x).limit_denominator(10 ** 6)
+    return near if abs(float(near) - x) <= 1e-12 * abs(x) else sp.nsimplify(x, rational=True)
 
 
 def massless_substitution(d: Derivation, links: frozenset[str]) -> dict[sp.Symbol, sp.Expr]:
