@@ -7,6 +7,7 @@ root, base_link 0.065 m above the axle, a turned battery, wheel cylinders turned
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pytest
@@ -87,19 +88,26 @@ def test_the_pitch_row_divided_by_its_inertia_agrees(tmp_path):
     assert result.equivalent is True, [c.explanation for c in result.causes]
 
 
-def test_a_divisor_with_wrong_units_is_flagged_where_it_is_written(tmp_path):
+@pytest.mark.parametrize("units", [True, False], ids=["declared", "from-values"])
+def test_a_divisor_with_wrong_units_is_flagged_where_it_is_written(tmp_path, units):
     r"""z_b for z_b² in the divisor: the elements that hold it differ, each with the term's
-    units; A[3,3] = 1, written right, agrees (a ratio adding kg·m to kg·m² is no frame the
-    row was written in, though four elements share it)."""
-    result = _compare_text(tmp_path, _divided(NO_SQUARE))
+    units where the file declares them; A[3,3] = 1, written right, agrees (a ratio adding
+    kg·m to kg·m² is no frame the row was written in, though four elements share it) — also
+    where the file declares no units: its symbols' values give them (M(link) a mass,
+    CZ(link) a length)."""
+    text = _divided(NO_SQUARE)
+    if not units:
+        text = re.sub(r',\s*units = "[^"]*"', "", text)
+        assert "units" not in text.split("[symbols]")[1].split("[matrices]")[0]
+    result = _compare_text(tmp_path, text)
     assert result.equivalent is False
     by = {r.element: r for r in result.records}
     assert by["A[3,3]"].verdict == "agrees", by["A[3,3]"].diagnoses
     for element in ("A[3,1]", "Q[3]", "B[3,1]", "B[3,2]"):
         r = by[element]
         assert r.verdict == "differs", (element, r.diagnoses)
-        assert any(x.kind == DiagnosisKind.DIMENSION and "m_b*z_b is kg·m beside kg·m^2"
-                   in x.text for x in r.diagnoses), (element, r.diagnoses)
+        assert not units or any(x.kind == DiagnosisKind.DIMENSION and "m_b*z_b is kg·m beside "
+                                "kg·m^2" in x.text for x in r.diagnoses), (element, r.diagnoses)
 
 
 #: The newcomer's derivation in its wheel angles (``segbot2_wheels.toml``): each relative to

@@ -110,7 +110,8 @@ def _inhomogeneous(d: Derivation, i: int, rule: FrameRule, main: Sides, rows: np
     r"""Whether ``rule`` reads row ``i`` as the true equation times a factor no author
     writes: its expression in the document's names (fitted on the samples ``rows`` of the
     main grid with the bases ``found``) adds terms of different dimensions under the file's
-    declared units, :math:`I_{yy} + m_b(x_b^2 + z_b)`. Such a ratio is the document's own
+    declared units (or, where it declares none, those its symbols' values give: M(link) a
+    mass, CZ(link) a length), :math:`I_{yy} + m_b(x_b^2 + z_b)`. Such a ratio is the document's own
     wrongly written divisor shared by the elements that hold the error, not the frame the
     row was written in: the elements are explained in another frame, where they differ."""
     if rule.kind != FrameKind.FUNCTION:
@@ -122,7 +123,7 @@ def _inhomogeneous(d: Derivation, i: int, rule: FrameRule, main: Sides, rows: np
     if factor is None or factor.is_number:
         return False
     problems: list[str] = []
-    DimensionChecker(d).dim(factor, problems)
+    DimensionChecker(d, inferred=True).dim(factor, problems)    # units from the values too
     return bool(problems)
 
 

@@ -73,14 +73,58 @@ def format_dim(d: Dim) -> str:
     return "·".join(parts) if parts else "dimensionless"
 
 
+#: The dimension of a model parameter a symbol's value names (``M(link)``, ``CZ(link)``,
+#: ``IYY(link)``, Khalil's ``MX(link)`` and ``XX(link)``, lengths, ``g``), by its name.
+_PARAMETER_DIMS: Mapping[str, Dim] = {
+    **{k: (1, 0, 0) for k in ("M",)},
+    **{k: (0, 1, 0) for k in ("CX", "CY", "CZ", "origin_x", "origin_y", "origin_z", "length",
+                              "radius", "R", "L", "polar_radius", "surface_radius",
+                              "vertex_radius", "tyre_radius")},
+    **{k: (1, 1, 0) for k in ("MX", "MY", "MZ")},
+    **{k: (1, 2, 0) for k in ("IXX", "IYY", "IZZ", "IXY", "IXZ", "IYZ", "XX", "YY", "ZZ",
+                              "XY", "XZ", "YZ")},
+    "g": (0, 1, -2)}
+
+
+def value_dim(value: sp.Expr) -> Dim | None:
+    r"""The dimension a symbol's ``value`` gives it from the model parameters it names
+    (``CZ(base_link) + 13/200``: a length; a number added to one is taken in its units, as
+    a file writes an offset), or None where it names none or they disagree."""
+    value = sp.sympify(value)
+    if value.is_Number:
+        return None
+    if value.is_Add:
+        dims = {value_dim(t) for t in value.args if not t.is_Number}
+        return dims.pop() if len(dims) == 1 else None
+    if value.is_Mul:
+        total: Dim = ZERO
+        for f in value.args:
+            if f.is_Number:
+                continue
+            fd = value_dim(f)
+            if fd is None:
+                return None
+            total = _add(total, fd)
+        return total
+    if value.is_Pow and value.args[1].is_Number:
+        bd = value_dim(value.args[0])
+        return None if bd is None else tuple(sp.Rational(x) * sp.Rational(value.args[1])
+                                             for x in bd)
+    name = value.func.__name__ if isinstance(value, sp.Function) else str(value)
+    found = _PARAMETER_DIMS.get(name)
+    return None if found is None else tuple(sp.Integer(x) for x in found)
+
+
 class DimensionChecker:
     r"""Dimensions of the document's names, and the check of an element's terms."""
 
-    def __init__(self, d: Derivation) -> None:
+    def __init__(self, d: Derivation, inferred: bool = False) -> None:
         self._memo: dict[sp.Expr, tuple[Dim | None, list[str]]] = {}
         self.known: dict[sp.Symbol, Dim] = {}
         for spec in d.symbols.values():
             dim = units_dim(spec.units)
+            if dim is None and inferred and spec.value is not None:
+                dim = value_dim(spec.value)
             if dim is not None:
                 self.known[spec.symbol] = dim
         units = d.coordinates.units
