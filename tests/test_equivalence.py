@@ -297,6 +297,43 @@ def test_a_contradicted_row_scale_leaves_the_power_identity_to_the_other_rows(en
     assert result.energy is not None and not result.energy.conserves, result.energy
 
 
+@pytest.mark.parametrize("declared", [False, True], ids=["undeclared", "declared-twice"])
+def test_a_term_error_in_a_row_that_contradicts_its_declared_scale_is_named(engine, tmp_path,
+                                                                             declared):
+    r"""The double pendulum with springs, the sign of its first equation's centripetal term
+    flipped; declared twice the true one but printed as it is, every element of the row
+    differs as declared: the right ones say they differ only as declared, a ``file_error``
+    cause claims them, and the flipped term is named as printed, its sign (it was "the
+    document is −1/2 × the truth", and every right element "1/2 × the truth"); the power
+    identity reads the row as printed, as without the declaration."""
+    data = pathlib.Path(__file__).parent / "data" / "published"
+    for name in ("double_pendulum.toml", "double_pendulum.urdf"):
+        (tmp_path / name).write_text((data / name).read_text())
+    text = (data / "double_pendulum_springs.toml").read_text()
+    old = "+ m2*L1*a2*sin(th1 - th2)*dth2**2"
+    assert text.count(old) == 1
+    text = text.replace(old, "- m2*L1*a2*sin(th1 - th2)*dth2**2")
+    if declared:
+        text = text.replace("[matrices]", '[rows]\nscale = ["2", "1"]\n\n[matrices]')
+    path = tmp_path / "doc.toml"
+    path.write_text(text)
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False
+    (h,) = [r for r in result.records if r.element == "h[1]:dth2*dth2"]
+    assert h.verdict == "differs" and h.diagnoses[0].kind == K.SIGN, h.diagnoses
+    assert result.energy is not None and not result.energy.conserves
+    assert "2*L1*a2*dth1*dth2**2*m2" in result.energy.residual, result.energy
+    if not declared:
+        return
+    (cause,) = [c for c in result.causes if c.kind == "file_error"]
+    row = {r.element for r in result.records if r.index[0] == 0 and r.key in "AQBh"
+           and r.verdict == "differs"}
+    assert {"A[1,1]", "Q[1]", "B[1,1]"} <= set(cause.elements), cause
+    assert set(cause.elements) == row - {"h[1]:dth2*dth2"}, cause
+    assert all(r.diagnoses[0].kind == K.DECLARED for r in result.records
+               if r.element in cause.elements)
+
+
 def test_constraints_stated_where_the_model_has_none_are_not_left_aside(engine, tmp_path):
     r"""The rod pendulum (no rolling) with a constraint its file states, θ̇ = 0: the model
     has no such constraint, so the document is not right, whatever its equation — the

@@ -9,7 +9,7 @@ equation differs as declared (:func:`bind_declared`; a ``file_error`` cause).
 
 from __future__ import annotations
 
-from collections.abc import Collection, Sequence
+from collections.abc import Collection, Mapping, Sequence
 from dataclasses import replace
 
 import numpy as np
@@ -26,7 +26,7 @@ from ..readings.describe import weight_expression
 from ..readings.frame_choice import choose, elements_of, score, solved_row
 from ..readings.frames import Frame, FrameKind, FrameRule, candidate_rules, evaluate_rule
 from ..readings.variants import combination_variants
-from ..records import DiagnosisKind, Verdict, diagnosis
+from ..records import Cause, CauseKind, DiagnosisKind, Verdict, diagnosis
 from ..sides.both import Sides
 from ..sides.document import DocumentFunctions
 from ..sides.framed import framed, row_of
@@ -36,11 +36,13 @@ SIMPLE_SAMPLES = 64
 
 
 def choose_frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], decision
-            ) -> tuple[list[FrameRule], list[Frame], list[int]]:
-    r"""Every row's frame rule (chosen over ``grids``), its frame on the main grid, and the
-    rows whose declared scale the (right) equation contradicts."""
+                  ) -> tuple[list[FrameRule], list[Frame], list[int], dict[int, Frame]]:
+    r"""Every row's frame rule (chosen over ``grids``), its frame on the main grid, the rows
+    whose declared scale the (right) equation contradicts, and the frames of the rows that
+    differ whose elements contradict their declared scale too (:func:`_printed`)."""
     main = grids[0]
     rules, frames, wrong = [], [], []
+    apart: dict[int, Frame] = {}
     rows = np.linspace(0, main.size - 1, min(SIMPLE_SAMPLES, main.size)).astype(int)
     found = bases(d, main.grid.flat_q[rows], {s: np.asarray(v)[rows] if np.ndim(v) else v
                                              for s, v in main.values.items()})
@@ -71,6 +73,9 @@ def choose_frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], d
                        and r.variant is None else r for r in rules_i]
         totals: dict[FrameRule, int] = {}
         rule = choose(i, rules_i, on, has_declared and not right, right, totals)
+        if has_declared and not right and declared_scale is not None and \
+                (printed := _printed(i, rules_i, on, main, declared_scale, totals)):
+            apart[i] = printed
         differing = 0 if right or has_declared or solved_row(main.doc, i) else \
             _differing(i, rule, main)             # a solved row's form is its frame
         if differing > 1:
@@ -102,7 +107,28 @@ def choose_frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], d
     for i in _shared_partners(rules):
         rules[i] = FrameRule(FrameKind.IDENTITY)
         frames[i] = _always(i, rules[i], main)
-    return rules, frames, wrong
+    return rules, frames, wrong, apart
+
+
+def _printed(i: int, rules: Sequence[FrameRule], on, main: Sides, declared: np.ndarray,
+             totals: dict[FrameRule, int]) -> Frame | None:
+    r"""For row ``i`` that differs and has a declared scale: the frame it is printed in —
+    the identity or a constant times the true row, not the declared one — where most of its
+    elements agree in it and at least two more than as declared (a row declared twice the
+    true one, printed as the true one with one term's sign wrong: every element differs as
+    declared, one as printed); else None. It only explains: the row is read as declared."""
+    found = choose(i, [r for r in rules if r.kind in (FrameKind.IDENTITY, FrameKind.CONSTANT)
+                       and r.partner in (i, -1)], on, False, totals=totals)
+    frame = evaluate_rule(i, found, main.doc, main.truth, main.doc.B, main.B_true)
+    if frame is None or _same(frame.weights, i, declared):
+        return None
+    row = row_of(main.doc, i)
+    as_printed = score(row, framed(frame.weights, main.truth, main.B_true, full=False))
+    as_declared = score(row, framed(_always(i, FrameRule(FrameKind.DECLARED), main,
+                                            declared).weights, main.truth, main.B_true,
+                                    full=False))
+    return frame if as_printed >= as_declared + 2 and 2 * as_printed >= elements_of(row) \
+        else None
 
 
 def _inhomogeneous(d: Derivation, i: int, rule: FrameRule, main: Sides, rows: np.ndarray,
@@ -235,6 +261,50 @@ def declared_only(d: Derivation, drafts: Sequence[ElementDraft], wrong: Collecti
                 "the equation as printed is right", prefix="")]
 
 
+def declared_apart(d: Derivation, drafts: Sequence[ElementDraft],
+                   printed: Sequence[ElementDraft]) -> None:
+    r"""The elements of the rows whose elements contradict their declared scale
+    (:func:`_printed`), judged as declared (``drafts``) and as printed (``printed``): an
+    element right as printed differs only as declared (said so, no term of it diagnosed);
+    one that differs as printed too keeps its verdict and is named as printed, where the
+    document's error is (a term's sign, not "−1/2 × the truth"). In place."""
+    if d.row_scale is None:
+        return
+    found = {(r.key, r.index): r for r in printed}
+    for r in drafts:
+        other = found.get((r.key, r.index))
+        if other is None or r.verdict == Verdict.AGREES:
+            continue
+        r.verdict = Verdict.DIFFERS
+        if other.verdict == Verdict.AGREES:
+            r.diagnoses = [diagnosis(
+                DiagnosisKind.DECLARED, f"differs only as the file declares equation "
+                f"{r.row + 1} to be read (the true one times {sp.sstr(d.row_scale[r.row])}); "
+                "as printed it agrees", prefix="")]
+        else:
+            r.diagnoses = list(other.diagnoses)
+
+
+def apart_causes(d: Derivation, apart: Mapping[int, Frame], drafts: Sequence[ElementDraft]
+                 ) -> list[Cause]:
+    r"""Per row whose elements contradict its declared scale (:func:`_printed`), a
+    ``file_error`` cause claiming the elements that differ only as declared."""
+    out = []
+    for i, frame in apart.items():
+        if d.row_scale is None:
+            break
+        only = tuple(r.element for r in drafts if r.row == i and r.diagnoses
+                     and r.diagnoses[0].kind == DiagnosisKind.DECLARED)
+        factor = "the true one" if frame.constant in (None, 1.0) else \
+            f"{sp.sstr(sp.nsimplify(nice_number(frame.constant)))} × the true one"
+        out.append(Cause(CauseKind.FILE_ERROR, only, (
+            f"the file declares equation {i + 1} as the true one times "
+            f"{sp.sstr(d.row_scale[i])}, but its elements are {factor} as printed but for "
+            "those named on their own: read as declared every element differs (the "
+            "declaration is probably wrong too)")))
+    return out
+
+
 def _always(i: int, rule: FrameRule, main: Sides, declared: np.ndarray | None = None) -> Frame:
     r"""Row ``i``'s frame under a rule that always has one (the identity, the declared scale)
     on the main grid."""
@@ -290,4 +360,4 @@ def id_frames(d: Derivation, funcs: DocumentFunctions, rules: list[FrameRule],
 
 
 __all__ = ["SIMPLE_SAMPLES", "bind_declared", "choose_frames", "declared_only", "declared_weights",
-           "id_frames", "printed_factors", "row_factors"]
+           "id_frames", "printed_factors", "row_factors", "declared_apart", "apart_causes"]

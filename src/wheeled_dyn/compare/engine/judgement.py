@@ -27,6 +27,7 @@ from ..judge.document_checks import constraint_problems, constraint_rows
 from ..judge.draft import ElementDraft
 from ..judge.element import Trials, judge
 from ..judge.factorization import factorization
+from ..judge.diagnose import nice_number
 from ..judge.fitting import bases
 from ..judge.named import NAMED, name_terms
 from ..judge.own_inertia import own_moments
@@ -37,8 +38,8 @@ from ..judge.source_entry import source_entry
 from ..judge.unsolved import inertia_diagnoses, read_back, unsolved_terms
 from ..readings.describe import describe
 from ..readings.frames import Frame, FrameKind, FrameRule, constant_weights, evaluate_rule
-from .frames import (bind_declared, choose_frames, declared_only, declared_weights, id_frames,
-                     printed_factors, row_factors)
+from .frames import (apart_causes, bind_declared, choose_frames, declared_apart,
+                     declared_only, declared_weights, id_frames, printed_factors, row_factors)
 from ..records import Cause, CauseKind, DerivationResult, Diagnosis, Verdict, has_kind
 from ..sides.both import Sides, both_sides
 from ..sides.document import DocumentFunctions
@@ -83,11 +84,9 @@ def document_functions(d: Derivation) -> DocumentFunctions:
 
 
 def _stiffness(d: Derivation, terms) -> sp.ImmutableMatrix | None:
-    r"""A linearised document's stiffness :math:`K = \partial Q/\partial q` (its Q is linear
-    in the deviations; at the point the grid's states are drawn at), compared with the
-    truth's — also where the file declares its potential measured from an equilibrium
-    (that makes Q zero at the point, never K: a declaration that hid K passed a stiffness
-    of either sign); None for other documents."""
+    r"""A linearised document's stiffness :math:`K = \partial Q/\partial q`, compared with
+    the truth's — also where it declares its potential from an equilibrium (Q zero at the
+    point, never K: a declaration that hid K passed either sign); None for others."""
     assumed = declared(d)
     if not assumed.linearised_about or terms.Q is None or terms.Q.has(sp.nan):
         return None
@@ -107,10 +106,11 @@ def _grids(engine, d: Derivation, funcs: DocumentFunctions, sides: Sides,
 
 
 def _row_drafts(d: Derivation, funcs: DocumentFunctions, sides: Sides, frames: list[Frame],
-                rules: list[FrameRule], dims: DimensionChecker, label: str
-                ) -> tuple[list[ElementDraft], dict]:
-    r"""Every element judged in its row's frame (``rules``: how each was found); per row the
-    document's and the framed truth's :math:`\Gamma` (for C by its products)."""
+                rules: list[FrameRule], dims: DimensionChecker, label: str,
+                only: set[int] | None = None) -> tuple[list[ElementDraft], dict]:
+    r"""Every element (of the rows ``only``, where given) judged in its row's frame
+    (``rules``: how each was found); per row the document's and the framed truth's
+    :math:`\Gamma` (for C by its products)."""
     trials = Trials(funcs, sides.argv, sides.size, sides.truth.H_rows)
     groups = swap_groups(d)
     lost = set(d.missing)
@@ -119,6 +119,8 @@ def _row_drafts(d: Derivation, funcs: DocumentFunctions, sides: Sides, frames: l
     h, Q = sides.truth.h, sides.truth.Q
     largest = largest_terms(sides.truth.need("A"), h if Q is None else Q if h is None else h + Q)
     for i, (frame, rule) in enumerate(zip(frames, rules)):
+        if only is not None and i not in only:
+            continue
         doc_row, true_row = row_of(sides.doc, i), framed(frame.weights, sides.truth,
                                                           sides.B_true)
         factor = None if rule.kind == FrameKind.COMBINATION else \
@@ -194,7 +196,7 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     cases = consistent_cases(d, funcs, undeclared_cases(d, assumed), assumed, engine.seed)
     grids = _grids(engine, d, funcs, sides, cases, assumed)
     stage("frames")
-    rules, frames, wrong = choose_frames(d, funcs, grids, decision)
+    rules, frames, wrong, apart = choose_frames(d, funcs, grids, decision)
     # the rows right as printed that contradict their declared scale, by their printed factor
     declared_wrong = {} if decision is None else printed_factors(decision, wrong)
     if decision is not None:
@@ -202,6 +204,9 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     stage("judging")
     label = equation_labels(str(d.source.get("equations", "")))
     drafts, gammas = _row_drafts(d, funcs, sides, frames, rules, DimensionChecker(d), label)
+    if apart:                         # the rows whose elements contradict their declared scale
+        declared_apart(d, drafts, _row_drafts(d, funcs, sides, [apart.get(i, f) for i, f in enumerate(
+            frames)], rules, DimensionChecker(d), label, set(apart))[0])
     from ..judge.swaps import h_swaps
     h_swaps(drafts)
     declared_only(d, drafts, declared_wrong)
@@ -235,8 +240,10 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     fixes = print_drafts(d, drafts, sides.grid.cs, texts, assumed, funcs.exprs)
     equations = corrected(d, equations, fixes)
     j = _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed,
-                   declared_wrong, fixes.truth is not None, engine.seed)
-    return replace(j, causes=(*assumed.file_causes(d, funcs.exprs),
+                   declared_wrong, fixes.truth is not None, engine.seed, {**declared_wrong, **{
+                       i: sp.nsimplify(nice_number(f.constant)) if f.constant is not None
+                       else None for i, f in apart.items()}})
+    return replace(j, causes=(*assumed.file_causes(d, funcs.exprs), *apart_causes(d, apart, drafts),
                               *contradiction_causes(d, funcs, assumed, engine.seed), *j.causes))
 
 
@@ -293,14 +300,14 @@ def _id_values(d: Derivation, funcs: DocumentFunctions, id_sides: Sides,
 
 
 def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed,
-               declared_wrong, in_document: bool, seed: int = 2026) -> Judgement:
+               declared_wrong, in_document: bool, seed: int = 2026, printed=None) -> Judgement:
     grid = sides.grid
     scales = np.array([r.scale for r in [next((x for x in drafts if x.row == i), None)
                                           for i in range(d.n)] if r is not None] or [1.0])
     if len(scales) != d.n:
         scales = np.ones(d.n)
     no_factor = (None,) * d.n
-    energy, asymmetric = own_checks(d, funcs, sides, texts, rules, frames, declared_wrong)
+    energy, asymmetric = own_checks(d, funcs, sides, texts, rules, frames, printed)
     ev = Evaluation(funcs=funcs, doc=sides.doc, truth=sides.truth, B_true=sides.B_true,
                     scales=scales, q=grid.flat_q, nu=grid.flat_nu, values=sides.values,
                     row_factor=no_factor, kind=grid.cs.kind)
