@@ -47,3 +47,22 @@ def own_wip_model(folder: Path, *urdf_replacements: tuple[str, str],
     path = folder / "wip.toml"
     path.write_text(model.replace('name = "wip"', f'name = "{folder.name}_wip"'))
     return path, urdf
+
+
+PUBLISHED = Path(__file__).parent / "data" / "published"
+
+
+def published_copy(folder: Path, model: str, document: str, *replacements: tuple[str, str],
+                   data: Path = PUBLISHED) -> Path:
+    r"""A test model of ``data`` (``<model>.toml`` and its ``.urdf``) copied into ``folder``
+    and its derivation ``<document>.toml`` written there as ``doc.toml`` with each
+    ``(old, new)`` replaced (each occurring exactly once). Returns the derivation's path."""
+    for name in (f"{model}.toml", f"{model}.urdf"):
+        (folder / name).write_text((data / name).read_text())
+    text = (data / f"{document}.toml").read_text()
+    for old, new in replacements:
+        assert text.count(old) == 1, old
+        text = text.replace(old, new)
+    path = folder / "doc.toml"
+    path.write_text(text)
+    return path

@@ -16,12 +16,11 @@ The pendulum is seed 000's 4.4 rod (the shipped ``rod_pendulum`` model): mass m,
 
 from __future__ import annotations
 
-import pathlib
-
 import numpy as np
 import pytest
 
 from conftest import SEED
+from shipped_copies import published_copy
 from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.compare.judge import equivalence
 from wheeled_dyn.compare.records import DiagnosisKind as K
@@ -276,22 +275,19 @@ def test_a_declared_row_scale_binds(engine, tmp_path, printed, agrees):
     assert result.energy is not None and result.energy.conserves, result.energy
 
 
+#: The double pendulum's first equation declared twice the true one.
+SCALED = ("[matrices]", '[rows]\nscale = ["2", "1"]\n\n[matrices]')
+
+
 def test_a_contradicted_row_scale_leaves_the_power_identity_to_the_other_rows(engine,
                                                                               tmp_path):
     r"""The double pendulum with springs (``data/published``), its first equation declared
     twice the true one but printed as it is, its second with the sign of its centripetal
     term flipped: the power identity is read with the first row as printed, and the second
     row's gyroscopic term that does work is said (it was not checked at all)."""
-    data = pathlib.Path(__file__).parent / "data" / "published"
-    for name in ("double_pendulum.toml", "double_pendulum.urdf"):
-        (tmp_path / name).write_text((data / name).read_text())
-    text = (data / "double_pendulum_springs.toml").read_text()
-    old = "- m2*L1*a2*sin(th1 - th2)*dth1**2"
-    assert text.count(old) == 1
-    text = text.replace(old, "+ m2*L1*a2*sin(th1 - th2)*dth1**2").replace(
-        "[matrices]", '[rows]\nscale = ["2", "1"]\n\n[matrices]')
-    path = tmp_path / "doc.toml"
-    path.write_text(text)
+    path = published_copy(tmp_path, "double_pendulum", "double_pendulum_springs",
+                          ("- m2*L1*a2*sin(th1 - th2)*dth1**2",
+                           "+ m2*L1*a2*sin(th1 - th2)*dth1**2"), SCALED)
     result = engine.compare(load_derivation(path))
     assert any(c.kind == "file_error" for c in result.causes), result.causes
     assert result.energy is not None and not result.energy.conserves, result.energy
@@ -306,17 +302,9 @@ def test_a_term_error_in_a_row_that_contradicts_its_declared_scale_is_named(engi
     cause claims them, and the flipped term is named as printed, its sign (it was "the
     document is −1/2 × the truth", and every right element "1/2 × the truth"); the power
     identity reads the row as printed, as without the declaration."""
-    data = pathlib.Path(__file__).parent / "data" / "published"
-    for name in ("double_pendulum.toml", "double_pendulum.urdf"):
-        (tmp_path / name).write_text((data / name).read_text())
-    text = (data / "double_pendulum_springs.toml").read_text()
-    old = "+ m2*L1*a2*sin(th1 - th2)*dth2**2"
-    assert text.count(old) == 1
-    text = text.replace(old, "- m2*L1*a2*sin(th1 - th2)*dth2**2")
-    if declared:
-        text = text.replace("[matrices]", '[rows]\nscale = ["2", "1"]\n\n[matrices]')
-    path = tmp_path / "doc.toml"
-    path.write_text(text)
+    path = published_copy(tmp_path, "double_pendulum", "double_pendulum_springs",
+                          ("+ m2*L1*a2*sin(th1 - th2)*dth2**2",
+                           "- m2*L1*a2*sin(th1 - th2)*dth2**2"), *([SCALED] if declared else []))
     result = engine.compare(load_derivation(path))
     assert result.equivalent is False
     (h,) = [r for r in result.records if r.element == "h[1]:dth2*dth2"]

@@ -23,6 +23,7 @@ import sympy as sp
 
 import published_forms as P
 from conftest import SEED
+from shipped_copies import published_copy
 from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.compare.records import DiagnosisKind as K
 from wheeled_dyn.compare.records import CauseKind, Verdict
@@ -333,14 +334,9 @@ def test_two_symbols_exchanged_in_a_term_are_named(engine, tmp_path):
     wheels' yaw inertia written :math:`2R^2I_w/L^2` for :math:`2L^2I_w/R^2` (R and L, two
     lengths, exchanged in one term): the element is named as the exchange (it was "no
     single-term diagnosis")."""
-    for name in ("dd_robot.toml", "dd_robot.urdf"):      # the robot without its caster
-        (tmp_path / name).write_text((DATA / name).read_text())
-    text = (DATA / "dd_swivel_vw.toml").read_text().replace('model = "dd_swivel.toml"',
-                                                            'model = "dd_robot.toml"')
-    old = "(I + 2*L**2*I_w/R**2)*domega"
-    assert text.count(old) == 1
-    path = tmp_path / "doc.toml"
-    path.write_text(text.replace(old, "(I + 2*R**2*I_w/L**2)*domega"))
+    path = published_copy(tmp_path, "dd_robot", "dd_swivel_vw",        # no caster
+                          ('model = "dd_swivel.toml"', 'model = "dd_robot.toml"'),
+                          ("(I + 2*L**2*I_w/R**2)*domega", "(I + 2*R**2*I_w/L**2)*domega"))
     result = engine.compare(load_derivation(path))
     assert result.equivalent is False
     flagged = {r.element: r for r in result.records if r.verdict != "agrees"}
