@@ -174,3 +174,17 @@ def test_boltzmann_hamel_terms_missing_beside_a_wrong_inertia_are_said(tmp_path)
     assert result.equivalent is False
     (quasi,) = [c for c in result.causes if c.kind == CauseKind.QUASI_COORDINATE_CHRISTOFFEL]
     assert {"h[1]:omega*omega", "h[2]:v*omega"} <= set(quasi.elements), result.causes
+
+
+def test_two_lengths_exchanged_in_a_long_element_are_named(tmp_path):
+    r"""R and L exchanged in the wheels' yaw term of the heading inertia, an element of
+    thirteen terms: named as the exchange (the trials of one symbol for another in its
+    earlier terms had used up the search, "no single-term diagnosis")."""
+    text = (DATA / "segbot2_kane.toml").read_text()
+    old = "2*J_w*L**2/R**2"
+    assert text.count(old) == 1
+    result = _compare_text(tmp_path, text.replace(old, "2*J_w*R**2/L**2"))
+    assert result.equivalent is False
+    (a22,) = [r for r in result.records if r.element == "A[2,2]"]
+    assert any(x.kind == DiagnosisKind.SWAP and x.written == "2*J_w*R**2/L**2"
+               for x in a22.diagnoses), a22.diagnoses

@@ -37,8 +37,7 @@ def symbol_swaps(d: ElementDraft, trials, groups: Sequence[Sequence[sp.Symbol]]
 def _one_factor_trials(expr: sp.Expr, groups: Sequence[Sequence[sp.Symbol]]):
     r"""``(term, written, fits, trial element)``: in one additive term, a symbol :math:`a`
     read as :math:`b` — everywhere in the term (:math:`a^2` becomes :math:`b^2`), or in one
-    factor of a power (:math:`a^e` becomes :math:`a^{e-1}b`) — or two symbols of the term
-    exchanged (:math:`R^2/L^2` where :math:`L^2/R^2` fits)."""
+    factor of a power (:math:`a^e` becomes :math:`a^{e-1}b`)."""
     members = {s: g for g in groups for s in g}
     terms = sp.Add.make_args(sp.expand(expr))
     if len(terms) > MAX_TERMS:
@@ -58,15 +57,26 @@ def _one_factor_trials(expr: sp.Expr, groups: Sequence[Sequence[sp.Symbol]]):
                 if e > 1:
                     new = t.xreplace({base ** e: base ** (e - 1) * b})
                     yield (t, sp.sstr(base ** e), sp.sstr(base ** (e - 1) * b), expr - t + new)
-        bases = list(dict.fromkeys(base for base, _ in present))
+
+
+def _exchange_trials(expr: sp.Expr, groups: Sequence[Sequence[sp.Symbol]]):
+    r"""``(term, written, fits, trial element)``: two symbols of one kind exchanged in one
+    additive term (:math:`R^2/L^2` where :math:`L^2/R^2` fits)."""
+    members = {s: g for g in groups for s in g}
+    terms = sp.Add.make_args(sp.expand(expr))
+    if len(terms) > MAX_TERMS:
+        return
+    for t in terms:
+        bases = list(dict.fromkeys(f.as_base_exp()[0] for f in sp.Mul.make_args(t)
+                                   if f.as_base_exp()[0] in members))
         for a, b in itertools.combinations(bases, 2):
             if b in members[a]:
                 new = t.xreplace({a: b, b: a})
                 yield (t, sp.sstr(t), sp.sstr(new), expr - t + new)
 
 
-#: Most trials of :func:`product_swaps` per element.
-MAX_PRODUCT_TRIALS = 48
+#: Most trials of :func:`product_swaps` per element: a symbol for another, two exchanged.
+MAX_PRODUCT_TRIALS, MAX_EXCHANGE_TRIALS = 48, 24
 
 
 def product_swaps(expr: sp.Expr, trials, groups: Sequence[Sequence[sp.Symbol]], T: np.ndarray,
@@ -75,7 +85,8 @@ def product_swaps(expr: sp.Expr, trials, groups: Sequence[Sequence[sp.Symbol]], 
     everywhere else as printed): ``"lc1**2 where l1**2 fits in the term m2*lc1**2"``. The
     trials are compiled together and screened on a few samples first."""
     found: list[Diagnosis] = []
-    candidates = list(itertools.islice(_one_factor_trials(expr, groups), MAX_PRODUCT_TRIALS))
+    candidates = [*itertools.islice(_one_factor_trials(expr, groups), MAX_PRODUCT_TRIALS),
+                  *itertools.islice(_exchange_trials(expr, groups), MAX_EXCHANGE_TRIALS)]
     if not candidates:
         return found
     screen = trials.screen
