@@ -64,8 +64,8 @@ def _exchange_trials(expr: sp.Expr, groups: Sequence[Sequence[sp.Symbol]]):
     additive term (:math:`R^2/L^2` where :math:`L^2/R^2` fits)."""
     members = {s: g for g in groups for s in g}
     terms = sp.Add.make_args(sp.expand(expr))
-    if len(terms) > MAX_TERMS:
-        return
+    if len(terms) > MAX_TERMS or len(terms) == 1:
+        return                     # one term: the element's own exchange names it
     for t in terms:
         bases = list(dict.fromkeys(f.as_base_exp()[0] for f in sp.Mul.make_args(t)
                                    if f.as_base_exp()[0] in members))

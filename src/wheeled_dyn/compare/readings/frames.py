@@ -71,8 +71,9 @@ class FrameRule:
     document's (``CONSTANT``/``FUNCTION``) and ``value`` the constant (``CONSTANT``: the same
     on every grid; a ``FUNCTION``'s ratio is voted on each); ``variant`` for
     ``COMBINATION``, ``identified`` a function whose ratio is a simple expression in the
-    document's names (voted by one element of A alone, it is then as good as a constant);
-    ``COMBINATION``: ``None`` for
+    document's names (voted by one element of A alone, it is then as good as a constant),
+    ``rank`` the ratio a function takes (0: the one most elements share; 1 the next, the
+    first a factor no author writes); ``COMBINATION``: ``None`` for
     :math:`A_{doc,i}A^{-1}`, ``(j, c)`` for the :math:`w` fitting the row with inertia column
     ``j`` replaced by column ``c`` of the rest (``-1``: the velocity-and-gravity term,
     ``k >= 0``: input ``k``), ``(-1, -1)`` for every inertia column left out (:data:`TERMS`)."""
@@ -135,14 +136,9 @@ def _terms_ratio(groups: list, n: int, with_n: bool) -> tuple[np.ndarray, int] |
     # its negative (Kane's) rather than as another multiple, else the inertia's ratio stands
     # (a gravity term twice what fits is named, not the inertia "1/2 × the truth")
     inertias = [g for g in groups if g[2]]
-    if top[1] < 2 and len(inertias) < 2 and (not _unit(top[0]) or any(
-            _unit(g[0]) for g in inertias)):
-        return None
-    return top[0], top[1]
-
-
-def _unit(ratio: np.ndarray) -> bool:
-    return bool(np.abs(np.abs(ratio) - 1.0).max() <= RATIO_TOL)
+    unit = [bool(np.abs(np.abs(g[0]) - 1.0).max() <= RATIO_TOL) for g in (top, *inertias)]
+    return None if top[1] < 2 and len(inertias) < 2 and (not unit[0] or any(unit[1:])) \
+        else (top[0], top[1])
 
 
 def _columns(a: Arrays, B: np.ndarray | None, row: int, with_n: bool) -> np.ndarray:
@@ -169,12 +165,11 @@ def paired(i: int, k: int, doc: Arrays, truth: Arrays, B_doc: np.ndarray | None,
     when there is none."""
     if doc.A is None or truth.A is None:
         return None
-    both = B_doc is not None and B_true is not None
-    with_n = doc.h is not None or doc.Q is not None
+    both, with_n = B_doc is not None and B_true is not None, doc.h is not None or doc.Q is not None
     D = _columns(doc, B_doc if both else None, i, with_n)
-    T = _columns(_matching(truth, doc), B_true if both else None, k, with_n)
     n = doc.A.shape[2]
-    groups = _ratio_groups(D, T, n)
+    groups = _ratio_groups(D, _columns(_matching(truth, doc), B_true if both else None, k,
+                                       with_n), n)
     terms = _terms_ratio(groups, n, with_n)      # (one wrong element of A's ratio, 0.81,
     for ratio, votes, inertia, _ in groups:      # made the right terms "differ by 1.234")
         constant = np.ptp(ratio) <= CONSTANT_SPREAD * np.abs(ratio).max()
@@ -203,12 +198,10 @@ def _solve_rows(M: np.ndarray, regular: np.ndarray, rhs: np.ndarray) -> np.ndarr
     return out
 
 
-#: The matrices :func:`combination_weights` solves with, by truth and replaced column, with
-#: where they are regular: every row of a document is solved with the same ones (the
-#: determinants were more than half of the solving time), at most :data:`MATRICES_KEPT`, the
-#: least recently used given up first; those of fewer than :data:`MATRICES_FROM` samples are
-#: made again (cheap: the screens of :mod:`.variants` had pushed the main grid's out, and 5
-#: of section 5's 209 were found).
+#: The matrices :func:`combination_weights` solves with (every row with the same ones; the
+#: determinants were half the time), by truth and replaced column, with where they are
+#: regular: at most :data:`MATRICES_KEPT`, the least recently used given up first; those of
+#: fewer than :data:`MATRICES_FROM` samples made again (:mod:`.variants`' screens, cheap).
 _MATRICES: OrderedDict[tuple, tuple[tuple, np.ndarray, np.ndarray]] = OrderedDict()
 MATRICES_KEPT, MATRICES_FROM = 32, 256
 
@@ -247,9 +240,8 @@ def _matrix(truth: Arrays, B_true: np.ndarray | None, variant: tuple[int, int] |
     return M, regular
 
 
-#: The variant of a ``COMBINATION`` whose weights are fitted to the row's velocity-and-gravity
-#: term and inputs' columns alone (every inertia column left out: an error in two of them,
-#: eq1 − eq2 with a symbol for another in both d12 and d21, leaves none to fit them on).
+#: The variant of a ``COMBINATION`` fitted to the row's velocity, gravity and input columns
+#: alone (every inertia column left out: eq1 − eq2 with an error in both d12 and d21).
 TERMS = (-1, -1)
 
 
