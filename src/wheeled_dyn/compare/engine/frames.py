@@ -26,7 +26,7 @@ from ..readings.describe import weight_expression
 from ..readings.frame_choice import choose, elements_of, score, solved_row
 from ..readings.frames import Frame, FrameKind, FrameRule, candidate_rules, evaluate_rule
 from ..readings.variants import combination_variants
-from ..records import Cause, CauseKind, DiagnosisKind, Verdict, diagnosis
+from ..records import Cause, CauseKind, Diagnosis, DiagnosisKind, Verdict, diagnosis
 from ..sides.both import Sides
 from ..sides.document import DocumentFunctions
 from ..sides.framed import framed, row_of
@@ -255,10 +255,15 @@ def declared_only(d: Derivation, drafts: Sequence[ElementDraft], wrong: Collecti
     for r in drafts:
         if r.row in wrong and r.verdict != Verdict.AGREES:
             r.verdict = Verdict.DIFFERS
-            r.diagnoses = [diagnosis(
-                DiagnosisKind.DECLARED, f"differs only as the file declares equation "
-                f"{r.row + 1} to be read (the true one times {sp.sstr(d.row_scale[r.row])}); "
-                "the equation as printed is right", prefix="")]
+            r.diagnoses = [_as_declared(d, r.row, "the equation as printed is right")]
+
+
+def _as_declared(d: Derivation, row: int, printed: str) -> Diagnosis:
+    r"""An element of ``row`` that differs only as the file declares the row to be read."""
+    assert d.row_scale is not None, "a declared row scale"
+    return diagnosis(DiagnosisKind.DECLARED, f"differs only as the file declares equation "
+                     f"{row + 1} to be read (the true one times {sp.sstr(d.row_scale[row])}); "
+                     f"{printed}", prefix="")
 
 
 def declared_apart(d: Derivation, drafts: Sequence[ElementDraft],
@@ -277,10 +282,7 @@ def declared_apart(d: Derivation, drafts: Sequence[ElementDraft],
             continue
         r.verdict = Verdict.DIFFERS
         if other.verdict == Verdict.AGREES:
-            r.diagnoses = [diagnosis(
-                DiagnosisKind.DECLARED, f"differs only as the file declares equation "
-                f"{r.row + 1} to be read (the true one times {sp.sstr(d.row_scale[r.row])}); "
-                "as printed it agrees", prefix="")]
+            r.diagnoses = [_as_declared(d, r.row, "as printed it agrees")]
         else:
             r.diagnoses = list(other.diagnoses)
 
