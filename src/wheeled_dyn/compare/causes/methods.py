@@ -117,7 +117,6 @@ def _from_wrong_A(index: Sequence[int], wrong: dict[tuple[int, int], sp.Expr | N
     i, j, k = index
     if residual is None:
         return []
-
     parts = [((i, j), k), ((i, k), j), ((j, k), i)]
     rates: list[sp.Expr] = []
     for (a, b), m in parts:
@@ -217,9 +216,8 @@ def method_causes(ev: Evaluation, d, records: Sequence) -> list[Cause]:
     out = []
     # with coordinates (not quasi-velocities) an h term equal to A's Christoffel term but not
     # to the truth follows from A, whose own records say what differs: no cause of its own;
-    # nor a product whose Christoffel terms hold an element of A that differs: those of a
-    # wrong A differ from the truth's whatever the velocities are (wheel angles taken
-    # absolute: their A wrong, their C its own)
+    # with quasi-velocities, a product whose whole difference the Christoffel terms of A's
+    # own difference give follows from A too (an upstream cause), not from S^T A Ṡ
     wrong_A = {(r.index[0], r.index[1]): parse(r.residual) if r.residual else None
                for r in records if r.key == "A" and r.verdict == Verdict.DIFFERS}
     along = {r.element: _from_wrong_A(r.index, wrong_A, parse(r.residual) if r.residual
