@@ -13,6 +13,7 @@ from pathlib import Path
 import pytest
 
 from conftest import SEED
+from shipped_copies import published_copy
 from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.compare.records import CauseKind, DiagnosisKind
 from wheeled_dyn.derivations import load_derivation
@@ -22,12 +23,7 @@ HEIGHT = 'z_b  = { value = "CZ(base_link) + 0.065", units = "m" }'
 
 
 def _compare(tmp_path: Path, height: str):
-    text = (DATA / "segbot2_kane.toml").read_text()
-    assert text.count(HEIGHT) == 1
-    for name in ("segbot2.toml", "segbot2.urdf"):
-        (tmp_path / name).write_text((DATA / name).read_text())
-    path = tmp_path / "doc.toml"
-    path.write_text(text.replace(HEIGHT, height))
+    path = published_copy(tmp_path, "segbot2", "segbot2_kane", (HEIGHT, height), data=DATA)
     return ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(
         load_derivation(path))
 
@@ -75,10 +71,8 @@ def _divided(divisor: str) -> str:
 
 
 def _compare_text(tmp_path: Path, text: str):
-    for name in ("segbot2.toml", "segbot2.urdf"):
-        (tmp_path / name).write_text((DATA / name).read_text())
-    path = tmp_path / "doc.toml"
-    path.write_text(text)
+    path = published_copy(tmp_path, "segbot2", "segbot2_kane", data=DATA)
+    path.write_text(text)                     # the model beside it, the document as given
     return ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(
         load_derivation(path))
 
