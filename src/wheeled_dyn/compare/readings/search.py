@@ -124,8 +124,19 @@ class SearchEvaluation(Evaluation):
             return 0
         mine, true, W, sizes, largest = found
         mine = replace(mine, B=None if B is None or true.B is None else B[self._few()])
-        return sum(decide_row(i, mine, true, W, sizes=sizes, largest=largest).verdict
-                   == Verdict.AGREES for i in range(W.shape[1]))
+        if not hasattr(self, "_decided"):
+            self._decided: dict[tuple[object, ...], bool] = {}
+        right = 0
+        for i in range(W.shape[1]):
+            # the truth is the search's own, so the row's parts decide it: many readings
+            # differ in other rows' inputs only
+            key = (i, *(b"" if x is None else np.ascontiguousarray(x[:, i]).tobytes()
+                        for x in (mine.A, mine.n, mine.B)))
+            if key not in self._decided:
+                self._decided[key] = decide_row(i, mine, true, W, sizes=sizes,
+                                                largest=largest).verdict == Verdict.AGREES
+            right += self._decided[key]
+        return right
 
     def equations_right(self, doc: Arrays) -> int:
         r"""How many equations of ``doc`` (on the search's samples) are combinations of the
