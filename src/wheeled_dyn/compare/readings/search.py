@@ -130,7 +130,7 @@ class SearchEvaluation(Evaluation):
         for i in range(W.shape[1]):
             # the truth is the search's own, so the row's parts decide it: many readings
             # differ in other rows' inputs only
-            key = (i, *(b"" if x is None else np.ascontiguousarray(x[:, i]).tobytes()
+            key = (i, *(b"" if x is None else (x[:, i] + 0.0).tobytes()
                         for x in (mine.A, mine.n, mine.B)))
             if key not in self._decided:
                 self._decided[key] = decide_row(i, mine, true, W, sizes=sizes,
