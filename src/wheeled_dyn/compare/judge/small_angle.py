@@ -25,8 +25,9 @@ import sympy as sp
 from ..records import Diagnosis, DiagnosisKind as K, diagnosis
 from .diagnose import MAX_TERMS, agrees
 
-#: The trials of one expression: (what the document wrote, what fits, the trial expression).
-Trial = tuple[str, str, sp.Expr]
+#: A trial of one expression: (what the document wrote, what fits, the expression it reads,
+#: whether that is multiplied by :math:`\cos x`: numerically, so no product is built).
+Trial = tuple[str, str, sp.Expr, bool]
 
 
 def _outside_trig(expr: sp.Expr) -> set[sp.Basic]:
@@ -67,15 +68,15 @@ def _trials(expr: sp.Expr, x: sp.Expr) -> list[Trial]:
     sin_read = bare(expr, x, sp.sin(x))
     out: list[Trial] = []
     if sin_read != expr:
-        out.append((sp.sstr(x), sp.sstr(sp.sin(x)), sin_read))
+        out.append((sp.sstr(x), sp.sstr(sp.sin(x)), sin_read, False))
     divides = expr.has(sp.tan(x)) or any(
         p.base == sp.cos(x) and p.exp.is_negative for p in expr.atoms(sp.Pow))
     if divides:
         return out
-    out.append(("1", sp.sstr(sp.cos(x)), expr * sp.cos(x)))
+    out.append(("1", sp.sstr(sp.cos(x)), expr, True))
     if sin_read != expr:
         out.append((f"{sp.sstr(x)} and 1", f"{sp.sstr(sp.sin(x))} and {sp.sstr(sp.cos(x))}",
-                    sin_read * sp.cos(x)))
+                    sin_read, True))
     return out
 
 
@@ -87,6 +88,28 @@ def _found(x: sp.Symbol, written: str, fits: str, term: str = "") -> Diagnosis:
                      position=sp.sstr(x))
 
 
+class _Values:
+    r"""The values of the expressions a set of trials reads, and of :math:`\cos x` for each
+    position, each evaluated once (in one compiled call). ``evaluate_many`` gives values of
+    the row read in its frame (divided by the row's factor :math:`c`), so the factor
+    :math:`\cos x` is its value over that of 1: :math:`(\cos x / c) / (1 / c)`."""
+
+    def __init__(self, evaluate_many: Callable[[list], list[np.ndarray]],
+                 exprs: Sequence[sp.Expr], positions: Sequence[sp.Expr]) -> None:
+        unique = list(dict.fromkeys([*exprs, sp.S.One, *(sp.cos(x) for x in positions)]))
+        self._at = {e: v for e, v in zip(unique, evaluate_many(unique))}
+
+    def __getitem__(self, expr: sp.Expr) -> np.ndarray:
+        return self._at[expr]
+
+    def trial(self, x: sp.Expr, t: Trial) -> np.ndarray:
+        r"""The value of trial ``t`` of angle ``x``."""
+        if not t[3]:
+            return self._at[t[2]]
+        with np.errstate(all="ignore"):
+            return self._at[t[2]] * (self._at[sp.cos(x)] / self._at[sp.S.One])
+
+
 def small_angle_diagnoses(expr: sp.Expr, positions: Sequence[sp.Symbol],
                           evaluate_many: Callable[[list], list[np.ndarray]], T: np.ndarray,
                           scale: float) -> list[Diagnosis]:
@@ -96,8 +119,8 @@ def small_angle_diagnoses(expr: sp.Expr, positions: Sequence[sp.Symbol],
     if not positions:
         return []
     whole = [(x, t) for x in positions for t in _trials(expr, x)]
-    values = evaluate_many([t[2] for _, t in whole])
-    found = [_found(x, w, f) for (x, (w, f, _)), v in zip(whole, values) if agrees(v, T, scale)]
+    at = _Values(evaluate_many, [t[2] for _, t in whole], positions)
+    found = [_found(x, t[0], t[1]) for x, t in whole if agrees(at.trial(x, t), T, scale)]
     if found:
         return found[:1]
     for terms in (sp.Add.make_args(expr), sp.Add.make_args(sp.expand(expr))):
@@ -105,15 +128,15 @@ def small_angle_diagnoses(expr: sp.Expr, positions: Sequence[sp.Symbol],
             continue
         per = [(k, x, t) for k, term in enumerate(terms) for x in positions
                for t in _trials(term, x)]
-        values = evaluate_many([*terms, *(t[2] for _, _, t in per)])
-        total = sum(values[:len(terms)])
-        found = [_found(x, w, f, sp.sstr(terms[k])) for (k, x, (w, f, _)), v
-                 in zip(per, values[len(terms):]) if agrees(total - values[k] + v, T, scale)]
+        at = _Values(evaluate_many, [*terms, *(t[2] for _, _, t in per)], positions)
+        values = [at[term] for term in terms]
+        total = sum(values)
+        found = [_found(x, t[0], t[1], sp.sstr(terms[k])) for k, x, t in per
+                 if agrees(total - values[k] + at.trial(x, t), T, scale)]
         if found:
             return found[:1]
         # two terms read so together (m₁a₁gθ + m₂l₁gθ; a bare θ elsewhere in the row kept)
-        sines = {(k, x): v for (k, x, (w, _, _)), v in zip(per, values[len(terms):])
-                 if w == sp.sstr(x)}
+        sines = {(k, x): at.trial(x, t) for k, x, t in per if t[0] == sp.sstr(x)}
         for (k, x), v in sines.items():
             for (j, y), u in sines.items():
                 if j > k and y == x and agrees(total - values[k] - values[j] + v + u, T,

@@ -35,8 +35,8 @@ def symbol_swaps(d: ElementDraft, trials, groups: Sequence[Sequence[sp.Symbol]]
 
 
 def _one_factor_trials(expr: sp.Expr, groups: Sequence[Sequence[sp.Symbol]]):
-    r"""``(term, written, fits, trial element)``: in one additive term, a symbol :math:`a`
-    read as :math:`b` — everywhere in the term (:math:`a^2` becomes :math:`b^2`), or in one
+    r"""``(term, written, fits, trial element)`` (written and fits as expressions, printed
+    only for what is found): in one additive term, a symbol :math:`a` read as :math:`b` — everywhere in the term (:math:`a^2` becomes :math:`b^2`), or in one
     factor of a power (:math:`a^e` becomes :math:`a^{e-1}b`)."""
     members = {s: g for g in groups for s in g}
     terms = sp.Add.make_args(sp.expand(expr))
@@ -53,15 +53,15 @@ def _one_factor_trials(expr: sp.Expr, groups: Sequence[Sequence[sp.Symbol]]):
             for b in members[base]:
                 if b == base:
                     continue
-                yield (t, sp.sstr(base ** e), sp.sstr(b ** e), expr - t + t.xreplace({base: b}))
+                yield (t, base ** e, b ** e, expr - t + t.xreplace({base: b}))
                 if e > 1:
                     new = t.xreplace({base ** e: base ** (e - 1) * b})
-                    yield (t, sp.sstr(base ** e), sp.sstr(base ** (e - 1) * b), expr - t + new)
+                    yield (t, base ** e, base ** (e - 1) * b, expr - t + new)
 
 
 def _exchange_trials(expr: sp.Expr, groups: Sequence[Sequence[sp.Symbol]]):
-    r"""``(term, written, fits, trial element)``: two symbols of one kind exchanged in one
-    additive term (:math:`R^2/L^2` where :math:`L^2/R^2` fits)."""
+    r"""``(term, written, fits, trial element)`` (as :func:`_one_factor_trials`): two
+    symbols of one kind exchanged in one additive term (:math:`R^2/L^2` where :math:`L^2/R^2` fits)."""
     members = {s: g for g in groups for s in g}
     terms = sp.Add.make_args(sp.expand(expr))
     if len(terms) > MAX_TERMS or len(terms) == 1:
@@ -72,7 +72,7 @@ def _exchange_trials(expr: sp.Expr, groups: Sequence[Sequence[sp.Symbol]]):
         for a, b in itertools.combinations(bases, 2):
             if b in members[a]:
                 new = t.xreplace({a: b, b: a})
-                yield (t, sp.sstr(t), sp.sstr(new), expr - t + new)
+                yield (t, t, new, expr - t + new)
 
 
 #: Most trials of :func:`product_swaps` per element: a symbol for another, two exchanged.
@@ -99,9 +99,10 @@ def product_swaps(expr: sp.Expr, trials, groups: Sequence[Sequence[sp.Symbol]], 
             continue
         with np.errstate(all="ignore"):
             if agrees(trials.evaluate(trial), T, scale):
-                where = "" if written == sp.sstr(term) else f" in the term {sp.sstr(term)}"
-                found.append(diagnosis(K.SWAP, f"{written} where {fits} fits{where}",
-                                       written=written, fits=fits, term=sp.sstr(term)))
+                w, f, t = sp.sstr(written), sp.sstr(fits), sp.sstr(term)
+                where = "" if w == t else f" in the term {t}"
+                found.append(diagnosis(K.SWAP, f"{w} where {f} fits{where}",
+                                       written=w, fits=f, term=t))
     return found
 
 
