@@ -35,7 +35,7 @@ def symbol_swaps(d: ElementDraft, trials, groups: Sequence[Sequence[sp.Symbol]]
 
 
 def _one_factor_trials(expr: sp.Expr, groups: Sequence[Sequence[sp.Symbol]]):
-    r"""``(term, written, fits, trial element)`` (written and fits as expressions, printed
+    r"""``(term, written, fits, the term read so)`` (written and fits as expressions, printed
     only for what is found): in one additive term, a symbol :math:`a` read as :math:`b` — everywhere in the term (:math:`a^2` becomes :math:`b^2`), or in one
     factor of a power (:math:`a^e` becomes :math:`a^{e-1}b`)."""
     members = {s: g for g in groups for s in g}
@@ -53,14 +53,14 @@ def _one_factor_trials(expr: sp.Expr, groups: Sequence[Sequence[sp.Symbol]]):
             for b in members[base]:
                 if b == base:
                     continue
-                yield (t, base ** e, b ** e, expr - t + t.xreplace({base: b}))
+                yield (t, base ** e, b ** e, t.xreplace({base: b}))
                 if e > 1:
                     new = t.xreplace({base ** e: base ** (e - 1) * b})
-                    yield (t, base ** e, base ** (e - 1) * b, expr - t + new)
+                    yield (t, base ** e, base ** (e - 1) * b, new)
 
 
 def _exchange_trials(expr: sp.Expr, groups: Sequence[Sequence[sp.Symbol]]):
-    r"""``(term, written, fits, trial element)`` (as :func:`_one_factor_trials`): two
+    r"""``(term, written, fits, the term read so)`` (as :func:`_one_factor_trials`): two
     symbols of one kind exchanged in one additive term (:math:`R^2/L^2` where :math:`L^2/R^2` fits)."""
     members = {s: g for g in groups for s in g}
     terms = sp.Add.make_args(sp.expand(expr))
@@ -72,7 +72,7 @@ def _exchange_trials(expr: sp.Expr, groups: Sequence[Sequence[sp.Symbol]]):
         for a, b in itertools.combinations(bases, 2):
             if b in members[a]:
                 new = t.xreplace({a: b, b: a})
-                yield (t, t, new, expr - t + new)
+                yield (t, t, new, new)
 
 
 #: Most trials of :func:`product_swaps` per element: a symbol for another, two exchanged.
@@ -83,7 +83,9 @@ def product_swaps(expr: sp.Expr, trials, groups: Sequence[Sequence[sp.Symbol]], 
                   scale: float) -> list[Diagnosis]:
     r"""A symbol written for another inside one product of one additive term (the element
     everywhere else as printed): ``"lc1**2 where l1**2 fits in the term m2*lc1**2"``. The
-    trials are compiled together and screened on a few samples first."""
+    trials are screened on a few samples first, the element's value there with one term
+    replaced (the terms compiled together, no trial element built), and every trial that
+    agrees there is built and evaluated on every sample."""
     found: list[Diagnosis] = []
     candidates = [*itertools.islice(_one_factor_trials(expr, groups), MAX_PRODUCT_TRIALS),
                   *itertools.islice(_exchange_trials(expr, groups), MAX_EXCHANGE_TRIALS)]
@@ -91,14 +93,18 @@ def product_swaps(expr: sp.Expr, trials, groups: Sequence[Sequence[sp.Symbol]], 
         return found
     screen = trials.screen
     argv = trials.screened
+    unique = list(dict.fromkeys([expr, *(c[0] for c in candidates),
+                                 *(c[3] for c in candidates)]))
     with np.errstate(all="ignore"):
-        values = trials.funcs.compiled(tuple(c[3] for c in candidates))(*argv)
-    for (term, written, fits, trial), v in zip(candidates, values):
-        v = np.broadcast_to(np.asarray(v, float), (len(screen),))
+        at = {e: np.broadcast_to(np.asarray(v, float), (len(screen),)) for e, v in
+              zip(unique, trials.funcs.compiled(tuple(unique))(*argv))}
+    for term, written, fits, new in candidates:
+        with np.errstate(all="ignore"):
+            v = at[expr] - at[term] + at[new]
         if not agrees(v, T[screen], scale):
             continue
         with np.errstate(all="ignore"):
-            if agrees(trials.evaluate(trial), T, scale):
+            if agrees(trials.evaluate(expr - term + new), T, scale):
                 w, f, t = sp.sstr(written), sp.sstr(fits), sp.sstr(term)
                 where = "" if w == t else f" in the term {t}"
                 found.append(diagnosis(K.SWAP, f"{w} where {f} fits{where}",
