@@ -315,10 +315,9 @@ def trig_swap_diagnoses(expr: sp.Expr, evaluate_many: Callable[[list], list[np.n
               for a in args if expr.has(sp.sin(a)) and expr.has(sp.cos(a))]
     whole += [((f, o, False), expr.xreplace({f: o})) for f, o in _argument_trials(expr)]
     values = evaluate_many([e for _, e in whole])
-    found = [_swap(*what) for (what, _), v in zip(whole, values) if agrees(v, T, scale)]
-    singles = [x for x in found if x.detail.endswith("fits")]
-    if found:
-        return singles or found
+    fitting = [what for (what, _), v in zip(whole, values) if agrees(v, T, scale)]
+    if fitting:                # one function for another first, then both exchanged
+        return [_swap(*what) for what in [w for w in fitting if not w[2]] or fitting]
     for terms in (sp.Add.make_args(expr), sp.Add.make_args(sp.expand(expr))):
         if len(terms) > MAX_TERMS:
             continue
