@@ -99,6 +99,31 @@ def test_no_shipped_derivation_declares_a_family_against_its_own_symbols():
     assert not wrong, wrong
 
 
+def test_declared_units_against_the_value_are_the_files_error(engine, tmp_path):
+    r"""MX1 declared in kg·m² where its value MX(body) is kg·m (a first moment): the document
+    is right as written (the comparison uses the value), so every verdict stands, and one
+    ``file_error`` cause names the symbol, its declared units and its value's. The true file
+    (MX1 in kg·m) has no such cause."""
+    wrong = '{ value = "MX(body)", units = "kg*m**2" }'
+    path = _file(tmp_path, '{ value = "MX(body)", units = "kg*m" }', wrong)
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is True, result.equations
+    said = [c.explanation for c in result.causes if c.kind == CauseKind.FILE_ERROR]
+    assert said == ["the file declares MX1 in kg·m^2, but its value MX(body) is kg·m: the "
+                    "declared units are wrong (the comparison uses the value; the units only "
+                    "check the document's terms)"], result.causes
+    right = engine.compare(load_derivation(TRUE_FILE))
+    assert not [c for c in right.causes if c.kind == CauseKind.FILE_ERROR], right.causes
+
+
+def test_no_shipped_derivation_declares_units_against_its_values():
+    from wheeled_dyn.compare.judge.units import contradicted_units
+    wrong = {path.name: contradicted_units(load_derivation(path))
+             for group in ("seed001", "seed000", "seed002", "literature")
+             for path in builtin_derivations(group)}
+    assert not {k: v for k, v in wrong.items() if v}
+
+
 STEPS = """title = "potential energy"
 model = "wip"
 [coordinates]

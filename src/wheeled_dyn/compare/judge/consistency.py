@@ -13,6 +13,9 @@ sign or factor, so the family explains nothing about it.
   (:func:`contradicted_families`): its terms in those symbols are never compared (they vanish
   in every parameter set drawn), which a cause says first; the verdicts under the
   declaration stand.
+- **Declared units** that contradict the model parameters a symbol's value names (a moment
+  of inertia in kg·m) are the file contradicting itself too (:func:`contradiction_causes`,
+  :func:`~.units.contradicted_units`).
 
 A symbol vanishes under a family where its value is at most :data:`ZERO` of its largest on
 parameter sets drawn without the family, in every set drawn with it — and, for a model of a
@@ -34,6 +37,7 @@ from ..grid.assumptions import Assumptions
 from ..grid.samples import SpecialCase, parameter_sets
 from ..records import Cause, CauseKind
 from ..sides.document import DocumentFunctions, document_symbol_values
+from .units import contradicted_units, format_dim
 
 #: A symbol's value at most this fraction of its largest without the family is zero.
 ZERO = 1e-12
@@ -135,7 +139,8 @@ def contradicted_families(d: Derivation, funcs: DocumentFunctions, assumed: Assu
 
 def contradiction_causes(d: Derivation, funcs: DocumentFunctions, assumed: Assumptions,
                          seed: int) -> tuple[Cause, ...]:
-    r"""A ``file_error`` cause per declared family that makes a written symbol vanish."""
+    r"""A ``file_error`` cause per declared family that makes a written symbol vanish, and
+    per symbol whose declared units contradict its value."""
     out = []
     for name, gone in contradicted_families(d, funcs, assumed, seed):
         them = ", ".join(map(str, gone))
@@ -145,6 +150,11 @@ def contradiction_causes(d: Derivation, funcs: DocumentFunctions, assumed: Assum
             f"{'it' if len(gone) == 1 else 'them'}: its terms in {them} vanish in every "
             "parameter set and are not compared (declare the family only where the "
             "document's equations assume it)")))
+    for name, value, declared, given in contradicted_units(d):
+        out.append(Cause(CauseKind.FILE_ERROR, (), (
+            f"the file declares {name} in {format_dim(declared)}, but its value {value} is "
+            f"{format_dim(given)}: the declared units are wrong (the comparison uses the "
+            "value; the units only check the document's terms)")))
     return tuple(out)
 
 

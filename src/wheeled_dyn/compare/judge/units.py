@@ -315,6 +315,23 @@ class DimensionChecker:
         return problems
 
 
+def contradicted_units(d: Derivation) -> list[tuple[str, str, Dim, Dim]]:
+    r"""The symbols whose declared units contradict the model parameters their value names
+    (``I_b = { value = "IYY(body)", units = "kg*m" }``): (name, value as written, declared
+    dimension, the value's), in the file's order. Both are the file's: the verdicts stand
+    under the declared values, and the units are the file's to mend."""
+    out = []
+    for name, spec in d.symbols.items():
+        declared = units_dim(spec.units) if spec.units else None
+        if declared is None or spec.value is None:
+            continue
+        given = value_dim(spec.value)
+        if given is not None and tuple(map(sp.Rational, given)) != \
+                tuple(map(sp.Rational, declared)):
+            out.append((name, sp.sstr(spec.value), declared, given))
+    return out
+
+
 def geometric_symbols(d: Derivation) -> set[sp.Symbol]:
     r"""The document's positions and its symbols measured in metres (or dimensionless)."""
     out = set(d.positions)
