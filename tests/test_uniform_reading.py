@@ -330,3 +330,49 @@ def read_turned(text: str, tensor: np.ndarray) -> dict:
     inertia = pin.Inertia(0.2, np.array([0.0, 0.0, 0.4]), tensor)
     return uniform_inertials(text, {"rod": (0.01, 0.8)},
                              {"rod": tuple(inertia.toDynamicParameters())})
+
+
+def _rod_model(folder: Path, moment: str) -> Path:
+    r"""The shipped ``rod_pendulum`` (1.5 kg, 1 m, its cylinder 1 cm in radius) as a user's
+    own model, its moments about x and y printed ``moment``."""
+    from wheeled_dyn.models.registry import MODELS
+    from wheeled_dyn.paths import urdf_dir
+    text = (urdf_dir() / "rod_pendulum.urdf").read_text()
+    old = 'ixx="0.125" ixy="0" ixz="0" iyy="0.125"'
+    assert text.count(old) == 1
+    (folder / "rod_pendulum.urdf").write_text(
+        text.replace(old, f'ixx="{moment}" ixy="0" ixz="0" iyy="{moment}"'))
+    model = Path(MODELS["rod_pendulum"].source).read_text()
+    path = folder / "rod_pendulum.toml"
+    path.write_text(model.replace('package = "wheeled-dyn"\n', "").replace(
+        'name = "rod_pendulum"', f'name = "{folder.name}_rod"'))
+    return path
+
+
+@pytest.mark.parametrize("moment, unlike", [("0.125", False), ("0.1875", True)],
+                         ids=["uniform", "ends-heavy"])
+def test_a_link_declared_uniform_that_its_urdf_is_not_is_the_files_error(
+        tmp_path: Path, moment: str, unlike: bool) -> None:
+    r"""The uniform rod pendulum (Meriam's 4.4 as ``published_forms.ROD`` writes it, right
+    for a uniform rod: :math:`\tfrac13 m l^2\ddot\theta + \tfrac12 mgl\sin\theta = 0`,
+    ``[assumes] uniform = ["rod"]``) on a URDF whose rod prints its moments 1.5 × a uniform
+    rod's (its mass towards the ends): the truth keeps the URDF's inertia, the document
+    differs, and the first cause is the file's: the rod declared uniform is no uniform body of
+    its cylinder (every body's moment listed). On the shipped URDF, no such cause."""
+    model = _rod_model(tmp_path, moment)
+    path = tmp_path / "rod.toml"
+    path.write_text(P.ROD.format(gravity="m*g*l/2*sin(theta)").replace(
+        'model = "rod_pendulum"', f'model = "{model}"'))
+    result = ComparisonEngine(samples=SAMPLES, param_sets=PARAM_SETS, seed=SEED).compare(
+        load_derivation(path))
+    assert result.equivalent is (not unlike), result.equations
+    said = [c.explanation for c in result.causes if c.kind.value == "file_error"]
+    if not unlike:
+        assert said == [], said
+        return
+    assert result.causes[0].explanation == said[0]
+    assert said[0].startswith("the file declares rod uniform, but link rod's URDF moments "
+                              "(ixx 0.1875, iyy 0.1875, izz 0) are no uniform body's of its "
+                              "cylinder of radius 0.01 m and length 1 m and mass 1.5 kg "
+                              "(m r²/2 = 7.5e-05, "), said
+    assert "m L²/12 = 0.125)" in said[0], said

@@ -131,6 +131,9 @@ class GeometryTable:
     #: link → (its inertials read as the uniform body's, the reading in words), for the links
     #: whose printed moments are a uniform body's to their digits (:mod:`.uniform_reading`)
     uniform: Mapping[str, tuple[tuple[float, ...], str]] = field(default_factory=dict)
+    #: link → in words, for the links with a cylinder or sphere whose printed moments are no
+    #: uniform body's of it (:func:`~.uniform_reading.unlike_uniform`)
+    unlike_uniform: Mapping[str, str] = field(default_factory=dict)
 
     def values(self) -> dict[str, float]:
         r"""Every name → its value (dimensions, then constants)."""
@@ -323,6 +326,8 @@ def symbols(geometry: GeometryTable, exact=None) -> dict[str, sp.Expr]:
 
 def table(dims: Mapping[str, Dimension], consts: Mapping[str, Constant],
           inertials: Mapping[str, tuple[float, ...]],
-          uniform: Mapping[str, tuple[tuple[float, ...], str]] | None = None) -> GeometryTable:
+          uniform: Mapping[str, tuple[tuple[float, ...], str]] | None = None,
+          unlike_uniform: Mapping[str, str] | None = None) -> GeometryTable:
     return GeometryTable(MappingProxyType(dict(dims)), MappingProxyType(dict(consts)),
-                         MappingProxyType(dict(inertials)), MappingProxyType(dict(uniform or {})))
+                         MappingProxyType(dict(inertials)), MappingProxyType(dict(uniform or {})),
+                         MappingProxyType(dict(unlike_uniform or {})))

@@ -214,8 +214,8 @@ def apply_geometry(wm: WheeledModel, draw: GeometryDraw) -> WheeledModel:
         rolling.append(replace(w, spec=spec, centre=w.centre * size))
     dims = {k: replace(d, value=new[k]) for k, d in table.dimensions.items()}
     consts = {k: replace(c, value=geometry[k]) for k, c in table.constants.items()}
-    lengths = GeometryTable(MappingProxyType(dims), MappingProxyType(consts), table.inertials,
-                            table.uniform)
+    lengths = replace(table, dimensions=MappingProxyType(dims),
+                      constants=MappingProxyType(consts))
     return replace(wm, model=model, wheels=wheels, contact=contact,
                    rolling_wheels=tuple(rolling), geometry=geometry, lengths=lengths)
 

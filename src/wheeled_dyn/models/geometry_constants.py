@@ -22,7 +22,7 @@ from ..derivations.expressions import GEOMETRY_NAMES, ExpressionError, parse_mod
 from ..errors import ModelError
 from .geometry import (SAME_TOL, Constant, ConstantKind, Dimension, GeometryTable, monomial,
                        call_name, dimensions, evaluate, link_inertials, table, urdf_lengths)
-from .uniform_reading import uniform_inertials
+from .uniform_reading import uniform_inertials, unlike_uniform
 
 if TYPE_CHECKING:
     from .wheeled_model import ModelSpec
@@ -138,9 +138,10 @@ def _lengths(spec: "ModelSpec", source: "UrdfSource", dims: Mapping[str, Dimensi
     where ``[geometry]`` does not name them, then ``[geometry]``'s; the links' own inertias."""
     kept = {k: c for k, c in given.items() if k not in spec.geometry}
     inertials = link_inertials(source.text, source.path)
+    shapes = urdf_lengths(source.text)[1]
     out = table(dims, constants(spec.name, spec.geometry, dims, kept, spec.fixed_geometry),
-                inertials, uniform_inertials(source.text, urdf_lengths(source.text)[1],
-                                             inertials))
+                inertials, uniform_inertials(source.text, shapes, inertials),
+                unlike_uniform(source.text, shapes, inertials))
     for name, c in given.items():                  # [geometry] says what it is drawn with
         value = out.constants[name].value if name in out.constants else c.value
         if abs(value - c.value) > SAME_TOL * max(1.0, abs(c.value)):

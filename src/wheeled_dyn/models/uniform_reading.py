@@ -127,6 +127,49 @@ def uniform_inertials(text: str, shapes: Mapping[str, tuple[float | None, float 
     return out
 
 
+#: A printed moment within this fraction of a uniform body's is taken to be meant as one
+#: (:func:`unlike_uniform`: a URDF computed from a shape other than the one it draws).
+LIKE = 0.01
+
+
+def unlike_uniform(text: str, shapes: Mapping[str, tuple[float | None, float | None]],
+                   inertials: Mapping[str, tuple[float, ...]]) -> dict[str, str]:
+    r"""Per link with a cylinder or sphere whose printed moments (tensor diagonal, products
+    zero, axes turned by right angles at most) are none of them within :data:`LIKE` of a
+    uniform body's of that shape (the moments of module text): in words, what it prints and
+    what a uniform body would have. Such a link declared uniform is the file contradicting
+    its URDF: the truth keeps the URDF's inertia (its proportions)."""
+    import pinocchio as pin
+    out: dict[str, str] = {}
+    for link in ET.fromstring(text).findall("link"):
+        name = link.get("name", "")
+        element = link.find("inertial/inertia")
+        radius, length = shapes.get(name, (None, None))
+        if name not in inertials or element is None or (radius is None and length is None):
+            continue
+        origin = link.find("inertial/origin")
+        try:
+            axes = _link_axes([float(x) for x in ("0 0 0" if origin is None else
+                                                   origin.get("rpy", "0 0 0")).split()])
+            printed = [float(element.get(k, "0")) for k in DIAGONAL]
+            products = any(float(element.get(k, "0")) != 0.0 for k in PRODUCTS)
+        except ValueError:
+            continue
+        mass = pin.Inertia.FromDynamicParameters(np.asarray(inertials[name])).mass
+        bodies = _candidates(mass, radius, length)
+        if axes is None or products or mass <= 0 or not any(v > 0 for v in printed) or any(
+                abs(v - b) <= LIKE * b for v in printed for b, _ in bodies):
+            continue
+        shape = f"sphere or cylinder of radius {radius:g} m" if length is None else \
+            f"cylinder of radius {radius:g} m and length {length:g} m" if radius is not None \
+            else f"length {length:g} m"
+        moments = ", ".join(f"{k} {v:g}" for k, v in zip(DIAGONAL, printed))
+        out[name] = (f"link {name}'s URDF moments ({moments}) "
+                     f"are no uniform body's of its {shape} and mass {mass:g} kg ("
+                     + ", ".join(f"{f} = {b:.4g}" for b, f in bodies) + ")")
+    return out
+
+
 def _axial(element: ET.Element, mass: float, radius: float) -> bool | None:
     r"""Whether ``element`` prints a cylinder's axial moment :math:`mr^2/2` (to its digits,
     not zero: True), or a slender rod's, zero (False); None where it prints neither."""
@@ -162,4 +205,4 @@ def _link_axes(rpy: list[float]) -> tuple[int, ...] | None:
     return tuple(int(np.argmax(np.abs(P[:, a]))) for a in range(3))
 
 
-__all__ = ["half_unit", "uniform_inertials"]
+__all__ = ["LIKE", "half_unit", "uniform_inertials", "unlike_uniform"]

@@ -119,14 +119,33 @@ class Assumptions:
                     ) -> tuple[Cause, ...]:
         r"""What the file's own declarations say first: a narrow range, equations declared
         linearised that are not linear, a declared ``round_wheels`` beside symbols of the
-        wheels' asymmetry."""
+        wheels' asymmetry, a link declared uniform whose URDF inertia is no uniform body's."""
         return (*self.narrow_ranges(exprs.values()), *self.not_linear(d.positions, exprs),
-                *round_contradiction(d, self.families))
+                *round_contradiction(d, self.families), *_unlike_uniform(d, self.families))
 
     def key(self) -> tuple:
         r"""Hashable identity (cache key of the truth)."""
         return (tuple(c.name for c in self.families), self.linearised_about,
                 self.equilibrium_potential)
+
+
+def _unlike_uniform(d: Derivation, families: Sequence[SpecialCase]) -> tuple[Cause, ...]:
+    r"""A ``file_error`` cause per link the file declares uniform whose URDF moments are no
+    uniform body's of its own cylinder or sphere
+    (:func:`~wheeled_dyn.models.uniform_reading.unlike_uniform`): the family keeps the
+    URDF's inertia in its proportions, so a term the document writes as the uniform body's
+    moment differs by that."""
+    from ...models.registry import load_model, model_entry
+    links = list(dict.fromkeys(link for c in families for link in (c.uniform or ())))
+    if not links or model_entry(d.model).parameters is not None:
+        return ()
+    lengths = load_model(d.model).lengths
+    unlike = {} if lengths is None else lengths.unlike_uniform
+    return tuple(Cause(CauseKind.FILE_ERROR, (), (
+        f"the file declares {link} uniform, but {unlike[link]}: the truth keeps the URDF's "
+        "inertia (scaled as a whole), so a term written as the uniform body's moment "
+        "differs by that (mend the URDF's inertia, or do not declare the link uniform)"))
+        for link in links if link in unlike)
 
 
 def declared(d: Derivation) -> Assumptions:
