@@ -1072,3 +1072,33 @@ def test_a_frame_constant_is_one_an_author_writes(tmp_path):
     a22 = next(r for r in result.records if r.element == "A[2,2]")
     assert a22.verdict == Verdict.DIFFERS and a22.diagnoses[0].kind == K.PARALLEL_AXIS, \
         a22.texts
+
+
+@pytest.mark.parametrize("planted", [False, True], ids=["right", "K-dropped"])
+def test_a_free_motor_constant_dropped_is_named(engine, tmp_path, planted):
+    r"""The two-link arm's equations (``published_forms``, Spong's) driven through motors of
+    one torque constant K, a parameter the model lacks (``free = true``, kept symbolic on
+    both sides: ``tau1 = "K*i1"``), the currents the inputs: right as written; with K
+    dropped from the second equation's input, B[2,2] differs, named as the factor K the
+    document lacks (free symbols are parameters to name a term by; it was a difference with
+    no name)."""
+    path = P.write(tmp_path, "arm", "equations", None)
+    text = path.read_text()
+    for old, new in (('tau1 = "tau1"', 'tau1 = "K*i1"'), ('tau2 = "tau2"', 'tau2 = "K*i2"'),
+                     ('tau1 = { input = true, units = "N*m" }',
+                      'K = { free = true, units = "N*m/A" }\n'
+                      'i1 = { input = true, units = "A" }'),
+                     ('tau2 = { input = true, units = "N*m" }',
+                      'i2 = { input = true, units = "A" }'),
+                     ('= tau1"', '= K*i1"'), ('= tau2"', '= i2"' if planted else '= K*i2"')):
+        assert text.count(old) == 1, old
+        text = text.replace(old, new)
+    path.write_text(text)
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is not planted, result.equations
+    wrong = {r.element: r for r in result.records if r.verdict != Verdict.AGREES}
+    assert set(wrong) == ({"B[2,2]"} if planted else set()), wrong
+    if planted:
+        said = [(d.kind, d.factor) for d in wrong["B[2,2]"].diagnoses]
+        assert said[0] == (K.FACTOR, "1/K") and {k for k, _ in said} <= {K.FACTOR, K.DIMENSION}, \
+            wrong["B[2,2]"].texts

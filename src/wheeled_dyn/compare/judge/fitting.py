@@ -52,9 +52,9 @@ def bases(d: Derivation, q: np.ndarray, values: Mapping[sp.Symbol, np.ndarray]
     r"""The candidate bases with their sample values (one of each set of equal columns)."""
     out: list[tuple[sp.Expr, np.ndarray]] = []
     n = len(q)
-    unknown = {spec.symbol for spec in d.symbols.values() if spec.free or spec.is_input}
+    unknown = {spec.symbol for spec in d.symbols.values() if spec.is_input}
     for s, v in values.items():
-        if s not in unknown:                 # a balance's forces, inputs: not parameters
+        if s not in unknown:                 # inputs are no parameters; free ones are
             out.append((s, np.broadcast_to(np.asarray(v, dtype=float), (n,))))
     for a, p in enumerate(d.positions):
         out += [(p, q[:, a]), (sp.cos(p), np.cos(q[:, a])), (sp.sin(p), np.sin(q[:, a]))]
