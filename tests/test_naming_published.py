@@ -264,6 +264,10 @@ def _solved_with(engine, tmp_path, model: str, form: str, old: str, new: str) ->
     (("cart_double_pendulum",), 'M22 = "I1 + L1**2*m2 + a1**2*m1"',
      'M22 = "L1**2*m2 + a1**2*m1"', "A[2,2]: the moment of inertia Iyy(link1) about its own "
      "centre of mass is missing, a point mass (truth − document = I1)"),
+    (("cart_double_pendulum",), 'M22 = "I1 + L1**2*m2 + a1**2*m1"',
+     'M22 = "I1 + L1**2*m2"', "A[2,2]: the parallel-axis term of link1 about its x or y axis "
+     "is missing: the inertia about the centre of mass where the one about the joint's axis "
+     "fits (truth − document = a1**2*m1)"),
     (("cart_double_pendulum",), 'M12 = "(L1*m2 + a1*m1)*cos(th1)"',
      'M12 = "(L1*m2 - a1*m1)*cos(th1)"',
      "A[1,2]: the term a1*m1*cos(th1) has the wrong sign (truth − document = "
@@ -274,7 +278,8 @@ def test_a_solved_form_names_a_symbol_for_another_and_its_inverted_inertia(
     r"""Equations solved for the accelerations (simulation code; ``data/published``, written
     for the tests) with one planted error: a symbol written for another in a product (a1, the
     centre's distance, for L1, the link's length) of the equations solved or of the inertia
-    inverted, an inertia dropped, a sign. Each is named in the document's symbols, read back
+    inverted, an inertia dropped, a parallel-axis term dropped (named as the matrix form's
+    element is; it was "a term the document leaves out"), a sign. Each is named in the document's symbols, read back
     before solving: the source equations' terms (a monomial times the difference of the two
     symbols), or the inertia inverted — from the inputs' coefficients where the inputs are as
     many as the coordinates, else from the inputs', gravity and velocity terms' together."""

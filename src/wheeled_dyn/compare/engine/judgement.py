@@ -12,7 +12,6 @@ checks (energy, symmetry, constraint rows); the printed forms for the reports.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -34,13 +33,11 @@ from ..judge.own_inertia import own_moments
 from ..judge.precision import largest_terms, row_round_off
 from ..judge.rows import drafts_of_row, row_values
 from ..judge.units import DimensionChecker, geometric_symbols
-from ..judge.source_entry import source_entry
-from ..judge.unsolved import inertia_diagnoses, read_back, unsolved_terms
 from ..readings.describe import describe
-from ..readings.frames import Frame, FrameKind, FrameRule, constant_weights, evaluate_rule
+from ..readings.frames import Frame, FrameKind, FrameRule, evaluate_rule
 from .frames import (apart_causes, bind_declared, choose_frames, declared_apart,
                      declared_only, declared_weights, id_frames, printed_factors, row_factors)
-from ..records import Cause, CauseKind, DerivationResult, Diagnosis, Verdict, has_kind
+from ..records import Cause, CauseKind, DerivationResult, Verdict, has_kind
 from ..sides.both import Sides, both_sides
 from ..sides.document import DocumentFunctions
 from ..sides.elements import swap_groups
@@ -51,6 +48,7 @@ from .printing import corrected, document_truth, print_drafts
 from .constraint_factors import lost_constraints
 from .deciding import decide
 from .own_checks import own_checks
+from .read_back import read_back_said
 
 #: Smaller grid used to test special parameter families: states per set, sets.
 SPECIAL_SAMPLES, SPECIAL_SETS = 40, 2
@@ -234,7 +232,7 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
                    own_moments([ps.values for ps in id_sides.grid.sets], ID_STATES, True))
     if decision is not None and not decision.equivalent and id_sides is not None \
             and id_sides.doc.A is not None:
-        solved = _read_back(d, drafts, rules, frames, frames_on_id, id_sides, found, combined,
+        solved = read_back_said(d, drafts, rules, frames, frames_on_id, id_sides, found, combined,
                             lambda: document_truth(d, sides.grid.cs, assumed))
     equations = equation_records(d, decision, drafts, texts, label, grids, funcs, rules, solved)
     fixes = print_drafts(d, drafts, sides.grid.cs, texts, assumed, funcs.exprs)
@@ -245,44 +243,6 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
                        else None for i, f in apart.items()}})
     return replace(j, causes=(*assumed.file_causes(d, funcs.exprs), *apart_causes(d, apart, drafts),
                               *contradiction_causes(d, funcs, assumed, engine.seed), *j.causes))
-
-
-def _read_back(d: Derivation, drafts: list[ElementDraft], rules: list[FrameRule],
-               frames: list[Frame], on_id: list[Frame | None], id_sides: Sides, found,
-               combined: bool, truths: Callable[[], Mapping[str, sp.Expr] | None]
-               ) -> Diagnosis | None:
-    r"""The document's equations read back before it solved or combined them, said on the
-    elements of its rows that the frames show divided or combined (:func:`read_back`), and
-    returned (None where none is found); ``truths()`` the truth's entries in the document's
-    symbols, ``on_id`` the frames on the identification grid. Where the frames show no
-    combination, only a wrong entry of the source equations is looked for
-    (:func:`source_entry`); the rows it shows combined in another way than their frames (the
-    wrong entry in a combination's weight, eq1 − (d₁₂/d₂₂)·eq2, left every frame worse
-    than the row as printed, or was taken into the frame's weights) are named by it alone."""
-    solved, entry, inverted = None, None, None
-    if combined:
-        said = truths()
-        inverted = inertia_diagnoses(id_sides, found, d.velocities, said)
-        solved = inverted or unsolved_terms(id_sides.doc, id_sides.truth, id_sides.B_true,
-                                            d.velocities, found, said)
-        entry = None if solved is not None else source_entry(id_sides, found, d.velocities,
-                                                              said)
-    else:                  # as printed but for rows it shows combined: else none read back
-        entry = source_entry(id_sides, found, d.velocities, truths)
-        entry = entry if entry is not None and entry.combined else None
-    if entry is not None:
-        solved = entry.diagnosis
-    if solved is None:
-        return None
-    shown = {i for i, r in enumerate(rules)
-             if r.kind in (FrameKind.FUNCTION, FrameKind.COMBINATION)} if combined else set()
-    varying = {i for i, f in enumerate(frames) if not constant_weights(f.weights)} \
-        if combined else set()
-    other = set() if entry is None else set(entry.other_frames(
-        [None if f is None else f.weights for f in on_id]))
-    read_back(drafts, shown | other, solved, varying | other, other,
-              varying if inverted is not None else set())
-    return solved
 
 
 def _id_values(d: Derivation, funcs: DocumentFunctions, id_sides: Sides,

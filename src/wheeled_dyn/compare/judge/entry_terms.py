@@ -1,6 +1,9 @@
 r"""An entry of the equations read back before solving or combining (:mod:`.unsolved`,
-:mod:`.source_entry`) that differs by terms, named against the truth's entry in the
-document's symbols (its closed form, where the symbolic engine gives it).
+:mod:`.source_entry`) that differs, named (:func:`entry_part`): as a body's own inertia (a
+point mass, a parallel-axis term: :func:`~.own_inertia.own_reading`, as the elements of a
+form not solved are), by its numbers, as a symbol for another, or by terms against the
+truth's entry in the document's symbols (its closed form, where the symbolic engine gives
+it: :func:`entry_reading`).
 
 The read-back gives truth − document :math:`r = \sum_k c_k m_k` (monomials :math:`m_k`), the
 document's entry only as numbers. With the truth's entry :math:`\sum_k t_k m_k`, written with
@@ -14,10 +17,16 @@ called a missing term, also where the document had the term twice).
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
 import sympy as sp
 
-from ..records import DiagnosisKind as K
-from .diagnose import nice_number, plausible_factor
+from ..records import Diagnosis, DiagnosisKind as K
+from .diagnose import nice_number, plausible_factor, value_diagnoses
+from .own_inertia import OwnInertia, own_reading, parallel_phrase, same_parts
+from .swap_fit import difference_reading
 
 
 def _terms(expr: sp.Expr, trig: bool = False) -> dict[sp.Expr, sp.Expr]:
@@ -56,4 +65,66 @@ def entry_reading(found: sp.Expr, truth: sp.Expr) -> tuple[K, str] | None:
     return said[0][0], "; ".join(t for _, t in said)
 
 
-__all__ = ["entry_reading"]
+def _said(found: sp.Expr | None) -> str:
+    return f"truth − document = {sp.sstr(found)}" if found is not None else "differs"
+
+
+@dataclass(frozen=True)
+class Part:
+    r"""One entry of the equations read back before solving that differs: its ``text``,
+    ``found`` truth − document in the document's symbols (or None), and its ``kind``."""
+
+    text: str
+    found: sp.Expr | None
+    kind: K
+
+
+def entry_part(where: str, T: np.ndarray, D: np.ndarray, scale: float,
+               bases: Sequence[tuple[sp.Expr, np.ndarray]],
+               own: OwnInertia | None = None,
+               truths: Mapping[str, sp.Expr] | None = None) -> Part:
+    r"""The entry ``where`` read back, ``T`` the truth's values and ``D`` the document's: a
+    body's own inertia where truth − document is one of ``own``'s
+    (:func:`~.own_inertia.own_reading`: a point mass, also where that makes the whole entry
+    a factor of the truth, as a uniform rod's does; a parallel-axis term); the whole entry's
+    sign, factor, absence or excess where the numbers say one
+    (:func:`~.diagnose.value_diagnoses`); one of two symbols written where the other fits in
+    a product (:func:`~.swap_fit.swap_reading`); a term missing, of the wrong sign or factor,
+    or too much, against the truth's entry in ``truths`` (closed forms in the document's
+    symbols, :func:`entry_reading`);
+    else truth − document, with no claim of what it is."""
+    found, swap = difference_reading(T - D, bases)
+    found = found if found is not None or swap is None else swap[0]
+    hit = own_reading(T - D, own) if own is not None else None
+    if hit is not None:                     # before the whole entry's factor (a uniform rod's)
+        kind, name, times = hit
+        times_said = "" if times == 1 else f" × {sp.sstr(times)}"
+        said = f"the moment of inertia {name} about its own centre of mass{times_said} is " \
+            "missing, a point mass" if kind == K.POINT_MASS else \
+            f"{parallel_phrase(name, same_parts(name, own.parallel if own else {}))} " \
+            "is missing: the inertia about the centre of mass where the one about the " \
+            "joint's axis fits"
+        return Part(f"{where}: {said} ({_said(found)})", found, kind)
+    whole = value_diagnoses(D, T, scale)
+    if whole:
+        said = f" ({_said(found)})" if found is not None else ""
+        return Part(f"{where}: {whole[0].detail}{said}", found, whole[0].kind)
+    if swap is not None:
+        return Part(f"{where}: {swap[1]} ({_said(swap[0])})", swap[0], K.SWAP)
+    truth = None if truths is None or found is None else truths.get(where)
+    read = None if truth is None else entry_reading(found, truth)
+    if read is not None:
+        return Part(f"{where}: {read[1]} ({_said(found)})", found, read[0])
+    # no claim of a term missing: truth − document may be terms too much, or some of each
+    return Part(f"{where} {_said(found)}", found, K.RESIDUAL)
+
+
+def read_back_diagnosis(head: str, parts: Sequence[Part]) -> Diagnosis:
+    r"""``parts`` as one diagnosis, of the first part's kind (the one its cause names; the
+    others are said in its text)."""
+    text = "; ".join(p.text for p in parts)
+    return Diagnosis(parts[0].kind, f"{head}{text}", text,
+                     terms=tuple(sp.sstr(p.found) for p in parts if p.found is not None))
+
+
+__all__ = ["Part", "entry_part", "entry_reading", "read_back_diagnosis"]

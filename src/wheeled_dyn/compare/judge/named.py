@@ -34,7 +34,8 @@ from ..records import Diagnosis, DiagnosisKind as K, Verdict, diagnosis, has_kin
 from .diagnose import nice_number, plausible_factor
 from .draft import ElementDraft
 from .fitting import RATIO_TOL, fit_factor, fit_sum
-from .own_inertia import AXES, bodies, point_mass_fit
+from .own_inertia import (bodies, length_bases, parallel_phrase, point_mass_fit,
+                          same_parts)
 from .swap_fit import difference_reading
 
 #: Diagnoses after which no term is named (the error is named already); a constant factor
@@ -47,33 +48,16 @@ MAX_NAMED = 12
 MAX_WRITTEN_OPS = 200
 
 
-def _same_parts(name: str, parallel: Mapping[str, np.ndarray]) -> str:
-    r"""The axes (letters) of the link's other parallel-axis terms equal to ``name``'s at every
-    sample (a centre of mass on one axis: the terms about the two others are the same
-    number, and which one the element needs its values cannot tell)."""
-    if " + " in name or name[1] == ":" or name not in parallel:
-        return ""
-    link = name[name.index("("):]
-    return "".join(a for a in AXES if a != name[1] and f"P{a}{a}{link}" in parallel
-                   and np.allclose(parallel[f"P{a}{a}{link}"], parallel[name], rtol=1e-12,
-                                   atol=0.0))
-
-
 def _parallel_axis(r: ElementDraft, name: str, term: sp.Expr | None, also: str = "") -> None:
     r"""Name on ``r`` the parallel-axis term ``name`` (``Pyy(body)``) it lacks, as ``term`` in
     the document's symbols where one fits (``also``: the axes whose terms are the same
     number, named with it); a factor found for the whole element (the term is a constant
     fraction of it only under a family that keeps proportions) goes."""
-    parts = []
-    for one in name.split(" + "):
-        link = one[one.index("(") + 1:-1]
-        axes = " or ".join((one[1], *also)) if one[1] != ":" else ""
-        parts.append(f"the part M c_{one[2]}² of {link}'s parallel-axis term" if one[1] == ":"
-                     else f"the parallel-axis term of {link} about its {axes} axis")
     written = f" ({sp.sstr(term)} in the document's symbols)" if term is not None else ""
     r.diagnoses[:] = [x for x in r.diagnoses if x.kind != K.FACTOR]
     r.diagnoses.insert(0, diagnosis(
-        K.PARALLEL_AXIS, f"{' and '.join(parts)}{written} is missing: the document takes the "
+        K.PARALLEL_AXIS, f"{parallel_phrase(name, also)}{written} is missing: the document "
+        "takes the "
         "inertia about the centre of mass where the one about the joint's axis fits (the "
         "parallel-axis theorem adds the mass times the centre's squared distance from the "
         "axis)", prefix="missing", terms=(sp.sstr(term),) if term is not None else (),
@@ -267,8 +251,7 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
     grid), divided out of a residual before it is compared with a body's own inertia (an
     equation divided by m l has m l²/3 as l/3); ``parallel`` the links' parallel-axis parts
     (:func:`own_moments`)."""
-    lengths = [(e, v) for e, v in bases if e.free_symbols <= geometric
-               and not e.has(*positions)]
+    lengths = length_bases(bases, geometric, positions)
     named = 0
     for r in drafts:
         if named >= MAX_NAMED:
@@ -290,7 +273,7 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
         steiner = point_mass_fit(own, parallel, lengths) if r.key == "A" and parallel else None
         if steiner is not None and steiner[1] == 1 and (hit is None or hit[1] != 1):
             _parallel_axis(r, steiner[0], _plainest(fit_factor(residual, bases), bases),
-                           _same_parts(steiner[0], parallel or {}))
+                           same_parts(steiner[0], parallel or {}))
             continue
         if has_kind(r.diagnoses, K.FACTOR) and (hit is None or hit[1] != 1):
             continue                          # a constant factor says it more plainly

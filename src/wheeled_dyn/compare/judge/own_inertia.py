@@ -5,10 +5,12 @@ document treating the body as a point mass (:mod:`.named`, :mod:`.unsolved`)."""
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 
 import numpy as np
 import sympy as sp
 
+from ..records import DiagnosisKind as K
 from .fitting import RATIO_TOL, fit_factor
 
 #: Axes of a link's own moments of inertia.
@@ -92,6 +94,81 @@ def _plainness(c: sp.Expr) -> tuple[int, int]:
     return int(sp.count_ops(c)), size
 
 
+@dataclass(frozen=True)
+class OwnInertia:
+    r"""What a residual is compared with as a body's own inertia, on one grid: every link's
+    moments about its centre of mass and its parallel-axis parts (:func:`own_moments`), and
+    the document's lengths a multiplier may be a monomial of (:func:`length_bases`)."""
+
+    moments: Mapping[str, np.ndarray]
+    parallel: Mapping[str, np.ndarray]
+    lengths: Sequence[tuple[sp.Expr, np.ndarray]]
+
+    def at(self, rows: np.ndarray) -> "OwnInertia":
+        r"""The same at the samples ``rows``."""
+        return OwnInertia({k: v[rows] for k, v in self.moments.items()},
+                          {k: v[rows] for k, v in self.parallel.items()},
+                          [(e, v[rows]) for e, v in self.lengths])
+
+
+def grid_inertia(values: Sequence[Mapping[str, float]], samples: int,
+                 lengths: Sequence[tuple[sp.Expr, np.ndarray]] = ()) -> OwnInertia:
+    r""":class:`OwnInertia` on a grid of ``samples`` states spread over the parameter sets of
+    ``values`` (each set's namespace values)."""
+    states = samples // max(len(values), 1)
+    return OwnInertia(own_moments(values, states), own_moments(values, states, True),
+                      list(lengths))
+
+
+def length_bases(bases: Sequence[tuple[sp.Expr, np.ndarray]], geometric: set[sp.Symbol],
+                 positions: Sequence[sp.Symbol] = ()) -> list[tuple[sp.Expr, np.ndarray]]:
+    r"""The ``bases`` (:func:`~.fitting.bases`) of the document's lengths alone (``geometric``;
+    no position: a body's own inertia enters the inertia matrix as a constant times lengths)."""
+    return [(e, v) for e, v in bases if e.free_symbols <= geometric and not e.has(*positions)]
+
+
+def own_reading(residual: np.ndarray, own: OwnInertia) -> tuple[K, str, sp.Expr] | None:
+    r"""What truth − document ``residual`` (an entry of an inertia matrix) is as a body's own
+    inertia: ``(POINT_MASS, moment name(s), multiplier)`` where it is a moment times 1 or
+    times a monomial of lengths with coefficient 1 (:math:`2J_w/r^2` in heading coordinates);
+    else ``(PARALLEL_AXIS, name, 1)`` where it is a parallel-axis term; else None (a
+    number other than 1 times a moment is said by the element's own naming, which weighs it
+    against the document's symbols)."""
+    hit = point_mass_fit(residual, own.moments, own.lengths) if own.moments else None
+    if hit is not None and (hit[1] == 1 or (not hit[1].is_number
+                                            and hit[1].as_coeff_Mul()[0] == 1)):
+        return K.POINT_MASS, hit[0], hit[1]
+    steiner = point_mass_fit(residual, own.parallel, own.lengths) if own.parallel else None
+    if steiner is not None and steiner[1] == 1:
+        return K.PARALLEL_AXIS, steiner[0], steiner[1]
+    return None
+
+
+def same_parts(name: str, parallel: Mapping[str, np.ndarray]) -> str:
+    r"""The axes (letters) of the link's other parallel-axis terms equal to ``name``'s at every
+    sample (a centre of mass on one axis: the terms about the two others are the same
+    number, and which one the element needs its values cannot tell)."""
+    if " + " in name or name[1] == ":" or name not in parallel:
+        return ""
+    link = name[name.index("("):]
+    return "".join(a for a in AXES if a != name[1] and f"P{a}{a}{link}" in parallel
+                   and np.allclose(parallel[f"P{a}{a}{link}"], parallel[name], rtol=1e-12,
+                                   atol=0.0))
+
+
+def parallel_phrase(name: str, also: str = "") -> str:
+    r"""``"the parallel-axis term of bob about its y axis"`` for the parallel-axis part(s)
+    ``name`` of :func:`own_moments` (``Pyy(bob)``; ``P:z(bob)``: the part :math:`Mc_z^2`;
+    ``also``: other axes whose terms are the same number)."""
+    parts = []
+    for one in name.split(" + "):
+        link = one[one.index("(") + 1:-1]
+        axes = " or ".join((one[1], *also)) if one[1] != ":" else ""
+        parts.append(f"the part M c_{one[2]}² of {link}'s parallel-axis term" if one[1] == ":"
+                     else f"the parallel-axis term of {link} about its {axes} axis")
+    return " and ".join(parts)
+
+
 def bodies(name: str) -> str:
     r"""``"link1 as a point mass"``, ``"wheel_left and wheel_right as point masses"`` for
     the moments ``name`` (``Izz(wheel_left) + Izz(wheel_right)``) of :func:`own_moments`."""
@@ -100,4 +177,5 @@ def bodies(name: str) -> str:
         f"{' and '.join(links)} as point masses"
 
 
-__all__ = ["AXES", "bodies", "own_moments", "point_mass_fit"]
+__all__ = ["AXES", "OwnInertia", "bodies", "grid_inertia", "length_bases", "own_moments",
+           "own_reading", "parallel_phrase", "point_mass_fit", "same_parts"]

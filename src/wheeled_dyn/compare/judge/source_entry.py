@@ -12,7 +12,7 @@ then projected away from the other true rows (:math:`P_\perp`, the complement of
 :math:`P_\perp(T_r + \delta e_c)`: the projected :math:`D` has rank one, its direction
 :math:`d = \alpha P_\perp T_r + \alpha\delta P_\perp e_c` gives :math:`\delta` per sample by
 least squares, and :math:`D = (DV^+)V` with :math:`W = DV^+` invertible confirms it. The entry
-is named in the document's symbols (:func:`~.unsolved.entry_part`: a point mass, a sign, a factor, a
+is named in the document's symbols (:func:`~.entry_terms.entry_part`: a point mass, a sign, a factor, a
 symbol for another) only where exactly one entry so explains every sample; an entry that is a
 factor f of the truth's is said with its equal, every other entry of its equation 1/f × the
 truth's (the row's common factor goes into its weight).
@@ -36,8 +36,9 @@ import sympy as sp
 from ..records import Diagnosis
 from .diagnose import AGREE_TOL, nice_number
 from .equivalence import SINGULAR_TOL, relative_det
-from .own_inertia import own_moments
-from .unsolved import entry_part, read_back_diagnosis, term_columns, whole_factor
+from .own_inertia import grid_inertia
+from .entry_terms import entry_part, read_back_diagnosis
+from .unsolved import term_columns, whole_factor
 
 #: A projected document of rank one: its second singular value at most this times its first.
 RANK_ONE_TOL = 1e-7
@@ -200,12 +201,14 @@ def one_wrong_entry(sides, velocities: Sequence[sp.Symbol] = ()) -> bool:
 def source_entry(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
                  velocities: Sequence[sp.Symbol] = (),
                  truths: Mapping[str, sp.Expr] | None
-                 | Callable[[], Mapping[str, sp.Expr] | None] = None) -> SourceEntry | None:
+                 | Callable[[], Mapping[str, sp.Expr] | None] = None,
+                 lengths: Sequence[tuple[sp.Expr, np.ndarray]] = ()) -> SourceEntry | None:
     r"""The one wrong entry of the equations the document solved or combined (module text),
     named, with the rows it combined; None where no entry, or more than one, explains every
     sample. ``sides``: both sides on a grid (:class:`~..sides.both.Sides`), ``bases`` the
     names' values on it, ``truths`` the truth's entries in the document's symbols (or
-    None; or a function giving them, called only where an entry is found)."""
+    None; or a function giving them, called only where an entry is found), ``lengths`` the
+    bases of the document's lengths (:func:`~.own_inertia.length_bases`)."""
     found = _fits(sides, velocities)
     if found is None or len(found[0]) != 1:
         return None
@@ -213,14 +216,13 @@ def source_entry(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
     truth = sides.truth
     r, c, delta, W = fits[0]
     truths = truths() if callable(truths) else truths
-    sets = [ps.values for ps in sides.grid.sets]
-    moments = own_moments(sets, len(truth.need("A")) // max(len(sets), 1))
+    own = grid_inertia([ps.values for ps in sides.grid.sets], len(truth.need("A")),
+                       lengths).at(rows)
     at = [(e, v[rows]) for e, v in bases]
-    moments = {k: v[rows] for k, v in moments.items()}
     truth_entry = T[:, r, c]
     scale = float(np.abs(T[:, :, c]).max())
     part = entry_part(names[c].format(r=r + 1), truth_entry, truth_entry + delta, scale, at,
-                      moments, truths)
+                      own, truths)
     if pair:
         part = replace(part, text=f"{part.text} — and in A[{c + 1},{r + 1}], the same "
                        "symmetric entry")

@@ -22,73 +22,16 @@ their equivalence.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
 
 import numpy as np
 import sympy as sp
 
 from ..records import Diagnosis, DiagnosisKind as K, Verdict, has_kind
-from .diagnose import AGREE_TOL, value_diagnoses
+from .diagnose import AGREE_TOL
 from .draft import ElementDraft
-from .entry_terms import entry_reading
+from .entry_terms import Part, entry_part, read_back_diagnosis
 from .named import NAMED
-from .own_inertia import own_moments, point_mass_fit
-from .swap_fit import difference_reading
-
-
-def _said(found: sp.Expr | None) -> str:
-    return f"truth − document = {sp.sstr(found)}" if found is not None else "differs"
-
-
-@dataclass(frozen=True)
-class _Part:
-    r"""One entry of the equations read back before solving that differs: its ``text``,
-    ``found`` truth − document in the document's symbols (or None), and its ``kind``."""
-
-    text: str
-    found: sp.Expr | None
-    kind: K
-
-
-def entry_part(where: str, T: np.ndarray, D: np.ndarray, scale: float,
-               bases: Sequence[tuple[sp.Expr, np.ndarray]],
-               moments: Mapping[str, np.ndarray] | None = None,
-               truths: Mapping[str, sp.Expr] | None = None) -> _Part:
-    r"""The entry ``where`` read back, ``T`` the truth's values and ``D`` the document's: a
-    body's own moment about its centre of mass where truth − document is exactly one of
-    ``moments`` (:func:`~.named.own_moments`: a point mass, also where that makes the whole
-    entry a factor of the truth, as a uniform rod's does); the whole entry's sign, factor,
-    absence or excess where the numbers say one (:func:`~.diagnose.value_diagnoses`); one of
-    two symbols written where the other fits in a product (:func:`~.swap_fit.swap_reading`);
-    a term missing, of the wrong sign or factor, or too much, against the truth's entry in
-    ``truths`` (closed forms in the document's symbols, :func:`~.entry_terms.entry_reading`);
-    else truth − document, with no claim of what it is."""
-    found, swap = difference_reading(T - D, bases)
-    found = found if found is not None or swap is None else swap[0]
-    hit = point_mass_fit(T - D, moments, ()) if moments else None
-    if hit is not None and hit[1] == 1:     # before the whole entry's factor (a uniform rod's)
-        return _Part(f"{where}: the moment of inertia {hit[0]} about its own centre of mass is "
-                     f"missing, a point mass ({_said(found)})", found, K.POINT_MASS)
-    whole = value_diagnoses(D, T, scale)
-    if whole:
-        said = f" ({_said(found)})" if found is not None else ""
-        return _Part(f"{where}: {whole[0].detail}{said}", found, whole[0].kind)
-    if swap is not None:
-        return _Part(f"{where}: {swap[1]} ({_said(swap[0])})", swap[0], K.SWAP)
-    truth = None if truths is None or found is None else truths.get(where)
-    read = None if truth is None else entry_reading(found, truth)
-    if read is not None:
-        return _Part(f"{where}: {read[1]} ({_said(found)})", found, read[0])
-    # no claim of a term missing: truth − document may be terms too much, or some of each
-    return _Part(f"{where} {_said(found)}", found, K.RESIDUAL)
-
-
-def read_back_diagnosis(head: str, parts: Sequence[_Part]) -> Diagnosis:
-    r"""``parts`` as one diagnosis, of the first part's kind (the one its cause names; the
-    others are said in its text)."""
-    text = "; ".join(p.text for p in parts)
-    return Diagnosis(parts[0].kind, f"{head}{text}", text,
-                     terms=tuple(sp.sstr(p.found) for p in parts if p.found is not None))
+from .own_inertia import grid_inertia
 
 
 def solved_for(row: np.ndarray) -> tuple[int, float] | None:
@@ -165,7 +108,8 @@ def source_weights(doc, truth, true_B: np.ndarray | None) -> tuple[np.ndarray, n
 
 def inertia_diagnoses(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
                       velocities: Sequence[sp.Symbol] = (),
-                      truths: Mapping[str, sp.Expr] | None = None) -> Diagnosis | None:
+                      truths: Mapping[str, sp.Expr] | None = None,
+                      lengths: Sequence[tuple[sp.Expr, np.ndarray]] = ()) -> Diagnosis | None:
     r"""The elements of the document's own inertia matrix (read back from its inputs,
     module text; where its inputs are fewer than its coordinates, from its inputs, gravity
     and velocity terms, :func:`source_weights`) that differ from the truth's, named (a
@@ -175,11 +119,11 @@ def inertia_diagnoses(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
     input of the wrong sign, or scaled: nothing tells that from an inertia so scaled with
     every term too); the equations' other entries so read back are named beside it where at
     most :data:`MAX_UNSOLVED` differ (a term wrong beside the inertia), else nothing is said.
-    ``sides``: both sides on a grid (:class:`~..sides.both.Sides`)."""
+    ``sides``: both sides on a grid (:class:`~..sides.both.Sides`), ``lengths`` the bases of
+    the document's lengths (:func:`~.own_inertia.length_bases`)."""
     doc, truth, true_B = sides.doc, sides.truth, sides.B_true
     doc_A, true_A = doc.A, truth.need("A")
-    sets = [ps.values for ps in sides.grid.sets]
-    moments = own_moments(sets, len(true_A) // max(len(sets), 1))
+    own = grid_inertia([ps.values for ps in sides.grid.sets], len(true_A), lengths)
     n = doc_A.shape[1]
     if doc.B is None or true_B is None or not np.isfinite(doc_A).all():
         return None
@@ -201,14 +145,14 @@ def inertia_diagnoses(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
         except np.linalg.LinAlgError:
             return None
         true_A, bases = true_A[rows], [(e, v[rows]) for e, v in bases]
-        moments = {name: v[rows] for name, v in moments.items()}
+        own = own.at(rows)
         how = ("its inputs', gravity and velocity terms' coefficients: W [B Q H] = "
                "[B_doc Q_doc H_doc], M = W⁻¹ A_doc")
     else:
         return None
     scale = float(np.abs(true_A).max())
     parts = [entry_part(f"A[{i + 1},{j + 1}]", true_A[:, i, j], M[:, i, j], scale, bases,
-                        moments, truths)
+                        own, truths)
              for i in range(n) for j in range(n)
              if np.abs(true_A[:, i, j] - M[:, i, j]).max() > AGREE_TOL * scale]
     if not parts:
@@ -238,7 +182,7 @@ def _scaled(M: np.ndarray, true_A: np.ndarray) -> bool:
 
 
 def _named(entries, truth, bases: Sequence[tuple[sp.Expr, np.ndarray]],
-           truths: Mapping[str, sp.Expr] | None = None) -> list[_Part]:
+           truths: Mapping[str, sp.Expr] | None = None) -> list[Part]:
     r"""The differing ``entries`` of :func:`_entries`, named in the document's symbols."""
     rows = truth.H_rows
     at = [(e, v[rows]) for e, v in bases] if rows is not None else []
@@ -391,6 +335,6 @@ def read_back(drafts: Sequence[ElementDraft], rows: set[int], found: Diagnosis |
             r.diagnoses[:] = [found, *(x for x in r.diagnoses if x.kind not in weak)]
 
 
-__all__ = ["MAX_UNSOLVED", "STRONG", "entry_part", "term_columns", "implied_inertia", "inertia_diagnoses",
+__all__ = ["MAX_UNSOLVED", "STRONG", "term_columns", "implied_inertia", "inertia_diagnoses",
            "read_back", "read_back_diagnosis", "read_back_explains", "solved_for",
            "unsolved_terms", "whole_factor"]
