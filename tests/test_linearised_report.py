@@ -69,3 +69,21 @@ def test_a_potential_from_the_equilibrium_still_compares_the_stiffness(stiffness
     k = next(r for r in result.records if r.element == "K[1,1]")
     assert k.verdict == verdict, k.texts
     assert result.equivalent is (verdict == Verdict.AGREES)
+
+
+def test_a_point_at_pi_is_shown_as_pi():
+    r"""The rod linearised about upright (θ = π, given as the float 3.141592653589793) with
+    its stiffness of the wrong sign: the truth shown is exact at π, K = −3g/(2l) and
+    Q = −3g(θ − π)/(2l), not ``cos(314159265358979/100000000000000)``."""
+    import math
+    result = wd.compare(
+        "rod_pendulum", coordinates={"positions": ["theta"], "configuration": {"theta": "theta"}},
+        A=sp.Matrix([[1]]), C=sp.zeros(1, 1), Q=sp.Matrix([3 * g / (2 * l) * (theta - sp.pi)]),
+        symbols={"m": "M(rod)", "l": "length(rod)", "g": "g"},
+        assumes={"uniform": ["rod"], "linearised_about": {"theta": math.pi}})
+    records = {r.element: r for r in result.records}
+    assert records["K[1,1]"].verdict == Verdict.DIFFERS
+    assert sp.sympify(records["K[1,1]"].truth) == -3 * g / (2 * l)
+    assert sp.sympify(records["K[1,1]"].residual) == -3 * g / l
+    assert sp.simplify(sp.sympify(records["Q[1]"].truth) + 3 * g * (theta - sp.pi) / (2 * l)) == 0
+    assert "314159" not in records["Q[1]"].truth

@@ -24,6 +24,16 @@ from collections.abc import Mapping, Sequence
 import sympy as sp
 
 
+def point_value(x: float) -> sp.Expr:
+    r"""A linearisation point's coordinate as an exact number: a rational multiple of
+    :math:`\pi` where the float is one to its last digit (``3.141592653589793`` as
+    :math:`\pi`, so :math:`\cos\pi = -1` in the truth shown), else the rational it is."""
+    near = sp.nsimplify(x, [sp.pi], tolerance=1e-15)
+    if near.has(sp.pi) and near.is_number and float(near) == x:
+        return near
+    return sp.nsimplify(x, rational=True)
+
+
 def linearised_truth(truth: Mapping[str, sp.Expr], positions: Sequence[sp.Symbol],
                      point: Sequence[tuple[str, float]], equilibrium: bool = False,
                      gravity: frozenset[str] = frozenset()) -> dict[str, sp.Expr]:
@@ -31,7 +41,7 @@ def linearised_truth(truth: Mapping[str, sp.Expr], positions: Sequence[sp.Symbol
     linearised about ``point`` (module text), with ``K[i,j]`` added; ``equilibrium``: no
     gravity in :math:`Q(q^*)` (the symbols named in ``gravity`` taken 0 there)."""
     values = dict(point)
-    at = {p: sp.nsimplify(values[p.name], rational=True) for p in positions if p.name in values}
+    at = {p: point_value(values[p.name]) for p in positions if p.name in values}
     out: dict[str, sp.Expr] = {}
     for label, expr in truth.items():
         key = label.partition("[")[0]
