@@ -1,6 +1,7 @@
 r"""Truth − document printed where the truth holds decimals (a rotation by a rounded angle)
 and the document the same numbers written out: the pairs that cancel to round-off are gone,
-and what is left is the term that differs (a residual of 2 kB hid one term before)."""
+and what is left is the term that differs (a residual of 2 kB hid one term before); and a
+short residual with :math:`\sin^2 + \cos^2 = 1` used where that shortens it."""
 
 from __future__ import annotations
 
@@ -47,3 +48,18 @@ def test_a_decimal_against_an_exact_sine_is_round_off():
     doc = sum((2 * sp.sin(sp.Rational(1, 2)) * p * sp.sin(q) for p in params), sp.Integer(0))
     text = _residual_text(truth, doc, physical=True)
     assert _read(text).free_symbols == {g, y}, text
+
+
+def test_sin_squared_plus_cos_squared_is_one_in_a_residual():
+    r"""Truth − document of a body's yaw inertia written :math:`I_2` where
+    :math:`I_1\sin^2\phi + I_2\cos^2\phi` fits (seed 001's eq. 25): shown as
+    :math:`I_1\sin^2\phi - I_2\sin^2\phi`, not :math:`I_1\sin^2\phi + I_2\cos^2\phi - I_2`;
+    no other identity is used (:math:`2\sin\phi\cos\phi` stays, the document's monomial)."""
+    import sympy as sp
+    from wheeled_dyn.compare.presentation.residuals import _residual_text
+    I1, I2, phi, m = sp.symbols("I1 I_2 phi m")
+    s, c = sp.sin(phi), sp.cos(phi)
+    said = _residual_text(I1 * s ** 2 + I2 * c ** 2, I2, True)
+    assert sp.sympify(said) == sp.expand(I1 * s ** 2 - I2 * s ** 2) and "cos" not in said
+    kept = _residual_text(2 * I1 * s * c + m * c ** 2 + m * s ** 2, sp.Integer(0), True)
+    assert sp.sympify(kept) == sp.expand(2 * I1 * s * c + m) and "sin(2*phi)" not in kept

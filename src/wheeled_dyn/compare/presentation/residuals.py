@@ -1,5 +1,5 @@
 r"""Truth − document as the reports print it: expanded with the trigonometric identities
-where it is short, put over one denominator for a solved row, the round-off of decimals
+where it is short (:math:`\sin^2 + \cos^2 = 1` used where that shortens it), put over one denominator for a solved row, the round-off of decimals
 against the document's fractions dropped, remembered across runs."""
 
 from __future__ import annotations
@@ -39,6 +39,20 @@ def _chopped(expr: sp.Expr) -> sp.Expr:
     return sp.Add(*(t for t, c in zip(terms, sizes) if c > CHOP_TOL * largest))
 
 
+def _pythagorean(expr: sp.Expr) -> sp.Expr:
+    r"""``expr`` (expanded) with :math:`\cos^2 a = 1 - \sin^2 a` or :math:`\sin^2 a = 1 -
+    \cos^2 a` used for each argument where that makes it shorter
+    (:math:`I\cos^2\theta - I` as :math:`-I\sin^2\theta`), no other identity: the terms
+    stay the document's monomials."""
+    args = sorted({f.args[0] for f in expr.atoms(sp.sin, sp.cos)}, key=sp.default_sort_key)
+    for a in args:
+        trials = [sp.expand(expr.xreplace({sp.cos(a) ** 2: 1 - sp.sin(a) ** 2})),
+                  sp.expand(expr.xreplace({sp.sin(a) ** 2: 1 - sp.cos(a) ** 2}))]
+        best = min(trials, key=sp.count_ops)
+        expr = best if sp.count_ops(best) < sp.count_ops(expr) else expr
+    return expr
+
+
 #: The texts of :func:`residual_text`, remembered across runs (the disk cache's
 #: ``compare/residual-<code>.pickle``): a function of the two expressions only.
 RESIDUALS = DiskMemo("compare", "residual", lambda: [Path(__file__)])
@@ -66,6 +80,7 @@ def _residual_text(truth: sp.Expr, doc: sp.Expr, physical: bool, solved: bool = 
         residual = sp.factor(sp.cancel(residual))
     elif sp.count_ops(residual) <= TRIG_EXPAND_LIMIT:
         residual = sp.expand(sp.expand_trig(residual))
+        residual = _pythagorean(residual)
     if not physical and (sp.count_ops(residual) > STANDARD_RESIDUAL_LIMIT or any(
             not p.exp.is_Integer for p in residual.atoms(sp.Pow))):
         return None                           # roots of Khalil's parameters: not shown
