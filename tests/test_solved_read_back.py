@@ -314,3 +314,39 @@ def test_a_solved_form_names_a_wheels_spin_inertia_dropped_as_a_point_mass(engin
     assert "A[1,1]: the moment of inertia Iyy(left_wheel) + Iyy(right_wheel) about its own " \
         "centre of mass × R**(-2) is missing, a point mass (truth − document = 2*J_w/R**2)" \
         in said, said
+
+
+@pytest.mark.parametrize("old, new, divisor", [
+    ("", "", False),
+    ("Det = \"M11*M22*M33 - M11*M23*M32", "Det = \"M11*M22*M33", True),
+    ("f2 = \"-L1*a2*dth2**2*m2*sin(th1 - th2) - L1*g*m2*sin(th1)",
+     "f2 = \"-L1*a2*dth2**2*m2*sin(th1 - th2) + L1*g*m2*sin(th1)", False),
+], ids=["right", "determinant-term-dropped", "one-gravity-sign"])
+def test_a_wrong_determinant_is_named_as_the_divisor_every_solved_equation_shares(
+        engine, tmp_path, old, new, divisor):
+    r"""The double pendulum on a cart solved by Cramer's rule
+    (``data/published/cart_double_pendulum_solved.toml``) with the term
+    :math:`-M_{11}M_{23}M_{32}` dropped from its determinant: every differing element of the
+    three solved equations is the truth's times one function (det M / Det), and that is named
+    on each, with an ``upstream_step`` cause (the elements had no diagnosis). Right, nothing
+    differs; with one gravity term's sign wrong in the equations solved, the elements' ratios
+    are no one function and the divisor is not named."""
+    from wheeled_dyn.compare.records import CauseKind, DiagnosisKind
+    data = Path(__file__).parent / "data" / "published"
+    for name in ("cart_double_pendulum.toml", "cart_double_pendulum.urdf"):
+        (tmp_path / name).write_text((data / name).read_text())
+    text = (data / "cart_double_pendulum_solved.toml").read_text()
+    assert text.count(old) == 1 or not old, old
+    path = tmp_path / "doc.toml"
+    path.write_text(text.replace(old, new) if old else text)
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is (not old), result.equations
+    wrong = [r for r in result.records if r.verdict != "agrees"]
+    named = [r for r in wrong if r.diagnoses and r.diagnoses[0].kind ==
+             DiagnosisKind.COMMON_DIVISOR]
+    if divisor:
+        assert len(wrong) >= 6 and named == wrong, [(r.element, r.texts) for r in wrong]
+        assert {int(r.element[2]) for r in wrong} == {1, 2, 3}
+        assert any(c.kind == CauseKind.UPSTREAM_STEP for c in result.causes), result.causes
+    else:
+        assert not named, [(r.element, r.texts) for r in named]

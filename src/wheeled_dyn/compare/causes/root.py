@@ -104,6 +104,8 @@ def claim_causes(records: Sequence) -> list[Cause]:
 #: Single-term diagnoses, in the order their causes are listed: (diagnosis kind, cause kind,
 #: sentence).
 TERM_KINDS = (
+    (K.COMMON_DIVISOR, CauseKind.UPSTREAM_STEP, "the equations were solved with a wrong "
+     "determinant (one divisor common to every solved equation)"),
     (K.DIMENSION, CauseKind.DIMENSION, "a term with inconsistent units"),
     (K.POINT_MASS, CauseKind.POINT_MASS, "a body's own inertia about its centre of mass is "
      "missing (a point mass)"),

@@ -2,7 +2,8 @@ r"""The document's equations read back before it solved or combined them, named 
 of the rows its frames show divided or combined (:func:`read_back_said`): its inverted inertia
 matrix (:func:`~..judge.unsolved.inertia_diagnoses`), the terms of the equations it solved
 (:func:`~..judge.unsolved.unsolved_terms`), or the one wrong entry of the equations it combined
-(:func:`~..judge.source_entry.source_entry`). An explanation only: the equations' verdicts are
+(:func:`~..judge.source_entry.source_entry`), or, none of these, the determinant it solved
+with (:func:`~..judge.common_divisor.common_divisor`). An explanation only: the equations' verdicts are
 decided by their equivalence.
 """
 
@@ -13,6 +14,7 @@ from collections.abc import Callable, Mapping
 import sympy as sp
 
 from ...derivations.schema import Derivation
+from ..judge.common_divisor import common_divisor
 from ..judge.draft import ElementDraft
 from ..judge.own_inertia import length_bases
 from ..judge.source_entry import source_entry
@@ -52,10 +54,12 @@ def read_back_said(d: Derivation, drafts: list[ElementDraft], rules: list[FrameR
         entry = entry if entry is not None and entry.combined else None
     if entry is not None:
         solved = entry.diagnosis
-    if solved is None:
-        return None
     shown = {i for i, r in enumerate(rules)
              if r.kind in (FrameKind.FUNCTION, FrameKind.COMBINATION)} if combined else set()
+    if solved is None and combined:
+        solved = common_divisor(drafts, shown)
+    if solved is None:
+        return None
     varying = {i for i, f in enumerate(frames) if not constant_weights(f.weights)} \
         if combined else set()
     other = set() if entry is None else set(entry.other_frames(

@@ -28,6 +28,7 @@ import sympy as sp
 
 from ..records import Diagnosis, DiagnosisKind as K, Verdict, has_kind
 from .diagnose import AGREE_TOL
+from .common_divisor import divisor_diagnosis, function_factor
 from .draft import ElementDraft
 from .entry_terms import Part, entry_part, read_back_diagnosis
 from .named import NAMED
@@ -150,6 +151,10 @@ def inertia_diagnoses(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
                "[B_doc Q_doc H_doc], M = W⁻¹ A_doc")
     else:
         return None
+    k = function_factor(M, true_A)
+    if k is not None:                   # one divisor of every solved row: its determinant
+        return divisor_diagnosis(k, f"the inertia matrix the document inverted (read back "
+                                    f"from {how}) is the truth's")
     scale = float(np.abs(true_A).max())
     parts = [entry_part(f"A[{i + 1},{j + 1}]", true_A[:, i, j], M[:, i, j], scale, bases,
                         own, truths)

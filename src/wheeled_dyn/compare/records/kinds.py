@@ -97,7 +97,9 @@ class DiagnosisKind(StrEnum):
     here), ``NOT_EQUIVALENT`` (an equation that is no combination of the true ones),
     ``SINGULAR`` (equations lost, repeated, or scaled by a factor that vanishes somewhere:
     :math:`W` singular), ``NOTE`` (words only), ``DECLARED`` (an equation right as printed but
-    not as the file declares it: its declared row scale contradicted; the declaration binds)."""
+    not as the file declares it: its declared row scale contradicted; the declaration binds),
+    ``COMMON_DIVISOR`` (every solved equation's elements the truth's times one function: the
+    determinant it solved with is wrong)."""
 
     SIGN = "sign"
     FACTOR = "factor"
@@ -118,6 +120,7 @@ class DiagnosisKind(StrEnum):
     SINGULAR = "singular"
     NOTE = "note"
     DECLARED = "declared"
+    COMMON_DIVISOR = "common_divisor"
 
 
 #: Diagnoses that name one term's error precisely (an element carrying one is left to its
