@@ -55,3 +55,34 @@ def test_a_terms_error_is_no_map(tmp_path, error):
     result = _compare(P.write(tmp_path, "arm", "equations", error))
     assert result.equivalent is False
     assert not any("the file probably maps" in c.explanation for c in result.causes)
+
+
+@pytest.mark.parametrize("form", ["equations", "solved"])
+def test_a_joints_length_for_a_centre_of_mass_is_the_first_cause(tmp_path, form):
+    r"""The arm's URDF with link 1's centre of mass half way along it (x = 0.4 of 0.8 m), and
+    the file mapping lc1 to half the joint's length, ``origin_x(q2)/2``: equal at the URDF's
+    numbers, apart in the geometry the comparison draws (lengths are parameters). Every
+    element with lc1 differs (it had no cause); the first cause says that with
+    lc1 = CX(link1) every equation is right, a joint's length written where a centre of mass
+    is meant. The same file mapping lc1 = CX(link1) is right."""
+    from shipped_copies import PUBLISHED
+    urdf = (PUBLISHED / "two_link_arm.urdf").read_text()
+    old = '<origin xyz="0.35 0 0" rpy="0 0 0"/>'
+    assert urdf.count(old) == 1
+    (tmp_path / "two_link_arm.urdf").write_text(urdf.replace(old, '<origin xyz="0.4 0 0" rpy="0 0 0"/>'))
+    (tmp_path / "two_link_arm.toml").write_text((PUBLISHED / "two_link_arm.toml").read_text())
+    for mapped, right in (('lc1 = { value = "origin_x(q2)/2"', False),
+                          ('lc1 = { value = "CX(link1)"', True)):
+        path = P.write(tmp_path, "arm", form, None)
+        text = path.read_text().replace(str(PUBLISHED / "two_link_arm.toml"),
+                                        str(tmp_path / "two_link_arm.toml"))
+        assert 'lc1 = { value = "CX(link1)"' in text
+        path.write_text(text.replace('lc1 = { value = "CX(link1)"', mapped))
+        result = _compare(path)
+        assert result.equivalent is right, result.equations
+        if right:
+            continue
+        mapped_cause = [c for c in result.causes if "with lc1 = CX(link1)" in c.explanation]
+        assert mapped_cause and mapped_cause[0].kind == CauseKind.FILE_ERROR, result.causes
+        assert "a joint's length where the document means a link's centre of mass" in \
+            mapped_cause[0].explanation

@@ -49,20 +49,27 @@ SIGNED: frozenset[str] = frozenset(("CX", "CY", "CZ", "MX", "MY", "MZ", "IXY", "
 GRAVITY = sp.Symbol("g")
 
 
-#: Why a reading is tried: the link's axes turned, another link meant, Earth's gravity.
-AXES, LINK, EARTH = "axes", "link", "gravity"
+#: Why a reading is tried: the link's axes turned, another link meant, Earth's gravity, a
+#: joint's length written where a centre of mass is meant.
+AXES, LINK, EARTH, CENTRE = "axes", "link", "gravity", "centre"
+#: The joints' lengths a symbol's value may name (:mod:`~wheeled_dyn.models.geometry`).
+JOINT_LENGTHS = frozenset(("origin_x", "origin_y", "origin_z"))
 
 
 def _alternatives(value: sp.Expr, links: Sequence[str] = ()) -> list[tuple[sp.Expr, str]]:
     r"""``value`` (one link parameter, times anything) with that parameter read as each other
     of its kind (:data:`GROUPS`, :data:`SIGNED` with either sign), and as the same parameter
     (or a mass) of each other of the model's ``links``; a number near Earth's gravity read as
-    the model's :data:`GRAVITY`; none where it holds no link parameter or more than one. Each
-    with why it is tried."""
+    the model's :data:`GRAVITY`; a value of joints' lengths alone (:data:`JOINT_LENGTHS`) read
+    as each link's centre-of-mass coordinate, either sign; none where it holds no link
+    parameter or more than one. Each with why it is tried."""
     if value.is_Number and GRAVITY_NUMBERS[0] <= abs(float(value)) <= GRAVITY_NUMBERS[1]:
         return [(GRAVITY, EARTH), (-GRAVITY, EARTH)]       # either sign: g = -9.81 is one
     kinds = {k for g in GROUPS for k in g} | {"M"}
     calls = [c for c in value.atoms(AppliedUndef) if c.func.__name__ in kinds]
+    if not calls and any(c.func.__name__ in JOINT_LENGTHS for c in value.atoms(AppliedUndef)):
+        return [(s * sp.Function(axis)(sp.Symbol(link)), CENTRE) for link in links
+                for axis in ("CX", "CY", "CZ") for s in (1, -1)]
     if len(calls) != 1:
         return []
     call = calls[0]
@@ -149,6 +156,9 @@ def symbol_map_finding(d: Derivation, j) -> Cause | None:
                     "the verdicts are under the file's declaration"))
             meant = "another parameter of the link than the document means (its axes " \
                 "turned: declare the one that fits)" if why == AXES else \
+                "a joint's length where the document means a link's centre of mass (the " \
+                "two are equal at the URDF's numbers only; the comparison draws them " \
+                "apart: declare the centre of mass)" if why == CENTRE else \
                 "a parameter of another link than the document means (declare the link)"
             return Cause(CauseKind.FILE_ERROR, (), (
                 f"with {spec.symbol} = {sp.sstr(other)} (the file maps it to "
