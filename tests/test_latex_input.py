@@ -260,8 +260,16 @@ def test_equation_numbers(latex, expected):
 def test_equation_numbers_outside_equations():
     assert latex_to_sympy(r"a \tag{3}", NAMES) == "a"
     assert latex_to_sympy(r"a \quad (2)", NAMES) == "a*(2)"      # an expression: a factor
-    with pytest.raises(LatexError, match="empty expression"):
+    with pytest.raises(LatexError, match="nothing where an expression is expected"):
         latex_to_sympy(r"a = \quad (2)", NAMES, equation=True)
+
+
+@pytest.mark.parametrize("latex", [r"a^{} + b", r"\frac{}{2}", r"\sin{}"])
+def test_an_empty_group_is_said_as_one(latex):
+    r"""An exponent, a fraction's part or a function's argument left empty (``\ddot\alpha^{}``
+    as a probe wrote it) is one error naming the empty group, not "empty expression"."""
+    with pytest.raises(LatexError, match=r"a group \{\} .* left empty"):
+        latex_to_sympy(latex, NAMES)
     assert split_latex_matrix(r"\begin{bmatrix} a & b \end{bmatrix}^T \quad (35)") \
         == split_latex_matrix(r"\begin{bmatrix} a & b \end{bmatrix}^T \tag{35}") == [["a"], ["b"]]
 

@@ -96,7 +96,9 @@ class Parser:
 
     def parse(self) -> str:
         if not self.tokens:
-            raise self.fail("empty expression")
+            raise self.fail("nothing where an expression is expected (a side of an equation, "
+                            "or a group {} — an exponent, a fraction's part, a function's "
+                            "argument — left empty)")
         text = self.sum()
         if self.peek() is not None:
             raise self.fail(f"unexpected {self.peek()[0]!r}")
