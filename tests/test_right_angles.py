@@ -242,10 +242,35 @@ def test_an_angle_near_a_right_angle_that_is_no_rounding_is_kept(tmp_path):
     (folder / "two_link_arm.toml").write_text((DATA / "two_link_arm.toml").read_text())
     wm = load_model(str(folder / "two_link_arm.toml"))
     kept = unrounded_joints(wm.spec.urdf, RIGHT_ANGLE_TOL)
-    assert kept == {"q2"}, kept
+    assert set(kept) == {"q2"} and kept["q2"] == (1.569, 0.0, 0.3), kept
     model = wm.model.copy()
     before = np.asarray(model.jointPlacements[model.getJointId("q2")].rotation).copy()
     assert right_angled_joints(model, kept=kept) == 0
     assert np.array_equal(np.asarray(model.jointPlacements[model.getJointId("q2")].rotation),
                           before)
     assert any("no rounding of it" in x for x in wm.readings), wm.readings
+
+
+def test_a_rounded_right_angle_beside_an_angle_meant_as_written_is_made_exact(tmp_path):
+    r"""An elbow frame turned by ``rpy="1.5708 0 1.569"``: 1.5708 is π/2 rounded, 1.569 is
+    no rounding (an angle meant as written). The joint's turn is π/2 about x and 1.569 about
+    z — the rounding made the right angle, the other angle kept (the whole frame was kept as
+    written, 1.5708 with it, against the docs)."""
+    import pinocchio as pin
+
+    from wheeled_dyn.models.conventions import right_angled_joints
+    from wheeled_dyn.models.rounded_angles import unrounded_joints
+    folder = tmp_path / "arm"
+    folder.mkdir()
+    elbow = '<origin xyz="0.8 0 0" rpy="0 0 0"/>'
+    urdf = (DATA / "two_link_arm.urdf").read_text()
+    (folder / "two_link_arm.urdf").write_text(
+        urdf.replace(elbow, '<origin xyz="0.8 0 0" rpy="1.5708 0 1.569"/>'))
+    (folder / "two_link_arm.toml").write_text((DATA / "two_link_arm.toml").read_text())
+    wm = load_model(str(folder / "two_link_arm.toml"))
+    kept = unrounded_joints(wm.spec.urdf, RIGHT_ANGLE_TOL)
+    assert kept == {"q2": (np.pi / 2, 0.0, 1.569)}, kept
+    model = wm.model.copy()
+    assert right_angled_joints(model, kept=kept) == 1
+    turned = np.asarray(model.jointPlacements[model.getJointId("q2")].rotation)
+    assert np.abs(turned - pin.rpy.rpyToMatrix(np.pi / 2, 0.0, 1.569)).max() <= 1e-15

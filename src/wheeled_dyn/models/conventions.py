@@ -25,6 +25,7 @@ the WIP's table as :func:`convention_table` prints it (tested).
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 from enum import Enum
 
@@ -69,21 +70,29 @@ def base_joints(wm) -> frozenset[int]:
 
 
 def right_angled_joints(model, skip: frozenset[int] = frozenset(),
-                        kept: frozenset[str] = frozenset()) -> int:
+                        kept: Mapping[str, tuple[float, ...]] | None = None) -> int:
     r"""Each joint's placement (but the ``skip`` ones') whose rotation is within
     :data:`RIGHT_ANGLE_TOL` per entry of a signed permutation made that permutation, in place
     (a URDF's ``rpy="0 1.5708 -1.5708"``: an arm's joint origin turned by right angles, which
     a derivation takes as exact); else, where its roll, pitch and yaw include angles within
     :data:`RIGHT_ANGLE_TOL` of a multiple of π/2, those made that multiple, the others kept
     (``rpy="1.5708 0 0.3"``: a quarter turn and 0.3 rad). The joints named in ``kept`` print an
-    angle near a right angle that is no rounding of it (:mod:`.rounded_angles`): kept as
-    written. Returns how many were changed."""
+    angle near a right angle that is no rounding of it (:mod:`.rounded_angles`): turned by the
+    roll, pitch and yaw ``kept`` gives them (that angle as written, their roundings made right
+    angles: ``rpy="1.5708 0 1.569"`` is π/2, 0, 1.569). Returns how many were changed."""
     import pinocchio as pin
     changed = 0
     for jid in range(1, model.njoints):
-        if jid in skip or model.names[jid] in kept:
+        if jid in skip:
             continue
         placement = model.jointPlacements[jid]
+        if kept and model.names[jid] in kept:
+            R = np.asarray(placement.rotation)
+            meant = np.asarray(pin.rpy.rpyToMatrix(*kept[model.names[jid]]))
+            if ROUNDING < float(np.abs(meant - R).max()) <= 2 * RIGHT_ANGLE_TOL:
+                model.jointPlacements[jid] = pin.SE3(meant, placement.translation)
+                changed += 1
+            continue
         R = np.asarray(placement.rotation)
         P = np.rint(R)
         off = float(np.abs(R - P).max())

@@ -73,7 +73,8 @@ def joint_origin_readings(root: ET.Element) -> list[str]:
     comparisons' parameter sets take a joint's turn that is right angles to that rounding as
     right angles (:func:`~.conventions.right_angled_joints`); ``matrices`` keeps it as
     written. A joint whose angle near a right angle is no rounding of it (``1.569``:
-    :mod:`.rounded_angles`) is kept as written, and said."""
+    :mod:`.rounded_angles`) keeps that angle as written (its roundings made right angles),
+    and that is said."""
     near: list[str] = []
     kept: list[str] = []
     for joint in root.iterfind("joint"):
@@ -94,7 +95,8 @@ def joint_origin_readings(root: ET.Element) -> list[str]:
            "model's own matrices keep the numbers as written)"] if near else []
     return out + ([f"joint{'s' if len(kept) > 1 else ''} {_listed(kept)}: an origin rpy angle "
                    "near a right angle that is no rounding of it (1.569 or 1.5700, which are "
-                   "not π/2 to the digits they print): kept as written"] if kept else [])
+                   "not π/2 to the digits they print): that angle kept as written, its other "
+                   "angles that are roundings made the right angles"] if kept else [])
 
 
 def _listed(names: list[str]) -> str:

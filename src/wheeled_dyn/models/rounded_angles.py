@@ -3,9 +3,10 @@ their digits, ``3.14`` is π; ``1.569`` and ``1.5700`` are within
 :data:`~.conventions.RIGHT_ANGLE_TOL` of π/2 but are neither π/2 rounded nor cut at the digits
 they print — an angle meant as written.
 
-:func:`unrounded_joints` names the joints whose ``<origin rpy>`` has such an angle: their
-frames are kept as written where the comparisons turn the others by the right angles their
-roundings stand for (:func:`~.conventions.right_angled_joints`).
+:func:`unrounded_joints` names the joints whose ``<origin rpy>`` has such an angle: those
+angles are kept as written — and their other angles that are roundings made right angles —
+where the comparisons turn the other joints by the right angles their roundings stand for
+(:func:`~.conventions.right_angled_joints`).
 """
 
 from __future__ import annotations
@@ -13,8 +14,10 @@ from __future__ import annotations
 import functools
 import math
 import xml.etree.ElementTree as ET
+from collections.abc import Mapping
 from decimal import Decimal, InvalidOperation
 from pathlib import Path
+from types import MappingProxyType
 
 from .conventions import ROUNDING
 
@@ -39,34 +42,43 @@ def is_rounding(text: str) -> bool:
     return min(abs(value - round(exact, digits)), abs(value - cut)) <= SAME_DIGITS * unit
 
 
-def unrounded_joints(urdf: Path, tolerance: float) -> frozenset[str]:
+def unrounded_joints(urdf: Path, tolerance: float) -> Mapping[str, tuple[float, ...]]:
     r"""The joints of ``urdf`` whose ``<origin rpy>`` has an angle within ``tolerance`` of a
-    multiple of π/2, off it, that is no rounding of it (:func:`is_rounding`)."""
+    multiple of π/2, off it, that is no rounding of it (:func:`is_rounding`), each with its
+    roll, pitch and yaw as they are meant: those angles as printed, the ones that are
+    roundings made the right angles they stand for (``rpy="1.5708 0 1.569"``: π/2, 0,
+    1.569)."""
     try:
         stamp = urdf.stat().st_mtime_ns
     except OSError:
-        return frozenset()
+        return {}
     return _unrounded(str(urdf), stamp, tolerance)
 
 
 @functools.lru_cache(maxsize=32)
-def _unrounded(path: str, stamp: int, tolerance: float) -> frozenset[str]:
+def _unrounded(path: str, stamp: int, tolerance: float) -> Mapping[str, tuple[float, ...]]:
     try:
         root = ET.parse(path).getroot()
     except (OSError, ET.ParseError):
-        return frozenset()
-    out = set()
+        return {}
+    out: dict[str, tuple[float, ...]] = {}
     for joint in root.iterfind("joint"):
         origin = joint.find("origin")
-        for text in ("" if origin is None else origin.get("rpy", "")).split():
-            try:
-                value = float(text)
-            except ValueError:
-                continue
-            off = abs(value - round(value / (math.pi / 2)) * (math.pi / 2))
-            if ROUNDING < off <= tolerance and not is_rounding(text):
-                out.add(joint.get("name", ""))
-    return frozenset(out)
+        texts = ("" if origin is None else origin.get("rpy", "")).split()
+        try:
+            values = [float(text) for text in texts]
+        except ValueError:
+            continue
+        meant, unrounded = [], False
+        for text, value in zip(texts, values):
+            right = round(value / (math.pi / 2)) * (math.pi / 2)
+            off = abs(value - right)
+            rounding = off <= tolerance and is_rounding(text)
+            unrounded |= ROUNDING < off <= tolerance and not rounding
+            meant.append(right if rounding else value)
+        if unrounded and len(meant) == 3:
+            out[joint.get("name", "")] = tuple(meant)
+    return MappingProxyType(out)
 
 
 __all__ = ["is_rounding", "unrounded_joints"]
