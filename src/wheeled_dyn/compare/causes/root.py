@@ -137,7 +137,8 @@ def _term_kinds(diagnoses: Sequence) -> tuple:
         term_kinds = {t[0] for t in TERM_KINDS}
         said = next((k for k in kinds if k in term_kinds), K.DIMENSION)
         if said != K.DIMENSION:
-            units = order.pop(0)
+            units = next(t for t in order if t[0] == K.DIMENSION)
+            order.remove(units)
             order.insert(next(i for i, t in enumerate(order) if t[0] == said) + 1, units)
     return tuple(order)
 
