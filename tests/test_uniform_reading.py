@@ -372,7 +372,29 @@ def test_a_link_declared_uniform_that_its_urdf_is_not_is_the_files_error(
         return
     assert result.causes[0].explanation == said[0]
     assert said[0].startswith("the file declares rod uniform, but link rod's URDF moments "
-                              "(ixx 0.1875, iyy 0.1875, izz 0) are no uniform body's of its "
-                              "cylinder of radius 0.01 m and length 1 m and mass 1.5 kg "
-                              "(m r²/2 = 7.5e-05, "), said
+                              "(ixx 0.1875, iyy 0.1875, izz 0) are no uniform body's of the "
+                              "shapes it draws, of mass 1.5 kg (m r²/2 = 7.5e-05, "), said
     assert "m L²/12 = 0.125)" in said[0], said
+
+
+@pytest.mark.parametrize("shapes, unlike", [
+    ('<collision><geometry><sphere radius="0.03"/></geometry></collision>'
+     '<visual><geometry><cylinder radius="0.01" length="0.8"/></geometry></visual>', False),
+    ('<visual><geometry><box size="0.8 0.02 0.02"/></geometry></visual>', False),
+    ('<visual><geometry><mesh filename="rod.stl"/></geometry></visual>', False),
+    ('<visual><geometry><cylinder radius="0.01" length="0.5"/></geometry></visual>', True),
+], ids=["sphere-beside-its-cylinder", "box", "mesh", "another-length"])
+def test_a_link_is_no_uniform_body_only_unlike_every_shape_it_draws(shapes, unlike) -> None:
+    r"""The 0.8 m rod of 0.2 kg printing m L²/12 = 0.0106667 (and 0 about its axis): a
+    collision sphere at its tip beside its visual cylinder, or a box of its length, is a shape
+    it is uniform in (a probe's
+    cart-pole with a sphere at the pole's tip had "no uniform body's of its sphere"); a mesh
+    has moments of its own (nothing said); a cylinder of another length is not."""
+    import pinocchio as pin
+
+    from wheeled_dyn.models.uniform_reading import unlike_uniform
+    text = ROD.format(ixx="0.0106667", ixy="0", iyy="0.0106667", izz="0").replace(
+        "</inertial>", "</inertial>" + shapes)
+    inertia = pin.Inertia(0.2, np.array([0.0, 0.0, 0.4]), np.diag([0.0106667, 0.0106667, 0.0]))
+    found = unlike_uniform(text, {"rod": tuple(inertia.toDynamicParameters())})
+    assert (set(found) == {"rod"}) is unlike, found

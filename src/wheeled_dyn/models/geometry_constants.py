@@ -141,7 +141,7 @@ def _lengths(spec: "ModelSpec", source: "UrdfSource", dims: Mapping[str, Dimensi
     shapes = urdf_lengths(source.text)[1]
     out = table(dims, constants(spec.name, spec.geometry, dims, kept, spec.fixed_geometry),
                 inertials, uniform_inertials(source.text, shapes, inertials),
-                unlike_uniform(source.text, shapes, inertials))
+                unlike_uniform(source.text, inertials))
     for name, c in given.items():                  # [geometry] says what it is drawn with
         value = out.constants[name].value if name in out.constants else c.value
         if abs(value - c.value) > SAME_TOL * max(1.0, abs(c.value)):

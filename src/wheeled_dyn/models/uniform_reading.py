@@ -132,20 +132,44 @@ def uniform_inertials(text: str, shapes: Mapping[str, tuple[float | None, float 
 LIKE = 0.01
 
 
-def unlike_uniform(text: str, shapes: Mapping[str, tuple[float | None, float | None]],
-                   inertials: Mapping[str, tuple[float, ...]]) -> dict[str, str]:
-    r"""Per link with a cylinder or sphere whose printed moments (tensor diagonal, products
-    zero, axes turned by right angles at most) are none of them within :data:`LIKE` of a
-    uniform body's of that shape (the moments of module text): in words, what it prints and
-    what a uniform body would have. Such a link declared uniform is the file contradicting
-    its URDF: the truth keeps the URDF's inertia (its proportions)."""
+def _every_body(link: ET.Element, mass: float) -> list[tuple[float, str]] | None:
+    r"""The moments of the uniform bodies of every geometry the link draws (collision and
+    visual: each cylinder's and sphere's of module text, each box's
+    :math:`m(b^2 + c^2)/12` about each axis), with their formulas; None where it draws a
+    shape of no known moments (a mesh) or none at all."""
+    out: list[tuple[float, str]] = []
+    for geometry in [*link.findall("collision/geometry"), *link.findall("visual/geometry")]:
+        for shape in geometry:
+            try:
+                if shape.tag == "cylinder":
+                    out += _candidates(mass, float(shape.get("radius", "nan")),
+                                       float(shape.get("length", "nan")))
+                elif shape.tag == "sphere":
+                    out += _candidates(mass, float(shape.get("radius", "nan")), None)
+                elif shape.tag == "box":
+                    a, b, c = (float(x) for x in shape.get("size", "").split())
+                    out += [(mass * (u * u + v * v) / 12, "m (b² + c²)/12")
+                            for u, v in ((b, c), (a, c), (a, b))]
+                else:
+                    return None            # a mesh: its moments are its own
+            except ValueError:
+                return None
+    return out or None
+
+
+def unlike_uniform(text: str, inertials: Mapping[str, tuple[float, ...]]) -> dict[str, str]:
+    r"""Per link whose printed moments (tensor diagonal, products zero, axes turned by right
+    angles at most) are none of them within :data:`LIKE` of the moments of a uniform body of
+    any cylinder, sphere or box it draws (collision or visual; :func:`_every_body`): in
+    words, what it prints and what a uniform body of its first shape would have. Such a link
+    declared uniform is the file contradicting its URDF: the truth keeps the URDF's inertia
+    (its proportions). A link drawing a mesh, or nothing, is never said so."""
     import pinocchio as pin
     out: dict[str, str] = {}
     for link in ET.fromstring(text).findall("link"):
         name = link.get("name", "")
         element = link.find("inertial/inertia")
-        radius, length = shapes.get(name, (None, None))
-        if name not in inertials or element is None or (radius is None and length is None):
+        if name not in inertials or element is None:
             continue
         origin = link.find("inertial/origin")
         try:
@@ -156,17 +180,14 @@ def unlike_uniform(text: str, shapes: Mapping[str, tuple[float | None, float | N
         except ValueError:
             continue
         mass = pin.Inertia.FromDynamicParameters(np.asarray(inertials[name])).mass
-        bodies = _candidates(mass, radius, length)
-        if axes is None or products or mass <= 0 or not any(v > 0 for v in printed) or any(
-                abs(v - b) <= LIKE * b for v in printed for b, _ in bodies):
+        bodies = _every_body(link, mass) if mass > 0 else None
+        if axes is None or products or bodies is None or not any(v > 0 for v in printed) \
+                or any(abs(v - b) <= LIKE * b for v in printed for b, _ in bodies):
             continue
-        shape = f"sphere or cylinder of radius {radius:g} m" if length is None else \
-            f"cylinder of radius {radius:g} m and length {length:g} m" if radius is not None \
-            else f"length {length:g} m"
         moments = ", ".join(f"{k} {v:g}" for k, v in zip(DIAGONAL, printed))
-        out[name] = (f"link {name}'s URDF moments ({moments}) "
-                     f"are no uniform body's of its {shape} and mass {mass:g} kg ("
-                     + ", ".join(f"{f} = {b:.4g}" for b, f in bodies) + ")")
+        out[name] = (f"link {name}'s URDF moments ({moments}) are no uniform body's of the "
+                     f"shapes it draws, of mass {mass:g} kg ("
+                     + ", ".join(f"{f} = {b:.4g}" for b, f in bodies[:6]) + ")")
     return out
 
 
