@@ -116,6 +116,15 @@ def test_declared_units_against_the_value_are_the_files_error(engine, tmp_path):
     assert not [c for c in right.causes if c.kind == CauseKind.FILE_ERROR], right.causes
 
 
+def test_a_plain_names_units_are_the_models_to_say(tmp_path):
+    r"""A value that is a plain name (``R``; a gear ratio a model's ``[geometry]`` calls L) is
+    the model's to say the units of, not the name's: R declared in kg is not judged (a
+    probe's gear ratio named L, dimensionless, was "declared units wrong: L is m")."""
+    from wheeled_dyn.compare.judge.units import contradicted_units
+    path = _file(tmp_path, 'R   = { value = "R", units = "m"', 'R   = { value = "R", units = "kg"')
+    assert contradicted_units(load_derivation(path)) == []
+
+
 def test_no_shipped_derivation_declares_units_against_its_values():
     from wheeled_dyn.compare.judge.units import contradicted_units
     wrong = {path.name: contradicted_units(load_derivation(path))

@@ -316,16 +316,22 @@ class DimensionChecker:
 
 
 def contradicted_units(d: Derivation) -> list[tuple[str, str, Dim, Dim]]:
-    r"""The symbols whose declared units contradict the model parameters their value names
-    (``I_b = { value = "IYY(body)", units = "kg*m" }``): (name, value as written, declared
-    dimension, the value's), in the file's order. Both are the file's: the verdicts stand
+    r"""The symbols whose declared units contradict the link and joint parameters their value
+    names (``I_b = { value = "IYY(body)", units = "kg*m" }``; a value with a plain name, R or
+    a gear ratio a model calls L, is not judged: the model's ``[geometry]`` says what it is):
+    (name, value as written, declared dimension, the value's), in the file's order. Both are the file's: the verdicts stand
     under the declared values, and the units are the file's to mend."""
+    from sympy.core.function import AppliedUndef
     out = []
     for name, spec in d.symbols.items():
         declared = units_dim(spec.units) if spec.units else None
         if declared is None or spec.value is None:
             continue
-        given = value_dim(spec.value)
+        value = sp.sympify(spec.value)
+        calls = value.atoms(AppliedUndef)
+        if value.free_symbols - set().union(*(c.free_symbols for c in calls)):
+            continue          # a plain name (R, L, G): what it is, the model's [geometry] says
+        given = value_dim(value)
         if given is not None and tuple(map(sp.Rational, given)) != \
                 tuple(map(sp.Rational, declared)):
             out.append((name, sp.sstr(spec.value), declared, given))
