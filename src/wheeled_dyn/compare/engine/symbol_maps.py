@@ -157,8 +157,8 @@ def symbol_map_finding(d: Derivation, j) -> Cause | None:
             meant = "another parameter of the link than the document means (its axes " \
                 "turned: declare the one that fits)" if why == AXES else \
                 "a joint's length where the document means a link's centre of mass (the " \
-                "two are equal at the URDF's numbers only; the comparison draws them " \
-                "apart: declare the centre of mass)" if why == CENTRE else \
+                "comparison draws lengths and centres of mass as parameters of their own: " \
+                "declare the centre of mass)" if why == CENTRE else \
                 "a parameter of another link than the document means (declare the link)"
             return Cause(CauseKind.FILE_ERROR, (), (
                 f"with {spec.symbol} = {sp.sstr(other)} (the file maps it to "
