@@ -350,3 +350,17 @@ def test_a_wrong_determinant_is_named_as_the_divisor_every_solved_equation_share
         assert any(c.kind == CauseKind.UPSTREAM_STEP for c in result.causes), result.causes
     else:
         assert not named, [(r.element, r.texts) for r in named]
+
+
+def test_the_default_grid_judges_a_solved_form_with_a_number_in_its_velocity_terms(tmp_path):
+    r"""The arm solved for its accelerations with link 1's own inertia dropped
+    (``published_forms``' ``dropped``), on the engine's default grid, where h's velocity
+    products are compared on a subset of the samples: it differs, named as the point mass. A
+    gravity number trial of an h element was evaluated on every sample against h's subset
+    (a probe's "operands could not be broadcast together with shapes (5000,) (1000,)":
+    a traceback; the tests' smaller grids compare h on every sample)."""
+    from wheeled_dyn.compare.records import CauseKind
+    result = ComparisonEngine(seed=SEED).compare(
+        load_derivation(P.write(tmp_path, "arm", "solved", "dropped")))
+    assert result.equivalent is False
+    assert any(c.kind == CauseKind.POINT_MASS for c in result.causes), result.causes

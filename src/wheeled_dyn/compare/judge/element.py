@@ -73,10 +73,19 @@ class Trials:
                               (self.size if rows is None else len(rows),))
         return out.astype(float)
 
-    def evaluate(self, expr: sp.Expr) -> np.ndarray:
-        r"""``expr`` (in the document's names) at every sample."""
-        return np.broadcast_to(np.asarray(self.funcs.compiled(expr)(*self.argv), float),
-                               (self.size,))
+    def evaluate(self, expr: sp.Expr, rows: np.ndarray | None = None) -> np.ndarray:
+        r"""``expr`` (in the document's names) at every sample, or at the samples ``rows``."""
+        argv = self.argv if rows is None else self.at(rows)
+        return np.broadcast_to(np.asarray(self.funcs.compiled(expr)(*argv), float),
+                               (self.size if rows is None else len(rows),))
+
+    def evaluator(self, key: str):
+        r"""What evaluates an element of ``key`` on the samples its values are on: h's
+        velocity products on :attr:`h_rows`, every other element on every sample."""
+        if key != "h" or self.h_rows is None:
+            return self.evaluate
+        rows = self.h_rows
+        return lambda expr: self.evaluate(expr, rows)
 
 
 def _undecided(d: ElementDraft, finite: np.ndarray) -> bool:
@@ -133,7 +142,8 @@ def _vanishing_term(d: ElementDraft, trials: Trials) -> bool:
     terms = sp.Add.make_args(sp.expand(d.expr, power_exp=False))
     fixed = set(trials.funcs.d.positions) if trials.funcs.d.assumes.get("linearised_about") \
         else set()              # drawn at the point: a term in a deviation vanishes there
-    return any(agrees(trials.evaluate(t), np.zeros_like(d.D), d.scale) for t in terms
+    evaluate = trials.evaluator(d.key)
+    return any(agrees(evaluate(t), np.zeros_like(d.D), d.scale) for t in terms
                if not t.free_symbols & fixed)
 
 
@@ -154,7 +164,8 @@ def judge(d: ElementDraft, problems: Sequence[str], trials: Trials,
     if expr is None:
         return
     # a number where gravity fits (its units say so too, where the file declares them)
-    found = number_for_gravity(expr, trials.funcs.d, trials.evaluate, d.T, d.scale, problems)
+    found = number_for_gravity(expr, trials.funcs.d, trials.evaluator(d.key), d.T, d.scale,
+                               problems)
     if found:
         d.diagnoses[:] = found
         return
