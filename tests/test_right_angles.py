@@ -227,21 +227,28 @@ def test_a_rounding_is_the_right_angle_to_its_digits(text, rounding):
     assert is_rounding(text) is rounding
 
 
-def test_an_angle_near_a_right_angle_that_is_no_rounding_is_kept(tmp_path):
-    r"""An elbow frame turned by ``rpy="1.569 0 0.3"``: 1.569 is within the tolerance of
-    π/2 but no rounding of it, so the frame is kept as written (a derivation of the URDF as
-    written had differed, the frame turned by π/2), and the reading says so."""
-    from wheeled_dyn.models.conventions import right_angled_joints
+def _arm_with_elbow(tmp_path, rpy: str):
+    r"""The two-link arm as a user's model, its elbow joint's origin turned by ``rpy``, and
+    the joints whose angles near right angles are no roundings, as they are meant."""
     from wheeled_dyn.models.rounded_angles import unrounded_joints
     folder = tmp_path / "arm"
     folder.mkdir()
     elbow = '<origin xyz="0.8 0 0" rpy="0 0 0"/>'
     urdf = (DATA / "two_link_arm.urdf").read_text()
+    assert urdf.count(elbow) == 1
     (folder / "two_link_arm.urdf").write_text(
-        urdf.replace(elbow, '<origin xyz="0.8 0 0" rpy="1.569 0 0.3"/>'))
+        urdf.replace(elbow, f'<origin xyz="0.8 0 0" rpy="{rpy}"/>'))
     (folder / "two_link_arm.toml").write_text((DATA / "two_link_arm.toml").read_text())
     wm = load_model(str(folder / "two_link_arm.toml"))
-    kept = unrounded_joints(wm.spec.urdf, RIGHT_ANGLE_TOL)
+    return wm, unrounded_joints(wm.spec.urdf, RIGHT_ANGLE_TOL)
+
+
+def test_an_angle_near_a_right_angle_that_is_no_rounding_is_kept(tmp_path):
+    r"""An elbow frame turned by ``rpy="1.569 0 0.3"``: 1.569 is within the tolerance of
+    π/2 but no rounding of it, so the frame is kept as written (a derivation of the URDF as
+    written had differed, the frame turned by π/2), and the reading says so."""
+    from wheeled_dyn.models.conventions import right_angled_joints
+    wm, kept = _arm_with_elbow(tmp_path, "1.569 0 0.3")
     assert set(kept) == {"q2"} and kept["q2"] == (1.569, 0.0, 0.3), kept
     model = wm.model.copy()
     before = np.asarray(model.jointPlacements[model.getJointId("q2")].rotation).copy()
@@ -259,16 +266,7 @@ def test_a_rounded_right_angle_beside_an_angle_meant_as_written_is_made_exact(tm
     import pinocchio as pin
 
     from wheeled_dyn.models.conventions import right_angled_joints
-    from wheeled_dyn.models.rounded_angles import unrounded_joints
-    folder = tmp_path / "arm"
-    folder.mkdir()
-    elbow = '<origin xyz="0.8 0 0" rpy="0 0 0"/>'
-    urdf = (DATA / "two_link_arm.urdf").read_text()
-    (folder / "two_link_arm.urdf").write_text(
-        urdf.replace(elbow, '<origin xyz="0.8 0 0" rpy="1.5708 0 1.569"/>'))
-    (folder / "two_link_arm.toml").write_text((DATA / "two_link_arm.toml").read_text())
-    wm = load_model(str(folder / "two_link_arm.toml"))
-    kept = unrounded_joints(wm.spec.urdf, RIGHT_ANGLE_TOL)
+    wm, kept = _arm_with_elbow(tmp_path, "1.5708 0 1.569")
     assert kept == {"q2": (np.pi / 2, 0.0, 1.569)}, kept
     model = wm.model.copy()
     assert right_angled_joints(model, kept=kept) == 1
