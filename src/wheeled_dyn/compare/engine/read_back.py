@@ -3,8 +3,8 @@ of the rows its frames show divided or combined (:func:`read_back_said`): its in
 matrix (:func:`~..judge.unsolved.inertia_diagnoses`), the terms of the equations it solved
 (:func:`~..judge.unsolved.unsolved_terms`), or the one wrong entry of the equations it combined
 (:func:`~..judge.source_entry.source_entry`), or, none of these, the determinant it solved
-with (:func:`~..judge.common_divisor.common_divisor`). An explanation only: the equations' verdicts are
-decided by their equivalence.
+with (:func:`~..judge.common_divisor.common_divisor`). An explanation only: the equations'
+verdicts are decided by their equivalence.
 """
 
 from __future__ import annotations

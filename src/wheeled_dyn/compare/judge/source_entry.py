@@ -12,10 +12,10 @@ then projected away from the other true rows (:math:`P_\perp`, the complement of
 :math:`P_\perp(T_r + \delta e_c)`: the projected :math:`D` has rank one, its direction
 :math:`d = \alpha P_\perp T_r + \alpha\delta P_\perp e_c` gives :math:`\delta` per sample by
 least squares, and :math:`D = (DV^+)V` with :math:`W = DV^+` invertible confirms it. The entry
-is named in the document's symbols (:func:`~.entry_terms.entry_part`: a point mass, a sign, a factor, a
-symbol for another) only where exactly one entry so explains every sample; an entry that is a
-factor f of the truth's is said with its equal, every other entry of its equation 1/f × the
-truth's (the row's common factor goes into its weight).
+is named in the document's symbols (:func:`~.entry_terms.entry_part`: a point mass, a sign, a
+factor, a symbol for another) only where exactly one entry so explains every sample; an entry
+that is a factor f of the truth's is said with its equal, every other entry of its equation
+1/f × the truth's (the row's common factor goes into its weight).
 
 Where no one entry does, a symmetric pair of the inertia's, :math:`V = T + \delta(e_re_c^T +
 e_ce_r^T)` — the coupling an author derives once and writes in both equations — is tried:

@@ -36,8 +36,9 @@ def symbol_swaps(d: ElementDraft, trials, groups: Sequence[Sequence[sp.Symbol]]
 
 def _one_factor_trials(expr: sp.Expr, groups: Sequence[Sequence[sp.Symbol]]):
     r"""``(term, written, fits, the term read so)`` (written and fits as expressions, printed
-    only for what is found): in one additive term, a symbol :math:`a` read as :math:`b` — everywhere in the term (:math:`a^2` becomes :math:`b^2`), or in one
-    factor of a power (:math:`a^e` becomes :math:`a^{e-1}b`)."""
+    only for what is found): in one additive term, a symbol :math:`a` read as :math:`b` —
+    everywhere in the term (:math:`a^2` becomes :math:`b^2`), or in one factor of a power
+    (:math:`a^e` becomes :math:`a^{e-1}b`)."""
     members = {s: g for g in groups for s in g}
     terms = sp.Add.make_args(sp.expand(expr))
     if len(terms) > MAX_TERMS:
@@ -61,7 +62,8 @@ def _one_factor_trials(expr: sp.Expr, groups: Sequence[Sequence[sp.Symbol]]):
 
 def _exchange_trials(expr: sp.Expr, groups: Sequence[Sequence[sp.Symbol]]):
     r"""``(term, written, fits, the term read so)`` (as :func:`_one_factor_trials`): two
-    symbols of one kind exchanged in one additive term (:math:`R^2/L^2` where :math:`L^2/R^2` fits)."""
+    symbols of one kind exchanged in one additive term (:math:`R^2/L^2` where
+    :math:`L^2/R^2` fits)."""
     members = {s: g for g in groups for s in g}
     terms = sp.Add.make_args(sp.expand(expr))
     if len(terms) > MAX_TERMS or len(terms) == 1:

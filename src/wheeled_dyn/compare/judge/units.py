@@ -319,8 +319,9 @@ def contradicted_units(d: Derivation) -> list[tuple[str, str, Dim, Dim]]:
     r"""The symbols whose declared units contradict the link and joint parameters their value
     names (``I_b = { value = "IYY(body)", units = "kg*m" }``; a value with a plain name, R or
     a gear ratio a model calls L, is not judged: the model's ``[geometry]`` says what it is):
-    (name, value as written, declared dimension, the value's), in the file's order. Both are the file's: the verdicts stand
-    under the declared values, and the units are the file's to mend."""
+    (name, value as written, declared dimension, the value's), in the file's order. Both are
+    the file's: the verdicts stand under the declared values, and the units are the file's to
+    mend."""
     from sympy.core.function import AppliedUndef
     out = []
     for name, spec in d.symbols.items():

@@ -341,5 +341,5 @@ def read_back(drafts: Sequence[ElementDraft], rows: set[int], found: Diagnosis |
 
 
 __all__ = ["MAX_UNSOLVED", "STRONG", "term_columns", "implied_inertia", "inertia_diagnoses",
-           "read_back", "read_back_diagnosis", "read_back_explains", "solved_for",
+           "read_back", "read_back_explains", "solved_for",
            "unsolved_terms", "whole_factor"]

@@ -1,6 +1,7 @@
 r"""Truth − document as the reports print it: expanded with the trigonometric identities
-where it is short (:math:`\sin^2 + \cos^2 = 1` used where that shortens it), put over one denominator for a solved row, the round-off of decimals
-against the document's fractions dropped, remembered across runs."""
+where it is short (:math:`\sin^2 + \cos^2 = 1` used where that shortens it), put over one
+denominator for a solved row, the round-off of decimals against the document's fractions
+dropped, remembered across runs."""
 
 from __future__ import annotations
 
