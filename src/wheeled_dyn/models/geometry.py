@@ -131,8 +131,8 @@ class GeometryTable:
     #: link → (its inertials read as the uniform body's, the reading in words), for the links
     #: whose printed moments are a uniform body's to their digits (:mod:`.uniform_reading`)
     uniform: Mapping[str, tuple[tuple[float, ...], str]] = field(default_factory=dict)
-    #: link → in words, for the links with a cylinder or sphere whose printed moments are no
-    #: uniform body's of it (:func:`~.uniform_reading.unlike_uniform`)
+    #: link → in words, for the links whose printed moments are no uniform body's of any
+    #: cylinder, sphere or box they draw (:func:`~.uniform_reading.unlike_uniform`)
     unlike_uniform: Mapping[str, str] = field(default_factory=dict)
 
     def values(self) -> dict[str, float]:

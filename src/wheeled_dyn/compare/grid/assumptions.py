@@ -131,7 +131,7 @@ class Assumptions:
 
 def _unlike_uniform(d: Derivation, families: Sequence[SpecialCase]) -> tuple[Cause, ...]:
     r"""A ``file_error`` cause per link the file declares uniform whose URDF moments are no
-    uniform body's of its own cylinder or sphere
+    uniform body's of any cylinder, sphere or box it draws
     (:func:`~wheeled_dyn.models.uniform_reading.unlike_uniform`): the family keeps the
     URDF's inertia in its proportions, so a term the document writes as the uniform body's
     moment differs by that."""

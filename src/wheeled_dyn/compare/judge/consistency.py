@@ -13,8 +13,8 @@ sign or factor, so the family explains nothing about it.
   (:func:`contradicted_families`): its terms in those symbols are never compared (they vanish
   in every parameter set drawn), which a cause says first; the verdicts under the
   declaration stand.
-- **Declared units** that contradict the model parameters a symbol's value names (a moment
-  of inertia in kg·m) are the file contradicting itself too (:func:`contradiction_causes`,
+- **Declared units** that contradict the link or joint parameters a symbol's value names (a
+  moment of inertia in kg·m) are the file contradicting itself too (:func:`contradiction_causes`,
   :func:`~.units.contradicted_units`).
 
 A symbol vanishes under a family where its value is at most :data:`ZERO` of its largest on
