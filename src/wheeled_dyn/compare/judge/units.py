@@ -29,6 +29,7 @@ import functools
 from collections.abc import Mapping
 
 import sympy as sp
+from sympy.core.function import AppliedUndef
 
 from ...derivations.expressions import parse_units
 from ...derivations.schema import Derivation
@@ -322,7 +323,6 @@ def contradicted_units(d: Derivation) -> list[tuple[str, str, Dim, Dim]]:
     (name, value as written, declared dimension, the value's), in the file's order. Both are
     the file's: the verdicts stand under the declared values, and the units are the file's to
     mend."""
-    from sympy.core.function import AppliedUndef
     out = []
     for name, spec in d.symbols.items():
         declared = units_dim(spec.units) if spec.units else None
