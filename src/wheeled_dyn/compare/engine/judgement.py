@@ -233,7 +233,8 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
     if decision is not None and not decision.equivalent and id_sides is not None \
             and id_sides.doc.A is not None:
         solved = read_back_said(d, drafts, rules, frames, frames_on_id, id_sides, found, combined,
-                            lambda: document_truth(d, sides.grid.cs, assumed))
+                                lambda: document_truth(d, sides.grid.cs, assumed),
+                                sides.truth.H_rows)
     equations = equation_records(d, decision, drafts, texts, label, grids, funcs, rules, solved)
     fixes = print_drafts(d, drafts, sides.grid.cs, texts, assumed, funcs.exprs)
     equations = corrected(d, equations, fixes)

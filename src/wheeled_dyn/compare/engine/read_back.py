@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 
+import numpy as np
 import sympy as sp
 
 from ...derivations.schema import Derivation
@@ -27,16 +28,16 @@ from ..sides.both import Sides
 
 def read_back_said(d: Derivation, drafts: list[ElementDraft], rules: list[FrameRule],
                    frames: list[Frame], on_id: list[Frame | None], id_sides: Sides, found,
-                   combined: bool, truths: Callable[[], Mapping[str, sp.Expr] | None]
-                   ) -> Diagnosis | None:
+                   combined: bool, truths: Callable[[], Mapping[str, sp.Expr] | None],
+                   h_rows: np.ndarray | None = None) -> Diagnosis | None:
     r"""The document's equations read back before it solved or combined them, said on the
     elements of its rows that the frames show divided or combined (:func:`read_back`), and
     returned (None where none is found); ``truths()`` the truth's entries in the document's
     symbols, ``on_id`` the frames on the identification grid, ``found`` the names' values
     on it (:func:`~..judge.fitting.bases`; a body's own moment missing is named times a
     monomial of the document's lengths among them, as the elements of a form not solved
-    are). Where the frames show no
-    combination, only a wrong entry of the source equations is looked for
+    are), ``h_rows`` the samples of the main grid h's velocity products are compared on.
+    Where the frames show no combination, only a wrong entry of the source equations is looked for
     (:func:`source_entry`); the rows it shows combined in another way than their frames (the
     wrong entry in a combination's weight, eq1 − (d₁₂/d₂₂)·eq2, left every frame worse
     than the row as printed, or was taken into the frame's weights) are named by it alone."""
@@ -57,7 +58,7 @@ def read_back_said(d: Derivation, drafts: list[ElementDraft], rules: list[FrameR
     shown = {i for i, r in enumerate(rules)
              if r.kind in (FrameKind.FUNCTION, FrameKind.COMBINATION)} if combined else set()
     if solved is None and combined:
-        solved = common_divisor(drafts, shown)
+        solved = common_divisor(drafts, shown, h_rows)
     if solved is None:
         return None
     varying = {i for i, f in enumerate(frames) if not constant_weights(f.weights)} \

@@ -27,27 +27,32 @@ from .draft import ElementDraft
 NONZERO = 1e-9
 
 
-def common_divisor(drafts: Sequence[ElementDraft], rows: set[int]) -> Diagnosis | None:
+def common_divisor(drafts: Sequence[ElementDraft], rows: set[int],
+                   h_rows: np.ndarray | None = None) -> Diagnosis | None:
     r"""The diagnosis of module text for the differing elements of ``rows`` (the rows the
-    frames show solved), or None where their ratios to the truth are not one function."""
+    frames show solved), or None where their ratios to the truth are not one function. The
+    elements of h are on the samples ``h_rows`` of the others' (where those are fewer): each
+    ratio is compared with the one function there."""
     differing = [d for d in drafts if d.row in rows and d.verdict == Verdict.DIFFERS]
     if len({d.row for d in differing}) < 2:
         return None
-    groups: dict[tuple[int, ...], list[np.ndarray]] = {}
+    ratios = []
     for d in differing:
         D, T = np.asarray(d.D, float), np.asarray(d.T, float)
-        if D.shape != T.shape or not (np.isfinite(D).all() and np.isfinite(T).all()):
+        if D.shape != T.shape or D.ndim != 1 or not (np.isfinite(D).all()
+                                                      and np.isfinite(T).all()):
             return None
         if not (np.abs(T) > NONZERO * max(float(np.abs(T).max(initial=0.0)), 1e-300)).all():
             return None                 # the truth is 0 somewhere: no ratio to read there
-        groups.setdefault(D.shape, []).append(D / T)   # h's elements: on samples of their own
-    ks = []
-    for ratios in groups.values():
-        k = np.median(np.stack(ratios), axis=0)
-        if any(np.abs(r - k).max() > AGREE_TOL * np.abs(k).max() for r in ratios):
+        ratios.append(D / T)
+    size = max(len(r) for r in ratios)
+    full = [r for r in ratios if len(r) == size]
+    k = np.median(np.stack(full), axis=0)
+    for r in ratios:
+        at = k if len(r) == size else k[h_rows] if h_rows is not None and \
+            len(h_rows) == len(r) else None
+        if at is None or np.abs(r - at).max() > AGREE_TOL * np.abs(at).max():
             return None
-        ks.append(k)
-    k = max(ks, key=len)
     if np.ptp(k) <= AGREE_TOL * np.abs(k).max():
         return None                     # a constant: a factor of the rows
     solved = ", ".join(str(i + 1) for i in sorted({d.row for d in differing}))
