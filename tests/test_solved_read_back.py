@@ -27,6 +27,7 @@ import pytest
 import sympy as sp
 
 import published_forms as P
+from balancer_solved import balancer_solved
 from conftest import SEED
 from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.derivations import load_derivation
@@ -238,71 +239,17 @@ def test_a_solved_form_in_another_convention_is_read_so(engine, tmp_path, tau, q
     assert result.equivalent is (convention == "unknown")
 
 
-BALANCER = Path(__file__).parent / "data" / "ros_balancer"
-
-
-def _balancer_solved(folder: Path, old: str = "", new: str = "") -> Path:
-    r"""The ROS balancer's Kane equations in heading speed and pitch (``ros_balancer_heading``
-    with its heading held: rows and columns x and θ of its A, C, Q, B, every element right)
-    solved for its accelerations by Cramer's rule, as simulation code writes it: its A as
-    definitions M11 … M22 (``old`` written ``new`` in M11), its right-hand side
-    :math:`f = Bu - C\dot q - Q` as f1, f2, and :math:`\ddot q = \operatorname{adj}(M)
-    f / \det M`."""
-    import tomllib
-    text = (BALANCER / "ros_balancer_heading.toml").read_text()
-    data = tomllib.loads(text)
-    keep = [0, 2]
-    A, C, B = (sp.Matrix(sp.sympify(" ".join(data["matrices"][k].split()))) for k in "ACB")
-    Q = sp.Matrix(sp.sympify(data["matrices"]["Q"]))
-    A, C, Q, B = A.extract(keep, keep), C.extract(keep, keep), Q.extract(keep, [0]), \
-        B.extract(keep, [0, 1])
-    dx, dpsi, dtheta = sp.symbols("dx dpsi dtheta")
-    rhs = (B * sp.Matrix(sp.symbols("u_l u_r")) - C * sp.Matrix([dx, dtheta]) - Q).subs(dpsi, 0)
-    M = sp.Matrix(2, 2, lambda i, j: sp.Symbol(f"M{i + 1}{j + 1}"))
-    f = sp.Matrix(sp.symbols("f1 f2"))
-    definitions = {f"M{i + 1}{j + 1}": sp.sstr(A[i, j]) for i in range(2) for j in range(2)}
-    definitions.update({f"f{i + 1}": sp.sstr(rhs[i]) for i in range(2)})
-    definitions["Det"] = sp.sstr(M.det())
-    if old:
-        assert definitions["M11"].count(old) == 1, definitions["M11"]
-        definitions["M11"] = definitions["M11"].replace(old, new)
-    solved = M.adjugate() * f
-    head = text.split("[coordinates]")[0].replace(
-        'model = "ros_balancer.toml"', f'model = "{BALANCER / "ros_balancer.toml"}"')
-    symbols = "[symbols]" + text.split("[symbols]")[1].split("[matrices]")[0]
-    out = head + """[coordinates]
-kind = "quasi"
-rolling = "eliminate"
-positions = ["x", "theta"]
-velocities = ["dx", "dtheta"]
-units = { x = "m", theta = "rad" }
-configuration = { x0 = "x", psi = "0", phi = "-theta" }
-velocity_map = { dx = "cos(psi)*dx0 + sin(psi)*dy0", dtheta = "-dphi" }
-
-[inputs]
-tau_l = "u_l"
-tau_r = "-u_r"
-
-""" + symbols + "[definitions]\n" + "".join(f'{k} = "{v}"\n' for k, v in definitions.items())
-    out += "\n[matrices]\nequations = [\n" + ",\n".join(
-        f'  "{a} = ({sp.sstr(solved[i])})/Det"' for i, a in enumerate(("ddx", "ddtheta"))
-    ) + "\n]\n"
-    path = folder / "solved.toml"
-    path.write_text(out)
-    return path
-
-
 @pytest.mark.parametrize("planted", [False, True], ids=["right", "wheel-spin-dropped"])
 def test_a_solved_form_names_a_wheels_spin_inertia_dropped_as_a_point_mass(engine, tmp_path,
                                                                           planted):
     r"""The ROS balancer in heading speed and pitch solved for its accelerations
-    (:func:`_balancer_solved`): right, it agrees; with the wheels' spin inertia
+    (:func:`balancer_solved.balancer_solved`): right, it agrees; with the wheels' spin inertia
     :math:`2J_w/R^2` dropped from M11, the inertia read back names it as the matrix form's
     element does — the wheels' own moment about their axles, times :math:`R^{-2}` in heading
     coordinates: a point mass (it was "a term the document leaves out",
     ``missing_physics``)."""
     from wheeled_dyn.compare.records import CauseKind
-    path = _balancer_solved(tmp_path, *(("2*J_w/R**2", "0") if planted else ()))
+    path = balancer_solved(tmp_path, *(("2*J_w/R**2", "0") if planted else ()))
     result = engine.compare(load_derivation(path))
     assert result.equivalent is not planted, result.equations
     if not planted:

@@ -26,6 +26,7 @@ from typing import NamedTuple
 import sympy
 
 from ..errors import DerivationError
+from ..expression_size import free_symbols_of, node_count
 
 
 class EquationTerms(NamedTuple):
@@ -82,7 +83,7 @@ def split_equation_terms(expressions: Sequence[sympy.Expr],
     vel_set = set(velocities)
     for i, expr in enumerate(expressions):
         item = f"equation {i + 1}"
-        for term in sympy.Add.make_args(sympy.expand(expr, power_exp=False)):  # exp whole
+        for term in sympy.Add.make_args(_expanded(expr, everything)):
             degrees = _degrees(term, everything)
             if degrees is None:
                 raise DerivationError(path, item, f"term {term} is not a polynomial in the "
@@ -116,6 +117,30 @@ def split_equation_terms(expressions: Sequence[sympy.Expr],
                                       _line(path, i))
     return EquationTerms(_summed(A, n, n), _summed([[t] for t in h], n, 1),
                          _summed([[t] for t in Q], n, 1), _summed(B, n, k), tuple(inputs))
+
+
+#: Most nodes of a denominator multiplied out in every term of an expanded equation; a larger
+#: one (the determinant of a solved form, its abbreviations written out) is held whole.
+DENOMINATOR_NODES = 200
+
+
+def _expanded(expr: sympy.Expr, generators: Sequence[sympy.Symbol]) -> sympy.Expr:
+    r"""``expand(expr)``, an exponential of a sum kept whole (exp(-10⁴(q - 1)²) split
+    overflows). A denominator of more than :data:`DENOMINATOR_NODES` nodes free of the
+    ``generators`` (accelerations, velocities, inputs) — :math:`1/\det M` of a solved form,
+    written out — is expanded once and held as one symbol while the rest is: expanded with the
+    rest, it is multiplied out again in every term (half a minute per equation of a 3×3
+    solved form). The terms are the same products, each with its denominator beside it."""
+    held = set(generators)
+    denominators = {p for p in expr.atoms(sympy.Pow) if p.exp.is_negative and p.base.is_Add
+                    and node_count(p.base, DENOMINATOR_NODES) > DENOMINATOR_NODES
+                    and not free_symbols_of(p.base) & held}
+    if not denominators:
+        return sympy.expand(expr, power_exp=False)
+    symbols = {p: sympy.Dummy() for p in denominators}
+    back = {x: sympy.Pow(sympy.expand(p.base, power_exp=False), p.exp)
+            for p, x in symbols.items()}
+    return sympy.expand(expr.xreplace(symbols), power_exp=False).xreplace(back)
 
 
 def _summed(terms: list[list[list[sympy.Expr]]], rows: int, cols: int) -> sympy.ImmutableMatrix:

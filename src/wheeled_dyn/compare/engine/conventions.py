@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import sympy as sp
 
+from ...expression_size import atoms_of
 from ...derivations.schema import Derivation
 from ..judge.source_entry import one_wrong_entry
 from ..readings import signs
@@ -51,7 +52,7 @@ def _trig_positions(funcs) -> tuple[int, ...]:
     inside: set = set()
     for e in funcs.exprs.values():
         if isinstance(e, sp.Basic):
-            for f in e.atoms(sp.sin, sp.cos, sp.tan):
+            for f in atoms_of(e, sp.sin, sp.cos, sp.tan):
                 inside |= f.free_symbols
     return tuple(k for k, p in enumerate(positions) if p in inside)
 

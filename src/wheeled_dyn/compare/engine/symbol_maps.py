@@ -29,6 +29,7 @@ import numpy as np
 import sympy as sp
 from sympy.core.function import AppliedUndef
 
+from ...expression_size import free_symbols_of
 from ...derivations.schema import Derivation
 from ...errors import UnknownNameError
 from ..grid.values import model_value
@@ -117,7 +118,7 @@ def symbol_map_finding(d: Derivation, j) -> Cause | None:
         values = search.values.get(symbol)
         return values is not None and bool(np.any(np.asarray(values) != 0)) and \
             _in_any(str(symbol), agreeing)
-    written = set().union(*(e.free_symbols for e in _equations(j)))
+    written = set().union(*(free_symbols_of(e) for e in _equations(j)))
     links = sorted(k[2:-1] for k in j.sides.grid.sets[0].values if k.startswith("M("))
     readings = [(spec, other, why) for spec in d.symbols.values()
                 if not spec.is_input and spec.value is not None and spec.symbol in written

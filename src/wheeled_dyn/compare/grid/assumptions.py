@@ -34,6 +34,7 @@ import sympy as sp
 
 from ...derivations.schema import Derivation
 from ...errors import DerivationError, ParameterError, UnknownNameError
+from ...expression_size import free_symbols_of
 from ..records import Cause, CauseKind
 from .round_wheels import implied_wheel_families, round_contradiction
 from .samples import SpecialCase, family, massless_family, special_cases
@@ -75,7 +76,7 @@ class Assumptions:
         2π) of a position the equations ``exprs`` are functions of: the comparison sees
         little of the motion there (a term wrong everywhere else agrees on it: cos for sin at
         θ = π/4)."""
-        written = {str(x) for e in exprs if e is not None for x in e.free_symbols}
+        written = {str(x) for e in exprs if e is not None for x in free_symbols_of(e)}
         return tuple(Cause(CauseKind.ASSUMPTION, (), (
             f"{p} stays in [{lo:.10g}, {hi:.10g}], as the file's ranges declare (a span of "
             f"{hi - lo:.2g}): the comparison sees no other state of {p}, and a term wrong "

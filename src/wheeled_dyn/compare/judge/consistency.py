@@ -33,6 +33,7 @@ import numpy as np
 import sympy as sp
 
 from ...derivations.schema import Derivation
+from ...expression_size import free_symbols_of
 from ..grid.assumptions import Assumptions
 from ..grid.samples import SpecialCase, parameter_sets
 from ..records import Cause, CauseKind
@@ -50,7 +51,7 @@ def written_symbols(funcs: DocumentFunctions) -> set[sp.Symbol]:
     found: set[sp.Basic] = set()
     for expr in funcs.exprs.values():
         if expr is not None:
-            found |= expr.free_symbols
+            found |= free_symbols_of(expr)
     return found & set(funcs.params)
 
 

@@ -24,6 +24,7 @@ from collections.abc import Sequence
 import numpy as np
 import sympy as sp
 
+from ...expression_size import ops_over
 from ..records import Diagnosis, DiagnosisKind as K, Verdict, diagnosis, has_kind
 from ..sides.document import DocumentFunctions
 from .diagnose import agrees, max_error, value_diagnoses
@@ -137,7 +138,7 @@ def _vanishing_term(d: ElementDraft, trials: Trials) -> bool:
     the truth's on robots drawn at random, and an inconsistency of units is the units'
     (declared wrong, or a number written for a length) — and where the expression is too
     long to read term by term, it is taken to be one."""
-    if d.expr is None or sp.count_ops(d.expr) > TRIAL_OPS:
+    if d.expr is None or ops_over(d.expr, TRIAL_OPS):
         return True
     terms = sp.Add.make_args(sp.expand(d.expr, power_exp=False))
     fixed = set(trials.funcs.d.positions) if trials.funcs.d.assumes.get("linearised_about") \
@@ -169,7 +170,7 @@ def judge(d: ElementDraft, problems: Sequence[str], trials: Trials,
     if found:
         d.diagnoses[:] = found
         return
-    if sp.count_ops(expr) > TRIAL_OPS:       # only the symbols read as others: no compiling
+    if ops_over(expr, TRIAL_OPS):            # only the symbols read as others: no compiling
         if d.key != "h" and not has_kind(d.diagnoses, K.SIGN, K.FACTOR, K.EXTRA):
             d.diagnoses += symbol_swaps(d, trials, groups)
         return

@@ -17,6 +17,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 import sympy as sp
 
+from ...expression_size import atoms_of
 from ...derivations.schema import Derivation
 from ..records import Diagnosis, DiagnosisKind as K, diagnosis
 from .diagnose import agrees, small_fraction
@@ -42,7 +43,7 @@ def _gravity_parts(expr: sp.Expr) -> list[tuple[sp.Number, sp.Rational]]:
     fraction (1 for the latter)."""
     low, high = GRAVITY_NUMBERS
     out = []
-    for x in sorted({abs(a) for a in expr.atoms(sp.Number) if a != 0}, key=float):
+    for x in sorted({abs(a) for a in atoms_of(expr, sp.Number) if a != 0}, key=float):
         if low <= float(x) <= high:
             out.append((x, sp.Integer(1)))
             continue

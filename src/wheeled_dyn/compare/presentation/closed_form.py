@@ -16,6 +16,7 @@ from sympy.core.function import AppliedUndef
 
 from ...derivations.expressions import physical_in_standard
 from ...derivations.schema import Derivation
+from ...expression_size import ops_over
 from ...models.registry import model_entry, model_version
 from ...models.wip_parameters import WipParameters, standard_parameters
 from ..records import Diagnosis, DiagnosisKind
@@ -23,6 +24,7 @@ from .in_document import in_document
 from .linearised import linearised_truth
 from .printing import printed
 from .residuals import residual_text
+from .solved_frame import solved_truth, solved_weights
 
 #: Elements of the document longer than this many operations are not printed again in the
 #: model's parameters (a form solved for the accelerations: a page of text nobody reads).
@@ -111,7 +113,7 @@ def document_in_model(d: Derivation, families: tuple[str, ...] = ()
         if model_entry(d.model).parameters is WipParameters else {}
 
     def convert(expr: sp.Expr | None) -> tuple[str, str]:
-        if expr is None or sp.count_ops(expr) > MODEL_PRINT_LIMIT:
+        if expr is None or ops_over(expr, MODEL_PRINT_LIMIT):
             return "", ""                 # (a solved form's elements: too long to read)
         out = to_model(expr)
         if out is None:
@@ -263,10 +265,13 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
             continue
         if r.row in solved and inverse is None:
             continue                     # compared in a frame that has no closed form here
-        in_frame = sp.cancel(solved[r.row][1] * _combined(
-            r.element, inverse[solved[r.row][0]], truth)) \
-            if r.row in solved and inverse is not None else _in_frame(
-                r.element, expr, frames.get(r.row), truth, to_model)
+        if r.row in solved:
+            in_frame = solved_truth(solved[r.row][1] * _combined(
+                r.element, inverse[solved[r.row][0]], truth))
+            if in_frame is None:
+                continue                 # too long to write in the solved frame
+        else:
+            in_frame = _in_frame(r.element, expr, frames.get(r.row), truth, to_model)
         shown = expr if in_frame is None else in_frame     # the truth the row is compared with
         names = {sym: by_name[sym.name] for sym in shown.free_symbols if sym.name in by_name}
         r.truth, r.truth_latex = printed(shown, names)
@@ -341,27 +346,6 @@ def true_forms(d: Derivation, cs, families: tuple[str, ...] = (),
         truth = linearised_truth(truth, d.positions, *linearised, gravity=frozenset(g))
     _FORMS[:] = [(d, cs, key), (truth, physical, to_model, ours is not None)]
     return _FORMS[1]
-
-
-#: Most operations of the true A whose inverse is written as a solved row's frame.
-SOLVED_LIMIT = 200
-
-
-def solved_weights(truth: dict[str, sp.Expr], n: int) -> list[tuple[sp.Expr, ...]] | None:
-    r"""The rows of :math:`A^{-1}` of the true A in ``truth`` (its adjugate over its
-    determinant), or None where an element has no closed form, n is above 3, or A has more
-    than :data:`SOLVED_LIMIT` operations."""
-    labels = [[f"A[{i + 1},{j + 1}]" for j in range(n)] for i in range(n)]
-    if n > 3 or any(x not in truth for row in labels for x in row):
-        return None
-    A = sp.Matrix([[truth[x] for x in row] for row in labels])
-    if sp.count_ops(A) > SOLVED_LIMIT:
-        return None
-    det = sp.cancel(A.det())
-    if det == 0:
-        return None
-    adj = A.adjugate()
-    return [tuple(adj[i, j] / det for j in range(n)) for i in range(n)]
 
 
 def _combined(element: str, weights: tuple[sp.Expr, ...], truth: dict[str, sp.Expr]) -> sp.Expr:

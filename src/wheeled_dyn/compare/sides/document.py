@@ -15,6 +15,7 @@ import sympy as sp
 
 from ...derivations.schema import Derivation
 from ...compiled import numpy_function
+from ...expression_size import node_count
 from ..grid.arrays import Arrays
 from ..grid.samples import ParameterSet, parameter_sets
 from ..grid.values import model_value
@@ -78,12 +79,39 @@ def _h_tensor(h: sp.MatrixBase, velocities: Sequence[sp.Symbol]) -> sp.Array:
                 for k in range(n):
                     H[i][j][k] = sp.nan
             continue
-        for (j, k), coeff in _quadratic_coefficients(expanded(h[i]), velocities).items():
+        for (j, k), coeff in _coefficients(h[i], velocities).items():
             if j == k:
                 H[i][j][j] = coeff
             else:
                 H[i][j][k] = H[i][k][j] = coeff / 2
     return sp.Array(H)
+
+
+#: Most nodes of a row of h expanded before its coefficients are read.
+EXPAND_NODES = 5000
+_LARGE: dict[tuple[sp.Expr, tuple[sp.Symbol, ...]], dict[tuple[int, int], sp.Expr] | None] = {}
+
+
+def large_coefficients(expr: sp.Expr, velocities: Sequence[sp.Symbol]
+                       ) -> dict[tuple[int, int], sp.Expr] | None:
+    r"""The coefficient of each product :math:`\nu_j\nu_k` (:math:`j \le k`) of a row of h
+    of more than :data:`EXPAND_NODES` nodes whose terms are each a coefficient times a
+    product of velocities (as ``read_off`` splits a solved form's row: every term over the same
+    written-out determinant), its terms grouped as they are, not expanded again (a minute for
+    a 3×3 solved form); None for any other row, which is expanded first. Once per row in this
+    process."""
+    key = (expr, tuple(velocities))
+    if key not in _LARGE:
+        _LARGE[key] = _monomial_coefficients(expr, velocities) \
+            if node_count(expr, EXPAND_NODES) > EXPAND_NODES else None
+    return _LARGE[key]
+
+
+def _coefficients(expr: sp.Expr, velocities: Sequence[sp.Symbol]) -> dict[tuple[int, int], sp.Expr]:
+    r""":func:`_quadratic_coefficients` of ``expr`` expanded, or its
+    :func:`large_coefficients`."""
+    parts = large_coefficients(expr, velocities)
+    return _quadratic_coefficients(expanded(expr), velocities) if parts is None else parts
 
 
 def _quadratic_coefficients(expr: sp.Expr, velocities: Sequence[sp.Symbol]
@@ -92,6 +120,15 @@ def _quadratic_coefficients(expr: sp.Expr, velocities: Sequence[sp.Symbol]
     ``expr``: its terms grouped by their velocity factor (a term of another degree in the
     velocities is left out: ``read_off`` has rejected such documents). A term whose velocity
     factor is not a monomial (a velocity inside a function) is read by ``Poly``, as before."""
+    parts = _monomial_coefficients(expr, velocities)
+    return _poly_coefficients(expr, velocities) if parts is None else parts
+
+
+def _monomial_coefficients(expr: sp.Expr, velocities: Sequence[sp.Symbol]
+                           ) -> dict[tuple[int, int], sp.Expr] | None:
+    r"""The coefficient of each product :math:`\nu_j\nu_k` in ``expr`` as it is written, its
+    terms grouped by their velocity factor; None where a term's velocity factor is not a
+    monomial."""
     index = {v: j for j, v in enumerate(velocities)}
     parts: dict[tuple[int, int], list[sp.Expr]] = {}
     for term in sp.Add.make_args(expr):
@@ -99,7 +136,7 @@ def _quadratic_coefficients(expr: sp.Expr, velocities: Sequence[sp.Symbol]
         powers = product.as_powers_dict()
         if not all(v in index and e.is_Integer and e > 0 for v, e in powers.items()
                    if v != 1):
-            return _poly_coefficients(expr, velocities)
+            return None
         idx = sorted(index[v] for v, e in powers.items() if v in index for _ in range(int(e)))
         if len(idx) == 2:
             parts.setdefault((idx[0], idx[1]), []).append(coeff)

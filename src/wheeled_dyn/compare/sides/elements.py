@@ -19,7 +19,7 @@ import sympy as sp
 from ...derivations.namespace import GEOMETRY_NAMES, KHALIL_NAMES, PHYSICAL_NAMES
 from ...derivations.schema import Derivation
 from ..grid.arrays import Arrays
-from ..sides.document import DocumentFunctions, expanded
+from ..sides.document import DocumentFunctions, expanded, large_coefficients
 
 
 
@@ -52,6 +52,9 @@ def element_expr(exprs: Mapping[str, Any], key: str, index: tuple[int, ...],
         return M[index[0]]
     if key == "h":
         i, j, k = index
+        large = large_coefficients(M[i], velocities)
+        if large is not None:
+            return large.get((min(j, k), max(j, k)), sp.Integer(0))
         h = expanded(M[i])
         if j == k:
             return h.coeff(velocities[j], 2)

@@ -1,0 +1,99 @@
+r"""How big an expression is, and which symbols it holds, without walking a huge one whole.
+
+A document solved for its accelerations by Cramer's rule, with its abbreviations expanded,
+has elements of a few hundred terms of thousands of characters each: every term carries
+:math:`1/\det M` written out. SymPy's ``count_ops`` and ``free_symbols`` visit every node of
+such a tree each time they are asked (seconds per element), although the tree is mostly the
+same few subexpressions repeated. The size limits of the reports ask only whether an
+expression is over a limit, and the symbols are the same for every repetition of a
+subexpression; both are answered here by walks that stop early or visit each distinct
+object once.
+"""
+
+from __future__ import annotations
+
+import functools
+
+import sympy as sp
+from sympy.tensor.array import NDimArray
+
+#: Nodes per operation beyond which a tree is over any operation limit without counting:
+#: every SymPy node but a leaf adds an operation (``a + b``, ``a*b``, ``a**b``, ``sin(a)``),
+#: and a node has at most a few leaves of its own, so a tree of more than this many nodes per
+#: operation of the limit has more operations than the limit.
+NODES_PER_OP = 8
+
+
+def node_count(expr: sp.Basic, cap: int) -> int:
+    r"""The number of nodes of ``expr``'s tree, counted up to ``cap + 1`` (the walk stops
+    there: a huge tree costs no more than a small one); a matrix counts its elements'."""
+    count, stack = 0, _roots(expr)
+    while stack:
+        node = stack.pop()
+        count += 1
+        if count > cap:
+            return count
+        stack.extend(node.args)
+    return count
+
+
+def ops_over(expr: sp.Basic, limit: int) -> bool:
+    r"""``sympy.count_ops(expr) > limit``, with ``count_ops`` called only on trees of at most
+    :data:`NODES_PER_OP` × (``limit`` + 1) nodes; a larger tree is over the limit."""
+    cap = NODES_PER_OP * (limit + 1)
+    if node_count(expr, cap) > cap:
+        return True
+    return bool(sp.count_ops(expr) > limit)
+
+
+def free_symbols_of(expr: sp.Basic) -> set[sp.Basic]:
+    r"""``expr.free_symbols``, each distinct subexpression object visited once (a
+    subexpression repeated in every term, :math:`1/\det M`, is read once). A node that binds
+    symbols of its own (an integral, a ``Lambda``, a derivative) answers for itself."""
+    found: set[sp.Basic] = set()
+    seen: set[int] = set()
+    stack = _roots(expr)
+    while stack:
+        node = stack.pop()
+        if id(node) in seen:
+            continue
+        seen.add(id(node))
+        if node.is_Symbol:
+            found.add(node)
+        elif not _generic(type(node)):
+            found |= node.free_symbols
+        else:
+            stack.extend(node.args)
+    return found
+
+
+def _roots(expr: sp.Basic) -> list[sp.Basic]:
+    r"""The trees a walk of ``expr`` starts from: a matrix's or array's elements, else itself."""
+    return list(expr) if isinstance(expr, (sp.MatrixBase, NDimArray)) else [expr]
+
+
+def atoms_of(expr: sp.Basic, *types: type) -> set[sp.Basic]:
+    r"""``expr.atoms(*types)`` — its subexpressions of the given ``types`` —, each distinct
+    subexpression object visited once."""
+    found: set[sp.Basic] = set()
+    seen: set[int] = set()
+    stack = _roots(expr)
+    while stack:
+        node = stack.pop()
+        if id(node) in seen:
+            continue
+        seen.add(id(node))
+        if isinstance(node, types):
+            found.add(node)
+        stack.extend(node.args)
+    return found
+
+
+@functools.cache
+def _generic(cls: type) -> bool:
+    r"""Whether ``cls`` takes ``free_symbols`` from :class:`sympy.Basic` (its args' union)."""
+    owner = next(c for c in cls.__mro__ if "free_symbols" in c.__dict__)
+    return owner is sp.Basic
+
+
+__all__ = ["NODES_PER_OP", "atoms_of", "free_symbols_of", "node_count", "ops_over"]
