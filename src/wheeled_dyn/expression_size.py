@@ -12,8 +12,6 @@ object once.
 
 from __future__ import annotations
 
-import functools
-
 import sympy as sp
 from sympy.tensor.array import NDimArray
 
@@ -89,11 +87,15 @@ def atoms_of(expr: sp.Basic, *types: type) -> set[sp.Basic]:
     return found
 
 
-@functools.cache
+_GENERIC: dict[type, bool] = {}
+
+
 def _generic(cls: type) -> bool:
     r"""Whether ``cls`` takes ``free_symbols`` from :class:`sympy.Basic` (its args' union)."""
-    owner = next(c for c in cls.__mro__ if "free_symbols" in c.__dict__)
-    return owner is sp.Basic
+    if cls not in _GENERIC:
+        owner = next(c for c in cls.__mro__ if "free_symbols" in c.__dict__)
+        _GENERIC[cls] = owner is sp.Basic
+    return _GENERIC[cls]
 
 
 __all__ = ["NODES_PER_OP", "atoms_of", "free_symbols_of", "node_count", "ops_over"]

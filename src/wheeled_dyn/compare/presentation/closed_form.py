@@ -265,7 +265,7 @@ def annotate(d: Derivation, drafts: list, cs, frames: dict[int, tuple[sp.Expr, .
             continue
         if r.row in solved and inverse is None:
             continue                     # compared in a frame that has no closed form here
-        if r.row in solved:
+        if r.row in solved and inverse is not None:
             in_frame = solved_truth(solved[r.row][1] * _combined(
                 r.element, inverse[solved[r.row][0]], truth))
             if in_frame is None:
