@@ -127,6 +127,12 @@ def length_bases(bases: Sequence[tuple[sp.Expr, np.ndarray]], geometric: set[sp.
     return [(e, v) for e, v in bases if e.free_symbols <= geometric and not e.has(*positions)]
 
 
+def _whole(multiplier: sp.Expr) -> bool:
+    r"""Whether a moment's ``multiplier`` is 1 or a monomial of lengths with coefficient 1
+    (:math:`R^{-2}` in heading coordinates): the whole moment, never a part of it."""
+    return multiplier == 1 or (not multiplier.is_number and multiplier.as_coeff_Mul()[0] == 1)
+
+
 def own_reading(residual: np.ndarray, own: OwnInertia) -> tuple[K, str, sp.Expr] | None:
     r"""What truth − document ``residual`` (an entry of an inertia matrix) is as a body's own
     inertia: ``(POINT_MASS, moment name(s), multiplier)`` where it is a moment times 1 or
@@ -135,12 +141,53 @@ def own_reading(residual: np.ndarray, own: OwnInertia) -> tuple[K, str, sp.Expr]
     number other than 1 times a moment is said by the element's own naming, which weighs it
     against the document's symbols)."""
     hit = point_mass_fit(residual, own.moments, own.lengths) if own.moments else None
-    if hit is not None and (hit[1] == 1 or (not hit[1].is_number
-                                            and hit[1].as_coeff_Mul()[0] == 1)):
+    if hit is not None and _whole(hit[1]):
         return K.POINT_MASS, hit[0], hit[1]
     steiner = point_mass_fit(residual, own.parallel, own.lengths) if own.parallel else None
     if steiner is not None and steiner[1] == 1:
         return K.PARALLEL_AXIS, steiner[0], steiner[1]
+    return None
+
+
+#: Parts of a written term tried as the one written for a body's own moment: p/q, q at most
+#: this (the m_w of 3 m_w, a wheel's m r²/2 counted with the body's mass).
+FORMULA_PARTS = 6
+
+
+@dataclass(frozen=True)
+class FormulaReading:
+    r"""A part of a written term found where a body's own moment fits: truth − document
+    :math:`= \lambda I - c\,t` at every sample, ``written`` = :math:`c\,t` in the
+    document's symbols, ``term`` = :math:`t` as written, ``name`` the moment(s) :math:`I`
+    (:func:`own_moments`) and ``multiplier`` :math:`\lambda` (1, or a monomial of lengths
+    with coefficient 1)."""
+
+    written: sp.Expr
+    term: sp.Expr
+    name: str
+    multiplier: sp.Expr
+
+
+def formula_reading(residual: np.ndarray, terms: Sequence[tuple[sp.Expr, np.ndarray]],
+                    moments: Mapping[str, np.ndarray],
+                    lengths: Sequence[tuple[sp.Expr, np.ndarray]]) -> FormulaReading | None:
+    r"""The written term (or the part :math:`c = p/q`, :math:`q \le` :data:`FORMULA_PARTS`,
+    of one) that truth − document ``residual`` says stands where a body's own moment
+    belongs: :math:`\Delta + c\,t` is a moment times 1 or a coefficient-1 monomial of
+    ``lengths`` (:func:`point_mass_fit`) — a formula for the moment (a uniform body's,
+    :math:`m r^2/2`) written for one that does not follow it. ``terms``: the document's
+    element's terms with their values (none 0 at a sample). The first term and the largest
+    part found, or None; never a term the residual is a multiple of."""
+    parts = sorted({sp.Rational(p, q) for q in range(1, FORMULA_PARTS + 1)
+                    for p in range(1, q + 1)}, reverse=True)
+    for term, values in terms:
+        ratio = residual / values
+        if np.ptp(ratio) <= RATIO_TOL * np.abs(ratio).max():
+            continue             # the term times a number: a factor (or moments a family
+        for c in parts:          # keeps proportional to it, which no values can tell)
+            hit = point_mass_fit(residual + float(c) * values, moments, lengths)
+            if hit is not None and _whole(hit[1]):
+                return FormulaReading(c * term, term, hit[0], hit[1])
     return None
 
 
@@ -177,5 +224,6 @@ def bodies(name: str) -> str:
         f"{' and '.join(links)} as point masses"
 
 
-__all__ = ["AXES", "OwnInertia", "bodies", "grid_inertia", "length_bases", "own_moments",
-           "own_reading", "parallel_phrase", "point_mass_fit", "same_parts"]
+__all__ = ["AXES", "FORMULA_PARTS", "FormulaReading", "OwnInertia", "bodies",
+           "formula_reading", "grid_inertia", "length_bases", "own_moments", "own_reading",
+           "parallel_phrase", "point_mass_fit", "same_parts"]
