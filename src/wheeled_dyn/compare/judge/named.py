@@ -261,7 +261,7 @@ def _written_values(expr: sp.Expr, bases: Sequence[tuple[sp.Expr, np.ndarray]]
 
 def _formula_named(r: ElementDraft, residual: np.ndarray, moments: Mapping[str, np.ndarray],
                    lengths: Sequence[tuple[sp.Expr, np.ndarray]],
-                   bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> bool:
+                   bases: Sequence[tuple[sp.Expr, np.ndarray]], states: int) -> bool:
     r"""Name a differing inertia element's ``residual`` (truth − document), where it is no
     body's own moment (:func:`point_mass_fit`), as a formula written for one that the
     model's body does not follow (:func:`formula_reading`): a term written where another fits.
@@ -269,7 +269,7 @@ def _formula_named(r: ElementDraft, residual: np.ndarray, moments: Mapping[str, 
     follows the formula: the condition says it). Whether it was named."""
     if r.key != "A" or r.expr is None or r.verdict != Verdict.DIFFERS:
         return False
-    f = formula_reading(residual, _written_values(r.expr, bases), moments, lengths)
+    f = formula_reading(residual, _written_values(r.expr, bases), moments, lengths, states)
     if f is None:
         return False
     times = "" if f.multiplier == 1 else f" × {sp.sstr(f.multiplier)}"
@@ -290,7 +290,7 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
                moments: Mapping[str, np.ndarray], geometric: set[sp.Symbol],
                positions: Sequence[sp.Symbol] = (),
                factors: Mapping[int, np.ndarray] | None = None,
-               parallel: Mapping[str, np.ndarray] | None = None) -> None:
+               parallel: Mapping[str, np.ndarray] | None = None, states: int = 0) -> None:
     r"""Name the differing terms of the drafts (module text), in place. ``on_id``: each
     element's (document, truth in frame) values on the identification grid; ``geometric``
     the document's lengths, the only names a point-mass multiplier may contain (never a
@@ -298,7 +298,8 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
     lengths); ``factors``: per row, the factor the row is of the true equation (on the same
     grid), divided out of a residual before it is compared with a body's own inertia (an
     equation divided by m l has m l²/3 as l/3); ``parallel`` the links' parallel-axis parts
-    (:func:`own_moments`)."""
+    (:func:`own_moments`); ``states`` the grid's samples per parameter set (0: no formula
+    for a moment is read, :func:`formula_reading`)."""
     lengths = length_bases(bases, geometric, positions)
     named = 0
     for r in drafts:
@@ -331,7 +332,7 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
                 term.is_Symbol):      # one of the document's symbols (m for 3 Ixx/l²): plainer
             hit = None
         if _own_inertia(r, hit, term) if hit is not None else \
-                _formula_named(r, own, moments, lengths, bases):
+                _formula_named(r, own, moments, lengths, bases, states):
             continue
         missing = _missing_factor(D, T, bases, r.expr)
         if missing is not None:

@@ -170,25 +170,44 @@ class FormulaReading:
 
 def formula_reading(residual: np.ndarray, terms: Sequence[tuple[sp.Expr, np.ndarray]],
                     moments: Mapping[str, np.ndarray],
-                    lengths: Sequence[tuple[sp.Expr, np.ndarray]]) -> FormulaReading | None:
+                    lengths: Sequence[tuple[sp.Expr, np.ndarray]],
+                    states: int) -> FormulaReading | None:
     r"""The written term (or the part :math:`c = p/q`, :math:`q \le` :data:`FORMULA_PARTS`,
     of one) that truth − document ``residual`` says stands where a body's own moment
     belongs: :math:`\Delta + c\,t` is a moment times 1 or a coefficient-1 monomial of
     ``lengths`` (:func:`point_mass_fit`) — a formula for the moment (a uniform body's,
     :math:`m r^2/2`) written for one that does not follow it. ``terms``: the document's
-    element's terms with their values (none 0 at a sample). The first term and the largest
-    part found, or None; never a term the residual is a multiple of."""
+    element's terms with their values (none 0 at a sample), on a grid of ``states`` samples
+    per parameter set. A moment and lengths are the same at every state of a set, and so is
+    a formula for it: a residual or a term that is not is none. The first term and the
+    largest part found, or None; never a term the residual is a multiple of."""
+    if not _per_set(residual, states):
+        return None
     parts = sorted({sp.Rational(p, q) for q in range(1, FORMULA_PARTS + 1)
                     for p in range(1, q + 1)}, reverse=True)
     for term, values in terms:
+        if not _per_set(values, states):
+            continue
         ratio = residual / values
         if np.ptp(ratio) <= RATIO_TOL * np.abs(ratio).max():
             continue             # the term times a number: a factor (or moments a family
         for c in parts:          # keeps proportional to it, which no values can tell)
-            hit = point_mass_fit(residual + float(c) * values, moments, lengths)
+            combined = residual + float(c) * values
+            if combined.min() <= 0:
+                continue         # a moment times lengths is positive
+            hit = point_mass_fit(combined, moments, lengths)
             if hit is not None and _whole(hit[1]):
                 return FormulaReading(c * term, term, hit[0], hit[1])
     return None
+
+
+def _per_set(values: np.ndarray, states: int) -> bool:
+    r"""Whether ``values`` (``states`` samples per parameter set, a set's together) are the
+    same at every state of each set, to :data:`~.fitting.RATIO_TOL` of their largest."""
+    if states <= 0 or len(values) % states:
+        return False
+    blocks = values.reshape(-1, states)
+    return bool(np.ptp(blocks, axis=1).max() <= RATIO_TOL * np.abs(values).max())
 
 
 def same_parts(name: str, parallel: Mapping[str, np.ndarray]) -> str:
