@@ -188,17 +188,17 @@ def _matching(truth: Arrays, doc: Arrays) -> Arrays:
                   Q=truth.Q if doc.Q is not None else None)
 
 
-def _solve_rows(M: np.ndarray, regular: np.ndarray, rhs: np.ndarray) -> np.ndarray:
-    r""":math:`w` with :math:`w M = rhs` per sample (M: S × n × n, rhs: S × n); NaN where M
-    is not ``regular`` (:func:`_matrix`) or ``rhs`` is not finite."""
+def _solve_rows(inverse: np.ndarray, regular: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    r""":math:`w = rhs\,M^{-1}` (:math:`w M = rhs`) per sample (``inverse``: S × n × n, rhs:
+    S × n); NaN where M is not ``regular`` (:func:`_matrix`) or ``rhs`` is not finite."""
     out = np.full(rhs.shape, np.nan)
     ok = regular & np.isfinite(rhs).all(axis=1)
     if ok.any():
-        out[ok] = np.linalg.solve(np.swapaxes(M[ok], 1, 2), rhs[ok][:, :, None])[..., 0]
+        out[ok] = np.einsum("sj,sjk->sk", rhs[ok], inverse[ok])
     return out
 
 
-#: The matrices :func:`combination_weights` solves with (every row with the same ones; the
+#: The inverses :func:`combination_weights` solves with (every row with the same ones; the
 #: determinants were half the time), by truth and replaced column, with where they are
 #: regular: at most :data:`MATRICES_KEPT`, the least recently used given up first; those of
 #: fewer than :data:`MATRICES_FROM` samples made again (:mod:`.variants`' screens, cheap).
@@ -208,10 +208,10 @@ MATRICES_KEPT, MATRICES_FROM = 32, 256
 
 def _matrix(truth: Arrays, B_true: np.ndarray | None, variant: tuple[int, int] | None
             ) -> tuple[np.ndarray, np.ndarray]:
-    r"""The true :math:`A`, or :math:`A` with column :math:`j` replaced by :math:`h + Q`
-    (:math:`c < 0`) or by input column :math:`c` of ``B_true`` (``variant`` = (j, c)), and
-    where it is regular: finite, :func:`~..judge.equivalence.relative_det` above
-    :data:`~..judge.equivalence.SINGULAR_TOL`. Kept while the arrays it is made of are the
+    r"""The inverse of the true :math:`A`, or of :math:`A` with column :math:`j` replaced by
+    :math:`h + Q` (:math:`c < 0`) or by input column :math:`c` of ``B_true`` (``variant`` =
+    (j, c)), NaN where it is not regular, and where it is: finite,
+    :func:`~..judge.equivalence.relative_det` above :data:`~..judge.equivalence.SINGULAR_TOL`. Kept while the arrays it is made of are the
     same objects (held here, so that their identities are not reused)."""
     parts = (truth.A,) if variant is None else (truth.A, truth.h, truth.Q) \
         if variant[1] < 0 else (truth.A, B_true)
@@ -233,11 +233,13 @@ def _matrix(truth: Arrays, B_true: np.ndarray | None, variant: tuple[int, int] |
             M[:, :, j] = B_true[:, :, c]
     regular = np.isfinite(M).all(axis=(1, 2))
     regular[regular] = relative_det(M[regular]) > SINGULAR_TOL
+    inverse = np.full(M.shape, np.nan)          # every row solves with it: inverted once
+    inverse[regular] = np.linalg.inv(M[regular])
     if len(M) >= MATRICES_FROM:
         while len(_MATRICES) >= MATRICES_KEPT:
             _MATRICES.popitem(last=False)
-        _MATRICES[key] = (parts, M, regular)
-    return M, regular
+        _MATRICES[key] = (parts, inverse, regular)
+    return inverse, regular
 
 
 #: The variant of a ``COMBINATION`` fitted to the row's velocity, gravity and input columns
