@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 
+import functools
 import math
 from fractions import Fraction
 
@@ -153,6 +154,13 @@ def swap_diagnoses(expr: sp.Expr, candidates: Sequence[Sequence[sp.Symbol]],
     return found
 
 
+@functools.lru_cache(maxsize=4096)
+def expanded_terms(expr: sp.Expr) -> tuple[sp.Expr, ...]:
+    r"""The additive terms of ``sympy.expand(expr)``, once per expression (the power, term,
+    product and small-angle trials of a differing element each read them)."""
+    return sp.Add.make_args(sp.expand(expr))
+
+
 #: Largest number of additive terms of an element searched for one wrong term.
 MAX_TERMS = 16
 
@@ -160,25 +168,26 @@ MAX_TERMS = 16
 def power_diagnoses(expr: sp.Expr, params: Sequence[sp.Symbol],
                     evaluate: Callable[[sp.Expr], np.ndarray], T: np.ndarray,
                     scale: float,
-                    powered: Callable[[sp.Symbol, float], np.ndarray] | None = None
+                    powered: Callable[[sp.Symbol, float], np.ndarray] | None = None,
+                    at_zero: Callable[[sp.Symbol], np.ndarray] | None = None
                     ) -> list[Diagnosis]:
     r"""A parameter :math:`s` written to the power :math:`e` where :math:`e'` fits
     (:math:`e' \in \{-e, e \pm 1, 2e\}`, e.g. G where G² fits, R⁻² where R² fits):
     ``expr`` with :math:`s \to s^{e'/e}` agrees. ``evaluate(e)`` gives an expression's values
     at the samples; ``powered(s, k)``, where given, the values of ``expr`` itself with the
     values of :math:`s` raised to the power k (the same numbers, without compiling a trial
-    expression)."""
+    expression); ``at_zero(s)``, where given, its values with those of :math:`s` set to 0 (not
+    finite where a term divides by it)."""
     if powered is None:
         def powered(s: sp.Symbol, k: float) -> np.ndarray:
             return evaluate(expr.xreplace({s: s ** sp.nsimplify(k)}))
     found = []
-    factors = [f for term in sp.Add.make_args(sp.expand(expr)) for f in sp.Mul.make_args(term)]
+    factors = [f for term in expanded_terms(expr) for f in sp.Mul.make_args(term)]
     for s in sorted(expr.free_symbols & set(params), key=str):
         e = next((f.as_base_exp()[1] for f in factors if f.as_base_exp()[0] == s), sp.Integer(0))
         if e == 0 or not e.is_Rational:
             continue
-        dropped = expr.xreplace({s: sp.S.Zero}) if e > 0 else sp.zoo   # (s divides: none)
-        if not dropped.has(sp.zoo, sp.oo, -sp.oo, sp.nan) and agrees(evaluate(dropped), T, scale):
+        if e > 0 and _agrees_without(expr, s, evaluate, at_zero, T, scale):
             continue         # its terms left out agree: they are extra (a small length to a
             #                  higher power only makes them vanish), not to another power
         for new in dict.fromkeys((-e, e - 1, e + 1, 2 * e)):
@@ -188,6 +197,18 @@ def power_diagnoses(expr: sp.Expr, params: Sequence[sp.Symbol],
     return found
 
 
+def _agrees_without(expr: sp.Expr, s: sp.Symbol, evaluate: Callable[[sp.Expr], np.ndarray],
+                    at_zero: Callable[[sp.Symbol], np.ndarray] | None, T: np.ndarray,
+                    scale: float) -> bool:
+    r"""Whether ``expr`` with :math:`s = 0` (its terms in :math:`s` left out) agrees with
+    ``T``: never where a term divides by :math:`s` (not finite)."""
+    if at_zero is not None:
+        values = at_zero(s)
+        return bool(np.isfinite(values).all()) and agrees(values, T, scale)
+    dropped = expr.xreplace({s: sp.S.Zero})
+    return not dropped.has(sp.zoo, sp.oo, -sp.oo, sp.nan) and agrees(evaluate(dropped), T, scale)
+
+
 def term_diagnoses(expr: sp.Expr, evaluate: Callable[[sp.Expr], np.ndarray], D: np.ndarray,
                    T: np.ndarray, scale: float) -> list[Diagnosis]:
     r"""One additive term :math:`t` of the element wrong, the rest right: with the wrong sign
@@ -195,7 +216,7 @@ def term_diagnoses(expr: sp.Expr, evaluate: Callable[[sp.Expr], np.ndarray], D: 
     document's term is :math:`c` × the one that fits). The terms tried: those expanded, those
     as printed (:math:`k_1(\theta_1 - r_1)` whole), and the sum of the expanded terms that
     hold one symbol (the spring's two terms with :math:`k_1`)."""
-    expanded = sp.Add.make_args(sp.expand(expr))
+    expanded = expanded_terms(expr)
     if not 1 < len(expanded) <= MAX_TERMS:
         return []
     values: dict[sp.Expr, np.ndarray] = {}
@@ -318,7 +339,7 @@ def trig_swap_diagnoses(expr: sp.Expr, evaluate_many: Callable[[list], list[np.n
     fitting = [what for (what, _), v in zip(whole, values) if agrees(v, T, scale)]
     if fitting:                # one function for another first, then both exchanged
         return [_swap(*what) for what in [w for w in fitting if not w[2]] or fitting]
-    for terms in (sp.Add.make_args(expr), sp.Add.make_args(sp.expand(expr))):
+    for terms in (sp.Add.make_args(expr), expanded_terms(expr)):
         if len(terms) > MAX_TERMS:
             continue
         trials = [(k, f, _TRIG_SWAP[f.func](*f.args)) for k, term in enumerate(terms)

@@ -23,7 +23,7 @@ import numpy as np
 import sympy as sp
 
 from ..records import Diagnosis, DiagnosisKind as K, diagnosis
-from .diagnose import MAX_TERMS, agrees
+from .diagnose import MAX_TERMS, agrees, expanded_terms
 
 #: A trial of one expression: (what the document wrote, what fits, the expression it reads,
 #: whether that is multiplied by :math:`\cos x`: numerically, so no product is built).
@@ -123,7 +123,7 @@ def small_angle_diagnoses(expr: sp.Expr, positions: Sequence[sp.Symbol],
     found = [_found(x, t[0], t[1]) for x, t in whole if agrees(at.trial(x, t), T, scale)]
     if found:
         return found[:1]
-    for terms in (sp.Add.make_args(expr), sp.Add.make_args(sp.expand(expr))):
+    for terms in (sp.Add.make_args(expr), expanded_terms(expr)):
         if len(terms) < 2 or len(terms) > MAX_TERMS:
             continue
         per = [(k, x, t) for k, term in enumerate(terms) for x in positions

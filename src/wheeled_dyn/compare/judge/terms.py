@@ -12,7 +12,8 @@ import sympy as sp
 
 from ..records import Diagnosis, DiagnosisKind as K, diagnosis
 from .diagnose import (AGREE_TOL, MAX_TERMS, agrees, nice_number, plausible_factor,
-                       power_diagnoses, term_diagnoses, term_text, trig_swap_diagnoses)
+                       expanded_terms, power_diagnoses, term_diagnoses, term_text,
+                       trig_swap_diagnoses)
 from .small_angle import small_angle_diagnoses
 from ..sides.document import DocumentFunctions
 
@@ -83,7 +84,14 @@ def element_term_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequen
             out = compiled(*trial)
         return np.broadcast_to(np.asarray(out, float), D.shape) / c
 
-    found = power_diagnoses(expr, funcs.params, evaluate, T, scale, powered)
+    def at_zero(s: sp.Symbol) -> np.ndarray:
+        trial = list(argv)
+        with np.errstate(all="ignore"):           # a term divided by s: not finite
+            trial[position(s)] = np.zeros_like(np.asarray(trial[position(s)], float))
+            out = compiled(*trial)
+        return np.broadcast_to(np.asarray(out, float), D.shape) / c
+
+    found = power_diagnoses(expr, funcs.params, evaluate, T, scale, powered, at_zero)
     if not found and not has_factor:
         found = term_diagnoses(expr, evaluate, D, T, scale) or \
             many_term_diagnoses(expr, funcs, argv, c, D, T, scale)
@@ -107,7 +115,7 @@ def many_term_diagnoses(expr: sp.Expr, funcs: DocumentFunctions, argv: Sequence[
     compiled function and :math:`k` fitted to each by least squares; only where exactly one
     term fits at every sample (two equal terms: nothing is said). ``c``: the row's factor."""
     from ...compiled import numpy_function
-    expanded = sp.Add.make_args(sp.expand(expr))
+    expanded = expanded_terms(expr)
     if not MAX_TERMS < len(expanded) <= MAX_MANY_TERMS:
         return []
     with np.errstate(all="ignore"):
@@ -161,7 +169,7 @@ def undivided_term_diagnoses(expr: sp.Expr, evaluate: Callable[[sp.Expr], np.nda
     if np.ptp(factor) <= 1e-9 * float(np.abs(factor).max(initial=0.0)) or \
             not np.all(np.isfinite(factor)) or not np.all(factor != 0):
         return []
-    expanded = sp.Add.make_args(sp.expand(expr))
+    expanded = expanded_terms(expr)
     if len(expanded) > MAX_TERMS:
         return []
     for t in dict.fromkeys((*expanded, *sp.Add.make_args(expr), expr)):   # or all of it
