@@ -41,7 +41,7 @@ def _compare(folder: Path, uniform_urdf: bool, a11: str, a22: str = A22):
 
 def _formula(record) -> list:
     return [x for x in record.diagnoses if x.kind == DiagnosisKind.SWAP
-            and "a formula for it (as a uniform body's)" in x.text]
+            and "a formula for it (as for a uniform body)" in x.text]
 
 
 def test_the_disc_formula_is_named_where_the_wheels_are_no_discs(tmp_path):
@@ -72,3 +72,30 @@ def test_other_errors_are_no_formula(tmp_path, a11):
     assert by["A[1,1]"].verdict == "differs" and not _formula(by["A[1,1]"]), \
         by["A[1,1]"].diagnoses
     assert by["A[2,2]"].verdict == "agrees"
+
+
+@pytest.mark.parametrize("uniform_urdf", [False, True], ids=["no-discs", "discs"])
+def test_the_disc_formula_before_solving_is_named_in_the_inertia_read_back(tmp_path,
+                                                                         uniform_urdf):
+    r"""The same formula in the balancer's equations solved by Cramer's rule
+    (:func:`balancer_solved.balancer_solved`, M11 = m_b + 3 m_w): the inertia read back
+    from the solved equations names it in A[1,1] (it was "A[1,1] differs"); on wheels that
+    are discs the solved equations agree only if the wheel is uniform, and the formula is no
+    error there."""
+    from balancer_solved import balancer_solved
+    path = balancer_solved(tmp_path, A11.replace("m_b + 2*m_w + 2*J_w/R**2",
+                                                 "2*J_w/R**2 + m_b + 2*m_w"), "m_b + 3*m_w")
+    urdf = (DATA / "ros_balancer.urdf").read_text()
+    (tmp_path / "ros_balancer.urdf").write_text(
+        urdf if uniform_urdf else urdf.replace('iyy="0.004"', 'iyy="0.003"'))
+    (tmp_path / "ros_balancer.toml").write_text((DATA / "ros_balancer.toml").read_text())
+    path.write_text(path.read_text().replace(str(DATA / "ros_balancer.toml"),
+                                             str(tmp_path / "ros_balancer.toml")))
+    result = ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(load_derivation(path))
+    said = " ".join(c.explanation for c in result.causes)
+    named = "A[1,1]: the document has m_w where the moment of inertia Iyy(left_wheel) + " \
+        "Iyy(right_wheel) about its own centre of mass × R**(-2) fits"
+    if uniform_urdf:
+        assert named not in said and "uniform" in said, said
+    else:
+        assert result.equivalent is False and named in said, said

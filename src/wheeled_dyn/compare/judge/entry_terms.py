@@ -25,7 +25,8 @@ import sympy as sp
 
 from ..records import Diagnosis, DiagnosisKind as K
 from .diagnose import nice_number, plausible_factor, value_diagnoses
-from .own_inertia import OwnInertia, own_reading, parallel_phrase, same_parts
+from .own_inertia import (OwnInertia, formula_phrase, formula_reading, own_reading,
+                          parallel_phrase, same_parts, term_values)
 from .swap_fit import difference_reading
 
 
@@ -89,7 +90,9 @@ def entry_part(where: str, T: np.ndarray, D: np.ndarray, scale: float,
     a factor of the truth, as a uniform rod's does; a parallel-axis term); the whole entry's
     sign, factor, absence or excess where the numbers say one
     (:func:`~.diagnose.value_diagnoses`); one of two symbols written where the other fits in
-    a product (:func:`~.swap_fit.swap_reading`); a term missing, of the wrong sign or factor,
+    a product (:func:`~.swap_fit.swap_reading`); a part of one of the truth's terms in
+    ``truths`` where a body's own moment fits (:func:`~.own_inertia.formula_reading`: the
+    document has m_w where 2J_w/R² fits); a term missing, of the wrong sign or factor,
     or too much, against the truth's entry in ``truths`` (closed forms in the document's
     symbols, :func:`entry_reading`);
     else truth − document, with no claim of what it is."""
@@ -109,10 +112,15 @@ def entry_part(where: str, T: np.ndarray, D: np.ndarray, scale: float,
     if whole:
         said = f" ({_said(found)})" if found is not None else ""
         return Part(f"{where}: {whole[0].detail}{said}", found, whole[0].kind)
+    truth = None if truths is None else truths.get(where)
+    formula = None if own is None or truth is None else formula_reading(
+        T - D, term_values(truth, bases), own.moments, own.lengths, own.sets)
+    if formula is not None:              # a part of one of the truth's terms: what it has
+        said = f" ({_said(found)})" if found is not None else ""
+        return Part(f"{where}: the document has {formula_phrase(formula)}{said}", found, K.SWAP)
     if swap is not None:
         return Part(f"{where}: {swap[1]} ({_said(swap[0])})", swap[0], K.SWAP)
-    truth = None if truths is None or found is None else truths.get(where)
-    read = None if truth is None else entry_reading(found, truth)
+    read = None if truth is None or found is None else entry_reading(found, truth)
     if read is not None:
         return Part(f"{where}: {read[1]} ({_said(found)})", found, read[0])
     # no claim of a term missing: truth − document may be terms too much, or some of each

@@ -30,12 +30,11 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import sympy as sp
 
-from ...expression_size import ops_over
 from ..records import Diagnosis, DiagnosisKind as K, Verdict, diagnosis, has_kind
 from .diagnose import nice_number, plausible_factor
 from .draft import ElementDraft
 from .fitting import RATIO_TOL, fit_factor, fit_sum
-from .own_inertia import (bodies, formula_reading, length_bases,
+from .own_inertia import (bodies, formula_phrase, formula_reading, length_bases, set_indices, term_values,
                           parallel_phrase, point_mass_fit, same_parts)
 from .swap_fit import difference_reading
 
@@ -238,27 +237,6 @@ def _own_inertia(r: ElementDraft, hit: tuple[str, sp.Expr], term: sp.Expr | None
     return True
 
 
-def _written_values(expr: sp.Expr, bases: Sequence[tuple[sp.Expr, np.ndarray]]
-                    ) -> list[tuple[sp.Expr, np.ndarray]]:
-    r"""The terms of ``expr`` as written (multiplied out; none of more than
-    :data:`MAX_WRITTEN_OPS` operations) with their values on the grid of ``bases`` — those
-    whose symbols all have values there, and which are 0 at no sample."""
-    from ...compiled import numpy_function
-    if ops_over(expr, MAX_WRITTEN_OPS):
-        return []
-    values = {e: v for e, v in bases if e.is_Symbol}
-    out = []
-    for term in sp.Add.make_args(sp.expand(expr)):
-        names = sorted(term.free_symbols, key=str)
-        if term.is_number or not set(names) <= set(values):
-            continue
-        v = np.broadcast_to(np.asarray(numpy_function(names, term)(
-            *(values[s] for s in names)), dtype=float), next(iter(values.values())).shape)
-        if np.isfinite(v).all() and np.abs(v).min() > 0:
-            out.append((term, v))
-    return out
-
-
 def _formula_named(r: ElementDraft, residual: np.ndarray, moments: Mapping[str, np.ndarray],
                    lengths: Sequence[tuple[sp.Expr, np.ndarray]],
                    bases: Sequence[tuple[sp.Expr, np.ndarray]], states: int) -> bool:
@@ -269,18 +247,15 @@ def _formula_named(r: ElementDraft, residual: np.ndarray, moments: Mapping[str, 
     follows the formula: the condition says it). Whether it was named."""
     if r.key != "A" or r.expr is None or r.verdict != Verdict.DIFFERS:
         return False
-    f = formula_reading(residual, _written_values(r.expr, bases), moments, lengths, states)
+    sets = set_indices(len(residual) // states, states) if states else None
+    f = formula_reading(residual, term_values(r.expr, bases), moments, lengths, sets)
     if f is None:
         return False
     times = "" if f.multiplier == 1 else f" × {sp.sstr(f.multiplier)}"
     of = "" if f.written == f.term else f" (of its {sp.sstr(f.term)})"
-    links = " and ".join(dict.fromkeys(one[one.index("(") + 1:-1]
-                                       for one in f.name.split(" + ")))
     r.diagnoses.insert(0, diagnosis(
-        K.SWAP, f"the document writes {sp.sstr(f.written)}{of} where the moment of inertia "
-        f"{f.name} about its own centre of mass{times} fits: a formula for it (as a uniform "
-        f"body's) that {links} do{'es' if ' and ' not in links else ''} not follow in the "
-        "model", prefix="", written=sp.sstr(f.written), fits=f"{f.name}{times}",
+        K.SWAP, f"the document writes {formula_phrase(f, of)}", prefix="",
+        written=sp.sstr(f.written), fits=f"{f.name}{times}",
         term=sp.sstr(f.term)))
     return True
 

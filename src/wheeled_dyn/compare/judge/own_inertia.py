@@ -10,6 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 import sympy as sp
 
+from ...expression_size import ops_over
 from ..records import DiagnosisKind as K
 from .fitting import RATIO_TOL, fit_factor
 
@@ -98,17 +99,20 @@ def _plainness(c: sp.Expr) -> tuple[int, int]:
 class OwnInertia:
     r"""What a residual is compared with as a body's own inertia, on one grid: every link's
     moments about its centre of mass and its parallel-axis parts (:func:`own_moments`), and
-    the document's lengths a multiplier may be a monomial of (:func:`length_bases`)."""
+    the document's lengths a multiplier may be a monomial of (:func:`length_bases`), and
+    the parameter set of each sample (``sets``, its index; None: not known)."""
 
     moments: Mapping[str, np.ndarray]
     parallel: Mapping[str, np.ndarray]
     lengths: Sequence[tuple[sp.Expr, np.ndarray]]
+    sets: np.ndarray | None = None
 
     def at(self, rows: np.ndarray) -> "OwnInertia":
         r"""The same at the samples ``rows``."""
         return OwnInertia({k: v[rows] for k, v in self.moments.items()},
                           {k: v[rows] for k, v in self.parallel.items()},
-                          [(e, v[rows]) for e, v in self.lengths])
+                          [(e, v[rows]) for e, v in self.lengths],
+                          None if self.sets is None else self.sets[rows])
 
 
 def grid_inertia(values: Sequence[Mapping[str, float]], samples: int,
@@ -117,7 +121,7 @@ def grid_inertia(values: Sequence[Mapping[str, float]], samples: int,
     ``values`` (each set's namespace values)."""
     states = samples // max(len(values), 1)
     return OwnInertia(own_moments(values, states), own_moments(values, states, True),
-                      list(lengths))
+                      list(lengths), set_indices(len(values), states))
 
 
 def length_bases(bases: Sequence[tuple[sp.Expr, np.ndarray]], geometric: set[sp.Symbol],
@@ -171,22 +175,22 @@ class FormulaReading:
 def formula_reading(residual: np.ndarray, terms: Sequence[tuple[sp.Expr, np.ndarray]],
                     moments: Mapping[str, np.ndarray],
                     lengths: Sequence[tuple[sp.Expr, np.ndarray]],
-                    states: int) -> FormulaReading | None:
+                    sets: np.ndarray | None) -> FormulaReading | None:
     r"""The written term (or the part :math:`c = p/q`, :math:`q \le` :data:`FORMULA_PARTS`,
     of one) that truth − document ``residual`` says stands where a body's own moment
     belongs: :math:`\Delta + c\,t` is a moment times 1 or a coefficient-1 monomial of
     ``lengths`` (:func:`point_mass_fit`) — a formula for the moment (a uniform body's,
     :math:`m r^2/2`) written for one that does not follow it. ``terms``: the document's
-    element's terms with their values (none 0 at a sample), on a grid of ``states`` samples
-    per parameter set. A moment and lengths are the same at every state of a set, and so is
-    a formula for it: a residual or a term that is not is none. The first term and the
+    element's terms with their values (none 0 at a sample); ``sets`` the parameter set of
+    each sample (None: no reading). A moment and lengths are the same at every state of a
+    set, and so is a formula for it: a residual or a term that is not is none. The first term and the
     largest part found, or None; never a term the residual is a multiple of."""
-    if not _per_set(residual, states):
+    if sets is None or not _per_set(residual, sets):
         return None
     parts = sorted({sp.Rational(p, q) for q in range(1, FORMULA_PARTS + 1)
                     for p in range(1, q + 1)}, reverse=True)
     for term, values in terms:
-        if not _per_set(values, states):
+        if not _per_set(values, sets):
             continue
         ratio = residual / values
         if np.ptp(ratio) <= RATIO_TOL * np.abs(ratio).max():
@@ -201,13 +205,52 @@ def formula_reading(residual: np.ndarray, terms: Sequence[tuple[sp.Expr, np.ndar
     return None
 
 
-def _per_set(values: np.ndarray, states: int) -> bool:
-    r"""Whether ``values`` (``states`` samples per parameter set, a set's together) are the
-    same at every state of each set, to :data:`~.fitting.RATIO_TOL` of their largest."""
-    if states <= 0 or len(values) % states:
-        return False
-    blocks = values.reshape(-1, states)
-    return bool(np.ptp(blocks, axis=1).max() <= RATIO_TOL * np.abs(values).max())
+#: Largest expressions (operations) whose terms are evaluated one by one.
+MAX_TERM_OPS = 200
+
+
+def term_values(expr: sp.Expr, bases: Sequence[tuple[sp.Expr, np.ndarray]]
+                    ) -> list[tuple[sp.Expr, np.ndarray]]:
+    r"""The terms of ``expr`` (multiplied out; none of more than :data:`MAX_TERM_OPS`
+    operations) with their values on the grid of ``bases`` — those
+    whose symbols all have values there, and which are 0 at no sample."""
+    from ...compiled import numpy_function
+    if ops_over(expr, MAX_TERM_OPS):
+        return []
+    values = {e: v for e, v in bases if e.is_Symbol}
+    out = []
+    for term in sp.Add.make_args(sp.expand(expr)):
+        names = sorted(term.free_symbols, key=str)
+        if term.is_number or not set(names) <= set(values):
+            continue
+        v = np.broadcast_to(np.asarray(numpy_function(names, term)(
+            *(values[s] for s in names)), dtype=float), next(iter(values.values())).shape)
+        if np.isfinite(v).all() and np.abs(v).min() > 0:
+            out.append((term, v))
+    return out
+
+
+def formula_phrase(f: FormulaReading, of: str = "") -> str:
+    r"""``"m_w (of its 3*m_w) where the moment of inertia … fits: …"``: what the document has
+    (``of``: the term it is a part of, as written) where a body's own moment fits."""
+    times = "" if f.multiplier == 1 else f" × {sp.sstr(f.multiplier)}"
+    return (f"{sp.sstr(f.written)}{of} where the moment of inertia {f.name} about its own "
+            f"centre of mass{times} fits: a formula for it (as for a uniform body) that the "
+            "model's parameter sets do not keep")
+
+
+def set_indices(sets: int, states: int) -> np.ndarray:
+    r"""The parameter set of each sample of a grid of ``states`` samples per set, a set's
+    together (as :func:`own_moments` repeats a set's moments)."""
+    return np.repeat(np.arange(sets), states)
+
+
+def _per_set(values: np.ndarray, sets: np.ndarray) -> bool:
+    r"""Whether ``values`` are the same at every sample of each parameter set (``sets``: the
+    set of each sample), to :data:`~.fitting.RATIO_TOL` of their largest."""
+    tol = RATIO_TOL * float(np.abs(values).max(initial=0.0))
+    return len(values) == len(sets) and all(
+        np.ptp(values[sets == k]) <= tol for k in np.unique(sets))
 
 
 def same_parts(name: str, parallel: Mapping[str, np.ndarray]) -> str:
@@ -243,6 +286,6 @@ def bodies(name: str) -> str:
         f"{' and '.join(links)} as point masses"
 
 
-__all__ = ["AXES", "FORMULA_PARTS", "FormulaReading", "OwnInertia", "bodies",
-           "formula_reading", "grid_inertia", "length_bases", "own_moments", "own_reading",
-           "parallel_phrase", "point_mass_fit", "same_parts"]
+__all__ = ["AXES", "FORMULA_PARTS", "MAX_TERM_OPS", "FormulaReading", "OwnInertia", "bodies",
+           "formula_phrase", "formula_reading", "grid_inertia", "length_bases", "own_moments", "own_reading",
+           "parallel_phrase", "point_mass_fit", "same_parts", "set_indices", "term_values"]
