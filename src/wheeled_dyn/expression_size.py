@@ -12,6 +12,8 @@ object once.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterator
+
 import sympy as sp
 from sympy.tensor.array import NDimArray
 
@@ -49,31 +51,23 @@ def free_symbols_of(expr: sp.Basic) -> set[sp.Basic]:
     subexpression repeated in every term, :math:`1/\det M`, is read once). A node that binds
     symbols of its own (an integral, a ``Lambda``, a derivative) answers for itself."""
     found: set[sp.Basic] = set()
-    seen: set[int] = set()
-    stack = _roots(expr)
-    while stack:
-        node = stack.pop()
-        if id(node) in seen:
-            continue
-        seen.add(id(node))
+    for node in _distinct(expr, lambda n: not n.is_Symbol and _generic(type(n))):
         if node.is_Symbol:
             found.add(node)
         elif not _generic(type(node)):
             found |= node.free_symbols
-        else:
-            stack.extend(node.args)
     return found
-
-
-def _roots(expr: sp.Basic) -> list[sp.Basic]:
-    r"""The trees a walk of ``expr`` starts from: a matrix's or array's elements, else itself."""
-    return list(expr) if isinstance(expr, (sp.MatrixBase, NDimArray)) else [expr]
 
 
 def atoms_of(expr: sp.Basic, *types: type) -> set[sp.Basic]:
     r"""``expr.atoms(*types)`` — its subexpressions of the given ``types`` —, each distinct
     subexpression object visited once."""
-    found: set[sp.Basic] = set()
+    return {node for node in _distinct(expr, lambda n: True) if isinstance(node, types)}
+
+
+def _distinct(expr: sp.Basic, inside: Callable[[sp.Basic], bool]) -> Iterator[sp.Basic]:
+    r"""Each distinct subexpression object of ``expr`` (of each element of a matrix or
+    array) once, the arguments of those for which ``inside`` holds read too."""
     seen: set[int] = set()
     stack = _roots(expr)
     while stack:
@@ -81,10 +75,14 @@ def atoms_of(expr: sp.Basic, *types: type) -> set[sp.Basic]:
         if id(node) in seen:
             continue
         seen.add(id(node))
-        if isinstance(node, types):
-            found.add(node)
-        stack.extend(node.args)
-    return found
+        yield node
+        if inside(node):
+            stack.extend(node.args)
+
+
+def _roots(expr: sp.Basic) -> list[sp.Basic]:
+    r"""The trees a walk of ``expr`` starts from: a matrix's or array's elements, else itself."""
+    return list(expr) if isinstance(expr, (sp.MatrixBase, NDimArray)) else [expr]
 
 
 _GENERIC: dict[type, bool] = {}
