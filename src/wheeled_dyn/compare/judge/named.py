@@ -251,11 +251,10 @@ def _formula_named(r: ElementDraft, residual: np.ndarray, moments: Mapping[str, 
     f = formula_reading(residual, term_values(r.expr, bases), moments, lengths, sets)
     if f is None:
         return False
-    times = "" if f.multiplier == 1 else f" × {sp.sstr(f.multiplier)}"
     of = "" if f.written == f.term else f" (of its {sp.sstr(f.term)})"
     r.diagnoses.insert(0, diagnosis(
         K.SWAP, f"the document writes {formula_phrase(f, of)}", prefix="",
-        written=sp.sstr(f.written), fits=f"{f.name}{times}",
+        written=sp.sstr(f.written), fits=f.fits,
         term=sp.sstr(f.term)))
     return True
 

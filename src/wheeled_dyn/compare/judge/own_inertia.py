@@ -171,6 +171,12 @@ class FormulaReading:
     name: str
     multiplier: sp.Expr
 
+    @property
+    def fits(self) -> str:
+        r"""What fits where :attr:`written` stands: ``"Iyy(left_wheel) × R**(-2)"``."""
+        times = "" if self.multiplier == 1 else f" × {sp.sstr(self.multiplier)}"
+        return f"{self.name}{times}"
+
 
 def formula_reading(residual: np.ndarray, terms: Sequence[tuple[sp.Expr, np.ndarray]],
                     moments: Mapping[str, np.ndarray],
