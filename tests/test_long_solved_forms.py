@@ -1,9 +1,9 @@
 r"""A 3×3 form solved for its accelerations with its abbreviations written out: the ROS
 balancer in heading speed, heading rate and pitch solved by Cramer's rule
 (:func:`balancer_solved.balancer_solved` with ``heading``), elements of hundreds of terms, each
-over the written-out determinant (megabytes of text). It took five minutes to compare (the
-determinant multiplied out in every term, the elements printed whole); held whole, it takes
-seconds, with the same verdicts and names.
+over the written-out determinant (megabytes of text). It took 291 s to compare (the
+determinant multiplied out in every term, the elements printed whole); held whole, 17–34 s,
+with the same verdicts and names.
 
 And the walks that make that possible (:mod:`wheeled_dyn.expression_size`) agree with
 SymPy's own ``free_symbols``, ``atoms`` and ``count_ops`` on random expressions; the read-off

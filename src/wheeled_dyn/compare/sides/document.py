@@ -97,8 +97,8 @@ def large_coefficients(expr: sp.Expr, velocities: Sequence[sp.Symbol]
     r"""The coefficient of each product :math:`\nu_j\nu_k` (:math:`j \le k`) of a row of h
     of more than :data:`EXPAND_NODES` nodes whose terms are each a coefficient times a
     product of velocities (as ``read_off`` splits a solved form's row: every term over the same
-    written-out determinant), its terms grouped as they are, not expanded again (a minute for
-    a 3×3 solved form); None for any other row, which is expanded first. Once per row in this
+    written-out determinant), its terms grouped as they are, not expanded again (52 s for
+    a 3×3 solved form, under a profiler); None for any other row, which is expanded first. Once per row in this
     process."""
     key = (expr, tuple(velocities))
     if key not in _LARGE:
