@@ -41,6 +41,16 @@ def _matrix_lines(name: str, M: sp.Matrix) -> list[str]:
     return lines
 
 
+def _print_header(wm, cs, red, mode: str) -> None:
+    r"""The model, its coordinates, positions, velocities, inputs and parameters (the text
+    forms' first lines)."""
+    print(f"model {wm.name}, coordinates {cs.name}: {cs.description}")
+    print(f"positions {', '.join(map(str, red.q))}; velocities {', '.join(map(str, red.nu))}; "
+          f"inputs {', '.join(wm.input_names)}")
+    print(f"parameters ({mode}): {', '.join(map(str, red.parameters))}")
+    _print_link_parameters(wm)
+
+
 def _print_link_parameters(wm) -> None:
     r"""The link parameters a derivation file may name, both kinds with their reference points
     and the model's values (:func:`~wheeled_dyn.models.link_parameters.parameter_listing`)."""
@@ -83,11 +93,7 @@ def _cmd_tree(args: argparse.Namespace, wm, cs, mode: str) -> int:
                "expanded": {k: _text(v) for k, v in expanded.items()}}
         print(json.dumps(out, indent=2))
         return 0
-    print(f"model {wm.name}, coordinates {cs.name}: {cs.description}")
-    print(f"positions {', '.join(map(str, red.q))}; velocities {', '.join(map(str, red.nu))}; "
-          f"inputs {', '.join(wm.input_names)}")
-    print(f"parameters ({mode}): {', '.join(map(str, red.parameters))}")
-    _print_link_parameters(wm)
+    _print_header(wm, cs, red, mode)
     print(f"derived in {seconds:.2f} s with intermediate variables: {ops}")
     _print_lengths(wm, mode, True)
     print("A(q) nu' + C(q, nu) nu + Q(q) = B u, h = C nu; intermediate variables in order:")
@@ -181,11 +187,7 @@ def _cmd_symbolic(args: argparse.Namespace) -> int:
             print(f"{name} = {to_latex(M, dots, physical_latex())}")
             print()
         return 0
-    print(f"model {wm.name}, coordinates {cs.name}: {cs.description}")
-    print(f"positions {', '.join(map(str, red.q))}; velocities {', '.join(map(str, red.nu))}; "
-          f"inputs {', '.join(wm.input_names)}")
-    print(f"parameters ({mode}): {', '.join(map(str, red.parameters))}")
-    _print_link_parameters(wm)
+    _print_header(wm, cs, red, mode)
     _print_lengths(wm, mode, False)
     print("A(q) nu' + C(q, nu) nu + Q(q) = B u")
     for name, M in terms.items():
