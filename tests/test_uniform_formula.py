@@ -55,7 +55,8 @@ def test_the_disc_formula_is_named_where_the_wheels_are_no_discs(tmp_path):
     assert two.written == "L**2*m_w" and two.fits.endswith("× L**2/R**2"), two
     said = " ".join(c.explanation for c in result.causes if c.kind == CauseKind.SWAP)
     assert "the document writes m_w (of its 3*m_w) where the moment of inertia " \
-        "Iyy(left_wheel) + Iyy(right_wheel) about its own centre of mass × R**(-2) fits" in said
+        "Iyy(left_wheel) + Iyy(right_wheel) about its own centre of mass × R**(-2) " \
+        "(2*J_w/R**2 in the document's symbols) fits" in said      # J_w: as the file declares it
 
 
 def test_on_uniform_wheels_the_formula_agrees_only_if_and_is_not_named(tmp_path):

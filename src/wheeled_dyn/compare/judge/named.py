@@ -252,8 +252,9 @@ def _formula_named(r: ElementDraft, residual: np.ndarray, moments: Mapping[str, 
     if f is None:
         return False
     of = "" if f.written == f.term else f" (of its {sp.sstr(f.term)})"
+    symbols = _plainest(fit_factor(f.fit_values, bases), bases)    # J_b/R**2 for Iyy(ball)/R²
     r.diagnoses.insert(0, diagnosis(
-        K.SWAP, f"the document writes {formula_phrase(f, of)}", prefix="",
+        K.SWAP, f"the document writes {formula_phrase(f, of, symbols)}", prefix="",
         written=sp.sstr(f.written), fits=f.fits,
         term=sp.sstr(f.term)))
     return True
@@ -298,8 +299,10 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
             _parallel_axis(r, steiner[0], _plainest(fit_factor(residual, bases), bases),
                            same_parts(steiner[0], parallel or {}))
             continue
-        if has_kind(r.diagnoses, K.FACTOR) and (hit is None or hit[1] != 1):
-            continue                          # a constant factor says it more plainly
+        if any(x.kind == K.FACTOR and not x.condition for x in r.diagnoses) and \
+                (hit is None or hit[1] != 1):
+            continue                          # a constant factor says it more plainly (one
+            #                                   only if a family holds does not: the terms do)
         term = _plainest(fit_factor(residual, bases), bases) \
             if hit is not None and np.abs(residual).min() > 0 else None
         if hit is not None and hit[1] != 1 and term is not None and ((-term).is_Symbol or \

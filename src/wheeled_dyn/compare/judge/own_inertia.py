@@ -5,7 +5,7 @@ document treating the body as a point mass (:mod:`.named`, :mod:`.unsolved`)."""
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import sympy as sp
@@ -170,6 +170,9 @@ class FormulaReading:
     term: sp.Expr
     name: str
     multiplier: sp.Expr
+    #: :math:`\lambda I` at each sample (what fits where :attr:`written` stands)
+    fit_values: np.ndarray = field(default_factory=lambda: np.zeros(0), compare=False,
+                                   repr=False)
 
     @property
     def fits(self) -> str:
@@ -207,7 +210,7 @@ def formula_reading(residual: np.ndarray, terms: Sequence[tuple[sp.Expr, np.ndar
                 continue         # a moment times lengths is positive
             hit = point_mass_fit(combined, moments, lengths)
             if hit is not None and _whole(hit[1]):
-                return FormulaReading(c * term, term, hit[0], hit[1])
+                return FormulaReading(c * term, term, hit[0], hit[1], combined)
     return None
 
 
@@ -236,13 +239,15 @@ def term_values(expr: sp.Expr, bases: Sequence[tuple[sp.Expr, np.ndarray]]
     return out
 
 
-def formula_phrase(f: FormulaReading, of: str = "") -> str:
+def formula_phrase(f: FormulaReading, of: str = "", symbols: sp.Expr | None = None) -> str:
     r"""``"m_w (of its 3*m_w) where the moment of inertia … fits: …"``: what the document has
-    (``of``: the term it is a part of, as written) where a body's own moment fits."""
+    (``of``: the term it is a part of, as written) where a body's own moment fits
+    (``symbols``: that moment in the document's symbols, where it has them)."""
     times = "" if f.multiplier == 1 else f" × {sp.sstr(f.multiplier)}"
+    own = f" ({sp.sstr(symbols)} in the document's symbols)" if symbols is not None else ""
     return (f"{sp.sstr(f.written)}{of} where the moment of inertia {f.name} about its own "
-            f"centre of mass{times} fits: a formula for it (as for a uniform body) that the "
-            "model's parameter sets do not keep")
+            f"centre of mass{times}{own} fits: a formula for it (as for a uniform body) that "
+            "the model's parameter sets do not keep")
 
 
 def set_indices(sets: int, states: int) -> np.ndarray:
