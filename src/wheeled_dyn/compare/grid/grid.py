@@ -7,7 +7,11 @@ document's coordinate set and its coordinate map. :class:`Grids` makes them and 
 per (model, coordinates, special families, size, assumptions), so derivations sharing
 coordinates share the truth. States are drawn where the document's assumptions put them
 (:func:`.assumptions.position_ranges`) and away from the coordinates' singular positions
-(:func:`.samples.regular_states`).
+(:func:`.samples.regular_states`). A grid under undeclared families has the states of the
+grid of the same size under the declared families alone (only its parameter sets differ): an
+element that agrees under a family and differs without it differs there for the parameters,
+never for where the states fell (a term that differs only near one state is seen at both or
+neither).
 
 :func:`special_states` adds the states at which an equation multiplied by a function of the
 positions would read :math:`0 = 0`: each position in turn at :math:`0, \pm\pi/2, \pi` (inside
@@ -188,11 +192,15 @@ class Grids:
         n = len(cs.positions)
         ranges = position_ranges(d, cs.positions, assumed,
                                  sprung=any(ps.model.springs for ps in sets))
-        q, nu = random_states(n, k * n_states, rng, ranges)
-        off = int(cmap.off_ground(q).sum())
-        q = regular_states(cmap, q, rng, ranges)
-        check_finite_map(d, cmap, q)
-        q, nu = q.reshape(k, n_states, n), nu.reshape(k, n_states, n)
+        if len(special) > len(assumed.families):        # the declared families' states
+            control = self.get(d, (), n_states, k, assumed)
+            q, nu, off = control.q, control.nu, control.off_ground
+        else:
+            q, nu = random_states(n, k * n_states, rng, ranges)
+            off = int(cmap.off_ground(q).sum())
+            q = regular_states(cmap, q, rng, ranges)
+            check_finite_map(d, cmap, q)
+            q, nu = q.reshape(k, n_states, n), nu.reshape(k, n_states, n)
         if on_truth is not None:
             on_truth()
         truth = self.truth(cmap, sets, q, nu)
