@@ -230,7 +230,7 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
                    own_moments([ps.values for ps in id_sides.grid.sets], ID_STATES),
                    geometric_symbols(d), d.positions, row_factors(rules, frames_on_id),
                    own_moments([ps.values for ps in id_sides.grid.sets], ID_STATES, True),
-                   ID_STATES)
+                   ID_STATES, swap_groups(d))
     if decision is not None and not decision.equivalent and id_sides is not None \
             and id_sides.doc.A is not None:
         solved = read_back_said(d, drafts, rules, frames, frames_on_id, id_sides, found, combined,

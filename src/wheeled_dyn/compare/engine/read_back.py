@@ -24,6 +24,7 @@ from ..judge.unsolved import inertia_diagnoses, read_back, unsolved_terms
 from ..readings.frames import Frame, FrameKind, FrameRule, constant_weights
 from ..records import Diagnosis
 from ..sides.both import Sides
+from ..sides.elements import swap_groups
 
 
 def read_back_said(d: Derivation, drafts: list[ElementDraft], rules: list[FrameRule],
@@ -43,15 +44,16 @@ def read_back_said(d: Derivation, drafts: list[ElementDraft], rules: list[FrameR
     than the row as printed, or was taken into the frame's weights) are named by it alone."""
     solved, entry, inverted = None, None, None
     lengths = length_bases(found, geometric_symbols(d), d.positions)
+    groups = swap_groups(d)
     if combined:
         said = truths()
-        inverted = inertia_diagnoses(id_sides, found, d.velocities, said, lengths)
+        inverted = inertia_diagnoses(id_sides, found, d.velocities, said, lengths, groups)
         solved = inverted or unsolved_terms(id_sides.doc, id_sides.truth, id_sides.B_true,
-                                            d.velocities, found, said)
+                                            d.velocities, found, said, groups)
         entry = None if solved is not None else source_entry(id_sides, found, d.velocities,
-                                                              said, lengths)
+                                                              said, lengths, groups)
     else:                  # as printed but for rows it shows combined: else none read back
-        entry = source_entry(id_sides, found, d.velocities, truths, lengths)
+        entry = source_entry(id_sides, found, d.velocities, truths, lengths, groups)
         entry = entry if entry is not None and entry.combined else None
     if entry is not None:
         solved = entry.diagnosis

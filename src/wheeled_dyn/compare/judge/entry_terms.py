@@ -27,6 +27,7 @@ from ..records import Diagnosis, DiagnosisKind as K
 from .diagnose import nice_number, plausible_factor, value_diagnoses
 from .own_inertia import (OwnInertia, formula_phrase, formula_reading, own_reading,
                           parallel_phrase, same_parts, term_values)
+from .part_swap import part_swap
 from .swap_fit import difference_reading
 
 
@@ -83,7 +84,8 @@ class Part:
 def entry_part(where: str, T: np.ndarray, D: np.ndarray, scale: float,
                bases: Sequence[tuple[sp.Expr, np.ndarray]],
                own: OwnInertia | None = None,
-               truths: Mapping[str, sp.Expr] | None = None) -> Part:
+               truths: Mapping[str, sp.Expr] | None = None,
+               groups: Sequence[Sequence[sp.Symbol]] = ()) -> Part:
     r"""The entry ``where`` read back, ``T`` the truth's values and ``D`` the document's: a
     body's own inertia where truth − document is one of ``own``'s
     (:func:`~.own_inertia.own_reading`: a point mass, also where that makes the whole entry
@@ -94,7 +96,8 @@ def entry_part(where: str, T: np.ndarray, D: np.ndarray, scale: float,
     ``truths`` where a body's own moment fits (:func:`~.own_inertia.formula_reading`: the
     document has m_w where 2J_w/R² fits); a term missing, of the wrong sign or factor,
     or too much, against the truth's entry in ``truths`` (closed forms in the document's
-    symbols, :func:`entry_reading`);
+    symbols, :func:`entry_reading`); one symbol of ``groups`` written for another in a part
+    of the truth's entry (:func:`~.part_swap.part_swap`: a product the expansion spread);
     else truth − document, with no claim of what it is."""
     found, swap = difference_reading(T - D, bases)
     found = found if found is not None or swap is None else swap[0]
@@ -123,6 +126,11 @@ def entry_part(where: str, T: np.ndarray, D: np.ndarray, scale: float,
     read = None if truth is None or found is None else entry_reading(found, truth)
     if read is not None:
         return Part(f"{where}: {read[1]} ({_said(found)})", found, read[0])
+    spread = None if truth is None or not groups else part_swap(
+        truth, T - D, {e: v for e, v in bases if e.is_Symbol}, groups, document=False)
+    if spread is not None:
+        found = sp.factor(spread.fixed - spread.part)
+        return Part(f"{where}: {spread.text} ({_said(found)})", found, K.SWAP)
     # no claim of a term missing: truth − document may be terms too much, or some of each
     return Part(f"{where} {_said(found)}", found, K.RESIDUAL)
 

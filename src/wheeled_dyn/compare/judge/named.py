@@ -36,6 +36,7 @@ from .draft import ElementDraft
 from .fitting import RATIO_TOL, fit_factor, fit_sum
 from .own_inertia import (bodies, formula_phrase, formula_reading, length_bases, set_indices, term_values,
                           parallel_phrase, point_mass_fit, same_parts)
+from .part_swap import part_swap
 from .swap_fit import difference_reading
 
 #: Diagnoses after which no term is named (the error is named already); a constant factor
@@ -265,7 +266,8 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
                moments: Mapping[str, np.ndarray], geometric: set[sp.Symbol],
                positions: Sequence[sp.Symbol] = (),
                factors: Mapping[int, np.ndarray] | None = None,
-               parallel: Mapping[str, np.ndarray] | None = None, states: int = 0) -> None:
+               parallel: Mapping[str, np.ndarray] | None = None, states: int = 0,
+               groups: Sequence[Sequence[sp.Symbol]] = ()) -> None:
     r"""Name the differing terms of the drafts (module text), in place. ``on_id``: each
     element's (document, truth in frame) values on the identification grid; ``geometric``
     the document's lengths, the only names a point-mass multiplier may contain (never a
@@ -274,7 +276,8 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
     grid), divided out of a residual before it is compared with a body's own inertia (an
     equation divided by m l has m l²/3 as l/3); ``parallel`` the links' parallel-axis parts
     (:func:`own_moments`); ``states`` the grid's samples per parameter set (0: no formula
-    for a moment is read, :func:`formula_reading`)."""
+    for a moment is read, :func:`formula_reading`); ``groups`` the symbols of one kind, one
+    of which may be written for another in a part of an element (:func:`part_swap`)."""
     lengths = length_bases(bases, geometric, positions)
     named = 0
     for r in drafts:
@@ -311,37 +314,57 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
         if _own_inertia(r, hit, term) if hit is not None else \
                 _formula_named(r, own, moments, lengths, bases, states):
             continue
-        missing = _missing_factor(D, T, bases, r.expr)
-        if missing is not None:
-            r.diagnoses.insert(0, missing)
-            continue
-        found = _plainest(fit_factor(residual, bases), bases) \
-            if np.abs(residual).min() > 0 else None
-        found = found if found is not None and _plain_coefficient(found) else \
-            fit_sum(residual, bases)      # not 6397*m*r**2/12: lengths a family keeps
-        if found is not None and not _plain_coefficient(found):          # proportional
-            found = None
-        if found is None:
-            f = factors.get(r.row) if factors else None      # a function, not a constant:
-            varies = f is not None and np.ptp(f) > 1e-9 * float(np.abs(f).max(initial=0.0))
-            before = _undivided(own, bases) if varies else None
-            if before is not None:
-                r.diagnoses.insert(0, before)
-            continue
-        written_wrong = _written_term(found, r.expr) if r.expr is not None else None
-        if written_wrong is not None:
-            r.diagnoses.insert(0, written_wrong)
-            continue
-        parts = sp.Add.make_args(sp.expand(found))
-        written = frozenset(sp.Add.make_args(sp.expand(r.expr))) if r.expr is not None \
-            and sp.count_ops(r.expr) <= 200 else frozenset()
-        much = [_too_much(t, written, positions) for t in parts]   # named as written (-t)
-        named_terms = tuple(sp.sstr(-t if all(much) else t) for t in parts) \
-            if all(much) or not any(much) else ()              # both kinds: its sentence
-        r.diagnoses.append(diagnosis(K.EXTRA if all(much) else K.MISSING,
-                                     f"{_lacks(found, written, positions)} (truth − document = "
-                                     f"{sp.sstr(found)})",
-                                     prefix="terms", terms=named_terms))
+        _name_difference(r, D, T, own, bases, positions, factors, groups)
+
+
+def _name_difference(r: ElementDraft, D: np.ndarray, T: np.ndarray, own: np.ndarray,
+                     bases: Sequence[tuple[sp.Expr, np.ndarray]], positions: Sequence[sp.Symbol],
+                     factors: Mapping[int, np.ndarray] | None,
+                     groups: Sequence[Sequence[sp.Symbol]]) -> None:
+    r"""Name truth − document of ``r`` (``D``, ``T`` on the identification grid; ``own`` it
+    over the row's factor) where it is no body's own inertia: a factor missing, a monomial or
+    two of the document's names, one symbol written for another in a part of the element
+    (:func:`~.part_swap.part_swap`), or a term not divided as its row."""
+    residual = T - D
+    missing = _missing_factor(D, T, bases, r.expr)
+    if missing is not None:
+        r.diagnoses.insert(0, missing)
+        return
+    found = _plainest(fit_factor(residual, bases), bases) \
+        if np.abs(residual).min() > 0 else None
+    found = found if found is not None and _plain_coefficient(found) else \
+        fit_sum(residual, bases)      # not 6397*m*r**2/12: lengths a family keeps
+    if found is not None and not _plain_coefficient(found):          # proportional
+        found = None
+    if found is None or len(sp.Add.make_args(sp.expand(found))) > 1:
+        swapped = part_swap(r.expr, residual, {e: v for e, v in bases if e.is_Symbol},
+                            groups) if groups and r.expr is not None else None
+        if swapped is not None:
+            r.diagnoses.insert(0, diagnosis(
+                K.SWAP, swapped.text, written=str(swapped.written), fits=str(swapped.fits),
+                term=sp.sstr(swapped.part), terms=(sp.sstr(swapped.part),)))
+            return
+    if found is None:
+        f = factors.get(r.row) if factors else None      # a function, not a constant:
+        varies = f is not None and np.ptp(f) > 1e-9 * float(np.abs(f).max(initial=0.0))
+        before = _undivided(own, bases) if varies else None
+        if before is not None:
+            r.diagnoses.insert(0, before)
+        return
+    written_wrong = _written_term(found, r.expr) if r.expr is not None else None
+    if written_wrong is not None:
+        r.diagnoses.insert(0, written_wrong)
+        return
+    parts = sp.Add.make_args(sp.expand(found))
+    written = frozenset(sp.Add.make_args(sp.expand(r.expr))) if r.expr is not None \
+        and sp.count_ops(r.expr) <= 200 else frozenset()
+    much = [_too_much(t, written, positions) for t in parts]   # named as written (-t)
+    named_terms = tuple(sp.sstr(-t if all(much) else t) for t in parts) \
+        if all(much) or not any(much) else ()              # both kinds: its sentence
+    r.diagnoses.append(diagnosis(K.EXTRA if all(much) else K.MISSING,
+                                 f"{_lacks(found, written, positions)} (truth − document = "
+                                 f"{sp.sstr(found)})",
+                                 prefix="terms", terms=named_terms))
 
 
 def _undivided(before: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]

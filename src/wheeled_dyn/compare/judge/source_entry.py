@@ -202,13 +202,15 @@ def source_entry(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
                  velocities: Sequence[sp.Symbol] = (),
                  truths: Mapping[str, sp.Expr] | None
                  | Callable[[], Mapping[str, sp.Expr] | None] = None,
-                 lengths: Sequence[tuple[sp.Expr, np.ndarray]] = ()) -> SourceEntry | None:
+                 lengths: Sequence[tuple[sp.Expr, np.ndarray]] = (),
+                 groups: Sequence[Sequence[sp.Symbol]] = ()) -> SourceEntry | None:
     r"""The one wrong entry of the equations the document solved or combined (module text),
     named, with the rows it combined; None where no entry, or more than one, explains every
     sample. ``sides``: both sides on a grid (:class:`~..sides.both.Sides`), ``bases`` the
     names' values on it, ``truths`` the truth's entries in the document's symbols (or
     None; or a function giving them, called only where an entry is found), ``lengths`` the
-    bases of the document's lengths (:func:`~.own_inertia.length_bases`)."""
+    bases of the document's lengths (:func:`~.own_inertia.length_bases`), ``groups`` the
+    symbols of one kind (:func:`~.entry_terms.entry_part`)."""
     found = _fits(sides, velocities)
     if found is None or len(found[0]) != 1:
         return None
@@ -222,7 +224,7 @@ def source_entry(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
     truth_entry = T[:, r, c]
     scale = float(np.abs(T[:, :, c]).max())
     part = entry_part(names[c].format(r=r + 1), truth_entry, truth_entry + delta, scale, at,
-                      own, truths)
+                      own, truths, groups)
     if pair:
         part = replace(part, text=f"{part.text} — and in A[{c + 1},{r + 1}], the same "
                        "symmetric entry")

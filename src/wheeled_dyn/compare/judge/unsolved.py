@@ -110,7 +110,8 @@ def source_weights(doc, truth, true_B: np.ndarray | None) -> tuple[np.ndarray, n
 def inertia_diagnoses(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
                       velocities: Sequence[sp.Symbol] = (),
                       truths: Mapping[str, sp.Expr] | None = None,
-                      lengths: Sequence[tuple[sp.Expr, np.ndarray]] = ()) -> Diagnosis | None:
+                      lengths: Sequence[tuple[sp.Expr, np.ndarray]] = (),
+                      groups: Sequence[Sequence[sp.Symbol]] = ()) -> Diagnosis | None:
     r"""The elements of the document's own inertia matrix (read back from its inputs,
     module text; where its inputs are fewer than its coordinates, from its inputs, gravity
     and velocity terms, :func:`source_weights`) that differ from the truth's, named (a
@@ -121,7 +122,8 @@ def inertia_diagnoses(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
     every term too); the equations' other entries so read back are named beside it where at
     most :data:`MAX_UNSOLVED` differ (a term wrong beside the inertia), else nothing is said.
     ``sides``: both sides on a grid (:class:`~..sides.both.Sides`), ``lengths`` the bases of
-    the document's lengths (:func:`~.own_inertia.length_bases`)."""
+    the document's lengths (:func:`~.own_inertia.length_bases`), ``groups`` the symbols of
+    one kind (:func:`~.entry_terms.entry_part`)."""
     doc, truth, true_B = sides.doc, sides.truth, sides.B_true
     doc_A, true_A = doc.A, truth.need("A")
     own = grid_inertia([ps.values for ps in sides.grid.sets], len(true_A), lengths)
@@ -157,14 +159,14 @@ def inertia_diagnoses(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
                                     f"from {how}) is the truth's")
     scale = float(np.abs(true_A).max())
     parts = [entry_part(f"A[{i + 1},{j + 1}]", true_A[:, i, j], M[:, i, j], scale, bases,
-                        own, truths)
+                        own, truths, groups)
              for i in range(n) for j in range(n)
              if np.abs(true_A[:, i, j] - M[:, i, j]).max() > AGREE_TOL * scale]
     if not parts:
         return None
     return read_back_diagnosis(
         f"the inertia matrix the document inverted (read back from {how}) differs from the "
-        "truth's: ", parts + _named(extra, truth, bases, truths))
+        "truth's: ", parts + _named(extra, truth, bases, truths, groups))
 
 
 def whole_factor(T: np.ndarray, D: np.ndarray) -> float | None:
@@ -187,11 +189,12 @@ def _scaled(M: np.ndarray, true_A: np.ndarray) -> bool:
 
 
 def _named(entries, truth, bases: Sequence[tuple[sp.Expr, np.ndarray]],
-           truths: Mapping[str, sp.Expr] | None = None) -> list[Part]:
+           truths: Mapping[str, sp.Expr] | None = None,
+           groups: Sequence[Sequence[sp.Symbol]] = ()) -> list[Part]:
     r"""The differing ``entries`` of :func:`_entries`, named in the document's symbols."""
     rows = truth.H_rows
     at = [(e, v[rows]) for e, v in bases] if rows is not None else []
-    return [entry_part(where, t, v, scale, at if on_rows else bases, None, truths)
+    return [entry_part(where, t, v, scale, at if on_rows else bases, None, truths, groups)
             for where, t, v, scale, on_rows in entries]
 
 
@@ -255,7 +258,8 @@ def _entries(doc, truth, true_B: np.ndarray | None, velocities: Sequence[sp.Symb
 
 def unsolved_terms(doc, truth, true_B: np.ndarray | None, velocities: Sequence[sp.Symbol],
                    bases: Sequence[tuple[sp.Expr, np.ndarray]],
-                   truths: Mapping[str, sp.Expr] | None = None) -> Diagnosis | None:
+                   truths: Mapping[str, sp.Expr] | None = None,
+                   groups: Sequence[Sequence[sp.Symbol]] = ()) -> Diagnosis | None:
     r"""A document solved for its accelerations (or its rows combined), read back before it
     was: its rows times :math:`AA_{doc}^{-1}` (``doc``, ``truth``: arrays on the same
     samples, A, Q, B and the products' tensor H on ``H_rows``). Where that undoes it — its
@@ -270,7 +274,7 @@ def unsolved_terms(doc, truth, true_B: np.ndarray | None, velocities: Sequence[s
     return read_back_diagnosis(
         "read back before it was solved or combined (its rows times A A_doc⁻¹: its inputs' "
         "coefficients are then the truth's), the equations differ: ",
-        _named(entries, truth, bases, truths))
+        _named(entries, truth, bases, truths, groups))
 
 
 def read_back_explains(doc, truth, true_B: np.ndarray | None) -> bool:
