@@ -34,7 +34,7 @@ from ..judge.precision import largest_terms, row_round_off
 from ..judge.rows import drafts_of_row, row_values
 from ..judge.units import DimensionChecker, geometric_symbols
 from ..readings.describe import describe
-from ..readings.frames import Frame, FrameKind, FrameRule, evaluate_rule
+from ..readings.frames import Frame, FrameKind, FrameRule, constant_weights, evaluate_rule
 from .frames import (apart_causes, bind_declared, choose_frames, declared_apart,
                      declared_only, declared_weights, id_frames, printed_factors, row_factors)
 from ..records import Cause, CauseKind, DerivationResult, Verdict, has_kind
@@ -68,6 +68,10 @@ class Judgement:
     causes: tuple[Cause, ...]
     sides: Sides
     funcs: DocumentFunctions
+    #: the rows (0-based) compared in a frame whose weights vary with the state or the
+    #: parameters (divided by a function of them, or combined): their elements agree with
+    #: the document's divisors as the file maps them, right or not
+    varying: frozenset[int] = frozenset()
 
 
 def document_functions(d: Derivation) -> DocumentFunctions:
@@ -311,7 +315,8 @@ def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed
         causes.append(Cause(CauseKind.NOT_EQUIVALENT, (), "the document's constraints are "
                             "not the model's rolling constraints: " + "; ".join(wrong)))
     result = replace(result, constraints_agree=None if wrong is None else not wrong)
-    return Judgement(result, ev, tuple(causes), sides, funcs)
+    varying = frozenset(i for i, f in enumerate(frames) if not constant_weights(f.weights))
+    return Judgement(result, ev, tuple(causes), sides, funcs, varying)
 
 
 def _uniform_read(grid, assumed: Assumptions) -> list[str]:

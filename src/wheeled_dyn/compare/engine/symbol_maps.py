@@ -11,7 +11,8 @@ coordinate or a product of inertia along another, either sign) and as the same p
 (or the mass) of each other link of the model, on the convention search's
 samples (:class:`~..readings.search.SearchEvaluation`: the document's compiled functions, the
 symbol's numbers changed, no new truth) — a symbol written in an element that agrees is
-mapped right, and not read again. One that makes every equation right is the first
+mapped right, and not read again (but for the elements of rows compared in a frame that
+varies, divided or combined by the file's own values: they agree whatever the map gives). One that makes every equation right is the first
 cause (``file_error``): "with I2 = IYY(forearm_link) (the file maps it to IXX(forearm_link)),
 every equation is right (0 of 2 as declared): the file probably maps I2 to another parameter
 of the link than the document means …". A symbol valued as Earth's gravity (a number within
@@ -111,8 +112,9 @@ def symbol_map_finding(d: Derivation, j) -> Cause | None:
         return None          # a linearised document: its stiffness is compared apart from the
         #                      samples a reading is judged on (a wrong K beside a wrong map)
     search = search_evaluation(j)
-    agreeing = [r.document for r in j.result.records
-                if r.verdict == Verdict.AGREES and r.document not in ("", "0")]
+    agreeing = [r.document for r in j.result.records     # in a frame of the file's values:
+                if r.verdict == Verdict.AGREES and r.document not in ("", "0")   # no voucher
+                and not (r.index and r.index[0] in j.varying)]
 
     def mapped_right(symbol) -> bool:            # written, not 0, where an element agrees
         values = search.values.get(symbol)
