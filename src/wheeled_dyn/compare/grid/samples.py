@@ -33,6 +33,7 @@ from ...models.geometry_apply import FACTOR, apply_geometry, bodies_of, draw_geo
 from ...models.conventions import RIGHT_ANGLE_TOL, base_joints, right_angled_joints
 from ...models.rounded_angles import unrounded_joints
 from ...models.round_wheels import made_round
+from .alike_links import ALIKE_LINKS, alike_description, draw_alike
 from .wheel_draws import alike_wheels, wheel_axles
 from ...models.registry import load_model, model_entry, model_parameters
 from ...models.springs import with_stiffness
@@ -197,7 +198,7 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
                           uniform: frozenset[str] | set[str] = frozenset(),
                           massless: Collection[str] = (), principal: bool = False,
                           spread: float = FACTOR, rounded: bool = False,
-                          free: bool = False) -> WheeledModel:
+                          free: bool = False, alike: bool = False) -> WheeledModel:
     r"""Random lengths (the ``uniform`` links scaled as a whole with a random mass factor
     each, and their bodies put together again from their links:
     :mod:`~wheeled_dyn.models.geometry_apply`), and random, physically consistent inertias
@@ -211,7 +212,8 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
     the second moments' diagonal). ``spread``: each length's factor is drawn in
     :math:`[1/s, s]` (and with ``keep_structure`` each centre-of-mass coordinate's too).
     ``rounded``: the drive wheels axisymmetric (:data:`ROUND_WHEELS`); ``free``: drawn
-    alike from a random inertia (:data:`FREE_WHEELS`)."""
+    alike from a random inertia (:data:`FREE_WHEELS`); ``alike``: the links the URDF writes
+    alike drawn alike (:mod:`.alike_links`)."""
     drawn = _with_geometry(wm, rng, uniform, spread)
     model = pin.Model(drawn.model)               # never the model of ``wm`` itself
     right_angled_joints(model, base_joints(drawn),
@@ -238,6 +240,8 @@ def _random_link_inertias(wm: WheeledModel, rng: np.random.Generator,
             theta[0] += 0.5 * scale / 3
             model.inertias[jid] = pin.Inertia.FromLogCholeskyParameters(
                 pin.LogCholeskyParameters(theta))
+    if alike:
+        draw_alike(wm, model)
     if not composed & {w.joint_id for w in wm.wheels}:
         alike_wheels(wm, model, rng, rounded, free)
     elif rounded:                         # uniform wheels, drawn with the lengths: as round
@@ -285,9 +289,10 @@ def parameter_sets(model_name: str, k: int, rng: np.random.Generator,
     principal = NO_PRODUCTS in special
     rounded = any(c.name == ROUND_WHEELS.name for c in special)   # declared or implied
     free = any(c.name == FREE_WHEELS.name for c in special)       # implied
+    alike = any(c.name == ALIKE_LINKS for c in special)
     for _ in range(k):
         wm = _random_link_inertias(base, rng, keep, uniform, massless, principal, spread,
-                                   rounded, free)
+                                   rounded, free, alike)
         out.append(ParameterSet(wm, namespace_values(wm, None)))
     return out
 
@@ -322,6 +327,7 @@ def special_cases(model_name: str) -> tuple[SpecialCase, ...]:
     r"""The special families of a model, weakest first: the WIP's
     (:data:`WIP_SPECIAL_CASES`); for the others ``urdf_structure``, ``principal_axes``
     (:data:`NO_PRODUCTS`), for a wheeled model ``round_wheels`` (:data:`ROUND_WHEELS`),
+    for a model with links the URDF writes alike ``alike_links`` (:mod:`.alike_links`),
     each link with mass uniform alone (:func:`uniform_family`, two to
     :data:`UNIFORM_LINK_FAMILIES` such links) and every link uniform
     (``urdf_proportions``)."""
@@ -332,7 +338,9 @@ def special_cases(model_name: str) -> tuple[SpecialCase, ...]:
     each = tuple(uniform_family((link,)) for link in links) \
         if 2 <= len(links) <= UNIFORM_LINK_FAMILIES else ()
     wheels = (ROUND_WHEELS,) if len(wm.wheels) == 2 else ()
-    return (URDF_STRUCTURE, NO_PRODUCTS, *wheels, *each, URDF_PROPORTIONS)
+    said = alike_description(wm)
+    alike = (SpecialCase(ALIKE_LINKS, said, lambda p: p),) if said is not None else ()
+    return (URDF_STRUCTURE, NO_PRODUCTS, *wheels, *alike, *each, URDF_PROPORTIONS)
 
 
 def regular_states(cmap, q: np.ndarray, rng: np.random.Generator,
