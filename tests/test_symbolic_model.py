@@ -35,6 +35,17 @@ WIP_DERIVATION_LIMIT_S = 5.0
 
 
 # ---------------------------------------------------------------- models built in the tests
+def random_placement(rng: np.random.Generator) -> pin.SE3:
+    """A random placement from the seeded ``rng`` (a rotation uniform in SO(3), by the QR of a
+    Gaussian matrix with its signs fixed; a translation in [-1, 1]³, as ``pin.SE3.Random``
+    draws it from Eigen's unseeded generator)."""
+    Q, R = np.linalg.qr(rng.normal(size=(3, 3)))
+    Q = Q @ np.diag(np.sign(np.diag(R)))
+    if np.linalg.det(Q) < 0:
+        Q[:, 0] = -Q[:, 0]
+    return pin.SE3(Q, rng.uniform(-1.0, 1.0, 3))
+
+
 def random_inertia(rng: np.random.Generator) -> pin.Inertia:
     """A physically consistent inertia with nonzero products and a centre of mass off the
     joint origin (log-Cholesky parameters are unconstrained)."""
@@ -73,8 +84,8 @@ def arm3(rng: np.random.Generator) -> pin.Model:
     joints = (pin.JointModelRX(), pin.JointModelRevoluteUnaligned(axis / np.linalg.norm(axis)),
               pin.JointModelRZ())
     for k, jm in enumerate(joints):
-        parent = m.addJoint(parent, jm, pin.SE3.Random(), f"q{k + 1}")
-        m.appendBodyToJoint(parent, random_inertia(rng), pin.SE3.Random())
+        parent = m.addJoint(parent, jm, random_placement(rng), f"q{k + 1}")
+        m.appendBodyToJoint(parent, random_inertia(rng), random_placement(rng))
     return m
 
 
@@ -84,16 +95,16 @@ def mixed_tree(rng: np.random.Generator) -> pin.Model:
     m.name = "mixed"
     a = rng.normal(size=3)
     b = rng.normal(size=3)
-    j1 = m.addJoint(0, pin.JointModelPZ(), pin.SE3.Random(), "lift")
-    j2 = m.addJoint(j1, pin.JointModelRY(), pin.SE3.Random(), "shoulder")
+    j1 = m.addJoint(0, pin.JointModelPZ(), random_placement(rng), "lift")
+    j2 = m.addJoint(j1, pin.JointModelRY(), random_placement(rng), "shoulder")
     j3 = m.addJoint(j2, pin.JointModelPrismaticUnaligned(a / np.linalg.norm(a)),
-                    pin.SE3.Random(), "slide")
+                    random_placement(rng), "slide")
     j4 = m.addJoint(j1, pin.JointModelRevoluteUnaligned(b / np.linalg.norm(b)),
-                    pin.SE3.Random(), "branch")
-    j5 = m.addJoint(j4, pin.JointModelPX(), pin.SE3.Random(), "px")
-    j6 = m.addJoint(j5, pin.JointModelRX(), pin.SE3.Random(), "rx")
+                    random_placement(rng), "branch")
+    j5 = m.addJoint(j4, pin.JointModelPX(), random_placement(rng), "px")
+    j6 = m.addJoint(j5, pin.JointModelRX(), random_placement(rng), "rx")
     for j in (j1, j2, j3, j4, j5, j6):
-        m.appendBodyToJoint(j, random_inertia(rng), pin.SE3.Random())
+        m.appendBodyToJoint(j, random_inertia(rng), random_placement(rng))
     return m
 
 
