@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 from conftest import SEED
+from shipped_copies import published_copy
 from wheeled_dyn import load_model
 from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.compare.grid.alike_links import ALIKE_LINKS, alike_groups
@@ -32,15 +33,10 @@ RIGHT_IZZ = ('<inertia ixx="0.0021" ixy="0" ixz="0" iyy="0.0021" iyz="0" izz="0.
 
 
 def _copy(folder: Path, *replacements: tuple[str, str], urdf: str | None = None) -> Path:
-    (folder / "wheeled_cart_pole.urdf").write_text(
-        urdf or (DATA / "wheeled_cart_pole.urdf").read_text())
-    (folder / "wheeled_cart_pole.toml").write_text((DATA / "wheeled_cart_pole.toml").read_text())
-    text = (DATA / "wheeled_cart_pole_matrices.toml").read_text()
-    for old, new in replacements:
-        assert text.count(old) == 1, old
-        text = text.replace(old, new)
-    path = folder / "doc.toml"
-    path.write_text(text)
+    path = published_copy(folder, "wheeled_cart_pole", "wheeled_cart_pole_matrices",
+                          *replacements, data=DATA)
+    if urdf is not None:
+        (folder / "wheeled_cart_pole.urdf").write_text(urdf)
     return path
 
 

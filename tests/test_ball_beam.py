@@ -28,6 +28,7 @@ from pathlib import Path
 import pytest
 
 from conftest import SEED
+from shipped_copies import published_copy
 from wheeled_dyn.compare.engine import ComparisonEngine
 from wheeled_dyn.compare.records import CauseKind, DiagnosisKind, Verdict
 from wheeled_dyn.derivations import load_derivation
@@ -39,14 +40,11 @@ SOLID, HOLLOW = 'iyy="0.000016"', 'iyy="0.0000266667"'
 
 
 def _compare(folder: Path, a11: str = A11, hollow: bool = False):
+    path = published_copy(folder, "ball_beam", "ball_beam_equations", (A11, a11), data=DATA)
     urdf = (DATA / "ball_beam.urdf").read_text()
     assert urdf.count(SOLID) == 1
-    (folder / "ball_beam.urdf").write_text(urdf.replace(SOLID, HOLLOW) if hollow else urdf)
-    (folder / "ball_beam.toml").write_text((DATA / "ball_beam.toml").read_text())
-    text = (DATA / "ball_beam_equations.toml").read_text()
-    assert text.count(A11) == 1
-    path = folder / "doc.toml"
-    path.write_text(text.replace(A11, a11))
+    if hollow:
+        (folder / "ball_beam.urdf").write_text(urdf.replace(SOLID, HOLLOW))
     return ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(load_derivation(path))
 
 
