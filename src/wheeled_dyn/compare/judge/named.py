@@ -336,7 +336,12 @@ def _name_difference(r: ElementDraft, D: np.ndarray, T: np.ndarray, own: np.ndar
         fit_sum(residual, bases)      # not 6397*m*r**2/12: lengths a family keeps
     if found is not None and not _plain_coefficient(found):          # proportional
         found = None
-    if found is None or len(sp.Add.make_args(sp.expand(found))) > 1:
+    written_wrong = _written_term(found, r.expr) if r.expr is not None and found is not None \
+        else None
+    if written_wrong is not None:
+        r.diagnoses.insert(0, written_wrong)
+        return
+    if found is None or len(sp.Add.make_args(sp.expand(found))) > 1:      # not one monomial
         swapped = part_swap(r.expr, residual, {e: v for e, v in bases if e.is_Symbol},
                             groups) if groups and r.expr is not None else None
         if swapped is not None:
@@ -350,10 +355,6 @@ def _name_difference(r: ElementDraft, D: np.ndarray, T: np.ndarray, own: np.ndar
         before = _undivided(own, bases) if varies else None
         if before is not None:
             r.diagnoses.insert(0, before)
-        return
-    written_wrong = _written_term(found, r.expr) if r.expr is not None else None
-    if written_wrong is not None:
-        r.diagnoses.insert(0, written_wrong)
         return
     parts = sp.Add.make_args(sp.expand(found))
     written = frozenset(sp.Add.make_args(sp.expand(r.expr))) if r.expr is not None \
