@@ -333,3 +333,18 @@ def test_two_wrong_equations_leave_the_right_ones_right(engine, tmp_path):
     assert [e.verdict for e in result.equations] == ["agrees", "agrees", "agrees", "differs",
                                                      "differs"]
     assert result.equivalent is False
+
+
+def test_three_equations_wrong_leave_the_wheels_right(tmp_path):
+    r"""The robot's file with no family declared (its base's centre of mass is then drawn off
+    the x axis its equations assume: the three base equations differ for those parameters,
+    agreeing only if the URDF's structure holds). Three wrong equations are more than the
+    multipliers' fit can leave out (two of five, three multipliers), so each fit took a wrong
+    one's weights and the left wheel's equation, right, was "no combination of the true
+    equations". The document's multiplier terms are the truth's mixed as its constraint rows
+    mix them; with that mixing both wheel equations are right."""
+    engine = ComparisonEngine(samples=1000, param_sets=5, seed=2026)
+    result = _compare(engine, tmp_path, ROBOT, 'families = ["urdf_structure"]', "families = []")
+    assert [e.verdict for e in result.equations] == ["agrees_if", "agrees_if", "agrees_if",
+                                                     "agrees", "agrees"]
+    assert result.equivalent is False

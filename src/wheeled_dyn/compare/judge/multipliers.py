@@ -31,8 +31,10 @@ def multiplier_terms(doc_L: np.ndarray, true_L: np.ndarray, W: np.ndarray) -> np
     equation; where they do not all fit, on all but one, else all but two (as many as
     multipliers left at least): of the subsets that fit, the one whose mixing is nearest the
     one the document's constraint rows give (:math:`G_{doc} = PG`, :math:`M = P^T`) — a wrong
-    equation does not make the right ones differ, nor a right one take the blame. NaN where
-    a side is not finite."""
+    equation does not make the right ones differ, nor a right one take the blame. Where not
+    every equation fits and the document's multiplier terms are exactly the truth's mixed so
+    (:math:`G^T P^T`), that mixing is taken: more equations wrong than can be left out (three
+    of five) left every subset a wrong one's weights. NaN where a side is not finite."""
     if doc_L.shape == true_L.shape and not np.any(doc_L):
         return true_L.copy()        # no multipliers at all: none to mix, the terms must vanish
     out = np.full(doc_L.shape, np.nan)
@@ -70,6 +72,15 @@ def multiplier_terms(doc_L: np.ndarray, true_L: np.ndarray, W: np.ndarray) -> np
         return float(np.nanmean(np.abs(M - reference[0])))
 
     best = fit(())
+    distance(best[1])
+    mixed_so = true_L[ok] @ reference[0]
+    if best[0] > AGREE_TOL and float(np.abs(mixed_so - D).max(initial=0.0)) <= \
+            AGREE_TOL * max(float(np.abs(D).max(initial=0.0)), 1e-300):
+        # the document's multiplier terms are the truth's mixed as its constraint rows mix
+        # them (G_doc = P G): that mixing, not one fitted on the equations' weights, where
+        # those do not all fit (more equations wrong than can be left out: a right one was
+        # blamed for the wrong ones' weights)
+        best = (0.0, reference[0])
     for size in (1, 2):
         if best[0] <= AGREE_TOL or n - size < m:
             break
