@@ -108,6 +108,8 @@ def _fractions(holding: Sequence[sp.Expr], a: sp.Symbol, b: sp.Symbol, residual:
     if not np.isfinite(X).all() or np.linalg.matrix_rank(X) < len(columns):
         return None                           # which terms, the numbers cannot tell
     c = np.linalg.lstsq(X, residual, rcond=None)[0]
+    if not np.isfinite(c).all():
+        return None
     fractions = [Fraction(float(x)).limit_denominator(MAX_DENOMINATOR) for x in c]
     if any(f < 0 or f > 1 for f in fractions) or not any(fractions):
         return None
