@@ -95,7 +95,8 @@ def test_the_disc_formula_before_solving_is_named_in_the_inertia_read_back(tmp_p
     result = ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(load_derivation(path))
     said = " ".join(c.explanation for c in result.causes)
     named = "A[1,1]: the document has m_w where the moment of inertia Iyy(left_wheel) + " \
-        "Iyy(right_wheel) about its own centre of mass × R**(-2) fits"
+        "Iyy(right_wheel) about its own centre of mass × R**(-2) (2*J_w/R**2 in the " \
+        "document's symbols) fits"                  # as the element's naming says it
     if uniform_urdf:
         assert named not in said and "uniform" in said, said
     else:

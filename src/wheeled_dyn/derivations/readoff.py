@@ -130,7 +130,8 @@ def _expanded(expr: sympy.Expr, generators: Sequence[sympy.Symbol]) -> sympy.Exp
     ``generators`` (accelerations, velocities, inputs) — :math:`1/\det M` of a solved form,
     written out — is expanded once and held as one symbol while the rest is: expanded with the
     rest, it is multiplied out again in every term (10–21 s per equation of the ROS
-    balancer solved in three coordinates, measured). The terms are the same products, each with its denominator beside it."""
+    balancer solved in three coordinates, measured). The terms are the same products, each
+    with its denominator beside it."""
     held = set(generators)
     denominators = {p for p in expr.atoms(sympy.Pow) if p.exp.is_negative and p.base.is_Add
                     and node_count(p.base, DENOMINATOR_NODES) > DENOMINATOR_NODES

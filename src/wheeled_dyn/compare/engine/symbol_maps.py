@@ -12,10 +12,11 @@ coordinate or a product of inertia along another, either sign) and as the same p
 samples (:class:`~..readings.search.SearchEvaluation`: the document's compiled functions, the
 symbol's numbers changed, no new truth) — a symbol written in an element that agrees is
 mapped right, and not read again (but for the elements of rows compared in a frame that
-varies, divided or combined by the file's own values: they agree whatever the map gives). One that makes every equation right is the first
-cause (``file_error``): "with I2 = IYY(forearm_link) (the file maps it to IXX(forearm_link)),
-every equation is right (0 of 2 as declared): the file probably maps I2 to another parameter
-of the link than the document means …". A symbol valued as Earth's gravity (a number within
+varies, divided or combined by the file's own values: they agree whatever the map gives).
+One that makes every equation right is the first cause (``file_error``): "with I2 =
+IYY(forearm_link) (the file maps it to IXX(forearm_link)), every equation is right (0 of 2 as
+declared): the file probably maps I2 to another parameter of the link than the document means
+…". A symbol valued as Earth's gravity (a number within
 :data:`~..judge.numbers.GRAVITY_NUMBERS`) is read as the model's ``g``, which the comparison
 draws as every parameter.
 """

@@ -25,6 +25,7 @@ import sympy as sp
 
 from ..records import Diagnosis, DiagnosisKind as K
 from .diagnose import nice_number, plausible_factor, value_diagnoses
+from .fitting import fit_factor, symbol_values
 from .own_inertia import (OwnInertia, formula_phrase, formula_reading, own_reading,
                           parallel_phrase, same_parts, term_values)
 from .part_swap import part_swap
@@ -120,14 +121,16 @@ def entry_part(where: str, T: np.ndarray, D: np.ndarray, scale: float,
         T - D, term_values(truth, bases), own.moments, own.lengths, own.sets)
     if formula is not None:              # a part of one of the truth's terms: what it has
         said = f" ({_said(found)})" if found is not None else ""
-        return Part(f"{where}: the document has {formula_phrase(formula)}{said}", found, K.SWAP)
+        symbols = fit_factor(formula.fit_values, bases)     # the moment in the file's symbols
+        return Part(f"{where}: the document has {formula_phrase(formula, symbols=symbols)}"
+                    f"{said}", found, K.SWAP)
     if swap is not None:
         return Part(f"{where}: {swap[1]} ({_said(swap[0])})", swap[0], K.SWAP)
     read = None if truth is None or found is None else entry_reading(found, truth)
     if read is not None:
         return Part(f"{where}: {read[1]} ({_said(found)})", found, read[0])
     spread = None if truth is None or not groups else part_swap(
-        truth, T - D, {e: v for e, v in bases if e.is_Symbol}, groups, document=False)
+        truth, T - D, symbol_values(bases), groups, document=False)
     if spread is not None:
         found = sp.factor(spread.fixed - spread.part)
         return Part(f"{where}: {spread.text} ({_said(found)})", found, K.SWAP)

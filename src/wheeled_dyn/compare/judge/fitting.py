@@ -377,4 +377,23 @@ def fit_sum(target: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> 
     return None
 
 
-__all__ = ["MAX_DENOMINATOR", "RATIO_TOL", "SUM_DEGREE", "bases", "fit_factor", "fit_sum"]
+def symbol_values(bases: Sequence[tuple[sp.Expr, np.ndarray]]) -> dict[sp.Expr, np.ndarray]:
+    r"""The symbols among ``bases`` with their values."""
+    return {e: v for e, v in bases if e.is_Symbol}
+
+
+def evaluated(expr: sp.Expr, values: Mapping[sp.Expr, np.ndarray], shape: tuple[int, ...]
+              ) -> np.ndarray | None:
+    r"""``expr`` at the samples of ``values`` (:func:`symbol_values`), broadcast to ``shape``;
+    None where one of its symbols has no values there."""
+    from ...compiled import numpy_function
+    names = sorted(expr.free_symbols, key=str)
+    if not set(names) <= set(values):
+        return None
+    with np.errstate(all="ignore"):
+        v = np.asarray(numpy_function(names, expr)(*(values[s] for s in names)), dtype=float)
+    return np.broadcast_to(v, shape)
+
+
+__all__ = ["MAX_DENOMINATOR", "RATIO_TOL", "SUM_DEGREE", "bases", "evaluated", "fit_factor",
+           "fit_sum", "symbol_values"]

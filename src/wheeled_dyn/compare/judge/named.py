@@ -33,9 +33,9 @@ import sympy as sp
 from ..records import Diagnosis, DiagnosisKind as K, Verdict, diagnosis, has_kind
 from .diagnose import nice_number, plausible_factor
 from .draft import ElementDraft
-from .fitting import RATIO_TOL, fit_factor, fit_sum
-from .own_inertia import (bodies, formula_phrase, formula_reading, length_bases, set_indices, term_values,
-                          parallel_phrase, point_mass_fit, same_parts)
+from .fitting import RATIO_TOL, fit_factor, fit_sum, symbol_values
+from .own_inertia import (bodies, formula_phrase, formula_reading, length_bases, parallel_phrase,
+                          point_mass_fit, same_parts, set_indices, term_values)
 from .part_swap import part_swap
 from .swap_fit import difference_reading
 
@@ -342,8 +342,8 @@ def _name_difference(r: ElementDraft, D: np.ndarray, T: np.ndarray, own: np.ndar
         r.diagnoses.insert(0, written_wrong)
         return
     if found is None or len(sp.Add.make_args(sp.expand(found))) > 1:      # not one monomial
-        swapped = part_swap(r.expr, residual, {e: v for e, v in bases if e.is_Symbol},
-                            groups) if groups and r.expr is not None else None
+        swapped = part_swap(r.expr, residual, symbol_values(bases), groups) \
+            if groups and r.expr is not None else None
         if swapped is not None:
             r.diagnoses.insert(0, diagnosis(
                 K.SWAP, swapped.text, written=str(swapped.written), fits=str(swapped.fits),

@@ -12,7 +12,7 @@ import sympy as sp
 
 from ...expression_size import ops_over
 from ..records import DiagnosisKind as K
-from .fitting import RATIO_TOL, fit_factor
+from .fitting import RATIO_TOL, evaluated, fit_factor, symbol_values
 
 #: Axes of a link's own moments of inertia.
 AXES = ("x", "y", "z")
@@ -175,10 +175,14 @@ class FormulaReading:
                                    repr=False)
 
     @property
+    def times(self) -> str:
+        r"""The multiplier as said after the moment: ``" × R**(-2)"``, ``""`` for 1."""
+        return "" if self.multiplier == 1 else f" × {sp.sstr(self.multiplier)}"
+
+    @property
     def fits(self) -> str:
         r"""What fits where :attr:`written` stands: ``"Iyy(left_wheel) × R**(-2)"``."""
-        times = "" if self.multiplier == 1 else f" × {sp.sstr(self.multiplier)}"
-        return f"{self.name}{times}"
+        return f"{self.name}{self.times}"
 
 
 def formula_reading(residual: np.ndarray, terms: Sequence[tuple[sp.Expr, np.ndarray]],
@@ -192,8 +196,8 @@ def formula_reading(residual: np.ndarray, terms: Sequence[tuple[sp.Expr, np.ndar
     :math:`m r^2/2`) written for one that does not follow it. ``terms``: the document's
     element's terms with their values (none 0 at a sample); ``sets`` the parameter set of
     each sample (None: no reading). A moment and lengths are the same at every state of a
-    set, and so is a formula for it: a residual or a term that is not is none. The first term and the
-    largest part found, or None; never a term the residual is a multiple of."""
+    set, and so is a formula for it: a residual or a term that is not is none. The first
+    term and the largest part found, or None; never a term the residual is a multiple of."""
     if sets is None or not _per_set(residual, sets):
         return None
     parts = sorted({sp.Rational(p, q) for q in range(1, FORMULA_PARTS + 1)
@@ -223,18 +227,14 @@ def term_values(expr: sp.Expr, bases: Sequence[tuple[sp.Expr, np.ndarray]]
     r"""The terms of ``expr`` (multiplied out; none of more than :data:`MAX_TERM_OPS`
     operations) with their values on the grid of ``bases`` — those
     whose symbols all have values there, and which are 0 at no sample."""
-    from ...compiled import numpy_function
-    if ops_over(expr, MAX_TERM_OPS):
+    values = symbol_values(bases)
+    if ops_over(expr, MAX_TERM_OPS) or not values:
         return []
-    values = {e: v for e, v in bases if e.is_Symbol}
+    shape = next(iter(values.values())).shape
     out = []
     for term in sp.Add.make_args(sp.expand(expr)):
-        names = sorted(term.free_symbols, key=str)
-        if term.is_number or not set(names) <= set(values):
-            continue
-        v = np.broadcast_to(np.asarray(numpy_function(names, term)(
-            *(values[s] for s in names)), dtype=float), next(iter(values.values())).shape)
-        if np.isfinite(v).all() and np.abs(v).min() > 0:
+        v = None if term.is_number else evaluated(term, values, shape)
+        if v is not None and np.isfinite(v).all() and np.abs(v).min() > 0:
             out.append((term, v))
     return out
 
@@ -243,10 +243,9 @@ def formula_phrase(f: FormulaReading, of: str = "", symbols: sp.Expr | None = No
     r"""``"m_w (of its 3*m_w) where the moment of inertia … fits: …"``: what the document has
     (``of``: the term it is a part of, as written) where a body's own moment fits
     (``symbols``: that moment in the document's symbols, where it has them)."""
-    times = "" if f.multiplier == 1 else f" × {sp.sstr(f.multiplier)}"
     own = f" ({sp.sstr(symbols)} in the document's symbols)" if symbols is not None else ""
     return (f"{sp.sstr(f.written)}{of} where the moment of inertia {f.name} about its own "
-            f"centre of mass{times}{own} fits: a formula for it (as for a uniform body) that "
+            f"centre of mass{f.times}{own} fits: a formula for it (as for a uniform body) that "
             "the model's parameter sets do not keep")
 
 
@@ -298,5 +297,6 @@ def bodies(name: str) -> str:
 
 
 __all__ = ["AXES", "FORMULA_PARTS", "MAX_TERM_OPS", "FormulaReading", "OwnInertia", "bodies",
-           "formula_phrase", "formula_reading", "grid_inertia", "length_bases", "own_moments", "own_reading",
-           "parallel_phrase", "point_mass_fit", "same_parts", "set_indices", "term_values"]
+           "formula_phrase", "formula_reading", "grid_inertia", "length_bases", "own_moments",
+           "own_reading", "parallel_phrase", "point_mass_fit", "same_parts", "set_indices",
+           "term_values"]

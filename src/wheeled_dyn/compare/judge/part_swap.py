@@ -31,7 +31,7 @@ import numpy as np
 import sympy as sp
 
 from ...expression_size import ops_over
-from .fitting import RATIO_TOL
+from .fitting import RATIO_TOL, evaluated
 
 #: Largest denominator of a fraction of a term taken as the part written with the other symbol
 #: (a product merged with another's: half of :math:`2k_1\theta_1`).
@@ -87,9 +87,9 @@ def part_swap(expr: sp.Expr, residual: np.ndarray, values: Mapping[sp.Symbol, np
                 fixed = part.xreplace({a: b})
                 written, fits = (a, b) if document else (b, a)
                 shown, other = (part, fixed) if document else (fixed, part)
-                merged = sp.factor(whole if document else whole.xreplace({a: b}))
-                return PartSwap(written, fits, sp.factor(shown), sp.factor(other),
-                                None if all(c in (0, 1) for c in found) else merged)
+                merged = None if all(c in (0, 1) for c in found) else \
+                    sp.factor(whole if document else whole.xreplace({a: b}))
+                return PartSwap(written, fits, sp.factor(shown), sp.factor(other), merged)
     return None
 
 
@@ -99,8 +99,8 @@ def _fractions(holding: Sequence[sp.Expr], a: sp.Symbol, b: sp.Symbol, residual:
     r"""The fractions :math:`c_m` of the terms ``holding`` (module text), or None."""
     columns = []
     for m in holding:
-        before, after = _value(m, values, residual.shape), _value(m.xreplace({a: b}), values,
-                                                                 residual.shape)
+        before = evaluated(m, values, residual.shape)
+        after = evaluated(m.xreplace({a: b}), values, residual.shape)
         if before is None or after is None:
             return None
         columns.append(after - before if document else before - after)
@@ -117,18 +117,6 @@ def _fractions(holding: Sequence[sp.Expr], a: sp.Symbol, b: sp.Symbol, residual:
     if np.abs(fit - residual).max() > RATIO_TOL * np.abs(residual).max():
         return None
     return [sp.Rational(f.numerator, f.denominator) for f in fractions]
-
-
-def _value(term: sp.Expr, values: Mapping[sp.Symbol, np.ndarray], shape: tuple[int, ...]
-           ) -> np.ndarray | None:
-    r"""``term`` at the samples, or None where one of its symbols has no values there."""
-    from ...compiled import numpy_function
-    names = sorted(term.free_symbols, key=str)
-    if not set(names) <= set(values):
-        return None
-    with np.errstate(all="ignore"):
-        v = np.asarray(numpy_function(names, term)(*(values[s] for s in names)), dtype=float)
-    return np.broadcast_to(v, shape)
 
 
 __all__ = ["MAX_DENOMINATOR", "PartSwap", "part_swap"]

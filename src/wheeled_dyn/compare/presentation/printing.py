@@ -9,8 +9,9 @@ SymPy's version and this file): checking a derivation again prints only what cha
 Nothing a verdict depends on is kept there.
 
 An expression of more than :data:`PRINT_NODES` nodes (a solved form's element with its
-determinant written out in every term: megabytes of text; 20 s to print the longest as text and LaTeX) is not
-printed: its text says how long it is, and the file's own text is what the document wrote.
+determinant written out in every term: megabytes of text; 20 s to print the longest as
+text and LaTeX) is not printed: its text says how long it is, and the file's own text is
+what the document wrote.
 """
 
 from __future__ import annotations

@@ -98,8 +98,8 @@ def large_coefficients(expr: sp.Expr, velocities: Sequence[sp.Symbol]
     of more than :data:`EXPAND_NODES` nodes whose terms are each a coefficient times a
     product of velocities (as ``read_off`` splits a solved form's row: every term over the same
     written-out determinant), its terms grouped as they are, not expanded again (52 s for
-    a 3×3 solved form, under a profiler); None for any other row, which is expanded first. Once per row in this
-    process."""
+    a 3×3 solved form, under a profiler); None for any other row, which is expanded first.
+    Once per row in this process."""
     key = (expr, tuple(velocities))
     if key not in _LARGE:
         _LARGE[key] = _monomial_coefficients(expr, velocities) \
