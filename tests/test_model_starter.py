@@ -293,3 +293,32 @@ def test_a_box_caster_on_a_fixed_joint_keeps_the_robot_level(tmp_path, rpy, size
         line = next(x for x in out.read_text().splitlines() if x.startswith("pitch"))
         assert line.startswith(f"pitch = {str(not level).lower()}"), (lift, line)
         assert ("caster_link" in line) is level, line
+
+
+def test_a_urdf_fixed_to_the_world_is_a_fixed_base_whatever_its_wheels(tmp_path, capsys):
+    r"""A URDF whose massless root link is named ``world`` (ROS and Gazebo read it as the world
+    itself) is a fixed base even where two links look like a wheel pair: the starter must not
+    lock the cart's prismatic joint and make the world a rolling body. Its model has the
+    hand-written model's inertia and gravity terms (the project's own test data,
+    ``tests/data/wheeled_cart_pole``), at random configurations."""
+    import pinocchio as pin
+    from pathlib import Path
+    folder = Path(__file__).parent / "data" / "wheeled_cart_pole"
+    out = tmp_path / "robot.toml"
+    assert main(["model", str(folder / "wheeled_cart_pole.urdf"), "--out", str(out)]) == 0
+    said = capsys.readouterr().out
+    assert "fixed to the world (its root link is 'world')" in said
+    assert 'type = "fixed"' in out.read_text() and "joints.locked" not in out.read_text()
+    mine, written = (load_model(str(p)).model for p in (out, folder / "wheeled_cart_pole.toml"))
+    assert mine.nv == written.nv == 4
+    rng = np.random.default_rng(SEED)
+    for _ in range(N_STATES):
+        q = pin.integrate(written, pin.neutral(written), rng.uniform(-1.0, 1.0, written.nv))
+        v = rng.normal(size=written.nv)
+        for model in (mine, written):
+            assert [model.names[i] for i in range(1, model.njoints)] == \
+                [written.names[i] for i in range(1, written.njoints)]
+        pairs = [(pin.crba(m, m.createData(), q), pin.rnea(m, m.createData(), q, v,
+                                                          np.zeros(m.nv))) for m in (mine, written)]
+        for a, b in zip(*pairs):
+            assert np.abs(a - b).max() <= TERMS_TOL * max(np.abs(b).max(), 1.0)

@@ -27,6 +27,10 @@ from .starter_urdf import caster_links, read_checked
 
 #: Largest relative difference of two wheel radii to pair them.
 PAIR_RADIUS_TOL = 1e-6
+#: The root link's name by which a URDF says it is fixed to the world (ROS and Gazebo read a
+#: massless root link named so as the world itself: the robot's joints move it relative to the
+#: ground, and no wheel of it carries a planar base).
+WORLD_LINK = "world"
 #: A wheel radius (m) above which the starter notes that the URDF may not be in metres (the
 #: largest wheels on robots and vehicles are about a metre across; a file exported from CAD in
 #: millimetres gives radii of tens of metres).
@@ -64,6 +68,7 @@ class UrdfInventory:
     up: tuple[float, float, float] = (0.0, 0.0, 1.0)    # in the body's link axes
     notes: tuple[str, ...] = ()                         # how left, right, up were decided
     casters: tuple[str, ...] = ()                       # links keeping the body level
+    world_root: bool = False                            # the root is the world (WORLD_LINK)
 
 
 def _cylinders(link) -> Iterator[tuple[float, float, np.ndarray, str, np.ndarray]]:
@@ -183,6 +188,14 @@ def inspect_urdf(path: str | Path, accept_inertia: tuple[str, ...] = ()) -> Urdf
                             f"{PAIR_RADIUS_TOL:g} relative) at distinct places")
     elif pair is None and ordered:
         why["(pairing)"] = f"only one candidate wheel ({ordered[0].link})"
+    world_root = root == WORLD_LINK and next(m for n, m, _ in links if n == root) == 0.0
+    if world_root and pair is not None:
+        why["(root)"] = (f"the root link {root!r} is the world (a URDF fixed to the world "
+                         "names its massless root so): the robot is a fixed base; "
+                         f"{pair[0].link} and {pair[1].link} spin on their joints (a "
+                         "derivation that rolls them ties their angles to the travel in its "
+                         "coordinate map)")
+        pair = None
     path_joints = _path_joints(pair, parent_joint)
     joints = tuple((j.name, j.type, j.parent, j.child,
                     " ".join(f"{x:g}" for x in (j.axis if j.axis is not None and j.type
@@ -199,7 +212,7 @@ def inspect_urdf(path: str | Path, accept_inertia: tuple[str, ...] = ()) -> Urdf
     return UrdfInventory(Path(path), robot.name, root, tuple(links), joints, tuple(ordered),
                          pair, path_joints, accept,
                          tuple(sorted(why.items())) if pair is None else (), body, up, notes,
-                         casters)
+                         casters, world_root)
 
 
 def _units_note(pair: tuple[WheelCandidate, WheelCandidate]) -> tuple[str, ...]:

@@ -45,10 +45,12 @@ def starter_text(inv: UrdfInventory, out: Path | None) -> str:
                   "accept_inertia = [" + ", ".join(_q(n) for n in inv.bad_inertia) + "]", ""]
     if inv.pair is None:
         moving = [j for j in inv.joints if j[1] in ("continuous", "revolute")]
-        lines += ["[base]", "# No pair of wheels found, so this is no wheeled model:"]
+        lines += ["[base]", f"# The root link {inv.root!r} is the world, so this is no "
+                  "wheeled model:" if inv.world_root else "# No pair of wheels found, so "
+                  "this is no wheeled model:"]
         lines += [f"#   {joint}: {reason}" for joint, reason in inv.rejected] or \
             ["#   the URDF has no revolute or continuous joint"]
-        if any(j[1] == "continuous" for j in moving):
+        if any(j[1] == "continuous" for j in moving) and not inv.world_root:
             lines += ["# CHECK: a fixed base holds the root link in the air: the continuous "
                       "joints above spin",
                       "# on a stand. For a wheeled robot, give each wheel link a cylinder "

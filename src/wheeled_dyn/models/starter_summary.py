@@ -3,8 +3,8 @@ the links merged into it, the wheels (left and right, and how that was decided),
 track, which way is forward, then the convention table (:mod:`.conventions`) and the
 parameters a derivation may name (:mod:`.link_parameters`) of the model the file describes.
 
-When no wheel pair was found it says so first, with each moving joint and why it is not a
-wheel.
+When no wheel pair was found, or the URDF's root is the world (a fixed base whatever its
+wheels), it says so first, with each moving joint and why it is not a wheel.
 """
 
 from __future__ import annotations
@@ -35,7 +35,11 @@ def summary(inv: UrdfInventory) -> tuple[list[str], bool]:
     from .conventions import convention_table
     from .link_parameters import parameter_listing
     lines: list[str] = []
-    if inv.pair is None:
+    if inv.pair is None and inv.world_root:
+        lines.append(f"{inv.path.name} is fixed to the world (its root link is "
+                     f"{inv.root!r}): the model is a fixed base, not a wheeled robot")
+        lines += [f"  {joint}: {reason}" for joint, reason in inv.rejected]
+    elif inv.pair is None:
         lines.append(f"no wheel pair found in {inv.path.name}: the model is a fixed base "
                      "(the root link held in the air), not a wheeled robot")
         lines += [f"  {joint}: {reason}" for joint, reason in inv.rejected]
