@@ -207,3 +207,24 @@ def test_a_residual_read_back_claims_no_term_missing():
     D = np.cos(a) + np.cos(b)
     part = entry_part("Q[2]", T, D, float(np.abs(T).max()), [], None, {"Q[2]": sp.cos(q1 + q2)})
     assert part.kind == K.RESIDUAL, part
+
+
+def test_a_term_read_back_as_too_much_is_named_as_the_document_writes_it():
+    r"""An entry read back with a term the truth's entry does not have (the cart's row with the
+    pole's equation eliminated, its :math:`\ddot\theta` coefficient written 0 where the true
+    combination leaves :math:`-I\cos\theta/l`: the source entry has :math:`I\cos\theta/l`
+    too much) carries that term as the document has it, as a record's extra terms are; its
+    cause says "has too much I*cos(theta)/l", not the negative."""
+    from wheeled_dyn.compare.judge.entry_terms import read_back_diagnosis
+    from wheeled_dyn.compare.judge.unsolved import entry_part
+    rng = np.random.default_rng(SEED)
+    I_, l_, th = rng.uniform(0.5, 2.0, 200), rng.uniform(0.5, 2.0, 200), rng.uniform(-3, 3, 200)
+    I, l, theta = sp.symbols("I l theta")
+    T = l_ * np.cos(th)                                   # the truth's entry: m l cos(theta)
+    D = T + I_ * np.cos(th) / l_                          # the document's: I cos(theta)/l more
+    bases = [(I, I_), (l, l_), (sp.cos(theta), np.cos(th))]
+    part = entry_part("A[1,2]", T, D, float(np.abs(T).max()), bases, None,
+                      {"A[1,2]": l * sp.cos(theta)})
+    assert part.kind == K.EXTRA, part
+    said = read_back_diagnosis("read back: ", [part])
+    assert said.terms == (sp.sstr(I * sp.cos(theta) / l),), said

@@ -140,10 +140,14 @@ def entry_part(where: str, T: np.ndarray, D: np.ndarray, scale: float,
 
 def read_back_diagnosis(head: str, parts: Sequence[Part]) -> Diagnosis:
     r"""``parts`` as one diagnosis, of the first part's kind (the one its cause names; the
-    others are said in its text)."""
+    others are said in its text). Its terms are each part's truth − document, as the
+    document lacks them; a part the document has too much (:attr:`K.EXTRA`) as it writes
+    it, document − truth (a record's terms say what is missing or extra, as
+    :mod:`.named` gives them)."""
     text = "; ".join(p.text for p in parts)
     return Diagnosis(parts[0].kind, f"{head}{text}", text,
-                     terms=tuple(sp.sstr(p.found) for p in parts if p.found is not None))
+                     terms=tuple(sp.sstr(-p.found if p.kind == K.EXTRA else p.found)
+                                 for p in parts if p.found is not None))
 
 
 __all__ = ["Part", "entry_part", "entry_reading", "read_back_diagnosis"]
