@@ -423,6 +423,37 @@ def test_refactorised_c_is_no_error(engine, tmp_path):
     assert result.causes == ()
 
 
+def test_refactorised_c_with_a_sign_error_in_the_moved_product_says_the_sign_once(engine,
+                                                                                   tmp_path):
+    r"""C[2,2] moved into C[2,3] as above, and the moved product's sign flipped: h[2]'s
+    dpsi*dphi term has the opposite sign, said once there. Neither C[2,2] (written 0) nor
+    C[2,3] alone makes that product right: they share it, split otherwise than the truth's
+    C, and get no cause of their own (before, C[2,2]'s 0 was "a term the document leaves
+    out"). The equation still differs."""
+    k = "(XX1 - YY1)*sin(2*phi)/2 + XY1*cos(2*phi)"
+    result = engine.compare(load_derivation(_file(tmp_path, {
+        ("C", 1, 1): "0", ("C", 1, 2): f"-2*dpsi*({k}) + dphi*(XZ1*cos(phi) - YZ1*sin(phi))"})))
+    verdicts = {r.element: r.verdict for r in result.records if r.verdict != "agrees"}
+    assert verdicts == {"C[2,2]": "factorization", "C[2,3]": "factorization",
+                        "h[2]:dpsi*dphi": "differs"}, verdicts
+    named = [(c.kind, c.elements) for c in result.causes if c.elements]
+    assert named == [("sign", ("h[2]:dpsi*dphi",))], result.causes
+    assert {c.kind for c in result.causes if not c.elements} <= {"energy"}   # h does work
+    assert result.equivalent is False
+
+
+def test_a_sign_error_one_c_element_alone_makes_stays_its_own(engine, tmp_path):
+    r"""The sign of C[2,3]'s dpsi term flipped, C[2,2] as the truth's: C[2,3] alone makes
+    h[2]'s dpsi*dphi term wrong — it differs with the sign; C[2,2] agrees."""
+    k = "(XX1 - YY1)*sin(2*phi)/2 + XY1*cos(2*phi)"
+    result = engine.compare(load_derivation(_file(tmp_path, {
+        ("C", 1, 2): f"-dpsi*({k}) + dphi*(XZ1*cos(phi) - YZ1*sin(phi))"})))
+    verdicts = {r.element: r.verdict for r in result.records if r.verdict != "agrees"}
+    assert verdicts["C[2,3]"] == "differs" and "C[2,2]" not in verdicts, verdicts
+    assert any(c.kind == "sign" and "C[2,3]" in c.elements for c in result.causes), \
+        result.causes
+
+
 def test_rewritten_trigonometry_agrees(engine, tmp_path):
     result = engine.compare(load_derivation(_file(tmp_path, {("A", 1, 1): (
         "2*Iw2 + 2*m_C*L**2 + 2*Iw3*L**2/R**2 + 2*I_a*L**2/R**2 + XX1*(1 - cos(2*phi))/2 "

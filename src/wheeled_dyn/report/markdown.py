@@ -13,7 +13,7 @@ from .corrected import corrected_markdown
 from .symbols import derivation_notation, difference_latex, product_latex, text_latex
 
 VERDICT_TEXT = {"agrees": "agrees", "agrees_if": "agrees only for special values",
-                "factorization": "C differs, C q̇ agrees", "differs": "differs",
+                "factorization": "factorisation of C only", "differs": "differs",
                 "undecided": "cannot decide"}
 #: Causes named per derivation in the summary table (all of them in its section).
 SUMMARY_CAUSES = 3
@@ -177,8 +177,10 @@ def report_markdown(results: Sequence[DerivationResult], title: str,
     r"""The whole report: summary, derivations in the document's order, extras."""
     results = S.ordered(results)
     parts = [f"# {title}", "", "Verdicts: *agrees* (over every random state and parameter set), "
-             "*agrees only for special values* (named), *C differs, C q̇ agrees* (the equations "
-             "are right; only the factorisation of C differs), *differs* (with its diagnosis).",
+             "*agrees only for special values* (named), *factorisation of C only* (a C element "
+             "whose difference is only how C is factored: the h = C q̇ terms it makes agree, or "
+             "differ only where another element is wrong, said there), *differs* (with its "
+             "diagnosis).",
              ""]
     parts += summary_markdown(results) + [""]
     parts += [derivation_markdown(r) for r in results]

@@ -144,7 +144,8 @@ def _no_diagnosis(record: ElementRecord) -> str:
 
 def _group_sentence(kind: str, diagnosis: Diagnosis | None, record: ElementRecord) -> str:
     if kind == "factorization":
-        return "only the factorisation of C differs; C q̇ agrees"
+        return ("only the factorisation of C differs; the C q̇ terms they make agree or "
+                "differ only where said")
     if diagnosis is None:
         return _no_diagnosis(record)
     if kind == "assumption":
@@ -274,13 +275,15 @@ def _right_rows(rows: list[tuple[int, str]]) -> str:
 
 
 def assumes_line(result: DerivationResult, file_assumptions: dict[str, str] | None = None) -> str:
-    r"""The "assumes:" line: the result's ``assumes``, else the terms the file sets to a value
-    (``[assume]``), else a sentence saying none are declared."""
+    r"""The "assumes:" line: the result's ``assumes``, and the terms the file sets to a value
+    (``[assume]``: said always, a value other than 0 as much as 0), or a sentence saying
+    none are declared."""
+    sets = ("the file sets " + ", ".join(f"{k} = {v}" for k, v in file_assumptions.items())
+            + " (terms the model lacks)") if file_assumptions else ""
     if result.assumes:
-        return "; ".join(result.assumes)
-    if file_assumptions:
-        return ("the file sets " + ", ".join(f"{k} = {v}" for k, v in file_assumptions.items())
-                + " (terms the model lacks); no other assumption is declared")
+        return "; ".join((*result.assumes, *([sets] if sets else [])))
+    if sets:
+        return sets + "; no other assumption is declared"
     return "nothing declared by the file"
 
 

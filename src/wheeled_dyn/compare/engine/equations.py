@@ -84,10 +84,13 @@ def _reconcile(verdict: Verdict, row: Sequence[ElementDraft], error: float = flo
 
 def equation_records(d: Derivation, decision, drafts: Sequence[ElementDraft],
                      texts: Sequence[FrameText], label: str, grids: Sequence[Sides],
-                     funcs, rules, solved: Diagnosis | None = None) -> list[EquationRecord]:
+                     funcs, rules, solved: Diagnosis | None = None,
+                     owed: frozenset[int] = frozenset()) -> list[EquationRecord]:
     r"""One :class:`~..records.EquationRecord` per equation (module text); none where the
     document gives no A. ``solved``: for a document solved for its accelerations, what its
-    own inertia matrix lacks (:mod:`..judge.unsolved`), said on each equation that differs."""
+    own inertia matrix lacks (:mod:`..judge.unsolved`), said on each equation that differs.
+    ``owed``: the equations that agree only with the file's nonzero ``[assume]`` values
+    (:mod:`.assumed_values`): they *agree only if* those hold."""
     if decision is None:
         return []
     on_families = None
@@ -115,6 +118,11 @@ def equation_records(d: Derivation, decision, drafts: Sequence[ElementDraft],
         if (verdict == Verdict.DIFFERS or near) and not singular and on_families is not None \
                 and on_families.equations[i].verdict == Verdict.AGREES and text \
                 and not differing:
+            verdict = Verdict.AGREES_IF
+            diags = [Diagnosis(K.CONDITION, f"agrees only if {text}", text, condition=text)]
+        if i in owed and verdict != Verdict.UNDECIDED:
+            from .assumed_values import assumed_text, nonzero_assumed
+            text = assumed_text(nonzero_assumed(d))
             verdict = Verdict.AGREES_IF
             diags = [Diagnosis(K.CONDITION, f"agrees only if {text}", text, condition=text)]
         diags += _reconcile(verdict, row, e.max_error)

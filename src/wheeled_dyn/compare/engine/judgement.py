@@ -43,6 +43,7 @@ from ..sides.document import DocumentFunctions
 from ..sides.elements import swap_groups
 from ..sides.evaluation import Evaluation
 from ..sides.framed import framed, row_of, row_scale
+from .assumed_values import assumed_cause, owed_equations
 from .equations import equation_records, units_notes
 from .printing import corrected, document_truth, print_drafts
 from .constraint_factors import lost_constraints
@@ -240,7 +241,9 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
         solved = read_back_said(d, drafts, rules, frames, frames_on_id, id_sides, found, combined,
                                 lambda: document_truth(d, sides.grid.cs, assumed),
                                 sides.truth.H_rows)
-    equations = equation_records(d, decision, drafts, texts, label, grids, funcs, rules, solved)
+    owed = owed_equations(d, grids, engine.seed, decision, funcs)
+    equations = equation_records(d, decision, drafts, texts, label, grids, funcs, rules, solved,
+                                 owed)
     fixes = print_drafts(d, drafts, sides.grid.cs, texts, assumed, funcs.exprs)
     equations = corrected(d, equations, fixes)
     j = _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed,
@@ -248,7 +251,8 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
                        i: sp.nsimplify(nice_number(f.constant)) if f.constant is not None
                        else None for i, f in apart.items()}})
     return replace(j, causes=(*assumed.file_causes(d, funcs.exprs), *apart_causes(d, apart, drafts),
-                              *contradiction_causes(d, funcs, assumed, engine.seed), *j.causes))
+                              *contradiction_causes(d, funcs, assumed, engine.seed),
+                              *assumed_cause(d, owed), *j.causes))
 
 
 def _id_values(d: Derivation, funcs: DocumentFunctions, id_sides: Sides,

@@ -14,7 +14,14 @@ truth's :math:`C_{ij}` (in the row's frame):
   :math:`C_{ik}` alone is wrong (putting the truth's :math:`\Gamma_{i,k\cdot}` there makes it
   agree, putting the truth's :math:`\Gamma_{i,j\cdot}` here does not): it is not this
   element's error (*factorization*, naming the partner);
+- a product differs, neither element alone makes it agree, and the product's h element names
+  its error (a sign, a factor, a term missing, …): the error is that product's, said once
+  at its h element; the two elements share it, split otherwise than the truth's C
+  (*factorization*, naming the h element) — no cause of their own (a C element written 0
+  where the truth's split puts the product is no missing physics);
 - otherwise it *differs*.
+
+A product :math:`P_{jj}` is :math:`C_{ij}`'s alone: where it differs, the element differs.
 """
 
 from __future__ import annotations
@@ -41,6 +48,19 @@ def _innocent(i: int, j: int, k: int, doc: np.ndarray, true: np.ndarray, scale: 
     mine = true[:, j, k] + doc[:, k, j]
     partner = doc[:, j, k] + true[:, k, j]
     return agrees(partner, target, scale) and not agrees(mine, target, scale)
+
+
+#: Kinds that name a product's error at its h element (a rule of the last kind above).
+SAID = (K.SIGN, K.FACTOR, K.POWER, K.SWAP, K.MISSING, K.EXTRA, K.POINT_MASS,
+        K.PARALLEL_AXIS, K.SMALL_ANGLE)
+
+
+def _shared(i: int, j: int, k: int, doc: np.ndarray, true: np.ndarray, scale: float) -> bool:
+    r"""Product :math:`P_{jk}` (:math:`k \ne j`) of row i is fixed neither by
+    :math:`C_{ij}` alone nor by its partner :math:`C_{ik}` alone (module text)."""
+    target = true[:, j, k] + true[:, k, j]
+    return not agrees(true[:, j, k] + doc[:, k, j], target, scale) and \
+        not agrees(doc[:, j, k] + true[:, k, j], target, scale)
 
 
 def _still(expr: sp.Expr | None, velocities: Sequence[sp.Symbol]) -> sp.Expr:
@@ -93,13 +113,24 @@ def factorization(drafts: Sequence[ElementDraft], gammas: dict[int, tuple[np.nda
             continue
         doc, true = gammas[i]
         bad = [k for k, p in products if p.verdict != Verdict.AGREES]
-        if j in bad or not all(_innocent(i, j, k, doc, true, r.scale) for k in bad):
+        if j in bad:
             continue
-        names = ", ".join(f"C[{i + 1},{k + 1}]" for k in bad)
-        r.verdict = Verdict.FACTORIZATION
-        r.diagnoses = [Diagnosis(K.FACTORIZATION, f"the h terms of row {i + 1} it takes part in "
-                                 f"differ only where {names} is wrong: this element's "
-                                 "difference is a factorisation of C")]
+        if all(_innocent(i, j, k, doc, true, r.scale) for k in bad):
+            names = ", ".join(f"C[{i + 1},{k + 1}]" for k in bad)
+            r.verdict = Verdict.FACTORIZATION
+            r.diagnoses = [Diagnosis(K.FACTORIZATION, f"the h terms of row {i + 1} it takes "
+                                     f"part in differ only where {names} is wrong: this "
+                                     "element's difference is a factorisation of C")]
+            continue
+        said = {k: p for k, p in products if k in bad and p.verdict == Verdict.DIFFERS
+                and any(x.kind in SAID for x in p.diagnoses)}
+        if len(said) == len(bad) and all(_shared(i, j, k, doc, true, r.scale) for k in bad):
+            names = ", ".join(p.element for p in said.values())
+            r.verdict = Verdict.FACTORIZATION
+            r.diagnoses = [Diagnosis(K.FACTORIZATION, f"the h terms of row {i + 1} it takes "
+                                     f"part in differ only in {names}, said there: it shares "
+                                     "them with another element of C, split otherwise than "
+                                     "the truth's (a factorisation of C)")]
 
 
 __all__ = ["factorization"]
