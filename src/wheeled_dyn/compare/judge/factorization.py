@@ -57,10 +57,19 @@ SAID = (K.SIGN, K.FACTOR, K.POWER, K.SWAP, K.MISSING, K.EXTRA, K.POINT_MASS,
 
 def _shared(i: int, j: int, k: int, doc: np.ndarray, true: np.ndarray, scale: float) -> bool:
     r"""Product :math:`P_{jk}` (:math:`k \ne j`) of row i is fixed neither by
-    :math:`C_{ij}` alone nor by its partner :math:`C_{ik}` alone (module text)."""
+    :math:`C_{ij}` alone nor by its partner :math:`C_{ik}` alone (module text), and the
+    document splits it between them otherwise than the truth does: with
+    :math:`(a, b)` the document's :math:`(\Gamma_{i,jk}, \Gamma_{i,kj})` and :math:`(c, d)`
+    the truth's, :math:`ad \ne bc` somewhere. Split alike (an arm's C built from a c whose
+    :math:`2h\dot q_1\dot q_2` lost its 2: each half is half the truth's), each element
+    carries the error: it differs."""
     target = true[:, j, k] + true[:, k, j]
-    return not agrees(true[:, j, k] + doc[:, k, j], target, scale) and \
-        not agrees(doc[:, j, k] + true[:, k, j], target, scale)
+    if agrees(true[:, j, k] + doc[:, k, j], target, scale) or \
+            agrees(doc[:, j, k] + true[:, k, j], target, scale):
+        return False
+    a, b, c, d = doc[:, j, k], doc[:, k, j], true[:, j, k], true[:, k, j]
+    size = max(float(np.abs(x).max(initial=0.0)) for x in (a, b, c, d))
+    return not agrees(a * d, b * c, scale * size)
 
 
 def _still(expr: sp.Expr | None, velocities: Sequence[sp.Symbol]) -> sp.Expr:
