@@ -113,6 +113,17 @@ def test_bad_urdf_is_one_error_and_no_model_file(tmp_path, capsys, case):
     assert not out.exists() and list(tmp_path.iterdir()) == [urdf]
 
 
+def test_a_bad_mass_names_the_line_of_its_mass(tmp_path):
+    r"""A negative mass is named at the line of its ``<mass>``, not of its ``<link>`` (a
+    newcomer's URDF writes the inertial over several lines)."""
+    urdf = _urdf(tmp_path, "negative", '<mass value="6.0"/>', '<mass value="-6.0"/>')
+    line = urdf.read_text().splitlines().index(
+        next(x for x in urdf.read_text().splitlines() if '<mass value="-6.0"/>' in x)) + 1
+    with pytest.raises(ModelError) as err:
+        inspect_urdf(urdf)
+    assert f"{urdf.name}:{line})" in str(err.value), (line, str(err.value))
+
+
 @pytest.mark.parametrize("case", ["nan_origin", "wheel_revolute", "unknown_type", "short_axis",
                                   "nan_inertial_origin", "inertia_missing"])
 def test_model_file_over_a_bad_urdf_is_one_error(tmp_path, case):

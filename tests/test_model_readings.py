@@ -87,3 +87,24 @@ def test_matrices_prints_the_readings(capsys):
     assert "note: transmissions wheel_right_trans, wheel_left_trans: not applied" in out
     assert main(["matrices", "tiago_base", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["notes"] == list(load_model("tiago_base").readings)
+
+
+def test_an_axis_not_of_unit_length_is_said_and_read_as_its_direction():
+    r"""``<axis xyz="0 0 2">`` is read as its direction (the joint's angle about the unit axis,
+    as Pinocchio reads it): said once, and the model's inertia equals the one of the same URDF
+    with the unit axis, at seeded configurations."""
+    import numpy as np
+    import pinocchio as pin
+
+    from conftest import SEED
+    scaled = URDF.replace('<child link="b"/><axis xyz="0 0 1"/>',
+                          '<child link="b"/><axis xyz="0 0 2"/>')
+    said = [r for r in urdf_readings(scaled) if "axis not of unit length" in r]
+    assert len(said) == 1 and said[0].startswith("joint hinge (0 0 2)"), said
+    assert not any("axis not of unit length" in r for r in urdf_readings(URDF))
+    models = [pin.buildModelFromXML(text) for text in (scaled, URDF)]
+    rng = np.random.default_rng(SEED)
+    for _ in range(4):
+        q = rng.uniform(-1.0, 1.0, models[1].nq)
+        a, b = (pin.crba(m, m.createData(), q) for m in models)
+        assert np.abs(a - b).max() <= 1e-12 * np.abs(b).max()

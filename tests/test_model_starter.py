@@ -322,3 +322,17 @@ def test_a_urdf_fixed_to_the_world_is_a_fixed_base_whatever_its_wheels(tmp_path,
                                                           np.zeros(m.nv))) for m in (mine, written)]
         for a, b in zip(*pairs):
             assert np.abs(a - b).max() <= TERMS_TOL * max(np.abs(b).max(), 1.0)
+
+
+def test_a_fixed_base_starter_offers_its_inputs_and_they_load(tmp_path):
+    r"""A base without wheels gets ``actuated`` and ``inputs`` commented out (B's columns):
+    uncommented, the model has one input per moving joint, named as written."""
+    out = tmp_path / "arm.toml"
+    assert main(["model", str(urdf_dir() / "rod_pendulum.urdf"), "--out", str(out)]) == 0
+    text = out.read_text()
+    assert "# actuated = [" in text and "# inputs = [" in text
+    assert load_model(str(out)).model.nv >= 1
+    out.write_text(text.replace("# actuated = [", "actuated = [").replace("# inputs = [",
+                                                                           "inputs = ["))
+    wm = load_model(str(out))
+    assert len(wm.input_names) == wm.model.nv, wm.input_names

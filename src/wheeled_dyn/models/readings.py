@@ -15,6 +15,8 @@ silent.
   puts under a planar model's axle (:func:`ground_reading`).
 - A joint's ``<origin rpy>`` right angles to a rounding (``1.5708``) are taken as right
   angles in the comparisons' parameter sets (:func:`joint_origin_readings`).
+- A joint's ``<axis>`` not of unit length (``"0 0 2"``) is read as its direction
+  (:func:`axis_readings`).
 - A ``<transmission>`` is not applied: the model's inputs are its joints' torques (a
   mechanical reduction between motor and joint is the document's to state).
 - A planar model's drive wheels axisymmetric about their axles to a CAD export's rounding
@@ -99,6 +101,32 @@ def joint_origin_readings(root: ET.Element) -> list[str]:
                    "angles that are roundings made the right angles"] if kept else [])
 
 
+#: Relative distance of an axis's length from 1 beyond which the readings say it is scaled.
+AXIS_LENGTH_TOL = 1e-9
+
+
+def axis_readings(root: ET.Element, locked: tuple[str, ...] = ()) -> list[str]:
+    r"""The moving joints whose ``<axis xyz>`` is not of unit length (``"0 0 2"``): read as its
+    direction, as URDF readers do (Pinocchio, ROS), one line naming them; a zero axis is an
+    error of the URDF checks, before this."""
+    scaled = []
+    for joint in root.iterfind("joint"):
+        axis = joint.find("axis")
+        if joint.get("type") == "fixed" or joint.get("name") in locked or axis is None:
+            continue
+        try:
+            length = float(np.linalg.norm([float(x) for x in axis.get("xyz", "").split()]))
+        except ValueError:
+            continue
+        if length > 0 and abs(length - 1.0) > AXIS_LENGTH_TOL:
+            scaled.append(f"{joint.get('name', '')} ({axis.get('xyz')})")
+    if not scaled:
+        return []
+    return [f"joint{'s' if len(scaled) > 1 else ''} {_listed(scaled)}: an axis not of unit "
+            "length, read as its direction (the joint's coordinate is the angle or distance "
+            "along the unit axis, as URDF readers take it)"]
+
+
 def _listed(names: list[str]) -> str:
     return ", ".join(names) if len(names) <= 4 else f"{', '.join(names[:3])} and {len(names) - 3} more"
 
@@ -135,7 +163,7 @@ def urdf_readings(text: str, locked: tuple[str, ...] = ()) -> tuple[str, ...]:
     r"""What the model reads otherwise than the URDF ``text`` writes (module text), its
     ``locked`` joints part of their links' bodies: inertias, then joints and transmissions."""
     root = ET.fromstring(text)
-    return (*inertial_readings(root), *joint_origin_readings(root),
+    return (*inertial_readings(root), *joint_origin_readings(root), *axis_readings(root, locked),
             *joint_readings(root, locked))
 
 
@@ -166,4 +194,5 @@ def wheel_turn(joint: str, angle: float) -> str:
             "model's wheels turn about their axle; URDFs round π/2)")
 
 
-__all__ = ["TURN_NOTED", "ground_reading", "inertial_readings", "joint_readings", "urdf_readings", "wheel_turn"]
+__all__ = ["AXIS_LENGTH_TOL", "TURN_NOTED", "axis_readings", "ground_reading", "inertial_readings",
+           "joint_readings", "urdf_readings", "wheel_turn"]

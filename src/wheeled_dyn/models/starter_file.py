@@ -57,6 +57,7 @@ def starter_text(inv: UrdfInventory, out: Path | None) -> str:
                       "about its joint's axis."]
         lines += ['type = "fixed"         # CHECK: fixed (root link fixed to the world) or free',
                   f"body = {_q(inv.root)}", ""]
+        lines += _actuated_lines(inv)
     else:
         left, right = inv.pair
         up = "[" + ", ".join(f"{x:.1f}" for x in inv.up) + "]"
@@ -92,6 +93,21 @@ def starter_text(inv: UrdfInventory, out: Path | None) -> str:
     lines += [f"#   {n:32} {t:10} {p} -> {c}  {a}".rstrip() for n, t, p, c, a in inv.joints]
     lines += _length_lines(inv)
     return "\n".join(lines) + "\n"
+
+
+def _actuated_lines(inv: UrdfInventory) -> list[str]:
+    r"""A ``[joints]`` table whose ``actuated`` and ``inputs`` (B's columns: the joints with
+    motors, and the names of their torques or forces) are commented out, for a base without
+    wheels: every moving joint, to keep the ones driven."""
+    moving = [j[0] for j in inv.joints if j[1] in ("continuous", "revolute", "prismatic")]
+    if not moving:
+        return []
+    return ["[joints]",
+            "# CHECK: the joints driven by a motor (B's columns) and their inputs' names; "
+            "uncomment, keeping",
+            "# the driven ones (none: a model without inputs, B has no columns):",
+            "# actuated = [" + ", ".join(_q(j) for j in moving) + "]",
+            "# inputs = [" + ", ".join(_q(f"tau_{j}") for j in moving) + "]", ""]
 
 
 def _pitch_lines(inv: UrdfInventory) -> list[str]:

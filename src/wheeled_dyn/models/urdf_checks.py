@@ -38,7 +38,8 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InertiaError, InputFileError, LimitError, ModelError
-from .urdf_values import MAX_MODEL_NUMBER, MAX_MODEL_TEXT, NUMBER, line_of as _line_of
+from .urdf_values import MAX_MODEL_NUMBER, MAX_MODEL_TEXT, NUMBER, line_of as _line_of, \
+    line_within
 
 #: Relative tolerance (of the largest principal moment) for PSD and triangle checks.
 INERTIA_TOL = 1e-9
@@ -93,14 +94,16 @@ def _check_inertial(path: Path, text: str, link: ET.Element, accept: tuple[str, 
     values = {k: _float(inertia.get(k)) for k in INERTIA_KEYS}
     massless_frame = mass == 0 and all(v == 0 for v in values.values())
     if not (math.isfinite(mass) and 0 < mass <= MAX_MODEL_NUMBER) and not massless_frame:
+        at = line_within(text, "link", name, "mass") or "?"
         raise ModelError(path.stem, name, f"mass {mass_el.get('value')!r} is not a finite "
                                           f"positive number of at most {MAX_MODEL_TEXT} "
-                                          f"kg ({where})")
+                                          f"kg ({path.name}:{at})")
     bad = [k for k, v in values.items() if not (math.isfinite(v) and abs(v) <= MAX_MODEL_NUMBER)]
     if bad:
+        at = line_within(text, "link", name, "inertia") or "?"
         raise ModelError(path.stem, name, f"inertia entry {bad[0]} = {inertia.get(bad[0])!r} "
                                           "is not a finite number of magnitude at most "
-                                          f"{MAX_MODEL_TEXT} ({where})")
+                                          f"{MAX_MODEL_TEXT} ({path.name}:{at})")
     I = np.array([[values["ixx"], values["ixy"], values["ixz"]],
                   [values["ixy"], values["iyy"], values["iyz"]],
                   [values["ixz"], values["iyz"], values["izz"]]])

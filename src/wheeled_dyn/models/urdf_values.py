@@ -68,6 +68,18 @@ def line_of(text: str, tag: str, name: str) -> int | None:
     return text.count("\n", 0, match.start()) + 1 if match else None
 
 
+def line_within(text: str, tag: str, name: str, child: str) -> int | None:
+    r"""1-based line of the first ``<child`` inside ``<tag ... name="name"> … </tag>`` in
+    ``text`` (a link's ``<mass>``, ``<inertia>``), else the element's own line, or None."""
+    match = re.search(rf"<{tag}\b[^>]*\bname\s*=\s*[\"']{re.escape(name)}[\"']", text)
+    if match is None:
+        return None
+    end = text.find(f"</{tag}>", match.end())
+    inner = re.compile(rf"<{child}\b").search(text, match.end(), end if end >= 0 else len(text))
+    at = inner.start() if inner else match.start()
+    return text.count("\n", 0, at) + 1
+
+
 def _numbers(value: str, count: int) -> list[float] | None:
     r"""The ``count`` finite decimal numbers of ``value`` of magnitude at most
     :data:`MAX_MODEL_NUMBER`, or None."""
