@@ -228,3 +228,22 @@ def test_a_term_read_back_as_too_much_is_named_as_the_document_writes_it():
     assert part.kind == K.EXTRA, part
     said = read_back_diagnosis("read back: ", [part])
     assert said.terms == (sp.sstr(I * sp.cos(theta) / l),), said
+
+
+def test_a_cause_of_missing_terms_says_the_terms_said_missing():
+    r"""An element read back with a term too much in the source equations (the frame's entry
+    lacking it: the same difference said in two frames) gets the cause of its first term
+    kind, a term missing; that cause says the term as missing ("lacks"), never the read-back's
+    "has too much" beside "a term the document leaves out"."""
+    from wheeled_dyn.compare.causes.root import term_causes
+    from wheeled_dyn.compare.records import Diagnosis, ElementRecord, Verdict
+    back = Diagnosis(K.EXTRA, "read back …: A[1,2]: the document has I*cos(theta)/l too much",
+                     "", terms=("I*cos(theta)/l",))
+    frame = Diagnosis(K.MISSING, "terms: the document lacks -I*cos(theta)/l", "",
+                      terms=("-I*cos(theta)/l",))
+    record = ElementRecord("A[1,2]", "A", (0, 1), Verdict.DIFFERS,
+                           (back, Diagnosis(K.MISSING, "missing: the document has 0"), frame),
+                           "0", "0", "-I*cos(theta)/l", "-I*cos(theta)/l", 1.0, 1.0)
+    (cause,) = term_causes([record], set())
+    assert cause.kind == "missing_physics"
+    assert cause.explanation.endswith("A[1,2] lacks -I*cos(theta)/l"), cause.explanation

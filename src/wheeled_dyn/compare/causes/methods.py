@@ -261,18 +261,19 @@ def method_causes(ev: Evaluation, d, records: Sequence) -> list[Cause]:
 TERMS_SAID = 3
 
 
-def terms_said(records: Sequence) -> str:
+def terms_said(records: Sequence, kinds: tuple = (K.MISSING, K.EXTRA)) -> str:
     r"""The terms the records name as lacking or too much (a centripetal term dropped from a
     C otherwise right: "; h[2]:dtheta*dtheta lacks -m2*r"; one entry read back before the
     equations were solved, said once for every element it reaches), or ``""`` where none
     names one or there are more than :data:`TERMS_SAID` (a cause of missing or extra
     terms, or of a C not derived from A, says them). A record that names none is passed
     over (a C element whose truth carries more than the product named in h: the h element
-    says the term)."""
+    says the term). ``kinds``: the diagnoses read (a cause of missing terms reads only the
+    terms said missing: an entry read back in another frame may say the same difference as
+    a term too much there)."""
     by: dict = {}
     for r in records:
-        named = next((x for x in r.diagnoses if x.kind in (K.MISSING, K.EXTRA) and x.terms),
-                     None)
+        named = next((x for x in r.diagnoses if x.kind in kinds and x.terms), None)
         if named is not None:
             by.setdefault(named, []).append(r.element)
     if not by or len(by) > TERMS_SAID:

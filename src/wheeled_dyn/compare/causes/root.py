@@ -194,7 +194,8 @@ def term_causes(records: Sequence, explained: set[str],
                        and covered[e] in elements]
     by_element = {r.element: r for r in records}
     return [Cause(kind=kind, elements=tuple(elements), explanation=text + (
-                terms_said([by_element[e] for e in elements if e in by_element])
+                terms_said([by_element[e] for e in elements if e in by_element],
+                           (K.MISSING,) if kind == CauseKind.MISSING_PHYSICS else (K.EXTRA,))
                 if kind in (CauseKind.MISSING_PHYSICS, CauseKind.EXTRA_TERM) else ""))
             for (kind, text), elements in groups.items() if elements]
 
