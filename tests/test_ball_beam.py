@@ -72,3 +72,16 @@ def test_a_symbol_written_for_the_ball_inertia_is_said_in_the_files_symbols(tmp_
     said = " ".join(x.text for x in wrong.diagnoses)
     assert "the document writes m (of its 2*m) where the moment of inertia Iyy(ball)" in said
     assert "(J_b/R**2 in the document's symbols) fits" in said, said
+
+
+def test_the_moment_written_without_its_radius_is_no_formula_for_it(tmp_path):
+    r"""``J_b`` written where :math:`J_b/R^2` fits (the radius forgotten, as a ballbot's
+    Lauwers-form derivation may) is the moment itself with other lengths, not a formula for
+    it (as a uniform body's): it is said by its units, kg·m² beside kg, not as "a formula
+    for it (as for a uniform body)"."""
+    result = _compare(tmp_path, "(m + J_b)*ddr")
+    (wrong,) = [r for r in result.records if r.verdict != Verdict.AGREES]
+    assert wrong.element == "A[1,1]"
+    said = " ".join(x.text for x in wrong.diagnoses)
+    assert "formula" not in said and DiagnosisKind.DIMENSION in [x.kind for x in
+                                                                  wrong.diagnoses], said

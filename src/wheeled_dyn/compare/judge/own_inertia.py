@@ -197,14 +197,16 @@ def formula_reading(residual: np.ndarray, terms: Sequence[tuple[sp.Expr, np.ndar
     element's terms with their values (none 0 at a sample); ``sets`` the parameter set of
     each sample (None: no reading). A moment and lengths are the same at every state of a
     set, and so is a formula for it: a residual or a term that is not is none. The first
-    term and the largest part found, or None; never a term the residual is a multiple of."""
+    term and the largest part found, or None; never a term the residual is a multiple of,
+    nor one that is itself a moment times lengths (``Th_k`` written where ``Th_k/r**2``
+    fits: the moment, not a formula for it; its lengths are what is wrong)."""
     if sets is None or not _per_set(residual, sets):
         return None
     parts = sorted({sp.Rational(p, q) for q in range(1, FORMULA_PARTS + 1)
                     for p in range(1, q + 1)}, reverse=True)
     for term, values in terms:
-        if not _per_set(values, sets):
-            continue
+        if not _per_set(values, sets) or point_mass_fit(values, moments, lengths) is not None:
+            continue             # (the moment itself, with other lengths: no formula for it)
         ratio = residual / values
         if np.ptp(ratio) <= RATIO_TOL * np.abs(ratio).max():
             continue             # the term times a number: a factor (or moments a family
