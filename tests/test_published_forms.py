@@ -261,3 +261,13 @@ def test_the_cart_row_less_the_pole_row_names_the_error_in_its_frame(engine, tmp
     result = engine.compare(load_derivation(P.write(tmp_path, "pole", "combined", error)))
     assert result.equations[0].frame.startswith("= eq1 - 3*eq2*cos(theta)/(4*l)"), \
         result.equations[0].frame
+
+
+def test_a_form_solved_second_acceleration_first_names_each_equation_by_its_own(engine,
+                                                                                 tmp_path):
+    r"""Simulation code prints :math:`\ddot q_2 = \dots` first: its first equation is
+    q2's (its row of the document's A is q2's unit row), named so, whatever the order of the
+    positions; the second, q1's written with :math:`\ddot q_2` in it, keeps its place."""
+    result = engine.compare(load_derivation(P.write(tmp_path, "arm", "simulation", None)))
+    labels = [e.label for e in result.equations]
+    assert labels == ["equation 1 (q2)", "equation 2 (q1)"], labels

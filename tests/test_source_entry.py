@@ -247,3 +247,30 @@ def test_a_cause_of_missing_terms_says_the_terms_said_missing():
     (cause,) = term_causes([record], set())
     assert cause.kind == "missing_physics"
     assert cause.explanation.endswith("A[1,2] lacks -I*cos(theta)/l"), cause.explanation
+
+
+def test_an_input_sign_before_solving_is_one_cause(engine, tmp_path):
+    r"""The planar WIP (``data/published/wip_planar_x.toml``: the wheel torque T drives the
+    cart's equation as T/r and the body's as −T) solved for the accelerations with the
+    body's −T written +T before solving: one wrong entry of the source equations, B[2,1],
+    gives the document at every sample. Every solved element it reaches says it first, also
+    where a term of the solved expression reads as a sign of its own, so the report has one
+    sign cause naming them all, not a second for that term (a probe's ballbot, its motor's
+    sign in the tilt equation)."""
+    text = (DATA / "wip_planar_x.toml").read_text()
+    head = text[:text.index("[matrices]")]
+    eqs = [sp.sympify(e.replace("=", "-(", 1) + ")") for e in (
+        "(m + 2*m_w + 2*J_w/r**2)*ddx + m*l*cos(theta)*ddtheta - m*l*sin(theta)*dtheta**2 = T/r",
+        "m*l*cos(theta)*ddx + (I_b + m*l**2)*ddtheta - m*g*l*sin(theta) = T")]
+    ddx, ddtheta = sp.symbols("ddx ddtheta")
+    (sol,) = sp.solve(eqs, [ddx, ddtheta], dict=True)
+    path = tmp_path / "wip_solved.toml"
+    path.write_text(head + "[matrices]\nequations = [\n" + "".join(
+        f'  "{name} = {sp.sstr(sp.simplify(sol[acc]))}",\n'
+        for name, acc in (("ddx", ddx), ("ddtheta", ddtheta))) + "]\n")
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False
+    wrong = {r.element for r in result.records if r.verdict != "agrees"}
+    signs = [c for c in result.causes if c.kind == "sign"]
+    assert len(signs) == 1 and set(signs[0].elements) == wrong, (wrong, result.causes)
+    assert "B[2,1]" in signs[0].explanation

@@ -14,6 +14,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 import numpy as np
+import sympy as sp
 
 from ...derivations.schema import Derivation
 from ..judge.draft import ElementDraft
@@ -99,6 +100,7 @@ def equation_records(d: Derivation, decision, drafts: Sequence[ElementDraft],
         from .deciding import decide
         on_families = decide(d, funcs, grids[1])
     out = []
+    names = _named_by(d, funcs.exprs.get("A"))
     for i, e in enumerate(decision.equations):
         row = [r for r in drafts if r.row == i]
         verdict, diags = e.verdict, list(e.diagnoses)
@@ -128,13 +130,34 @@ def equation_records(d: Derivation, decision, drafts: Sequence[ElementDraft],
         diags += _reconcile(verdict, row, e.max_error)
         if solved is not None and verdict == Verdict.DIFFERS:
             diags.append(solved)
-        # an equation is named by its velocity where the velocities are no positions' rates
-        own = d.velocities[i] if d.coordinates.kind == "quasi" else d.positions[i]
+        own = names[i]
         out.append(EquationRecord(index=i, label=f"equation {i + 1} ({own})",
                                   verdict=verdict, diagnoses=tuple(diags),
                                   frame=texts[i].text or "the true equation",
                                   max_error=e.max_error, equation=label))
     return out
+
+
+def _named_by(d: Derivation, A) -> list[sp.Symbol]:
+    r"""The coordinate each equation is named by: the one it is solved for, its row of the
+    document's A that coordinate's unit row (``ddq2 = …`` printed first is q2's, whatever
+    the order of the positions); the others the coordinates left, in the order of the
+    positions (``ddq1 = (τ1 − d12 ddq2 − …)/d11`` after it is q1's). By the velocities where
+    they are no positions' rates."""
+    own = list(d.velocities if d.coordinates.kind == "quasi" else d.positions)
+    n = len(own)
+    names: list[sp.Symbol | None] = [None] * n
+    if A is not None and A.rows == n and A.cols == n:
+        for i in range(n):
+            ones = [j for j in range(n) if A[i, j] != 0]
+            if len(ones) == 1 and A[i, ones[0]] == 1 and own[ones[0]] not in names:
+                names[i] = own[ones[0]]
+    left = [x for x in own if x not in names]
+    for i in range(n):
+        if names[i] is None:
+            names[i] = own[i] if own[i] in left else left[0]
+            left.remove(names[i])
+    return [x for x in names if x is not None]
 
 
 __all__ = ["equation_records"]
