@@ -271,3 +271,17 @@ def test_a_form_solved_second_acceleration_first_names_each_equation_by_its_own(
     result = engine.compare(load_derivation(P.write(tmp_path, "arm", "simulation", None)))
     labels = [e.label for e in result.equations]
     assert labels == ["equation 1 (q2)", "equation 2 (q1)"], labels
+
+
+def test_a_tiny_combination_weight_is_said_as_the_number_it_is(engine, tmp_path):
+    r"""The elbow's equation plus 10⁻⁶ × the shoulder's (right): it agrees, and its frame is
+    said ``eq1/1000000 + eq2``, not ``eq1/(1000000*sin(q2)**2 + 1000000*cos(q2)**2)`` (the
+    weight's fit, where round-off leaves the constant weight varying by a part in 10⁹)."""
+    path = P.write(tmp_path, "arm", "equations", None)
+    (l1, r1), (l2, r2) = (e.split(" = ") for e in P.arm_forms()["equations"])
+    text = path.read_text()
+    path.write_text(text.replace(f"{l2} = {r2}", f"{l2} + ({l1})/1000000 = {r2} + ({r1})/1000000"))
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is True
+    assert result.equations[1].frame == "= eq1/1000000 + eq2 (eq k: the true equation k)", \
+        result.equations[1].frame

@@ -67,12 +67,13 @@ def read_back_said(d: Derivation, drafts: list[ElementDraft], rules: list[FrameR
         if combined else set()
     other = set() if entry is None else set(entry.other_frames(
         [None if f is None else f.weights for f in on_id]))
-    # solved rows: the inverted inertia read back wrong, or one wrong entry of the source
-    # equations (it alone gives the document at every sample), is said before each
-    # element's own names — those are what it became there (a term's sign in the solved
-    # row is the source's input sign)
-    read_back(drafts, shown | other, solved, varying | other, other,
-              varying if inverted is not None or entry is not None else set())
+    # rows whose weights vary (solved): one wrong entry of the source equations (it alone
+    # gives the document at every sample) is said in place of each element's own names —
+    # those are what it became there (a term's sign in a solved row is the source's input
+    # sign: one cause, not two); the inverted inertia read back wrong before them
+    alone = other | (varying if entry is not None else set())
+    read_back(drafts, shown | other, solved, varying | other, alone,
+              varying if inverted is not None else set())
     return solved
 
 

@@ -53,6 +53,8 @@ def weight_expression(values: np.ndarray, bases: Sequence[tuple[sp.Expr, np.ndar
     if found is None and np.abs(values).min() > 0:
         inverse = fit_sum(1.0 / values, bases)
         found = None if inverse is None else 1 / inverse
+    if found is not None and found.has(sp.sin, sp.cos):   # 10⁶(sin² + cos²) is 10⁶
+        found = sp.trigsimp(found)
     return found
 
 
