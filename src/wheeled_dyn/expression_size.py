@@ -97,4 +97,28 @@ def _generic(cls: type) -> bool:
     return _GENERIC[cls]
 
 
-__all__ = ["NODES_PER_OP", "atoms_of", "free_symbols_of", "node_count", "ops_over"]
+#: Largest multiple of an angle whose sine, cosine (or hyperbolic) is expanded into powers of
+#: the angle's own: sin 2θ = 2 sin θ cos θ, cos(q1 + q2); cosh 1000θ would be a polynomial of
+#: degree 1000 (seconds per term, then a recursion too deep).
+EXPANDED_MULTIPLE = 4
+_TRIG = (sp.sin, sp.cos, sp.tan, sp.cot, sp.sinh, sp.cosh, sp.tanh, sp.coth)
+
+
+def trig_expandable(expr: sp.Basic) -> bool:
+    r"""Whether every trigonometric or hyperbolic function in ``expr`` takes angles of at most
+    :data:`EXPANDED_MULTIPLE` times a symbol (each term of its argument)."""
+    for f in atoms_of(expr, *_TRIG):
+        for term in sp.Add.make_args(f.args[0]):
+            c = term.as_coeff_Mul()[0]
+            if c.is_Number and abs(c) > EXPANDED_MULTIPLE:
+                return False
+    return True
+
+
+def expand_trig_small(expr: sp.Basic) -> sp.Basic:
+    r"""``sp.expand_trig(expr)`` where :func:`trig_expandable`, else ``expr`` as it is."""
+    return sp.expand_trig(expr) if trig_expandable(expr) else expr
+
+
+__all__ = ["EXPANDED_MULTIPLE", "NODES_PER_OP", "atoms_of", "expand_trig_small",
+           "free_symbols_of", "node_count", "ops_over", "trig_expandable"]

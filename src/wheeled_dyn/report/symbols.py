@@ -33,6 +33,7 @@ from pathlib import Path
 import sympy as sp
 
 from ..disk_cache import DiskMemo
+from ..expression_size import expand_trig_small
 from ..sympy_text import parse
 
 #: Names written as Greek letters (lower case; a capitalised one is the capital letter).
@@ -249,7 +250,7 @@ def simplified(expr: sp.Expr) -> sp.Expr:
     :math:`\cos^2 = 1 - \sin^2`, common factors pulled out), when it has at most :data:`SIMPLIFY_LIMIT` operations."""
     if sp.count_ops(expr) > SIMPLIFY_LIMIT:
         return expr
-    expanded = sp.expand(sp.expand_trig(expr))
+    expanded = sp.expand(expand_trig_small(expr))
     pythagoras = {c ** 2: 1 - sp.sin(c.args[0]) ** 2 for c in expanded.atoms(sp.cos)}
     best = min([expr, expanded, sp.expand(expanded.xreplace(pythagoras))], key=sp.count_ops)
     return sp.factor_terms(best) if sp.count_ops(best) <= FACTOR_LIMIT else best

@@ -21,6 +21,7 @@ import sympy as sp
 
 from ...compiled import numpy_function
 from ...disk_cache import DiskMemo
+from ...expression_size import expand_trig_small
 from ...derivations.schema import Derivation
 from .diagnose import AGREE_TOL, agrees
 from ..grid.arrays import Arrays
@@ -82,7 +83,7 @@ RESIDUALS = DiskMemo("compare", "power", lambda: [Path(__file__)])
 def _residual_text(power: sp.Expr) -> str:
     r"""The power residual :math:`\nu^T h - \tfrac12\nu^T\dot A\nu` printed: expanded
     with the trigonometric identities, factorised when it is short."""
-    expr = sp.expand(sp.expand_trig(power))
+    expr = sp.expand(expand_trig_small(power))
     return sp.sstr(sp.factor(expr) if sp.count_ops(expr) <= FACTOR_LIMIT else expr)
 
 

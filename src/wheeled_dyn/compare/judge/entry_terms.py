@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 import sympy as sp
 
+from ...expression_size import expand_trig_small
 from ..records import Diagnosis, DiagnosisKind as K
 from .diagnose import nice_number, plausible_factor, value_diagnoses
 from .fitting import fit_factor, symbol_values
@@ -36,7 +37,7 @@ def _terms(expr: sp.Expr, trig: bool = False) -> dict[sp.Expr, sp.Expr]:
     r"""Coefficient (a number) of each monomial of ``expr`` (with sines and cosines of sums
     expanded: ``trig``)."""
     out: dict[sp.Expr, sp.Expr] = {}
-    for term in sp.Add.make_args(sp.expand(sp.expand_trig(expr) if trig else expr)):
+    for term in sp.Add.make_args(sp.expand(expand_trig_small(expr) if trig else expr)):
         c, m = term.as_coeff_Mul()
         out[m] = out.get(m, sp.Integer(0)) + c
     return {m: c for m, c in out.items() if c != 0}

@@ -10,6 +10,7 @@ from pathlib import Path
 import sympy as sp
 
 from ...disk_cache import DiskMemo
+from ...expression_size import expand_trig_small
 
 #: Residuals up to this many operations are expanded with trigonometric identities for display
 #: (larger ones, e.g. in seed 001 section 5's wheel-angle coordinates, are shown as they are).
@@ -80,7 +81,7 @@ def _residual_text(truth: sp.Expr, doc: sp.Expr, physical: bool, solved: bool = 
             return None
         residual = sp.factor(sp.cancel(residual))
     elif sp.count_ops(residual) <= TRIG_EXPAND_LIMIT:
-        residual = sp.expand(sp.expand_trig(residual))
+        residual = sp.expand(expand_trig_small(residual))
         residual = _pythagorean(residual)
     if not physical and (sp.count_ops(residual) > STANDARD_RESIDUAL_LIMIT or any(
             not p.exp.is_Integer for p in residual.atoms(sp.Pow))):
