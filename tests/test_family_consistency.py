@@ -99,6 +99,40 @@ def test_no_shipped_derivation_declares_a_family_against_its_own_symbols():
     assert not wrong, wrong
 
 
+A22 = "2*Iw2 + 2*m_C*L**2"
+
+
+def test_a_declared_family_that_relates_two_written_symbols_is_said_first(engine, tmp_path):
+    r"""A spurious term in the wheels' Iw3 − 2·Iw2 under a declared disc_wheels (a probe's
+    4(J − 2K)): it vanishes in every set drawn, so the file agrees as declared, but the first
+    cause says the family makes the two written symbols proportional and their difference
+    uncompared (it was silent, where a family that zeroes a symbol said so). Undeclared,
+    the term differs."""
+    spurious = f"{A22} + 4*(Iw3 - 2*Iw2)"
+    result = engine.compare(load_derivation(_file(tmp_path, A22, spurious, '["disc_wheels"]')))
+    assert result.equivalent is True, result.equations
+    first = result.causes[0]
+    assert first.kind == CauseKind.FILE_ERROR and "not compared" in first.explanation, \
+        result.causes
+    assert "the file declares disc_wheels, under which Iw2 = Iw3/2" in first.explanation, \
+        first.explanation
+    plain = engine.compare(load_derivation(_file(tmp_path, A22, spurious)))
+    assert plain.equivalent is not True
+
+
+def test_no_shipped_derivation_declares_a_family_relating_its_own_symbols():
+    from wheeled_dyn.compare.judge.consistency import related_families
+    wrong = {}
+    for group in ("seed001", "seed000", "seed002", "literature"):
+        for path in builtin_derivations(group):
+            d = load_derivation(path)
+            if d.n:
+                found = related_families(d, document_functions(d), declared(d), SEED)
+                if found:
+                    wrong[path.name] = [(name, [str(p) for p in pairs]) for name, pairs in found]
+    assert not wrong, wrong
+
+
 def test_declared_units_against_the_value_are_the_files_error(engine, tmp_path):
     r"""MX1 declared in kg·m² where its value MX(body) is kg·m (a first moment): the document
     is right as written (the comparison uses the value), so every verdict stands, and one

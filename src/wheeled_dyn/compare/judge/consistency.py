@@ -13,6 +13,9 @@ sign or factor, so the family explains nothing about it.
   (:func:`contradicted_families`): its terms in those symbols are never compared (they vanish
   in every parameter set drawn), which a cause says first; the verdicts under the
   declaration stand.
+- **Declared families** that make two written symbols proportional (:func:`related_families`:
+  :math:`I_x = I_y` under ``I1_eq_I2``, :math:`J = 2K` under ``disc_wheels``) leave a term in
+  their difference uncompared, whatever its sign or factor: said first the same way.
 - **Declared units** that contradict the link or joint parameters a symbol's value names (a
   moment of inertia in kg·m) are the file contradicting itself too (:func:`contradiction_causes`,
   :func:`~.units.contradicted_units`).
@@ -124,6 +127,43 @@ def consistent_cases(d: Derivation, funcs: DocumentFunctions, cases: Sequence[Sp
         d, written, free, _values(d, (*assumed.families, c), seed), seed))
 
 
+#: Relative spread within which a ratio of two symbols is one number in every set.
+RATIO_TOL = 1e-9
+#: Largest denominator of a ratio a family holds between two written symbols (J = 2K).
+RATIO_DENOMINATOR = 12
+
+
+def _ratio(a: sp.Symbol, b: sp.Symbol, sets: list[dict]) -> float | None:
+    r""":math:`a/b`, the same in every one of ``sets`` (within :data:`RATIO_TOL`), or None."""
+    ratios = [v[a] / v[b] for v in sets if v[b] != 0 and v[a] != 0]
+    if len(ratios) < len(sets) or not ratios or not np.all(np.isfinite(ratios)):
+        return None
+    r = float(ratios[0])
+    return r if all(abs(x - r) <= RATIO_TOL * abs(r) for x in ratios) else None
+
+
+def related(d: Derivation, written: set[sp.Symbol], without: Sequence[SpecialCase],
+            case: SpecialCase, seed: int) -> list[tuple[sp.Symbol, sp.Symbol, sp.Expr]]:
+    r"""The pairs of ``written`` symbols that ``case`` makes proportional by a simple fraction
+    (:math:`I_x = I_y` under ``I1_eq_I2``, :math:`J = 2K` under ``disc_wheels``) and that are
+    not so beside the families ``without``: ``(a, b, c)`` with :math:`a = c\,b`. A term in
+    :math:`a - c\,b` vanishes in every set drawn, whatever its sign or factor."""
+    if len(written) < 2:
+        return []
+    free, held = _values(d, without, seed), _values(d, (*without, case), seed)
+    symbols = [spec.symbol for spec in d.symbols.values() if spec.symbol in written]
+    out = []
+    for i, a in enumerate(symbols):
+        for b in symbols[i + 1:]:
+            r = _ratio(a, b, held)
+            if r is None or _ratio(a, b, free) is not None:
+                continue
+            c = sp.nsimplify(r, rational=True, tolerance=RATIO_TOL * abs(r))
+            if c.q <= RATIO_DENOMINATOR and abs(float(c) - r) <= RATIO_TOL * abs(r):
+                out.append((a, b, c))
+    return out
+
+
 def contradicted_families(d: Derivation, funcs: DocumentFunctions, assumed: Assumptions,
                           seed: int) -> list[tuple[str, list[sp.Symbol]]]:
     r"""The declared families that make a symbol the document writes vanish, with those
@@ -135,6 +175,23 @@ def contradicted_families(d: Derivation, funcs: DocumentFunctions, assumed: Assu
         gone = vanishing(d, written, others, case, seed)
         if gone:
             out.append((case.name, gone))
+    return out
+
+
+def related_families(d: Derivation, funcs: DocumentFunctions, assumed: Assumptions,
+                     seed: int) -> list[tuple[str, list[tuple[sp.Symbol, sp.Symbol, sp.Expr]]]]:
+    r"""The declared families that make two symbols the document writes proportional
+    (:func:`related`), with those pairs; none for the families that keep the URDF's own
+    structure or proportions (their relations are the robot's)."""
+    written = written_symbols(funcs)
+    out = []
+    for case in assumed.families:
+        if case.name.startswith("urdf_"):
+            continue
+        others = [c for c in assumed.families if c is not case]
+        pairs = related(d, written, others, case, seed)
+        if pairs:
+            out.append((case.name, pairs))
     return out
 
 
@@ -151,6 +208,14 @@ def contradiction_causes(d: Derivation, funcs: DocumentFunctions, assumed: Assum
             f"{'it' if len(gone) == 1 else 'them'}: its terms in {them} vanish in every "
             "parameter set and are not compared (declare the family only where the "
             "document's equations assume it)")))
+    for name, pairs in related_families(d, funcs, assumed, seed):
+        said = ", ".join(f"{a} = {sp.sstr(c * b)}" for a, b, c in pairs)
+        terms = ", ".join(sp.sstr(a - c * b) for a, b, c in pairs)
+        out.append(Cause(CauseKind.FILE_ERROR, (), (
+            f"the file declares {name}, under which {said}, but the document writes "
+            f"{'both' if len(pairs) == 1 else 'each'}: a term in {terms} vanishes in every "
+            "parameter set and is not compared, whatever its sign or factor (declare the "
+            "family only where the document's equations assume it)")))
     for name, value, declared, given in contradicted_units(d):
         out.append(Cause(CauseKind.FILE_ERROR, (), (
             f"the file declares {name} in {format_dim(declared)}, but its value {value} is "
@@ -159,5 +224,6 @@ def contradiction_causes(d: Derivation, funcs: DocumentFunctions, assumed: Assum
     return tuple(out)
 
 
-__all__ = ["ZERO", "consistent_cases", "contradicted_families", "contradiction_causes",
+__all__ = ["RATIO_DENOMINATOR", "RATIO_TOL", "ZERO", "consistent_cases",
+           "contradicted_families", "contradiction_causes", "related", "related_families",
            "vanishing", "written_symbols"]
