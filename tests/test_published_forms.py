@@ -285,3 +285,23 @@ def test_a_tiny_combination_weight_is_said_as_the_number_it_is(engine, tmp_path)
     assert result.equivalent is True
     assert result.equations[1].frame == "= eq1/1000000 + eq2 (eq k: the true equation k)", \
         result.equations[1].frame
+
+
+def test_symbols_without_units_group_by_the_parameters_they_name(engine, tmp_path):
+    r"""A file (or the Python API) that declares no units and maps a hanging arm's lengths as
+    ``lc2 = "-CZ(link2)"`` (a number times one link parameter): lc1 written for lc2 in the
+    elbow's own inertia is named "lc1 where lc2 fits" (it was "lacks lc2**2*m2; has
+    lc1**2*m2 too much", a term missing, since only a bare parameter call grouped symbols)."""
+    from wheeled_dyn.compare.sides.elements import swap_groups
+    path = tmp_path / "acrobot_no_units.toml"
+    text = (P.DATA / "acrobot_simulation.toml").read_text()
+    for name in ("lc1", "lc2", "l1"):
+        line = next(x for x in text.splitlines() if x.startswith(f"{name} ="))
+        text = text.replace(line, line.replace(', units = "m"', ""))
+    text = text.replace('l1 = { value = "l1" }', 'l1 = { value = "-origin_z(elbow)" }')
+    for name in ("acrobot.toml", "acrobot.urdf"):
+        (tmp_path / name).write_text((P.DATA / name).read_text())
+    path.write_text(text)
+    d = load_derivation(path)
+    lengths = next(g for g in swap_groups(d) if d.namespace["lc1"] in g)
+    assert {str(s) for s in lengths} >= {"lc1", "lc2", "l1"}, lengths

@@ -105,15 +105,26 @@ PARAMETER_KINDS = {"M": "mass", **{k: "first moment" for k in ("MX", "MY", "MZ")
                    **{k: "length" for k in (*PHYSICAL_NAMES[:3], *GEOMETRY_NAMES)}}
 
 
+#: The units of each kind of link parameter, as a file writes them (a symbol with its units
+#: declared groups with one whose value names a parameter of that kind).
+KIND_UNITS = {"mass": "kg", "first moment": "kg*m", "moment of inertia": "kg*m**2",
+              "length": "m"}
+
+
 def _kind(spec) -> str | None:
-    r"""A symbol's group for swaps: its units, else the kind of the one link parameter its
-    value calls (``M(cart)`` and ``M(pole)`` both masses: M written where m fits)."""
+    r"""A symbol's group for swaps: its units, else the units of the kind of the one link
+    parameter its value calls, times a number or not (``M(cart)`` and ``M(pole)`` both
+    masses: M written where m fits; ``-CZ(link1)`` and ``-CZ(link2)`` both lengths, as a
+    file that declares no units maps a hanging arm's lc1 and lc2)."""
     if spec.units:
         return spec.units.replace(" ", "")
     from sympy.core.function import AppliedUndef
     value = spec.value
+    if isinstance(value, sp.Mul):
+        coeff, value = value.as_coeff_Mul()
     if isinstance(value, AppliedUndef) and len(value.args) == 1:
-        return PARAMETER_KINDS.get(value.func.__name__)
+        kind = PARAMETER_KINDS.get(value.func.__name__)
+        return KIND_UNITS.get(kind, kind) if kind is not None else None
     return None
 
 
