@@ -100,6 +100,9 @@ THETA = {"positions": ["theta"], "configuration": {"theta": "theta"}}
     ("rod_pendulum", {"coordinates": THETA, "A": sp.Matrix([[sp.oo]])}, ["A[1,1]", "'oo'"]),
     ("rod_pendulum", {"coordinates": THETA, "A": sp.Matrix([[1, 0], [0, 1]])},
      ["A: shape", "expected 1×1"]),
+    ("rod_pendulum", {"coordinates": THETA, "equations": [sp.Eq(sp.Symbol("theta"),
+                                                                 sp.Symbol("theta"))]},
+     ["already evaluated to True", "left - right"]),      # not "'True' is a Python keyword"
 ])
 def test_api_bad_input_is_one_error(model, tables, words):
     with pytest.raises(WheeledDynError) as info:

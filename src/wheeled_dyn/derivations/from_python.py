@@ -79,6 +79,10 @@ def _matrix(M: Any, column: bool = False) -> list:
 def _equation(e: Any) -> str:
     if isinstance(e, str):
         return e
+    if isinstance(e, (bool, sp.logic.boolalg.BooleanAtom)):
+        raise ValueError(f"an equation SymPy already evaluated to {e} (sympy.Eq of identical "
+                         "sides, or with a NaN in one): pass its sides as an expression "
+                         "(left - right), or sympy.Eq(left, right, evaluate=False)")
     if isinstance(e, sp.Equality):
         return f"{_text(e.lhs)} = {_text(e.rhs)}"
     return f"{_text(e)} = 0"
