@@ -118,6 +118,17 @@ def test_matrix_cells():
     assert split_latex_matrix(r"\begin{pmatrix} 0 \\ 1 \end{pmatrix}") == [["0"], ["1"]]
 
 
+def test_a_matrix_as_sympy_prints_it():
+    r"""``sympy.latex(Matrix)`` prints ``\left[\begin{matrix} … \end{matrix}\right]``: read as a
+    bmatrix (it was "expected one \begin{bmatrix} …"), also after ``A =`` and transposed."""
+    theta = sympy.Symbol("theta")
+    M = sympy.Matrix([[sympy.sin(theta), 1], [0, sympy.cos(theta) ** 2]])
+    assert split_latex_matrix(sympy.latex(M)) == [
+        [r"\sin{\left(\theta \right)}", "1"], ["0", r"\cos^{2}{\left(\theta \right)}"]]
+    assert split_latex_matrix("A = " + sympy.latex(sympy.Matrix([[1, 2]])) + "^T") == \
+        [["1"], ["2"]]
+
+
 @pytest.mark.parametrize("latex, reason", [
     (r"\begin{bmatrix} a & b", "cannot read the LaTeX"),
     (r"a = \begin{bmatrix} a \end{bmatrix} + b", "expected one"),

@@ -22,12 +22,20 @@ _T_MARK = r"(?:T|\\top|\\intercal|\\(?:mathsf|mathrm|mathit|mathbf)\s*\{\s*T\s*\
 TRANSPOSE = re.compile(rf"\^\s*(?:{_T_MARK}|\{{\s*{_T_MARK}\s*\}})\s*")
 
 
+#: A ``matrix`` in delimiters, as ``sympy.latex`` prints one: ``\left[\begin{matrix} …
+#: \end{matrix}\right]`` (the delimiters dropped: a bmatrix or pmatrix).
+_OPEN = re.compile(r"\\left\s*(?:\[|\(|\\\{)\s*(?=\\begin\s*\{\s*matrix\s*\})")
+_CLOSE = re.compile(r"(\\end\s*\{\s*matrix\s*\})\s*\\right\s*(?:\]|\)|\\\})")
+
+
 def split_latex_matrix(source: str) -> list[list[str]]:
     r"""The cells (LaTeX text) of the one ``bmatrix``/``pmatrix`` in ``source``, row by row.
     Text before the matrix ending in ``=`` (its printed name, ``\mathbf{A} =``) is skipped;
     a matrix followed by a transpose (:data:`TRANSPOSE`: ``^T``, ``^{T}``, ``^\top``,
     ``^{\mathsf{T}}``) gives its columns as rows (a printed row vector ``[a & b]^T`` is the
-    column ``[[a], [b]]``); ``\tag{...}`` and a final ``\quad (35)`` are dropped."""
+    column ``[[a], [b]]``); ``\tag{...}`` and a final ``\quad (35)`` are dropped; a
+    ``matrix`` in ``\left[ … \right]`` (SymPy's printing) is read as a bmatrix."""
+    source = _CLOSE.sub(r"\1", _OPEN.sub("", source))
     nodes = drop_equation_number([n for n in content(parse_nodes(source)) if not (
         isinstance(n, LatexMacroNode) and n.macroname == TAG)])
     envs = [k for k, n in enumerate(nodes) if isinstance(n, LatexEnvironmentNode)]
