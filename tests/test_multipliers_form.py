@@ -109,6 +109,23 @@ def test_a_wrong_inertia_is_not_absorbed_into_the_combination(engine, tmp_path):
     assert "(2*I_m in the document's symbols)" in " ".join(a33.texts), a33.texts
 
 
+def test_a_term_too_much_is_said_before_a_factor_under_an_unstated_family(engine, tmp_path):
+    r"""The wheels' rows with the wheel's mass counted twice, :math:`I_w + m_w R^2` (a probe's
+    plant): it is "3 × the truth if the wheel is a uniform body", a family the document does
+    not state, and exactly :math:`m_w R^2` too much. The cause says the term, not the
+    factor (it said the factor)."""
+    rows = "[0, 0, 0, I_w, 0],\n        [0, 0, 0, 0, I_w]]"
+    text = (DATA / ROBOT).read_text()
+    assert rows in text
+    result = _compare(engine, tmp_path, ROBOT, rows, rows.replace("I_w", "I_w + m_w*R**2"))
+    assert result.equivalent is False
+    wrong = {r.element for r in result.records if r.verdict == Verdict.DIFFERS}
+    assert wrong == {"A[4,4]", "A[5,5]"}, wrong
+    cause = next(c for c in result.causes if "A[4,4]" in c.elements)
+    assert cause.kind == CauseKind.EXTRA_TERM and "R**2*m_w too much" in cause.explanation, \
+        result.causes
+
+
 def test_multiplier_terms_allow_any_mixing_of_the_multipliers():
     r"""An identity: a document whose multipliers are an invertible mixing M of the true ones
     (λ = M λ_doc), its equations a combination W of the true ones, has its multipliers'

@@ -126,9 +126,18 @@ def _term_kinds(diagnoses: Sequence) -> tuple:
     element says the swap first (a factor that is the ratio of two of the model's parameters:
     :func:`~..judge.element.judge`), and any term's diagnosis before the units where the
     element says it first (a term not divided as the rest of its row: its units follow; a
-    dropped inertia beside a length written as a number)."""
+    dropped inertia beside a length written as a number); a factor that holds only under a
+    family the document did not state (3 × the truth if a wheel is uniform) after the terms
+    the element names missing or too much (:math:`m_w R^2`)."""
     kinds = [x.kind for x in diagnoses]
     order = list(TERM_KINDS)
+    factor = first_of(diagnoses, K.FACTOR)
+    if factor is not None and factor.condition and any(
+            x.kind in (K.MISSING, K.EXTRA) and x.terms for x in diagnoses):
+        # a factor that holds only under a family the document did not state (3 × the truth
+        # if the wheel is uniform) after the exact terms missing or too much (m_w R²)
+        order.remove(next(t for t in order if t[0] == K.FACTOR))
+        order.append(next(t for t in TERM_KINDS if t[0] == K.FACTOR))
     if K.SWAP in kinds and K.FACTOR in kinds and kinds.index(K.SWAP) < kinds.index(K.FACTOR):
         swap = next(t for t in order if t[0] == K.SWAP)
         order.remove(swap)
