@@ -23,7 +23,8 @@ from ..judge.fitting import RATIO_TOL, bases, fit_factor
 from ..judge.units import DimensionChecker
 from ..judge.unsolved import read_back_explains
 from ..readings.describe import weight_expression
-from ..readings.frame_choice import choose, elements_of, score, solved_row
+from ..readings.frame_choice import (choose, consensus, elements_of, score, solved_row,
+                                     with_consensus)
 from ..readings.frames import Frame, FrameKind, FrameRule, candidate_rules, evaluate_rule
 from ..readings.variants import combination_variants
 from ..records import Cause, CauseKind, Diagnosis, DiagnosisKind, Verdict, diagnosis
@@ -104,6 +105,14 @@ def choose_frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], d
             frame = _always(i, rule, main, declared_scale)
         rules.append(rule)
         frames.append(frame)
+    value = consensus(rules) if d.row_scale is None else None
+    for i, rule in enumerate(rules):          # a tie read as the other rows are (Kane's −1)
+        better = rule if value is None or solved_row(main.doc, i) else \
+            with_consensus(i, rule, value, on)
+        evaluated = None if better == rule else evaluate_rule(
+            i, better, main.doc, main.truth, main.doc.B, main.B_true)
+        if evaluated is not None:
+            rules[i], frames[i] = better, evaluated
     for i in _shared_partners(rules):
         rules[i] = FrameRule(FrameKind.IDENTITY)
         frames[i] = _always(i, rules[i], main)

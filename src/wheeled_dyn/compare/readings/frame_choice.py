@@ -144,4 +144,30 @@ def _total(i: int, rule: FrameRule, grids: Sequence[tuple[Arrays, Arrays, np.nda
     return total
 
 
-__all__ = ["choose", "elements_of", "freedom", "score", "solved_row"]
+def consensus(rules: Sequence[FrameRule]) -> float | None:
+    r"""The constant factor more than half of the rows are read in, each paired with its own
+    true row (Kane's :math:`F_r + F_r^* = 0`: every row −1 × the true one), or None."""
+    values = [round(r.value, 9) for i, r in enumerate(rules)       # 1 − 2e-16 is 1
+              if r.kind == FrameKind.CONSTANT and r.partner == i and r.value is not None]
+    if not values:
+        return None
+    best = max(set(values), key=values.count)
+    return best if 2 * values.count(best) > len(rules) else None
+
+
+def with_consensus(i: int, rule: FrameRule, value: float,
+                   grids: Sequence[tuple[Arrays, Arrays, np.ndarray | None]]) -> FrameRule:
+    r"""Row ``i``'s ``rule``, or the constant ``value`` the other rows are read in where it
+    explains as many of the row's elements (a tie: one term's sign in a two-element row of
+    Kane's form agrees as printed with its other element's sign wrong, or in −1 with the
+    term's; read as the rest of the document is, the sign is the term's, and the inertia the
+    document inverts stays positive)."""
+    if rule.kind not in (FrameKind.IDENTITY, FrameKind.CONSTANT) or \
+            rule.value is not None and round(rule.value, 9) == value:
+        return rule
+    other = FrameRule(FrameKind.CONSTANT, partner=i, value=value)
+    return choose(i, [other, rule], grids, False)
+
+
+__all__ = ["choose", "consensus", "elements_of", "freedom", "score", "solved_row",
+           "with_consensus"]
