@@ -105,14 +105,8 @@ def choose_frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], d
             frame = _always(i, rule, main, declared_scale)
         rules.append(rule)
         frames.append(frame)
-    value = consensus(rules) if d.row_scale is None else None
-    for i, rule in enumerate(rules):          # a tie read as the other rows are (Kane's −1)
-        better = rule if value is None or solved_row(main.doc, i) else \
-            with_consensus(i, rule, value, on)
-        evaluated = None if better == rule else evaluate_rule(
-            i, better, main.doc, main.truth, main.doc.B, main.B_true)
-        if evaluated is not None:
-            rules[i], frames[i] = better, evaluated
+    if d.row_scale is None:
+        _as_the_others(rules, frames, on, main)
     for i in _shared_partners(rules):
         rules[i] = FrameRule(FrameKind.IDENTITY)
         frames[i] = _always(i, rules[i], main)
@@ -180,6 +174,20 @@ def _next_ratio(i: int, rule: FrameRule, main: Sides, rows: np.ndarray,
             main.doc.A[:, i, i] / main.truth.need("A")[:, i, i], ratio, rtol=RATIO_TOL,
             atol=0.0))
     return after if own or weight_expression(ratio[rows], found) is not None else None
+
+
+def _as_the_others(rules: list[FrameRule], frames: list[Frame], on, main: Sides) -> None:
+    r"""Each row whose elements agree as well as chosen as in the constant most rows are read
+    in (:func:`~..readings.frame_choice.consensus`: Kane's −1) read in it, in place."""
+    value = consensus(rules)
+    if value is None:
+        return
+    for i, rule in enumerate(rules):
+        better = rule if solved_row(main.doc, i) else with_consensus(i, rule, value, on)
+        evaluated = None if better == rule else evaluate_rule(
+            i, better, main.doc, main.truth, main.doc.B, main.B_true)
+        if evaluated is not None:
+            rules[i], frames[i] = better, evaluated
 
 
 def _shared_partners(rules: Sequence[FrameRule]) -> list[int]:
