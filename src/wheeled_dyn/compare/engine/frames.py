@@ -105,8 +105,7 @@ def choose_frames(d: Derivation, funcs: DocumentFunctions, grids: list[Sides], d
             frame = _always(i, rule, main, declared_scale)
         rules.append(rule)
         frames.append(frame)
-    if d.row_scale is None:
-        _as_the_others(rules, frames, on, main)
+    _as_the_others(d, rules, frames, on, main)
     for i in _shared_partners(rules):
         rules[i] = FrameRule(FrameKind.IDENTITY)
         frames[i] = _always(i, rules[i], main)
@@ -176,10 +175,12 @@ def _next_ratio(i: int, rule: FrameRule, main: Sides, rows: np.ndarray,
     return after if own or weight_expression(ratio[rows], found) is not None else None
 
 
-def _as_the_others(rules: list[FrameRule], frames: list[Frame], on, main: Sides) -> None:
+def _as_the_others(d: Derivation, rules: list[FrameRule], frames: list[Frame], on,
+                   main: Sides) -> None:
     r"""Each row whose elements agree as well as chosen as in the constant most rows are read
-    in (:func:`~..readings.frame_choice.consensus`: Kane's −1) read in it, in place."""
-    value = consensus(rules)
+    in (:func:`~..readings.frame_choice.consensus`: Kane's −1) read in it, in place; none in
+    a file that declares its rows' scales (they are binding)."""
+    value = consensus(rules) if d.row_scale is None else None
     if value is None:
         return
     for i, rule in enumerate(rules):
