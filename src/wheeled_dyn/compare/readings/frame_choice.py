@@ -1,7 +1,9 @@
 r"""Which frame rule a row is explained in (:mod:`.frames`): each candidate scored by the
 number of the row's elements that agree under it beyond the weights it fits
 (:func:`freedom`), summed over the grids; the simplest on a tie; a declared factor kept; for
-an equation that is right, the simplest rule under which every element agrees."""
+an equation that is right, the simplest rule under which every element agrees. A row that
+scores as well in the constant most rows are read in (:func:`consensus`: Kane's −1) is read
+in it (:func:`with_consensus`)."""
 
 from __future__ import annotations
 
