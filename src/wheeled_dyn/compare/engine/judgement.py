@@ -115,7 +115,7 @@ def _row_drafts(d: Derivation, funcs: DocumentFunctions, sides: Sides, frames: l
     (``rules``: how each was found); per row the document's and the framed truth's
     :math:`\Gamma` (for C by its products)."""
     trials = Trials(funcs, sides.argv, sides.size, sides.truth.H_rows)
-    groups = swap_groups(d)
+    groups = swap_groups(d, sides.values)
     lost = set(d.missing)
     drafts: list[ElementDraft] = []
     gammas = {}
@@ -235,7 +235,7 @@ def judge_derivation(engine, d: Derivation, announce: bool = False) -> Judgement
                    own_moments([ps.values for ps in id_sides.grid.sets], ID_STATES),
                    geometric_symbols(d), d.positions, row_factors(rules, frames_on_id),
                    own_moments([ps.values for ps in id_sides.grid.sets], ID_STATES, True),
-                   ID_STATES, swap_groups(d))
+                   ID_STATES, swap_groups(d, id_sides.values))
     if decision is not None and not decision.equivalent and id_sides is not None \
             and id_sides.doc.A is not None:
         solved = read_back_said(d, drafts, rules, frames, frames_on_id, id_sides, found, combined,

@@ -44,7 +44,7 @@ def read_back_said(d: Derivation, drafts: list[ElementDraft], rules: list[FrameR
     than the row as printed, or was taken into the frame's weights) are named by it alone."""
     solved, entry, inverted = None, None, None
     lengths = length_bases(found, geometric_symbols(d), d.positions)
-    groups = swap_groups(d)
+    groups = swap_groups(d, id_sides.values)
     if combined:
         said = truths()
         inverted = inertia_diagnoses(id_sides, found, d.velocities, said, lengths, groups)

@@ -128,10 +128,19 @@ def _kind(spec) -> str | None:
     return None
 
 
-def swap_groups(d: Derivation) -> list[list[sp.Symbol]]:
+def swap_groups(d: Derivation, values: Mapping[sp.Symbol, Any] | None = None
+                ) -> list[list[sp.Symbol]]:
+    r"""The document's symbols that one may be written for another: its velocities, its
+    positions, and its symbols of one kind (:func:`_kind`) — but for a symbol 0 at every
+    sample of ``values`` (the grid's, where given): a term in it vanishes whatever it is
+    written for (b where a fits, b the centre of mass's offset a family keeps at 0, reads as
+    any term missing in a)."""
     by_kind: dict[str, list[sp.Symbol]] = {}
     for spec in d.symbols.values():
         kind = None if spec.is_input else _kind(spec)
+        held = None if values is None else values.get(spec.symbol)
+        if held is not None and not np.any(np.asarray(held)):
+            continue
         if kind is not None:
             by_kind.setdefault(kind, []).append(spec.symbol)
     return [list(d.velocities), list(d.positions), *[g for g in by_kind.values() if len(g) > 1]]
