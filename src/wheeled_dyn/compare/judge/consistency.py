@@ -38,7 +38,8 @@ import sympy as sp
 from ...derivations.schema import Derivation
 from ...expression_size import free_symbols_of
 from ..grid.assumptions import Assumptions
-from ..grid.samples import SpecialCase, parameter_sets
+from ..grid.samples import (ROUND_WHEELS, URDF_PROPORTIONS, URDF_STRUCTURE, SpecialCase,
+                            parameter_sets)
 from ..records import Cause, CauseKind
 from ..sides.document import DocumentFunctions, document_symbol_values
 from .units import contradicted_units, format_dim
@@ -127,6 +128,8 @@ def consistent_cases(d: Derivation, funcs: DocumentFunctions, cases: Sequence[Sp
         d, written, free, _values(d, (*assumed.families, c), seed), seed))
 
 
+#: The families whose relations between symbols are the robot's own or said elsewhere.
+OWN_RELATIONS = frozenset(c.name for c in (URDF_STRUCTURE, URDF_PROPORTIONS, ROUND_WHEELS))
 #: Relative spread within which a ratio of two symbols is one number in every set.
 RATIO_TOL = 1e-9
 #: Largest denominator of a ratio a family holds between two written symbols (J = 2K).
@@ -182,11 +185,13 @@ def related_families(d: Derivation, funcs: DocumentFunctions, assumed: Assumptio
                      seed: int) -> list[tuple[str, list[tuple[sp.Symbol, sp.Symbol, sp.Expr]]]]:
     r"""The declared families that make two symbols the document writes proportional
     (:func:`related`), with those pairs; none for the families that keep the URDF's own
-    structure or proportions (their relations are the robot's)."""
+    structure or proportions (their relations are the robot's), nor for ``round_wheels``
+    (a wheel's symbols of its asymmetry are said by
+    :func:`~..grid.round_wheels.round_contradiction`)."""
     written = written_symbols(funcs)
     out = []
     for case in assumed.families:
-        if case.name.startswith("urdf_"):
+        if case.name in OWN_RELATIONS:
             continue
         others = [c for c in assumed.families if c is not case]
         pairs = related(d, written, others, case, seed)
