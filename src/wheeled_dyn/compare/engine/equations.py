@@ -22,6 +22,7 @@ from ..readings.describe import FrameText
 from ..records import (Diagnosis, DiagnosisKind as K, EquationRecord, Verdict, diagnosis,
                        first_of)
 from ..sides.both import Sides
+from .assumed_values import assumed_text, nonzero_assumed
 
 
 def units_notes(drafts: Sequence[ElementDraft],
@@ -123,7 +124,6 @@ def equation_records(d: Derivation, decision, drafts: Sequence[ElementDraft],
             verdict = Verdict.AGREES_IF
             diags = [Diagnosis(K.CONDITION, f"agrees only if {text}", text, condition=text)]
         if i in owed and verdict != Verdict.UNDECIDED:
-            from .assumed_values import assumed_text, nonzero_assumed
             text = assumed_text(nonzero_assumed(d))
             verdict = Verdict.AGREES_IF
             diags = [Diagnosis(K.CONDITION, f"agrees only if {text}", text, condition=text)]

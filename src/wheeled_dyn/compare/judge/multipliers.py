@@ -62,25 +62,21 @@ def multiplier_terms(doc_L: np.ndarray, true_L: np.ndarray, W: np.ndarray) -> np
         off = np.abs(Y - fitted).max(axis=2) / np.maximum(np.maximum(scale, floor), 1e-300)
         return float(off.max(initial=0.0)), M
 
-    reference: list[np.ndarray] = []
+    # the mixing the document's own constraint rows give (G_doc = P G: M = Pᵀ)
+    reference = np.linalg.pinv(true_L[ok]) @ D
 
     def distance(M: np.ndarray) -> float:
-        # the mixing the document's own constraint rows give (G_doc = P G: M = Pᵀ): among the
-        # subsets that fit, the one closest to it (leaving out either of two may fit)
-        if not reference:
-            reference.append(np.linalg.pinv(true_L[ok]) @ D)
-        return float(np.nanmean(np.abs(M - reference[0])))
+        # among the subsets that fit, the one closest to it (leaving out either of two may fit)
+        return float(np.nanmean(np.abs(M - reference)))
 
     best = fit(())
-    distance(best[1])
-    mixed_so = true_L[ok] @ reference[0]
-    if best[0] > AGREE_TOL and float(np.abs(mixed_so - D).max(initial=0.0)) <= \
+    if best[0] > AGREE_TOL and float(np.abs(true_L[ok] @ reference - D).max(initial=0.0)) <= \
             AGREE_TOL * max(float(np.abs(D).max(initial=0.0)), 1e-300):
         # the document's multiplier terms are the truth's mixed as its constraint rows mix
-        # them (G_doc = P G): that mixing, not one fitted on the equations' weights, where
-        # those do not all fit (more equations wrong than can be left out: a right one was
-        # blamed for the wrong ones' weights)
-        best = (0.0, reference[0])
+        # them: that mixing, not one fitted on the equations' weights, where those do not all
+        # fit (more equations wrong than can be left out: a right one was blamed for the
+        # wrong ones' weights)
+        best = (0.0, reference)
     for size in (1, 2):
         if best[0] <= AGREE_TOL or n - size < m:
             break

@@ -121,7 +121,7 @@ def _kind(spec) -> str | None:
     from sympy.core.function import AppliedUndef
     value = spec.value
     if isinstance(value, sp.Mul):
-        coeff, value = value.as_coeff_Mul()
+        value = value.as_coeff_Mul()[1]
     if isinstance(value, AppliedUndef) and len(value.args) == 1:
         kind = PARAMETER_KINDS.get(value.func.__name__)
         return KIND_UNITS.get(kind, kind) if kind is not None else None
