@@ -73,8 +73,8 @@ def _real(value: object) -> bool:
 
 
 #: The tables :func:`compare` takes (as a derivation file has them).
-TABLES = ("coordinates", "symbols", "inputs", "A", "C", "Q", "B", "G", "equations", "assumes",
-          "title", "source")
+TABLES = ("coordinates", "symbols", "inputs", "A", "C", "Q", "B", "G", "equations",
+          "state_space", "assumes", "title", "source")
 #: The tables that hold expressions (checked for non-finite numbers).
 EXPRESSION_TABLES = ("A", "C", "Q", "B", "G", "equations")
 
@@ -102,10 +102,14 @@ def _finite_tables(tables: dict[str, Any], title: str) -> None:
     r"""Raise :class:`DerivationError` naming the element where an expression holds NaN or an
     infinity (SymPy's ``nan``, ``oo``, ``zoo``, or a float that is not finite)."""
     import sympy as sp
-    for key in EXPRESSION_TABLES:
-        if tables.get(key) is None:
+    given = [(key, tables.get(key)) for key in EXPRESSION_TABLES]
+    first_order = tables.get("state_space")
+    if isinstance(first_order, Mapping):
+        given += [(f"state_space.{k}", first_order.get(k)) for k in ("A", "B", "f")]
+    for key, value in given:
+        if value is None:
             continue
-        for label, entry in _entries(tables[key], key):
+        for label, entry in _entries(value, key):
             if isinstance(entry, str):
                 continue                        # text is parsed as a file's would be
             try:

@@ -32,6 +32,7 @@ from .schema import Derivation
 #: What each table of :func:`derivation_from_sympy` is given as, for its errors.
 EXPECTED: dict[str, str] = {
     "matrices": "SymPy matrices, nested lists of expressions, or sympy.Eq equations",
+    "state_space": "a mapping as [state_space] of a file (state, A and B or f, inputs)",
     "symbols": "a mapping of names to model values (str, SymPy) or tables",
     "inputs": "a mapping of model inputs to expressions",
     "coordinates": "a coordinate set's name or a mapping as [coordinates] of a file",
@@ -111,6 +112,7 @@ def derivation_data(model: str | Path, *, coordinates: str | Mapping[str, Any],
                     inputs: Mapping[str, Any] | None = None,
                     A: Any = None, C: Any = None, Q: Any = None, B: Any = None,
                     G: Any = None, equations: Sequence[Any] | None = None,
+                    state_space: Mapping[str, Any] | None = None,
                     assumes: Mapping[str, Any] | None = None,
                     title: str = "derivation from Python",
                     source: Mapping[str, str] | None = None) -> dict[str, Any]:
@@ -146,8 +148,28 @@ def derivation_data(model: str | Path, *, coordinates: str | Mapping[str, Any],
                 matrices[key] = _matrix(M)
         if Q is not None:
             matrices["Q"] = _matrix(Q, column=True)
-    data["matrices"] = matrices
+    if matrices:
+        data["matrices"] = matrices
+    with _table("state_space"):
+        if state_space is not None:
+            data["state_space"] = _first_order(state_space)
     return data
+
+
+def _first_order(table: Mapping[str, Any]) -> dict[str, Any]:
+    r"""``[state_space]`` as a file writes it: the state and the inputs as names, A and B as
+    matrices, f as a vector (other keys passed on, for the loader to name)."""
+    out: dict[str, Any] = {}
+    for key, value in dict(table).items():
+        if key in ("state", "inputs"):
+            out[key] = [v if isinstance(v, str) else _text(v) for v in value]
+        elif key in ("A", "B"):
+            out[key] = _matrix(value)
+        elif key == "f":
+            out[key] = _matrix(value, column=True)
+        else:
+            out[key] = value
+    return out
 
 
 def derivation_from_sympy(model: str | Path, **tables: Any) -> Derivation:
@@ -158,13 +180,15 @@ def derivation_from_sympy(model: str | Path, **tables: Any) -> Derivation:
     the model (``"m_S"``, ``"MX(body)"``) or a table ``{value, units, meaning}``; ``inputs``:
     model input → expression in the document's inputs (undeclared input symbols are declared);
     ``A``, ``C``, ``Q``, ``B``, ``G`` (SymPy matrices or nested lists) or ``equations``
-    (``sympy.Eq`` or expressions equal to 0); ``assumes``, ``title``, ``source`` as in a file.
+    (``sympy.Eq`` or expressions equal to 0) or ``state_space`` (a mapping as
+    ``[state_space]`` of a file: ``state``, ``A`` and ``B`` or ``f``, ``inputs``); ``assumes``, ``title``, ``source`` as in a file.
     Raises the errors a file would, naming ``<python: title>``."""
     title = str(tables.get("title", "derivation from Python"))
     name = f"<python: {title if len(title) <= 100 else title[:99] + '…'}>"   # a path's name
-    if not any(tables.get(k) is not None for k in ("A", "C", "Q", "B", "G", "equations")):
-        raise DerivationError(Path(name), "matrices", "nothing to compare: give A, C, Q, B, G "
-                              "or equations")
+    if not any(tables.get(k) is not None
+               for k in ("A", "C", "Q", "B", "G", "equations", "state_space")):
+        raise DerivationError(Path(name), "matrices", "nothing to compare: give A, C, Q, B, G, "
+                              "equations or state_space")
     try:
         data = derivation_data(model, **tables)
     except _TableError as exc:

@@ -45,8 +45,12 @@ _EQUATION_LABEL = re.compile(r"^equation (\d+)$")
 class MatrixReader:
     r"""Reads the matrices of one file with the loader's namespace and error reporting."""
 
-    def __init__(self, loader: "_Loader", n: int, inputs: tuple[sympy.Symbol, ...]) -> None:
+    def __init__(self, loader: "_Loader", n: int, inputs: tuple[sympy.Symbol, ...],
+                 table: str = "matrices") -> None:
         self.ld = loader
+        self.table = table
+        #: what element labels start with (``state_space.`` outside ``[matrices]``)
+        self.prefix = "" if table == "matrices" else f"{table}."
         self.n = n
         self.inputs = inputs
         self.missing: list[str] = []
@@ -61,42 +65,43 @@ class MatrixReader:
             try:
                 return [[LatexSource(c) for c in row] for row in split_latex_matrix(raw)]
             except ExpressionError as exc:
-                raise self.ld.fail(key, exc.reason, self.ld.line("matrices", key)) from exc
+                raise self.ld.fail(key, exc.reason, self.ld.line(self.table, key)) from exc
         if isinstance(raw, str):
             try:
                 return split_nested(raw)
             except ExpressionError as exc:
-                raise self.ld.fail(key, exc.reason, self.ld.line("matrices", key)) from exc
+                raise self.ld.fail(key, exc.reason, self.ld.line(self.table, key)) from exc
         if isinstance(raw, list):
             return [self._nested(key, r, top=False) for r in raw]
         if isinstance(raw, (int, float)) and not isinstance(raw, bool):
             return str(raw)
         raise self.ld.fail(key, f"expected a matrix (text or array), got {raw!r}",
-                           self.ld.line("matrices", key))
+                           self.ld.line(self.table, key))
 
     def _element(self, key: str, label: str, text: Any) -> sympy.Expr:
         if not isinstance(text, str):
             raise self.ld.fail(label, "expected an element, got a list",
-                               self.ld.line("matrices", key))
+                               self.ld.line(self.table, key))
         if text.strip() == MISSING_ELEMENT:
             self.missing.append(label)
             return sympy.nan
-        value = self.ld.expr(text, label, "matrices", key)
+        value = self.ld.expr(text, label, self.table, key)
         accelerations = sorted(str(s) for s in value.free_symbols
                                if self.ld.kinds.get(str(s)) == "acceleration")
         if accelerations:
             raise self.ld.fail(label, f"holds the acceleration {accelerations[0]}: the "
                                "matrices A, C, Q, B (Gamma) and G hold positions and "
                                "velocities only (the accelerations are what A multiplies)",
-                               self.ld.line("matrices", key, accelerations[0]))
+                               self.ld.line(self.table, key, accelerations[0]))
         return value
 
     def _shape_error(self, key: str, got: str, rows: int | None, cols: int) -> Exception:
         expected = f"{rows if rows is not None else 'm'}×{cols}"
         names = ", ".join(name for name, kind in self.ld.kinds.items() if kind == "position")
-        return self.ld.fail(key, f"shape {got}, expected {expected} (n = {self.n} positions: "
-                            f"{names}; k = {len(self.inputs)} inputs)",
-                            self.ld.line("matrices", key))
+        what = f"n = {self.n} positions: {names}" if not self.prefix else \
+            f"{self.n} entries of the state"
+        return self.ld.fail(self.prefix + key, f"shape {got}, expected {expected} ({what}; "
+                            f"k = {len(self.inputs)} inputs)", self.ld.line(self.table, key))
 
     def grid(self, key: str, raw: Any, rows: int | None, cols: int,
              vector: bool = False) -> sympy.ImmutableMatrix:
@@ -112,8 +117,8 @@ class MatrixReader:
             if len(nested) != rows or any(not isinstance(r, list) or len(r) != 1
                                           for r in nested):
                 raise self._shape_error(key, f"{len(nested)} entries", rows, cols)
-            return sympy.ImmutableMatrix([[self._element(key, f"{key}[{i + 1}]", r[0])]
-                                          for i, r in enumerate(nested)])
+            return sympy.ImmutableMatrix([[self._element(key, f"{self.prefix}{key}[{i + 1}]",
+                                                         r[0])] for i, r in enumerate(nested)])
         if flat:
             if cols == 1 and len(nested) == rows:
                 nested = [[x] for x in nested]
@@ -127,9 +132,9 @@ class MatrixReader:
         for i, row in enumerate(nested):
             if not isinstance(row, list) or len(row) != cols:
                 got = len(row) if isinstance(row, list) else 1
-                raise self.ld.fail(f"{key}[{i + 1},:]", f"row {i + 1} has {got} elements, "
-                                   f"expected {cols}", self.ld.line("matrices", key))
-            out.append([self._element(key, f"{key}[{i + 1},{j + 1}]", x)
+                raise self.ld.fail(f"{self.prefix}{key}[{i + 1},:]", f"row {i + 1} has {got} "
+                                   f"elements, expected {cols}", self.ld.line(self.table, key))
+            out.append([self._element(key, f"{self.prefix}{key}[{i + 1},{j + 1}]", x)
                         for j, x in enumerate(row)])
         return sympy.ImmutableMatrix(out)
 
@@ -226,11 +231,11 @@ class MatrixReader:
             found = sorted(e.free_symbols & set(self.inputs), key=str)
             if found:
                 i, j = divmod(idx, M.cols)
-                where = f"{key}[{i + 1}]" if M.cols == 1 and key == "Q" else \
-                    f"{key}[{i + 1},{j + 1}]"
+                where = self.prefix + (f"{key}[{i + 1}]" if M.cols == 1 and key == "Q" else
+                                       f"{key}[{i + 1},{j + 1}]")
                 raise self.ld.fail(where, f"the input {found[0]} in {key}: inputs enter "
                                    "through B (or an equation's right side), A C Q G hold "
-                                   "none", self.ld.line("matrices", key))
+                                   "none", self.ld.line(self.table, key))
 
     def _input_matrix(self, gamma: sympy.ImmutableMatrix) -> sympy.ImmutableMatrix:
         B = gamma.jacobian(sympy.Matrix(self.inputs))

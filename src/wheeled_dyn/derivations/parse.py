@@ -41,12 +41,13 @@ from .loader import _Loader
 from .matrices import MatrixReader
 from .schema import Derivation
 from .source import read_toml
+from .state_space import StateSpace, read_state_space
 from .steps import read_steps
 
 TOP_LEVEL_KEYS: tuple[str, ...] = ("title", "model", "source", "coordinates", "inputs",
                                    "symbols", "assume", "definitions", "rows", "matrices",
                                    "constraints", "reconstructed", "step", "feeds",
-                                   "assumes", "latex", "convention")
+                                   "assumes", "latex", "convention", "state_space")
 #: Values of the top-level ``convention``: ``"declared"`` (the default: the file's maps are
 #: how the document is read, binding) or ``"unknown"`` (the document's sign conventions are
 #: not known: a better reading found by the comparison is applied, and said first).
@@ -198,12 +199,17 @@ def load_derivation(path: str | Path, *, parameters: Collection[str] | None = No
     row_scale = _row_scale(ld, n)
 
     reader = MatrixReader(ld, n, input_symbols)
-    mtable = ld.table("matrices", required="step" not in data)   # a file of steps only
-    matrices = reader.read(mtable) if mtable else {}
+    assumes = _assumes(ld, positions)
+    first_order = _state_space(ld, positions, velocities, accelerations, input_symbols,
+                               assumes)
+    mtable = ld.table("matrices", required="step" not in data and first_order is None)
+    matrices = reader.read(mtable) if mtable else {}     # none: a file of steps only
+    if first_order is not None:
+        reader.equations = first_order.equations
+        reader.missing.extend(first_order.missing)
     constraints = _constraints(ld, reader)
     reconstructed = _reconstructed(ld, reader)
 
-    assumes = _assumes(ld, positions)
     # in the steps, the rate of each acceleration (``ddq`` for ``dq``): second-order relations
     # a document derives from its linearised equations (q'' + k q = 0)
     jerks = {f"d{a}": real_symbol(f"d{a}") for a in accelerations if f"d{a}" not in ld.names}
@@ -226,7 +232,27 @@ def load_derivation(path: str | Path, *, parameters: Collection[str] | None = No
                          ld.fail),
         jerks=tuple(jerks.values()),
         feeds=_feeds(ld), assumes=assumes,
-        latex_input=MappingProxyType(dict(ld.latex_input)), convention=convention)
+        latex_input=MappingProxyType(dict(ld.latex_input)), convention=convention,
+        state_space=first_order)
+
+
+def _state_space(ld: "_Loader", positions, velocities, accelerations, inputs, assumes
+                 ) -> StateSpace | None:
+    r"""``[state_space]`` (:mod:`.state_space`), or None; a file gives it or ``[matrices]``."""
+    table = ld.table("state_space")
+    if not table:
+        return None
+    if "matrices" in ld.data:
+        raise ld.fail("state_space", "give [state_space] or [matrices], not both",
+                      ld.line("state_space"))
+    if ld.table("coordinates").get("kind", "holonomic") != "holonomic" or \
+            len(velocities) != len(positions):
+        raise ld.fail("state_space", "a state-space form needs each velocity to be its "
+                      'position\'s rate ([coordinates] kind = "holonomic")',
+                      ld.line("state_space"))
+    point = assumes["linearised_about"] if "linearised_about" in ld.table("assumes") else None
+    return read_state_space(ld, table, tuple(zip(positions, velocities, accelerations)),
+                            inputs, point)
 
 
 def _feeds(ld: "_Loader") -> tuple[str, ...]:

@@ -27,6 +27,7 @@ import sympy
 
 from ..errors import DerivationError, UnknownNameError
 from .readoff import EquationTerms, split_equation_terms
+from .state_space import StateSpace
 
 
 @dataclass(frozen=True)
@@ -141,6 +142,10 @@ class Derivation:
     #: the rates of the accelerations (``ddq`` for ``dq``), names a step may use: a
     #: second-order relation derived from linearised equations
     jerks: tuple[sympy.Symbol, ...] = ()
+    #: what a ``[state_space]`` file says besides its equations
+    #: (:class:`~.state_space.StateSpace`: the rows stating a position's rate, checked on the
+    #: document alone; the row each equation is), None for other files
+    state_space: StateSpace | None = None
 
     @property
     def form(self) -> str:

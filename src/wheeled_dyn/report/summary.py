@@ -205,6 +205,8 @@ def equations_line(result: DerivationResult) -> str:
         parts.append(f"{e.label} {verdict}{frame}")
     if result.constraints_agree is False:
         parts.append("its constraints are not the model's rolling constraints")
+    if result.state_rates_agree is False:
+        parts.append("in its state-space form, " + "; ".join(result.state_rates))
     return f"{whole}: " + "; ".join(parts)
 
 

@@ -160,4 +160,18 @@ def _named_by(d: Derivation, A) -> list[sp.Symbol]:
     return [x for x in names if x is not None]
 
 
-__all__ = ["equation_records"]
+def state_rates(d: Derivation) -> tuple[tuple[str, ...], bool | None]:
+    r"""A state-space form's rows that state a position's rate (:mod:`...derivations.state_space`):
+    the wrong ones as the reports say them (``"state row 1 (the rate of x) is 2*dx where the
+    state's velocity dx fits"``), and whether every row is its position's velocity (None: the
+    file has none, or one holds a place the text lost and none is wrong)."""
+    rates = () if d.state_space is None else d.state_space.rates
+    if not rates:
+        return (), None
+    wrong = tuple(f"{r.label} is {r.written} where the state's velocity {r.velocity} fits"
+                  for r in rates if r.agrees is False)
+    agree = False if wrong else (None if any(r.agrees is None for r in rates) else True)
+    return wrong, agree
+
+
+__all__ = ["equation_records", "state_rates"]

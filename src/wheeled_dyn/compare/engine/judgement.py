@@ -44,7 +44,7 @@ from ..sides.elements import swap_groups
 from ..sides.evaluation import Evaluation
 from ..sides.framed import framed, row_of, row_scale
 from .assumed_values import assumed_cause, owed_equations
-from .equations import equation_records, units_notes
+from .equations import equation_records, state_rates, units_notes
 from .printing import corrected, document_truth, print_drafts
 from .constraint_factors import lost_constraints
 from .deciding import decide
@@ -293,7 +293,8 @@ def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed
         functions = constants = (None,) * d.n
     notes = list(sides.notes) + [f"{e} was lost in the extracted text: not compared"
                                  for e in d.missing] + _held(grid.cs) + _off_ground(grid) \
-        + _uniform_read(grid, assumed) + units_notes(drafts, assumed.linearised_about)
+        + _uniform_read(grid, assumed) + units_notes(drafts, assumed.linearised_about) \
+        + ([] if d.state_space is None else [d.state_space.note()])
     result = DerivationResult(
         path=d.path, title=d.title, model=d.model, source=dict(d.source),
         coordinates=grid.cs.name, velocities=tuple(str(v) for v in d.velocities),
@@ -319,6 +320,11 @@ def _judgement(d, funcs, sides, drafts, equations, texts, rules, frames, assumed
         causes.append(Cause(CauseKind.NOT_EQUIVALENT, (), "the document's constraints are "
                             "not the model's rolling constraints: " + "; ".join(wrong)))
     result = replace(result, constraints_agree=None if wrong is None else not wrong)
+    rates, rates_agree = state_rates(d)
+    if rates:
+        causes.append(Cause(CauseKind.NOT_EQUIVALENT, (), "the state-space form's rates of "
+                            "the positions are not their velocities: " + "; ".join(rates)))
+    result = replace(result, state_rates=rates, state_rates_agree=rates_agree)
     varying = frozenset(i for i, f in enumerate(frames) if not constant_weights(f.weights))
     return Judgement(result, ev, tuple(causes), sides, funcs, varying)
 

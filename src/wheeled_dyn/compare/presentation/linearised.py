@@ -23,15 +23,7 @@ from collections.abc import Mapping, Sequence
 
 import sympy as sp
 
-
-def point_value(x: float) -> sp.Expr:
-    r"""A linearisation point's coordinate as an exact number: a rational multiple of
-    :math:`\pi` where the float is one to its last digit (``3.141592653589793`` as
-    :math:`\pi`, so :math:`\cos\pi = -1` in the truth shown), else the rational it is."""
-    near = sp.nsimplify(x, [sp.pi], tolerance=1e-15)
-    if near.has(sp.pi) and near.is_number and float(near) == x:
-        return near
-    return sp.nsimplify(x, rational=True)
+from ...derivations.state_space import point_value
 
 
 def linearised_truth(truth: Mapping[str, sp.Expr], positions: Sequence[sp.Symbol],

@@ -213,6 +213,10 @@ class DerivationResult:
     constraints_agree: bool | None = None
     #: what the model reads otherwise than its URDF writes (:mod:`wheeled_dyn.models.readings`)
     model_readings: tuple[str, ...] = field(default=())
+    #: a state-space form's rows whose rate of a position is not its velocity, as the reports
+    #: say them, and whether every such row is the velocity (None where the file has none)
+    state_rates: tuple[str, ...] = field(default=())
+    state_rates_agree: bool | None = None
 
     @property
     def equivalent(self) -> bool | None:
@@ -222,8 +226,8 @@ class DerivationResult:
         that differs makes the system wrong, whatever the others)."""
         if not self.equations:
             return None
-        if self.constraints_agree is False:         # whatever the equations: not the motions
-            return False
+        if self.constraints_agree is False or self.state_rates_agree is False:
+            return False                            # whatever the equations: not the motions
         if any(e.verdict == Verdict.DIFFERS for e in self.equations):
             return False
         if any(e.verdict == Verdict.UNDECIDED for e in self.equations):
@@ -270,6 +274,8 @@ class DerivationResult:
                 "equations": [e.as_dict() for e in self.equations],
                 "equivalent": self.equivalent,
                 "constraints_agree": self.constraints_agree,
+                "state_rates": list(self.state_rates),
+                "state_rates_agree": self.state_rates_agree,
                 "truth_in_document": self.truth_in_document,
                 "energy": self.energy.as_dict() if self.energy else None,
                 "asymmetric": list(self.asymmetric), "constraints": list(self.constraints),
