@@ -293,6 +293,36 @@ def test_a_contradicted_row_scale_leaves_the_power_identity_to_the_other_rows(en
     assert result.energy is not None and not result.energy.conserves, result.energy
 
 
+#: The double pendulum's two equations, as the file prints them.
+FIRST = ("(J1 + m2*L1**2)*ddth1 + m2*L1*a2*cos(th1 - th2)*ddth2 + m2*L1*a2*sin(th1 - th2)*dth2**2"
+         " + m1*a1*g*sin(th1) + m2*L1*g*sin(th1) + k1*(th1 - r1) - k2*(th2 - th1 - r2) = T1 - T2")
+SECOND = ("m2*L1*a2*cos(th1 - th2)*ddth1 + (I2 + m2*a2**2)*ddth2 - m2*L1*a2*sin(th1 - th2)*"
+          "dth1**2 + m2*a2*g*sin(th2) + k2*(th2 - th1 - r2) = T2")
+
+
+@pytest.mark.parametrize("reordered", [False, True])
+def test_a_row_scale_declares_the_equation_of_its_position(engine, tmp_path, reordered):
+    r"""The double pendulum's second equation multiplied by 2: declared ``["1", "2"]`` in the
+    order of the positions it agrees; printed first and declared ``["2", "1"]`` in the
+    printed order, the declaration binds (equation 1 declared twice the true equation 1)
+    and its cause says what the equation is — the true equation 2 times 2 — and how the
+    scales are ordered."""
+    doubled = f"2*({SECOND.split(' = ')[0]}) = 2*T2"
+    rows = f'  "{doubled}",\n  "{FIRST}",' if reordered else f'  "{FIRST}",\n  "{doubled}",'
+    scale = '["2", "1"]' if reordered else '["1", "2"]'
+    path = published_copy(tmp_path, "double_pendulum", "double_pendulum_springs",
+                          (f'  "{FIRST}",\n  "{SECOND}",', rows),
+                          ("[matrices]", f'[rows]\nscale = {scale}\n\n[matrices]'))
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is (not reordered)
+    if not reordered:
+        return
+    (cause,) = [c for c in result.causes if c.kind == "file_error"
+                and "declares equation 1" in c.explanation]
+    assert "true equation 2 times 2" in cause.explanation
+    assert "in the order of the positions" in cause.explanation
+
+
 @pytest.mark.parametrize("declared", [False, True], ids=["undeclared", "declared-twice"])
 def test_a_term_error_in_a_row_that_contradicts_its_declared_scale_is_named(engine, tmp_path,
                                                                              declared):

@@ -241,6 +241,19 @@ def printed_factors(decision: SystemDecision, rows: Collection[int]) -> dict[int
     return out
 
 
+def _other_row(w: np.ndarray) -> tuple[str, int] | None:
+    r"""(its factor as text, the true equation j) where the weights ``w`` (samples × n) are a
+    factor times :math:`e_j` (a number where it is one): an equation printed as row j's."""
+    j = int(np.argmax(np.abs(w).max(axis=0)))
+    own, others = w[:, j], np.delete(w, j, axis=1)
+    if not np.isfinite(w).all() or np.abs(own).min() <= 0 or \
+            (others.size and np.abs(others).max() > 1e-9 * np.abs(own).max()):
+        return None
+    factor = float(np.median(own))
+    return (sp.sstr(sp.nsimplify(nice_number(factor))) if np.ptp(own) <= 1e-9 * abs(factor)
+            else "a factor"), j
+
+
 def bind_declared(d: Derivation, decision: SystemDecision, wrong: Collection[int]
                   ) -> SystemDecision:
     r"""``decision`` with each equation of ``wrong`` (right as printed, its declared row scale
@@ -251,8 +264,12 @@ def bind_declared(d: Derivation, decision: SystemDecision, wrong: Collection[int
     equations = list(decision.equations)
     for i, factor in printed_factors(decision, wrong).items():
         e = equations[i]
+        other = None if factor is not None else _other_row(e.w)
         actual = f"the true one times {sp.sstr(factor)}" if factor is not None else \
-            "another combination of the true ones"
+            "another combination of the true ones" if other is None else \
+            (f"true equation {other[1] + 1} times {other[0]} ([rows] scale declares "
+             "equation i a factor times the true equation i, of position i: equations "
+             "printed in another order are transcribed in the order of the positions)")
         text = (f"the file declares equation {i + 1} as the true one times "
                 f"{sp.sstr(d.row_scale[i])}, but as printed it is {actual}: read as declared "
                 "it differs (the equation as printed is right: the declaration is probably "
