@@ -87,3 +87,28 @@ def test_a_point_at_pi_is_shown_as_pi():
     assert sp.sympify(records["K[1,1]"].residual) == -3 * g / l
     assert sp.simplify(sp.sympify(records["Q[1]"].truth) + 3 * g * (theta - sp.pi) / (2 * l)) == 0
     assert "314159" not in records["Q[1]"].truth
+
+
+@pytest.mark.parametrize("error", [None, "sign", "dropped"])
+def test_velocity_products_a_linearised_document_keeps_are_compared_in_full(tmp_path, error):
+    r"""The cart-pole's nonlinear equations (Florian 2007, :mod:`published_forms`) declared
+    linearised about the upright pole: its one velocity product, the centripetal
+    m l θ̇² sin θ, vanishes at θ = 0 right or wrong. Written right, the file agrees; with its
+    sign reversed it differs, the product named with the sign; with the coupling m l cos θ ẍ
+    dropped from the pole's equation it differs in A (the control: an error the
+    linearisation sees itself)."""
+    import published_forms as P
+    from wheeled_dyn.compare.engine import ComparisonEngine
+    from wheeled_dyn.derivations import load_derivation
+    path = P.write(tmp_path, "pole", "equations", error)
+    path.write_text(path.read_text().replace(
+        "[assumes]\n", "[assumes]\nlinearised_about = { x = 0.0, theta = 0.0 }\n"))
+    result = ComparisonEngine(samples=200, param_sets=3, seed=2026).compare(
+        load_derivation(path))
+    assert result.equivalent is (error is None), [(r.element, r.texts) for r in result.records
+                                                  if r.verdict != Verdict.AGREES]
+    if error == "sign":
+        product = next(r for r in result.records if r.element == "h[1]:dtheta*dtheta")
+        assert product.verdict == Verdict.DIFFERS and K.SIGN in product.kinds
+        assert any(c.kind == "sign" and "h[1]:dtheta*dtheta" in c.elements
+                   for c in result.causes), result.causes

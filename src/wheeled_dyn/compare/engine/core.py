@@ -37,6 +37,7 @@ from ...derivations.schema import Derivation
 from ...errors import ArgumentError
 from ...models.registry import model_version
 from .conventions import convention_finding, unknown_convention
+from .kept_products import kept_products
 from .linear_point import point_finding
 from .sliding import sliding_wheels
 from .symbol_maps import symbol_map_finding
@@ -132,9 +133,13 @@ class ComparisonEngine:
         sliding = sliding_wheels(j.sides.grid.cs, j.sides.grid.sets[0].model)
         first += [sliding] if sliding is not None else []      # the map, before any reading
         self.stage(d, "readings")
-        point = point_finding(self, d, j) if not result.equivalent else None
+        kept = kept_products(self, d, j)
+        if kept is not None:                      # velocity products a linearisation hides
+            result = kept[0]
+            first.append(kept[1])
+        point = point_finding(self, d, j) if not j.result.equivalent else None
         first += [point] if point is not None else []
-        if applied is None and point is None and not result.equivalent and result.equations:
+        if applied is None and point is None and not j.result.equivalent and result.equations:
             finding = convention_finding(self, d, j)
             if finding is not None:
                 first.append(finding[0])

@@ -114,7 +114,8 @@ class Assumptions:
             f"the file declares its equations linearised about {point}, but they are not "
             f"linear in the deviations from it: {shown}; they are compared at that state "
             "only, to first order (a term of higher order there, its sign or its factor, is "
-            "not compared: declare the linearisation only for equations that are linear)")),)
+            "not compared, but for velocity products, compared with the true ones in full: "
+            "declare the linearisation only for equations that are linear)")),)
 
     def file_causes(self, d: Derivation, exprs: Mapping[str, sp.Basic | None]
                     ) -> tuple[Cause, ...]:
