@@ -121,3 +121,25 @@ def test_a_symbol_no_parameter_is_solved_from_reads_in_the_truths_symbols(engine
     J_w, R = sp.Symbol("J_w", real=True), sp.Symbol("R", real=True)
     residual = sp.sympify(records["A[1,1]"].residual, locals={"J_w": J_w, "R": R})
     assert sp.simplify(residual - 2 * J_w / R**2) == 0, residual
+
+
+def test_document_symbols_named_as_other_model_parameters_stay_apart(engine, tmp_path):
+    r"""The planar robot of ``examples/`` with its wheel radius named ``d`` (the model's
+    ``R``) and its axle-to-centre distance named ``R`` (the model's ``d``), the wheels' spin
+    inertia 2 J_w/d² dropped from A₁₁: truth − document is that term in the file's own
+    symbols, and the pitch inertia reads J_b + m_b R² — the names the file gives, never the
+    model's quantities of the same names (the truth was printed with one for the other)."""
+    import re
+    text = (Path(__file__).parents[1] / "examples" / "my_planar_robot.toml").read_text()
+    head, body = text.split("[symbols]")
+    body = re.sub(r"\br\b", "d", re.sub(r"\bl\b", "R", body))
+    body = body.replace(" + 2*J_w/d**2", "", 1)
+    path = tmp_path / "clash.toml"
+    path.write_text(head + "[symbols]" + body)
+    result = engine.compare(load_derivation(path))
+    records = {r.element: r for r in result.records}
+    names = {n: sp.Symbol(n, real=True) for n in ("J_w", "J_b", "m_b", "d", "R")}
+    residual = sp.sympify(records["A[1,1]"].residual, locals=names)
+    assert sp.simplify(residual - 2 * names["J_w"] / names["d"] ** 2) == 0, residual
+    truth = sp.sympify(records["A[2,2]"].truth, locals=names)
+    assert sp.simplify(truth - names["J_b"] - names["m_b"] * names["R"] ** 2) == 0, truth

@@ -136,8 +136,9 @@ def _in_document(d: Derivation, wm, truth: Mapping[str, sp.Expr],
     motion = {*d.positions, *d.velocities}
     exprs = {k: sp.sympify(v).xreplace(relations) for k, v in truth.items()}
     names = {str(x): x for x in motion}
-    unknowns = {u for e in exprs.values() for u in e.free_symbols if u.name not in names}
     document = {spec.symbol for spec in d.symbols.values()}
+    exprs, declared, relations = _apart(exprs, declared, relations, document, motion)
+    unknowns = {u for e in exprs.values() for u in e.free_symbols if u.name not in names}
     solution = parameter_solution(declared, document, unknowns, relations)
     if not solution:
         return None
@@ -156,6 +157,28 @@ def _in_document(d: Derivation, wm, truth: Mapping[str, sp.Expr],
         if back != symbol:
             unsolved[symbol] = back
     return InDocument(out, unsolved)
+
+
+def _apart(exprs: dict[str, sp.Expr], declared: Sequence[tuple[sp.Symbol, sp.Expr]],
+           relations: Mapping[sp.Symbol, sp.Expr], document: set[sp.Symbol],
+           motion: set[sp.Symbol]) -> tuple[dict[str, sp.Expr],
+                                              list[tuple[sp.Symbol, sp.Expr]],
+                                              dict[sp.Symbol, sp.Expr]]:
+    r"""The truth, the declarations' values and the relations with each model parameter that
+    has the name of a document symbol renamed ``<name>_model``: a document's ``L`` for the
+    model's ``d`` beside a ``D = 2 L`` of the model's ``L`` are two quantities, never one
+    (the truth was printed with one for the other)."""
+    taken = {s.name for s in document}
+    found = {u for e in (*exprs.values(), *(v for _, v in declared), *relations,
+                         *relations.values()) for u in sp.sympify(e).free_symbols
+             if u.name in taken and u not in motion}
+    if not found:
+        return exprs, list(declared), dict(relations)
+    fresh = {u: sp.Symbol(f"{u.name}_model", **u.assumptions0) for u in found}
+    return ({k: e.xreplace(fresh) for k, e in exprs.items()},
+            [(s, sp.sympify(v).xreplace(fresh)) for s, v in declared],
+            {sp.sympify(k).xreplace(fresh): sp.sympify(v).xreplace(fresh)
+             for k, v in relations.items()})
 
 
 @dataclass(frozen=True)
