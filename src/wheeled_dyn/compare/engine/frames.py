@@ -177,13 +177,15 @@ def _next_ratio(i: int, rule: FrameRule, main: Sides, rows: np.ndarray,
 
 def _as_the_others(d: Derivation, rules: list[FrameRule], frames: list[Frame], on,
                    main: Sides) -> None:
-    r"""Each row whose elements agree as well as chosen as in the constant most rows are read
-    in (:func:`~..readings.frame_choice.consensus`: Kane's −1) read in it, in place; none in
-    a file that declares its rows' scales (they are binding)."""
-    value = consensus(rules) if d.row_scale is None else None
-    if value is None:
+    r"""Each row whose elements agree as well as chosen as in the constant most other rows
+    are read in (:func:`~..readings.frame_choice.consensus`: Kane's −1) read in it, in place;
+    none in a file that declares its rows' scales (they are binding)."""
+    if d.row_scale is not None:
         return
-    for i, rule in enumerate(rules):
+    for i, rule in enumerate(list(rules)):
+        value = consensus(rules, without=i)
+        if value is None:
+            continue
         better = rule if solved_row(main.doc, i) else with_consensus(i, rule, value, on)
         evaluated = None if better == rule else evaluate_rule(
             i, better, main.doc, main.truth, main.doc.B, main.B_true)
@@ -232,26 +234,22 @@ def printed_factors(decision: SystemDecision, rows: Collection[int]) -> dict[int
     combination of the true ones."""
     out: dict[int, sp.Expr | None] = {}
     for i in rows:
-        w = decision.equations[i].w
-        others, own = np.delete(w, i, axis=1), w[:, i]
-        factor = float(np.median(own))
-        constant = (not others.size or np.abs(others).max() <= 1e-9 * np.abs(own).max()) \
-            and np.ptp(own) <= 1e-9 * abs(factor)
-        out[i] = sp.nsimplify(nice_number(factor)) if constant else None
+        found = _one_row(decision.equations[i].w)
+        out[i] = found[0] if found is not None and found[1] == i else None
     return out
 
 
-def _other_row(w: np.ndarray) -> tuple[str, int] | None:
-    r"""(its factor as text, the true equation j) where the weights ``w`` (samples × n) are a
-    factor times :math:`e_j` (a number where it is one): an equation printed as row j's."""
+def _one_row(w: np.ndarray) -> tuple[sp.Expr | None, int] | None:
+    r"""(the number or None where it varies, the true equation j) where the weights ``w``
+    (samples × n) are a factor times :math:`e_j`: an equation printed as row j's, scaled."""
     j = int(np.argmax(np.abs(w).max(axis=0)))
     own, others = w[:, j], np.delete(w, j, axis=1)
     if not np.isfinite(w).all() or np.abs(own).min() <= 0 or \
             (others.size and np.abs(others).max() > 1e-9 * np.abs(own).max()):
         return None
     factor = float(np.median(own))
-    return (sp.sstr(sp.nsimplify(nice_number(factor))) if np.ptp(own) <= 1e-9 * abs(factor)
-            else "a factor"), j
+    return (sp.nsimplify(nice_number(factor)) if np.ptp(own) <= 1e-9 * abs(factor)
+            else None), j
 
 
 def bind_declared(d: Derivation, decision: SystemDecision, wrong: Collection[int]
@@ -264,10 +262,11 @@ def bind_declared(d: Derivation, decision: SystemDecision, wrong: Collection[int
     equations = list(decision.equations)
     for i, factor in printed_factors(decision, wrong).items():
         e = equations[i]
-        other = None if factor is not None else _other_row(e.w)
+        other = None if factor is not None else _one_row(e.w)
         actual = f"the true one times {sp.sstr(factor)}" if factor is not None else \
             "another combination of the true ones" if other is None else \
-            (f"true equation {other[1] + 1} times {other[0]} ([rows] scale declares "
+            (f"true equation {other[1] + 1} times "
+             f"{'a factor' if other[0] is None else sp.sstr(other[0])} ([rows] scale declares "
              "equation i a factor times the true equation i, of position i: equations "
              "printed in another order are transcribed in the order of the positions)")
         text = (f"the file declares equation {i + 1} as the true one times "

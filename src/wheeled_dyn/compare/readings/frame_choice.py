@@ -146,15 +146,17 @@ def _total(i: int, rule: FrameRule, grids: Sequence[tuple[Arrays, Arrays, np.nda
     return total
 
 
-def consensus(rules: Sequence[FrameRule]) -> float | None:
+def consensus(rules: Sequence[FrameRule], without: int | None = None) -> float | None:
     r"""The constant factor more than half of the rows are read in, each paired with its own
-    true row (Kane's :math:`F_r + F_r^* = 0`: every row −1 × the true one), or None."""
-    values = [round(r.value, 9) for i, r in enumerate(rules)       # 1 − 2e-16 is 1
+    true row (Kane's :math:`F_r + F_r^* = 0`: every row −1 × the true one), or None; with
+    ``without``, of the rows but that one (a two-row document's other row)."""
+    kept = [(i, r) for i, r in enumerate(rules) if i != without]
+    values = [round(r.value, 9) for i, r in kept       # 1 − 2e-16 is 1
               if r.kind == FrameKind.CONSTANT and r.partner == i and r.value is not None]
     if not values:
         return None
     best = max(set(values), key=values.count)
-    return best if 2 * values.count(best) > len(rules) else None
+    return best if 2 * values.count(best) > len(kept) else None
 
 
 def with_consensus(i: int, rule: FrameRule, value: float,
