@@ -53,3 +53,20 @@ def test_products_of_inertia_left_out_are_a_condition(tmp_path, declared):
     assert Verdict.DIFFERS not in verdicts.values(), verdicts
     conditional = [r for r in result.records if r.verdict == Verdict.AGREES_IF]
     assert conditional and all(FAMILY in " ".join(r.texts) for r in conditional)
+
+
+
+def test_a_declared_family_zeroes_the_products_in_the_corrected_equation(tmp_path):
+    r"""The rotary pendulum (``data/published/furuta_products*``, ``furuta_principal``:
+    products of inertia in its URDF) in principal axes, declared, with the arm's Coriolis
+    term's sign planted wrong: the corrected equation reads in the document's symbols only
+    — no product of inertia about a joint's axes (``XZ_pendulum``...), which the family
+    makes −MX·MZ/M (zero about the centre) and the file names no symbol for."""
+    from shipped_copies import published_copy
+    path = published_copy(tmp_path, "furuta_products", "furuta_principal",
+                          ("*sin(2*al)*dth*dal", "*sin(2*al)*dth*dal*(-1)"))
+    result = ComparisonEngine(samples=200, param_sets=3, seed=SEED).compare(
+        load_derivation(path))
+    (wrong,) = [e for e in result.equations if e.verdict == Verdict.DIFFERS]
+    assert wrong.corrected, wrong
+    assert not any(f"{k}_" in wrong.corrected for k in ("XY", "XZ", "YZ")), wrong.corrected

@@ -63,13 +63,15 @@ class Trials:
         return [x[rows] if np.ndim(x) and len(x) == self.size else x for x in self.argv]
 
     def swapped(self, key: str, index: tuple[int, ...], a: sp.Symbol, b: sp.Symbol,
-                rows: np.ndarray | None = None) -> np.ndarray:
-        r"""The element with symbol ``a`` read as ``b`` (argument arrays permuted), at every
-        sample or at the samples ``rows``."""
+                rows: np.ndarray | None = None, both: bool = False) -> np.ndarray:
+        r"""The element with symbol ``a`` read as ``b`` (argument arrays permuted), and with
+        ``both`` ``b`` as ``a`` too, at every sample or at the samples ``rows``."""
         given = self.argv if rows is None else self.screened if rows is self.screen \
             else self.at(rows)
         trial = list(given)
         trial[self.position[a]] = given[self.position[b]]
+        if both:
+            trial[self.position[b]] = given[self.position[a]]
         out = np.broadcast_to(self.funcs.element_function(key, index)(*trial),
                               (self.size if rows is None else len(rows),))
         return out.astype(float)

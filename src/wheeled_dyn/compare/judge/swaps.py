@@ -28,10 +28,52 @@ def symbol_swaps(d: ElementDraft, trials, groups: Sequence[Sequence[sp.Symbol]]
     if d.expr is None:
         return []
     screen = trials.screen
-    return swap_diagnoses(
+    found = swap_diagnoses(
         d.expr, groups, lambda a, b: trials.swapped(d.key, d.index, a, b), d.T, d.scale,
         lambda a, b: agrees(trials.swapped(d.key, d.index, a, b, screen), d.T[screen],
                             d.scale))
+    return found or exchanges(d, trials, groups) or definition_swaps(d, trials)
+
+
+def definition_swaps(d: ElementDraft, trials) -> list[Diagnosis]:
+    r"""One of the file's ``[definitions]`` written where another fits (a document's
+    :math:`d_2` for its :math:`d_3`): the element is a definition's expression times a factor
+    free of its symbols, and the same factor times the other's agrees. Definitions of one
+    expression are named together (``M12 or M21``: the file's text is read expanded)."""
+    assert d.expr is not None, "an element as printed"
+    alike: dict[sp.Expr, list[str]] = {}
+    for name, e in trials.funcs.d.definitions.items():
+        alike.setdefault(sp.expand(e), []).append(name)
+    known, found = set(trials.funcs.args), []
+    for ea, a in alike.items():
+        ratio = sp.cancel(d.expr / ea) if ea != 0 else sp.Integer(0)
+        if ratio == 0 or sp.denom(ratio).free_symbols & ea.free_symbols:
+            continue
+        for eb, b in alike.items():
+            if eb != ea and (ratio * eb).free_symbols <= known and agrees(
+                    trials.evaluator(d.key)(ratio * eb), d.T, d.scale):
+                written, fits = " or ".join(a), " or ".join(b)
+                found.append(diagnosis(K.SWAP, f"{written} where {fits} fits",
+                                       written=written, fits=fits))
+    return found
+
+
+def exchanges(d: ElementDraft, trials, groups: Sequence[Sequence[sp.Symbol]]
+              ) -> list[Diagnosis]:
+    r"""Two symbols of a group the element writes, each where the other fits (:math:`J_{yy}`
+    and :math:`J_{zz}` exchanged in :math:`J_{yy}\cos^2\alpha + J_{zz}\sin^2\alpha`): the
+    element with both read so agrees."""
+    assert d.expr is not None, "an element as printed"
+    present, screen, found = d.expr.free_symbols, trials.screen, []
+    for group in groups:
+        for a, b in itertools.combinations([s for s in group if s in present], 2):
+            if agrees(trials.swapped(d.key, d.index, a, b, screen, True), d.T[screen],
+                      d.scale) and agrees(trials.swapped(d.key, d.index, a, b, None, True),
+                                          d.T, d.scale):
+                found.append(diagnosis(K.SWAP, f"{sp.sstr(a)} and {sp.sstr(b)} exchanged "
+                                       "(each written where the other fits)",
+                                       written=sp.sstr(a), fits=sp.sstr(b)))
+    return found
 
 
 def _one_factor_trials(expr: sp.Expr, groups: Sequence[Sequence[sp.Symbol]]):

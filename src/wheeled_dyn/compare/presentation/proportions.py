@@ -84,6 +84,14 @@ def equalities(wm: WheeledModel, families: Sequence[str]) -> dict[sp.Symbol, sp.
             body = wm.model.inertias[jid].toDynamicParameters()
             out.update({sp.Symbol(f"{k}_{symbols['M'].name[len('M_'):]}", real=True):
                         sp.Integer(0) for k, v in zip(PARAMETER_NAMES, body) if v == 0.0})
+    if "principal_axes" in families:     # IXY = 0 about the centre: XY = -MX MY / M ...
+        for link in _links(values):
+            if link in carried or not values.get(f"M({link})"):
+                continue
+            first_moment = {a: _symbol(f"M{a}", link) for a in "XYZ"}
+            for a, b in ("XY", "XZ", "YZ"):
+                out.setdefault(_symbol(a + b, link),
+                               -first_moment[a] * first_moment[b] / _symbol("M", link))
     for group in groups:
         first: dict[tuple[int, float], sp.Symbol] = {}
         for link in group:
