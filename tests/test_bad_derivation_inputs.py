@@ -357,3 +357,29 @@ def test_definitions_that_double_at_every_level(tmp_path, depth, refused):
         _clear(err.value, path, "nodes written out")
     else:
         assert load_derivation(path).equations
+
+
+@pytest.mark.parametrize("configuration, agrees", [('psi = "theta"', True),
+                                                   ('psi = "-theta"', False)])
+def test_a_configuration_and_velocity_map_that_contradict_each_other(tmp_path, configuration,
+                                                                     agrees):
+    r"""A quasi set whose heading rate ``dtheta`` maps to the model's ``dpsi``: with
+    ``psi = "theta"`` the two say the same; with ``psi = "-theta"`` the configuration makes
+    dpsi = −dtheta — one clear error naming the velocity (the file agreed where the
+    heading's angle enters no equation, whichever the document meant)."""
+    text = ('title = "heading rate"\nmodel = "wip"\n[coordinates]\nkind = "quasi"\n'
+            'positions = ["x", "theta"]\nvelocities = ["v", "dtheta"]\n'
+            'accelerations = ["dv", "ddtheta"]\n'
+            f'configuration = {{ x0 = "x", {configuration} }}\n'
+            'velocity_map = { v = "cos(psi)*dx0 + sin(psi)*dy0", dtheta = "dpsi" }\n'
+            '[matrices]\nequations = ["dv = 0", "ddtheta = 0"]\n')
+    path = tmp_path / "heading.toml"
+    path.write_text(text)
+    if agrees:
+        assert load_derivation(path).coordinates.velocity_map
+        return
+    with pytest.raises(DerivationError) as info:
+        load_derivation(path)
+    err = pickle.loads(pickle.dumps(info.value))
+    assert err.item == "coordinates.velocity_map.dtheta" and "-dtheta" in str(err)
+    assert "contradict" in str(err) and str(path) in str(err)

@@ -276,6 +276,64 @@ def _check_positions_used(path: Path, positions: tuple[str, ...],
                                   line)
 
 
+def _plain(e: sympy.Expr) -> sympy.Expr:
+    return e.xreplace({s: sympy.Symbol(s.name) for s in e.free_symbols})
+
+
+def _check_rates(path: Path, names: CoordinateNames, configuration: Mapping[str, sympy.Expr],
+                 velocity_map: Mapping[str, sympy.Expr], line: int | None) -> None:
+    r"""In a quasi set, a document velocity named as a position's rate (``dtheta`` of
+    ``theta``) whose map the configuration determines must be that rate: with
+    ``psi = "-theta"`` the configuration makes :math:`\dot\psi = -\dot\theta`, and
+    ``dtheta = "dpsi"`` says the opposite (a map whose terms the configuration does not fix,
+    a model velocity it leaves free or a parameter, is not checked)."""
+    rates = {p: sympy.Symbol(f"d{p}") for p in names.positions if f"d{p}" in names.velocities}
+    model: dict[str, sympy.Expr] = {}
+    for q, e in configuration.items():
+        e = _plain(e)
+        if all(s.name in rates for s in e.free_symbols):
+            model[q] = e
+            model[f"d{q}"] = sum((e.diff(s) * rates[s.name] for s in e.free_symbols),
+                                 sympy.Integer(0))
+    for p, rate in rates.items():
+        if rate.name not in velocity_map:
+            continue
+        mapped = _plain(velocity_map[rate.name])
+        if not all(s.name in model for s in mapped.free_symbols):
+            continue
+        given = mapped.xreplace({s: model[s.name] for s in mapped.free_symbols})
+        if sympy.simplify(given - rate) != 0:
+            raise DerivationError(path, f"coordinates.velocity_map.{rate.name}", (
+                f"{rate.name} = {sympy.sstr(mapped)} is {sympy.sstr(sympy.simplify(given))} "
+                f"by the configuration, not the rate of {p}: the configuration and the "
+                "velocity map contradict each other (give the one the document means)"), line)
+
+
+def _velocity_map(path: Path, names: CoordinateNames, raw: Mapping[str, str],
+                  line: int | None) -> dict[str, sympy.Expr]:
+    r"""``velocity_map``: every document velocity of a quasi set (none in another), each an
+    expression in the model's names."""
+    if names.kind == "quasi":
+        missing = [v for v in names.velocities if v not in raw]
+        if missing:
+            raise DerivationError(path, "coordinates.velocity_map", "a quasi-velocity set "
+                                  f"maps every document velocity; missing: {missing}", line)
+    elif raw:
+        raise DerivationError(path, "coordinates.velocity_map", "only for kind = \"quasi\"",
+                              line)
+    out: dict[str, sympy.Expr] = {}
+    for doc_name, text in raw.items():
+        item = f"coordinates.velocity_map.{doc_name}"
+        if doc_name not in names.velocities:
+            raise DerivationError(path, item, "not a document velocity; velocities: "
+                                  + ", ".join(names.velocities), line)
+        try:
+            out[doc_name] = parse_model_expression(text)
+        except ExpressionError as exc:
+            raise DerivationError(path, item, exc.reason, line) from exc
+    return out
+
+
 def coordinate_spec(path: Path, table: Mapping[str, Any], names: CoordinateNames,
                     parse_doc: Callable[[str, str, str], sympy.Expr],
                     line_of: Callable[[str | None], int | None]) -> CoordinateSpec:
@@ -308,24 +366,9 @@ def coordinate_spec(path: Path, table: Mapping[str, Any], names: CoordinateNames
         if names.kind == "holonomic":
             _check_positions_used(path, names.positions, configuration,
                                   line_of("configuration"))
+        velocity_map = _velocity_map(path, names, raw_vel, line_of("velocity_map"))
         if names.kind == "quasi":
-            missing = [v for v in names.velocities if v not in raw_vel]
-            if missing:
-                raise DerivationError(path, "coordinates.velocity_map", "a quasi-velocity set "
-                                      f"maps every document velocity; missing: {missing}",
-                                      line_of("velocity_map"))
-        elif raw_vel:
-            raise DerivationError(path, "coordinates.velocity_map", "only for kind = \"quasi\"",
-                                  line_of("velocity_map"))
-        for doc_name, text in raw_vel.items():
-            item = f"coordinates.velocity_map.{doc_name}"
-            if doc_name not in names.velocities:
-                raise DerivationError(path, item, "not a document velocity; velocities: "
-                                      + ", ".join(names.velocities), line_of("velocity_map"))
-            try:
-                velocity_map[doc_name] = parse_model_expression(text)
-            except ExpressionError as exc:
-                raise DerivationError(path, item, exc.reason, line_of("velocity_map")) from exc
+            _check_rates(path, names, configuration, velocity_map, line_of("velocity_map"))
     return CoordinateSpec(names.use, names.kind, names.positions, names.velocities,
                           names.accelerations, MappingProxyType(configuration),
                           MappingProxyType(velocity_map), names.rolling, names.units,
