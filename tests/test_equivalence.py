@@ -323,6 +323,22 @@ def test_a_row_scale_declares_the_equation_of_its_position(engine, tmp_path, reo
     assert "in the order of the positions" in cause.explanation
 
 
+def test_a_row_scaled_in_part_only_names_the_elements_scaled(engine, tmp_path):
+    r"""The double pendulum's first equation declared twice the true one, only its right side
+    (the inputs) doubled: its cause says the inputs' elements are as declared and the others
+    as printed — where it said "but for those named on their own" and named none."""
+    lhs, rhs = FIRST.split(" = ")
+    path = published_copy(tmp_path, "double_pendulum", "double_pendulum_springs",
+                          (FIRST, f"{lhs} = 2*({rhs})"),
+                          ("[matrices]", '[rows]\nscale = ["2", "1"]\n\n[matrices]'))
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False
+    (cause,) = [c for c in result.causes if c.kind == "file_error"
+                and "declares equation 1" in c.explanation]
+    assert "but for B[1,1], B[1,2], as declared" in cause.explanation, cause.explanation
+    assert "in part only" in cause.explanation
+
+
 @pytest.mark.parametrize("declared", [False, True], ids=["undeclared", "declared-twice"])
 def test_a_term_error_in_a_row_that_contradicts_its_declared_scale_is_named(engine, tmp_path,
                                                                              declared):

@@ -35,8 +35,9 @@ from ..judge.rows import drafts_of_row, row_values
 from ..judge.units import DimensionChecker, geometric_symbols
 from ..readings.describe import describe
 from ..readings.frames import Frame, FrameKind, FrameRule, constant_weights, evaluate_rule
-from .frames import (apart_causes, bind_declared, choose_frames, declared_apart,
-                     declared_only, declared_weights, id_frames, printed_factors, row_factors)
+from .declared_rows import (apart_causes, bind_declared, declared_apart, declared_only,
+                            printed_factors)
+from .frames import choose_frames, declared_weights, id_frames, row_factors
 from ..records import Cause, CauseKind, DerivationResult, Verdict, has_kind
 from ..sides.both import Sides, both_sides
 from ..sides.document import DocumentFunctions
