@@ -299,8 +299,10 @@ def _check_rates(path: Path, names: CoordinateNames, configuration: Mapping[str,
         if rate.name not in velocity_map:
             continue
         mapped = _plain(velocity_map[rate.name])
-        if not all(s.name in model for s in mapped.free_symbols):
-            continue
+        speeds = [s for s in mapped.free_symbols if s.name[1:] in configuration]
+        if not all(s.name in model for s in mapped.free_symbols) or any(
+                mapped.diff(a, b) != 0 for a in speeds for b in speeds):
+            continue                        # not linear in the velocities: said elsewhere
         given = mapped.xreplace({s: model[s.name] for s in mapped.free_symbols})
         if sympy.simplify(given - rate) != 0:
             raise DerivationError(path, f"coordinates.velocity_map.{rate.name}", (

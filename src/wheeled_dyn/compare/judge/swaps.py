@@ -16,6 +16,7 @@ from collections.abc import Sequence
 import numpy as np
 import sympy as sp
 
+from ...expression_size import ops_over
 from ..records import Diagnosis, DiagnosisKind as K, Verdict, diagnosis, has_kind
 from .diagnose import MAX_TERMS, agrees, swap_diagnoses
 from .draft import ElementDraft
@@ -35,6 +36,10 @@ def symbol_swaps(d: ElementDraft, trials, groups: Sequence[Sequence[sp.Symbol]]
     return found or exchanges(d, trials, groups) or definition_swaps(d, trials)
 
 
+#: Largest element and definition (operations) a definition written for another is tried in.
+DEFINITION_OPS = 60
+
+
 def definition_swaps(d: ElementDraft, trials) -> list[Diagnosis]:
     r"""One of the file's ``[definitions]`` written where another fits (a document's
     :math:`d_2` for its :math:`d_3`): the element is a definition's expression times a factor
@@ -42,8 +47,11 @@ def definition_swaps(d: ElementDraft, trials) -> list[Diagnosis]:
     expression are named together (``M12 or M21``: the file's text is read expanded)."""
     assert d.expr is not None, "an element as printed"
     alike: dict[sp.Expr, list[str]] = {}
+    if ops_over(d.expr, DEFINITION_OPS):
+        return []
     for name, e in trials.funcs.d.definitions.items():
-        alike.setdefault(sp.expand(e), []).append(name)
+        if not ops_over(e, DEFINITION_OPS):      # a determinant: no entry written for another
+            alike.setdefault(sp.expand(e), []).append(name)
     known, found = set(trials.funcs.args), []
     for ea, a in alike.items():
         ratio = sp.cancel(d.expr / ea) if ea != 0 else sp.Integer(0)
@@ -66,7 +74,8 @@ def exchanges(d: ElementDraft, trials, groups: Sequence[Sequence[sp.Symbol]]
     assert d.expr is not None, "an element as printed"
     present, screen, found = d.expr.free_symbols, trials.screen, []
     for group in groups:
-        for a, b in itertools.combinations([s for s in group if s in present], 2):
+        for a, b in itertools.combinations(sorted((s for s in group if s in present),
+                                                  key=str), 2):
             if agrees(trials.swapped(d.key, d.index, a, b, screen, True), d.T[screen],
                       d.scale) and agrees(trials.swapped(d.key, d.index, a, b, None, True),
                                           d.T, d.scale):
