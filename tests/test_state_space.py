@@ -164,3 +164,17 @@ def test_a_bad_table_is_one_clear_error(tmp_path, table, item, words):
         _compare(path)
     err = pickle.loads(pickle.dumps(info.value))
     assert err.item == item and words in str(err) and str(path) in str(err)
+
+
+def test_a_dropped_coupling_is_named_missing_not_a_point_mass(tmp_path):
+    r"""The pole's coupling m l cos θ ẍ dropped before solving: the solved ẍ row lacks its
+    θ̈ term, m l/(M + m) in its frame. Under the uniform pole's proportions m l is also
+    3 I_xx/l, which was named "the pole treated as a point mass"; no body's own moment
+    enters the cart's row (its multiplier is no 1 or 2 × lengths): the term is named missing."""
+    _, A, B = _first_order("dropped")
+    result = _compare(_linear(tmp_path, "dropped", A, B))
+    assert result.equivalent is False
+    assert not any(c.kind == CauseKind.POINT_MASS for c in result.causes), result.causes
+    coupling = next(r for r in result.records if r.element == "A[1,2]")
+    assert coupling.verdict == Verdict.DIFFERS and K.MISSING in coupling.kinds
+    assert not any(d.kind == K.POINT_MASS for d in coupling.diagnoses), coupling.texts

@@ -309,12 +309,20 @@ def name_terms(drafts: Sequence[ElementDraft], on_id: Mapping[tuple[str, tuple[i
         term = _plainest(fit_factor(residual, bases), bases) \
             if hit is not None and np.abs(residual).min() > 0 else None
         if hit is not None and hit[1] != 1 and term is not None and ((-term).is_Symbol or \
-                term.is_Symbol):      # one of the document's symbols (m for 3 Ixx/l²): plainer
-            hit = None
+                term.is_Symbol or _odd_multiple(hit[1])):
+            hit = None       # one of the document's symbols (m for 3 Ixx/l²), or a term that
+            #                  is a moment only by a uniform body's proportions (m l = 3 Ixx/l)
         if _own_inertia(r, hit, term) if hit is not None else \
                 _formula_named(r, own, moments, lengths, bases, states):
             continue
         _name_difference(r, D, T, own, bases, positions, factors, groups)
+
+
+def _odd_multiple(multiplier: sp.Expr) -> bool:
+    r"""A moment's multiplier of lengths with a coefficient no body's own inertia enters with
+    (1, or 2 for two alike bodies): :math:`3/l`, where a uniform rod's :math:`I = ml^2/3`
+    makes any :math:`ml` "three of its moments over its length"."""
+    return not multiplier.is_number and abs(multiplier.as_coeff_Mul()[0]) not in (1, 2)
 
 
 def _name_difference(r: ElementDraft, D: np.ndarray, T: np.ndarray, own: np.ndarray,
