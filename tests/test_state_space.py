@@ -178,3 +178,15 @@ def test_a_dropped_coupling_is_named_missing_not_a_point_mass(tmp_path):
     coupling = next(r for r in result.records if r.element == "A[1,2]")
     assert coupling.verdict == Verdict.DIFFERS and K.MISSING in coupling.kinds
     assert not any(d.kind == K.POINT_MASS for d in coupling.diagnoses), coupling.texts
+
+
+def test_matrices_given_as_latex_agree(tmp_path):
+    r"""A_s and B_s as the paper's LaTeX (here SymPy's printing of them, ``\left[\begin{matrix}
+    …\right]``) read as the text form: the right system agrees, a stiffness doubled does not."""
+    _, A, B = _first_order()
+    for factor, right in ((1, True), (2, False)):
+        A2 = A.copy()
+        A2[3, 2] = factor * A2[3, 2]
+        path = _file(tmp_path, f"latex{factor}", 'state = ["x", "dx", "theta", "dtheta"]\n'
+                     f"A = {{ latex = '{sp.latex(A2)}' }}\nB = {{ latex = '{sp.latex(B)}' }}\n")
+        assert _compare(path).equivalent is right
