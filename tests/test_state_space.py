@@ -190,3 +190,38 @@ def test_matrices_given_as_latex_agree(tmp_path):
         path = _file(tmp_path, f"latex{factor}", 'state = ["x", "dx", "theta", "dtheta"]\n'
                      f"A = {{ latex = '{sp.latex(A2)}' }}\nB = {{ latex = '{sp.latex(B)}' }}\n")
         assert _compare(path).equivalent is right
+
+
+def _planar_robot(tmp_path: Path, flip: bool) -> Path:
+    r"""``examples/my_planar_robot.toml`` (the planar balancing robot by Lagrange, velocities
+    dx, dphi in a quasi set) linearised about the upright body and written x' = A x + B τ,
+    x = (x, φ, ẋ, φ̇), as a wheeled pendulum's control paper prints it; ``flip``: the sign of
+    A_s[4,2] (the body's stiffness) reversed."""
+    m_b, m_w, J_w, r, l, J_b, g = sp.symbols("m_b m_w J_w r l J_b g")
+    inertia = sp.Matrix([[m_b + 2 * m_w + 2 * J_w / r**2, -m_b * l], [-m_b * l, J_b + m_b * l**2]])
+    inverse = inertia.inv()
+    A, B = sp.zeros(4, 4), sp.zeros(4, 1)
+    A[0, 2] = A[1, 3] = 1
+    A[2:, :2] = (-inverse * sp.Matrix([[0, 0], [0, -m_b * g * l]])).applyfunc(sp.simplify)
+    B[2:, :] = (inverse * sp.Matrix([[1 / r], [1]])).applyfunc(sp.simplify)
+    if flip:
+        A[3, 1] = -A[3, 1]
+    text = (Path(__file__).parents[1] / "examples" / "my_planar_robot.toml").read_text()
+    text = text[:text.index("[matrices]")].replace(
+        "[assumes]\n", "[assumes]\nlinearised_about = { x = 0.0, phi = 0.0 }\n")
+    path = tmp_path / f"planar{int(flip)}.toml"
+    path.write_text(text + f'[state_space]\nstate = ["x", "phi", "dx", "dphi"]\n'
+                    f'A = "{_text(A)}"\nB = "{_text(B)}"\n')
+    return path
+
+
+@pytest.mark.parametrize("flip", [False, True])
+def test_a_wheeled_pendulum_in_state_space(tmp_path, flip):
+    r"""Velocities named as their positions' rates in a quasi set (the heading speed dx of
+    x): the state-space form is read; right it agrees, its stiffness's sign reversed is
+    named K[2,2]."""
+    result = _compare(_planar_robot(tmp_path, flip))
+    assert result.equivalent is (not flip)
+    if flip:
+        k = next(r for r in result.records if r.element == "K[2,2]")
+        assert k.verdict == Verdict.DIFFERS and K.SIGN in k.kinds, k.texts

@@ -245,11 +245,12 @@ def _state_space(ld: "_Loader", positions, velocities, accelerations, inputs, as
     if "matrices" in ld.data:
         raise ld.fail("state_space", "give [state_space] or [matrices], not both",
                       ld.line("state_space"))
-    if ld.table("coordinates").get("kind", "holonomic") != "holonomic" or \
-            len(velocities) != len(positions):
+    rates = len(velocities) == len(positions) and all(
+        str(v) == f"d{q}" for q, v in zip(positions, velocities))
+    if ld.table("coordinates").get("kind", "holonomic") != "holonomic" and not rates:
         raise ld.fail("state_space", "a state-space form needs each velocity to be its "
-                      'position\'s rate ([coordinates] kind = "holonomic")',
-                      ld.line("state_space"))
+                      "position's rate (a holonomic set, or velocities named d<position>: "
+                      "dx the rate of x)", ld.line("state_space"))
     point = assumes["linearised_about"] if "linearised_about" in ld.table("assumes") else None
     return read_state_space(ld, table, tuple(zip(positions, velocities, accelerations)),
                             inputs, point)
