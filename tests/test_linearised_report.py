@@ -112,3 +112,22 @@ def test_velocity_products_a_linearised_document_keeps_are_compared_in_full(tmp_
         assert product.verdict == Verdict.DIFFERS and K.SIGN in product.kinds
         assert any(c.kind == "sign" and "h[1]:dtheta*dtheta" in c.elements
                    for c in result.causes), result.causes
+
+
+def test_a_velocity_product_with_a_number_for_its_coefficient_differs_as_linearised(tmp_path):
+    r"""The same file with its centripetal term frozen to a number times θ̇² (m l θ̇², no
+    sin θ): no second judgement is needed — linearised, the truth has no velocity product
+    and the document's differs there already."""
+    import published_forms as P
+    from wheeled_dyn.compare.engine import ComparisonEngine
+    from wheeled_dyn.derivations import load_derivation
+    path = P.write(tmp_path, "pole", "equations", None)
+    text = path.read_text()
+    assert text.count("dtheta**2*l*m*sin(theta)") == 1
+    path.write_text(text.replace("dtheta**2*l*m*sin(theta)", "dtheta**2*l*m").replace(
+        "[assumes]\n", "[assumes]\nlinearised_about = { x = 0.0, theta = 0.0 }\n"))
+    result = ComparisonEngine(samples=200, param_sets=3, seed=2026).compare(
+        load_derivation(path))
+    assert result.equivalent is False
+    product = next(r for r in result.records if r.element == "h[1]:dtheta*dtheta")
+    assert product.verdict == Verdict.DIFFERS, product.texts

@@ -7,7 +7,9 @@ evaluated there too. A document that writes velocity products anyway (its equati
 linear: the nonlinear equations, declared linearised) says what they are, and a wrong one
 — a centripetal term's sign, a Coriolis term dropped beside the others kept — vanishes at
 the point as the right one does: the declaration would turn the difference into "agrees".
-So where the document writes any velocity product, the file is judged again without the
+So where the document writes a velocity product whose coefficient is a function of the
+positions (its nonlinear equations; a coefficient that is a number is compared by the
+linearisation itself, with the truth's zero), the file is judged again without the
 linearisation, and each velocity product :math:`h_i:\dot q_j\dot q_k` that differs from the
 true one in full (one the document leaves out beside those it keeps included) differs in the
 result too: its record is the full comparison's, its equation differs, and a cause says
@@ -32,8 +34,9 @@ def kept_products(engine, d: Derivation, j) -> tuple[DerivationResult, Cause] | 
     declares no linearisation, writes no velocity product, or every one agrees in full."""
     raw = dict(d.assumes or {})
     h = j.funcs.exprs.get("h")
-    if not raw.get("linearised_about") or h is None or all(sp.sympify(e) == 0 for e in h):
-        return None
+    if not raw.get("linearised_about") or h is None or not any(
+            sp.sympify(e).free_symbols & set(d.positions) for e in h):
+        return None           # no product, or only numbers times products: as linearised
     full_assumes = {k: v for k, v in raw.items() if k not in ("linearised_about", "potential")}
     full = engine.judge(replace(d, assumes=MappingProxyType(full_assumes))).result
     wrong = {r.element: r for r in full.records if r.key == "h" and r.verdict == Verdict.DIFFERS}
