@@ -225,3 +225,23 @@ def test_a_wheeled_pendulum_in_state_space(tmp_path, flip):
     if flip:
         k = next(r for r in result.records if r.element == "K[2,2]")
         assert k.verdict == Verdict.DIFFERS and K.SIGN in k.kinds, k.texts
+
+
+@pytest.mark.parametrize("entry, item, words", [
+    ((3, 3), "state_space.A[4,4]", "linear in the velocity dtheta"),
+    ((0, 3), None, None)])
+def test_a_velocity_term_in_a_velocity_row_is_one_clear_error(tmp_path, entry, item, words):
+    r"""A damping (a motor's back-EMF) in A_s: dθ̇/dt linear in θ̇ is no term of the equations
+    of motion — one error naming the entry, where the equations' reader named "equation 2"
+    and a term the file never wrote; in a position's row it is that row's rate, said so."""
+    _, A, B = _first_order()
+    A[entry] = sp.Symbol("g")
+    path = _linear(tmp_path, "damped", A, B)
+    if item is None:
+        result = _compare(path)
+        assert result.state_rates_agree is False, result.state_rates
+        return
+    with pytest.raises(DerivationError) as info:
+        _compare(path)
+    err = pickle.loads(pickle.dumps(info.value))
+    assert err.item == item and words in str(err), str(err)

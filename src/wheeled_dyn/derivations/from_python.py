@@ -181,7 +181,8 @@ def derivation_from_sympy(model: str | Path, **tables: Any) -> Derivation:
     model input → expression in the document's inputs (undeclared input symbols are declared);
     ``A``, ``C``, ``Q``, ``B``, ``G`` (SymPy matrices or nested lists) or ``equations``
     (``sympy.Eq`` or expressions equal to 0) or ``state_space`` (a mapping as
-    ``[state_space]`` of a file: ``state``, ``A`` and ``B`` or ``f``, ``inputs``); ``assumes``, ``title``, ``source`` as in a file.
+    ``[state_space]`` of a file: ``state``, ``A`` and ``B`` or ``f``, ``inputs``);
+    ``assumes``, ``title``, ``source`` as in a file.
     Raises the errors a file would, naming ``<python: title>``."""
     title = str(tables.get("title", "derivation from Python"))
     name = f"<python: {title if len(title) <= 100 else title[:99] + '…'}>"   # a path's name

@@ -65,18 +65,20 @@ class MatrixReader:
             try:
                 return [[LatexSource(c) for c in row] for row in split_latex_matrix(raw)]
             except ExpressionError as exc:
-                raise self.ld.fail(key, exc.reason, self.ld.line(self.table, key)) from exc
+                raise self.ld.fail(self.prefix + key, exc.reason,
+                                   self.ld.line(self.table, key)) from exc
         if isinstance(raw, str):
             try:
                 return split_nested(raw)
             except ExpressionError as exc:
-                raise self.ld.fail(key, exc.reason, self.ld.line(self.table, key)) from exc
+                raise self.ld.fail(self.prefix + key, exc.reason,
+                                   self.ld.line(self.table, key)) from exc
         if isinstance(raw, list):
             return [self._nested(key, r, top=False) for r in raw]
         if isinstance(raw, (int, float)) and not isinstance(raw, bool):
             return str(raw)
-        raise self.ld.fail(key, f"expected a matrix (text or array), got {raw!r}",
-                           self.ld.line(self.table, key))
+        raise self.ld.fail(self.prefix + key, f"expected a matrix (text or array), got "
+                           f"{raw!r}", self.ld.line(self.table, key))
 
     def _element(self, key: str, label: str, text: Any) -> sympy.Expr:
         if not isinstance(text, str):
@@ -201,7 +203,7 @@ class MatrixReader:
         if "equations" in table:
             self.equations = self._equations(table["equations"])
         for key in ("A", "C", "Q", "G"):
-            self._without_inputs(key, out.get(key))
+            self.without_inputs(key, out.get(key))
         self._without_rates(out.get("Q"))
         self.shapes = {key: M.shape for key, M in out.items()}
         return out
@@ -222,7 +224,7 @@ class MatrixReader:
                                    "C (as C q̇), or write the equations",
                                    self.ld.line("matrices", "Q"))
 
-    def _without_inputs(self, key: str, M: sympy.ImmutableMatrix | None) -> None:
+    def without_inputs(self, key: str, M: sympy.ImmutableMatrix | None) -> None:
         r"""A document input (a torque) inside A, C, Q or G is an error naming the element:
         the inputs enter through B (or an equation's right side)."""
         if M is None or not self.inputs:

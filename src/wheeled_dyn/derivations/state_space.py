@@ -25,7 +25,7 @@ equations.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import sympy
@@ -71,20 +71,19 @@ class StateSpace:
     #: the state as the document orders it, and the row (0-based) each equation is
     state: tuple[str, ...] = ()
     rows: tuple[int, ...] = ()
-    #: ``"linear"`` (A and B) or ``"nonlinear"`` (f)
-    kind: str = "linear"
+    #: x' = A x + B u (else x' = f(x, u))
+    linear: bool = True
 
     def note(self) -> str:
         r"""How the equations compared are the document's rows, for the reports."""
         where = ", ".join(f"equation {i + 1} is row {k + 1} ({self.state[k]}')"
                           for i, k in enumerate(self.rows))
-        if self.kind == "nonlinear":
+        if not self.linear:
             return (f"the state-space form x' = f(x, u), x = ({', '.join(self.state)}), is "
                     f"compared as its velocity rows solved for the accelerations: {where}")
         return (f"the state-space form x' = A x + B u, x = ({', '.join(self.state)}), is "
                 f"compared as its velocity rows solved for the accelerations: {where}; in "
-                "equation i, K[i,j] is −A[row, column of position j], the velocity terms "
-                "−A[row, column of velocity j], B[i,j] is B[row, j]")
+                "equation i, K[i,j] is −A[row, column of position j], B[i,j] is B[row, j]")
 
 
 def read_state_space(ld: "_Loader", table: Mapping[str, Any],
@@ -111,9 +110,8 @@ def read_state_space(ld: "_Loader", table: Mapping[str, Any],
                           "itself", ld.line(TABLE, "B"))
         rates = list(reader.grid("f", table["f"], len(state), 1, vector=True))
     else:
-        rates = _linear(ld, reader, table, state, used, point)
-    return replace(_split(state, rates, coordinates, tuple(reader.missing)),
-                   kind="nonlinear" if "f" in table else "linear")
+        rates = _linear(ld, reader, table, state, coordinates, used, point)
+    return _split(state, rates, coordinates, tuple(reader.missing), "f" not in table)
 
 
 def _state(ld: "_Loader", raw: Any, coordinates) -> tuple[sympy.Symbol, ...]:
@@ -150,10 +148,11 @@ def _inputs(ld: "_Loader", raw: Any, inputs: tuple[sympy.Symbol, ...]
 
 
 def _linear(ld: "_Loader", reader: MatrixReader, table: Mapping[str, Any],
-            state: tuple[sympy.Symbol, ...], inputs: tuple[sympy.Symbol, ...],
+            state: tuple[sympy.Symbol, ...], coordinates, inputs: tuple[sympy.Symbol, ...],
             point: Mapping[str, float] | None) -> list[sympy.Expr]:
     r"""The rates :math:`A_s x + B_s u`, each position's entry of :math:`x` its deviation from
-    the declared point."""
+    the declared point. A velocity's rate linear in a velocity (damping, a motor's back-EMF)
+    is an error naming the entry: :math:`A\ddot q + C\dot q + Q = Bu` has no such term."""
     if point is None:
         raise ld.fail(f"{TABLE}.A", "x' = A x + B u is linear about a point: declare it in "
                       "[assumes] linearised_about (each position's value there; the state's "
@@ -165,13 +164,15 @@ def _linear(ld: "_Loader", reader: MatrixReader, table: Mapping[str, Any],
                       ld.line(TABLE, "B"))
     B = reader.grid("B", table["B"], n, len(inputs)) if "B" in table \
         else sympy.zeros(n, len(inputs))
-    for idx, e in enumerate(A):
-        found = sorted(map(str, e.free_symbols & set(inputs)))
-        if found:
-            raise ld.fail(f"{TABLE}.A[{idx // n + 1},{idx % n + 1}]", f"the input {found[0]} "
-                          "in A: the inputs enter through B", ld.line(TABLE, "A"))
-    x = sympy.Matrix([s - point_value(point.get(str(s), 0.0))
-                      if str(s) in _position_names(reader) else s for s in state])
+    reader.without_inputs("A", A)
+    positions = {c[0] for c in coordinates}
+    for k, j in ((k, j) for k in range(n) for j in range(n)):
+        if state[k] not in positions and state[j] not in positions and A[k, j] != 0:
+            raise ld.fail(f"{TABLE}.A[{k + 1},{j + 1}]", f"{state[k]}' linear in the velocity "
+                          f"{state[j]} (a damping, a motor's back-EMF): the equations of motion "
+                          "A q'' + C q' + Q = B u have no such term", ld.line(TABLE, "A"))
+    x = sympy.Matrix([s - point_value(point.get(str(s), 0.0)) if s in positions else s
+                      for s in state])
     u = sympy.Matrix(inputs)
     rates = A * x + (B * u if inputs else sympy.zeros(n, 1))
     return [sympy.expand(r) for r in rates]
@@ -187,12 +188,8 @@ def point_value(x: float) -> sympy.Expr:
     return sympy.nsimplify(x, rational=True)
 
 
-def _position_names(reader: MatrixReader) -> set[str]:
-    return {name for name, kind in reader.ld.kinds.items() if kind == "position"}
-
-
 def _split(state: Sequence[sympy.Symbol], rates: Sequence[sympy.Expr], coordinates,
-           missing: tuple[str, ...]) -> StateSpace:
+           missing: tuple[str, ...], linear: bool) -> StateSpace:
     r"""Velocity rows → equations (in the order of the positions); position rows → rates."""
     by_velocity = {c[1]: c for c in coordinates}
     by_position = {c[0]: c for c in coordinates}
@@ -207,7 +204,8 @@ def _split(state: Sequence[sympy.Symbol], rates: Sequence[sympy.Expr], coordinat
         agrees = None if rate.has(sympy.nan) else sympy.simplify(rate - v) == 0
         checked.append(StateRate(k, str(q), str(v), sympy.sstr(rate), agrees))
     return StateSpace(tuple(solved[c[0]][1] for c in coordinates), tuple(checked), missing,
-                      tuple(map(str, state)), tuple(solved[c[0]][0] for c in coordinates))
+                      tuple(map(str, state)), tuple(solved[c[0]][0] for c in coordinates),
+                      linear)
 
 
 __all__ = ["STATE_SPACE_KEYS", "StateRate", "StateSpace", "point_value", "read_state_space"]
