@@ -57,6 +57,7 @@ class Trials:
         self.position = {a: k for k, a in enumerate(funcs.args)}
         self.screen = np.linspace(0, size - 1, min(SCREEN_SAMPLES, size)).astype(int)
         self.screened = self.at(self.screen)
+        self.memo: dict[tuple, object] = {}      # what a trial computes once per judgement
 
     def at(self, rows: np.ndarray) -> list:
         r"""The arguments at the samples ``rows`` (a number stays a number)."""

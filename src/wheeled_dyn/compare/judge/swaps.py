@@ -46,24 +46,64 @@ def definition_swaps(d: ElementDraft, trials) -> list[Diagnosis]:
     free of its symbols, and the same factor times the other's agrees. Definitions of one
     expression are named together (``M12 or M21``: the file's text is read expanded)."""
     assert d.expr is not None, "an element as printed"
-    alike: dict[sp.Expr, list[str]] = {}
     if ops_over(d.expr, DEFINITION_OPS):
         return []
-    for name, e in trials.funcs.d.definitions.items():
-        if not ops_over(e, DEFINITION_OPS):      # a determinant: no entry written for another
-            alike.setdefault(sp.expand(e), []).append(name)
+    alike, values = _definitions(trials, d.key)
     known, found = set(trials.funcs.args), []
+    present = d.expr.free_symbols
+    usable = list(values)
     for ea, a in alike.items():
-        ratio = sp.cancel(d.expr / ea) if ea != 0 else sp.Integer(0)
+        # written for another: the element is ratio*ea with ea's symbols in it, and
+        # D*eb/ea is the truth where ea does not vanish (a screen: the symbolic ratio
+        # below decides, on the full grid)
+        if ea == 0 or not ea.free_symbols <= present or ea not in values:
+            continue
+        others = [eb for eb in usable if eb != ea and _may_fit(d, values[ea], values[eb])]
+        if not others:
+            continue
+        ratio = sp.cancel(d.expr / ea)
         if ratio == 0 or sp.denom(ratio).free_symbols & ea.free_symbols:
             continue
-        for eb, b in alike.items():
-            if eb != ea and (ratio * eb).free_symbols <= known and agrees(
+        for eb in others:
+            b = alike[eb]
+            if (ratio * eb).free_symbols <= known and agrees(
                     trials.evaluator(d.key)(ratio * eb), d.T, d.scale):
                 written, fits = " or ".join(a), " or ".join(b)
                 found.append(diagnosis(K.SWAP, f"{written} where {fits} fits",
                                        written=written, fits=fits))
     return found
+
+
+def _definitions(trials, key: str) -> tuple[dict[sp.Expr, list[str]], dict[sp.Expr, np.ndarray]]:
+    r"""The file's definitions short enough to try, expanded, with the names of each, and
+    the values of those in the document's symbols on the samples of ``key``'s elements (once
+    per judgement)."""
+    memo = trials.memo.get(("definitions", key))
+    if memo is None:
+        alike: dict[sp.Expr, list[str]] = {}
+        for name, e in trials.funcs.d.definitions.items():
+            if not ops_over(e, DEFINITION_OPS):  # a determinant: no entry written for another
+                alike.setdefault(sp.expand(e), []).append(name)
+        known = set(trials.funcs.args)
+        memo = alike, {e: trials.evaluator(key)(e) for e in alike if e.free_symbols <= known}
+        trials.memo[("definitions", key)] = memo
+    return memo
+
+
+#: How much looser than the verdict's tolerance :func:`_may_fit` screens (it may only let
+#: through what the exact check then rejects).
+SCREEN_SLACK = 10.0
+
+
+def _may_fit(d: ElementDraft, ea: np.ndarray, eb: np.ndarray) -> bool:
+    r"""Whether :math:`D\,e_b/e_a` can be the truth: at the samples where :math:`e_a` is a
+    finite non-zero number (all of them, where none is: the exact check decides)."""
+    ok = np.isfinite(ea) & (ea != 0) & np.isfinite(eb)
+    if not ok.any():
+        return True
+    with np.errstate(all="ignore"):
+        read = d.D[ok] * eb[ok] / ea[ok]
+    return agrees(read, d.T[ok], SCREEN_SLACK * d.scale)
 
 
 def exchanges(d: ElementDraft, trials, groups: Sequence[Sequence[sp.Symbol]]
