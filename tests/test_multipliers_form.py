@@ -365,3 +365,43 @@ def test_three_equations_wrong_leave_the_wheels_right(tmp_path):
     assert [e.verdict for e in result.equations] == ["agrees_if", "agrees_if", "agrees_if",
                                                      "agrees", "agrees"]
     assert result.equivalent is False
+
+
+#: The seed's eccentric rolling disk (seed 000, 4.8: its model has no rolling constraint, the
+#: rolling is the holonomic map x = R θ) written in (x, θ) with x' = R θ' kept by a multiplier
+#: (Goldstein, *Classical Mechanics*, 3rd ed., sec. 2.4, undetermined multipliers).
+FREE_X = '''
+title = "Rolling disk, x kept with a multiplier"
+model = "rolling_disk"
+
+[coordinates]
+positions = ["x", "theta"]
+kind = "holonomic"
+rolling = "multipliers"
+configuration = { x = "x", theta = "theta" }
+
+[symbols]
+M = { value = "M(disk)", units = "kg" }
+MZ = { value = "MZ(disk)", units = "kg*m" }
+J = { value = "YY(disk)", units = "kg*m**2" }
+R = { value = "R", units = "m" }
+g = { value = "g", units = "m/s**2" }
+
+[matrices]
+A = "[[M, MZ*cos(theta)], [MZ*cos(theta), J]]"
+C = "[[0, -MZ*sin(theta)*dtheta], [0, 0]]"
+Q = "[0, -MZ*g*sin(theta)]"
+G = "[[1, -R]]"
+'''
+
+
+def test_constraint_rows_on_a_model_without_rolling_constraints_are_not_its(engine, tmp_path):
+    r"""A model whose coordinates leave it no rolling constraint (its G has no rows): the
+    file's G is no constraint of the model, said as such (it raised NumPy's "zero-size array
+    to reduction operation maximum" from the constraint check)."""
+    path = tmp_path / "free_x.toml"
+    path.write_text(FREE_X)
+    result = engine.compare(load_derivation(path))
+    assert result.equivalent is False
+    causes = [c.explanation for c in result.causes if c.kind == CauseKind.NOT_EQUIVALENT]
+    assert any("no rolling constraint" in c for c in causes), causes

@@ -54,7 +54,7 @@ def truth_arrays(cmaps: Sequence[CoordinateMap], q: np.ndarray, nu: np.ndarray,
         parts["H"].append(0.5 * (gamma + gamma.transpose(0, 1, 3, 2)))
         parts["Gamma"].append(gamma)
         parts["B"].append(t.B if input_maps is None else t.B @ input_maps[k])
-        if t.G is not None:
+        if t.G is not None and t.G.shape[1]:    # a model without rolling constraints: none
             parts["G"].append(t.G)
     out = Arrays(**{k: (np.concatenate(v) if v else None) for k, v in parts.items()})
     out.H_rows = np.concatenate(rows)
