@@ -266,7 +266,19 @@ def convention_table(wm) -> ConventionTable:
     for name in wm.coordinate_names:
         if name not in {r.name for r in rows}:
             rows.append(_joint_row(wm, name))
+    rows += _actuated_rows(wm, {r.name: r for r in rows}, len(wm.wheels))
     return ConventionTable(wm.name, body, tuple(rows))
+
+
+def _actuated_rows(wm, coordinates: dict[str, Convention], first: int) -> list[Convention]:
+    r"""The inputs of the ``actuated`` joints (B's columns from ``first``): each along its
+    joint's coordinate, the reaction on the joint's parent."""
+    return [Convention(wm.input_names[first + k], "input", f"force or torque "
+                       f"{coordinates[wm.coordinate_names[vi]].axis}, reaction on the parent",
+                       coordinates[wm.coordinate_names[vi]].vector,
+                       coordinates[wm.coordinate_names[vi]].frame,
+                       coordinates[wm.coordinate_names[vi]].positive)
+            for k, vi in enumerate(wm.actuated)]
 
 
 def _axis(jmodel) -> tuple[np.ndarray | None, bool]:
@@ -299,11 +311,7 @@ def _joint_row(wm, name: str) -> Convention:
 
 def _joint_table(wm) -> ConventionTable:
     rows = [_joint_row(wm, name) for name in wm.coordinate_names]
-    for k, vi in enumerate(wm.actuated):
-        base = rows[vi]
-        rows.append(Convention(wm.input_names[k], "input", f"force or torque {base.axis}, "
-                               "reaction on the parent", base.vector, base.frame,
-                               base.positive))
+    rows += _actuated_rows(wm, {r.name: r for r in rows}, 0)
     return ConventionTable(wm.name, wm.spec.body, tuple(rows))
 
 

@@ -119,6 +119,8 @@ class ModelFile:
         locked = dict(joints.get("locked", {}))
         lock = (*joints.get("lock", ()), *(j for j in locked if j not in joints.get("lock", ())))
         inputs = wheels.get("inputs", joints.get("inputs"))
+        if "inputs" in wheels and "inputs" in joints:    # the wheels' torques, then the joints'
+            inputs = [*wheels["inputs"], *joints["inputs"]]
         contact = d.get("contact")
         return ModelSpec(
             name=self.name, urdf=urdf, body=base.get("body", ""),

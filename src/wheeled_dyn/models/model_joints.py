@@ -137,3 +137,54 @@ def bind_springs(spec: ModelSpec, model: pin.Model, coordinate_names: Sequence[s
                                float(s.stiffness)))
     return tuple(out)
 
+
+#: The wheel torques' names of a wheeled model where its file names none.
+WHEEL_INPUTS = ("tau_l", "tau_r")
+
+
+def actuated_inputs(spec: ModelSpec, model: pin.Model, coordinate_names: Sequence[str],
+                    wheel_inputs: Sequence[str] = ()) -> tuple[tuple[int, ...], tuple[str, ...]]:
+    r"""The velocity indices of the joints ``spec.actuated`` names (one degree of freedom
+    each, no wheel's) and the names of all the model's inputs, B's columns in order: the
+    wheels' torques first (``wheel_inputs``: a wheeled model's two), then one per actuated
+    joint (``tau_<its coordinate>`` where the file names none). The file's ``inputs`` name
+    them all, or, beside wheels, the actuated joints' only; another count is an error
+    naming what was expected."""
+    wheel_joints = set(wheel_joint_names(spec, model))
+    actuated = []
+    for joint in spec.actuated:
+        if not model.existJointName(joint):
+            raise UnknownNameError("joint", joint, list(model.names)[1:],
+                                   where=f"model {spec.name}")
+        jmodel = model.joints[model.getJointId(joint)]
+        if joint in wheel_joints or jmodel.nv != 1:
+            raise ModelError(spec.name, joint, "an actuated joint must be a joint of one "
+                             "degree of freedom that is no drive wheel's (the wheels' "
+                             "torques are inputs already)" if joint in wheel_joints else
+                             f"an actuated joint must have one degree of freedom, not "
+                             f"{jmodel.nv}")
+        actuated.append(jmodel.idx_v)
+    own = tuple("tau_" + coordinate_names[i] for i in actuated)
+    given = tuple(spec.inputs) if spec.inputs is not None else None
+    if given is None:
+        return tuple(actuated), (*(wheel_inputs or ()), *own)
+    if len(given) == len(wheel_inputs) + len(actuated):
+        return tuple(actuated), given
+    if wheel_inputs and actuated and len(given) == len(actuated):
+        return tuple(actuated), (*wheel_inputs, *given)
+    expected = ("two wheel motors" if wheel_inputs else "") + (
+        " and " if wheel_inputs and actuated else "") + (
+        f"{len(actuated)} actuated joints" if actuated or not wheel_inputs else "")
+    raise ModelError(spec.name, None, f"{len(given)} input names for {expected}" + (
+        " (name the wheels' two first, then one per actuated joint; or the actuated "
+        "joints' only)" if wheel_inputs and actuated else ""))
+
+
+def wheel_joint_names(spec: ModelSpec, model: pin.Model) -> list[str]:
+    r"""The joints that move the drive wheels' links ``spec.wheels`` (those the model has)."""
+    out = []
+    for link in spec.wheels:
+        if model.existFrame(link, pin.FrameType.BODY):
+            jid = model.frames[model.getFrameId(link, pin.FrameType.BODY)].parentJoint
+            out.append(model.names[jid])
+    return out

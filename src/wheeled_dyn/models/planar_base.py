@@ -26,8 +26,8 @@ import pinocchio as pin
 from ..errors import ModelError
 from .conventions import ANGLE_TOL, TYRE_OFF_AXIS_TOL, check_sides
 from .geometry_constants import planar_lengths
-from .model_joints import (bind_springs, finish_coordinates, joint_axis, move_joint_to,
-                           unit_direction)
+from .model_joints import (WHEEL_INPUTS, actuated_inputs, bind_springs, finish_coordinates,
+                           joint_axis, move_joint_to, unit_direction)
 from .readings import TURN_NOTED, ground_reading, wheel_turn
 from .round_wheels import asymmetry, round_reading
 from .urdf_source import JointInfo, UrdfSource
@@ -258,12 +258,10 @@ def build_planar(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
         wheels.append(Wheel(link, side, jname, jid, model.joints[jid].idx_v, rl, width))
     turns = [(wheel.joint_name, _along_axle(model, wheel.joint_id)) for wheel in wheels]
     body_jid = model.frames[model.getFrameId(body_link)].parentJoint
-    inputs = tuple(spec.inputs) if spec.inputs is not None else ("tau_l", "tau_r")
-    if len(inputs) != 2:
-        raise ModelError(spec.name, None, f"{len(inputs)} input names for two wheel motors")
+    actuated, inputs = actuated_inputs(spec, model, coordinate_names, WHEEL_INPUTS)
     lengths = planar_lengths(spec, source, model, rl, half_track)
     return WheeledModel(spec.name, spec, model, geom, tuple(wheels), coordinate_names, inputs,
-                        lengths.constant_values(lengths.values()), body_jid,
+                        lengths.constant_values(lengths.values()), body_jid, actuated,
                         springs=bind_springs(spec, model, coordinate_names), lengths=lengths,
                         readings=ground_reading(source.text, source.root_link(),
                                                 rl - float(centre @ up), rl)

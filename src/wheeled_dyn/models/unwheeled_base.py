@@ -13,10 +13,10 @@ from __future__ import annotations
 import numpy as np
 import pinocchio as pin
 
-from ..errors import ModelError, UnknownNameError
+from ..errors import ModelError
 from .contact import BallContact
 from .geometry_constants import unwheeled_lengths
-from .model_joints import bind_springs, finish_coordinates
+from .model_joints import actuated_inputs, bind_springs, finish_coordinates
 from .rolling_wheel import BoundWheelContact
 from .urdf_source import UrdfSource
 from .wheeled_model import FREE_BASE, ModelSpec, WheeledModel
@@ -45,17 +45,7 @@ def build_unwheeled(spec: ModelSpec, source: UrdfSource, urdf_model: pin.Model,
                                       pin.SE3.Identity())
         names = FREE_BASE
     coordinate_names = finish_coordinates(spec, model, names)
-    actuated = []
-    for joint in spec.actuated:
-        if not model.existJointName(joint):
-            raise UnknownNameError("joint", joint, list(model.names)[1:],
-                                   where=f"model {spec.name}")
-        actuated.append(model.joints[model.getJointId(joint)].idx_v)
-    inputs = (tuple(spec.inputs) if spec.inputs is not None
-              else tuple("tau_" + coordinate_names[i] for i in actuated))
-    if len(inputs) != len(actuated):
-        raise ModelError(spec.name, None, f"{len(inputs)} input names for {len(actuated)} "
-                                          "actuated joints")
+    actuated, inputs = actuated_inputs(spec, model, coordinate_names)
     body_jid = 0
     if spec.body:
         source.link(spec.body)

@@ -53,7 +53,7 @@ class ModelSpec:
     package_dirs: tuple[str, ...] = ()
     description: str = ""
     base: str = "planar"
-    actuated: tuple[str, ...] = ()               # joint names with a motor (fixed/free bases)
+    actuated: tuple[str, ...] = ()               # joint names with a motor (beside the wheels')
     geometry: Mapping[str, object] = field(default_factory=dict)   # [geometry]: see .geometry
     contact: SphereContact | None = None
     rolling_wheels: tuple[WheelContact, ...] = ()   # tilting wheels on any link (fixed/free)
@@ -149,8 +149,9 @@ class WheeledModel:
 
     def input_matrix(self) -> np.ndarray:
         r"""B (nv × number of motors): motor k acts on its joint, :math:`B_{ik}=\delta_{i,j_k}`
-        (wheel joints, or the ``actuated`` joints; nv × 0 for a body without motors)."""
-        columns = [w.v_index for w in self.wheels] if self.wheels else list(self.actuated)
+        (the wheel joints, then the ``actuated`` joints; nv × 0 for a body without
+        motors)."""
+        columns = [*(w.v_index for w in self.wheels), *self.actuated]
         B = np.zeros((self.nv, len(columns)))
         for k, i in enumerate(columns):
             B[i, k] = 1.0
