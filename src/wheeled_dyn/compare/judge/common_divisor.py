@@ -55,9 +55,32 @@ def common_divisor(drafts: Sequence[ElementDraft], rows: set[int],
             return None
     if np.ptp(k) <= AGREE_TOL * np.abs(k).max():
         return None                     # a constant: a factor of the rows
+    if not _all_divided(drafts, rows, k, h_rows):
+        return None
     solved = ", ".join(str(i + 1) for i in sorted({d.row for d in differing}))
     return divisor_diagnosis(k, f"every differing element of the solved equations {solved} "
                                 "is the truth's")
+
+
+def _all_divided(drafts: Sequence[ElementDraft], rows: set[int], k: np.ndarray,
+                 h_rows: np.ndarray | None) -> bool:
+    r"""Whether every element of the solved rows but the accelerations' coefficients (A: the
+    solved form's identity, divided by nothing) is the truth's times :math:`k`, those that
+    agree too: a wrong divisor divides them all, so one column wrong (a stiffness written
+    wrong before solving: :math:`k` a function of the parameters at a linearisation point)
+    is no divisor's."""
+    for d in drafts:
+        if d.row not in rows or d.key == "A":
+            continue
+        D, T = np.asarray(d.D, float), np.asarray(d.T, float)
+        at = k if len(T) == len(k) else k[h_rows] if h_rows is not None and \
+            len(h_rows) == len(T) else None
+        if at is None or D.shape != T.shape:
+            return False
+        if np.abs(D - at * T).max(initial=0.0) > AGREE_TOL * max(d.scale, 1e-300) * \
+                max(1.0, float(np.abs(at).max())):
+            return False
+    return True
 
 
 def function_factor(M: np.ndarray, A: np.ndarray) -> np.ndarray | None:

@@ -60,7 +60,8 @@ def _columns(arrays, B: np.ndarray | None, rows: np.ndarray, velocities: Sequenc
     names = [*(f"A[{{r}},{j + 1}]" for j in range(n)),
              *(f"B[{{r}},{c + 1}]" for c in range(B.shape[2])), "Q[{r}]",
              *(f"h[{{r}}]:{velocities[j]}*{velocities[m]}" if velocities else
-               f"h[{{r}}]:{j},{m}" for j in range(n) for m in range(j, n))]
+               f"h[{{r}}]:{j},{m}" for j in range(n) for m in range(j, n)),
+             *((f"K[{{r}},{j + 1}]" for j in range(n)) if arrays.K is not None else ())]
     return out, names
 
 

@@ -60,16 +60,18 @@ def implied_inertia(doc_B: np.ndarray, true_B: np.ndarray) -> np.ndarray | None:
 
 def term_columns(arrays, B: np.ndarray | None, rows: np.ndarray) -> np.ndarray | None:
     r"""The coefficients of the inputs, the gravity terms and each velocity product
-    (:math:`H_{jl} + H_{lj}`) of every equation on the samples ``rows``: samples × n × columns;
-    None where one of them is not given (H: on those samples)."""
+    (:math:`H_{jl} + H_{lj}`) of every equation on the samples ``rows``, then a linearised
+    document's stiffness K (its columns, where given): samples × n × columns; None where one
+    of them is not given (H: on those samples)."""
     if B is None or arrays.Q is None or arrays.H is None or len(arrays.H) != len(rows):
         return None
     H = arrays.H
     n = H.shape[1]
     products = [H[:, :, j, j] if j == m else H[:, :, j, m] + H[:, :, m, j]
                 for j in range(n) for m in range(j, n)]
+    stiffness = [] if arrays.K is None else [arrays.K[rows]]
     return np.concatenate([B[rows], arrays.Q[rows][:, :, None],
-                           np.stack(products, axis=2)], axis=2)
+                           np.stack(products, axis=2), *stiffness], axis=2)
 
 
 def _spans(C: np.ndarray) -> bool:
@@ -220,7 +222,8 @@ def _entries(doc, truth, true_B: np.ndarray | None, velocities: Sequence[sp.Symb
              ) -> list[tuple[str, np.ndarray, np.ndarray, float, bool]] | None:
     r"""The entries of the document's equations read back before it solved or combined them
     (its rows times :math:`AA_{doc}^{-1}`, or ``T`` given) that differ from the truth's:
-    (where, truth, document, scale, on ``H_rows``) — of its gravity and velocity terms; None
+    (where, truth, document, scale, on ``H_rows``) — of its gravity and velocity terms and a
+    linearised document's stiffness; None
     where it cannot be read back or its inputs' coefficients then differ from the truth's
     (the inertia it inverted is not the truth's)."""
     if doc.A is None or truth.A is None or not np.isfinite(doc.A).all():
@@ -240,6 +243,12 @@ def _entries(doc, truth, true_B: np.ndarray | None, velocities: Sequence[sp.Symb
         scale = float(np.abs(truth.Q).max())
         out += [(f"Q[{k + 1}]", truth.Q[:, k], Q[:, k], scale, False) for k in range(n)
                 if np.abs(truth.Q[:, k] - Q[:, k]).max() > AGREE_TOL * scale]
+    if doc.K is not None and truth.K is not None:     # a linearised document's stiffness
+        K = np.einsum("ski,sij->skj", T, doc.K)
+        scale = float(np.abs(truth.K).max())
+        out += [(f"K[{k + 1},{j + 1}]", truth.K[:, k, j], K[:, k, j], scale, False)
+                for k in range(n) for j in range(n)
+                if np.abs(truth.K[:, k, j] - K[:, k, j]).max() > AGREE_TOL * scale]
     rows = truth.H_rows
     if doc.H is not None and truth.H is not None and rows is not None:
         H = np.einsum("ski,sijl->skjl", T[rows], doc.H)
