@@ -47,11 +47,13 @@ def resolved(path: str | Path) -> Path:
                                    "itself through other links): point it at a file") from None
 
 
-def file_stamp(path: str | Path) -> tuple[int, int, int] | None:
-    r"""``(mtime_ns, size, inode)`` of a file, None when it is missing: what changes when the
-    file is saved (an editor's save, a rename over it)."""
+def file_stamp(path: str | Path) -> tuple[int, int, int, int] | None:
+    r"""``(mtime_ns, ctime_ns, size, inode)`` of a file, None when it is missing: what
+    changes when the file is saved (an editor's save, a rename over it). The change time
+    moves with every write and every change of the times, which no program sets back: a
+    file rewritten in place at its old size with its old mtime restored is another file."""
     try:
         st = os.stat(path)
     except (OSError, ValueError):
         return None
-    return st.st_mtime_ns, st.st_size, st.st_ino
+    return st.st_mtime_ns, st.st_ctime_ns, st.st_size, st.st_ino

@@ -20,6 +20,7 @@ from pathlib import Path
 from types import MappingProxyType
 
 from .conventions import ROUNDING
+from ..paths import file_stamp
 
 #: Relative slack of a comparison of two numbers printed to the same digits.
 SAME_DIGITS = 1e-9
@@ -48,15 +49,14 @@ def unrounded_joints(urdf: Path, tolerance: float) -> Mapping[str, tuple[float, 
     roll, pitch and yaw as they are meant: those angles as printed, the ones that are
     roundings made the right angles they stand for (``rpy="1.5708 0 1.569"``: π/2, 0,
     1.569)."""
-    try:
-        stamp = urdf.stat().st_mtime_ns
-    except OSError:
+    stamp = file_stamp(urdf)
+    if stamp is None:
         return {}
     return _unrounded(str(urdf), stamp, tolerance)
 
 
 @functools.lru_cache(maxsize=32)
-def _unrounded(path: str, stamp: int, tolerance: float) -> Mapping[str, tuple[float, ...]]:
+def _unrounded(path: str, stamp: tuple, tolerance: float) -> Mapping[str, tuple[float, ...]]:
     try:
         root = ET.parse(path).getroot()
     except (OSError, ET.ParseError):

@@ -35,6 +35,7 @@ import numpy as np
 
 from ...derivations.schema import Derivation
 from ...errors import ArgumentError
+from ...paths import file_stamp
 from ...models.registry import model_version
 from .conventions import convention_finding, unknown_convention
 from .kept_products import kept_products
@@ -101,7 +102,7 @@ class ComparisonEngine:
         # per content: of the derivation (one built in Python has no file, and two of the same
         # title had shared a result), of the step files beside it and of the model's files
         key = (hashlib.sha256(repr(derivation).encode()).hexdigest(),
-               derivation.path.stat().st_mtime_ns if derivation.path.exists() else 0,
+               file_stamp(derivation.path),
                steps_state(derivation.path), model_version(derivation.model))
         if key not in self._results:
             try:

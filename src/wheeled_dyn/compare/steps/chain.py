@@ -28,6 +28,7 @@ import numpy as np
 import sympy as sp
 
 from ...derivations.builtin import STEPS_SUFFIX
+from ...paths import file_stamp
 from ...derivations.schema import Derivation
 from ...derivations.steps import STEP_KINDS
 from ..grid.assumptions import declared
@@ -164,13 +165,13 @@ def upstream_causes(steps: Sequence[ElementRecord], eom_records: Sequence[Elemen
 _STEP_CACHE: dict[tuple, list[ElementRecord]] = {}
 
 
-_LOADED: dict[tuple[str, int], Derivation] = {}
+_LOADED: dict[tuple[str, tuple | None], Derivation] = {}
 
 
 def _load(path: Path) -> Derivation:
     r"""A step file, parsed once per content."""
     from ...derivations.parse import load_derivation
-    key = (str(path), path.stat().st_mtime_ns)
+    key = (str(path), file_stamp(path))
     if key not in _LOADED:
         _LOADED[key] = load_derivation(path)
     return _LOADED[key]
@@ -178,7 +179,7 @@ def _load(path: Path) -> Derivation:
 
 def _step_key(path: Path, seed: int) -> tuple:
     from ...models.registry import model_version
-    return str(path), path.stat().st_mtime_ns, seed, model_version(_load(path).model)
+    return str(path), file_stamp(path), seed, model_version(_load(path).model)
 
 
 def _step_records(d: Derivation, seed: int) -> list[ElementRecord]:
@@ -205,10 +206,11 @@ def _neighbours(path: Path) -> list[Path]:
     return [p for p in sorted(folder.glob("*" + STEPS_SUFFIX)) if p != path]
 
 
-def steps_state(path: Path) -> tuple[tuple[str, int], ...]:
+def steps_state(path: Path) -> tuple[tuple[str, tuple | None], ...]:
     r"""The step files beside the derivation file ``path`` with their times of change (what a
-    comparison of it reads besides it: a result remembered is stale when one changes)."""
-    return tuple((p.name, p.stat().st_mtime_ns) for p in _neighbours(path))
+    comparison of it reads besides it: a result remembered is stale when one changes;
+    :func:`~wheeled_dyn.paths.file_stamp`)."""
+    return tuple((p.name, file_stamp(p)) for p in _neighbours(path))
 
 
 def feeding_files(d: Derivation) -> list[Path]:
