@@ -12,6 +12,7 @@ import sympy as sp
 
 import wheeled_dyn as wd
 from wheeled_dyn.compare import ComparisonEngine
+from wheeled_dyn.compare.records import Verdict
 from wheeled_dyn.derivations import load_derivation
 from wheeled_dyn.errors import WheeledDynError
 
@@ -138,3 +139,33 @@ def test_one_engine_tells_two_derivations_of_one_title_apart(tmp_path):
     assert any(r.element == "A[1,1]" and r.verdict == "differs"
                for r in engine.compare(wrong).records)
     assert all(r.verdict == "agrees" for r in engine.compare(right).records)
+
+
+#: The hinged uniform rod (seed 000's 4.4): m l²/3 θ̈ + m g l/2 sin θ = 0.
+_ROD = {"coordinates": {"positions": ["theta"], "configuration": {"theta": "theta"}},
+        "C": sp.zeros(1, 1), "assumes": {"uniform": ["rod"]}}
+_m, _l, _g, _th = sp.symbols("m l g theta")
+_ROD_NAMES = {"m": "M(rod)", "l": "length(rod)", "g": "g"}
+
+
+@pytest.mark.parametrize("number", [sp.E, sp.EulerGamma])
+def test_sympys_named_numbers_are_numbers_not_the_documents_symbols(number):
+    r"""SymPy's E (Euler's number) and other named constants were printed as their names and
+    read back as the document's symbols: with a symbol E declared 1, A = e·m l²/3 "agreed".
+    They are numbers: the element differs, declared E or not."""
+    Q = sp.Matrix([_m * _g * _l / 2 * sp.sin(_th)])
+    result = wd.compare("rod_pendulum", A=sp.Matrix([[number * _m * _l ** 2 / 3]]), Q=Q,
+                        symbols={**_ROD_NAMES, "E": "1", "EulerGamma": "1"},
+                        samples=SAMPLES, param_sets=PARAM_SETS, **_ROD)
+    records = {r.element: r for r in result.records}
+    assert records["A[1,1]"].verdict == Verdict.DIFFERS
+    right = wd.compare("rod_pendulum", A=sp.Matrix([[_m * _l ** 2 / 3]]), Q=Q,
+                       symbols=_ROD_NAMES, samples=SAMPLES, param_sets=PARAM_SETS, **_ROD)
+    assert right.equivalent is True
+
+
+def test_the_imaginary_unit_is_one_clear_error():
+    with pytest.raises(WheeledDynError, match="imaginary unit"):
+        wd.compare("rod_pendulum", A=sp.Matrix([[sp.I * _m * _l ** 2 / 3]]),
+                   Q=sp.Matrix([_m * _g * _l / 2 * sp.sin(_th)]),
+                   symbols={**_ROD_NAMES, "I": "1"}, **_ROD)

@@ -22,6 +22,7 @@ from typing import Any
 
 import sympy as sp
 import tomli_w
+from sympy.printing.str import StrPrinter
 
 from ..paths import resolved
 from ..errors import DerivationError, WheeledDynError
@@ -40,8 +41,29 @@ EXPECTED: dict[str, str] = {
 _NAME = re.compile(r"[^A-Za-z0-9_-]+")
 
 
+class _NumberPrinter(StrPrinter):
+    r"""SymPy's text with its named numbers written as numbers: a file's ``E`` and ``I`` are
+    the document's symbols, so Euler's number is written ``exp(1)`` and the other named
+    constants but π as their digits; the imaginary unit is refused (equations of motion are
+    real: a symbol of that name is ``sympy.Symbol("I")``)."""
+
+    def _print_Exp1(self, expr: Any) -> str:
+        return "exp(1)"
+
+    def _print_ImaginaryUnit(self, expr: Any) -> str:
+        raise ValueError("an expression holds SymPy's imaginary unit I (sympy.I): equations "
+                         "of motion are real (a symbol named I is sympy.Symbol('I'))")
+
+    def _print_NumberSymbol(self, expr: Any) -> str:
+        return "pi" if expr == sp.pi else f"({sp.N(expr, 30)})"
+
+    _print_EulerGamma = _print_GoldenRatio = _print_Catalan = _print_NumberSymbol
+    _print_TribonacciConstant = _print_NumberSymbol
+
+
 def _text(e: Any) -> str:
-    return e if isinstance(e, str) else sp.sstr(_without_time(sp.sympify(e)))
+    return e if isinstance(e, str) else \
+        _NumberPrinter().doprint(_without_time(sp.sympify(e)))
 
 
 def _without_time(e: Any) -> Any:
