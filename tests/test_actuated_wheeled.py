@@ -97,3 +97,14 @@ def test_an_actuated_joint_the_urdf_lacks_is_named(tmp_path):
     path = _model_file(tmp_path, 'actuated = ["hip"]', 'actuated = ["waist"]')
     with pytest.raises(UnknownNameError, match="waist"):
         load_model(str(path))
+
+
+@pytest.mark.parametrize("alias", ["dtheta_l", "ddtheta_l"])
+def test_an_alias_named_as_another_coordinates_velocity_is_one_clear_error(tmp_path, alias):
+    r"""A joint's alias that is another coordinate's velocity (``dtheta_l``) or acceleration
+    name: compiling the model's functions raised Python's "duplicate argument" SyntaxError."""
+    path = _model_file(tmp_path, 'right_wheel_joint = "theta_r"', f'right_wheel_joint = "{alias}"')
+    with pytest.raises(ModelError, match=f"'{alias}' is the name of the") as caught:
+        load_model(str(path))
+    assert "right_wheel_joint" in str(caught.value)
+    assert str(pickle.loads(pickle.dumps(caught.value))) == str(caught.value)

@@ -110,6 +110,15 @@ def finish_coordinates(spec: ModelSpec, model: pin.Model, base_names: Sequence[s
                              "each (revolute, continuous, prismatic); lock it or replace it")
     if len(set(names)) != len(names):
         raise ModelError(spec.name, None, f"coordinate names repeat: {names}")
+    for name in names:          # a coordinate's name is no other's velocity or acceleration
+        for prefix in ("d", "dd"):
+            if name.startswith(prefix) and name[len(prefix):] in names:
+                joint = next((j for j, a in spec.aliases.items() if a == name), None)
+                raise ModelError(spec.name, joint, f"coordinate name {name!r} is the name of "
+                                 f"the {'velocity' if prefix == 'd' else 'acceleration'} of "
+                                 f"coordinate {name[len(prefix):]!r} (a velocity is named d "
+                                 "and an acceleration dd before its coordinate's name): "
+                                 "give the joint another alias")
     return tuple(names)
 
 
