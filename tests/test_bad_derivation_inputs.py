@@ -342,14 +342,18 @@ def test_a_comparison_that_recurses_too_deeply_is_one_error(tmp_path, monkeypatc
     _clear(err.value, path, "nested too deeply")
 
 
+@pytest.mark.parametrize("use", ["(1 + {k}/1000)", "(1 + 0*{k})"])
 @pytest.mark.parametrize("depth, refused", [(12, False), (16, True)])
-def test_definitions_that_double_at_every_level(tmp_path, depth, refused):
+def test_definitions_that_double_at_every_level(tmp_path, depth, refused, use):
     r"""``k = sin(j + theta) + cos(j - theta)``: two terms, each holding the one before, so a
-    tree of 2**depth copies (a probe's 19 levels ran for minutes): counted written out."""
+    tree of 2**depth copies (a probe's 19 levels ran for minutes): counted written out —
+    also where the element that names it multiplies it by 0 (the definition itself, written
+    out to tell one derivation from another, hung a probe's comparison at 30 levels)."""
     defs = ['k0 = "theta"'] + [f'k{i} = "sin(k{i - 1} + theta) + cos(k{i - 1} - theta)"'
                                for i in range(1, depth + 1)]
     text = ROD.replace("[matrices]", "[definitions]\n" + "\n".join(defs) + "\n\n[matrices]"
-                       ).replace("m*g*l/2*sin(theta)", f"m*g*l/2*sin(theta)*(1 + k{depth}/1000)")
+                       ).replace("m*g*l/2*sin(theta)",
+                                 "m*g*l/2*sin(theta)*" + use.format(k=f"k{depth}"))
     path = _write(tmp_path, text=text)
     if refused:
         with pytest.raises(DerivationError) as err:

@@ -26,7 +26,8 @@ from .expressions import (RESERVED_NAMES, ExpressionError, UndeclaredNameError,
                           real_symbol, scan_names)
 from .latex import (LATEX_KEYS, LatexNames, LatexSource, is_printed_name, latex_to_sympy,
                     unwrap_latex)
-from .limits import MAX_DEFINITION_DEPTH, MAX_DOCUMENT_TERMS, MAX_FILE_TERMS, MAX_SYMBOLS
+from .limits import (MAX_DEFINITION_DEPTH, MAX_DOCUMENT_TERMS, MAX_FILE_TERMS, MAX_SYMBOLS,
+                     MAX_TREE_NODES, tree_size)
 from .schema import SymbolSpec
 from .source import SourceText
 
@@ -292,6 +293,11 @@ class _Loader:
                                 f"{MAX_DEFINITION_DEPTH} deep (each used in the next)",
                                 self.line("definitions", name))
             done[symbol] = parsed[name].xreplace(inner)
+            nodes = tree_size(done[symbol])
+            if nodes > MAX_TREE_NODES:      # each use copies the one before: a tree of 2**k
+                raise self.fail(f"definitions.{name}", f"definition too large: {nodes} "
+                                "nodes written out (the definitions it uses substituted), at "
+                                f"most {MAX_TREE_NODES}", self.line("definitions", name))
             return done[symbol]
 
         for name in raw:
