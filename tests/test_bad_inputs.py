@@ -64,12 +64,16 @@ def _chain(folder: Path, links: int, moving: set[int] | None = None) -> Path:
 
 
 # -- model inputs ----------------------------------------------------------------------------
-def test_a_missing_mesh_is_a_warning_and_the_dynamics_are_the_same(tmp_path):
-    model, urdf = own_wip_model(tmp_path, (BOX, MISSING_MESH))
+@pytest.mark.parametrize("mesh", ["meshes/body.stl", "/nonexistent/meshes/body.stl",
+                                  "file:///nonexistent/meshes/body.stl"])
+def test_a_missing_mesh_is_a_warning_and_the_dynamics_are_the_same(tmp_path, mesh):
+    r"""Relative, absolute or a ``file://`` address: one warning each (an absolute path or
+    ``file://`` address was a ModelError, the mesh loader's "could not load resource")."""
+    model, urdf = own_wip_model(tmp_path, (BOX, MISSING_MESH.replace("meshes/body.stl", mesh)))
     with pytest.warns(ModelWarning) as said:
         wm = wd.load_model(model)
     (message,) = [str(w.message) for w in said if issubclass(w.category, ModelWarning)]
-    assert "meshes/body.stl" in message and "link body" in message and str(urdf) in message
+    assert mesh in message and "link body" in message and str(urdf) in message
     reference = wd.load_model("wip")
     q = np.random.default_rng(7).uniform(-1, 1, reference.model.nq)
     A = pin.crba(wm.model, wm.model.createData(), q)

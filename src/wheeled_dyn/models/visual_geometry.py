@@ -13,6 +13,7 @@ import re
 import warnings
 import xml.etree.ElementTree as ET
 from collections.abc import Sequence
+from pathlib import Path
 
 import pinocchio as pin
 
@@ -29,6 +30,9 @@ def visual_geometry(source: UrdfSource, name: str, package_dirs: Sequence[str],
     :class:`~wheeled_dyn.errors.ModelWarning` naming it, its link and the URDF (the dynamics
     do not need meshes: only the viewer shows them)."""
     dropped: set[str] = set()
+    for mesh in _absent_files(text):    # Pinocchio tries to load these and fails otherwise
+        dropped.add(mesh)
+        text = _dropped(text, mesh, name, source)
     while True:
         try:
             return pin.buildGeomFromUrdfString(model, text, pin.GeometryType.VISUAL,
@@ -40,11 +44,33 @@ def visual_geometry(source: UrdfSource, name: str, package_dirs: Sequence[str],
                                  f"cannot be read ({' '.join(str(exc).split())})") from None
             mesh = found.group(1)
             dropped.add(mesh)
-            text, links = _without_mesh(text, mesh)
-            warnings.warn(ModelWarning(
-                f"model {name}: mesh {mesh!r} (link {', '.join(links) or '?'}, "
-                f"{source.path}) not found; the model is built without it (the dynamics do "
-                "not use meshes; the viewer does not show it)"), stacklevel=2)
+            text = _dropped(text, mesh, name, source)
+
+
+def _dropped(text: str, mesh: str, name: str, source: UrdfSource) -> str:
+    r"""``text`` without the visuals of ``mesh``, with one warning naming it."""
+    text, links = _without_mesh(text, mesh)
+    warnings.warn(ModelWarning(
+        f"model {name}: mesh {mesh!r} (link {', '.join(links) or '?'}, "
+        f"{source.path}) not found; the model is built without it (the dynamics do "
+        "not use meshes; the viewer does not show it)"), stacklevel=3)
+    return text
+
+
+def _absent_files(text: str) -> list[str]:
+    r"""The visual meshes given as absolute paths or ``file://`` addresses that are not
+    there (``package://`` and relative ones Pinocchio resolves, and says when it cannot)."""
+    try:
+        root = ET.fromstring(text)
+    except ET.ParseError:
+        return []                         # the URDF's own reader says what is wrong
+    out = []
+    for mesh in root.iterfind("link/visual/geometry/mesh"):
+        filename = mesh.get("filename", "")
+        path = filename[len("file://"):] if filename.startswith("file://") else filename
+        if path.startswith("/") and not Path(path).is_file() and filename not in out:
+            out.append(filename)
+    return out
 
 
 def _without_mesh(text: str, mesh: str) -> tuple[str, list[str]]:
