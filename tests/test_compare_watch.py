@@ -86,6 +86,35 @@ def test_watch_rechecks_saved_file_and_stops_on_ctrl_c(tmp_path):
             proc.wait(timeout=10)
 
 
+def test_a_file_that_becomes_a_folder_is_an_error_not_an_empty_report(tmp_path):
+    r"""The watched file replaced by an empty folder: the error a fresh ``compare`` gives
+    ("folder without derivation files"), and the last report stays; the watch wrote an
+    empty report over it, with no error."""
+    doc = tmp_path / "eq25.toml"
+    shutil.copy(_eq25(), doc)
+    out = tmp_path / "out"
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "wheeled_dyn.cli.main", "compare", "wip", str(doc), "--watch",
+         "--out", str(out), *GRID],
+        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, bufsize=1,
+        env={**os.environ, "PYTHONUNBUFFERED": "1"})
+    q: queue.Queue = queue.Queue()
+    threading.Thread(target=_reader, args=(proc.stdout, q), daemon=True).start()
+    seen: list[str] = []
+    try:
+        _wait_for(q, "watching", seen)
+        report = (out / "report.md").read_text()
+        doc.unlink()
+        doc.mkdir()
+        line = _wait_for(q, "error:", seen)
+        assert "folder without derivation files" in line, seen
+        _wait_for(q, "checked again", seen)
+        assert (out / "report.md").read_text() == report
+    finally:
+        proc.kill()
+        proc.wait(timeout=10)
+
+
 def test_watch_calls_check_once_per_save(tmp_path):
     f = tmp_path / "a.toml"
     f.write_text("x = 1\n")

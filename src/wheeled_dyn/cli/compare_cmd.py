@@ -63,8 +63,10 @@ def _cmd_compare(args: argparse.Namespace) -> int:
             engines[version] = ComparisonEngine(samples=args.samples,
                                                 param_sets=args.param_sets, seed=2026,
                                                 parallel_steps=True)
-        results = run_comparison(files, args.samples, args.param_sets, model=args.model,
-                                 engine=engines[version])
+        # the arguments read again: a file that became a folder (without derivation files),
+        # or a folder that gained one, is read as a fresh command reads it
+        results = run_comparison(input_files(args.files), args.samples, args.param_sets,
+                                 model=args.model, engine=engines[version])
         print_summary(results)
         write_report(results, f"wheeled_dyn: derivations of {args.model} against the truth",
                Path(args.out), args.plots)
