@@ -77,3 +77,47 @@ def test_ctrl_c_while_the_workers_are_forked_is_not_lost():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          timeout=60)
     assert out.stdout.strip() == "raised", (out.stdout, out.stderr)
+
+
+#: Longest wait for a worker to end after its parent is killed (s).
+ORPHAN_WAIT = 20.0
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc (Linux)")
+def test_workers_end_when_their_parent_is_killed():
+    r"""A parent killed outright (SIGKILL: nothing of it runs) leaves no worker computing on:
+    a probe's ``report`` killed so left two at full load for 25 s."""
+    import subprocess
+    import time
+    code = ("import time\n"
+            "from wheeled_dyn.compare.runtime.workers import Workers\n"
+            "import multiprocessing\n"
+            "with Workers(1) as w:\n"
+            "    w.submit(time.sleep, (120,), [])\n"
+            "    time.sleep(1.0)\n"
+            "    print(*[p.pid for p in multiprocessing.active_children()], flush=True)\n"
+            "    time.sleep(120)\n")
+    proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True)
+    try:
+        pids = [int(x) for x in proc.stdout.readline().split()]
+        assert pids
+        proc.send_signal(signal.SIGKILL)
+        proc.wait(timeout=10)
+        deadline = time.monotonic() + ORPHAN_WAIT
+        alive = list(pids)
+        while alive and time.monotonic() < deadline:
+            time.sleep(0.1)
+            alive = [p for p in alive if _running(p)]
+        assert not alive
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+
+
+def _running(pid: int) -> bool:
+    r"""Whether process ``pid`` exists and is no zombie (an orphan is reaped by init)."""
+    try:
+        with open(f"/proc/{pid}/stat") as handle:
+            return handle.read().split(")")[-1].split()[0] != "Z"
+    except OSError:
+        return False

@@ -16,6 +16,8 @@ from __future__ import annotations
 import multiprocessing
 import os
 import signal
+import threading
+import time
 from collections.abc import Callable, Sequence
 from multiprocessing.pool import AsyncResult
 from types import TracebackType
@@ -49,12 +51,30 @@ def stage(name: str, stage: str) -> None:
         _PROGRESS.put(("stage", name, stage))
 
 
-def _start_worker() -> None:
-    r"""Workers leave Ctrl-C to the parent, which ends them (no traceback from each), and
-    announce their process id (so that the parent notices one that dies)."""
+def _start_worker(parent: int) -> None:
+    r"""Workers leave Ctrl-C to the parent, which ends them (no traceback from each), end
+    with their parent however it ends (killed, it cannot end them), and announce their
+    process id (so that the parent notices one that dies)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    _end_with_parent(parent)
     if _PROGRESS is not None:
         _PROGRESS.put(("pid", os.getpid()))
+
+
+#: Seconds between two looks of a worker at its parent (is it still there?).
+PARENT_POLL = 0.5
+
+
+def _end_with_parent(parent: int) -> None:
+    r"""A thread that ends this worker once its parent has ended (its parent process id is
+    then another's: it was killed, and could not end its workers). Not the kernel's
+    parent-death signal: that follows the thread that forked, and the pool forks a worker it
+    replaces from a thread of its own that ends before the workers do."""
+    def look() -> None:
+        while os.getppid() == parent:
+            time.sleep(PARENT_POLL)
+        os._exit(1)
+    threading.Thread(target=look, daemon=True, name="parent-watch").start()
 
 
 def _alive(pid: int) -> bool:
@@ -84,7 +104,7 @@ class Workers:
         # could otherwise fire inside those callbacks
         held = hasattr(signal, "pthread_sigmask")
         before = signal.pthread_sigmask(signal.SIG_BLOCK, HELD_SIGNALS) if held else None
-        self._pool = ctx.Pool(count, initializer=_start_worker)
+        self._pool = ctx.Pool(count, initializer=_start_worker, initargs=(os.getpid(),))
         try:
             if before is not None:           # held: the mask as it was
                 signal.pthread_sigmask(signal.SIG_SETMASK, before)
