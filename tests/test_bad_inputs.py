@@ -503,3 +503,15 @@ def test_a_term_of_no_kind_names_its_equations_line(tmp_path, term, words):
         load_derivation(doc).read_off()
     said = str(err.value)
     assert err.value.line == at and f"{doc}:{at}: equation 2" in said and words in said, said
+
+
+def test_a_urdf_given_as_the_model_file_says_how_to_write_one():
+    r"""``wheeled-dyn matrices robot.urdf`` and ``wd.load_model("robot.urdf")``: one error
+    saying a URDF is no model file and the command that writes one (it was "malformed TOML:
+    Invalid statement", the URDF read as TOML)."""
+    urdf = Path(__file__).parent / "data" / "ros_balancer" / "ros_balancer.urdf"
+    with pytest.raises(InputFileError, match="a URDF is no model file") as err:
+        wd.load_model(str(urdf))
+    assert "wheeled-dyn model" in str(err.value)
+    out = _cli("matrices", str(urdf))
+    assert out.returncode == 2 and "a URDF is no model file" in out.stderr, out.stderr

@@ -368,6 +368,10 @@ def read_model_file(path: str | Path) -> ModelFile:
     r"""Read and check a model file (TOML only: no URDF, no Pinocchio). Errors:
     :class:`~wheeled_dyn.errors.InputFileError` with the file, line and key."""
     p = Path(path)
+    if p.suffix.lower() == ".urdf" and p.is_file():
+        from ..errors import InputFileError
+        raise InputFileError(p, "a URDF is no model file: 'wheeled-dyn model "
+                             f"{p} --out MODEL.toml' writes one (docs/model-format.md)")
     data, source = read_toml(p)
     mf = ModelFile(p, str(data.get("name", p.stem)), "", MappingProxyType(data), source)
     _validate(mf)
