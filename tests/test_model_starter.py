@@ -201,6 +201,24 @@ def test_a_urdf_in_millimetres_gets_a_check_note(tmp_path):
     assert "# CHECK units" in out.read_text()
 
 
+def test_a_link_in_millimetres_beside_wheels_in_metres_is_noted(tmp_path):
+    r"""Only the torso's centre of mass written in millimetres (0.15 → 150 m up): the wheels
+    are plausible, and the starter said nothing; now the farthest centre of mass is named."""
+    from pathlib import Path
+
+    from wheeled_dyn.models.starter import inspect_urdf
+    source = Path(__file__).parent / "data" / "ros_balancer" / "ros_balancer.urdf"
+    text = source.read_text()
+    origin = '<origin xyz="-0.015 0.01 0.15" rpy="0 0 0"/>'
+    assert origin in text
+    urdf = tmp_path / "torso_mm.urdf"
+    urdf.write_text(text.replace(origin, '<origin xyz="-15 10 150" rpy="0 0 0"/>', 1))
+    notes = inspect_urdf(urdf).notes
+    assert any(n.startswith("CHECK units: link") and "centre of mass" in n for n in notes), \
+        notes
+    assert not any("units" in n for n in inspect_urdf(source).notes)
+
+
 @pytest.mark.parametrize("old, new, expected", [
     # the left wheel 5 cm ahead: parallel spin axes, centres offset (it said "wheel spin axis
     # is not along the axle")

@@ -201,11 +201,13 @@ def inspect_urdf(path: str | Path, accept_inertia: tuple[str, ...] = ()) -> Urdf
                     " ".join(f"{x:g}" for x in (j.axis if j.axis is not None and j.type
                                                  != "fixed" else ())))   # none of its own
                    for j in robot.joints)
-    body, up, notes = root, (0.0, 0.0, 1.0), ()
+    body, up = root, (0.0, 0.0, 1.0)
+    notes: tuple[str, ...] = ()
     if pair is not None:
         body = _body(pair, parent_joint, path_joints, root)
         pair, up, notes = _sides(pair, urdf.get_transform(body, root)[:3, :3], body)
         notes += _units_note(pair)
+    notes += _extent_note(urdf, robot, root)
     free = free_joints(joints, pair, path_joints)
     casters = caster_links(urdf, pair, free, urdf.get_transform(body, root)[:3, :3]
                            @ np.asarray(up), root) if pair else ()
@@ -226,6 +228,33 @@ def _units_note(pair: tuple[WheelCandidate, WheelCandidate]) -> tuple[str, ...]:
     return (f"CHECK units: a wheel radius of {left.radius:g} m and a track of {track:g} m; "
             "URDF lengths are metres (REP 103): a file exported in millimetres is 1000 times "
             "too large",)
+
+
+#: A distance (m) of a link's centre of mass from the root link above which the starter
+#: notes that the URDF may not be in metres (a robot a person brings is a few metres at most;
+#: a CAD export in millimetres puts a torso hundreds of metres up).
+PLAUSIBLE_EXTENT = 20.0
+
+
+def _extent_note(urdf, robot, root: str) -> tuple[str, ...]:
+    r"""A CHECK note where a link's centre of mass, at every joint 0, is farther than
+    :data:`PLAUSIBLE_EXTENT` from the root link's origin (the farthest named)."""
+    far, where = 0.0, ""
+    for link in robot.links:
+        if link.inertial is None or link.inertial.origin is None:
+            continue
+        try:
+            at = urdf.get_transform(link.name, root) @ np.asarray(link.inertial.origin)
+        except (ValueError, KeyError):
+            continue
+        distance = float(np.linalg.norm(at[:3, 3]))
+        if np.isfinite(distance) and distance > far:
+            far, where = distance, link.name
+    if far <= PLAUSIBLE_EXTENT:
+        return ()
+    return (f"CHECK units: link {where}'s centre of mass is {far:g} m from the root link "
+            f"{root}; URDF lengths are metres (REP 103): a file exported in millimetres is "
+            "1000 times too large",)
 
 
 def _body(pair, parent_joint, path_joints, root: str) -> str:
