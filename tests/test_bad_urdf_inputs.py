@@ -62,6 +62,12 @@ URDF_CASES = {
                          ("left_wheel", "triangle inequality", "--accept-inertia")),
     "mass_huge": ('<mass value="6.0"/>', '<mass value="1e308"/>', ModelError,
                   ("base_link", "'1e308'", "1e100")),
+    # a second <mass> or <inertial>: the first was read without a word (which is meant?)
+    "two_masses": ('<mass value="6.0"/>', '<mass value="6.0"/><mass value="8.5"/>', ModelError,
+                   ("base_link", "2 <mass> elements")),
+    "two_inertials": ("<inertial>", '<inertial><mass value="1"/><inertia ixx="1" ixy="0" '
+                      'ixz="0" iyy="1" iyz="0" izz="1"/></inertial>\n    <inertial>',
+                      ModelError, ("base_link", "2 <inertial> elements")),
 }
 
 

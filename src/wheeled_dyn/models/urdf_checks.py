@@ -80,6 +80,13 @@ def _check_inertial(path: Path, text: str, link: ET.Element, accept: tuple[str, 
         return 0.0
     mass_el = inertial.find("mass")
     where = f"{path.name}:{_line_of(text, 'link', name) or '?'}"
+    for parent, tag in ((link, "inertial"), (inertial, "mass"), (inertial, "inertia"),
+                        (inertial, "origin")):
+        count = len(parent.findall(tag))
+        if count > 1:               # which one is meant? urdfdom reads the first, silently
+            raise ModelError(path.stem, name, f"{count} <{tag}> elements in its "
+                             f"{'link' if parent is link else '<inertial>'}: it has one "
+                             f"({where})")
     if mass_el is None:
         raise ModelError(path.stem, name, f"<inertial> without <mass> ({where})")
     mass = _float(mass_el.get("value"))
