@@ -55,17 +55,23 @@ def _wait_for(q: queue.Queue, text: str, seen: list[str]) -> str:
                          + "".join(seen))
 
 
-def test_watch_rechecks_saved_file_and_stops_on_ctrl_c(tmp_path):
-    doc = tmp_path / "eq25.toml"
-    shutil.copy(_eq25(), doc)
-    original = doc.read_text(encoding="utf-8")
+def _start_watch(doc: Path, out: Path) -> tuple[subprocess.Popen, queue.Queue]:
+    r"""``compare wip DOC --watch --out OUT`` started, and the queue its output lines reach."""
     proc = subprocess.Popen(
         [sys.executable, "-m", "wheeled_dyn.cli.main", "compare", "wip", str(doc), "--watch",
-         "--out", str(tmp_path / "out"), *GRID],
+         "--out", str(out), *GRID],
         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, bufsize=1,
         env={**os.environ, "PYTHONUNBUFFERED": "1"})
     q: queue.Queue = queue.Queue()
     threading.Thread(target=_reader, args=(proc.stdout, q), daemon=True).start()
+    return proc, q
+
+
+def test_watch_rechecks_saved_file_and_stops_on_ctrl_c(tmp_path):
+    doc = tmp_path / "eq25.toml"
+    shutil.copy(_eq25(), doc)
+    original = doc.read_text(encoding="utf-8")
+    proc, q = _start_watch(doc, tmp_path / "out")
     seen: list[str] = []
     try:
         _wait_for(q, "watching", seen)
@@ -93,13 +99,7 @@ def test_a_file_that_becomes_a_folder_is_an_error_not_an_empty_report(tmp_path):
     doc = tmp_path / "eq25.toml"
     shutil.copy(_eq25(), doc)
     out = tmp_path / "out"
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "wheeled_dyn.cli.main", "compare", "wip", str(doc), "--watch",
-         "--out", str(out), *GRID],
-        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, bufsize=1,
-        env={**os.environ, "PYTHONUNBUFFERED": "1"})
-    q: queue.Queue = queue.Queue()
-    threading.Thread(target=_reader, args=(proc.stdout, q), daemon=True).start()
+    proc, q = _start_watch(doc, out)
     seen: list[str] = []
     try:
         _wait_for(q, "watching", seen)
