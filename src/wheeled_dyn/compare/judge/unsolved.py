@@ -63,10 +63,12 @@ def term_columns(arrays, B: np.ndarray | None, rows: np.ndarray) -> np.ndarray |
     (:math:`H_{jl} + H_{lj}`) of every equation on the samples ``rows``, then a linearised
     document's stiffness K (its columns, where given): samples × n × columns; None where one
     of them is not given (H: on those samples)."""
-    if B is None or arrays.Q is None or arrays.H is None or len(arrays.H) != len(rows):
+    if arrays.Q is None or arrays.H is None or len(arrays.H) != len(rows):
         return None
     H = arrays.H
     n = H.shape[1]
+    if B is None:                       # no inputs (a passive body): none of their columns
+        B = np.zeros((int(rows.max(initial=-1)) + 1, n, 0))
     products = [H[:, :, j, j] if j == m else H[:, :, j, m] + H[:, :, m, j]
                 for j in range(n) for m in range(j, n)]
     stiffness = [] if arrays.K is None else [arrays.K[rows]]
@@ -130,9 +132,10 @@ def inertia_diagnoses(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
     doc_A, true_A = doc.A, truth.need("A")
     own = grid_inertia([ps.values for ps in sides.grid.sets], len(true_A), lengths)
     n = doc_A.shape[1]
-    if doc.B is None or true_B is None or not np.isfinite(doc_A).all():
+    if not np.isfinite(doc_A).all():
         return None
-    T = implied_inertia(doc.B, true_B)
+    # a passive body (no inputs on either side): from its gravity and velocity terms alone
+    T = None if doc.B is None or true_B is None else implied_inertia(doc.B, true_B)
     how = "its inputs' coefficients, M = B B_doc⁻¹ A_doc"
     extra: list[tuple[str, np.ndarray, np.ndarray, float, bool]] = []
     if T is not None:
@@ -155,8 +158,10 @@ def inertia_diagnoses(sides, bases: Sequence[tuple[sp.Expr, np.ndarray]],
                "[B_doc Q_doc H_doc], M = W⁻¹ A_doc")
     else:
         return None
-    k = function_factor(M, true_A)
-    if k is not None:                   # one divisor of every solved row: its determinant
+    # one divisor of every solved row: its determinant (of one coordinate, the inertia itself:
+    # its terms are named below)
+    k = function_factor(M, true_A) if n > 1 else None
+    if k is not None:
         return divisor_diagnosis(k, f"the inertia matrix the document inverted (read back "
                                     f"from {how}) is the truth's")
     scale = float(np.abs(true_A).max())
