@@ -282,7 +282,8 @@ def test_definitions_nested_too_deeply(tmp_path, body, reverse):
     r"""``[definitions]`` each used in the next: 40 of ``k = j*(j + 1)`` (a tree of 2**40
     nodes SymPy's traversals visit) ran for minutes before the terms were counted; 400 of
     ``sin`` overflowed Python's stack (a traceback). Both, in either order, are one error
-    naming the file and the definition, at once."""
+    naming the file and the definition, at once: too deep, or (the doubling body in the order
+    declared) too large written out, which its fifteenth level is already."""
     defs = [f'k{i} = "{body.format(p=i - 1)}"' if i else 'k0 = "theta + m"' for i in range(400)]
     text = ROD.replace("[matrices]", "[definitions]\n" + "\n".join(
         reversed(defs) if reverse else defs) + "\n\n[matrices]").replace(
@@ -290,7 +291,8 @@ def test_definitions_nested_too_deeply(tmp_path, body, reverse):
     path = _write(tmp_path, text=text)
     with pytest.raises(DerivationError) as err:
         load_derivation(path)
-    _clear(err.value, path, "definitions.k", "nested more than")
+    _clear(err.value, path, "definitions.k")
+    assert "nested more than" in str(err.value) or "nodes written out" in str(err.value)
 
 
 def test_a_loop_of_symbolic_links_is_one_error(tmp_path):
