@@ -2,9 +2,9 @@ r"""``wheeled-dyn compare ... --watch``: check a derivation again each time it, 
 verdict depends on, is saved.
 
 A person fixing a derivation saves the file and wants the verdict at once. :func:`watch` polls
-the modification times of every file the result depends on (:func:`watched_files`: the
-derivation files, the step files beside them, the model file and its URDF; no extra
-dependency, works on every file system) every :data:`WATCH_INTERVAL` seconds and calls the
+the stamps (times of change, size, inode) of every file the result depends on
+(:func:`watched_files`: the derivation files, the step files beside them, the model file and
+its URDF; no extra dependency, works on every file system) every :data:`WATCH_INTERVAL` seconds and calls the
 check again when one changed. The caller keeps one
 :class:`~wheeled_dyn.compare.ComparisonEngine` while the model's files stay the same, so the
 truth (Pinocchio on the sampled states and parameter sets, the closed forms) is computed once
@@ -25,15 +25,15 @@ from pathlib import Path
 from ..errors import WheeledDynError
 from ..paths import file_stamp, resolved
 
-#: Seconds between two looks at the files' modification times.
+#: Seconds between two looks at the files' stamps.
 WATCH_INTERVAL: float = 0.25
 #: Exit code of a watch ended by Ctrl-C (as every command interrupted: 128 + SIGINT).
 INTERRUPTED = 130
 
 
 def stamps(files: Sequence[Path]) -> dict[Path, tuple | None]:
-    r"""``(mtime_ns, size, inode)`` of each file, None for a file that is missing (being
-    replaced)."""
+    r"""The :func:`~wheeled_dyn.paths.file_stamp` of each file, None for a file that is
+    missing (being replaced)."""
     return {Path(f): file_stamp(f) for f in files}
 
 

@@ -273,12 +273,10 @@ def convention_table(wm) -> ConventionTable:
 def _actuated_rows(wm, coordinates: dict[str, Convention], first: int) -> list[Convention]:
     r"""The inputs of the ``actuated`` joints (B's columns from ``first``): each along its
     joint's coordinate, the reaction on the joint's parent."""
-    return [Convention(wm.input_names[first + k], "input", f"force or torque "
-                       f"{coordinates[wm.coordinate_names[vi]].axis}, reaction on the parent",
-                       coordinates[wm.coordinate_names[vi]].vector,
-                       coordinates[wm.coordinate_names[vi]].frame,
-                       coordinates[wm.coordinate_names[vi]].positive)
-            for k, vi in enumerate(wm.actuated)]
+    joints = [coordinates[wm.coordinate_names[vi]] for vi in wm.actuated]
+    return [Convention(wm.input_names[first + k], "input", f"force or torque {c.axis}, "
+                       "reaction on the parent", c.vector, c.frame, c.positive)
+            for k, c in enumerate(joints)]
 
 
 def _axis(jmodel) -> tuple[np.ndarray | None, bool]:

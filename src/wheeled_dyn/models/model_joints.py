@@ -176,14 +176,14 @@ def actuated_inputs(spec: ModelSpec, model: pin.Model, coordinate_names: Sequenc
     own = tuple("tau_" + coordinate_names[i] for i in actuated)
     given = tuple(spec.inputs) if spec.inputs is not None else None
     if given is None:
-        return tuple(actuated), (*(wheel_inputs or ()), *own)
+        return tuple(actuated), (*wheel_inputs, *own)
     if len(given) == len(wheel_inputs) + len(actuated):
         return tuple(actuated), given
     if wheel_inputs and actuated and len(given) == len(actuated):
         return tuple(actuated), (*wheel_inputs, *given)
-    expected = ("two wheel motors" if wheel_inputs else "") + (
-        " and " if wheel_inputs and actuated else "") + (
-        f"{len(actuated)} actuated joints" if actuated or not wheel_inputs else "")
+    expected = " and ".join([*(["two wheel motors"] if wheel_inputs else []),
+                             *([f"{len(actuated)} actuated joints"]
+                               if actuated or not wheel_inputs else [])])
     raise ModelError(spec.name, None, f"{len(given)} input names for {expected}" + (
         " (name the wheels' two first, then one per actuated joint; or the actuated "
         "joints' only)" if wheel_inputs and actuated else ""))

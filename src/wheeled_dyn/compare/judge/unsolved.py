@@ -67,12 +67,12 @@ def term_columns(arrays, B: np.ndarray | None, rows: np.ndarray) -> np.ndarray |
         return None
     H = arrays.H
     n = H.shape[1]
-    if B is None:                       # no inputs (a passive body): none of their columns
-        B = np.zeros((int(rows.max(initial=-1)) + 1, n, 0))
+    # no inputs (a passive body): none of their columns
+    inputs = B[rows] if B is not None else np.zeros((len(rows), n, 0))
     products = [H[:, :, j, j] if j == m else H[:, :, j, m] + H[:, :, m, j]
                 for j in range(n) for m in range(j, n)]
     stiffness = [] if arrays.K is None else [arrays.K[rows]]
-    return np.concatenate([B[rows], arrays.Q[rows][:, :, None],
+    return np.concatenate([inputs, arrays.Q[rows][:, :, None],
                            np.stack(products, axis=2), *stiffness], axis=2)
 
 
